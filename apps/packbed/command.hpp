@@ -1,0 +1,25 @@
+// The pieces every subcommand shares: how it registers, validators with our error wording.
+#pragma once
+
+#include <functional>
+#include <string>
+
+#include <CLI/CLI.hpp>
+
+namespace packbed::cli {
+
+/// A subcommand: its CLI11 app (filled at registration) and what to run once it is parsed.
+struct Command {
+    CLI::App* app = nullptr;
+    std::function<int()> run; ///< returns the exit status
+};
+
+/// A real number within [low, high] (each end open or closed). Rejects text that is not
+/// wholly a finite number. The message names the value and the allowed range; CLI11 prefixes
+/// the option name.
+CLI::Validator real_in(double low, double high, bool low_open, bool high_open);
+
+/// A whole number within [low, high].
+CLI::Validator whole_in(unsigned long long low, unsigned long long high);
+
+} // namespace packbed::cli

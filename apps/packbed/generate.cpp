@@ -1,0 +1,146 @@
+// `packbed generate`: the soft-sphere bed of Salvat et al. (2005) in a cylinder.
+#include <atomic>
+#include <csignal>
+#include <limits>
+#include <memory>
+
+#include <fmt/format.h>
+#include <omp.h>
+
+#include "command.hpp"
+#include "packbed/io.hpp"
+#include "packbed/soft_sphere.hpp"
+#include "packbed/summary.hpp"
+#include "progress.hpp"
+#include "toml_config.hpp"
+
+namespace packbed::cli {
+
+namespace {
+
+std::atomic<bool> interrupted{false};
+extern "C" void on_interrupt(int) {
+    interrupted = true;
+}
+
+struct GenerateOptions {
+    SoftSphereParameters params;
+    std::string update = to_string(SoftSphereParameters{}.update);
+    std::string out = "packbed-out";
+    double band_clearance = 1.0;
+    unsigned long long threads = static_cast<unsigned long long>(omp_get_num_procs());
+    bool quiet = false;
+};
+
+int run_generate(GenerateOptions& o) {
+    for (const auto& [name, value] : update_orders())
+        if (name == o.update)
+            o.params.update = value;
+    o.params.validate();
+    OutputDirectory out(o.out); // refuse an unwritable directory before the run
+    omp_set_num_threads(static_cast<int>(o.threads));
+
+    std::signal(SIGINT, on_interrupt);
+    std::signal(SIGTERM, on_interrupt);
+    TerminalProgress progress(progress_wanted(o.quiet));
+    RunControl control;
+    control.on_progress = [&](const Progress& p) { progress(p); };
+    control.should_stop = [] { return interrupted.load(); };
+    const SoftSphereResult result = generate_soft_sphere(o.params, control);
+    progress.finish();
+
+    const auto summary =
+        soft_sphere_summary(o.params, result, o.band_clearance, static_cast<int>(o.threads));
+    out.stage("particles.csv", particles_csv(result.packing));
+    out.stage("particles.vtu", particles_vtu(result.packing));
+    out.stage("summary.json", summary.dump(2) + "\n");
+    out.commit();
+    if (!o.quiet) {
+        fmt::print("packbed generate: {} spheres, a = {}, seed {}: {} iterations, {:.2f} s\n",
+                   o.params.particles, o.params.aspect_ratio, o.params.seed, result.iterations,
+                   result.seconds);
+        fmt::print("largest overlaps: sphere-sphere {:.3e} Dp, sphere-wall {:.3e} Dp\n",
+                   result.max_overlap_pair, result.max_overlap_wall);
+        if (summary["void_fraction"].is_number())
+            fmt::print("void fraction: {:.4f} (between z = {:.4g} and z = {:.4g})\n",
+                       summary["void_fraction"].get<double>(),
+                       summary["void_fraction_band"][0].get<double>(),
+                       summary["void_fraction_band"][1].get<double>());
+        else
+            fmt::print("void fraction: not computed: {}\n",
+                       summary["void_fraction_note"].get<std::string>());
+        fmt::print("results in {}/ (particles.csv, particles.vtu, summary.json)\n",
+                   out.path().string());
+    }
+    return 0;
+}
+
+} // namespace
+
+Command register_generate(CLI::App& parent) {
+    auto options = std::make_shared<GenerateOptions>();
+    auto& o = *options;
+    auto& p = o.params;
+    CLI::App* app = parent.add_subcommand(
+        "generate", "Pack spheres in a cylinder with the soft-sphere algorithm of Salvat et al. "
+                    "(2005) and write particles.csv, particles.vtu and summary.json");
+    app->option_defaults()->always_capture_default();
+    const double inf = std::numeric_limits<double>::infinity();
+
+    app->add_option("-a,--aspect-ratio", p.aspect_ratio, "a = 2 Rt / Dp, tube over sphere diameter")
+        ->check(real_in(1.0, 1e4, false, false));
+    app->add_option("-n,--particles", p.particles, "Np, number of spheres")
+        ->check(whole_in(1, 100'000'000));
+    app->add_option("-s,--seed", p.seed, "seed of the random generation stage")
+        ->check(whole_in(0, std::numeric_limits<std::uint64_t>::max()));
+    app->add_option("-d,--diameter", p.diameter,
+                    "sphere diameter Dp; the unit of every length "
+                    "in the outputs")
+        ->check(real_in(0.0, inf, true, true));
+    app->add_option("-o,--out", o.out, "output directory (created if missing)");
+    app->add_option("--e0", p.e0, "initial overall void fraction for L0, eq. (6)")
+        ->check(real_in(0.0, 1.0, true, true));
+    app->add_option("--ck", p.ck, "elasticity parameter Ck of eq. (4)")
+        ->check(real_in(0.0, 1.0, true, true));
+    app->add_option("--cg-step", p.cg_step, "step of the gravity parameter Cg, eq. (7)")
+        ->check(real_in(0.0, 1e-3, true, false));
+    app->add_option("--overlap-low", p.overlap_low,
+                    "lower bound of the largest overlap in the intermediate stage, eq. (7), Dp")
+        ->check(real_in(0.0, 0.5, true, true));
+    app->add_option("--overlap-high", p.overlap_high,
+                    "upper bound of the largest overlap in the intermediate stage, eq. (7), Dp")
+        ->check(real_in(0.0, 0.5, true, true));
+    app->add_option("--tolerance", p.tolerance,
+                    "largest sphere-sphere and sphere-wall overlap allowed at the end, Dp")
+        ->check(real_in(0.0, 1e-2, true, false));
+    app->add_option("--mc-period", p.mc_period, "iterations between mass-centre records")
+        ->check(whole_in(1, 1'000'000));
+    app->add_option("--mc-window", p.mc_window, "successive mass-centre records that must agree")
+        ->check(whole_in(2, 10'000));
+    app->add_option("--mc-tolerance", p.mc_tolerance,
+                    "allowed spread of those records, percent of their mean")
+        ->check(real_in(0.0, 100.0, true, false));
+    std::vector<std::string> update_names;
+    for (const auto& entry : update_orders())
+        update_names.push_back(entry.first);
+    app->add_option("--update", o.update,
+                    "in-place: each sphere moves in turn (Gauss-Seidel); simultaneous: all move "
+                    "from the old positions (Jacobi, uses --threads)")
+        ->check(CLI::IsMember(update_names));
+    app->add_option("--skin", p.skin, "Verlet neighbour-list skin, Dp")
+        ->check(real_in(0.0, 1.0, true, false));
+    app->add_option("--max-iterations", p.max_iterations, "give up after this many iterations")
+        ->check(whole_in(1, std::numeric_limits<std::uint64_t>::max()));
+    app->add_option("--band-clearance", o.band_clearance,
+                    "the void fraction is measured between this distance above the floor and "
+                    "below the bed top, Dp")
+        ->check(real_in(0.0, inf, false, true));
+    app->add_option("-j,--threads", o.threads, "threads (results do not depend on it)")
+        ->check(whole_in(1, 1024));
+    app->add_flag("-q,--quiet", o.quiet, "no progress and no report on the terminal");
+    app->set_config("--config", "", "read options from this TOML file; the command line wins");
+    app->config_formatter(std::make_shared<TomlConfig>("generate", configurable_names(*app)));
+    return {app, [options] { return run_generate(*options); }};
+}
+
+} // namespace packbed::cli

@@ -1,0 +1,41 @@
+#include "progress.hpp"
+
+#include <cstdio>
+#include <cstdlib>
+
+#include <fmt/format.h>
+#include <unistd.h>
+
+namespace packbed::cli {
+
+bool progress_wanted(bool quiet) {
+    const char* ci = std::getenv("CI");
+    return !quiet && ::isatty(STDERR_FILENO) && !(ci && *ci);
+}
+
+void TerminalProgress::operator()(const Progress& p) {
+    if (!m_enabled)
+        return;
+    const auto now = std::chrono::steady_clock::now();
+    if (m_drawn && now - m_last < std::chrono::milliseconds(100))
+        return;
+    m_last = now;
+    m_drawn = true;
+    const double seconds = std::chrono::duration<double>(now - m_start).count();
+    fmt::print(stderr,
+               "\r\033[K{:>5.1f} s  {:<12} iteration {:>9}  Cg {:.3e}  overlap pair {:.2e} "
+               "wall {:.2e} Dp  mass centre {:.6f} Dp",
+               seconds, p.stage, p.iteration, p.cg, p.max_overlap_pair, p.max_overlap_wall,
+               p.mass_centre_z);
+    std::fflush(stderr);
+}
+
+void TerminalProgress::finish() {
+    if (m_enabled && m_drawn) {
+        fmt::print(stderr, "\r\033[K");
+        std::fflush(stderr);
+    }
+    m_drawn = false;
+}
+
+} // namespace packbed::cli

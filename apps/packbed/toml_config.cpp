@@ -1,0 +1,104 @@
+#include "toml_config.hpp"
+
+#include <algorithm>
+#include <sstream>
+
+#include <fmt/format.h>
+#include <toml++/toml.h>
+
+namespace packbed::cli {
+
+namespace {
+
+std::string normalise(std::string key) {
+    std::replace(key.begin(), key.end(), '_', '-');
+    return key;
+}
+
+std::string line_of(const toml::node& node) {
+    return fmt::format("line {}", node.source().begin.line);
+}
+
+/// One TOML scalar as the text CLI11 would have received on the command line.
+std::string scalar_text(const toml::node& node, const std::string& key) {
+    if (const auto* v = node.as_integer())
+        return std::to_string(v->get());
+    if (const auto* v = node.as_floating_point())
+        return fmt::format("{}", v->get());
+    if (const auto* v = node.as_boolean())
+        return v->get() ? "true" : "false";
+    if (const auto* v = node.as_string())
+        return v->get();
+    throw CLI::ConfigError(fmt::format("--config: {}: key '{}' has a value of the wrong type; "
+                                       "allowed: a number, a string or true/false",
+                                       line_of(node), key));
+}
+
+} // namespace
+
+std::vector<CLI::ConfigItem> TomlConfig::from_config(std::istream& input) const {
+    toml::table root;
+    try {
+        root = toml::parse(input);
+    } catch (const toml::parse_error& e) {
+        throw CLI::ConfigError(fmt::format("--config: line {}, column {}: {}",
+                                           e.source().begin.line, e.source().begin.column,
+                                           e.description()));
+    }
+    std::vector<CLI::ConfigItem> result;
+    auto add = [&](const toml::key& raw_key, const toml::node& node) {
+        const std::string key = normalise(std::string(raw_key.str()));
+        if (node.is_table())
+            throw CLI::ConfigError(
+                fmt::format("--config: {}: unknown table '{}'; allowed: top-level keys or [{}]",
+                            line_of(node), raw_key.str(), m_section));
+        if (!m_allowed.count(key)) {
+            std::string names;
+            for (const auto& n : m_allowed)
+                names += (names.empty() ? "" : ", ") + n;
+            throw CLI::ConfigError(fmt::format("--config: {}: unknown key '{}'; allowed: {}",
+                                               line_of(node), raw_key.str(), names));
+        }
+        CLI::ConfigItem item;
+        item.name = key;
+        if (const auto* array = node.as_array())
+            for (const auto& element : *array)
+                item.inputs.push_back(scalar_text(element, key));
+        else
+            item.inputs.push_back(scalar_text(node, key));
+        result.push_back(std::move(item));
+    };
+    for (const auto& [key, node] : root) {
+        if (const auto* table = node.as_table(); table && key.str() == m_section) {
+            for (const auto& [inner_key, inner_node] : *table)
+                add(inner_key, inner_node);
+        } else {
+            add(key, node);
+        }
+    }
+    return result;
+}
+
+std::string TomlConfig::to_config(const CLI::App* app, bool default_also, bool, std::string) const {
+    std::ostringstream out;
+    for (const CLI::Option* opt : app->get_options()) {
+        if (!opt->get_configurable() || opt->get_lnames().empty())
+            continue;
+        const auto results = opt->results();
+        const std::string value = results.empty() ? opt->get_default_str() : results.front();
+        if (value.empty() && !default_also)
+            continue;
+        out << opt->get_lnames().front() << " = \"" << value << "\"\n";
+    }
+    return out.str();
+}
+
+std::set<std::string> configurable_names(const CLI::App& app) {
+    std::set<std::string> names;
+    for (const CLI::Option* opt : app.get_options())
+        if (opt->get_configurable() && !opt->get_lnames().empty())
+            names.insert(opt->get_lnames().front());
+    return names;
+}
+
+} // namespace packbed::cli

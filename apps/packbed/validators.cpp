@@ -1,0 +1,46 @@
+#include <charconv>
+#include <cmath>
+#include <string>
+
+#include <fmt/format.h>
+
+#include "command.hpp"
+
+namespace packbed::cli {
+
+CLI::Validator real_in(double low, double high, bool low_open, bool high_open) {
+    const std::string allowed = std::isinf(high)
+                                    ? fmt::format("a number {} {}", low_open ? ">" : ">=", low)
+                                    : fmt::format("a number in {}{}, {}{}", low_open ? "(" : "[",
+                                                  low, high, high_open ? ")" : "]");
+    return CLI::Validator(
+        [=](std::string& text) -> std::string {
+            double value = 0.0;
+            const char* end = text.data() + text.size();
+            const auto [ptr, ec] = std::from_chars(text.data(), end, value);
+            if (ec != std::errc() || ptr != end || !std::isfinite(value))
+                return fmt::format("'{}' is not allowed; allowed: {}", text, allowed);
+            const bool above = low_open ? value > low : value >= low;
+            const bool below = high_open ? value < high : value <= high;
+            if (!above || !below)
+                return fmt::format("{} is not allowed; allowed: {}", text, allowed);
+            return {};
+        },
+        allowed);
+}
+
+CLI::Validator whole_in(unsigned long long low, unsigned long long high) {
+    const std::string allowed = fmt::format("a whole number from {} to {}", low, high);
+    return CLI::Validator(
+        [=](std::string& text) -> std::string {
+            unsigned long long value = 0;
+            const char* end = text.data() + text.size();
+            const auto [ptr, ec] = std::from_chars(text.data(), end, value);
+            if (ec != std::errc() || ptr != end || value < low || value > high)
+                return fmt::format("'{}' is not allowed; allowed: {}", text, allowed);
+            return {};
+        },
+        allowed);
+}
+
+} // namespace packbed::cli

@@ -1,0 +1,53 @@
+// Writing beds to files: CSV, VTK XML (ParaView), and all-or-nothing output directories.
+#pragma once
+
+#include <filesystem>
+#include <string>
+#include <utility>
+#include <vector>
+
+#include "packbed/packing.hpp"
+
+namespace packbed {
+
+/// The spheres as CSV: header `x,y,z,r`, one row per sphere, each number in the shortest form
+/// that reads back to the same double (round-trip precision).
+/// \return the file's text.
+std::string particles_csv(const Packing& packing);
+
+/// The spheres as a VTK XML unstructured grid (.vtu): one vertex cell per sphere, point data
+/// `radius` and `diameter`. ParaView shows it with the Point Gaussian representation or glyphs.
+/// \return the file's text.
+std::string particles_vtu(const Packing& packing);
+
+/// A set of files written all or nothing. Each file is first written under a temporary name
+/// in the target directory; commit() renames them all into place. If the object is destroyed
+/// without commit() (an error, an interruption), the temporary files are removed and no
+/// target file is touched. Not thread-safe.
+class OutputDirectory {
+public:
+    /// Create the directory if needed and check that it is writable.
+    /// \param directory the output directory
+    /// \throws InvalidInput naming the directory when it cannot be created or written
+    explicit OutputDirectory(std::filesystem::path directory);
+    ~OutputDirectory();
+    OutputDirectory(const OutputDirectory&) = delete;
+    OutputDirectory& operator=(const OutputDirectory&) = delete;
+
+    /// Write `contents` to a temporary file for `name` (a file name inside the directory).
+    /// \throws std::runtime_error naming the file when writing fails
+    void stage(const std::string& name, const std::string& contents);
+
+    /// Rename every staged file to its final name.
+    /// \throws std::runtime_error naming the file when a rename fails
+    void commit();
+
+    /// \return the directory.
+    const std::filesystem::path& path() const { return m_directory; }
+
+private:
+    std::filesystem::path m_directory;
+    std::vector<std::pair<std::filesystem::path, std::filesystem::path>> m_staged; // tmp, final
+};
+
+} // namespace packbed

@@ -1,0 +1,152 @@
+// The soft-sphere packing algorithm of Salvat, Mariani, Barreto & Martinez, "An algorithm to
+// simulate packing structure in cylindrical containers", Catalysis Today 107-108 (2005) 513-519.
+// Mono-sized spheres in a cylinder: generation, initial, intermediate and final stages (section 3).
+#pragma once
+
+#include <cstdint>
+#include <functional>
+#include <memory>
+#include <string>
+#include <string_view>
+#include <utility>
+#include <vector>
+
+#include "packbed/container.hpp"
+#include "packbed/packing.hpp"
+
+namespace packbed {
+
+/// How one iteration of eq. (4) applies the displacements.
+enum class UpdateOrder {
+    simultaneous, ///< all spheres move at once from the old positions (Jacobi); parallel
+    in_place,     ///< one sphere after another, each seeing the moves made before it
+                  ///< (Gauss-Seidel); sequential
+};
+
+/// The names users pick an update order by ("in-place", "simultaneous"): the one registry.
+const std::vector<std::pair<std::string, UpdateOrder>>& update_orders();
+/// \return the name of an update order in update_orders().
+std::string to_string(UpdateOrder order);
+
+/// Every parameter of the algorithm; defaults are the paper's values. Lengths marked "Dp" are
+/// in units of the sphere diameter. Plain value type.
+struct SoftSphereParameters {
+    double aspect_ratio = 5.0;     ///< a = 2 Rt / Dp, >= 1
+    std::uint64_t particles = 500; ///< Np, >= 1
+    std::uint64_t seed = 1;        ///< seed of the generation stage's random numbers
+    double diameter = 1.0;         ///< Dp in output length units, > 0
+    double e0 = 0.47;              ///< initial overall void fraction for L0, eq. (6); (0, 1)
+    double ck = 0.3;               ///< elasticity parameter Ck of eq. (4); (0, 1)
+    double cg_step = 1.25e-7;      ///< Delta Cg of the control loop, eq. (7); (0, 1e-3]
+    double overlap_low = 0.5e-2;   ///< lower bound delta_L of eq. (7), Dp
+    double overlap_high = 1e-2;    ///< upper bound delta_U of eq. (7), Dp; low < high < 0.5
+    double tolerance = 1e-4;       ///< largest allowed final overlap, pair and wall, Dp
+    std::uint32_t mc_period = 100; ///< iterations between mass-centre records
+    std::uint32_t mc_window = 10;  ///< successive records that must agree
+    double mc_tolerance = 1e-4;    ///< their allowed spread, percent of the mean
+    UpdateOrder update = UpdateOrder::in_place; ///< see UpdateOrder
+    double skin = 0.1;                          ///< Verlet-list skin, Dp; (0, 1]
+    std::uint64_t max_iterations = 200'000'000; ///< give up (ConvergenceError) beyond this
+
+    /// Check every value and their combinations.
+    /// \throws InvalidInput naming the parameter, its value and the allowed range.
+    void validate() const;
+};
+
+/// The state at the end of one stage (section 3).
+struct StageRecord {
+    std::string name;                       ///< "initial", "intermediate" or "final"
+    std::uint64_t iterations = 0;           ///< iterations spent in this stage
+    std::uint32_t steps = 1;                ///< final stage: number of Cg halvings run; 1 otherwise
+    double cg = 0.0;                        ///< gravity parameter Cg at the end of the stage
+    double max_overlap_pair = 0;            ///< largest sphere-sphere overlap at the end, Dp
+    double max_overlap_wall = 0;            ///< largest sphere-wall overlap at the end, Dp
+    double mass_centre_z = 0;               ///< height of the mass centre at the end, Dp
+    std::vector<double> mass_centre_window; ///< the last mass-centre records, Dp (oldest first)
+};
+
+/// Where a run stands, for progress displays.
+struct Progress {
+    std::string_view stage;  ///< stage name
+    std::uint64_t iteration; ///< total iterations so far
+    double cg;               ///< current gravity parameter
+    double max_overlap_pair; ///< Dp, as seen in the last iteration
+    double max_overlap_wall; ///< Dp, as seen in the last iteration
+    double mass_centre_z;    ///< Dp
+};
+
+/// Hooks a caller may give a run: both optional, called every mc_period iterations from the
+/// thread that called run().
+struct RunControl {
+    std::function<void(const Progress&)> on_progress; ///< progress report
+    std::function<bool()> should_stop;                ///< return true to cancel (throws Cancelled)
+};
+
+/// The outcome of a run. Lengths of `packing` and `container` are in output units (diameter).
+struct SoftSphereResult {
+    Packing packing;                   ///< final sphere positions and radii
+    Cylinder container{1.0};           ///< the cylinder, radius Rt = a Dp / 2
+    double initial_height = 0.0;       ///< L0 of eq. (6), output units
+    std::uint64_t iterations = 0;      ///< all stages together
+    double max_overlap_pair = 0.0;     ///< largest sphere-sphere overlap of the result, Dp
+    double max_overlap_wall = 0.0;     ///< largest sphere-wall overlap of the result, Dp
+    std::vector<StageRecord> stages;   ///< initial, intermediate, final
+    std::uint64_t neighbor_builds = 0; ///< Verlet-list rebuilds
+    double seconds = 0.0;              ///< wall time of run()
+};
+
+/// Largest overlaps of a configuration, computed exactly (O(N) with a cell grid).
+struct Overlaps {
+    double pair = 0.0; ///< largest sphere-sphere overlap r_i + r_j - |x_i - x_j| (0 if none)
+    double wall = 0.0; ///< largest sphere-wall overlap (0 if none)
+};
+
+/// \return the largest overlaps of `packing` in `container` (lengths in the packing's units).
+Overlaps measure_overlaps(const Packing& packing, const Cylinder& container);
+
+/// Initial bed height, eq. (6): \f$L_0 = \frac{2}{3}\frac{D_p N_p}{a^2 (1 - \varepsilon_0)}\f$.
+/// \param particles Np \param aspect_ratio a \param e0 initial void fraction in (0, 1)
+/// \return L0 in units of Dp.
+double initial_bed_height(std::uint64_t particles, double aspect_ratio, double e0);
+
+/// The algorithm, stage by stage. The constructor runs the generation stage (section 3.1);
+/// run() runs the three relaxation stages, or call them one by one (for tests and tools).
+/// Positions are kept in units of Dp internally. Not thread-safe; uses OpenMP inside
+/// (the simultaneous update is parallel and gives the same bits for any number of threads).
+class SoftSphereGenerator {
+public:
+    /// \param parameters validated here (InvalidInput when wrong)
+    explicit SoftSphereGenerator(const SoftSphereParameters& parameters);
+    ~SoftSphereGenerator();
+    SoftSphereGenerator(const SoftSphereGenerator&) = delete;
+    SoftSphereGenerator& operator=(const SoftSphereGenerator&) = delete;
+
+    /// Section 3.2: Cg = 0, eq. (4) until both largest overlaps are below the tolerance.
+    StageRecord run_initial_stage(const RunControl& control = {});
+    /// Section 3.3: gravity on, Cg by eq. (7), until mc_window successive mass-centre records
+    /// (every mc_period iterations) spread less than mc_tolerance percent.
+    StageRecord run_intermediate_stage(const RunControl& control = {});
+    /// Section 3.4: Cg halved at each step, each step ending on the mass-centre rule; the stage
+    /// ends as soon as both largest overlaps are below the tolerance.
+    StageRecord run_final_stage(const RunControl& control = {});
+
+    /// All three stages, then the result in output units.
+    /// \throws ConvergenceError on divergence or when max_iterations is exceeded
+    /// \throws Cancelled when control.should_stop() returned true
+    SoftSphereResult run(const RunControl& control = {});
+
+    /// \return the current configuration, in units of Dp (radius 0.5).
+    const Packing& packing_dp() const;
+    /// \return the parameters in use.
+    const SoftSphereParameters& parameters() const;
+
+private:
+    struct State;
+    std::unique_ptr<State> m_state;
+};
+
+/// Run the whole algorithm: SoftSphereGenerator(parameters).run(control).
+SoftSphereResult generate_soft_sphere(const SoftSphereParameters& parameters,
+                                      const RunControl& control = {});
+
+} // namespace packbed

@@ -1,0 +1,23 @@
+// The machine-readable record of a generated bed (summary.json).
+#pragma once
+
+#include <nlohmann/json.hpp>
+
+#include "packbed/soft_sphere.hpp"
+
+namespace packbed {
+
+/// Everything a user needs to know about a soft-sphere run: inputs, every parameter, the
+/// container, the overall void fraction over the band clear of the ends, the largest overlaps,
+/// the stages, the time and the version. Lengths in output units unless a key says "_dp".
+/// \param parameters the parameters of the run
+/// \param result what SoftSphereGenerator::run returned
+/// \param band_clearance distance of the void-fraction band from the floor and the top, in Dp
+/// (>= 0); when the bed is too short for it, `void_fraction` is null and a note says why
+/// \param threads number of threads used (recorded only)
+/// \return the JSON object.
+nlohmann::json soft_sphere_summary(const SoftSphereParameters& parameters,
+                                   const SoftSphereResult& result, double band_clearance,
+                                   int threads);
+
+} // namespace packbed

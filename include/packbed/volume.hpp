@@ -1,0 +1,60 @@
+// Exact volumes of spheres cut by a cylinder and by horizontal planes, and the overall void
+// fraction they give. "Exact" means closed forms where the cut is by planes only, and a
+// converged tanh-sinh quadrature (relative tolerance 1e-13) of the circle-circle lens area
+// where the cylinder wall cuts the sphere: never random sampling.
+#pragma once
+
+#include <optional>
+
+#include "packbed/container.hpp"
+#include "packbed/packing.hpp"
+#include "packbed/vec3.hpp"
+
+namespace packbed {
+
+/// Area of the intersection of two disks.
+/// \f$A = r_1^2\arccos(d_1/r_1) - d_1\sqrt{r_1^2-d_1^2} + r_2^2\arccos(d_2/r_2) -
+/// d_2\sqrt{r_2^2-d_2^2}\f$ with \f$d_1 = (d^2+r_1^2-r_2^2)/(2d)\f$, \f$d_2 = d - d_1\f$
+/// (standard circle-circle lens).
+/// \param r1,r2 disk radii (>= 0) \param distance distance between the centres (>= 0)
+/// \return the area (length^2); pi min(r1,r2)^2 when one disk lies inside the other.
+double disk_intersection_area(double r1, double r2, double distance);
+
+/// Volume of the part of a sphere that lies inside the infinite vertical cylinder
+/// x^2 + y^2 <= cylinder_radius^2 and between the planes z = z_low and z = z_high.
+/// Exact: planes-only pieces by the spherical-segment formula, wall-cut pieces by converged
+/// quadrature of disk_intersection_area over z (the integrand is smooth inside each piece).
+/// \param center sphere centre \param radius sphere radius (> 0)
+/// \param cylinder_radius radius of the cylinder about the z axis (> 0)
+/// \param z_low,z_high the slab (z_low <= z_high; an empty slab gives 0)
+/// \return the volume (length^3), between 0 and 4/3 pi radius^3.
+double sphere_volume_in_cylinder_slab(const Vec3& center, double radius, double cylinder_radius,
+                                      double z_low, double z_high);
+
+/// Overall void fraction of a bed in a cylinder between two heights:
+/// \f$\varepsilon = 1 - \sum_i V_i / (\pi R_t^2 (z_{high} - z_{low}))\f$, with V_i the volume of
+/// sphere i inside the cylinder and the slab (sphere_volume_in_cylinder_slab).
+/// Overlaps between spheres are counted twice; at the generator's 1e-4 Dp tolerance that is
+/// below 1e-8 per contact in units of a sphere volume.
+/// \param packing the spheres \param container the cylinder
+/// \param z_low,z_high the band (z_low < z_high, else InvalidInput)
+/// \return the void fraction in [0, 1] (it can go below 0 only for heavily overlapping input).
+double void_fraction(const Packing& packing, const Cylinder& container, double z_low,
+                     double z_high);
+
+/// A horizontal band [z_low, z_high] of a bed.
+struct Band {
+    double z_low = 0.0;  ///< lower height (length)
+    double z_high = 0.0; ///< upper height (length)
+};
+
+/// The band that keeps `clearance` away from the floor (z = 0) and from the top of the bed
+/// (the highest sphere top, max z_i + r_i).
+/// \param packing the spheres \param clearance distance from each end (length, >= 0)
+/// \return the band, or nothing when the bed is not taller than 2 clearance.
+std::optional<Band> band_clear_of_ends(const Packing& packing, double clearance);
+
+/// \return the height of the highest sphere top, max z_i + r_i (0 for no spheres).
+double bed_top(const Packing& packing);
+
+} // namespace packbed

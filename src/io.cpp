@@ -1,0 +1,120 @@
+#include "packbed/io.hpp"
+
+#include <fstream>
+#include <system_error>
+
+#include <fmt/format.h>
+#include <unistd.h>
+
+#include "packbed/error.hpp"
+
+namespace packbed {
+
+std::string particles_csv(const Packing& packing) {
+    fmt::memory_buffer out;
+    fmt::format_to(std::back_inserter(out), "x,y,z,r\n");
+    for (std::size_t i = 0; i < packing.size(); ++i) {
+        const Vec3& c = packing.centers[i];
+        // fmt's "{}" for double is the shortest representation that round-trips.
+        fmt::format_to(std::back_inserter(out), "{},{},{},{}\n", c.x, c.y, c.z, packing.radii[i]);
+    }
+    return fmt::to_string(out);
+}
+
+std::string particles_vtu(const Packing& packing) {
+    const std::size_t n = packing.size();
+    fmt::memory_buffer out;
+    auto put = [&]<class... Args>(fmt::format_string<Args...> format, Args&&... args) {
+        fmt::format_to(std::back_inserter(out), format, std::forward<Args>(args)...);
+    };
+    put("<?xml version=\"1.0\"?>\n"
+        "<VTKFile type=\"UnstructuredGrid\" version=\"1.0\" byte_order=\"LittleEndian\">\n"
+        "  <UnstructuredGrid>\n"
+        "    <Piece NumberOfPoints=\"{0}\" NumberOfCells=\"{0}\">\n"
+        "      <PointData Scalars=\"radius\">\n"
+        "        <DataArray type=\"Float64\" Name=\"radius\" format=\"ascii\">\n",
+        n);
+    for (const double r : packing.radii)
+        put("{}\n", r);
+    put("        </DataArray>\n"
+        "        <DataArray type=\"Float64\" Name=\"diameter\" format=\"ascii\">\n");
+    for (const double r : packing.radii)
+        put("{}\n", 2.0 * r);
+    put("        </DataArray>\n"
+        "      </PointData>\n"
+        "      <Points>\n"
+        "        <DataArray type=\"Float64\" NumberOfComponents=\"3\" format=\"ascii\">\n");
+    for (const Vec3& c : packing.centers)
+        put("{} {} {}\n", c.x, c.y, c.z);
+    put("        </DataArray>\n"
+        "      </Points>\n"
+        "      <Cells>\n"
+        "        <DataArray type=\"Int64\" Name=\"connectivity\" format=\"ascii\">\n");
+    for (std::size_t i = 0; i < n; ++i)
+        put("{}\n", i);
+    put("        </DataArray>\n"
+        "        <DataArray type=\"Int64\" Name=\"offsets\" format=\"ascii\">\n");
+    for (std::size_t i = 1; i <= n; ++i)
+        put("{}\n", i);
+    put("        </DataArray>\n"
+        "        <DataArray type=\"UInt8\" Name=\"types\" format=\"ascii\">\n");
+    for (std::size_t i = 0; i < n; ++i)
+        put("1\n"); // VTK_VERTEX
+    put("        </DataArray>\n"
+        "      </Cells>\n"
+        "    </Piece>\n"
+        "  </UnstructuredGrid>\n"
+        "</VTKFile>\n");
+    return fmt::to_string(out);
+}
+
+OutputDirectory::OutputDirectory(std::filesystem::path directory)
+    : m_directory(std::move(directory)) {
+    std::error_code ec;
+    std::filesystem::create_directories(m_directory, ec);
+    if (ec || !std::filesystem::is_directory(m_directory))
+        throw InvalidInput(fmt::format("--out {}: cannot create the directory ({}); allowed: a "
+                                       "directory you can write to",
+                                       m_directory.string(),
+                                       ec ? ec.message() : "a file has that name"));
+    // Probe by creating a file: permission bits alone do not tell (root, read-only mounts).
+    const auto probe = m_directory / fmt::format(".packbed-probe-{}", ::getpid());
+    std::ofstream(probe).put('\n');
+    const bool writable = std::filesystem::exists(probe, ec);
+    std::filesystem::remove(probe, ec);
+    if (!writable)
+        throw InvalidInput(fmt::format(
+            "--out {}: the directory is not writable; allowed: a directory you can write to",
+            m_directory.string()));
+}
+
+OutputDirectory::~OutputDirectory() {
+    for (const auto& [tmp, final_path] : m_staged) {
+        std::error_code ec;
+        std::filesystem::remove(tmp, ec);
+    }
+}
+
+void OutputDirectory::stage(const std::string& name, const std::string& contents) {
+    const auto final_path = m_directory / name;
+    const auto tmp = m_directory / fmt::format(".{}.tmp-{}", name, ::getpid());
+    m_staged.emplace_back(tmp, final_path);
+    std::ofstream file(tmp, std::ios::binary | std::ios::trunc);
+    file.write(contents.data(), static_cast<std::streamsize>(contents.size()));
+    file.close();
+    if (!file)
+        throw std::runtime_error(fmt::format("cannot write {}", tmp.string()));
+}
+
+void OutputDirectory::commit() {
+    for (const auto& [tmp, final_path] : m_staged) {
+        std::error_code ec;
+        std::filesystem::rename(tmp, final_path, ec);
+        if (ec)
+            throw std::runtime_error(fmt::format("cannot rename {} to {}: {}", tmp.string(),
+                                                 final_path.string(), ec.message()));
+    }
+    m_staged.clear();
+}
+
+} // namespace packbed

@@ -1,0 +1,428 @@
+#include "packbed/soft_sphere.hpp"
+
+#include <algorithm>
+#include <chrono>
+#include <cmath>
+#include <deque>
+#include <numbers>
+#include <optional>
+#include <random>
+
+#include <fmt/format.h>
+
+#include "packbed/error.hpp"
+#include "packbed/neighbor_list.hpp"
+
+namespace packbed {
+
+namespace {
+
+/// Throw InvalidInput unless `ok`, naming the parameter, its value and what is allowed.
+void require(bool ok, std::string_view name, double value, std::string_view allowed) {
+    if (!ok)
+        throw InvalidInput(
+            fmt::format("{} = {} is not allowed; allowed: {}", name, value, allowed));
+}
+
+/// A uniform double in [0, 1) from 53 random bits: the same numbers on every platform
+/// (std::uniform_real_distribution is implementation-defined).
+double uniform01(std::mt19937_64& rng) {
+    return static_cast<double>(rng() >> 11) * 0x1.0p-53;
+}
+
+/// The contact law of eq. (2b) multiplied by the step length, as it enters eq. (4): sphere i
+/// moves by \f$-C_k R(\delta_{ij}) \hat r_{ij}\f$. Linear in the overlap, no friction.
+struct LinearOverlapLaw {
+    double ck;
+
+    /// Add the displacement of sphere i caused by sphere j to `move`; track the overlap.
+    void apply(const Vec3& xi, const Vec3& xj, double sum_radii, bool i_below, Vec3& move,
+               double& max_overlap) const {
+        const Vec3 rij = xj - xi;
+        const double dist2 = norm2(rij);
+        if (dist2 >= sum_radii * sum_radii)
+            return;
+        const double dist = std::sqrt(dist2);
+        const double overlap = sum_radii - dist;
+        max_overlap = std::max(max_overlap, overlap);
+        if (dist > 0.0)
+            move -= rij * (ck * overlap / dist);
+        else // coincident centres: separate them vertically, lower index downwards
+            move.z += i_below ? -ck * overlap : ck * overlap;
+    }
+};
+
+/// Largest values seen in one iteration.
+struct SweepStats {
+    double pair = 0.0;  ///< largest sphere-sphere overlap, Dp
+    double wall = 0.0;  ///< largest sphere-wall overlap, Dp
+    double top = 0.0;   ///< highest centre after the move, Dp
+    bool finite = true; ///< every new position finite
+};
+
+/// The last `window` mass-centre records and the paper's settling rule (section 3.3).
+class MassCentreWindow {
+public:
+    MassCentreWindow(std::uint32_t window, double tolerance_percent)
+        : m_window(window)
+        , m_fraction(tolerance_percent / 100.0) {}
+    void push(double value) {
+        m_values.push_back(value);
+        if (m_values.size() > m_window)
+            m_values.pop_front();
+    }
+    /// \return true when `window` successive values lie within the tolerance:
+    /// (max - min) <= tolerance/100 * |mean|.
+    bool settled() const {
+        if (m_values.size() < m_window)
+            return false;
+        const auto [lo, hi] = std::minmax_element(m_values.begin(), m_values.end());
+        double mean = 0.0;
+        for (double v : m_values)
+            mean += v;
+        mean /= static_cast<double>(m_values.size());
+        return *hi - *lo <= m_fraction * std::abs(mean);
+    }
+    std::vector<double> values() const { return {m_values.begin(), m_values.end()}; }
+
+private:
+    std::uint32_t m_window;
+    double m_fraction;
+    std::deque<double> m_values;
+};
+
+} // namespace
+
+void SoftSphereParameters::validate() const {
+    require(std::isfinite(aspect_ratio) && aspect_ratio >= 1.0 && aspect_ratio <= 1e4,
+            "aspect-ratio", aspect_ratio, "1 <= a <= 10000 (a < 1: one sphere does not fit)");
+    require(particles >= 1 && particles <= 100'000'000, "particles", static_cast<double>(particles),
+            "1 to 100000000");
+    require(std::isfinite(diameter) && diameter > 0.0, "diameter", diameter, "a finite number > 0");
+    require(e0 > 0.0 && e0 < 1.0, "e0", e0, "0 < e0 < 1");
+    require(ck > 0.0 && ck < 1.0, "ck", ck, "0 < ck < 1 (a pair overshoots for ck >= 1)");
+    require(cg_step > 0.0 && cg_step <= 1e-3, "cg-step", cg_step, "0 < cg-step <= 1e-3");
+    require(overlap_low > 0.0 && overlap_low < 0.5, "overlap-low", overlap_low,
+            "0 < overlap-low < 0.5 (Dp)");
+    require(overlap_high > overlap_low && overlap_high < 0.5, "overlap-high", overlap_high,
+            fmt::format("overlap-low ({}) < overlap-high < 0.5 (Dp)", overlap_low));
+    require(tolerance > 0.0 && tolerance <= 1e-2, "tolerance", tolerance,
+            "0 < tolerance <= 0.01 (Dp)");
+    require(mc_period >= 1 && mc_period <= 1'000'000, "mc-period", mc_period, "1 to 1000000");
+    require(mc_window >= 2 && mc_window <= 10'000, "mc-window", mc_window, "2 to 10000");
+    require(mc_tolerance > 0.0 && mc_tolerance <= 100.0, "mc-tolerance", mc_tolerance,
+            "0 < mc-tolerance <= 100 (percent)");
+    require(skin > 0.0 && skin <= 1.0, "skin", skin, "0 < skin <= 1 (Dp)");
+    require(max_iterations >= 1, "max-iterations", static_cast<double>(max_iterations), ">= 1");
+}
+
+double initial_bed_height(std::uint64_t particles, double aspect_ratio, double e0) {
+    return 2.0 / 3.0 * static_cast<double>(particles) / (aspect_ratio * aspect_ratio * (1.0 - e0));
+}
+
+Overlaps measure_overlaps(const Packing& packing, const Cylinder& container) {
+    Overlaps out;
+    NeighborList list;
+    list.build(packing.centers, packing.radii, 0.0);
+    for (std::size_t i = 0; i < packing.size(); ++i) {
+        for (const auto j : list.neighbors_of(i)) {
+            const double sum = packing.radii[i] + packing.radii[j];
+            out.pair = std::max(out.pair, sum - norm(packing.centers[j] - packing.centers[i]));
+        }
+        out.wall = std::max(out.wall,
+                            container.wall_contact(packing.centers[i], packing.radii[i]).overlap);
+    }
+    return out;
+}
+
+struct SoftSphereGenerator::State {
+    SoftSphereParameters params;
+    Cylinder container;
+    Packing packing; // units of Dp
+    std::vector<Vec3> next;
+    NeighborList list;
+    double initial_height = 0.0;
+    double ceiling = 0.0; // a centre above this has been thrown out of the bed
+    double cg = 0.0;
+    std::uint64_t iterations = 0;
+    std::vector<StageRecord> stages;
+
+    explicit State(const SoftSphereParameters& p)
+        : params(p)
+        , container(0.5 * p.aspect_ratio) {}
+
+    /// Section 3.1: L0 from eq. (6), centres uniform over the accessible cross-section.
+    void generate() {
+        initial_height = initial_bed_height(params.particles, params.aspect_ratio, params.e0);
+        ceiling = 4.0 * initial_height + 10.0 * params.aspect_ratio + 10.0;
+        std::mt19937_64 rng(params.seed);
+        const double reach = container.radius() - 0.5;
+        packing.centers.reserve(params.particles);
+        packing.radii.reserve(params.particles);
+        for (std::uint64_t i = 0; i < params.particles; ++i) {
+            const double r = reach * std::sqrt(uniform01(rng));
+            const double theta = 2.0 * std::numbers::pi * uniform01(rng);
+            const double z = initial_height * uniform01(rng) + 0.5;
+            packing.add({r * std::cos(theta), r * std::sin(theta), z}, 0.5);
+        }
+        next.resize(packing.size());
+    }
+
+    /// One iteration of eq. (4) with gravity parameter Cg = `gravity`, then the rigid floor z >=
+    /// r_i.
+    template <UpdateOrder order> SweepStats sweep(double gravity) {
+        if (list.needs_rebuild(packing.centers))
+            list.build(packing.centers, packing.radii, params.skin);
+        const LinearOverlapLaw law{params.ck};
+        const std::size_t n = packing.size();
+        Vec3* const x = packing.centers.data();
+        const double* const radius = packing.radii.data();
+        double pair = 0.0, wall = 0.0, top = 0.0;
+        bool finite = true;
+        auto move_of = [&](std::size_t i, double& pair_i, double& wall_i) {
+            const Vec3 xi = x[i];
+            Vec3 move{};
+            for (const auto j : list.neighbors_of(i))
+                law.apply(xi, x[j], radius[i] + radius[j], i < j, move, pair_i);
+            const WallContact w = container.wall_contact(xi, radius[i]);
+            if (w.overlap > 0.0) {
+                wall_i = std::max(wall_i, w.overlap);
+                move += w.push * (params.ck * w.overlap);
+            }
+            move.z -= gravity;
+            Vec3 moved = xi + move;
+            moved.z = std::max(moved.z, radius[i]);
+            return moved;
+        };
+        if constexpr (order == UpdateOrder::simultaneous) {
+#pragma omp parallel for schedule(static) reduction(max : pair, wall, top) reduction(&& : finite)
+            for (std::size_t i = 0; i < n; ++i) {
+                const Vec3 moved = move_of(i, pair, wall);
+                finite = finite && is_finite(moved);
+                top = std::max(top, moved.z);
+                next[i] = moved;
+            }
+            packing.centers.swap(next);
+        } else {
+            for (std::size_t i = 0; i < n; ++i) {
+                const Vec3 moved = move_of(i, pair, wall);
+                finite = finite && is_finite(moved);
+                top = std::max(top, moved.z);
+                x[i] = moved;
+            }
+        }
+        ++iterations;
+        return {pair, wall, top, finite};
+    }
+
+    SweepStats sweep(double gravity) {
+        return params.update == UpdateOrder::simultaneous
+                   ? sweep<UpdateOrder::simultaneous>(gravity)
+                   : sweep<UpdateOrder::in_place>(gravity);
+    }
+
+    /// Height of the mass centre, \f$\sum r_i^3 z_i / \sum r_i^3\f$, Dp.
+    double mass_centre_z() const {
+        double weighted = 0.0, total = 0.0;
+        for (std::size_t i = 0; i < packing.size(); ++i) {
+            const double m = packing.radii[i] * packing.radii[i] * packing.radii[i];
+            weighted += m * packing.centers[i].z;
+            total += m;
+        }
+        return weighted / total;
+    }
+
+    /// Stop with an error naming the stage, the iteration and what to lower, when the
+    /// iteration has left the region where it converges.
+    void check(const SweepStats& s, std::string_view stage, bool gravity_on) const {
+        std::string what;
+        if (!s.finite)
+            what = "a position became NaN or infinite";
+        else if (s.wall >= 0.5)
+            what = fmt::format("a sphere left the container through the wall (overlap {:.3g} Dp)",
+                               s.wall);
+        else if (s.top > ceiling)
+            what = fmt::format("a sphere was thrown to z = {:.3g} Dp, above {:.3g} Dp", s.top,
+                               ceiling);
+        else if (gravity_on && s.pair > 0.5)
+            what = fmt::format("the largest overlap grew to {:.3g} Dp", s.pair);
+        if (what.empty())
+            return;
+        throw ConvergenceError(fmt::format(
+            "generate: diverged in the {} stage at iteration {}: {}; lower --ck (now {}){}", stage,
+            iterations, what, params.ck,
+            gravity_on ? fmt::format(" or --cg-step (now {})", params.cg_step) : ""));
+    }
+
+    void check_budget(std::string_view stage) const {
+        if (iterations >= params.max_iterations)
+            throw ConvergenceError(fmt::format(
+                "generate: the {} stage did not finish within --max-iterations {}; raise it, or "
+                "raise --ck (now {}) for faster convergence",
+                stage, params.max_iterations, params.ck));
+    }
+
+    /// Every mc_period iterations: budget, cancellation and progress.
+    void report(const RunControl& control, std::string_view stage, const SweepStats& s,
+                double mass_centre) const {
+        check_budget(stage);
+        if (control.should_stop && control.should_stop())
+            throw Cancelled();
+        if (control.on_progress)
+            control.on_progress({stage, iterations, cg, s.pair, s.wall, mass_centre});
+    }
+
+    /// \return the exact overlaps of the current configuration when both are below the
+    /// tolerance; nothing otherwise.
+    std::optional<Overlaps> converged(const SweepStats& s) const {
+        if (s.pair >= params.tolerance || s.wall >= params.tolerance)
+            return std::nullopt;
+        // The iteration saw small overlaps; confirm them on the configuration it left.
+        const Overlaps now = measure_overlaps(packing, container);
+        if (now.pair < params.tolerance && now.wall < params.tolerance)
+            return now;
+        return std::nullopt;
+    }
+
+    StageRecord record(std::string name, std::uint64_t start, const SweepStats& s,
+                       const MassCentreWindow& window) {
+        StageRecord r;
+        r.name = std::move(name);
+        r.iterations = iterations - start;
+        r.cg = cg;
+        r.max_overlap_pair = s.pair;
+        r.max_overlap_wall = s.wall;
+        r.mass_centre_z = mass_centre_z();
+        r.mass_centre_window = window.values();
+        return r;
+    }
+};
+
+SoftSphereGenerator::SoftSphereGenerator(const SoftSphereParameters& parameters) {
+    parameters.validate();
+    m_state = std::make_unique<State>(parameters);
+    m_state->generate();
+}
+
+SoftSphereGenerator::~SoftSphereGenerator() = default;
+
+const Packing& SoftSphereGenerator::packing_dp() const {
+    return m_state->packing;
+}
+const SoftSphereParameters& SoftSphereGenerator::parameters() const {
+    return m_state->params;
+}
+
+StageRecord SoftSphereGenerator::run_initial_stage(const RunControl& control) {
+    State& st = *m_state;
+    const std::uint64_t start = st.iterations;
+    MassCentreWindow window(st.params.mc_window, st.params.mc_tolerance);
+    st.cg = 0.0;
+    for (;;) {
+        const SweepStats s = st.sweep(0.0);
+        st.check(s, "initial", false);
+        if (const auto now = st.converged(s))
+            return st.record("initial", start, {now->pair, now->wall, s.top, true}, window);
+        if ((st.iterations - start) % st.params.mc_period == 0)
+            st.report(control, "initial", s, st.mass_centre_z());
+    }
+}
+
+StageRecord SoftSphereGenerator::run_intermediate_stage(const RunControl& control) {
+    State& st = *m_state;
+    const SoftSphereParameters& p = st.params;
+    const std::uint64_t start = st.iterations;
+    MassCentreWindow window(p.mc_window, p.mc_tolerance);
+    st.cg = 0.0; // "starting from a null initial value"
+    for (;;) {
+        const SweepStats s = st.sweep(st.cg);
+        st.check(s, "intermediate", true);
+        // Eq. (7): keep the largest pair overlap inside [delta_L, delta_U].
+        if (s.pair < p.overlap_low)
+            st.cg += p.cg_step;
+        else if (s.pair > p.overlap_high)
+            st.cg = std::max(st.cg - p.cg_step, 0.0);
+        if ((st.iterations - start) % p.mc_period == 0) {
+            const double mc = st.mass_centre_z();
+            window.push(mc);
+            st.report(control, "intermediate", s, mc);
+            if (window.settled())
+                return st.record("intermediate", start, s, window);
+        }
+    }
+}
+
+StageRecord SoftSphereGenerator::run_final_stage(const RunControl& control) {
+    State& st = *m_state;
+    const SoftSphereParameters& p = st.params;
+    const std::uint64_t start = st.iterations;
+    MassCentreWindow window(p.mc_window, p.mc_tolerance);
+    std::uint32_t steps = 0;
+    for (;;) {
+        // A new step: Cg halved, held constant until the mass centre settles.
+        st.cg *= 0.5;
+        ++steps;
+        window = MassCentreWindow(p.mc_window, p.mc_tolerance);
+        for (std::uint64_t k = 1;; ++k) {
+            const SweepStats s = st.sweep(st.cg);
+            st.check(s, "final", true);
+            if (const auto now = st.converged(s)) {
+                StageRecord r =
+                    st.record("final", start, {now->pair, now->wall, s.top, true}, window);
+                r.steps = steps;
+                return r;
+            }
+            if (k % p.mc_period == 0) {
+                const double mc = st.mass_centre_z();
+                window.push(mc);
+                st.report(control, "final", s, mc);
+                if (window.settled())
+                    break;
+            }
+        }
+    }
+}
+
+SoftSphereResult SoftSphereGenerator::run(const RunControl& control) {
+    const auto t0 = std::chrono::steady_clock::now();
+    State& st = *m_state;
+    st.stages.clear();
+    st.stages.push_back(run_initial_stage(control));
+    st.stages.push_back(run_intermediate_stage(control));
+    st.stages.push_back(run_final_stage(control));
+
+    SoftSphereResult result;
+    const double d = st.params.diameter;
+    const Overlaps final_overlaps = measure_overlaps(st.packing, st.container);
+    result.max_overlap_pair = final_overlaps.pair;
+    result.max_overlap_wall = final_overlaps.wall;
+    result.packing = st.packing;
+    result.packing.scale(d);
+    result.container = Cylinder(st.container.radius() * d);
+    result.initial_height = st.initial_height * d;
+    result.iterations = st.iterations;
+    result.stages = st.stages;
+    result.neighbor_builds = st.list.builds();
+    result.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+    return result;
+}
+
+SoftSphereResult generate_soft_sphere(const SoftSphereParameters& parameters,
+                                      const RunControl& control) {
+    return SoftSphereGenerator(parameters).run(control);
+}
+
+const std::vector<std::pair<std::string, UpdateOrder>>& update_orders() {
+    static const std::vector<std::pair<std::string, UpdateOrder>> names{
+        {"in-place", UpdateOrder::in_place}, {"simultaneous", UpdateOrder::simultaneous}};
+    return names;
+}
+
+std::string to_string(UpdateOrder order) {
+    for (const auto& [name, value] : update_orders())
+        if (value == order)
+            return name;
+    return "unknown";
+}
+
+} // namespace packbed

@@ -1,0 +1,79 @@
+#include "packbed/summary.hpp"
+
+#include "packbed/version.hpp"
+#include "packbed/volume.hpp"
+
+namespace packbed {
+
+nlohmann::json soft_sphere_summary(const SoftSphereParameters& p, const SoftSphereResult& result,
+                                   double band_clearance, int threads) {
+    using nlohmann::json;
+    const double d = p.diameter;
+    json summary;
+    summary["version"] = std::string(version);
+    summary["generator"] = "soft-sphere (Salvat et al. 2005)";
+    summary["aspect_ratio"] = p.aspect_ratio;
+    summary["particles"] = p.particles;
+    summary["seed"] = p.seed;
+    summary["diameter"] = d;
+    summary["container"] = {{"shape", "cylinder"},
+                            {"radius", result.container.radius()},
+                            {"height", bed_top(result.packing)},
+                            {"axis", "z through x = y = 0"},
+                            {"bottom", 0.0}};
+
+    const auto band = band_clear_of_ends(result.packing, band_clearance * d);
+    if (band) {
+        summary["void_fraction"] =
+            void_fraction(result.packing, result.container, band->z_low, band->z_high);
+        summary["void_fraction_band"] = {band->z_low, band->z_high};
+    } else {
+        summary["void_fraction"] = nullptr;
+        summary["void_fraction_band"] = nullptr;
+        summary["void_fraction_note"] =
+            "the bed is not taller than twice the band clearance; lower --band-clearance";
+    }
+    summary["band_clearance"] = band_clearance;
+    summary["max_overlap_pair"] = result.max_overlap_pair;
+    summary["max_overlap_wall"] = result.max_overlap_wall;
+    summary["iterations"] = result.iterations;
+    summary["initial_height"] = result.initial_height;
+    summary["neighbor_list_builds"] = result.neighbor_builds;
+    json stages = json::array();
+    for (const auto& s : result.stages)
+        stages.push_back({{"name", s.name},
+                          {"iterations", s.iterations},
+                          {"steps", s.steps},
+                          {"cg", s.cg},
+                          {"max_overlap_pair", s.max_overlap_pair},
+                          {"max_overlap_wall", s.max_overlap_wall},
+                          {"mass_centre_z", s.mass_centre_z * d}});
+    summary["stages"] = stages;
+    summary["parameters"] = {{"e0", p.e0},
+                             {"ck", p.ck},
+                             {"cg_step", p.cg_step},
+                             {"overlap_low", p.overlap_low},
+                             {"overlap_high", p.overlap_high},
+                             {"tolerance", p.tolerance},
+                             {"mc_period", p.mc_period},
+                             {"mc_window", p.mc_window},
+                             {"mc_tolerance", p.mc_tolerance},
+                             {"update", to_string(p.update)},
+                             {"skin", p.skin},
+                             {"max_iterations", p.max_iterations},
+                             {"band_clearance", band_clearance},
+                             {"threads", threads}};
+    summary["units"] = {{"length", "diameter units as given by --diameter"},
+                        {"max_overlap_pair", "Dp"},
+                        {"max_overlap_wall", "Dp"},
+                        {"overlap_low", "Dp"},
+                        {"overlap_high", "Dp"},
+                        {"tolerance", "Dp"},
+                        {"mc_tolerance", "percent"},
+                        {"skin", "Dp"},
+                        {"band_clearance", "Dp"}};
+    summary["seconds"] = result.seconds;
+    return summary;
+}
+
+} // namespace packbed

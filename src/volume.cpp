@@ -1,0 +1,137 @@
+#include "packbed/volume.hpp"
+
+#include <algorithm>
+#include <array>
+#include <cmath>
+#include <numbers>
+
+#include <boost/math/quadrature/tanh_sinh.hpp>
+#include <fmt/format.h>
+
+#include "packbed/error.hpp"
+
+namespace packbed {
+
+namespace {
+
+constexpr double pi = std::numbers::pi;
+
+/// \f$\int_{t_1}^{t_2} \pi (R^2 - t^2)\,dt\f$: the volume of a sphere of radius R between two
+/// planes at heights t1 <= t2 measured from its centre (spherical segment).
+double segment_volume(double radius, double t1, double t2) {
+    return pi * (radius * radius * (t2 - t1) - (t2 * t2 * t2 - t1 * t1 * t1) / 3.0);
+}
+
+/// Which part of a slice disk of radius s lies inside the cylinder.
+enum class Slice { inside, outside, covers, lens };
+
+Slice classify(double s, double rho, double cylinder_radius) {
+    if (s + rho <= cylinder_radius)
+        return Slice::inside;
+    if (s + cylinder_radius <= rho)
+        return Slice::outside;
+    if (cylinder_radius + rho <= s)
+        return Slice::covers;
+    return Slice::lens;
+}
+
+} // namespace
+
+double disk_intersection_area(double r1, double r2, double distance) {
+    if (distance >= r1 + r2)
+        return 0.0;
+    if (distance <= std::abs(r1 - r2)) {
+        const double r = std::min(r1, r2);
+        return pi * r * r;
+    }
+    const double d1 = (distance * distance + r1 * r1 - r2 * r2) / (2.0 * distance);
+    const double d2 = distance - d1;
+    auto part = [](double r, double d) {
+        const double c = std::clamp(d / r, -1.0, 1.0);
+        return r * r * std::acos(c) - d * std::sqrt(std::max(r * r - d * d, 0.0));
+    };
+    return std::max(part(r1, d1) + part(r2, d2), 0.0);
+}
+
+double sphere_volume_in_cylinder_slab(const Vec3& center, double radius, double cylinder_radius,
+                                      double z_low, double z_high) {
+    // Work in t = z - center.z; the slice at t is a disk of radius sqrt(R^2 - t^2).
+    const double t_low = std::max(z_low - center.z, -radius);
+    const double t_high = std::min(z_high - center.z, radius);
+    if (t_low >= t_high)
+        return 0.0;
+    const double rho = std::hypot(center.x, center.y);
+    auto slice_radius = [&](double t) { return std::sqrt(std::max(radius * radius - t * t, 0.0)); };
+
+    // Break [t_low, t_high] where the slice changes regime: s = |Rc - rho| and s = Rc + rho.
+    std::array<double, 6> cuts{};
+    std::size_t ncuts = 0;
+    cuts[ncuts++] = t_low;
+    for (const double s : {std::abs(cylinder_radius - rho), cylinder_radius + rho}) {
+        if (s >= radius)
+            continue;
+        const double t = std::sqrt(radius * radius - s * s);
+        for (const double c : {-t, t})
+            if (c > t_low && c < t_high)
+                cuts[ncuts++] = c;
+    }
+    cuts[ncuts++] = t_high;
+    std::sort(cuts.begin(), cuts.begin() + ncuts);
+
+    // integrate() is not const in Boost 1.74: one integrator per thread.
+    thread_local boost::math::quadrature::tanh_sinh<double> integrator;
+    double volume = 0.0;
+    for (std::size_t k = 0; k + 1 < ncuts; ++k) {
+        const double t1 = cuts[k], t2 = cuts[k + 1];
+        if (t2 <= t1)
+            continue;
+        switch (classify(slice_radius(0.5 * (t1 + t2)), rho, cylinder_radius)) {
+        case Slice::inside:
+            volume += segment_volume(radius, t1, t2);
+            break;
+        case Slice::outside:
+            break;
+        case Slice::covers:
+            volume += pi * cylinder_radius * cylinder_radius * (t2 - t1);
+            break;
+        case Slice::lens:
+            volume += integrator.integrate(
+                [&](double t) {
+                    return disk_intersection_area(slice_radius(t), cylinder_radius, rho);
+                },
+                t1, t2, 1e-13);
+            break;
+        }
+    }
+    return volume;
+}
+
+double void_fraction(const Packing& packing, const Cylinder& container, double z_low,
+                     double z_high) {
+    if (!(z_high > z_low))
+        throw InvalidInput(fmt::format(
+            "void fraction: band [{}, {}] is empty; the upper height must exceed the lower", z_low,
+            z_high));
+    double solid = 0.0;
+    for (std::size_t i = 0; i < packing.size(); ++i)
+        solid += sphere_volume_in_cylinder_slab(packing.centers[i], packing.radii[i],
+                                                container.radius(), z_low, z_high);
+    const double rc = container.radius();
+    return 1.0 - solid / (pi * rc * rc * (z_high - z_low));
+}
+
+double bed_top(const Packing& packing) {
+    double top = 0.0;
+    for (std::size_t i = 0; i < packing.size(); ++i)
+        top = std::max(top, packing.centers[i].z + packing.radii[i]);
+    return top;
+}
+
+std::optional<Band> band_clear_of_ends(const Packing& packing, double clearance) {
+    const Band band{clearance, bed_top(packing) - clearance};
+    if (!(band.z_high > band.z_low))
+        return std::nullopt;
+    return band;
+}
+
+} // namespace packbed
