@@ -101,7 +101,8 @@ void SoftSphereParameters::validate() const {
     require(std::isfinite(diameter) && diameter > 0.0, "diameter", diameter, "a finite number > 0");
     require(e0 > 0.0 && e0 < 1.0, "e0", e0, "0 < e0 < 1");
     require(ck > 0.0 && ck < 1.0, "ck", ck, "0 < ck < 1 (a pair overshoots for ck >= 1)");
-    require(cg_step > 0.0 && cg_step <= 1e-3, "cg-step", cg_step, "0 < cg-step <= 1e-3");
+    require(cg_step > 0.0 && cg_step <= 5e-6, "cg-step", cg_step,
+            "0 < cg-step <= 5e-6 (larger steps keep Cg from settling)");
     require(overlap_low > 0.0 && overlap_low < 0.5, "overlap-low", overlap_low,
             "0 < overlap-low < 0.5 (Dp)");
     require(overlap_high > overlap_low && overlap_high < 0.5, "overlap-high", overlap_high,
@@ -238,7 +239,9 @@ struct SoftSphereGenerator::State {
         std::string what;
         if (!s.finite)
             what = "a position became NaN or infinite";
-        else if (s.wall >= 0.5)
+        else if (s.wall >= (gravity_on ? 0.5 : 2.5))
+            // Centre beyond the wall; the random start may overshoot transiently, so the
+            // initial stage only stops when the centre is 2 Dp out.
             what = fmt::format("a sphere left the container through the wall (overlap {:.3g} Dp)",
                                s.wall);
         else if (s.top > ceiling)
@@ -248,24 +251,25 @@ struct SoftSphereGenerator::State {
             what = fmt::format("the largest overlap grew to {:.3g} Dp", s.pair);
         if (what.empty())
             return;
-        throw ConvergenceError(fmt::format(
-            "generate: diverged in the {} stage at iteration {}: {}; lower --ck (now {}){}", stage,
-            iterations, what, params.ck,
-            gravity_on ? fmt::format(" or --cg-step (now {})", params.cg_step) : ""));
+        throw ConvergenceError(
+            fmt::format("diverged in the {} stage at iteration {}: {}; lower --ck (now {}){}",
+                        stage, iterations, what, params.ck,
+                        gravity_on ? fmt::format(" or --cg-step (now {})", params.cg_step) : ""));
     }
 
-    void check_budget(std::string_view stage) const {
+    void check_budget(std::string_view stage, const SweepStats& s) const {
         if (iterations >= params.max_iterations)
             throw ConvergenceError(fmt::format(
-                "generate: the {} stage did not finish within --max-iterations {}; raise it, or "
-                "raise --ck (now {}) for faster convergence",
-                stage, params.max_iterations, params.ck));
+                "the {} stage did not finish within --max-iterations {} (largest overlap now "
+                "{:.3g} Dp); raise --max-iterations, or lower --ck (now {}) or --cg-step (now {}) "
+                "if the overlaps or the mass centre keep oscillating",
+                stage, params.max_iterations, s.pair, params.ck, params.cg_step));
     }
 
     /// Every mc_period iterations: budget, cancellation and progress.
     void report(const RunControl& control, std::string_view stage, const SweepStats& s,
                 double mass_centre) const {
-        check_budget(stage);
+        check_budget(stage, s);
         if (control.should_stop && control.should_stop())
             throw Cancelled();
         if (control.on_progress)

@@ -22,6 +22,20 @@ double segment_volume(double radius, double t1, double t2) {
     return pi * (radius * radius * (t2 - t1) - (t2 * t2 * t2 - t1 * t1 * t1) / 3.0);
 }
 
+/// x - sin x, by its Taylor series where the direct difference would cancel (x < 0.5).
+double x_minus_sin_x(double x) {
+    if (x >= 0.5)
+        return x - std::sin(x);
+    // x^3/3! - x^5/5! + ... ; the terms after x^17 are below 1e-17 relative for x < 0.5.
+    const double x2 = x * x;
+    double term = x * x2 / 6.0, sum = 0.0;
+    for (int k = 1; k <= 8; ++k) {
+        sum += term;
+        term *= -x2 / ((2.0 * k + 2.0) * (2.0 * k + 3.0));
+    }
+    return sum;
+}
+
 /// Which part of a slice disk of radius s lies inside the cylinder.
 enum class Slice { inside, outside, covers, lens };
 
@@ -44,13 +58,20 @@ double disk_intersection_area(double r1, double r2, double distance) {
         const double r = std::min(r1, r2);
         return pi * r * r;
     }
+    // Each disk contributes the circular segment beyond the common chord, at signed distance
+    // d_k from its centre: (r^2 / 2)(x - sin x) with x = 2 acos(d_k / r) the central angle.
+    // The segment heights h_k = r_k - d_k are formed without cancellation, so a thin lens
+    // (a sphere barely touching a wall much larger than itself) keeps full relative precision.
     const double d1 = (distance * distance + r1 * r1 - r2 * r2) / (2.0 * distance);
-    const double d2 = distance - d1;
-    auto part = [](double r, double d) {
-        const double c = std::clamp(d / r, -1.0, 1.0);
-        return r * r * std::acos(c) - d * std::sqrt(std::max(r * r - d * d, 0.0));
+    const double h1 = r1 - d1;
+    const double h2 = (r2 - distance) + d1; // r2 - d2 with d2 = distance - d1
+    auto segment = [](double r, double h) {
+        const double d = r - h;
+        const double half_chord = std::sqrt(std::max(h * (2.0 * r - h), 0.0));
+        const double x = 2.0 * std::atan2(half_chord, d);
+        return 0.5 * r * r * x_minus_sin_x(x);
     };
-    return std::max(part(r1, d1) + part(r2, d2), 0.0);
+    return segment(r1, h1) + segment(r2, h2);
 }
 
 double sphere_volume_in_cylinder_slab(const Vec3& center, double radius, double cylinder_radius,

@@ -12,7 +12,6 @@
 #include "packbed/soft_sphere.hpp"
 #include "packbed/summary.hpp"
 #include "progress.hpp"
-#include "toml_config.hpp"
 
 namespace packbed::cli {
 
@@ -103,7 +102,7 @@ Command register_generate(CLI::App& parent) {
     app->add_option("--ck", p.ck, "elasticity parameter Ck of eq. (4)")
         ->check(real_in(0.0, 1.0, true, true));
     app->add_option("--cg-step", p.cg_step, "step of the gravity parameter Cg, eq. (7)")
-        ->check(real_in(0.0, 1e-3, true, false));
+        ->check(real_in(0.0, 5e-6, true, false));
     app->add_option("--overlap-low", p.overlap_low,
                     "lower bound of the largest overlap in the intermediate stage, eq. (7), Dp")
         ->check(real_in(0.0, 0.5, true, true));
@@ -138,8 +137,11 @@ Command register_generate(CLI::App& parent) {
     app->add_option("-j,--threads", o.threads, "threads (results do not depend on it)")
         ->check(whole_in(1, 1024));
     app->add_flag("-q,--quiet", o.quiet, "no progress and no report on the terminal");
-    app->set_config("--config", "", "read options from this TOML file; the command line wins");
-    app->config_formatter(std::make_shared<TomlConfig>("generate", configurable_names(*app)));
+    app->fallthrough(); // --config belongs to the top-level app
+    app->footer("Options may also come from a TOML file: packbed generate --config FILE.toml "
+                "(keys are the long option names, e.g. aspect-ratio = 5; the command line "
+                "wins).\nExit status: 0 success, 1 the run failed (divergence, no convergence), "
+                "2 bad input, 130 interrupted.");
     return {app, [options] { return run_generate(*options); }};
 }
 

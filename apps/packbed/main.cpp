@@ -8,6 +8,7 @@
 #include "command.hpp"
 #include "packbed/error.hpp"
 #include "packbed/version.hpp"
+#include "toml_config.hpp"
 
 namespace packbed::cli {
 Command register_generate(CLI::App& parent);
@@ -18,6 +19,10 @@ int main(int argc, char** argv) {
     CLI::App app("packbed: packed beds of spheres for CFD and DEM", "packbed");
     app.set_version_flag("-V,--version", std::string("packbed ") + version);
     app.require_subcommand(1);
+    app.set_config("--config", "",
+                   "read a subcommand's options from this TOML file (keys are the option names, "
+                   "e.g. aspect-ratio = 5); the command line wins");
+    app.config_formatter(std::make_shared<cli::TomlConfig>(&app));
     const std::vector<cli::Command> commands{cli::register_generate(app)};
 
     try {
@@ -28,6 +33,11 @@ int main(int argc, char** argv) {
         return app.exit(e);
     } catch (const CLI::CallForVersion& e) {
         return app.exit(e);
+    } catch (const CLI::ExtrasError& e) {
+        const auto selected = app.get_subcommands();
+        fmt::print(stderr, "packbed: {}; run 'packbed {}--help' for the options\n", e.what(),
+                   selected.empty() ? "" : selected.front()->get_name() + " ");
+        return 2;
     } catch (const CLI::ParseError& e) {
         fmt::print(stderr, "packbed: {}\n", e.what());
         return 2;

@@ -45,21 +45,28 @@ std::vector<CLI::ConfigItem> TomlConfig::from_config(std::istream& input) const 
                                            e.source().begin.line, e.source().begin.column,
                                            e.description()));
     }
+    const auto selected = m_root->get_subcommands();
+    if (selected.empty())
+        throw CLI::ConfigError("--config: a subcommand must be given with a config file");
+    const CLI::App& command = *selected.front();
+    const std::string section = command.get_name();
+    const std::set<std::string> allowed = configurable_names(command);
     std::vector<CLI::ConfigItem> result;
     auto add = [&](const toml::key& raw_key, const toml::node& node) {
         const std::string key = normalise(std::string(raw_key.str()));
         if (node.is_table())
             throw CLI::ConfigError(
                 fmt::format("--config: {}: unknown table '{}'; allowed: top-level keys or [{}]",
-                            line_of(node), raw_key.str(), m_section));
-        if (!m_allowed.count(key)) {
+                            line_of(node), raw_key.str(), section));
+        if (!allowed.count(key)) {
             std::string names;
-            for (const auto& n : m_allowed)
+            for (const auto& n : allowed)
                 names += (names.empty() ? "" : ", ") + n;
             throw CLI::ConfigError(fmt::format("--config: {}: unknown key '{}'; allowed: {}",
                                                line_of(node), raw_key.str(), names));
         }
         CLI::ConfigItem item;
+        item.parents = {section};
         item.name = key;
         if (const auto* array = node.as_array())
             for (const auto& element : *array)
@@ -69,7 +76,7 @@ std::vector<CLI::ConfigItem> TomlConfig::from_config(std::istream& input) const 
         result.push_back(std::move(item));
     };
     for (const auto& [key, node] : root) {
-        if (const auto* table = node.as_table(); table && key.str() == m_section) {
+        if (const auto* table = node.as_table(); table && key.str() == section) {
             for (const auto& [inner_key, inner_node] : *table)
                 add(inner_key, inner_node);
         } else {

@@ -9,24 +9,23 @@
 
 namespace packbed::cli {
 
-/// CLI11 config reader backed by toml++. Keys are option long names; `aspect_ratio` and
-/// `aspect-ratio` are the same key. Top-level keys, or keys under a table named after the
-/// subcommand (e.g. `[generate]`), are accepted. An unknown key, a syntax error or a value of
-/// the wrong shape is an error naming the line.
+/// CLI11 config reader backed by toml++, set on the top-level app (CLI11 reads config files
+/// only there). The keys are the options of the subcommand being run, by long name;
+/// `aspect_ratio` and `aspect-ratio` are the same key. Top-level keys, or keys under a table
+/// named after that subcommand (e.g. `[generate]`), are accepted. An unknown key, a syntax
+/// error or a value of the wrong shape is an error naming the line. Options given on the
+/// command line win over the file.
 class TomlConfig : public CLI::Config {
 public:
-    /// \param section the subcommand name whose table is accepted
-    /// \param allowed the option long names (without dashes) a file may set
-    TomlConfig(std::string section, std::set<std::string> allowed)
-        : m_section(std::move(section))
-        , m_allowed(std::move(allowed)) {}
+    /// \param root the top-level app (not owned; must outlive this object)
+    explicit TomlConfig(const CLI::App* root)
+        : m_root(root) {}
 
     std::vector<CLI::ConfigItem> from_config(std::istream& input) const override;
     std::string to_config(const CLI::App*, bool, bool, std::string) const override;
 
 private:
-    std::string m_section;
-    std::set<std::string> m_allowed;
+    const CLI::App* m_root;
 };
 
 /// \return the long names (without dashes) of the options of `app` that a config may set.

@@ -37,7 +37,7 @@ struct SoftSphereParameters {
     double diameter = 1.0;         ///< Dp in output length units, > 0
     double e0 = 0.47;              ///< initial overall void fraction for L0, eq. (6); (0, 1)
     double ck = 0.3;               ///< elasticity parameter Ck of eq. (4); (0, 1)
-    double cg_step = 1.25e-7;      ///< Delta Cg of the control loop, eq. (7); (0, 1e-3]
+    double cg_step = 1.25e-7;      ///< Delta Cg of the control loop, eq. (7); (0, 5e-6]
     double overlap_low = 0.5e-2;   ///< lower bound delta_L of eq. (7), Dp
     double overlap_high = 1e-2;    ///< upper bound delta_U of eq. (7), Dp; low < high < 0.5
     double tolerance = 1e-4;       ///< largest allowed final overlap, pair and wall, Dp

@@ -1,0 +1,238 @@
+// The command line, run as a user runs it: outputs, config files, exit statuses, messages.
+#include <sys/wait.h>
+
+#include <algorithm>
+#include <cstdio>
+#include <cstdlib>
+#include <filesystem>
+#include <fstream>
+#include <sstream>
+
+#include <gtest/gtest.h>
+#include <nlohmann/json.hpp>
+
+namespace fs = std::filesystem;
+
+namespace {
+
+struct Outcome {
+    int status = -1;
+    std::string out;
+    std::string err;
+};
+
+std::string slurp(const fs::path& path) {
+    std::ifstream in(path, std::ios::binary);
+    std::ostringstream s;
+    s << in.rdbuf();
+    return s.str();
+}
+
+/// A fresh directory private to the running test (ctest runs tests in parallel).
+fs::path scratch(const std::string& name) {
+    const auto* info = ::testing::UnitTest::GetInstance()->current_test_info();
+    std::string test = std::string(info->test_suite_name()) + "." + info->name();
+    std::replace(test.begin(), test.end(), '/', '_');
+    const fs::path d = fs::temp_directory_path() / "packbed-test-cli" / test / name;
+    fs::remove_all(d);
+    fs::create_directories(d);
+    return d;
+}
+
+/// Run `packbed ARGS` with stdin closed and CI unset; capture both streams.
+Outcome packbed(const std::string& args) {
+    const fs::path d = scratch("streams");
+    const std::string cmd = std::string("env -u CI ") + PACKBED_EXE + " " + args + " >" +
+                            (d / "out").string() + " 2>" + (d / "err").string() + " </dev/null";
+    const int raw = std::system(cmd.c_str());
+    return {WIFEXITED(raw) ? WEXITSTATUS(raw) : -1, slurp(d / "out"), slurp(d / "err")};
+}
+
+/// A small fast bed: a = 3, 40 spheres.
+const std::string small = "generate --aspect-ratio 3 --particles 40 --seed 2 ";
+
+} // namespace
+
+TEST(Cli, GenerateWritesTheThreeFiles) {
+    const fs::path d = scratch("generate");
+    const Outcome o = packbed(small + "--out " + d.string());
+    ASSERT_EQ(o.status, 0) << o.err;
+    EXPECT_EQ(o.err, "");
+    EXPECT_NE(o.out.find("void fraction: 0."), std::string::npos) << o.out;
+    EXPECT_NE(o.out.find(d.string()), std::string::npos);
+
+    const std::string csv = slurp(d / "particles.csv");
+    EXPECT_EQ(csv.rfind("x,y,z,r\n", 0), 0u);
+    EXPECT_EQ(std::count(csv.begin(), csv.end(), '\n'), 41);
+    EXPECT_NE(slurp(d / "particles.vtu").find("NumberOfPoints=\"40\""), std::string::npos);
+
+    const auto s = nlohmann::json::parse(slurp(d / "summary.json"));
+    EXPECT_EQ(s["aspect_ratio"], 3.0);
+    EXPECT_EQ(s["particles"], 40);
+    EXPECT_EQ(s["seed"], 2);
+    EXPECT_EQ(s["diameter"], 1.0);
+    EXPECT_EQ(s["container"]["radius"], 1.5);
+    EXPECT_GT(s["container"]["height"].get<double>(), 3.0);
+    EXPECT_EQ(s["void_fraction_band"][0], 1.0);
+    EXPECT_DOUBLE_EQ(s["void_fraction_band"][1].get<double>(),
+                     s["container"]["height"].get<double>() - 1.0);
+    EXPECT_GT(s["void_fraction"].get<double>(), 0.3);
+    EXPECT_LT(s["void_fraction"].get<double>(), 0.6);
+    EXPECT_LT(s["max_overlap_pair"].get<double>(), 1e-4);
+    EXPECT_LT(s["max_overlap_wall"].get<double>(), 1e-4);
+    ASSERT_EQ(s["stages"].size(), 3u);
+    EXPECT_EQ(s["stages"][0]["name"], "initial");
+    EXPECT_EQ(s["stages"][2]["name"], "final");
+    EXPECT_EQ(s["parameters"]["ck"], 0.3);
+    EXPECT_EQ(s["parameters"]["cg_step"], 1.25e-7);
+    EXPECT_EQ(s["parameters"]["update"], "in-place");
+    EXPECT_TRUE(s.contains("seconds"));
+    EXPECT_TRUE(s.contains("version"));
+    EXPECT_TRUE(s.contains("iterations"));
+    // No temporary files left behind.
+    for (const auto& entry : fs::directory_iterator(d))
+        EXPECT_EQ(entry.path().filename().string().find(".tmp"), std::string::npos);
+}
+
+TEST(Cli, DiameterScalesEveryLength) {
+    const fs::path d1 = scratch("d1"), d2 = scratch("d2");
+    ASSERT_EQ(packbed(small + "--quiet --out " + d1.string()).status, 0);
+    ASSERT_EQ(packbed(small + "--quiet --diameter 0.004 --out " + d2.string()).status, 0);
+    const auto s1 = nlohmann::json::parse(slurp(d1 / "summary.json"));
+    const auto s2 = nlohmann::json::parse(slurp(d2 / "summary.json"));
+    EXPECT_DOUBLE_EQ(s2["container"]["radius"].get<double>(), 0.006);
+    EXPECT_NEAR(s2["container"]["height"].get<double>(),
+                0.004 * s1["container"]["height"].get<double>(), 1e-15);
+    EXPECT_NEAR(s2["void_fraction"].get<double>(), s1["void_fraction"].get<double>(), 1e-12);
+}
+
+TEST(Cli, SameSeedSameBytesWhateverTheThreads) {
+    const fs::path a = scratch("t1"), b = scratch("t2"), c = scratch("t2b");
+    const std::string bed = "generate --aspect-ratio 3 --particles 80 --seed 2 --quiet ";
+    ASSERT_EQ(packbed(bed + "--update simultaneous --threads 1 --out " + a.string()).status, 0);
+    ASSERT_EQ(packbed(bed + "--update simultaneous --threads 2 --out " + b.string()).status, 0);
+    ASSERT_EQ(packbed(bed + "--threads 2 --out " + c.string()).status, 0);
+    EXPECT_EQ(slurp(a / "particles.csv"), slurp(b / "particles.csv"));
+    EXPECT_EQ(slurp(a / "particles.vtu"), slurp(b / "particles.vtu"));
+    EXPECT_NE(slurp(a / "particles.csv"), slurp(c / "particles.csv")); // other update order
+}
+
+TEST(Cli, QuietPrintsNothing) {
+    const fs::path d = scratch("quiet");
+    const Outcome o = packbed(small + "--quiet --out " + d.string());
+    EXPECT_EQ(o.status, 0);
+    EXPECT_EQ(o.out, "");
+    EXPECT_EQ(o.err, "");
+}
+
+TEST(Cli, ConfigFileSetsOptionsAndTheCommandLineWins) {
+    const fs::path d = scratch("config");
+    std::ofstream(d / "bed.toml") << "# a small bed\naspect_ratio = 3\nparticles = 40\n"
+                                     "seed = 9\n[generate]\nck = 0.25\n";
+    ASSERT_EQ(packbed("generate --quiet --config " + (d / "bed.toml").string() +
+                      " --seed 4 --out " + (d / "out").string())
+                  .status,
+              0);
+    const auto s = nlohmann::json::parse(slurp(d / "out" / "summary.json"));
+    EXPECT_EQ(s["particles"], 40);
+    EXPECT_EQ(s["aspect_ratio"], 3.0);
+    EXPECT_EQ(s["seed"], 4); // command line wins
+    EXPECT_EQ(s["parameters"]["ck"], 0.25);
+}
+
+TEST(Cli, VersionAndHelp) {
+    const Outcome v = packbed("--version");
+    EXPECT_EQ(v.status, 0);
+    EXPECT_EQ(v.out.rfind("packbed 0.", 0), 0u) << v.out;
+    const Outcome h = packbed("generate --help");
+    EXPECT_EQ(h.status, 0);
+    EXPECT_NE(h.out.find("--aspect-ratio"), std::string::npos);
+    EXPECT_NE(h.out.find("=0.47"), std::string::npos); // defaults are shown
+}
+
+struct BadInput {
+    const char* args;
+    const char* message; // the whole single line on stderr
+};
+
+void PrintTo(const BadInput& b, std::ostream* os) {
+    *os << b.args;
+}
+
+class CliBadInput : public ::testing::TestWithParam<BadInput> {};
+
+TEST_P(CliBadInput, ExitStatus2AndOneLineNamingOptionValueAndRange) {
+    const fs::path d = scratch("bad");
+    std::ofstream(d / "unknown.toml") << "aspect-ratio = 4\nwarp_speed = 9\n";
+    std::ofstream(d / "broken.toml") << "aspect-ratio = = 4\n";
+    std::ofstream(d / "typed.toml") << "particles = [1, {a = 2}]\n";
+    std::ofstream(d / "plain") << "x";
+    std::string args = GetParam().args;
+    for (std::size_t at; (at = args.find("@D")) != std::string::npos;)
+        args.replace(at, 2, d.string());
+    const Outcome o = packbed(args + " --out " + (d / "out").string());
+    EXPECT_EQ(o.status, 2) << o.err;
+    std::string expected = GetParam().message;
+    for (std::size_t at; (at = expected.find("@D")) != std::string::npos;)
+        expected.replace(at, 2, d.string());
+    EXPECT_EQ(o.err, expected + "\n");
+    EXPECT_FALSE(fs::exists(d / "out" / "particles.csv"));
+}
+
+INSTANTIATE_TEST_SUITE_P(
+    Cases, CliBadInput,
+    ::testing::Values(
+        BadInput{"generate --aspect-ratio five",
+                 "packbed: --aspect-ratio: 'five' is not allowed; allowed: a number in [1, 10000]"},
+        BadInput{"generate --aspect-ratio 0.8",
+                 "packbed: --aspect-ratio: 0.8 is not allowed; allowed: a number in [1, 10000]"},
+        BadInput{"generate --aspect-ratio nan",
+                 "packbed: --aspect-ratio: 'nan' is not allowed; allowed: a number in [1, 10000]"},
+        BadInput{"generate --particles 0",
+                 "packbed: --particles: '0' is not allowed; allowed: a whole number from 1 to "
+                 "100000000"},
+        BadInput{"generate --particles -5",
+                 "packbed: --particles: '-5' is not allowed; allowed: a whole number from 1 to "
+                 "100000000"},
+        BadInput{"generate --particles 2.5",
+                 "packbed: --particles: '2.5' is not allowed; allowed: a whole number from 1 to "
+                 "100000000"},
+        BadInput{"generate --diameter -1",
+                 "packbed: --diameter: -1 is not allowed; allowed: a number > 0"},
+        BadInput{"generate --diameter 0",
+                 "packbed: --diameter: 0 is not allowed; allowed: a number > 0"},
+        BadInput{"generate --ck 1.2",
+                 "packbed: --ck: 1.2 is not allowed; allowed: a number in (0, 1)"},
+        BadInput{"generate --e0 1", "packbed: --e0: 1 is not allowed; allowed: a number in (0, 1)"},
+        BadInput{"generate --cg-step 1e-3",
+                 "packbed: --cg-step: 1e-3 is not allowed; allowed: a number in (0, 5e-06]"},
+        BadInput{"generate --overlap-low 0.02 --overlap-high 0.01",
+                 "packbed generate: overlap-high = 0.01 is not allowed; allowed: overlap-low "
+                 "(0.02) < overlap-high < 0.5 (Dp)"},
+        BadInput{"generate --update sideways",
+                 "packbed: --update: sideways not in {in-place,simultaneous}"},
+        BadInput{"generate --warp-speed 9",
+                 "packbed: The following arguments were not expected: 9 --warp-speed; run "
+                 "'packbed generate --help' for the options"},
+        BadInput{"generate --config @D/unknown.toml",
+                 "packbed: --config: line 2: unknown key 'warp_speed'; allowed: aspect-ratio, "
+                 "band-clearance, cg-step, ck, diameter, e0, max-iterations, mc-period, "
+                 "mc-tolerance, mc-window, out, overlap-high, overlap-low, particles, quiet, "
+                 "seed, skin, threads, tolerance, update"},
+        BadInput{"generate --config @D/broken.toml",
+                 "packbed: --config: line 1, column 16: Error while parsing value: could not "
+                 "determine value type"},
+        BadInput{"generate --config @D/typed.toml",
+                 "packbed: --config: line 1: key 'particles' has a value of the wrong type; "
+                 "allowed: a number, a string or true/false"}));
+
+TEST(Cli, UnwritableOutputIsRefusedBeforeTheRun) {
+    const fs::path d = scratch("unwritable");
+    std::ofstream(d / "plain") << "x";
+    const Outcome o = packbed(small + "--out " + (d / "plain" / "sub").string());
+    EXPECT_EQ(o.status, 2);
+    EXPECT_EQ(o.err, "packbed generate: --out " + (d / "plain" / "sub").string() +
+                         ": cannot create the directory (Not a directory); allowed: a directory "
+                         "you can write to\n");
+    EXPECT_EQ(o.out, ""); // refused before the run: no report
+}

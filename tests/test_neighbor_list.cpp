@@ -1,0 +1,105 @@
+// The Verlet list (built through a cell grid) against brute force.
+#include <algorithm>
+#include <random>
+#include <set>
+
+#include <gtest/gtest.h>
+
+#include "packbed/neighbor_list.hpp"
+
+using namespace packbed;
+
+namespace {
+
+struct Cloud {
+    std::vector<Vec3> centers;
+    std::vector<double> radii;
+};
+
+/// Random spheres in a box, fixed seed; radii between 0.3 and 0.7 when `polydisperse`.
+Cloud random_cloud(std::size_t n, double box, bool polydisperse, unsigned seed) {
+    std::mt19937_64 rng(seed);
+    auto u = [&] { return static_cast<double>(rng() >> 11) * 0x1.0p-53; };
+    Cloud c;
+    for (std::size_t i = 0; i < n; ++i) {
+        c.centers.push_back({box * u(), box * u(), 3.0 * box * u()});
+        c.radii.push_back(polydisperse ? 0.3 + 0.4 * u() : 0.5);
+    }
+    return c;
+}
+
+std::set<std::pair<std::uint32_t, std::uint32_t>> pairs_of(const NeighborList& list,
+                                                           std::size_t n) {
+    std::set<std::pair<std::uint32_t, std::uint32_t>> pairs;
+    for (std::uint32_t i = 0; i < n; ++i)
+        for (const auto j : list.neighbors_of(i)) {
+            EXPECT_NE(i, j);
+            pairs.emplace(std::min(i, j), std::max(i, j));
+        }
+    return pairs;
+}
+
+} // namespace
+
+class NeighborListVsBruteForce : public ::testing::TestWithParam<std::tuple<double, bool>> {};
+
+TEST_P(NeighborListVsBruteForce, SamePairs) {
+    const auto [skin, polydisperse] = GetParam();
+    const Cloud c = random_cloud(2000, 8.0, polydisperse, 42);
+    NeighborList list;
+    list.build(c.centers, c.radii, skin);
+    const auto fast = pairs_of(list, c.centers.size());
+    const auto slow = brute_force_pairs(c.centers, c.radii, skin);
+    ASSERT_GT(slow.size(), 1000u); // the cloud is dense enough to test something
+    EXPECT_EQ(fast, std::set(slow.begin(), slow.end()));
+    // Full list: every pair appears in both rows, rows sorted.
+    std::size_t entries = 0;
+    for (std::size_t i = 0; i < c.centers.size(); ++i) {
+        const auto row = list.neighbors_of(i);
+        entries += row.size();
+        EXPECT_TRUE(std::is_sorted(row.begin(), row.end()));
+    }
+    EXPECT_EQ(entries, 2 * slow.size());
+}
+
+INSTANTIATE_TEST_SUITE_P(Skins, NeighborListVsBruteForce,
+                         ::testing::Combine(::testing::Values(0.0, 0.1, 0.4),
+                                            ::testing::Values(false, true)));
+
+TEST(NeighborList, RebuildOnlyAfterHalfSkinDisplacement) {
+    Cloud c = random_cloud(100, 4.0, false, 7);
+    NeighborList list;
+    EXPECT_TRUE(list.needs_rebuild(c.centers));
+    list.build(c.centers, c.radii, 0.2);
+    EXPECT_FALSE(list.needs_rebuild(c.centers));
+    c.centers[17].x += 0.099; // below skin / 2
+    EXPECT_FALSE(list.needs_rebuild(c.centers));
+    c.centers[17].x += 0.002; // beyond skin / 2
+    EXPECT_TRUE(list.needs_rebuild(c.centers));
+}
+
+TEST(NeighborList, ListStaysCompleteWhileNoSphereMovedHalfTheSkin) {
+    // The Verlet guarantee: after moves below skin/2, every touching pair is still listed.
+    Cloud c = random_cloud(1500, 7.0, false, 3);
+    const double skin = 0.2;
+    NeighborList list;
+    list.build(c.centers, c.radii, skin);
+    std::mt19937_64 rng(11);
+    std::uniform_real_distribution<double> step(-0.057, 0.057); // |move| < 0.1 = skin/2
+    for (auto& p : c.centers)
+        p += Vec3{step(rng), step(rng), step(rng)};
+    ASSERT_FALSE(list.needs_rebuild(c.centers));
+    const auto listed = pairs_of(list, c.centers.size());
+    for (const auto& pair : brute_force_pairs(c.centers, c.radii, 0.0))
+        EXPECT_TRUE(listed.count(pair)) << pair.first << "-" << pair.second;
+}
+
+TEST(NeighborList, FarApartSpheresKeepTheGridSmall) {
+    // Two spheres 1e9 apart: the grid must not try to allocate 1e9 cells.
+    const std::vector<Vec3> centers{{0, 0, 0}, {0, 0, 1e9}, {0.5, 0, 0}};
+    const std::vector<double> radii{0.5, 0.5, 0.5};
+    NeighborList list;
+    list.build(centers, radii, 0.1);
+    EXPECT_EQ(list.neighbors_of(0).size(), 1u);
+    EXPECT_EQ(list.neighbors_of(1).size(), 0u);
+}

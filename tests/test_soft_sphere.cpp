@@ -1,0 +1,259 @@
+// The soft-sphere algorithm of Salvat et al. (2005): each stage's exit rule, convergence of a
+// small bed, determinism, divergence and parameter errors.
+#include <algorithm>
+#include <cmath>
+
+#include <gtest/gtest.h>
+#include <omp.h>
+
+#include "packbed/error.hpp"
+#include "packbed/soft_sphere.hpp"
+#include "packbed/volume.hpp"
+
+using namespace packbed;
+
+namespace {
+
+SoftSphereParameters small_bed(std::uint64_t seed = 1) {
+    SoftSphereParameters p;
+    p.aspect_ratio = 3.0;
+    p.particles = 40;
+    p.seed = seed;
+    return p;
+}
+
+/// Spread of a mass-centre window as a percentage of its mean.
+double spread_percent(const std::vector<double>& w) {
+    const auto [lo, hi] = std::minmax_element(w.begin(), w.end());
+    double mean = 0.0;
+    for (double v : w)
+        mean += v;
+    mean /= static_cast<double>(w.size());
+    return 100.0 * (*hi - *lo) / mean;
+}
+
+void expect_bitwise_equal(const Packing& a, const Packing& b) {
+    ASSERT_EQ(a.size(), b.size());
+    for (std::size_t i = 0; i < a.size(); ++i) {
+        EXPECT_EQ(a.centers[i], b.centers[i]) << "sphere " << i;
+        EXPECT_EQ(a.radii[i], b.radii[i]);
+    }
+}
+
+} // namespace
+
+TEST(InitialHeight, Equation6) {
+    // L0 = 2/3 Dp Np / (a^2 (1 - e0)): the paper's case a = 5, Np = 500, e0 = 0.47.
+    EXPECT_NEAR(initial_bed_height(500, 5.0, 0.47), 2.0 / 3.0 * 500.0 / (25.0 * 0.53), 1e-12);
+    EXPECT_NEAR(initial_bed_height(500, 5.0, 0.47), 25.157232704402514, 1e-12);
+}
+
+TEST(GenerationStage, CentresFollowTheSpecifiedDistribution) {
+    SoftSphereParameters p = small_bed();
+    p.particles = 4000;
+    p.aspect_ratio = 6.0;
+    const SoftSphereGenerator gen(p);
+    const Packing& bed = gen.packing_dp();
+    const double l0 = initial_bed_height(p.particles, p.aspect_ratio, p.e0);
+    const double reach = 3.0 - 0.5; // Rt - Dp/2
+    std::size_t inner_half_area = 0;
+    for (std::size_t i = 0; i < bed.size(); ++i) {
+        const double r = std::hypot(bed.centers[i].x, bed.centers[i].y);
+        EXPECT_LE(r, reach);
+        EXPECT_GE(bed.centers[i].z, 0.5);
+        EXPECT_LE(bed.centers[i].z, l0 + 0.5);
+        EXPECT_EQ(bed.radii[i], 0.5);
+        inner_half_area += r * r < 0.5 * reach * reach ? 1 : 0;
+    }
+    // r = (Rt - Dp/2) Rnd^(1/2) is uniform over the disk: half the centres in half the area
+    // (binomial, sd = sqrt(4000)/2 ~ 32).
+    EXPECT_NEAR(static_cast<double>(inner_half_area), 2000.0, 130.0);
+}
+
+TEST(GenerationStage, SameSeedSameStartDifferentSeedDifferent) {
+    const SoftSphereGenerator a(small_bed(5)), b(small_bed(5)), c(small_bed(6));
+    expect_bitwise_equal(a.packing_dp(), b.packing_dp());
+    EXPECT_NE(a.packing_dp().centers[0], c.packing_dp().centers[0]);
+}
+
+TEST(InitialStage, EndsWhenBothOverlapsAreBelowTheTolerance) {
+    SoftSphereGenerator gen(small_bed());
+    const Overlaps before = measure_overlaps(gen.packing_dp(), Cylinder(1.5));
+    ASSERT_GT(before.pair, 0.1); // the random start overlaps a lot
+    const StageRecord r = gen.run_initial_stage();
+    const Overlaps after = measure_overlaps(gen.packing_dp(), Cylinder(1.5));
+    EXPECT_LT(after.pair, 1e-4);
+    EXPECT_LT(after.wall, 1e-4);
+    EXPECT_EQ(r.max_overlap_pair, after.pair);
+    EXPECT_EQ(r.cg, 0.0);
+    EXPECT_GT(r.iterations, 10u);
+}
+
+TEST(IntermediateStage, EndsOnTheMassCentreRuleWithCgFromTheControlLoop) {
+    SoftSphereGenerator gen(small_bed());
+    const StageRecord initial = gen.run_initial_stage();
+    const StageRecord r = gen.run_intermediate_stage();
+    // 10 records, 100 iterations apart, within 1e-4 % of their mean.
+    ASSERT_EQ(r.mass_centre_window.size(), 10u);
+    EXPECT_LE(spread_percent(r.mass_centre_window), 1e-4);
+    EXPECT_EQ(r.iterations % 100, 0u);
+    EXPECT_GE(r.iterations, 1000u);
+    // Gravity compacted the bed, and Cg moved in whole steps of 1.25e-7 from zero.
+    EXPECT_LT(r.mass_centre_z, initial.mass_centre_z);
+    EXPECT_GT(r.cg, 0.0);
+    EXPECT_NEAR(r.cg / 1.25e-7, std::round(r.cg / 1.25e-7), 1e-6);
+    // The control loop keeps the largest overlap near the band [0.5e-2, 1e-2] Dp.
+    EXPECT_GT(r.max_overlap_pair, 0.3e-2);
+    EXPECT_LT(r.max_overlap_pair, 1.5e-2);
+}
+
+TEST(FinalStage, HalvesCgEachStepAndEndsBelowTheTolerance) {
+    SoftSphereGenerator gen(small_bed());
+    gen.run_initial_stage();
+    const StageRecord mid = gen.run_intermediate_stage();
+    const StageRecord r = gen.run_final_stage();
+    EXPECT_GE(r.steps, 1u);
+    EXPECT_DOUBLE_EQ(r.cg, mid.cg / std::pow(2.0, r.steps));
+    const Overlaps now = measure_overlaps(gen.packing_dp(), Cylinder(1.5));
+    EXPECT_LT(now.pair, 1e-4);
+    EXPECT_LT(now.wall, 1e-4);
+    // Every step before the last ended on the mass-centre rule.
+    if (r.steps > 1) {
+        EXPECT_GE(r.iterations, 1000u * (r.steps - 1));
+    }
+}
+
+TEST(SoftSphere, SmallBedConvergesInsideTheContainer) {
+    SoftSphereParameters p;
+    p.aspect_ratio = 4.0;
+    p.particles = 150;
+    p.seed = 1;
+    p.diameter = 2.0; // outputs scale with the diameter
+    const SoftSphereResult res = generate_soft_sphere(p);
+    EXPECT_LT(res.max_overlap_pair, 1e-4);
+    EXPECT_LT(res.max_overlap_wall, 1e-4);
+    EXPECT_DOUBLE_EQ(res.container.radius(), 4.0);
+    ASSERT_EQ(res.stages.size(), 3u);
+    EXPECT_EQ(res.stages[0].iterations + res.stages[1].iterations + res.stages[2].iterations,
+              res.iterations);
+    for (std::size_t i = 0; i < res.packing.size(); ++i) {
+        const Vec3& c = res.packing.centers[i];
+        EXPECT_EQ(res.packing.radii[i], 1.0);
+        EXPECT_LE(std::hypot(c.x, c.y), 4.0 - 1.0 + 2.0 * 1e-4); // wall overlap < 1e-4 Dp
+        EXPECT_GE(c.z, 1.0);                                     // rigid floor
+    }
+    // A bed of this aspect ratio is between the loose and dense limits of the correlations.
+    const auto band = band_clear_of_ends(res.packing, 2.0);
+    ASSERT_TRUE(band);
+    const double e = void_fraction(res.packing, res.container, band->z_low, band->z_high);
+    EXPECT_GT(e, 0.40);
+    EXPECT_LT(e, 0.48);
+}
+
+TEST(SoftSphere, SimultaneousUpdateIsIndependentOfThreadCount) {
+    SoftSphereParameters p = small_bed(3);
+    p.particles = 120;
+    p.update = UpdateOrder::simultaneous;
+    const int saved = omp_get_max_threads();
+    omp_set_num_threads(1);
+    const SoftSphereResult one = generate_soft_sphere(p);
+    omp_set_num_threads(2);
+    const SoftSphereResult two = generate_soft_sphere(p);
+    omp_set_num_threads(saved);
+    EXPECT_EQ(one.iterations, two.iterations);
+    expect_bitwise_equal(one.packing, two.packing);
+}
+
+TEST(SoftSphere, DivergenceStopsWithStageIterationAndParameter) {
+    SoftSphereParameters p = small_bed();
+    p.aspect_ratio = 4.0;
+    p.particles = 150;
+    p.ck = 0.99; // a pair still converges, a crowded start does not:
+    p.e0 = 0.1;  // the first iterations throw a sphere 2 Dp through the wall
+    p.update = UpdateOrder::simultaneous;
+    try {
+        generate_soft_sphere(p);
+        FAIL() << "expected a ConvergenceError";
+    } catch (const ConvergenceError& e) {
+        const std::string msg = e.what();
+        EXPECT_NE(msg.find("diverged in the initial stage at iteration"), std::string::npos) << msg;
+        EXPECT_NE(msg.find("lower --ck (now 0.99)"), std::string::npos) << msg;
+    }
+}
+
+TEST(SoftSphere, IterationLimitNamesTheStage) {
+    SoftSphereParameters p = small_bed();
+    p.max_iterations = 500;
+    try {
+        generate_soft_sphere(p);
+        FAIL() << "expected a ConvergenceError";
+    } catch (const ConvergenceError& e) {
+        EXPECT_NE(std::string(e.what()).find("stage did not finish within --max-iterations 500"),
+                  std::string::npos)
+            << e.what();
+    }
+}
+
+TEST(SoftSphere, CancellationThrows) {
+    RunControl control;
+    int calls = 0;
+    control.should_stop = [&] { return ++calls > 3; };
+    EXPECT_THROW(generate_soft_sphere(small_bed(), control), Cancelled);
+}
+
+TEST(SoftSphere, ProgressIsReportedEveryPeriod) {
+    RunControl control;
+    std::vector<std::uint64_t> seen;
+    control.on_progress = [&](const Progress& pr) { seen.push_back(pr.iteration); };
+    const auto res = generate_soft_sphere(small_bed(), control);
+    ASSERT_GT(seen.size(), 10u);
+    EXPECT_TRUE(std::is_sorted(seen.begin(), seen.end()));
+    EXPECT_LE(seen.back(), res.iterations);
+}
+
+struct BadParameter {
+    const char* text;
+    void (*apply)(SoftSphereParameters&);
+};
+
+void PrintTo(const BadParameter& b, std::ostream* os) {
+    *os << b.text;
+}
+
+class SoftSphereParameterErrors : public ::testing::TestWithParam<BadParameter> {};
+
+TEST_P(SoftSphereParameterErrors, MessageNamesParameterValueAndRange) {
+    SoftSphereParameters p;
+    GetParam().apply(p);
+    try {
+        p.validate();
+        FAIL() << "expected InvalidInput";
+    } catch (const InvalidInput& e) {
+        EXPECT_EQ(std::string(e.what()).rfind(GetParam().text, 0), 0u) << e.what();
+    }
+}
+
+INSTANTIATE_TEST_SUITE_P(
+    Cases, SoftSphereParameterErrors,
+    ::testing::Values(BadParameter{"aspect-ratio = 0.5 is not allowed; allowed: 1 <= a <= 10000",
+                                   [](SoftSphereParameters& p) { p.aspect_ratio = 0.5; }},
+                      BadParameter{"particles = 0 is not allowed; allowed: 1 to 100000000",
+                                   [](SoftSphereParameters& p) { p.particles = 0; }},
+                      BadParameter{"diameter = -1 is not allowed; allowed: a finite number > 0",
+                                   [](SoftSphereParameters& p) { p.diameter = -1; }},
+                      BadParameter{"e0 = 1 is not allowed; allowed: 0 < e0 < 1",
+                                   [](SoftSphereParameters& p) { p.e0 = 1.0; }},
+                      BadParameter{"ck = 1.5 is not allowed; allowed: 0 < ck < 1",
+                                   [](SoftSphereParameters& p) { p.ck = 1.5; }},
+                      BadParameter{"cg-step = 0.001 is not allowed; allowed: 0 < cg-step <= 5e-6",
+                                   [](SoftSphereParameters& p) { p.cg_step = 1e-3; }},
+                      BadParameter{
+                          "overlap-high = 0.004 is not allowed; allowed: overlap-low (0.005) < "
+                          "overlap-high < 0.5",
+                          [](SoftSphereParameters& p) { p.overlap_high = 0.004; }},
+                      BadParameter{"tolerance = 0 is not allowed",
+                                   [](SoftSphereParameters& p) { p.tolerance = 0; }},
+                      BadParameter{"mc-window = 1 is not allowed; allowed: 2 to 10000",
+                                   [](SoftSphereParameters& p) { p.mc_window = 1; }},
+                      BadParameter{"skin = 2 is not allowed; allowed: 0 < skin <= 1",
+                                   [](SoftSphereParameters& p) { p.skin = 2; }}));

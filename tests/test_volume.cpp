@@ -1,0 +1,122 @@
+// Exact sphere volumes inside a cylinder and a slab, checked against hand-computed cases.
+#include <cmath>
+#include <numbers>
+
+#include <gtest/gtest.h>
+
+#include "packbed/error.hpp"
+#include "packbed/volume.hpp"
+
+using namespace packbed;
+constexpr double pi = std::numbers::pi;
+
+namespace {
+double ball(double r) {
+    return 4.0 / 3.0 * pi * r * r * r;
+}
+/// Spherical cap of height h on a sphere of radius r: pi h^2 (3r - h) / 3.
+double cap(double r, double h) {
+    return pi * h * h * (3.0 * r - h) / 3.0;
+}
+} // namespace
+
+TEST(DiskIntersection, HandComputedLenses) {
+    // Equal circles r at distance r: r^2 (2 pi / 3 - sqrt(3) / 2).
+    EXPECT_NEAR(disk_intersection_area(1.0, 1.0, 1.0), 2.0 * pi / 3.0 - std::sqrt(3.0) / 2.0,
+                1e-15);
+    EXPECT_DOUBLE_EQ(disk_intersection_area(1.0, 3.0, 0.5), pi);  // small disk inside
+    EXPECT_DOUBLE_EQ(disk_intersection_area(2.0, 1.0, 0.0), pi);  // concentric
+    EXPECT_DOUBLE_EQ(disk_intersection_area(1.0, 1.0, 2.0), 0.0); // tangent outside
+    // Unequal: r1 = 1 centred on the circle r2 = 1e7 (a straight edge): half the disk.
+    EXPECT_NEAR(disk_intersection_area(1.0, 1e7, 1e7), pi / 2.0, 1e-6);
+}
+
+TEST(SphereInCylinderSlab, SphereOnTheAxisInsideIsWhole) {
+    EXPECT_NEAR(sphere_volume_in_cylinder_slab({0, 0, 5}, 0.5, 2.5, 0, 10), ball(0.5), 1e-15);
+}
+
+TEST(SphereInCylinderSlab, TouchingTheWallFromInsideIsWhole) {
+    // Centre at r = Rt - R: tangent to the wall, nothing cut.
+    EXPECT_NEAR(sphere_volume_in_cylinder_slab({2.0, 0, 5}, 0.5, 2.5, 0, 10), ball(0.5), 1e-15);
+    EXPECT_NEAR(sphere_volume_in_cylinder_slab({1.2, -1.6, 5}, 0.5, 2.5, 0, 10), ball(0.5), 1e-15);
+}
+
+TEST(SphereInCylinderSlab, CutByPlanesGivesCapsAndHalves) {
+    // Plane through the centre: half.
+    EXPECT_NEAR(sphere_volume_in_cylinder_slab({0, 0, 1}, 0.5, 2.5, 1.0, 9.0), ball(0.5) / 2,
+                1e-15);
+    // Band lower plane 0.2 below the top of the sphere: a cap of height 0.2.
+    EXPECT_NEAR(sphere_volume_in_cylinder_slab({0.3, 0.1, 1.0}, 0.5, 2.5, 1.3, 9.0), cap(0.5, 0.2),
+                1e-15);
+    // Both planes cut: ball minus two caps (heights 0.1 below, 0.15 above).
+    EXPECT_NEAR(sphere_volume_in_cylinder_slab({0, 0, 2.0}, 0.5, 2.5, 1.6, 2.35),
+                ball(0.5) - cap(0.5, 0.1) - cap(0.5, 0.15), 1e-15);
+    // Outside the band: nothing.
+    EXPECT_EQ(sphere_volume_in_cylinder_slab({0, 0, 0.5}, 0.5, 2.5, 1.0, 9.0), 0.0);
+}
+
+TEST(SphereInCylinderSlab, CoaxialCylinderThroughTheSphereIsTheNapkinRingComplement) {
+    // Sphere R on the axis, cylinder a < R: V = 4 pi / 3 (R^3 - (R^2 - a^2)^(3/2)).
+    const double r = 1.0, a = 0.6;
+    const double exact = 4.0 * pi / 3.0 * (r * r * r - std::pow(r * r - a * a, 1.5));
+    EXPECT_NEAR(sphere_volume_in_cylinder_slab({0, 0, 0}, r, a, -5, 5), exact, 1e-13);
+    // And cut in half by a plane through the centre.
+    EXPECT_NEAR(sphere_volume_in_cylinder_slab({0, 0, 0}, r, a, 0, 5), exact / 2, 1e-13);
+}
+
+TEST(SphereInCylinderSlab, CentredOnAVeryLargeWallIsHalf) {
+    // Against a wall of radius 1e6 the cut is a plane through the centre to ~R^2/Rt.
+    const double rt = 1e6;
+    EXPECT_NEAR(sphere_volume_in_cylinder_slab({rt, 0, 0}, 0.5, rt, -1, 1), ball(0.5) / 2, 1e-7);
+}
+
+TEST(SphereInCylinderSlab, SmallWallOverlapRemovesAThinCap) {
+    // A sphere pressing 1e-4 into a wall of radius 2.5: the part outside is close to the cap
+    // of height 1e-4 (flat-wall limit), slightly more because the wall curves away from it.
+    const double h = 1e-4;
+    const double inside = sphere_volume_in_cylinder_slab({2.0 + h, 0, 0}, 0.5, 2.5, -1, 1);
+    const double removed = ball(0.5) - inside;
+    EXPECT_GT(removed, cap(0.5, h));
+    EXPECT_LT(removed, 1.5 * cap(0.5, h));
+}
+
+TEST(SphereInCylinderSlab, ShellsAddUpToTheSphere) {
+    // Volumes in nested cylinders difference to shells; they must sum to the whole sphere.
+    const Vec3 c{0.9, -0.7, 3.0};
+    double sum = 0.0, previous = 0.0;
+    for (int k = 1; k <= 40; ++k) {
+        const double v = sphere_volume_in_cylinder_slab(c, 0.5, 0.05 * k, 0, 10);
+        EXPECT_GE(v, previous - 1e-15);
+        sum += v - previous;
+        previous = v;
+    }
+    EXPECT_NEAR(sum, ball(0.5), 1e-12);
+}
+
+TEST(VoidFraction, ColumnOfSpheresOnTheAxis) {
+    // Spheres of diameter 1 stacked on the axis, centres at 0.5, 1.5, ...; band [1, 9] holds
+    // exactly 8 sphere volumes' worth: e = 1 - 8 (pi/6) / (pi Rt^2 8).
+    Packing column;
+    for (int k = 0; k < 10; ++k)
+        column.add({0, 0, 0.5 + k}, 0.5);
+    const double rt = 0.75;
+    EXPECT_NEAR(void_fraction(column, Cylinder(rt), 1.0, 9.0), 1.0 - (1.0 / 6.0) / (rt * rt),
+                1e-14);
+}
+
+TEST(VoidFraction, EmptyBandIsRefused) {
+    Packing p;
+    p.add({0, 0, 0.5}, 0.5);
+    EXPECT_THROW(void_fraction(p, Cylinder(1.0), 2.0, 2.0), InvalidInput);
+}
+
+TEST(Band, ClearOfBothEnds) {
+    Packing p;
+    p.add({0, 0, 0.5}, 0.5);
+    p.add({0, 0, 7.25}, 0.5);
+    const auto band = band_clear_of_ends(p, 1.0);
+    ASSERT_TRUE(band);
+    EXPECT_DOUBLE_EQ(band->z_low, 1.0);
+    EXPECT_DOUBLE_EQ(band->z_high, 6.75);
+    EXPECT_FALSE(band_clear_of_ends(p, 4.0));
+}
