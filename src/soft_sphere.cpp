@@ -362,6 +362,8 @@ StageRecord SoftSphereGenerator::run_final_stage(const RunControl& control) {
     const std::uint64_t start = st.iterations;
     MassCentreWindow window(p.mc_window, p.mc_tolerance);
     std::uint32_t steps = 0;
+    // Below this Cg, gravity moves a sphere by less than 1e-8 of the tolerance per iteration.
+    const double stalled_cg = 1e-8 * p.tolerance;
     for (;;) {
         // A new step: Cg halved, held constant until the mass centre settles.
         st.cg *= 0.5;
@@ -376,6 +378,14 @@ StageRecord SoftSphereGenerator::run_final_stage(const RunControl& control) {
                 r.steps = steps;
                 return r;
             }
+            // Gravity has become negligible, yet the overlaps stay above the tolerance: the
+            // iteration is caught in a cycle (seen with in-place updates and Ck >= 0.45).
+            if (st.cg < stalled_cg)
+                throw ConvergenceError(fmt::format(
+                    "diverged in the final stage at iteration {}: the largest overlaps stay at "
+                    "{:.3g} (pair) and {:.3g} (wall) Dp while Cg fell to {:.3g}; lower --ck (now "
+                    "{}) or use --update simultaneous",
+                    st.iterations, s.pair, s.wall, st.cg, p.ck));
             if (k % p.mc_period == 0) {
                 const double mc = st.mass_centre_z();
                 window.push(mc);
@@ -385,6 +395,11 @@ StageRecord SoftSphereGenerator::run_final_stage(const RunControl& control) {
             }
         }
     }
+}
+
+Overlaps SoftSphereGenerator::iterate(double cg) {
+    const SweepStats s = m_state->sweep(cg);
+    return {s.pair, s.wall};
 }
 
 SoftSphereResult SoftSphereGenerator::run(const RunControl& control) {

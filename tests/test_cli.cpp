@@ -85,7 +85,7 @@ TEST(Cli, GenerateWritesTheThreeFiles) {
     EXPECT_EQ(s["stages"][2]["name"], "final");
     EXPECT_EQ(s["parameters"]["ck"], 0.3);
     EXPECT_EQ(s["parameters"]["cg_step"], 1.25e-7);
-    EXPECT_EQ(s["parameters"]["update"], "in-place");
+    EXPECT_EQ(s["parameters"]["update"], "simultaneous");
     EXPECT_TRUE(s.contains("seconds"));
     EXPECT_TRUE(s.contains("version"));
     EXPECT_TRUE(s.contains("iterations"));
@@ -111,7 +111,7 @@ TEST(Cli, SameSeedSameBytesWhateverTheThreads) {
     const std::string bed = "generate --aspect-ratio 3 --particles 80 --seed 2 --quiet ";
     ASSERT_EQ(packbed(bed + "--update simultaneous --threads 1 --out " + a.string()).status, 0);
     ASSERT_EQ(packbed(bed + "--update simultaneous --threads 2 --out " + b.string()).status, 0);
-    ASSERT_EQ(packbed(bed + "--threads 2 --out " + c.string()).status, 0);
+    ASSERT_EQ(packbed(bed + "--update in-place --out " + c.string()).status, 0);
     EXPECT_EQ(slurp(a / "particles.csv"), slurp(b / "particles.csv"));
     EXPECT_EQ(slurp(a / "particles.vtu"), slurp(b / "particles.vtu"));
     EXPECT_NE(slurp(a / "particles.csv"), slurp(c / "particles.csv")); // other update order
@@ -138,6 +138,20 @@ TEST(Cli, ConfigFileSetsOptionsAndTheCommandLineWins) {
     EXPECT_EQ(s["aspect_ratio"], 3.0);
     EXPECT_EQ(s["seed"], 4); // command line wins
     EXPECT_EQ(s["parameters"]["ck"], 0.25);
+}
+
+TEST(Cli, InterruptedRunLeavesNoFile) {
+    const fs::path d = scratch("interrupt");
+    const fs::path status = d / "status";
+    const std::string cmd = "env -u CI " + std::string(PACKBED_EXE) +
+                            " generate -a 5 -n 3000 --quiet --out " + (d / "out").string() +
+                            " & pid=$!; sleep 0.5; kill -INT $pid; wait $pid; echo $? > " +
+                            status.string();
+    ASSERT_EQ(std::system(("bash -c '" + cmd + "' 2>" + (d / "err").string()).c_str()), 0);
+    EXPECT_EQ(slurp(status), "130\n");
+    EXPECT_EQ(slurp(d / "err"), "packbed generate: interrupted; nothing was written\n");
+    ASSERT_TRUE(fs::is_directory(d / "out")); // created before the run, left empty
+    EXPECT_TRUE(fs::is_empty(d / "out"));
 }
 
 TEST(Cli, VersionAndHelp) {

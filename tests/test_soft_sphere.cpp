@@ -181,6 +181,26 @@ TEST(SoftSphere, DivergenceStopsWithStageIterationAndParameter) {
     }
 }
 
+TEST(SoftSphere, ACycleThatGravityCannotBreakStopsTheFinalStage) {
+    // In-place updates with Ck = 0.45 lock this bed in a cycle with overlaps ~6e-3 Dp; the
+    // final stage halves Cg towards zero and must stop instead of running forever.
+    SoftSphereParameters p;
+    p.aspect_ratio = 4.0;
+    p.particles = 150;
+    p.seed = 2;
+    p.ck = 0.45;
+    p.update = UpdateOrder::in_place;
+    try {
+        generate_soft_sphere(p);
+        FAIL() << "expected a ConvergenceError";
+    } catch (const ConvergenceError& e) {
+        const std::string msg = e.what();
+        EXPECT_NE(msg.find("diverged in the final stage at iteration"), std::string::npos) << msg;
+        EXPECT_NE(msg.find("lower --ck (now 0.45) or use --update simultaneous"), std::string::npos)
+            << msg;
+    }
+}
+
 TEST(SoftSphere, IterationLimitNamesTheStage) {
     SoftSphereParameters p = small_bed();
     p.max_iterations = 500;

@@ -52,7 +52,7 @@ int main(int argc, char** argv) {
             fmt::print(stderr, "packbed {}: {}\n", name, e.what());
             return 2;
         } catch (const Cancelled&) {
-            fmt::print(stderr, "\npackbed {}: interrupted; nothing was written\n", name);
+            fmt::print(stderr, "packbed {}: interrupted; nothing was written\n", name);
             return 130;
         } catch (const std::exception& e) {
             fmt::print(stderr, "packbed {}: {}\n", name, e.what());

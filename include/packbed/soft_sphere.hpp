@@ -44,9 +44,9 @@ struct SoftSphereParameters {
     std::uint32_t mc_period = 100; ///< iterations between mass-centre records
     std::uint32_t mc_window = 10;  ///< successive records that must agree
     double mc_tolerance = 1e-4;    ///< their allowed spread, percent of the mean
-    UpdateOrder update = UpdateOrder::in_place; ///< see UpdateOrder
-    double skin = 0.1;                          ///< Verlet-list skin, Dp; (0, 1]
-    std::uint64_t max_iterations = 200'000'000; ///< give up (ConvergenceError) beyond this
+    UpdateOrder update = UpdateOrder::simultaneous; ///< see UpdateOrder; docs/performance.md
+    double skin = 0.1;                              ///< Verlet-list skin, Dp; (0, 1]
+    std::uint64_t max_iterations = 200'000'000;     ///< give up (ConvergenceError) beyond this
 
     /// Check every value and their combinations.
     /// \throws InvalidInput naming the parameter, its value and the allowed range.
@@ -129,6 +129,11 @@ public:
     /// Section 3.4: Cg halved at each step, each step ending on the mass-centre rule; the stage
     /// ends as soon as both largest overlaps are below the tolerance.
     StageRecord run_final_stage(const RunControl& control = {});
+
+    /// One iteration of eq. (4) at gravity parameter `cg` (>= 0), outside any stage logic:
+    /// for benchmarks and tools that drive the iteration themselves.
+    /// \return the largest overlaps seen during the iteration, Dp.
+    Overlaps iterate(double cg);
 
     /// All three stages, then the result in output units.
     /// \throws ConvergenceError on divergence or when max_iterations is exceeded

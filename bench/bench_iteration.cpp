@@ -1,0 +1,69 @@
+// Cost of one iteration of eq. (4) (Salvat et al. 2005) on a relaxed bed, per update order
+// and thread count. The bed is taken after the initial stage, then iterated with gravity on
+// (Cg = 2e-5, the paper's typical stationary value), so Verlet-list rebuilds are included at
+// their real rate.
+#include <map>
+#include <memory>
+
+#include <benchmark/benchmark.h>
+#include <omp.h>
+
+#include "packbed/soft_sphere.hpp"
+
+namespace {
+
+using packbed::SoftSphereGenerator;
+using packbed::SoftSphereParameters;
+using packbed::UpdateOrder;
+
+/// Aspect ratio per bed size, so that beds stay a few tens of diameters tall.
+double aspect_ratio_for(std::int64_t particles) {
+    return particles <= 500 ? 5.0 : particles <= 5000 ? 10.0 : 20.0;
+}
+
+/// One relaxed bed per (size, order), built once and reused by every repetition.
+SoftSphereGenerator& relaxed_bed(std::int64_t particles, UpdateOrder order) {
+    static std::map<std::pair<std::int64_t, int>, std::unique_ptr<SoftSphereGenerator>> beds;
+    auto& bed = beds[{particles, static_cast<int>(order)}];
+    if (!bed) {
+        SoftSphereParameters p;
+        p.particles = static_cast<std::uint64_t>(particles);
+        p.aspect_ratio = aspect_ratio_for(particles);
+        p.update = order;
+        bed = std::make_unique<SoftSphereGenerator>(p);
+        bed->run_initial_stage();
+    }
+    return *bed;
+}
+
+void BM_Iteration(benchmark::State& state) {
+    const auto particles = state.range(0);
+    const auto order = static_cast<UpdateOrder>(state.range(1));
+    const int threads = static_cast<int>(state.range(2));
+    omp_set_num_threads(threads);
+    SoftSphereGenerator& bed = relaxed_bed(particles, order);
+    for (auto _ : state)
+        benchmark::DoNotOptimize(bed.iterate(2e-5));
+    state.SetItemsProcessed(state.iterations() * particles);
+    state.counters["ns_per_sphere"] =
+        benchmark::Counter(static_cast<double>(state.iterations() * particles),
+                           benchmark::Counter::kIsRate | benchmark::Counter::kInvert);
+    state.SetLabel(order == UpdateOrder::in_place ? "in-place" : "simultaneous");
+}
+
+} // namespace
+
+BENCHMARK(BM_Iteration)
+    ->ArgNames({"Np", "order", "threads"})
+    ->Args({500, static_cast<int>(UpdateOrder::in_place), 1})
+    ->Args({500, static_cast<int>(UpdateOrder::simultaneous), 1})
+    ->Args({500, static_cast<int>(UpdateOrder::simultaneous), 2})
+    ->Args({5000, static_cast<int>(UpdateOrder::in_place), 1})
+    ->Args({5000, static_cast<int>(UpdateOrder::simultaneous), 1})
+    ->Args({5000, static_cast<int>(UpdateOrder::simultaneous), 2})
+    ->Args({50000, static_cast<int>(UpdateOrder::in_place), 1})
+    ->Args({50000, static_cast<int>(UpdateOrder::simultaneous), 1})
+    ->Args({50000, static_cast<int>(UpdateOrder::simultaneous), 2})
+    ->UseRealTime();
+
+BENCHMARK_MAIN();
