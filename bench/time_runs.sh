@@ -2,7 +2,8 @@
 # Time whole `packbed generate` runs and print a Markdown table:
 # seed, update order, threads, iterations, void fraction, largest overlaps, seconds.
 # Usage: bench/time_runs.sh [PACKBED] [ASPECT_RATIO] [PARTICLES] [SEEDS] [CONFIGS]
-#   CONFIGS: space-separated "update:threads" pairs, e.g. "in-place:1 simultaneous:2"
+#   CONFIGS: space-separated "update:threads" pairs, e.g. "in-place:1 simultaneous:2", or
+#            "default" for the plain command, with no --update and no --threads
 # Example (the paper's case, seeds 1-5, both update orders):
 #   bench/time_runs.sh build/packbed 5 500 "1 2 3 4 5" "in-place:1 simultaneous:1 simultaneous:2"
 set -euo pipefail
@@ -17,16 +18,19 @@ echo "| a | Np | seed | update | threads | iterations | void fraction | max over
 echo "|---|---|---|---|---|---|---|---|---|---|"
 for seed in $seeds; do
   for config in $configs; do
-    update=${config%%:*}
-    threads=${config##*:}
-    "$exe" generate --aspect-ratio "$a" --particles "$n" --seed "$seed" --update "$update" \
-      --threads "$threads" --quiet --out "$out/run"
-    python3 - "$out/run/summary.json" "$a" "$n" "$seed" "$update" "$threads" <<'PY'
+    extra=()
+    if [[ $config != default ]]; then
+      extra=(--update "${config%%:*}" --threads "${config##*:}")
+    fi
+    "$exe" generate --aspect-ratio "$a" --particles "$n" --seed "$seed" "${extra[@]}" \
+      --quiet --out "$out/run"
+    python3 - "$out/run/summary.json" <<'PY'
 import json, sys
 s = json.load(open(sys.argv[1]))
-a, n, seed, update, threads = sys.argv[2:]
-print(f"| {a} | {n} | {seed} | {update} | {threads} | {s['iterations']} | {s['void_fraction']:.4f} "
-      f"| {s['max_overlap_pair']:.2e} | {s['max_overlap_wall']:.2e} | {s['seconds']:.2f} |")
+p = s["parameters"]
+print(f"| {s['aspect_ratio']:g} | {s['particles']} | {s['seed']} | {p['update']} | {p['threads']} "
+      f"| {s['iterations']} | {s['void_fraction']:.4f} | {s['max_overlap_pair']:.2e} "
+      f"| {s['max_overlap_wall']:.2e} | {s['seconds']:.2f} |")
 PY
   done
 done
