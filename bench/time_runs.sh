@@ -29,8 +29,8 @@ import json, sys
 s = json.load(open(sys.argv[1]))
 p = s["parameters"]
 print(f"| {s['aspect_ratio']:g} | {s['particles']} | {s['seed']} | {p['update']} | {p['threads']} "
-      f"| {s['iterations']} | {s['void_fraction']:.4f} | {s['max_overlap_pair']:.2e} "
-      f"| {s['max_overlap_wall']:.2e} | {s['seconds']:.2f} |")
+      f"| {s['iterations']} | {s['void_fraction']:.4f} | {s['max_overlap_pair']:.3e} "
+      f"| {s['max_overlap_wall']:.3e} | {s['seconds']:.2f} |")
 PY
   done
 done
