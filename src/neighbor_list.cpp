@@ -5,6 +5,8 @@
 #include <cmath>
 #include <limits>
 
+#include "parallel.hpp"
+
 namespace packbed {
 
 namespace {
@@ -103,7 +105,7 @@ void NeighborList::build(std::span<const Vec3> centers, std::span<const double> 
     // Two passes (count, then fill) so that each row is written by one thread only and the
     // list is the same whatever the number of threads.
     std::vector<std::uint32_t> counts(n);
-#pragma omp parallel for schedule(static)
+#pragma omp parallel for schedule(static) if (n >= detail::parallel_min_spheres)
     for (std::size_t i = 0; i < n; ++i) {
         std::uint32_t count = 0;
         grid.for_each_nearby(i, [&](std::uint32_t j) { count += within(i, j) ? 1 : 0; });
@@ -113,7 +115,7 @@ void NeighborList::build(std::span<const Vec3> centers, std::span<const double> 
     for (std::size_t i = 0; i < n; ++i)
         m_offsets[i + 1] = m_offsets[i] + counts[i];
     m_neighbors.resize(m_offsets[n]);
-#pragma omp parallel for schedule(static)
+#pragma omp parallel for schedule(static) if (n >= detail::parallel_min_spheres)
     for (std::size_t i = 0; i < n; ++i) {
         std::uint32_t* out = m_neighbors.data() + m_offsets[i];
         std::uint32_t* const row = out;

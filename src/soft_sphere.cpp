@@ -12,6 +12,7 @@
 
 #include "packbed/error.hpp"
 #include "packbed/neighbor_list.hpp"
+#include "parallel.hpp"
 
 namespace packbed {
 
@@ -196,7 +197,8 @@ struct SoftSphereGenerator::State {
             return moved;
         };
         if constexpr (order == UpdateOrder::simultaneous) {
-#pragma omp parallel for schedule(static) reduction(max : pair, wall, top) reduction(&& : finite)
+#pragma omp parallel for schedule(static) reduction(max : pair, wall, top) reduction(&& : finite) \
+    if (n >= detail::parallel_min_spheres)
             for (std::size_t i = 0; i < n; ++i) {
                 const Vec3 moved = move_of(i, pair, wall);
                 finite = finite && is_finite(moved);
