@@ -14,8 +14,8 @@ seeds=${4:-"1 2 3 4 5"}
 configs=${5:-"in-place:1 simultaneous:1 simultaneous:2"}
 out=$(mktemp -d)
 trap 'rm -rf "$out"' EXIT
-echo "| a | Np | seed | update | threads | iterations | void fraction | max overlap pair (Dp) | max overlap wall (Dp) | seconds |"
-echo "|---|---|---|---|---|---|---|---|---|---|"
+echo "| a | Np | seed | update | --threads | iterations | void fraction | max overlap pair (Dp) | max overlap wall (Dp) | both < 1e-4 Dp | seconds |"
+echo "|---|---|---|---|---|---|---|---|---|---|---|"
 for seed in $seeds; do
   for config in $configs; do
     extra=()
@@ -30,7 +30,9 @@ s = json.load(open(sys.argv[1]))
 p = s["parameters"]
 print(f"| {s['aspect_ratio']:g} | {s['particles']} | {s['seed']} | {p['update']} | {p['threads']} "
       f"| {s['iterations']} | {s['void_fraction']:.4f} | {s['max_overlap_pair']:.3e} "
-      f"| {s['max_overlap_wall']:.3e} | {s['seconds']:.2f} |")
+      f"| {s['max_overlap_wall']:.3e} "
+      f"| {'yes' if max(s['max_overlap_pair'], s['max_overlap_wall']) < 1e-4 else 'NO'} "
+      f"| {s['seconds']:.2f} |")
 PY
   done
 done
