@@ -99,7 +99,8 @@ void SoftSphereParameters::validate() const {
             "aspect-ratio", aspect_ratio, "1 <= a <= 10000 (a < 1: one sphere does not fit)");
     require(particles >= 1 && particles <= 100'000'000, "particles", static_cast<double>(particles),
             "1 to 100000000");
-    require(std::isfinite(diameter) && diameter > 0.0, "diameter", diameter, "a finite number > 0");
+    // Bounded so that lengths, and volumes (diameter^3), stay finite doubles in every unit.
+    require(diameter >= 1e-12 && diameter <= 1e12, "diameter", diameter, "1e-12 to 1e12");
     require(e0 > 0.0 && e0 < 1.0, "e0", e0, "0 < e0 < 1");
     require(ck > 0.0 && ck < 1.0, "ck", ck, "0 < ck < 1 (a pair overshoots for ck >= 1)");
     require(cg_step > 0.0 && cg_step <= 5e-6, "cg-step", cg_step,

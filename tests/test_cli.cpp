@@ -212,9 +212,11 @@ INSTANTIATE_TEST_SUITE_P(
                  "packbed: --particles: '2.5' is not allowed; allowed: a whole number from 1 to "
                  "100000000"},
         BadInput{"generate --diameter -1",
-                 "packbed: --diameter: -1 is not allowed; allowed: a number > 0"},
+                 "packbed: --diameter: -1 is not allowed; allowed: a number in [1e-12, 1e+12]"},
         BadInput{"generate --diameter 0",
-                 "packbed: --diameter: 0 is not allowed; allowed: a number > 0"},
+                 "packbed: --diameter: 0 is not allowed; allowed: a number in [1e-12, 1e+12]"},
+        BadInput{"generate --diameter 1e300",
+                 "packbed: --diameter: 1e300 is not allowed; allowed: a number in [1e-12, 1e+12]"},
         BadInput{"generate --ck 1.2",
                  "packbed: --ck: 1.2 is not allowed; allowed: a number in (0, 1)"},
         BadInput{"generate --e0 1", "packbed: --e0: 1 is not allowed; allowed: a number in (0, 1)"},

@@ -266,7 +266,7 @@ INSTANTIATE_TEST_SUITE_P(
                                    [](SoftSphereParameters& p) { p.aspect_ratio = 0.5; }},
                       BadParameter{"particles = 0 is not allowed; allowed: 1 to 100000000",
                                    [](SoftSphereParameters& p) { p.particles = 0; }},
-                      BadParameter{"diameter = -1 is not allowed; allowed: a finite number > 0",
+                      BadParameter{"diameter = -1 is not allowed; allowed: 1e-12 to 1e12",
                                    [](SoftSphereParameters& p) { p.diameter = -1; }},
                       BadParameter{"e0 = 1 is not allowed; allowed: 0 < e0 < 1",
                                    [](SoftSphereParameters& p) { p.e0 = 1.0; }},

@@ -95,7 +95,7 @@ Command register_generate(CLI::App& parent) {
     app->add_option("-d,--diameter", p.diameter,
                     "sphere diameter Dp; the unit of every length "
                     "in the outputs")
-        ->check(real_in(0.0, inf, true, true));
+        ->check(real_in(1e-12, 1e12, false, false));
     app->add_option("-o,--out", o.out, "output directory (created if missing)");
     app->add_option("--e0", p.e0, "initial overall void fraction for L0, eq. (6)")
         ->check(real_in(0.0, 1.0, true, true));

@@ -9,10 +9,10 @@
 namespace packbed::cli {
 
 CLI::Validator real_in(double low, double high, bool low_open, bool high_open) {
-    const std::string allowed = std::isinf(high)
-                                    ? fmt::format("a number {} {}", low_open ? ">" : ">=", low)
-                                    : fmt::format("a number in {}{}, {}{}", low_open ? "(" : "[",
-                                                  low, high, high_open ? ")" : "]");
+    const std::string allowed =
+        std::isinf(high) ? fmt::format("a number {} {:g}", low_open ? ">" : ">=", low)
+                         : fmt::format("a number in {}{:g}, {:g}{}", low_open ? "(" : "[", low,
+                                       high, high_open ? ")" : "]");
     return CLI::Validator(
         [=](std::string& text) -> std::string {
             double value = 0.0;

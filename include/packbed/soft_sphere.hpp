@@ -34,7 +34,7 @@ struct SoftSphereParameters {
     double aspect_ratio = 5.0;     ///< a = 2 Rt / Dp, >= 1
     std::uint64_t particles = 500; ///< Np, >= 1
     std::uint64_t seed = 1;        ///< seed of the generation stage's random numbers
-    double diameter = 1.0;         ///< Dp in output length units, > 0
+    double diameter = 1.0;         ///< Dp in output length units, 1e-12 to 1e12
     double e0 = 0.47;              ///< initial overall void fraction for L0, eq. (6); (0, 1)
     double ck = 0.3;               ///< elasticity parameter Ck of eq. (4); (0, 1)
     double cg_step = 1.25e-7;      ///< Delta Cg of the control loop, eq. (7); (0, 5e-6]
