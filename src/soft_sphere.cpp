@@ -102,7 +102,8 @@ void SoftSphereParameters::validate() const {
     // Bounded so that lengths, and volumes (diameter^3), stay finite doubles in every unit.
     require(diameter >= 1e-12 && diameter <= 1e12, "diameter", diameter, "1e-12 to 1e12");
     require(e0 > 0.0 && e0 < 1.0, "e0", e0, "0 < e0 < 1");
-    require(ck > 0.0 && ck < 1.0, "ck", ck, "0 < ck < 1 (a pair overshoots for ck >= 1)");
+    require(ck > 0.0 && ck < 1.0, "ck", ck,
+            "0 < ck < 1 (from ck = 1 on, even a single overlapping pair does not converge)");
     require(cg_step > 0.0 && cg_step <= 5e-6, "cg-step", cg_step,
             "0 < cg-step <= 5e-6 (larger steps keep Cg from settling)");
     require(overlap_low > 0.0 && overlap_low < 0.5, "overlap-low", overlap_low,
