@@ -1,0 +1,52 @@
+// Reading beds made elsewhere: our CSV, XYZ, LAMMPS/LIGGGHTS text dumps.
+#pragma once
+
+#include <cstddef>
+#include <filesystem>
+#include <istream>
+#include <optional>
+#include <string>
+#include <string_view>
+#include <utility>
+#include <vector>
+
+#include "packbed/packing.hpp"
+
+namespace packbed {
+
+/// The file formats read_particles understands.
+enum class ParticleFormat {
+    csv, ///< header row naming x, y, z and r, radius, d or diameter; optional id, others ignored
+    xyz, ///< count line, comment line, then `name x y z [radius]` per sphere
+    lammps_dump, ///< LAMMPS/LIGGGHTS text dump: `ITEM: ATOMS` with x y z (or xu yu zu) and
+                 ///< radius or diameter; the last snapshot of the file is read
+};
+
+/// The names users pick a format by ("csv", "xyz", "lammps-dump"): the one registry.
+const std::vector<std::pair<std::string, ParticleFormat>>& particle_formats();
+
+/// What a file does not say itself.
+struct ReadOptions {
+    std::optional<double> radius; ///< radius for XYZ files without a radius column (length, > 0)
+};
+
+/// Spheres read from a file, with the line each came from (1-based) for later messages.
+struct ParticleFile {
+    Packing packing;                ///< the spheres, in the file's length unit
+    std::vector<std::size_t> lines; ///< line number of each sphere
+    ParticleFormat format = ParticleFormat::csv;
+};
+
+/// The format of a file from its extension (.csv, .xyz, .dump, .lammpstrj) or, failing that,
+/// its first line. \throws InvalidInput naming the file when no format fits.
+ParticleFormat detect_particle_format(const std::filesystem::path& path);
+
+/// Read a file. Refuses, with InvalidInput naming the file, the line and the reason: an empty
+/// file, a missing column, a missing or non-numeric field, NaN or infinity, a radius <= 0.
+ParticleFile read_particles(const std::filesystem::path& path, const ReadOptions& options = {});
+
+/// Read from a stream; `name` is used in messages.
+ParticleFile read_particles(std::istream& input, std::string_view name, ParticleFormat format,
+                            const ReadOptions& options = {});
+
+} // namespace packbed

@@ -1,0 +1,339 @@
+#include "packbed/read.hpp"
+
+#include <algorithm>
+#include <cctype>
+#include <charconv>
+#include <cmath>
+#include <fstream>
+#include <sstream>
+
+#include <fmt/format.h>
+
+#include "packbed/error.hpp"
+
+namespace packbed {
+
+namespace {
+
+std::string_view trim(std::string_view s) {
+    while (!s.empty() && std::isspace(static_cast<unsigned char>(s.front())))
+        s.remove_prefix(1);
+    while (!s.empty() && std::isspace(static_cast<unsigned char>(s.back())))
+        s.remove_suffix(1);
+    return s;
+}
+
+std::string lower(std::string_view s) {
+    std::string out(s);
+    std::transform(out.begin(), out.end(), out.begin(),
+                   [](unsigned char c) { return static_cast<char>(std::tolower(c)); });
+    return out;
+}
+
+std::vector<std::string_view> split_commas(std::string_view line) {
+    std::vector<std::string_view> fields;
+    for (std::size_t start = 0;;) {
+        const std::size_t comma = line.find(',', start);
+        fields.push_back(trim(line.substr(start, comma - start)));
+        if (comma == std::string_view::npos)
+            return fields;
+        start = comma + 1;
+    }
+}
+
+std::vector<std::string_view> split_spaces(std::string_view line) {
+    std::vector<std::string_view> fields;
+    std::size_t i = 0;
+    while (i < line.size()) {
+        while (i < line.size() && std::isspace(static_cast<unsigned char>(line[i])))
+            ++i;
+        const std::size_t start = i;
+        while (i < line.size() && !std::isspace(static_cast<unsigned char>(line[i])))
+            ++i;
+        if (i > start)
+            fields.push_back(line.substr(start, i - start));
+    }
+    return fields;
+}
+
+/// Reads lines and builds messages "NAME:LINE: reason".
+class LineReader {
+public:
+    LineReader(std::istream& input, std::string_view name)
+        : m_input(input)
+        , m_name(name) {}
+
+    /// Next line that is not blank and not a '#' comment; false at the end.
+    bool next(std::string& line) {
+        while (std::getline(m_input, line)) {
+            ++m_line;
+            if (!line.empty() && line.back() == '\r')
+                line.pop_back();
+            const auto t = trim(line);
+            if (!t.empty() && t.front() != '#')
+                return true;
+        }
+        return false;
+    }
+    std::size_t line() const { return m_line; }
+
+    /// Next line as it is (blank allowed); false at the end.
+    bool raw(std::string& line) {
+        if (!std::getline(m_input, line))
+            return false;
+        ++m_line;
+        return true;
+    }
+
+    [[noreturn]] void fail(std::string_view reason) const {
+        throw InvalidInput(fmt::format("{}:{}: {}", m_name, m_line, reason));
+    }
+    [[noreturn]] void fail_file(std::string_view reason) const {
+        throw InvalidInput(fmt::format("{}: {}", m_name, reason));
+    }
+
+    /// A field as a finite double, or a message naming the column and the value.
+    double number(std::string_view field, std::string_view column) const {
+        double value = 0.0;
+        const char* end = field.data() + field.size();
+        const auto [ptr, ec] = std::from_chars(field.data(), end, value);
+        if (field.empty())
+            fail(fmt::format("column '{}' is empty; a number is needed", column));
+        if (ec != std::errc() || ptr != end)
+            fail(fmt::format("column '{}' value '{}' is not a number", column, field));
+        if (!std::isfinite(value))
+            fail(fmt::format("column '{}' value '{}' is not a finite number", column, field));
+        return value;
+    }
+
+    /// A sphere from its fields; the size must be > 0. `is_diameter` halves it.
+    void add(ParticleFile& out, double x, double y, double z, double size, bool is_diameter,
+             std::string_view size_column) const {
+        if (!(size > 0.0))
+            fail(fmt::format("column '{}' value {} is not allowed; a {} must be > 0", size_column,
+                             size, is_diameter ? "diameter" : "radius"));
+        out.packing.add({x, y, z}, is_diameter ? 0.5 * size : size);
+        out.lines.push_back(m_line);
+    }
+
+private:
+    std::istream& m_input;
+    std::string m_name;
+    std::size_t m_line = 0;
+};
+
+/// Index of the first header name in `names`, or -1.
+int find_column(const std::vector<std::string>& header, std::initializer_list<const char*> names) {
+    for (const char* name : names) {
+        const auto it = std::find(header.begin(), header.end(), name);
+        if (it != header.end())
+            return static_cast<int>(it - header.begin());
+    }
+    return -1;
+}
+
+/// Column indices of x, y, z and the size, from a header.
+struct Columns {
+    int x = -1, y = -1, z = -1, size = -1;
+    bool is_diameter = false;
+    std::string size_name;
+};
+
+Columns columns_of(const std::vector<std::string>& header, const LineReader& in,
+                   std::initializer_list<const char*> xs, std::initializer_list<const char*> ys,
+                   std::initializer_list<const char*> zs) {
+    Columns c;
+    c.x = find_column(header, xs);
+    c.y = find_column(header, ys);
+    c.z = find_column(header, zs);
+    c.size = find_column(header, {"r", "radius"});
+    if (c.size < 0) {
+        c.size = find_column(header, {"d", "diameter"});
+        c.is_diameter = c.size >= 0;
+    }
+    const char* missing = c.x < 0 ? "x" : c.y < 0 ? "y" : c.z < 0 ? "z" : nullptr;
+    if (missing)
+        in.fail(fmt::format("missing column '{}'; needed: x, y, z and r, radius, d or diameter",
+                            missing));
+    if (c.size < 0)
+        in.fail("missing column 'r'; needed: x, y, z and r, radius, d or diameter");
+    c.size_name = header[static_cast<std::size_t>(c.size)];
+    return c;
+}
+
+ParticleFile read_csv(LineReader& in) {
+    ParticleFile out;
+    out.format = ParticleFormat::csv;
+    std::string line;
+    if (!in.next(line))
+        in.fail_file("empty file; expected a header line such as x,y,z,r");
+    std::vector<std::string> header;
+    for (const auto f : split_commas(line))
+        header.push_back(lower(f));
+    const Columns c = columns_of(header, in, {"x"}, {"y"}, {"z"});
+    while (in.next(line)) {
+        const auto fields = split_commas(line);
+        if (fields.size() != header.size())
+            in.fail(fmt::format("{} fields; the header has {}", fields.size(), header.size()));
+        auto at = [&](int k) { return fields[static_cast<std::size_t>(k)]; };
+        auto name = [&](int k) { return header[static_cast<std::size_t>(k)]; };
+        in.add(out, in.number(at(c.x), name(c.x)), in.number(at(c.y), name(c.y)),
+               in.number(at(c.z), name(c.z)), in.number(at(c.size), name(c.size)), c.is_diameter,
+               c.size_name);
+    }
+    if (out.packing.size() == 0)
+        in.fail_file("no spheres after the header");
+    return out;
+}
+
+ParticleFile read_xyz(LineReader& in, const ReadOptions& options) {
+    ParticleFile out;
+    out.format = ParticleFormat::xyz;
+    std::string line;
+    if (!in.next(line))
+        in.fail_file("empty file; expected the number of spheres on the first line");
+    const double declared = in.number(trim(line), "count");
+    if (declared < 1 || declared != std::floor(declared))
+        in.fail(fmt::format("the count {} is not a whole number >= 1", declared));
+    const auto count = static_cast<std::size_t>(declared);
+    if (!in.raw(line)) // the comment line, which may be blank
+        in.fail_file("ends after the count line; expected a comment line and the spheres");
+    while (out.packing.size() < count && in.next(line)) {
+        const auto f = split_spaces(line);
+        if (f.size() == 4 && !options.radius)
+            in.fail("no radius column (name x y z) and no radius given; allowed: name x y z "
+                    "radius, or give the diameter");
+        if (f.size() != 4 && f.size() != 5)
+            in.fail(fmt::format("{} fields; allowed: name x y z [radius]", f.size()));
+        const double radius = f.size() == 5 ? in.number(f[4], "radius") : *options.radius;
+        in.add(out, in.number(f[1], "x"), in.number(f[2], "y"), in.number(f[3], "z"), radius, false,
+               "radius");
+    }
+    if (out.packing.size() < count)
+        in.fail_file(fmt::format("declares {} spheres but holds {}", count, out.packing.size()));
+    if (in.next(line))
+        in.fail(fmt::format("more lines than the {} spheres the first line declares", count));
+    return out;
+}
+
+ParticleFile read_lammps_dump(LineReader& in) {
+    ParticleFile out;
+    out.format = ParticleFormat::lammps_dump;
+    std::string line;
+    std::size_t atoms = 0;
+    bool have_count = false;
+    if (!in.next(line))
+        in.fail_file("empty file; expected a LAMMPS dump starting with ITEM: TIMESTEP");
+    do {
+        const auto t = trim(line);
+        if (t.rfind("ITEM:", 0) != 0)
+            in.fail(fmt::format("expected an ITEM: line, found '{}'", t.substr(0, 40)));
+        const auto item = trim(t.substr(5));
+        if (item.rfind("NUMBER OF ATOMS", 0) == 0) {
+            if (!in.next(line))
+                in.fail_file("ends after ITEM: NUMBER OF ATOMS");
+            const double n = in.number(trim(line), "NUMBER OF ATOMS");
+            if (n < 1 || n != std::floor(n))
+                in.fail(fmt::format("the number of atoms {} is not a whole number >= 1", n));
+            atoms = static_cast<std::size_t>(n);
+            have_count = true;
+        } else if (item.rfind("ATOMS", 0) == 0) {
+            if (!have_count)
+                in.fail("ITEM: ATOMS before ITEM: NUMBER OF ATOMS");
+            std::vector<std::string> header;
+            for (const auto f : split_spaces(item.substr(5)))
+                header.push_back(lower(f));
+            if (find_column(header, {"x", "xu"}) < 0 && find_column(header, {"xs", "xsu"}) >= 0)
+                in.fail("scaled coordinates (xs ys zs) are not supported; allowed: dump x y z or "
+                        "xu yu zu");
+            const Columns c = columns_of(header, in, {"x", "xu"}, {"y", "yu"}, {"z", "zu"});
+            out.packing = Packing{}; // a later snapshot replaces an earlier one
+            out.lines.clear();
+            for (std::size_t k = 0; k < atoms; ++k) {
+                if (!in.next(line))
+                    in.fail_file(fmt::format("ends after {} of {} atoms", k, atoms));
+                const auto f = split_spaces(line);
+                if (f.size() != header.size())
+                    in.fail(
+                        fmt::format("{} fields; ITEM: ATOMS names {}", f.size(), header.size()));
+                auto at = [&](int i) { return f[static_cast<std::size_t>(i)]; };
+                auto name = [&](int i) { return header[static_cast<std::size_t>(i)]; };
+                in.add(out, in.number(at(c.x), name(c.x)), in.number(at(c.y), name(c.y)),
+                       in.number(at(c.z), name(c.z)), in.number(at(c.size), name(c.size)),
+                       c.is_diameter, c.size_name);
+            }
+        } else if (item.rfind("BOX BOUNDS", 0) == 0) {
+            for (int k = 0; k < 3; ++k)
+                if (!in.next(line))
+                    in.fail_file("ends inside ITEM: BOX BOUNDS");
+        } else if (!in.next(line)) { // TIMESTEP and other one-value items
+            in.fail_file(fmt::format("ends after ITEM: {}", item));
+        }
+    } while (in.next(line));
+    if (out.packing.size() == 0)
+        in.fail_file("no ITEM: ATOMS section");
+    return out;
+}
+
+std::string extension_of(const std::filesystem::path& path) {
+    return lower(path.extension().string());
+}
+
+} // namespace
+
+ParticleFormat detect_particle_format(const std::filesystem::path& path) {
+    const std::string ext = extension_of(path);
+    if (ext == ".csv")
+        return ParticleFormat::csv;
+    if (ext == ".xyz")
+        return ParticleFormat::xyz;
+    if (ext == ".dump" || ext == ".lammpstrj")
+        return ParticleFormat::lammps_dump;
+    std::ifstream file(path);
+    if (!file)
+        throw InvalidInput(fmt::format("{}: cannot open the file", path.string()));
+    LineReader in(file, path.string());
+    std::string line;
+    if (!in.next(line))
+        in.fail_file("empty file");
+    const auto t = trim(line);
+    if (t.rfind("ITEM:", 0) == 0)
+        return ParticleFormat::lammps_dump;
+    if (t.find(',') != std::string_view::npos)
+        return ParticleFormat::csv;
+    if (t.find_first_not_of("0123456789") == std::string_view::npos)
+        return ParticleFormat::xyz;
+    in.fail("cannot tell the format; allowed: .csv, .xyz, .dump or .lammpstrj files");
+}
+
+ParticleFile read_particles(std::istream& input, std::string_view name, ParticleFormat format,
+                            const ReadOptions& options) {
+    LineReader in(input, name);
+    switch (format) {
+    case ParticleFormat::csv:
+        return read_csv(in);
+    case ParticleFormat::xyz:
+        return read_xyz(in, options);
+    case ParticleFormat::lammps_dump:
+        return read_lammps_dump(in);
+    }
+    in.fail_file("unknown format");
+}
+
+ParticleFile read_particles(const std::filesystem::path& path, const ReadOptions& options) {
+    const ParticleFormat format = detect_particle_format(path);
+    std::ifstream file(path);
+    if (!file)
+        throw InvalidInput(fmt::format("{}: cannot open the file", path.string()));
+    return read_particles(file, path.string(), format, options);
+}
+
+const std::vector<std::pair<std::string, ParticleFormat>>& particle_formats() {
+    static const std::vector<std::pair<std::string, ParticleFormat>> names{
+        {"csv", ParticleFormat::csv},
+        {"xyz", ParticleFormat::xyz},
+        {"lammps-dump", ParticleFormat::lammps_dump}};
+    return names;
+}
+
+} // namespace packbed
