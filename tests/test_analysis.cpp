@@ -143,10 +143,17 @@ TEST(Lattices, PorosityAndCoordinationOfSimpleCubicAndFcc) {
         ASSERT_EQ(a.coordination.histogram.size(), c.coordination + 1);
         EXPECT_GT(a.coordination.histogram[c.coordination], a.coordination.spheres / 2);
         // g(r) is zero below the contact distance and peaks at it.
+        double peak = 0.0, peak_at = 0.0;
         for (const auto& b : a.pair_correlation) {
-            if (b.high < 0.999)
+            if (b.high < 0.999) {
                 EXPECT_EQ(b.value, 0.0);
+            }
+            if (b.value > peak) {
+                peak = b.value;
+                peak_at = b.low;
+            }
         }
+        EXPECT_NEAR(peak_at, 1.0, 0.02);
     }
 }
 
@@ -160,8 +167,9 @@ TEST(CentreDistribution, IntegratesToTheCrossSection) {
     EXPECT_NEAR(sum, pi * 16.0, 1e-9);
     // No centre within Dp/2 of the wall.
     for (const auto& b : a.centre_distribution) {
-        if (b.low >= 3.5 + 1e-9)
+        if (b.low >= 3.5 + 1e-9) {
             EXPECT_EQ(b.value, 0.0);
+        }
     }
 }
 
