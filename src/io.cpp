@@ -68,6 +68,43 @@ std::string particles_vtu(const Packing& packing) {
     return fmt::to_string(out);
 }
 
+namespace {
+
+/// A CSV of profile bins: `header`, then per bin the mid-point, the mid-point measured as
+/// `scaled(mid)`, and the value.
+template <class F>
+std::string profile_csv(std::string_view header, const std::vector<ProfileBin>& bins, F scaled) {
+    fmt::memory_buffer out;
+    fmt::format_to(std::back_inserter(out), "{}\n", header);
+    for (const auto& b : bins) {
+        const double mid = 0.5 * (b.low + b.high);
+        fmt::format_to(std::back_inserter(out), "{},{},{}\n", mid, scaled(mid), b.value);
+    }
+    return fmt::to_string(out);
+}
+
+} // namespace
+
+std::vector<std::pair<std::string, std::string>> analysis_tables(const BedAnalysis& a,
+                                                                 double container_radius) {
+    const double dp = a.diameter;
+    auto from_wall = [&](double r) { return (container_radius - r) / dp; };
+    auto in_dp = [&](double length) { return length / dp; };
+    std::string coordination = "contacts,spheres\n";
+    for (std::size_t k = 0; k < a.coordination.histogram.size(); ++k)
+        coordination += fmt::format("{},{}\n", k, a.coordination.histogram[k]);
+    return {
+        {"radial_void_fraction.csv",
+         profile_csv("r,x_from_wall_d,void_fraction", a.radial_void_fraction, from_wall)},
+        {"axial_void_fraction.csv",
+         profile_csv("z,z_d,void_fraction", a.axial_void_fraction, in_dp)},
+        {"radial_centre_distribution.csv",
+         profile_csv("r,x_from_wall_d,relative_density", a.centre_distribution, from_wall)},
+        {"coordination.csv", coordination},
+        {"pair_correlation.csv", profile_csv("r,r_d,g", a.pair_correlation, in_dp)},
+    };
+}
+
 OutputDirectory::OutputDirectory(std::filesystem::path directory)
     : m_directory(std::move(directory)) {
     std::error_code ec;

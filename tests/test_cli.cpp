@@ -154,6 +154,81 @@ TEST(Cli, InterruptedRunLeavesNoFile) {
     EXPECT_TRUE(fs::is_empty(d / "out"));
 }
 
+TEST(Cli, GenerateAlsoWritesTheAnalysis) {
+    const fs::path d = scratch("analysis");
+    ASSERT_EQ(packbed(small + "--quiet --out " + d.string()).status, 0);
+    for (const char* name :
+         {"radial_void_fraction.csv", "axial_void_fraction.csv", "radial_centre_distribution.csv",
+          "coordination.csv", "pair_correlation.csv"})
+        EXPECT_TRUE(fs::exists(d / name)) << name;
+    EXPECT_EQ(slurp(d / "radial_void_fraction.csv").rfind("r,x_from_wall_d,void_fraction\n", 0),
+              0u);
+    const auto s = nlohmann::json::parse(slurp(d / "summary.json"));
+    EXPECT_EQ(s["analysis"]["void_fraction"], s["void_fraction"]);
+    EXPECT_GT(s["analysis"]["coordination"]["mean"].get<double>(), 3.0);
+}
+
+TEST(Cli, AnalyzeGivesTheSameResultsFromEveryFormat) {
+    // One bed written as our CSV, as XYZ and as a LAMMPS dump (diameter column).
+    const fs::path d = scratch("formats");
+    ASSERT_EQ(packbed(small + "--quiet --out " + (d / "bed").string()).status, 0);
+    std::ifstream csv(d / "bed" / "particles.csv");
+    std::string line;
+    std::getline(csv, line);
+    std::vector<std::string> rows;
+    while (std::getline(csv, line))
+        rows.push_back(line);
+    std::ofstream xyz(d / "bed.xyz"), dump(d / "bed.dump");
+    xyz << rows.size() << "\nfrom packbed\n";
+    dump << "ITEM: TIMESTEP\n0\nITEM: NUMBER OF ATOMS\n"
+         << rows.size()
+         << "\nITEM: BOX BOUNDS ff ff ff\n-2 2\n-2 2\n0 20\nITEM: ATOMS id type x y z diameter\n";
+    for (std::size_t i = 0; i < rows.size(); ++i) {
+        std::string f = rows[i];
+        std::replace(f.begin(), f.end(), ',', ' ');
+        xyz << "C " << f << "\n";
+        std::istringstream in(f);
+        std::string x, y, z, r;
+        in >> x >> y >> z >> r;
+        dump << i + 1 << " 1 " << x << " " << y << " " << z << " " << 2 * std::stod(r) << "\n";
+    }
+    xyz.close();
+    dump.close();
+    const std::string common = " --quiet --container-radius 1.5 --out ";
+    ASSERT_EQ(
+        packbed("analyze " + (d / "bed" / "particles.csv").string() + common + (d / "a").string())
+            .status,
+        0);
+    ASSERT_EQ(packbed("analyze " + (d / "bed.xyz").string() + common + (d / "b").string()).status,
+              0);
+    ASSERT_EQ(packbed("analyze " + (d / "bed.dump").string() + common + (d / "c").string()).status,
+              0);
+    for (const char* name : {"radial_void_fraction.csv", "axial_void_fraction.csv",
+                             "coordination.csv", "pair_correlation.csv"}) {
+        EXPECT_EQ(slurp(d / "a" / name), slurp(d / "b" / name)) << name;
+        EXPECT_EQ(slurp(d / "a" / name), slurp(d / "c" / name)) << name;
+    }
+    // And the same as what generate wrote (radius from summary.json by default).
+    EXPECT_EQ(slurp(d / "a" / "radial_void_fraction.csv"),
+              slurp(d / "bed" / "radial_void_fraction.csv"));
+}
+
+TEST(Cli, AnalyzeRefusesASphereOutsideTheContainer) {
+    const fs::path d = scratch("outside");
+    std::ofstream(d / "bed.csv") << "x,y,z,r\n0,0,0.5,0.5\n1.1,0,0.5,0.5\n";
+    const Outcome o =
+        packbed("analyze " + (d / "bed.csv").string() + " -R 1.5 --out " + (d / "out").string());
+    EXPECT_EQ(o.status, 2);
+    EXPECT_EQ(o.err, "packbed analyze: " + (d / "bed.csv").string() +
+                         ":3: the sphere at (1.1, 0, 0.5) sticks out of the container (radius "
+                         "1.5, floor z = 0) by 0.1; allowed: up to 0.01 (--outside-tolerance, in "
+                         "Dp)\n");
+    const Outcome m = packbed("analyze " + (d / "bed.csv").string());
+    EXPECT_EQ(m.status, 2);
+    EXPECT_EQ(m.err, "packbed analyze: --container-radius is needed: no summary.json next to " +
+                         (d / "bed.csv").string() + "\n");
+}
+
 TEST(Cli, VersionAndHelp) {
     const Outcome v = packbed("--version");
     EXPECT_EQ(v.status, 0);

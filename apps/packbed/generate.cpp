@@ -8,6 +8,7 @@
 #include <omp.h>
 
 #include "command.hpp"
+#include "packbed/analysis.hpp"
 #include "packbed/io.hpp"
 #include "packbed/soft_sphere.hpp"
 #include "packbed/summary.hpp"
@@ -48,10 +49,20 @@ int run_generate(GenerateOptions& o) {
     const SoftSphereResult result = generate_soft_sphere(o.params, control);
     progress.finish();
 
-    const auto summary =
+    auto summary =
         soft_sphere_summary(o.params, result, o.band_clearance, static_cast<int>(o.threads));
     out.stage("particles.csv", particles_csv(result.packing));
     out.stage("particles.vtu", particles_vtu(result.packing));
+    // The same analysis as `packbed analyze`, when the bed is tall enough for the band.
+    if (summary["void_fraction"].is_number()) {
+        AnalysisOptions analysis_options;
+        analysis_options.band_clearance = o.band_clearance;
+        const BedAnalysis analysis =
+            analyze_bed(result.packing, result.container, analysis_options);
+        summary["analysis"] = analysis_summary(analysis, analysis_options);
+        for (const auto& [name, text] : analysis_tables(analysis, result.container.radius()))
+            out.stage(name, text);
+    }
     out.stage("summary.json", summary.dump(2) + "\n");
     out.commit();
     if (!o.quiet) {
@@ -68,7 +79,8 @@ int run_generate(GenerateOptions& o) {
         else
             fmt::print("void fraction: not computed: {}\n",
                        summary["void_fraction_note"].get<std::string>());
-        fmt::print("results in {}/ (particles.csv, particles.vtu, summary.json)\n",
+        fmt::print("results in {}/ (particles.csv, particles.vtu, summary.json and the "
+                   "analysis tables)\n",
                    out.path().string());
     }
     return 0;

@@ -6,6 +6,7 @@
 #include <utility>
 #include <vector>
 
+#include "packbed/analysis.hpp"
 #include "packbed/packing.hpp"
 
 namespace packbed {
@@ -19,6 +20,18 @@ std::string particles_csv(const Packing& packing);
 /// `radius` and `diameter`. ParaView shows it with the Point Gaussian representation or glyphs.
 /// \return the file's text.
 std::string particles_vtu(const Packing& packing);
+
+/// The tables of a bed analysis as CSV texts, by file name:
+/// - `radial_void_fraction.csv`: `r,x_from_wall_d,void_fraction`, r the shell's mid-radius
+///   (length), x_from_wall_d = (Rt - r) / Dp as in Salvat et al. (2005), wall first;
+/// - `axial_void_fraction.csv`: `z,z_d,void_fraction`, z the slab's mid-height;
+/// - `radial_centre_distribution.csv`: `r,x_from_wall_d,relative_density` (see analyze_bed);
+/// - `coordination.csv`: `contacts,spheres`, the histogram of sphere-sphere contacts;
+/// - `pair_correlation.csv`: `r,r_d,g`.
+/// \param analysis what analyze_bed returned \param container_radius Rt (length)
+/// \return (file name, contents) pairs.
+std::vector<std::pair<std::string, std::string>> analysis_tables(const BedAnalysis& analysis,
+                                                                 double container_radius);
 
 /// A set of files written all or nothing. Each file is first written under a temporary name
 /// in the target directory; commit() renames them all into place. If the object is destroyed

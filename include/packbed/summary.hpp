@@ -3,6 +3,7 @@
 
 #include <nlohmann/json.hpp>
 
+#include "packbed/analysis.hpp"
 #include "packbed/soft_sphere.hpp"
 
 namespace packbed {
@@ -19,5 +20,10 @@ namespace packbed {
 nlohmann::json soft_sphere_summary(const SoftSphereParameters& parameters,
                                    const SoftSphereResult& result, double band_clearance,
                                    int threads);
+
+/// The numbers of a bed analysis (the tables go to CSV files, see analysis_tables): band,
+/// overall void fraction, coordination (mean with and without rattlers, rattlers, wall contacts),
+/// the reference diameter, and the options used.
+nlohmann::json analysis_summary(const BedAnalysis& analysis, const AnalysisOptions& options);
 
 } // namespace packbed

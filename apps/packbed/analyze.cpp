@@ -1,0 +1,174 @@
+// `packbed analyze`: structure of a bed from any source (ours, LAMMPS, LIGGGHTS, XYZ).
+#include <filesystem>
+#include <fstream>
+#include <memory>
+
+#include <fmt/format.h>
+#include <nlohmann/json.hpp>
+#include <omp.h>
+
+#include "command.hpp"
+#include "packbed/analysis.hpp"
+#include "packbed/error.hpp"
+#include "packbed/io.hpp"
+#include "packbed/read.hpp"
+#include "packbed/summary.hpp"
+
+namespace packbed::cli {
+
+namespace {
+
+namespace fs = std::filesystem;
+
+struct AnalyzeOptions {
+    std::string particles;
+    std::string format = "auto";
+    double container_radius = 0.0; // 0: from summary.json next to the file
+    std::string out;               // default: analysis/ next to the file
+    double diameter = 0.0;         // 0: the mean sphere diameter
+    double outside_tolerance = 0.01;
+    AnalysisOptions analysis;
+    unsigned long long threads = static_cast<unsigned long long>(omp_get_num_procs());
+    bool quiet = false;
+};
+
+/// The container radius from `summary.json` beside the particle file, if there is one.
+double radius_from_summary(const fs::path& particles) {
+    const fs::path summary = particles.parent_path() / "summary.json";
+    std::ifstream in(summary);
+    if (!in)
+        throw InvalidInput(fmt::format("--container-radius is needed: no summary.json next to {}",
+                                       particles.string()));
+    try {
+        const auto json = nlohmann::json::parse(in);
+        const double r = json.at("container").at("radius").get<double>();
+        if (r > 0.0)
+            return r;
+    } catch (const nlohmann::json::exception&) {
+    }
+    throw InvalidInput(
+        fmt::format("{}: no positive container.radius; give --container-radius", summary.string()));
+}
+
+/// Refuse spheres that stick out of the container by more than the tolerance.
+void check_inside(const ParticleFile& file, const std::string& name, double rt, double tolerance) {
+    for (std::size_t i = 0; i < file.packing.size(); ++i) {
+        const Vec3& c = file.packing.centers[i];
+        const double r = file.packing.radii[i];
+        const double out_wall = std::hypot(c.x, c.y) + r - rt;
+        const double below = -(c.z - r);
+        if (out_wall > tolerance || below > tolerance)
+            throw InvalidInput(fmt::format(
+                "{}:{}: the sphere at ({}, {}, {}) sticks out of the container (radius {}, floor "
+                "z = 0) by {:.4g}; allowed: up to {:.4g} (--outside-tolerance, in Dp)",
+                name, file.lines[i], c.x, c.y, c.z, rt, std::max(out_wall, below), tolerance));
+    }
+}
+
+int run_analyze(AnalyzeOptions& o) {
+    const fs::path path(o.particles);
+    ReadOptions read_options;
+    if (o.diameter > 0.0)
+        read_options.radius = 0.5 * o.diameter;
+    ParticleFile file;
+    if (o.format == "auto") {
+        file = read_particles(path, read_options);
+    } else {
+        std::ifstream in(path);
+        for (const auto& [name, value] : particle_formats())
+            if (name == o.format)
+                file = read_particles(in, path.string(), value, read_options);
+    }
+    const double rt = o.container_radius > 0.0 ? o.container_radius : radius_from_summary(path);
+    if (o.diameter > 0.0)
+        o.analysis.diameter = o.diameter;
+    const Cylinder container(rt);
+    double dp = o.diameter;
+    if (!(dp > 0.0)) {
+        dp = 0.0;
+        for (const double r : file.packing.radii)
+            dp += 2.0 * r / static_cast<double>(file.packing.size());
+    }
+    check_inside(file, path.string(), rt, o.outside_tolerance * dp);
+
+    const fs::path out_dir = o.out.empty() ? path.parent_path() / "analysis" : fs::path(o.out);
+    OutputDirectory out(out_dir);
+    omp_set_num_threads(static_cast<int>(o.threads));
+    const BedAnalysis analysis = analyze_bed(file.packing, container, o.analysis);
+
+    auto summary = analysis_summary(analysis, o.analysis);
+    summary["particles_file"] = path.string();
+    summary["particles"] = file.packing.size();
+    summary["container"] = {{"shape", "cylinder"}, {"radius", rt}};
+    for (const auto& [name, text] : analysis_tables(analysis, rt))
+        out.stage(name, text);
+    out.stage("summary.json", summary.dump(2) + "\n");
+    out.commit();
+    if (!o.quiet) {
+        fmt::print("packbed analyze: {} spheres in a cylinder of radius {}\n", file.packing.size(),
+                   rt);
+        fmt::print("void fraction: {:.4f} (between z = {:.4g} and z = {:.4g})\n",
+                   analysis.void_fraction, analysis.band.z_low, analysis.band.z_high);
+        fmt::print("coordination: {:.3f} ({:.3f} without {} rattlers); {} spheres touch the "
+                   "wall\n",
+                   analysis.coordination.mean, analysis.coordination.mean_without_rattlers,
+                   analysis.coordination.rattlers, analysis.coordination.wall_contacts);
+        fmt::print("results in {}/\n", out_dir.string());
+    }
+    return 0;
+}
+
+} // namespace
+
+Command register_analyze(CLI::App& parent) {
+    auto options = std::make_shared<AnalyzeOptions>();
+    auto& o = *options;
+    auto& a = o.analysis;
+    CLI::App* app = parent.add_subcommand(
+        "analyze", "Measure a bed of spheres in a cylinder: overall, radial and axial void "
+                   "fraction, centre distribution, coordination, wall contacts, g(r)");
+    app->option_defaults()->always_capture_default();
+    app->fallthrough();
+    const double inf = std::numeric_limits<double>::infinity();
+    app->add_option("particles", o.particles,
+                    "the bed: CSV (x,y,z,r or d, optional id), XYZ, or LAMMPS/LIGGGHTS dump")
+        ->required()
+        ->check(CLI::ExistingFile);
+    std::vector<std::string> formats{"auto"};
+    for (const auto& entry : particle_formats())
+        formats.push_back(entry.first);
+    app->add_option("--format", o.format, "file format; auto: from the extension or first line")
+        ->check(CLI::IsMember(formats));
+    app->add_option("-R,--container-radius", o.container_radius,
+                    "cylinder radius Rt (file units); default: summary.json next to the file")
+        ->check(real_in(0.0, inf, true, true));
+    app->add_option("-o,--out", o.out, "output directory; default: analysis/ next to the file");
+    app->add_option("-d,--diameter", o.diameter,
+                    "reference diameter Dp, and the sphere size of XYZ files without radius; "
+                    "default: the mean sphere diameter")
+        ->check(real_in(1e-12, 1e12, false, false));
+    app->add_option("--band-clearance", a.band_clearance,
+                    "properties refer to the band this far from floor and top, Dp")
+        ->check(real_in(0.0, inf, false, true));
+    app->add_option("--shell-width", a.shell_width, "shell width of the radial profile, Dp")
+        ->check(real_in(1e-4, 10.0, false, false));
+    app->add_option("--slab-height", a.slab_height, "slab height of the axial profile, Dp")
+        ->check(real_in(1e-4, 10.0, false, false));
+    app->add_option("--centre-bin", a.centre_bin, "bin width of the centre distribution, Dp")
+        ->check(real_in(1e-4, 10.0, false, false));
+    app->add_option("--contact-tolerance", a.contact_tolerance, "a gap up to this is a contact, Dp")
+        ->check(real_in(0.0, 0.5, false, false));
+    app->add_option("--rdf-range", a.rdf_range, "largest distance of g(r), Dp")
+        ->check(real_in(0.1, 20.0, false, false));
+    app->add_option("--rdf-bin", a.rdf_bin, "bin width of g(r), Dp")
+        ->check(real_in(1e-4, 1.0, false, false));
+    app->add_option("--outside-tolerance", o.outside_tolerance,
+                    "how far a sphere may stick out of the wall or floor, Dp")
+        ->check(real_in(0.0, 1.0, false, false));
+    app->add_option("-j,--threads", o.threads, "threads (results do not depend on it)")
+        ->check(whole_in(1, 1024));
+    app->add_flag("-q,--quiet", o.quiet, "no report on the terminal");
+    return {app, [options] { return run_analyze(*options); }};
+}
+
+} // namespace packbed::cli
