@@ -2,6 +2,9 @@
 #include <cmath>
 #include <numbers>
 
+#include <random>
+
+#include <boost/math/quadrature/tanh_sinh.hpp>
 #include <gtest/gtest.h>
 
 #include "packbed/error.hpp"
@@ -91,6 +94,43 @@ TEST(SphereInCylinderSlab, ShellsAddUpToTheSphere) {
         previous = v;
     }
     EXPECT_NEAR(sum, ball(0.5), 1e-12);
+}
+
+TEST(SphereInCylinderSlab, WallCutVolumesAgreeWithAnIndependentQuadrature) {
+    // The same volume by tanh-sinh quadrature (tolerance 1e-15) of the lens area between the
+    // heights where the slice changes regime (slice radius |Rc - rho| and Rc + rho), for spheres
+    // placed at random across the wall of cylinders of random radius, cut at random heights.
+    std::mt19937_64 rng(2026);
+    std::uniform_real_distribution<double> u(0.0, 1.0);
+    boost::math::quadrature::tanh_sinh<double> reference;
+    double worst = 0.0;
+    int lens_cases = 0;
+    for (int k = 0; k < 2000; ++k) {
+        const double rc = 0.2 + 5.0 * u(rng);
+        const double rho = std::max(0.0, rc + (u(rng) - 0.5) * 0.9); // wall crosses sphere
+        const double z_low = -0.5 + 0.4 * u(rng), z_high = 0.1 + 0.4 * u(rng);
+        auto slice = [&](double t) {
+            return disk_intersection_area(std::sqrt(std::max(0.25 - t * t, 0.0)), rc, rho);
+        };
+        std::vector<double> cuts{z_low, z_high};
+        for (const double s : {std::abs(rc - rho), rc + rho})
+            if (s < 0.5)
+                for (const double t : {-std::sqrt(0.25 - s * s), std::sqrt(0.25 - s * s)})
+                    if (t > z_low && t < z_high)
+                        cuts.push_back(t);
+        std::sort(cuts.begin(), cuts.end());
+        double expected = 0.0;
+        for (std::size_t i = 0; i + 1 < cuts.size(); ++i)
+            expected += reference.integrate(slice, cuts[i], cuts[i + 1], 1e-15);
+        const double got = sphere_volume_in_cylinder_slab({rho, 0, 0}, 0.5, rc, z_low, z_high);
+        if (expected > 0.0) {
+            worst = std::max(worst, std::abs(got - expected) / expected);
+            ++lens_cases;
+        }
+    }
+    EXPECT_GT(lens_cases, 1500);
+    EXPECT_LT(worst, 1e-9);
+    std::printf("worst relative difference %.3g over %d wall-cut spheres\n", worst, lens_cases);
 }
 
 TEST(VoidFraction, ColumnOfSpheresOnTheAxis) {
