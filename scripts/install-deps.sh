@@ -13,7 +13,8 @@ packages=(
   libboost-dev              # Boost.Math tanh-sinh quadrature (header-only)
   libgtest-dev              # tests
   libbenchmark-dev          # benchmarks
-  python3                   # bench/ scripts
+  python3                   # bench/ scripts, examples/validate.py
+  gnuplot-nox               # plots of examples/validate.py
 )
 if [[ ${1:-} == --test ]]; then
   packages+=(python3-vtk9)  # reads particles.vtu as ParaView does
