@@ -132,10 +132,14 @@ OutputDirectory::~OutputDirectory() {
     }
 }
 
-void OutputDirectory::stage(const std::string& name, const std::string& contents) {
-    const auto final_path = m_directory / name;
+std::filesystem::path OutputDirectory::reserve(const std::string& name) {
     const auto tmp = m_directory / fmt::format(".{}.tmp-{}", name, ::getpid());
-    m_staged.emplace_back(tmp, final_path);
+    m_staged.emplace_back(tmp, m_directory / name);
+    return tmp;
+}
+
+void OutputDirectory::stage(const std::string& name, const std::string& contents) {
+    const auto tmp = reserve(name);
     std::ofstream file(tmp, std::ios::binary | std::ios::trunc);
     file.write(contents.data(), static_cast<std::streamsize>(contents.size()));
     file.close();

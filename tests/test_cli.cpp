@@ -166,6 +166,20 @@ TEST(Cli, GenerateAlsoWritesTheAnalysis) {
     const auto s = nlohmann::json::parse(slurp(d / "summary.json"));
     EXPECT_EQ(s["analysis"]["void_fraction"], s["void_fraction"]);
     EXPECT_GT(s["analysis"]["coordination"]["mean"].get<double>(), 3.0);
+    // Plots when gnuplot is installed (CI installs it); otherwise the reason is recorded.
+    if (std::system("command -v gnuplot >/dev/null 2>&1") == 0) {
+        for (const char* name : {"radial_void_fraction.svg", "radial_centre_distribution.svg"}) {
+            const std::string svg = slurp(d / name);
+            EXPECT_NE(svg.find("<svg"), std::string::npos) << name;
+            EXPECT_NE(svg.find("</svg>"), std::string::npos) << name;
+        }
+        EXPECT_NE(slurp(d / "radial_void_fraction.svg").find("mueller-1992"), std::string::npos);
+    } else {
+        EXPECT_EQ(s["analysis"]["plots"],
+                  "gnuplot not found (Debian package gnuplot-nox): no plots");
+    }
+    for (const auto& entry : fs::directory_iterator(d))
+        EXPECT_EQ(entry.path().filename().string().find(".tmp"), std::string::npos);
 }
 
 TEST(Cli, AnalyzeGivesTheSameResultsFromEveryFormat) {

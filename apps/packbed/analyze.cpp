@@ -13,6 +13,7 @@
 #include "packbed/io.hpp"
 #include "packbed/read.hpp"
 #include "packbed/summary.hpp"
+#include "plots.hpp"
 
 namespace packbed::cli {
 
@@ -102,6 +103,11 @@ int run_analyze(AnalyzeOptions& o) {
     summary["container"] = {{"shape", "cylinder"}, {"radius", rt}};
     for (const auto& [name, text] : analysis_tables(analysis, rt))
         out.stage(name, text);
+    if (const std::string why = stage_plots(out, analysis, rt); !why.empty()) {
+        summary["plots"] = why;
+        if (!o.quiet)
+            fmt::print(stderr, "packbed analyze: {}\n", why);
+    }
     out.stage("summary.json", summary.dump(2) + "\n");
     out.commit();
     if (!o.quiet) {

@@ -12,6 +12,7 @@
 #include "packbed/io.hpp"
 #include "packbed/soft_sphere.hpp"
 #include "packbed/summary.hpp"
+#include "plots.hpp"
 #include "progress.hpp"
 
 namespace packbed::cli {
@@ -62,6 +63,9 @@ int run_generate(GenerateOptions& o) {
         summary["analysis"] = analysis_summary(analysis, analysis_options);
         for (const auto& [name, text] : analysis_tables(analysis, result.container.radius()))
             out.stage(name, text);
+        if (const std::string why = stage_plots(out, analysis, result.container.radius());
+            !why.empty())
+            summary["analysis"]["plots"] = why;
     }
     out.stage("summary.json", summary.dump(2) + "\n");
     out.commit();

@@ -51,6 +51,11 @@ public:
     /// \throws std::runtime_error naming the file when writing fails
     void stage(const std::string& name, const std::string& contents);
 
+    /// Reserve the temporary path of `name` for a file another program writes (e.g. a plot);
+    /// it is renamed into place by commit() like staged files, and removed if not committed.
+    /// \return the temporary path to write to.
+    std::filesystem::path reserve(const std::string& name);
+
     /// Rename every staged file to its final name.
     /// \throws std::runtime_error naming the file when a rename fails
     void commit();
