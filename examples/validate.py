@@ -153,6 +153,24 @@ plot '{args.out}/fig4.csv' using 1:4:5:6 with yerrorbars pt 7 lc rgb 'black' tit
             for i, z in enumerate(grid):
                 f.write(f"{z:.6g}," + ",".join(f"{radial[n]['void_fraction'][i]:.6g}"
                                                 for n in radial) + "\n")
+        # How far the mean profile lies from each correlation: RMS over the shells, and the
+        # first minimum of each curve.
+        mean_void = [v / len(seeds) for v in sums_void]
+        with open(os.path.join(args.out, f"profiles_a{a:g}.md"), "w") as f:
+            f.write("| profile | RMS difference to packbed (x <= a/2) | first minimum | at x |\n"
+                    "|---|---|---|---|\n")
+            near = [i for i in range(len(x)) if x[i] < 1.0]
+            i_min = min(near, key=lambda i: mean_void[i])
+            f.write(f"| packbed (mean of {len(seeds)} beds) | - | {mean_void[i_min]:.3f} "
+                    f"| {x[i_min]:.2f} |\n")
+            for n in radial:
+                values = [radial[n]["void_fraction"][min(round(xi / 0.01), len(grid) - 1)]
+                          for xi in x]
+                rms = math.sqrt(sum((v - m) ** 2 for v, m in zip(values, mean_void)) / len(x))
+                j = min((j for j in range(len(grid)) if grid[j] < 1.0),
+                        key=lambda j: radial[n]["void_fraction"][j])
+                f.write(f"| {n} | {rms:.3f} | {radial[n]['void_fraction'][j]:.3f} "
+                        f"| {grid[j]:.2f} |\n")
         lines = ", ".join(f"'{corr_file}' using 1:{2 + i} with lines title '{n}'"
                           for i, n in enumerate(radial))
         gnuplot(f"""set terminal svg size 900,420 background '#ffffff'
