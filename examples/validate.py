@@ -114,12 +114,23 @@ def main():
         for r in rows:
             f.write("| " + " | ".join([f"{r[0]:g}", str(r[1]), str(r[2])] +
                                       [f"{v:.4f}" for v in r[3:]]) + " |\n")
-    columns = ", ".join(f"'{args.out}/fig4.csv' using 1:{7 + i} with lines title '{n}'"
-                        for i, n in enumerate(names))
+    # The correlations as curves: on a fine grid of a across the plotted range.
+    lo, hi = min(ratios) - 1, max(ratios) + 1
+    grid = [lo + 0.25 * k for k in range(int((hi - lo) / 0.25) + 1)]
+    with open(os.path.join(args.out, "fig4_correlations.csv"), "w") as f:
+        f.write("a," + ",".join(names) + "\n")
+        for a in grid:
+            corr = json.loads(subprocess.run(
+                [args.packbed, "correlations", "--aspect-ratio", f"{a:g}", "--json"], check=True,
+                text=True, capture_output=True).stdout)["mean_void_fraction"]
+            f.write(f"{a:g}," + ",".join(f"{corr[n]['value']:.6g}" for n in names) + "\n")
+    columns = ", ".join(f"'{args.out}/fig4_correlations.csv' using 1:{2 + i} with lines "
+                        f"title '{n}'" for i, n in enumerate(names))
     gnuplot(f"""set terminal svg size 720,480 background '#ffffff'
 set output '{args.out}/fig4.svg'
 set datafile separator ','
 set key top right
+set xrange [{lo:g}:{hi:g}]
 set xlabel 'aspect ratio a = D/d'
 set ylabel 'overall void fraction'
 plot '{args.out}/fig4.csv' using 1:4:5:6 with yerrorbars pt 7 lc rgb 'black' title 'packbed (mean, min-max)', {columns}
