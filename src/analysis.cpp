@@ -2,7 +2,9 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstdint>
 #include <numbers>
+#include <utility>
 
 #include <fmt/format.h>
 
@@ -93,22 +95,54 @@ std::vector<ProfileBin> radial_void_fraction(const Packing& packing, double rt, 
 }
 
 /// e(z) over slabs [k h, (k+1) h] from the floor to the top of the bed; exact volumes.
+/// The spheres are taken in order of height, so each chunk touches a short run of slabs and
+/// keeps a partial row for that run only: memory O(N) however tall the bed.
 std::vector<ProfileBin> axial_void_fraction(const Packing& packing, double rt, double height,
                                             double top) {
     const auto slabs = static_cast<std::size_t>(std::ceil(top / height - 1e-9));
-    const auto solid =
-        histogram_over_spheres(packing.size(), slabs, [&](std::size_t i, double* row) {
-            const Vec3& c = packing.centers[i];
-            const double radius = packing.radii[i];
-            const auto k_first =
-                static_cast<std::size_t>(std::max(std::floor((c.z - radius) / height), 0.0));
-            const auto k_last = std::min(slabs - 1, static_cast<std::size_t>(std::max(
-                                                        std::floor((c.z + radius) / height), 0.0)));
-            for (std::size_t k = k_first; k <= k_last; ++k)
-                row[k] +=
-                    sphere_volume_in_cylinder_slab(c, radius, rt, static_cast<double>(k) * height,
-                                                   static_cast<double>(k + 1) * height);
-        });
+    const std::size_t n = packing.size();
+    std::vector<std::uint32_t> order(n);
+    for (std::size_t i = 0; i < n; ++i)
+        order[i] = static_cast<std::uint32_t>(i);
+    std::sort(order.begin(), order.end(), [&](std::uint32_t a, std::uint32_t b) {
+        return packing.centers[a].z < packing.centers[b].z ||
+               (packing.centers[a].z == packing.centers[b].z && a < b);
+    });
+    auto slab_range = [&](std::size_t i) {
+        const Vec3& c = packing.centers[i];
+        const double r = packing.radii[i];
+        const auto first = static_cast<std::size_t>(std::max(std::floor((c.z - r) / height), 0.0));
+        const auto last = std::min(
+            slabs - 1, static_cast<std::size_t>(std::max(std::floor((c.z + r) / height), 0.0)));
+        return std::pair{std::min(first, last), last};
+    };
+    const std::size_t chunks = (n + chunk_size - 1) / chunk_size;
+    std::vector<std::size_t> row_start(chunks);
+    std::vector<std::vector<double>> rows(chunks);
+#pragma omp parallel for schedule(dynamic, 1) if (n >= detail::parallel_min_spheres)
+    for (std::size_t c = 0; c < chunks; ++c) {
+        const std::size_t begin = c * chunk_size, end = std::min(n, begin + chunk_size);
+        std::size_t lo = slabs, hi = 0;
+        for (std::size_t s = begin; s < end; ++s) {
+            const auto [first, last] = slab_range(order[s]);
+            lo = std::min(lo, first);
+            hi = std::max(hi, last);
+        }
+        row_start[c] = lo;
+        rows[c].assign(hi - lo + 1, 0.0);
+        for (std::size_t s = begin; s < end; ++s) {
+            const std::size_t i = order[s];
+            const auto [first, last] = slab_range(i);
+            for (std::size_t k = first; k <= last; ++k)
+                rows[c][k - lo] += sphere_volume_in_cylinder_slab(
+                    packing.centers[i], packing.radii[i], rt, static_cast<double>(k) * height,
+                    static_cast<double>(k + 1) * height);
+        }
+    }
+    std::vector<double> solid(slabs, 0.0);
+    for (std::size_t c = 0; c < chunks; ++c) // in chunk order: the same bits for any threads
+        for (std::size_t j = 0; j < rows[c].size(); ++j)
+            solid[row_start[c] + j] += rows[c][j];
     std::vector<ProfileBin> out(slabs);
     for (std::size_t k = 0; k < slabs; ++k) {
         const double lo = static_cast<double>(k) * height, hi = lo + height;
@@ -149,8 +183,10 @@ std::vector<ProfileBin> centre_distribution(const Packing& packing, double rt, d
 
 Coordination coordination(const Packing& packing, const Cylinder& container, double tolerance,
                           const Band& band) {
+    // The list keeps d < r_i + r_j + skin (strict); a contact is gap <= tolerance, so the skin
+    // is a hair larger than the tolerance (exactly touching spheres at tolerance 0).
     NeighborList list;
-    list.build(packing.centers, packing.radii, tolerance);
+    list.build(packing.centers, packing.radii, tolerance + 1e-9 * (1.0 + tolerance));
     Coordination out;
     std::size_t contacts_total = 0, contacts_stable = 0;
     for (std::size_t i = 0; i < packing.size(); ++i) {
@@ -199,8 +235,9 @@ std::vector<ProfileBin> pair_correlation(const Packing& packing, double rt, doub
         in += 1.0;
         for (const auto j : list.neighbors_of(i)) {
             const double d = norm(packing.centers[j] - packing.centers[i]);
+            // d/width may round up to `bins` when d is just below the range: last bin.
             if (d < range)
-                count[static_cast<std::size_t>(d / width)] += 1.0;
+                count[std::min(static_cast<std::size_t>(d / width), bins - 1)] += 1.0;
         }
     }
     const double density = in / (pi * rt * rt * (band.z_high - band.z_low));

@@ -147,7 +147,23 @@ void OutputDirectory::stage(const std::string& name, const std::string& contents
         throw std::runtime_error(fmt::format("cannot write {}", tmp.string()));
 }
 
+void OutputDirectory::discard(const std::string& name) {
+    const auto final_path = m_directory / name;
+    std::erase_if(m_staged, [&](const auto& entry) {
+        if (entry.second != final_path)
+            return false;
+        std::error_code ec;
+        std::filesystem::remove(entry.first, ec);
+        return true;
+    });
+}
+
 void OutputDirectory::commit() {
+    // All or nothing: a missing temporary stops the commit before any file is renamed.
+    for (const auto& [tmp, final_path] : m_staged)
+        if (!std::filesystem::exists(tmp))
+            throw std::runtime_error(
+                fmt::format("cannot write {}: its temporary file is missing", final_path.string()));
     for (const auto& [tmp, final_path] : m_staged) {
         std::error_code ec;
         std::filesystem::rename(tmp, final_path, ec);

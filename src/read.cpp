@@ -67,6 +67,8 @@ public:
     bool next(std::string& line) {
         while (std::getline(m_input, line)) {
             ++m_line;
+            if (m_line == 1 && line.rfind("\xEF\xBB\xBF", 0) == 0) // UTF-8 byte-order mark
+                line.erase(0, 3);
             if (!line.empty() && line.back() == '\r')
                 line.pop_back();
             const auto t = trim(line);
@@ -233,8 +235,8 @@ ParticleFile read_lammps_dump(LineReader& in) {
             if (!in.next(line))
                 in.fail_file("ends after ITEM: NUMBER OF ATOMS");
             const double n = in.number(trim(line), "NUMBER OF ATOMS");
-            if (n < 1 || n != std::floor(n))
-                in.fail(fmt::format("the number of atoms {} is not a whole number >= 1", n));
+            if (n < 0 || n != std::floor(n)) // 0: a frame before particles were inserted
+                in.fail(fmt::format("the number of atoms {} is not a whole number >= 0", n));
             atoms = static_cast<std::size_t>(n);
             have_count = true;
         } else if (item.rfind("ATOMS", 0) == 0) {
@@ -271,7 +273,7 @@ ParticleFile read_lammps_dump(LineReader& in) {
         }
     } while (in.next(line));
     if (out.packing.size() == 0)
-        in.fail_file("no ITEM: ATOMS section");
+        in.fail_file("no spheres in the last snapshot (or no ITEM: ATOMS section)");
     return out;
 }
 

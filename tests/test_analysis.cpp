@@ -157,6 +157,34 @@ TEST(Lattices, PorosityAndCoordinationOfSimpleCubicAndFcc) {
     }
 }
 
+TEST(Coordination, ExactlyTouchingSpheresCountAtZeroTolerance) {
+    // A column of touching spheres on the axis: every sphere in the band has 2 contacts.
+    Packing column;
+    for (int k = 0; k < 10; ++k)
+        column.add({0, 0, 0.5 + k}, 0.5);
+    AnalysisOptions o;
+    o.contact_tolerance = 0.0;
+    const BedAnalysis a = analyze_bed(column, Cylinder(0.75), o);
+    ASSERT_EQ(a.coordination.histogram.size(), 3u);
+    EXPECT_EQ(a.coordination.histogram[2], a.coordination.spheres);
+    EXPECT_DOUBLE_EQ(a.coordination.mean, 2.0);
+}
+
+TEST(PairCorrelation, DistanceJustBelowTheRangeStaysInTheLastBin) {
+    // 0.8099999999999999 / 0.03 rounds to 27 = the number of bins: must not write past them.
+    Packing p;
+    p.add({0, 0, 2.0}, 0.4);
+    p.add({0.8099999999999999, 0, 2.0}, 0.4);
+    p.add({0, 0, 0.4}, 0.4);
+    p.add({0, 0, 3.6}, 0.4);
+    AnalysisOptions o;
+    o.rdf_range = 0.81 / 0.8; // in units of the mean diameter 0.8
+    o.rdf_bin = 0.03 / 0.8;
+    const BedAnalysis a = analyze_bed(p, Cylinder(2.0), o);
+    ASSERT_EQ(a.pair_correlation.size(), 27u);
+    EXPECT_GT(a.pair_correlation.back().value, 0.0); // the pair is counted in [0.78, 0.81)
+}
+
 TEST(CentreDistribution, IntegratesToTheCrossSection) {
     // sum over annuli of (relative density x area) = pi Rt^2, whatever the bed.
     const Packing p = lattice(simple_cubic, 1.0, 4.0, 6);

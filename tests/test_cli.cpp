@@ -182,6 +182,23 @@ TEST(Cli, GenerateAlsoWritesTheAnalysis) {
         EXPECT_EQ(entry.path().filename().string().find(".tmp"), std::string::npos);
 }
 
+TEST(Cli, AFailingPlotterLeavesTheRestOfTheOutput) {
+    // A gnuplot that fails: no plots, a note in summary.json, every other file, exit 0.
+    const fs::path d = scratch("plotfail");
+    fs::create_directories(d / "bin");
+    std::ofstream(d / "bin" / "gnuplot") << "#!/bin/sh\nexit 3\n";
+    fs::permissions(d / "bin" / "gnuplot", fs::perms::owner_all);
+    const std::string cmd = "env -u CI PATH=" + (d / "bin").string() + ":/usr/bin:/bin " +
+                            PACKBED_EXE + " " + small + "--quiet --out " + (d / "out").string();
+    ASSERT_EQ(std::system(cmd.c_str()), 0);
+    EXPECT_FALSE(fs::exists(d / "out" / "radial_void_fraction.svg"));
+    EXPECT_TRUE(fs::exists(d / "out" / "radial_void_fraction.csv"));
+    const auto s = nlohmann::json::parse(slurp(d / "out" / "summary.json"));
+    EXPECT_EQ(s["analysis"]["plots"], "gnuplot failed (exit status 3): no plots");
+    for (const auto& entry : fs::directory_iterator(d / "out"))
+        EXPECT_EQ(entry.path().filename().string().find(".tmp"), std::string::npos);
+}
+
 TEST(Cli, AnalyzeGivesTheSameResultsFromEveryFormat) {
     // One bed written as our CSV, as XYZ and as a LAMMPS dump (diameter column).
     const fs::path d = scratch("formats");

@@ -81,6 +81,25 @@ TEST(ReadParticles, EveryFormatGivesTheSameSpheres) {
     EXPECT_EQ(g.packing.centers[2], reference().centers[2]);
 }
 
+TEST(ReadParticles, EmptyFirstFrameAndByteOrderMark) {
+    // LIGGGHTS writes a frame with 0 atoms before the particles are inserted.
+    std::istringstream dump(
+        "ITEM: TIMESTEP\n0\nITEM: NUMBER OF ATOMS\n0\n"
+        "ITEM: BOX BOUNDS ff ff ff\n-2 2\n-2 2\n0 3\nITEM: ATOMS id x y z radius\n"
+        "ITEM: TIMESTEP\n100\nITEM: NUMBER OF ATOMS\n1\n"
+        "ITEM: BOX BOUNDS ff ff ff\n-2 2\n-2 2\n0 3\nITEM: ATOMS id x y z radius\n"
+        "1 0.5 0 0.5 0.5\n");
+    const auto f = read_particles(dump, "d", ParticleFormat::lammps_dump);
+    ASSERT_EQ(f.packing.size(), 1u);
+    EXPECT_EQ(f.packing.centers[0], (Vec3{0.5, 0, 0.5}));
+    EXPECT_EQ(error_of("ITEM: TIMESTEP\n0\nITEM: NUMBER OF ATOMS\n0\nITEM: ATOMS id x y z radius\n",
+                       ParticleFormat::lammps_dump),
+              "bed: no spheres in the last snapshot (or no ITEM: ATOMS section)");
+    // A CSV saved by a spreadsheet may start with a UTF-8 byte-order mark.
+    std::istringstream bom("\xEF\xBB\xBFx,y,z,r\n1,2,3,0.5\n");
+    EXPECT_EQ(read_particles(bom, "b", ParticleFormat::csv).packing.size(), 1u);
+}
+
 TEST(ReadParticles, FormatFromExtensionOrFirstLine) {
     EXPECT_EQ(detect_particle_format(write("f.lammpstrj", "")), ParticleFormat::lammps_dump);
     EXPECT_EQ(detect_particle_format(write("f.txt", "ITEM: TIMESTEP\n0\n")),

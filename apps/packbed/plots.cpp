@@ -1,6 +1,10 @@
 #include "plots.hpp"
 
-#include <cstdlib>
+#include <fcntl.h>
+#include <spawn.h>
+#include <sys/wait.h>
+
+#include <cstdio>
 #include <fstream>
 
 #include <fmt/format.h>
@@ -21,11 +25,37 @@ std::string datablock(std::string_view name, const std::vector<ProfileBin>& bins
     return out + "EOD\n";
 }
 
+/// A path as a gnuplot single-quoted string ('' stands for a quote inside).
+std::string quoted(const std::filesystem::path& path) {
+    std::string out = "'";
+    for (const char c : path.string())
+        out += c == '\'' ? std::string("''") : std::string(1, c);
+    return out + "'";
+}
+
+/// Run `gnuplot SCRIPT` without a shell, its output to /dev/null.
+/// \return the exit status; 127 when gnuplot cannot be started.
+int run_gnuplot(const std::filesystem::path& script) {
+    posix_spawn_file_actions_t actions;
+    posix_spawn_file_actions_init(&actions);
+    posix_spawn_file_actions_addopen(&actions, STDOUT_FILENO, "/dev/null", O_WRONLY, 0);
+    posix_spawn_file_actions_addopen(&actions, STDERR_FILENO, "/dev/null", O_WRONLY, 0);
+    std::string program = "gnuplot", argument = script.string();
+    char* argv[] = {program.data(), argument.data(), nullptr};
+    pid_t pid = 0;
+    const int spawned = posix_spawnp(&pid, "gnuplot", &actions, nullptr, argv, environ);
+    posix_spawn_file_actions_destroy(&actions);
+    if (spawned != 0)
+        return 127;
+    int status = 0;
+    if (waitpid(pid, &status, 0) < 0 || !WIFEXITED(status))
+        return 1;
+    return WEXITSTATUS(status);
+}
+
 } // namespace
 
 std::string stage_plots(OutputDirectory& out, const BedAnalysis& a, double rt) {
-    if (std::system("command -v gnuplot >/dev/null 2>&1") != 0)
-        return "gnuplot not found (Debian package gnuplot-nox): no plots";
     const double dp = a.diameter;
     const double aspect_ratio = 2.0 * rt / dp;
     const double x_max = rt / dp;
@@ -46,22 +76,25 @@ std::string stage_plots(OutputDirectory& out, const BedAnalysis& a, double rt) {
     script += fmt::format(
         "set terminal svg size 800,450 background '#ffffff'\n"
         "set xlabel 'distance from the wall (Rt - r)/Dp'\nset xrange [0:{0}]\nset key top right\n"
-        "set output '{1}'\nset ylabel 'radial void fraction'\n"
+        "set output {1}\nset ylabel 'radial void fraction'\n"
         "set title 'Radial void fraction, a = {3:.4g}, band z = {4:.4g} to {5:.4g}'\n"
         "plot $bed using 1:2 with lines lw 2 lc rgb 'black' title 'this bed'{6}\n"
-        "set output '{2}'\nset ylabel 'centre density / mean'\n"
+        "set output {2}\nset ylabel 'centre density / mean'\n"
         "set title 'Radial distribution of sphere centres, a = {3:.4g}'\n"
         "plot $centres using 1:2 with steps lw 2 lc rgb 'black' title 'this bed'\n",
-        x_max, radial_svg.string(), centres_svg.string(), aspect_ratio, a.band.z_low, a.band.z_high,
+        x_max, quoted(radial_svg), quoted(centres_svg), aspect_ratio, a.band.z_low, a.band.z_high,
         curves);
     const auto script_path = out.path() / fmt::format(".plots.gp.tmp-{}", ::getpid());
     std::ofstream(script_path) << script;
-    const int status =
-        std::system(fmt::format("gnuplot '{}' >/dev/null 2>&1", script_path.string()).c_str());
+    const int status = run_gnuplot(script_path);
     std::remove(script_path.c_str());
-    if (status != 0)
-        return "gnuplot failed: no plots";
-    return {};
+    if (status == 0 && std::filesystem::exists(radial_svg) && std::filesystem::exists(centres_svg))
+        return {};
+    // No plots, but the rest of the output stands.
+    out.discard("radial_void_fraction.svg");
+    out.discard("radial_centre_distribution.svg");
+    return status == 127 ? "gnuplot not found (Debian package gnuplot-nox): no plots"
+                         : fmt::format("gnuplot failed (exit status {}): no plots", status);
 }
 
 } // namespace packbed::cli

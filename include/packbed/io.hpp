@@ -56,8 +56,11 @@ public:
     /// \return the temporary path to write to.
     std::filesystem::path reserve(const std::string& name);
 
-    /// Rename every staged file to its final name.
-    /// \throws std::runtime_error naming the file when a rename fails
+    /// Forget a staged or reserved file and remove its temporary (e.g. a plot that failed).
+    void discard(const std::string& name);
+
+    /// Rename every staged file to its final name, after checking that all of them exist.
+    /// \throws std::runtime_error naming the file when one is missing or a rename fails
     void commit();
 
     /// \return the directory.

@@ -2,7 +2,7 @@
 // fraction they give. "Exact" means closed forms where the cut is by planes only, and a
 // converged quadrature of the circle-circle lens area where the cylinder wall cuts the sphere
 // (20-point Gauss-Legendre in a variable that smooths the end points; relative error of a
-// wall-cut volume below 1e-9): never random sampling.
+// wall-cut volume below 1e-8): never random sampling.
 #pragma once
 
 #include <optional>
@@ -25,7 +25,7 @@ double disk_intersection_area(double r1, double r2, double distance);
 /// x^2 + y^2 <= cylinder_radius^2 and between the planes z = z_low and z = z_high.
 /// Exact: planes-only pieces by the spherical-segment formula, wall-cut pieces by converged
 /// quadrature of disk_intersection_area over z (smooth inside each piece; relative error
-/// below 1e-9).
+/// below 1e-8).
 /// \param center sphere centre \param radius sphere radius (> 0)
 /// \param cylinder_radius radius of the cylinder about the z axis (> 0)
 /// \param z_low,z_high the slab (z_low <= z_high; an empty slab gives 0)
