@@ -45,13 +45,6 @@ std::vector<double> histogram_over_spheres(std::size_t n, std::size_t bins, F&& 
     return reduce_chunks(partials, bins);
 }
 
-double mean_diameter(const Packing& packing) {
-    double sum = 0.0;
-    for (const double r : packing.radii)
-        sum += 2.0 * r;
-    return sum / static_cast<double>(packing.size());
-}
-
 /// e(r) over shells [b_{k+1}, b_k], b_k = Rt - k w (wall first); exact volumes.
 std::vector<ProfileBin> radial_void_fraction(const Packing& packing, double rt, double width,
                                              const Band& band) {
@@ -257,7 +250,7 @@ BedAnalysis analyze_bed(const Packing& packing, const Cylinder& container,
     if (packing.size() == 0)
         throw InvalidInput("analyze: the bed has no spheres");
     BedAnalysis out;
-    out.diameter = options.diameter.value_or(mean_diameter(packing));
+    out.diameter = options.diameter.value_or(packing.mean_diameter());
     const double dp = out.diameter;
     const auto band = band_clear_of_ends(packing, options.band_clearance * dp);
     if (!band)

@@ -84,12 +84,7 @@ int run_analyze(AnalyzeOptions& o) {
     if (o.diameter > 0.0)
         o.analysis.diameter = o.diameter;
     const Cylinder container(rt);
-    double dp = o.diameter;
-    if (!(dp > 0.0)) {
-        dp = 0.0;
-        for (const double r : file.packing.radii)
-            dp += 2.0 * r / static_cast<double>(file.packing.size());
-    }
+    const double dp = o.diameter > 0.0 ? o.diameter : file.packing.mean_diameter();
     check_inside(file, path.string(), rt, o.outside_tolerance * dp);
 
     const fs::path out_dir = o.out.empty() ? path.parent_path() / "analysis" : fs::path(o.out);

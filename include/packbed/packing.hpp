@@ -24,6 +24,14 @@ struct Packing {
         radii.push_back(radius);
     }
 
+    /// \return the mean sphere diameter (0 for no spheres).
+    double mean_diameter() const {
+        double sum = 0.0;
+        for (const double r : radii)
+            sum += 2.0 * r;
+        return radii.empty() ? 0.0 : sum / static_cast<double>(radii.size());
+    }
+
     /// Multiply every coordinate and radius by `factor` (a change of length unit).
     void scale(double factor) {
         for (auto& c : centers)
