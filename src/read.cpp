@@ -77,7 +77,6 @@ public:
         }
         return false;
     }
-    std::size_t line() const { return m_line; }
 
     /// Next line as it is (blank allowed); false at the end.
     bool raw(std::string& line) {

@@ -37,9 +37,6 @@ public:
     /// \return the number of builds since construction (for statistics).
     std::size_t builds() const { return m_builds; }
 
-    /// \return the skin used in the last build.
-    double skin() const { return m_skin; }
-
 private:
     std::vector<std::uint32_t> m_offsets;
     std::vector<std::uint32_t> m_neighbors;
