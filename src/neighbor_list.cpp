@@ -4,6 +4,7 @@
 #include <cassert>
 #include <cmath>
 #include <limits>
+#include <utility>
 
 #include "parallel.hpp"
 
@@ -90,9 +91,16 @@ struct CellGrid {
 
 } // namespace
 
-void NeighborList::build(std::span<const Vec3> centers, std::span<const double> radii,
-                         double skin) {
+std::vector<std::uint32_t> spatial_order(std::span<const Vec3> centers, double edge) {
+    CellGrid grid;
+    grid.build(centers, edge);
+    return std::move(grid.sorted);
+}
+
+void NeighborList::build(std::span<const Vec3> centers, std::span<const double> radii, double skin,
+                         std::span<const std::uint32_t> key) {
     assert(centers.size() == radii.size());
+    assert(key.empty() || key.size() == centers.size());
     const std::size_t n = centers.size();
     const double max_radius = n ? *std::max_element(radii.begin(), radii.end()) : 0.0;
     CellGrid grid;
@@ -123,7 +131,10 @@ void NeighborList::build(std::span<const Vec3> centers, std::span<const double> 
             if (within(i, j))
                 *out++ = j;
         });
-        std::sort(row, out);
+        if (key.empty())
+            std::sort(row, out);
+        else
+            std::sort(row, out, [&](std::uint32_t a, std::uint32_t b) { return key[a] < key[b]; });
     }
     m_reference.assign(centers.begin(), centers.end());
     m_skin = skin;
@@ -133,7 +144,7 @@ void NeighborList::build(std::span<const Vec3> centers, std::span<const double> 
 bool NeighborList::needs_rebuild(std::span<const Vec3> centers) const {
     if (m_builds == 0 || centers.size() != m_reference.size())
         return true;
-    const double limit2 = 0.25 * m_skin * m_skin;
+    const double limit2 = drift_limit2();
     for (std::size_t i = 0; i < centers.size(); ++i)
         if (norm2(centers[i] - m_reference[i]) > limit2)
             return true;

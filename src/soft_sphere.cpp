@@ -142,9 +142,17 @@ Overlaps measure_overlaps(const Packing& packing, const Cylinder& container) {
 struct SoftSphereGenerator::State {
     SoftSphereParameters params;
     Cylinder container;
-    Packing packing; // units of Dp
+    // The spheres in units of Dp, stored in a spatial order (renewed at each Verlet-list
+    // build) so that neighbours in space are neighbours in memory. Sphere k of `packing` is
+    // sphere order[k] of the generation stage; slot[i] is where sphere i is stored. Every sum
+    // runs in the generation order, so the stored order never changes a bit of the result.
+    Packing packing;
+    std::vector<std::uint32_t> order;
+    std::vector<std::uint32_t> slot;
+    mutable Packing in_generation_order; // packing_dp()
     std::vector<Vec3> next;
     NeighborList list;
+    double drift2 = 0.0; // largest squared move since the last list build
     double initial_height = 0.0;
     double ceiling = 0.0; // a centre above this has been thrown out of the bed
     double cg = 0.0;
@@ -169,53 +177,84 @@ struct SoftSphereGenerator::State {
             const double z = initial_height * uniform01(rng) + 0.5;
             packing.add({r * std::cos(theta), r * std::sin(theta), z}, 0.5);
         }
+        order.resize(packing.size());
+        slot.resize(packing.size());
+        for (std::uint32_t i = 0; i < order.size(); ++i)
+            order[i] = slot[i] = i;
         next.resize(packing.size());
+    }
+
+    /// Store the spheres in the order of a cell grid, then build the Verlet list on them with
+    /// rows in generation order. Called when no list exists or a sphere moved more than skin/2.
+    void rebuild_list() {
+        const double max_radius = *std::max_element(packing.radii.begin(), packing.radii.end());
+        const std::vector<std::uint32_t> perm =
+            spatial_order(packing.centers, 2.0 * max_radius + params.skin);
+        for (std::size_t k = 0; k < perm.size(); ++k) {
+            next[k] = packing.centers[perm[k]];
+            slot[order[perm[k]]] = static_cast<std::uint32_t>(k);
+        }
+        packing.centers.swap(next);
+        for (std::size_t i = 0; i < slot.size(); ++i)
+            order[slot[i]] = static_cast<std::uint32_t>(i);
+        std::vector<double> radii(perm.size());
+        for (std::size_t k = 0; k < perm.size(); ++k)
+            radii[k] = packing.radii[perm[k]];
+        packing.radii.swap(radii);
+        list.build(packing.centers, packing.radii, params.skin, order);
+        drift2 = 0.0;
     }
 
     /// One iteration of eq. (4) with gravity parameter Cg = `gravity`, then the rigid floor z >=
     /// r_i.
-    template <UpdateOrder order> SweepStats sweep(double gravity) {
-        if (list.needs_rebuild(packing.centers))
-            list.build(packing.centers, packing.radii, params.skin);
+    template <UpdateOrder update> SweepStats sweep(double gravity) {
+        if (list.builds() == 0 || drift2 > list.drift_limit2())
+            rebuild_list();
         const LinearOverlapLaw law{params.ck};
         const std::size_t n = packing.size();
         Vec3* const x = packing.centers.data();
         const double* const radius = packing.radii.data();
-        double pair = 0.0, wall = 0.0, top = 0.0;
+        const std::uint32_t* const id = order.data();
+        const Vec3* const reference = list.reference().data();
+        double pair = 0.0, wall = 0.0, top = 0.0, drift = 0.0;
         bool finite = true;
-        auto move_of = [&](std::size_t i, double& pair_i, double& wall_i) {
-            const Vec3 xi = x[i];
+        auto move_of = [&](std::size_t k, double& pair_k, double& wall_k) {
+            const Vec3 xk = x[k];
             Vec3 move{};
-            for (const auto j : list.neighbors_of(i))
-                law.apply(xi, x[j], radius[i] + radius[j], i < j, move, pair_i);
-            const WallContact w = container.wall_contact(xi, radius[i]);
+            for (const auto j : list.neighbors_of(k))
+                law.apply(xk, x[j], radius[k] + radius[j], id[k] < id[j], move, pair_k);
+            const WallContact w = container.wall_contact(xk, radius[k]);
             if (w.overlap > 0.0) {
-                wall_i = std::max(wall_i, w.overlap);
+                wall_k = std::max(wall_k, w.overlap);
                 move += w.push * (params.ck * w.overlap);
             }
             move.z -= gravity;
-            Vec3 moved = xi + move;
-            moved.z = std::max(moved.z, radius[i]);
+            Vec3 moved = xk + move;
+            moved.z = std::max(moved.z, radius[k]);
             return moved;
         };
-        if constexpr (order == UpdateOrder::simultaneous) {
-#pragma omp parallel for schedule(static) reduction(max : pair, wall, top) reduction(&& : finite) \
-    if (n >= detail::parallel_min_spheres)
-            for (std::size_t i = 0; i < n; ++i) {
-                const Vec3 moved = move_of(i, pair, wall);
+        if constexpr (update == UpdateOrder::simultaneous) {
+#pragma omp parallel for schedule(static) reduction(max : pair, wall, top, drift)                  \
+    reduction(&& : finite) if (n >= detail::parallel_min_spheres)
+            for (std::size_t k = 0; k < n; ++k) {
+                const Vec3 moved = move_of(k, pair, wall);
                 finite = finite && is_finite(moved);
                 top = std::max(top, moved.z);
-                next[i] = moved;
+                drift = std::max(drift, norm2(moved - reference[k]));
+                next[k] = moved;
             }
             packing.centers.swap(next);
         } else {
-            for (std::size_t i = 0; i < n; ++i) {
-                const Vec3 moved = move_of(i, pair, wall);
+            for (std::size_t i = 0; i < n; ++i) { // generation order
+                const std::size_t k = slot[i];
+                const Vec3 moved = move_of(k, pair, wall);
                 finite = finite && is_finite(moved);
                 top = std::max(top, moved.z);
-                x[i] = moved;
+                drift = std::max(drift, norm2(moved - reference[k]));
+                x[k] = moved;
             }
         }
+        drift2 = drift;
         ++iterations;
         return {pair, wall, top, finite};
     }
@@ -226,12 +265,23 @@ struct SoftSphereGenerator::State {
                    : sweep<UpdateOrder::in_place>(gravity);
     }
 
+    /// The spheres in generation order, units of Dp.
+    const Packing& packing_in_generation_order() const {
+        in_generation_order.centers.resize(packing.size());
+        in_generation_order.radii.resize(packing.size());
+        for (std::size_t i = 0; i < slot.size(); ++i) {
+            in_generation_order.centers[i] = packing.centers[slot[i]];
+            in_generation_order.radii[i] = packing.radii[slot[i]];
+        }
+        return in_generation_order;
+    }
+
     /// Height of the mass centre, \f$\sum r_i^3 z_i / \sum r_i^3\f$, Dp.
     double mass_centre_z() const {
         double weighted = 0.0, total = 0.0;
-        for (std::size_t i = 0; i < packing.size(); ++i) {
-            const double m = packing.radii[i] * packing.radii[i] * packing.radii[i];
-            weighted += m * packing.centers[i].z;
+        for (const std::uint32_t k : slot) { // generation order: the same sum in every layout
+            const double m = packing.radii[k] * packing.radii[k] * packing.radii[k];
+            weighted += m * packing.centers[k].z;
             total += m;
         }
         return weighted / total;
@@ -315,7 +365,7 @@ SoftSphereGenerator::SoftSphereGenerator(const SoftSphereParameters& parameters)
 SoftSphereGenerator::~SoftSphereGenerator() = default;
 
 const Packing& SoftSphereGenerator::packing_dp() const {
-    return m_state->packing;
+    return m_state->packing_in_generation_order();
 }
 const SoftSphereParameters& SoftSphereGenerator::parameters() const {
     return m_state->params;
@@ -419,7 +469,7 @@ SoftSphereResult SoftSphereGenerator::run(const RunControl& control) {
     const Overlaps final_overlaps = measure_overlaps(st.packing, st.container);
     result.max_overlap_pair = final_overlaps.pair;
     result.max_overlap_wall = final_overlaps.wall;
-    result.packing = st.packing;
+    result.packing = st.packing_in_generation_order();
     result.packing.scale(d);
     result.container = Cylinder(st.container.radius() * d);
     result.initial_height = st.initial_height * d;

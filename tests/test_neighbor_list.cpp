@@ -103,3 +103,43 @@ TEST(NeighborList, FarApartSpheresKeepTheGridSmall) {
     EXPECT_EQ(list.neighbors_of(0).size(), 1u);
     EXPECT_EQ(list.neighbors_of(1).size(), 0u);
 }
+
+TEST(NeighborList, RowsFollowTheCallersKey) {
+    // A reversed numbering as key: every row in decreasing index order, same pairs.
+    const Cloud c = random_cloud(800, 6.0, false, 5);
+    std::vector<std::uint32_t> key(c.centers.size());
+    for (std::uint32_t i = 0; i < key.size(); ++i)
+        key[i] = static_cast<std::uint32_t>(key.size()) - i;
+    NeighborList plain, keyed;
+    plain.build(c.centers, c.radii, 0.1);
+    keyed.build(c.centers, c.radii, 0.1, key);
+    for (std::size_t i = 0; i < c.centers.size(); ++i) {
+        const auto a = plain.neighbors_of(i);
+        const auto b = keyed.neighbors_of(i);
+        ASSERT_EQ(a.size(), b.size());
+        EXPECT_TRUE(std::equal(a.begin(), a.end(), b.rbegin())) << "sphere " << i;
+    }
+    EXPECT_DOUBLE_EQ(keyed.drift_limit2(), 0.05 * 0.05); // (skin / 2)^2
+    EXPECT_EQ(keyed.reference()[9], c.centers[9]);
+}
+
+TEST(SpatialOrder, IsAPermutationThatWalksTheCellsInOrder) {
+    const Cloud c = random_cloud(3000, 10.0, false, 9);
+    const double edge = 1.1;
+    const auto order = spatial_order(c.centers, edge);
+    ASSERT_EQ(order.size(), c.centers.size());
+    std::vector<std::uint32_t> sorted(order);
+    std::sort(sorted.begin(), sorted.end());
+    for (std::uint32_t i = 0; i < sorted.size(); ++i)
+        ASSERT_EQ(sorted[i], i);
+    // Cell layers along z come one after another: the z cell index never decreases.
+    double zmin = 1e300;
+    for (const auto& p : c.centers)
+        zmin = std::min(zmin, p.z);
+    int last = 0;
+    for (const auto i : order) {
+        const int layer = static_cast<int>(std::floor((c.centers[i].z - zmin) / edge));
+        EXPECT_GE(layer, last);
+        last = layer;
+    }
+}

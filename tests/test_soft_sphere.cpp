@@ -2,6 +2,7 @@
 // small bed, determinism, divergence and parameter errors.
 #include <algorithm>
 #include <cmath>
+#include <cstring>
 
 #include <gtest/gtest.h>
 #include <omp.h>
@@ -30,6 +31,22 @@ double spread_percent(const std::vector<double>& w) {
         mean += v;
     mean /= static_cast<double>(w.size());
     return 100.0 * (*hi - *lo) / mean;
+}
+
+/// FNV-1a (with the offset 1469598103934665603 used when the reference values were taken)
+/// over the bytes of every centre: a fingerprint of a configuration to the bit.
+std::uint64_t fingerprint(const Packing& p) {
+    std::uint64_t h = 1469598103934665603ull;
+    for (const Vec3& c : p.centers)
+        for (const double v : {c.x, c.y, c.z}) {
+            std::uint64_t bits;
+            std::memcpy(&bits, &v, sizeof bits);
+            for (int b = 0; b < 64; b += 8) {
+                h ^= (bits >> b) & 0xffu;
+                h *= 1099511628211ull;
+            }
+        }
+    return h;
 }
 
 void expect_bitwise_equal(const Packing& a, const Packing& b) {
@@ -181,6 +198,36 @@ TEST(SoftSphere, SimultaneousUpdateIsIndependentOfThreadCount) {
     omp_set_num_threads(saved);
     expect_bitwise_equal(one.packing_dp(), two.packing_dp());
     EXPECT_NE(one.packing_dp().centers[0], SoftSphereGenerator(p).packing_dp().centers[0]);
+}
+
+TEST(SoftSphere, OptimisationsLeaveEveryBitOfTheResult) {
+    // Fingerprints of runs made by the first implementation (spheres stored in generation
+    // order, list checked for rebuild before each iteration). Storing the spheres in cell
+    // order and tracking moves inside the iteration must not change a bit (issue 5, item 1).
+    SoftSphereParameters p;
+    p.aspect_ratio = 3.0;
+    p.particles = 60;
+    p.seed = 7;
+    const SoftSphereResult simultaneous = generate_soft_sphere(p);
+    EXPECT_EQ(simultaneous.iterations, 24616u);
+    EXPECT_EQ(fingerprint(simultaneous.packing), 0xa55e7fbf640c9029ull);
+
+    p.aspect_ratio = 4.0;
+    p.particles = 150;
+    p.seed = 3;
+    p.update = UpdateOrder::in_place;
+    const SoftSphereResult in_place = generate_soft_sphere(p);
+    EXPECT_EQ(in_place.iterations, 124659u);
+    EXPECT_EQ(fingerprint(in_place.packing), 0xac085a510b520477ull);
+
+    p.aspect_ratio = 12.0;
+    p.particles = 3000; // parallel iteration, several rebuilds
+    p.seed = 2;
+    p.update = UpdateOrder::simultaneous;
+    SoftSphereGenerator bed(p);
+    for (int k = 0; k < 300; ++k)
+        bed.iterate(k < 100 ? 0.0 : 2e-5);
+    EXPECT_EQ(fingerprint(bed.packing_dp()), 0x0a3255b1e53054ddull);
 }
 
 TEST(SoftSphere, DivergenceStopsWithStageIterationAndParameter) {

@@ -12,7 +12,8 @@
 namespace packbed {
 
 /// Full (both directions) Verlet neighbour list in compressed-row form: the neighbours of
-/// sphere i are `neighbors[offsets[i] .. offsets[i+1])`, in increasing index order.
+/// sphere i are `neighbors[offsets[i] .. offsets[i+1])`, in increasing index order (or in
+/// increasing order of a caller's key, see build()).
 /// A pair (i, j) is listed when |x_i - x_j| < r_i + r_j + skin at build time.
 /// Building costs O(N) through a uniform cell grid; the list then stays valid while no sphere
 /// has moved more than skin/2 since the build (`needs_rebuild`).
@@ -23,7 +24,11 @@ public:
     /// \param centers sphere centres (read, not kept)
     /// \param radii sphere radii (> 0, same length)
     /// \param skin extra distance kept in the list (length, > 0)
-    void build(std::span<const Vec3> centers, std::span<const double> radii, double skin);
+    /// \param key when not empty, rows are ordered by increasing key[j] instead of j (one
+    /// value per sphere, all different): a caller that stores its spheres in another order
+    /// than its own numbering keeps the order in which neighbours are summed.
+    void build(std::span<const Vec3> centers, std::span<const double> radii, double skin,
+               std::span<const std::uint32_t> key = {});
 
     /// \return true when some sphere has moved more than skin/2 since the last build (or
     /// there was no build yet, or the number of spheres changed).
@@ -37,6 +42,13 @@ public:
     /// \return the number of builds since construction (for statistics).
     std::size_t builds() const { return m_builds; }
 
+    /// \return the positions at the last build: a caller that tracks how far its spheres
+    /// moved while it moves them can skip needs_rebuild().
+    std::span<const Vec3> reference() const { return m_reference; }
+    /// \return (skin/2)^2: a list stays valid while no sphere has moved farther than this
+    /// (squared) since the build.
+    double drift_limit2() const { return 0.25 * m_skin * m_skin; }
+
 private:
     std::vector<std::uint32_t> m_offsets;
     std::vector<std::uint32_t> m_neighbors;
@@ -44,6 +56,11 @@ private:
     double m_skin = 0.0;
     std::size_t m_builds = 0;
 };
+
+/// \return the sphere indices ordered by the cells of a uniform grid of edge `edge` (z, then
+/// y, then x; by index within a cell): neighbours in space become neighbours in memory.
+/// O(N); the same order for the same input.
+std::vector<std::uint32_t> spatial_order(std::span<const Vec3> centers, double edge);
 
 /// All pairs (i < j) with |x_i - x_j| < r_i + r_j + margin, by brute force, O(N^2).
 /// The reference the fast search is tested against; not for production use.

@@ -140,7 +140,8 @@ public:
     /// \throws Cancelled when control.should_stop() returned true
     SoftSphereResult run(const RunControl& control = {});
 
-    /// \return the current configuration, in units of Dp (radius 0.5).
+    /// \return the current configuration in generation order, in units of Dp (radius 0.5);
+    /// refreshed at each call, valid until the next call or the next iteration.
     const Packing& packing_dp() const;
     /// \return the parameters in use.
     const SoftSphereParameters& parameters() const;
