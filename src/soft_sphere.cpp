@@ -13,6 +13,7 @@
 #include "packbed/error.hpp"
 #include "packbed/neighbor_list.hpp"
 #include "parallel.hpp"
+#include "soft_bed.hpp"
 
 namespace packbed {
 
@@ -24,34 +25,6 @@ void require(bool ok, std::string_view name, double value, std::string_view allo
         throw InvalidInput(
             fmt::format("{} = {} is not allowed; allowed: {}", name, value, allowed));
 }
-
-/// A uniform double in [0, 1) from 53 random bits: the same numbers on every platform
-/// (std::uniform_real_distribution is implementation-defined).
-double uniform01(std::mt19937_64& rng) {
-    return static_cast<double>(rng() >> 11) * 0x1.0p-53;
-}
-
-/// The contact law of eq. (2b) multiplied by the step length, as it enters eq. (4): sphere i
-/// moves by \f$-C_k R(\delta_{ij}) \hat r_{ij}\f$. Linear in the overlap, no friction.
-struct LinearOverlapLaw {
-    double ck;
-
-    /// Add the displacement of sphere i caused by sphere j to `move`; track the overlap.
-    void apply(const Vec3& xi, const Vec3& xj, double sum_radii, bool i_below, Vec3& move,
-               double& max_overlap) const {
-        const Vec3 rij = xj - xi;
-        const double dist2 = norm2(rij);
-        if (dist2 >= sum_radii * sum_radii)
-            return;
-        const double dist = std::sqrt(dist2);
-        const double overlap = sum_radii - dist;
-        max_overlap = std::max(max_overlap, overlap);
-        if (dist > 0.0)
-            move -= rij * (ck * overlap / dist);
-        else // coincident centres: separate them vertically, lower index downwards
-            move.z += i_below ? -ck * overlap : ck * overlap;
-    }
-};
 
 /// Largest values seen in one iteration.
 struct SweepStats {
@@ -139,97 +112,34 @@ Overlaps measure_overlaps(const Packing& packing, const Cylinder& container) {
     return out;
 }
 
-struct SoftSphereGenerator::State {
+struct SoftSphereGenerator::State : detail::SoftBed {
     SoftSphereParameters params;
-    Cylinder container;
-    // The spheres in units of Dp, stored in a spatial order (renewed at each Verlet-list
-    // build) so that neighbours in space are neighbours in memory. Sphere k of `packing` is
-    // sphere order[k] of the generation stage; slot[i] is where sphere i is stored. Every sum
-    // runs in the generation order, so the stored order never changes a bit of the result.
-    Packing packing;
-    std::vector<std::uint32_t> order;
-    std::vector<std::uint32_t> slot;
-    mutable Packing in_generation_order; // packing_dp()
-    std::vector<Vec3> next;
-    NeighborList list;
-    double drift2 = 0.0; // largest squared move since the last list build
-    double initial_height = 0.0;
-    double ceiling = 0.0; // a centre above this has been thrown out of the bed
     double cg = 0.0;
     std::uint64_t iterations = 0;
     std::vector<StageRecord> stages;
 
     explicit State(const SoftSphereParameters& p)
-        : params(p)
-        , container(0.5 * p.aspect_ratio) {}
+        : SoftBed(p.aspect_ratio)
+        , params(p) {}
 
-    /// Section 3.1: L0 from eq. (6), centres uniform over the accessible cross-section.
-    void generate() {
-        initial_height = initial_bed_height(params.particles, params.aspect_ratio, params.e0);
-        ceiling = 4.0 * initial_height + 10.0 * params.aspect_ratio + 10.0;
-        std::mt19937_64 rng(params.seed);
-        const double reach = container.radius() - 0.5;
-        packing.centers.reserve(params.particles);
-        packing.radii.reserve(params.particles);
-        for (std::uint64_t i = 0; i < params.particles; ++i) {
-            const double r = reach * std::sqrt(uniform01(rng));
-            const double theta = 2.0 * std::numbers::pi * uniform01(rng);
-            const double z = initial_height * uniform01(rng) + 0.5;
-            packing.add({r * std::cos(theta), r * std::sin(theta), z}, 0.5);
-        }
-        order.resize(packing.size());
-        slot.resize(packing.size());
-        for (std::uint32_t i = 0; i < order.size(); ++i)
-            order[i] = slot[i] = i;
-        next.resize(packing.size());
-    }
-
-    /// Store the spheres in the order of a cell grid, then build the Verlet list on them with
-    /// rows in generation order. Called when no list exists or a sphere moved more than skin/2.
-    void rebuild_list() {
-        const double max_radius = *std::max_element(packing.radii.begin(), packing.radii.end());
-        const std::vector<std::uint32_t> perm =
-            spatial_order(packing.centers, 2.0 * max_radius + params.skin);
-        for (std::size_t k = 0; k < perm.size(); ++k) {
-            next[k] = packing.centers[perm[k]];
-            slot[order[perm[k]]] = static_cast<std::uint32_t>(k);
-        }
-        packing.centers.swap(next);
-        for (std::size_t i = 0; i < slot.size(); ++i)
-            order[slot[i]] = static_cast<std::uint32_t>(i);
-        std::vector<double> radii(perm.size());
-        for (std::size_t k = 0; k < perm.size(); ++k)
-            radii[k] = packing.radii[perm[k]];
-        packing.radii.swap(radii);
-        list.build(packing.centers, packing.radii, params.skin, order);
-        drift2 = 0.0;
-    }
+    void generate() { SoftBed::generate(params); }
 
     /// One iteration of eq. (4) with gravity parameter Cg = `gravity`, then the rigid floor z >=
     /// r_i.
     template <UpdateOrder update> SweepStats sweep(double gravity) {
-        if (list.builds() == 0 || drift2 > list.drift_limit2())
-            rebuild_list();
-        const LinearOverlapLaw law{params.ck};
+        if (list_stale())
+            rebuild_list(params.skin);
+        const detail::LinearOverlapLaw law{params.ck};
         const std::size_t n = packing.size();
         Vec3* const x = packing.centers.data();
         const double* const radius = packing.radii.data();
-        const std::uint32_t* const id = order.data();
         const Vec3* const reference = list.reference().data();
         double pair = 0.0, wall = 0.0, top = 0.0, drift = 0.0;
         bool finite = true;
         auto move_of = [&](std::size_t k, double& pair_k, double& wall_k) {
-            const Vec3 xk = x[k];
-            Vec3 move{};
-            for (const auto j : list.neighbors_of(k))
-                law.apply(xk, x[j], radius[k] + radius[j], id[k] < id[j], move, pair_k);
-            const WallContact w = container.wall_contact(xk, radius[k]);
-            if (w.overlap > 0.0) {
-                wall_k = std::max(wall_k, w.overlap);
-                move += w.push * (params.ck * w.overlap);
-            }
+            Vec3 move = contact_move(k, law, pair_k, wall_k);
             move.z -= gravity;
-            Vec3 moved = xk + move;
+            Vec3 moved = x[k] + move;
             moved.z = std::max(moved.z, radius[k]);
             return moved;
         };
@@ -263,28 +173,6 @@ struct SoftSphereGenerator::State {
         return params.update == UpdateOrder::simultaneous
                    ? sweep<UpdateOrder::simultaneous>(gravity)
                    : sweep<UpdateOrder::in_place>(gravity);
-    }
-
-    /// The spheres in generation order, units of Dp.
-    const Packing& packing_in_generation_order() const {
-        in_generation_order.centers.resize(packing.size());
-        in_generation_order.radii.resize(packing.size());
-        for (std::size_t i = 0; i < slot.size(); ++i) {
-            in_generation_order.centers[i] = packing.centers[slot[i]];
-            in_generation_order.radii[i] = packing.radii[slot[i]];
-        }
-        return in_generation_order;
-    }
-
-    /// Height of the mass centre, \f$\sum r_i^3 z_i / \sum r_i^3\f$, Dp.
-    double mass_centre_z() const {
-        double weighted = 0.0, total = 0.0;
-        for (const std::uint32_t k : slot) { // generation order: the same sum in every layout
-            const double m = packing.radii[k] * packing.radii[k] * packing.radii[k];
-            weighted += m * packing.centers[k].z;
-            total += m;
-        }
-        return weighted / total;
     }
 
     /// Stop with an error naming the stage, the iteration and what to lower, when the

@@ -1,0 +1,65 @@
+#include "soft_bed.hpp"
+
+#include <numbers>
+
+namespace packbed::detail {
+
+void SoftBed::generate(const SoftSphereParameters& params) {
+    initial_height = initial_bed_height(params.particles, params.aspect_ratio, params.e0);
+    ceiling = 4.0 * initial_height + 10.0 * params.aspect_ratio + 10.0;
+    std::mt19937_64 rng(params.seed);
+    const double reach = container.radius() - 0.5;
+    packing.centers.reserve(params.particles);
+    packing.radii.reserve(params.particles);
+    for (std::uint64_t i = 0; i < params.particles; ++i) {
+        const double r = reach * std::sqrt(uniform01(rng));
+        const double theta = 2.0 * std::numbers::pi * uniform01(rng);
+        const double z = initial_height * uniform01(rng) + 0.5;
+        packing.add({r * std::cos(theta), r * std::sin(theta), z}, 0.5);
+    }
+    order.resize(packing.size());
+    slot.resize(packing.size());
+    for (std::uint32_t i = 0; i < order.size(); ++i)
+        order[i] = slot[i] = i;
+    next.resize(packing.size());
+}
+
+void SoftBed::rebuild_list(double skin) {
+    const double max_radius = *std::max_element(packing.radii.begin(), packing.radii.end());
+    const std::vector<std::uint32_t> perm = spatial_order(packing.centers, 2.0 * max_radius + skin);
+    for (std::size_t k = 0; k < perm.size(); ++k) {
+        next[k] = packing.centers[perm[k]];
+        slot[order[perm[k]]] = static_cast<std::uint32_t>(k);
+    }
+    packing.centers.swap(next);
+    for (std::size_t i = 0; i < slot.size(); ++i)
+        order[slot[i]] = static_cast<std::uint32_t>(i);
+    std::vector<double> radii(perm.size());
+    for (std::size_t k = 0; k < perm.size(); ++k)
+        radii[k] = packing.radii[perm[k]];
+    packing.radii.swap(radii);
+    list.build(packing.centers, packing.radii, skin, order);
+    drift2 = 0.0;
+}
+
+const Packing& SoftBed::packing_in_generation_order() const {
+    m_in_generation_order.centers.resize(packing.size());
+    m_in_generation_order.radii.resize(packing.size());
+    for (std::size_t i = 0; i < slot.size(); ++i) {
+        m_in_generation_order.centers[i] = packing.centers[slot[i]];
+        m_in_generation_order.radii[i] = packing.radii[slot[i]];
+    }
+    return m_in_generation_order;
+}
+
+double SoftBed::mass_centre_z() const {
+    double weighted = 0.0, total = 0.0;
+    for (const std::uint32_t k : slot) {
+        const double m = packing.radii[k] * packing.radii[k] * packing.radii[k];
+        weighted += m * packing.centers[k].z;
+        total += m;
+    }
+    return weighted / total;
+}
+
+} // namespace packbed::detail
