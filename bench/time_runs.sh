@@ -2,8 +2,9 @@
 # Time whole `packbed generate` runs and print a Markdown table:
 # seed, update order, threads, iterations, void fraction, largest overlaps, seconds.
 # Usage: bench/time_runs.sh [PACKBED] [ASPECT_RATIO] [PARTICLES] [SEEDS] [CONFIGS]
-#   CONFIGS: space-separated "update:threads" pairs, e.g. "in-place:1 simultaneous:2", or
-#            "default" for the plain command, with no --update and no --threads
+#   CONFIGS: space-separated "update:threads" pairs, e.g. "in-place:1 simultaneous:2",
+#            "fire:THREADS" for --solver fire, or "default" for the plain command, with no
+#            --update and no --threads
 # Example (the paper's case, seeds 1-5, both update orders):
 #   bench/time_runs.sh build/packbed 5 500 "1 2 3 4 5" "in-place:1 simultaneous:1 simultaneous:2"
 set -euo pipefail
@@ -14,12 +15,14 @@ seeds=${4:-"1 2 3 4 5"}
 configs=${5:-"in-place:1 simultaneous:1 simultaneous:2"}
 out=$(mktemp -d)
 trap 'rm -rf "$out"' EXIT
-echo "| a | Np | seed | update | --threads | iterations | void fraction | max overlap pair (Dp) | max overlap wall (Dp) | both < 1e-4 Dp | seconds |"
+echo "| a | Np | seed | solver / update | --threads | iterations | void fraction | max overlap pair (Dp) | max overlap wall (Dp) | both < 1e-4 Dp | seconds |"
 echo "|---|---|---|---|---|---|---|---|---|---|---|"
 for seed in $seeds; do
   for config in $configs; do
     extra=()
-    if [[ $config != default ]]; then
+    if [[ $config == fire:* ]]; then
+      extra=(--solver fire --threads "${config##*:}")
+    elif [[ $config != default ]]; then
       extra=(--update "${config%%:*}" --threads "${config##*:}")
     fi
     "$exe" generate --aspect-ratio "$a" --particles "$n" --seed "$seed" "${extra[@]}" \
@@ -28,7 +31,8 @@ for seed in $seeds; do
 import json, sys
 s = json.load(open(sys.argv[1]))
 p = s["parameters"]
-print(f"| {s['aspect_ratio']:g} | {s['particles']} | {s['seed']} | {p['update']} | {p['threads']} "
+how = "fire" if p.get("solver") == "fire" else f"paper / {p['update']}"
+print(f"| {s['aspect_ratio']:g} | {s['particles']} | {s['seed']} | {how} | {p['threads']} "
       f"| {s['iterations']} | {s['void_fraction']:.4f} | {s['max_overlap_pair']:.3e} "
       f"| {s['max_overlap_wall']:.3e} "
       f"| {'yes' if max(s['max_overlap_pair'], s['max_overlap_wall']) < 1e-4 else 'NO'} "

@@ -34,6 +34,11 @@ void SoftBed::rebuild_list(double skin) {
     packing.centers.swap(next);
     for (std::size_t i = 0; i < slot.size(); ++i)
         order[slot[i]] = static_cast<std::uint32_t>(i);
+    if (!velocity.empty()) {
+        for (std::size_t k = 0; k < perm.size(); ++k)
+            next[k] = velocity[perm[k]];
+        velocity.swap(next);
+    }
     std::vector<double> radii(perm.size());
     for (std::size_t k = 0; k < perm.size(); ++k)
         radii[k] = packing.radii[perm[k]];

@@ -54,7 +54,8 @@ struct SoftBed {
     Packing packing;
     std::vector<std::uint32_t> order;
     std::vector<std::uint32_t> slot;
-    std::vector<Vec3> next; // scratch, one per sphere
+    std::vector<Vec3> next;     // scratch, one per sphere
+    std::vector<Vec3> velocity; // per sphere, stored order; empty for the paper's solver
     NeighborList list;
     double drift2 = 0.0;         // largest squared move since the last list build
     double initial_height = 0.0; // L0, Dp

@@ -370,7 +370,22 @@ SoftSphereResult SoftSphereGenerator::run(const RunControl& control) {
 
 SoftSphereResult generate_soft_sphere(const SoftSphereParameters& parameters,
                                       const RunControl& control) {
+    if (parameters.solver == Solver::fire)
+        return relax_with_fire(parameters, control);
     return SoftSphereGenerator(parameters).run(control);
+}
+
+const std::vector<std::pair<std::string, Solver>>& solvers() {
+    static const std::vector<std::pair<std::string, Solver>> names{{"paper", Solver::paper},
+                                                                   {"fire", Solver::fire}};
+    return names;
+}
+
+std::string to_string(Solver solver) {
+    for (const auto& [name, value] : solvers())
+        if (value == solver)
+            return name;
+    return "unknown";
 }
 
 const std::vector<std::pair<std::string, UpdateOrder>>& update_orders() {

@@ -59,6 +59,7 @@ nlohmann::json soft_sphere_summary(const SoftSphereParameters& p, const SoftSphe
                              {"mc_window", p.mc_window},
                              {"mc_tolerance", p.mc_tolerance},
                              {"update", to_string(p.update)},
+                             {"solver", to_string(p.solver)},
                              {"skin", p.skin},
                              {"max_iterations", p.max_iterations},
                              {"band_clearance", band_clearance},

@@ -117,6 +117,20 @@ TEST(Cli, SameSeedSameBytesWhateverTheThreads) {
     EXPECT_NE(slurp(a / "particles.csv"), slurp(c / "particles.csv")); // other update order
 }
 
+TEST(Cli, FireSolverSameBytesWhateverTheThreads) {
+    // 1 200 spheres: above the size where the steps run in parallel.
+    const fs::path a = scratch("f1"), b = scratch("f2");
+    const std::string bed =
+        "generate --solver fire --aspect-ratio 10 --particles 1200 --seed 4 --quiet ";
+    ASSERT_EQ(packbed(bed + "--threads 1 --out " + a.string()).status, 0);
+    ASSERT_EQ(packbed(bed + "--threads 2 --out " + b.string()).status, 0);
+    EXPECT_EQ(slurp(a / "particles.csv"), slurp(b / "particles.csv"));
+    const auto s = nlohmann::json::parse(slurp(a / "summary.json"));
+    EXPECT_EQ(s["parameters"]["solver"], "fire");
+    EXPECT_LT(s["max_overlap_pair"].get<double>(), 1e-4);
+    EXPECT_LT(s["max_overlap_wall"].get<double>(), 1e-4);
+}
+
 TEST(Cli, QuietPrintsNothing) {
     const fs::path d = scratch("quiet");
     const Outcome o = packbed(small + "--quiet --out " + d.string());
@@ -333,6 +347,7 @@ INSTANTIATE_TEST_SUITE_P(
                  "(0.02) < overlap-high < 0.5 (Dp)"},
         BadInput{"generate --update sideways",
                  "packbed: --update: sideways not in {in-place,simultaneous}"},
+        BadInput{"generate --solver newton", "packbed: --solver: newton not in {paper,fire}"},
         BadInput{"generate --warp-speed 9",
                  "packbed: The following arguments were not expected: 9 --warp-speed; run "
                  "'packbed generate --help' for the options"},
@@ -340,7 +355,7 @@ INSTANTIATE_TEST_SUITE_P(
                  "packbed: --config: line 2: unknown key 'warp_speed'; allowed: aspect-ratio, "
                  "band-clearance, cg-step, ck, diameter, e0, max-iterations, mc-period, "
                  "mc-tolerance, mc-window, out, overlap-high, overlap-low, particles, quiet, "
-                 "seed, skin, threads, tolerance, update"},
+                 "seed, skin, solver, threads, tolerance, update"},
         BadInput{"generate --config @D/broken.toml",
                  "packbed: --config: line 1, column 16: Error while parsing value: could not "
                  "determine value type"},

@@ -27,6 +27,7 @@ extern "C" void on_interrupt(int) {
 struct GenerateOptions {
     SoftSphereParameters params;
     std::string update = to_string(SoftSphereParameters{}.update);
+    std::string solver = to_string(SoftSphereParameters{}.solver);
     std::string out = "packbed-out";
     double band_clearance = 1.0;
     unsigned long long threads = static_cast<unsigned long long>(omp_get_num_procs());
@@ -37,6 +38,9 @@ int run_generate(GenerateOptions& o) {
     for (const auto& [name, value] : update_orders())
         if (name == o.update)
             o.params.update = value;
+    for (const auto& [name, value] : solvers())
+        if (name == o.solver)
+            o.params.solver = value;
     o.params.validate();
     OutputDirectory out(o.out); // refuse an unwritable directory before the run
     omp_set_num_threads(static_cast<int>(o.threads));
@@ -142,6 +146,13 @@ Command register_generate(CLI::App& parent) {
                     "in-place: each sphere moves in turn (Gauss-Seidel); simultaneous: all move "
                     "from the old positions (Jacobi, uses --threads)")
         ->check(CLI::IsMember(update_names));
+    std::vector<std::string> solver_names;
+    for (const auto& entry : solvers())
+        solver_names.push_back(entry.first);
+    app->add_option("--solver", o.solver,
+                    "paper: the iteration of Salvat et al. (2005); fire: the same energy "
+                    "minimised with FIRE, far fewer iterations (docs/performance.md)")
+        ->check(CLI::IsMember(solver_names));
     app->add_option("--skin", p.skin, "Verlet neighbour-list skin, Dp")
         ->check(real_in(0.0, 1.0, true, false));
     app->add_option("--max-iterations", p.max_iterations, "give up after this many iterations")

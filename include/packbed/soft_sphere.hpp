@@ -28,6 +28,19 @@ const std::vector<std::pair<std::string, UpdateOrder>>& update_orders();
 /// \return the name of an update order in update_orders().
 std::string to_string(UpdateOrder order);
 
+/// How the bed is relaxed. Both minimise the same energy (overlap springs, gravity, rigid
+/// floor, elastic wall) and end at the same overlap tolerance; docs/performance.md says when
+/// to use which.
+enum class Solver {
+    paper, ///< Salvat et al. (2005): eq. (4) iterated, Cg by eq. (7), mass-centre rule
+    fire,  ///< FIRE (Bitzek et al. 2006) with the paper's gravity control and annealing
+};
+
+/// The names users pick a solver by ("paper", "fire"): the one registry.
+const std::vector<std::pair<std::string, Solver>>& solvers();
+/// \return the name of a solver in solvers().
+std::string to_string(Solver solver);
+
 /// Every parameter of the algorithm; defaults are the paper's values. Lengths marked "Dp" are
 /// in units of the sphere diameter. Plain value type.
 struct SoftSphereParameters {
@@ -45,6 +58,7 @@ struct SoftSphereParameters {
     std::uint32_t mc_window = 10;  ///< successive records that must agree
     double mc_tolerance = 1e-4;    ///< their allowed spread, percent of the mean
     UpdateOrder update = UpdateOrder::simultaneous; ///< see UpdateOrder; docs/performance.md
+    Solver solver = Solver::paper;                  ///< see Solver
     double skin = 0.1;                              ///< Verlet-list skin, Dp; (0, 1]
     std::uint64_t max_iterations = 200'000'000;     ///< give up (ConvergenceError) beyond this
 
@@ -151,7 +165,17 @@ private:
     std::unique_ptr<State> m_state;
 };
 
-/// Run the whole algorithm: SoftSphereGenerator(parameters).run(control).
+/// Relax the generation stage's bed with FIRE (see Solver::fire and src/fire.cpp): stages
+/// "initial" (no gravity, overlaps removed), "intermediate" (gravity under the control of
+/// eq. (7), mass-centre rule) and "final" (gravity halved until both largest overlaps are
+/// below the tolerance). `iterations` counts force evaluations; `cg` in a StageRecord is
+/// the gravity force per sphere in units of contact stiffness x Dp.
+/// \throws ConvergenceError, Cancelled as SoftSphereGenerator::run
+SoftSphereResult relax_with_fire(const SoftSphereParameters& parameters,
+                                 const RunControl& control = {});
+
+/// Run the whole algorithm with the chosen solver: SoftSphereGenerator(parameters).run(control)
+/// or relax_with_fire(parameters, control).
 SoftSphereResult generate_soft_sphere(const SoftSphereParameters& parameters,
                                       const RunControl& control = {});
 

@@ -1,0 +1,109 @@
+#!/usr/bin/env python3
+"""Are the fire solver's beds statistically the paper's? (issue 5, item 2)
+
+For each aspect ratio a and seed, runs `packbed generate --solver paper` and `--solver fire`
+on the same bed (Np = 1.5 (1 - 0.4) a^2 HEIGHT, as examples/validate.py, band 2 Dp clear of
+the ends) into OUT/<solver>/a<a>/seed<seed>/, skipping runs whose summary.json exists; paper
+runs already made by examples/validate.py are reused from --paper-runs. Prints, per a, the
+mean overall void fraction of each solver, their difference, the RMS difference of the mean
+radial void-fraction profiles (x from the wall 0 to a/2, 0.02 Dp shells), the same RMS between
+two halves of the paper's seeds (the noise floor) and the mean wall time and iterations.
+Targets (issue 5): |mean difference| <= 0.003 and profile RMS <= 0.01.
+
+Usage: bench/solver_equivalence.py [--packbed build/packbed] [--aspect-ratios 5,10]
+                                   [--seeds 1-10] [--out results/equivalence]
+                                   [--paper-runs results/validation]
+"""
+import argparse
+import csv
+import json
+import math
+import os
+import subprocess
+import sys
+
+
+def parse_seeds(text):
+    seeds = []
+    for part in text.split(","):
+        lo, _, hi = part.partition("-")
+        seeds.extend(range(int(lo), int(hi or lo) + 1))
+    return seeds
+
+
+def particles_for(a, height):
+    return round(1.5 * (1 - 0.4) * a * a * height)
+
+
+def profile(run):
+    with open(os.path.join(run, "radial_void_fraction.csv")) as f:
+        return [float(r["void_fraction"]) for r in csv.DictReader(f)]
+
+
+def mean_profile(runs):
+    profiles = [profile(r) for r in runs]
+    return [sum(p[i] for p in profiles) / len(profiles) for i in range(len(profiles[0]))]
+
+
+def rms(a, b):
+    return math.sqrt(sum((x - y) ** 2 for x, y in zip(a, b)) / len(a))
+
+
+def main():
+    p = argparse.ArgumentParser(description=__doc__, formatter_class=argparse.RawTextHelpFormatter)
+    p.add_argument("--packbed", default="build/packbed")
+    p.add_argument("--aspect-ratios", default="5,10")
+    p.add_argument("--seeds", default="1-10")
+    p.add_argument("--height", type=float, default=25.0)
+    p.add_argument("--out", default="results/equivalence")
+    p.add_argument("--paper-runs", default="results/validation")
+    args = p.parse_args()
+    seeds = parse_seeds(args.seeds)
+    verbose = sys.stderr.isatty()
+
+    print("| a | Np | seeds | paper: mean e | fire: mean e | difference | profile RMS "
+          "| paper halves RMS | paper: s, iterations | fire: s, iterations |")
+    print("|---|---|---|---|---|---|---|---|---|---|")
+    for a in [float(x) for x in args.aspect_ratios.split(",")]:
+        runs = {"paper": [], "fire": []}
+        for solver in runs:
+            for seed in seeds:
+                run = os.path.join(args.out, solver, f"a{a:g}", f"seed{seed}")
+                reused = os.path.join(args.paper_runs, f"a{a:g}", f"seed{seed}")
+                if solver == "paper" and os.path.exists(os.path.join(reused, "summary.json")):
+                    run = reused
+                if not os.path.exists(os.path.join(run, "summary.json")):
+                    if verbose:
+                        print(f"a = {a:g}, seed {seed}, {solver} ...", file=sys.stderr, flush=True)
+                    subprocess.run([args.packbed, "generate", "--solver", solver,
+                                    "--aspect-ratio", f"{a:g}",
+                                    "--particles", str(particles_for(a, args.height)),
+                                    "--seed", str(seed), "--band-clearance", "2", "--quiet",
+                                    "--out", run], check=True)
+                runs[solver].append(run)
+
+        def summaries(solver):
+            out = []
+            for run in runs[solver]:
+                with open(os.path.join(run, "summary.json")) as f:
+                    out.append(json.load(f))
+            return out
+
+        paper, fire = summaries("paper"), summaries("fire")
+        e_paper = sum(s["void_fraction"] for s in paper) / len(paper)
+        e_fire = sum(s["void_fraction"] for s in fire) / len(fire)
+        half = len(seeds) // 2
+        noise = rms(mean_profile(runs["paper"][:half]), mean_profile(runs["paper"][half:]))
+        diff = rms(mean_profile(runs["paper"]), mean_profile(runs["fire"]))
+
+        def cost(s):
+            return (f"{sum(x['seconds'] for x in s) / len(s):.1f}, "
+                    f"{sum(x['iterations'] for x in s) / len(s):.3g}")
+
+        print(f"| {a:g} | {particles_for(a, args.height)} | {len(seeds)} | {e_paper:.4f} "
+              f"| {e_fire:.4f} | {e_fire - e_paper:+.4f} | {diff:.4f} | {noise:.4f} "
+              f"| {cost(paper)} | {cost(fire)} |", flush=True)
+
+
+if __name__ == "__main__":
+    main()
