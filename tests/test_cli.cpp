@@ -118,7 +118,9 @@ TEST(Cli, SameSeedSameBytesWhateverTheThreads) {
 }
 
 TEST(Cli, FireSolverSameBytesWhateverTheThreads) {
-    // 1 200 spheres: above the size where the steps run in parallel.
+    // 1 200 spheres: above the size where the steps run in parallel (the library test
+    // FireSolver.TrajectoryIsIndependentOfThreadCount forces two threads; here a busy machine
+    // may give the second run fewer).
     const fs::path a = scratch("f1"), b = scratch("f2");
     const std::string bed =
         "generate --solver fire --aspect-ratio 10 --particles 1200 --seed 4 --quiet ";

@@ -206,6 +206,35 @@ TEST(FireSolver, ReachesThePapersToleranceAndDensityInFarFewerIterations) {
     EXPECT_NEAR(e, 0.4329, 0.005); // one bed: within the seed-to-seed spread of the paper's
 }
 
+TEST(FireSolver, TrajectoryIsIndependentOfThreadCount) {
+    // 1 200 spheres: above the size where the steps run in parallel. The mass centre and the
+    // largest overlaps every 100 steps, for 3 000 steps, must agree to the bit.
+    SoftSphereParameters p;
+    p.aspect_ratio = 10.0;
+    p.particles = 1200;
+    p.seed = 4;
+    p.solver = Solver::fire;
+    auto trajectory = [&](int threads) {
+        omp_set_num_threads(threads);
+        std::vector<double> seen;
+        RunControl control;
+        control.on_progress = [&](const Progress& q) {
+            seen.insert(seen.end(),
+                        {q.mass_centre_z, q.max_overlap_pair, q.max_overlap_wall, q.cg});
+        };
+        control.should_stop = [&] { return seen.size() >= 4 * 30; };
+        EXPECT_THROW(generate_soft_sphere(p, control), Cancelled);
+        return seen;
+    };
+    const int saved = omp_get_max_threads();
+    const auto one = trajectory(1);
+    const auto two = trajectory(2);
+    omp_set_num_threads(saved);
+    ASSERT_EQ(one.size(), 4u * 30);
+    EXPECT_EQ(one, two);
+    EXPECT_NE(one.front(), one[one.size() - 4]); // the bed moved
+}
+
 TEST(SoftSphere, SimultaneousUpdateIsIndependentOfThreadCount) {
     // 3 000 spheres: above the size where the iteration runs in parallel. 300 iterations from
     // the random start, with gravity, include several neighbour-list rebuilds.

@@ -89,7 +89,7 @@ int run_analyze(AnalyzeOptions& o) {
 
     const fs::path out_dir = o.out.empty() ? path.parent_path() / "analysis" : fs::path(o.out);
     OutputDirectory out(out_dir);
-    omp_set_num_threads(static_cast<int>(o.threads));
+    use_threads(o.threads);
     const BedAnalysis analysis = analyze_bed(file.packing, container, o.analysis);
 
     auto summary = analysis_summary(analysis, o.analysis);
@@ -166,7 +166,9 @@ Command register_analyze(CLI::App& parent) {
     app->add_option("--outside-tolerance", o.outside_tolerance,
                     "how far a sphere may stick out of the wall or floor, Dp")
         ->check(real_in(0.0, 1.0, false, false));
-    app->add_option("-j,--threads", o.threads, "threads (results do not depend on it)")
+    app->add_option("-j,--threads", o.threads,
+                    "at most this many threads, fewer while the machine is busy (results do not "
+                    "depend on it)")
         ->check(whole_in(1, 1024));
     app->add_flag("-q,--quiet", o.quiet, "no report on the terminal");
     return {app, [options] { return run_analyze(*options); }};

@@ -43,7 +43,7 @@ int run_generate(GenerateOptions& o) {
             o.params.solver = value;
     o.params.validate();
     OutputDirectory out(o.out); // refuse an unwritable directory before the run
-    omp_set_num_threads(static_cast<int>(o.threads));
+    use_threads(o.threads);
 
     std::signal(SIGINT, on_interrupt);
     std::signal(SIGTERM, on_interrupt);
@@ -161,7 +161,9 @@ Command register_generate(CLI::App& parent) {
                     "the void fraction is measured between this distance above the floor and "
                     "below the bed top, Dp")
         ->check(real_in(0.0, inf, false, true));
-    app->add_option("-j,--threads", o.threads, "threads (results do not depend on it)")
+    app->add_option("-j,--threads", o.threads,
+                    "at most this many threads, fewer while the machine is busy (results do not "
+                    "depend on it)")
         ->check(whole_in(1, 1024));
     app->add_flag("-q,--quiet", o.quiet, "no progress and no report on the terminal");
     app->fallthrough(); // --config belongs to the top-level app

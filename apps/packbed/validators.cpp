@@ -3,6 +3,7 @@
 #include <string>
 
 #include <fmt/format.h>
+#include <omp.h>
 
 #include "command.hpp"
 
@@ -41,6 +42,11 @@ CLI::Validator whole_in(unsigned long long low, unsigned long long high) {
             return {};
         },
         allowed);
+}
+
+void use_threads(unsigned long long threads) {
+    omp_set_num_threads(static_cast<int>(threads));
+    omp_set_dynamic(1);
 }
 
 } // namespace packbed::cli
