@@ -85,9 +85,10 @@ PassTotals for_each_block(std::size_t n, std::vector<PassTotals>& blocks, Body&&
     blocks.assign(nblocks, PassTotals{});
 #pragma omp parallel for schedule(static) if (n >= detail::parallel_min_spheres)
     for (std::size_t c = 0; c < nblocks; ++c) {
-        PassTotals& t = blocks[c];
+        PassTotals t; // on the stack, so that the sums can live in registers
         for (std::size_t k = c * sum_block; k < std::min(n, (c + 1) * sum_block); ++k)
             body(k, t);
+        blocks[c] = t;
     }
     return combine(blocks);
 }
