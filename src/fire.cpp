@@ -21,7 +21,6 @@
 #include <algorithm>
 #include <chrono>
 #include <cmath>
-#include <deque>
 #include <optional>
 
 #include <fmt/format.h>
@@ -97,7 +96,8 @@ class Fire {
 public:
     explicit Fire(const SoftSphereParameters& p)
         : m_params(p)
-        , m_bed(p.aspect_ratio) {
+        , m_bed(p.aspect_ratio)
+        , m_window(p.mc_window, p.mc_tolerance) {
         m_bed.generate(p);
         m_bed.velocity.assign(m_bed.packing.size(), Vec3{});
         m_force.resize(m_bed.packing.size());
@@ -130,7 +130,7 @@ public:
                 m_g += g_step;
             else if (s.pair > p.overlap_high)
                 m_g = std::max(m_g - g_step, 0.0);
-            if (m_steps % p.mc_period == 0 && settled())
+            if (m_steps % p.mc_period == 0 && m_window.settled())
                 break;
         }
         result.stages.push_back(record("intermediate", start, 1));
@@ -163,22 +163,14 @@ public:
                         "iteration {}: the largest overlaps stay at {:.3g} (pair) and {:.3g} "
                         "(wall) Dp while gravity fell to {:.3g}",
                         m_steps, s.pair, s.wall, m_g));
-                if (m_steps % p.mc_period == 0 && settled())
+                if (m_steps % p.mc_period == 0 && m_window.settled())
                     break;
             }
         }
         result.stages.push_back(record("final", start, steps));
 
-        const Overlaps final_overlaps = measure_overlaps(m_bed.packing, m_bed.container);
-        const double d = p.diameter;
-        result.max_overlap_pair = final_overlaps.pair;
-        result.max_overlap_wall = final_overlaps.wall;
-        result.packing = m_bed.packing_in_generation_order();
-        result.packing.scale(d);
-        result.container = Cylinder(m_bed.container.radius() * d);
-        result.initial_height = m_bed.initial_height * d;
+        m_bed.fill_result(result, p.diameter);
         result.iterations = m_steps;
-        result.neighbor_builds = m_bed.list.builds();
         result.seconds =
             std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
         return result;
@@ -267,9 +259,7 @@ private:
         ++m_steps;
         if (m_steps % p.mc_period == 0) {
             const double mc = bed.mass_centre_z();
-            m_window.push_back(mc);
-            if (m_window.size() > p.mc_window)
-                m_window.pop_front();
+            m_window.push(mc);
             report(control, stage, forces, mc);
         }
         return forces;
@@ -280,18 +270,6 @@ private:
         m_dt = fire_dt0;
         m_alpha = fire_alpha0;
         m_positive = 0;
-    }
-
-    /// The paper's mass-centre rule on the last mc_window records.
-    bool settled() const {
-        if (m_window.size() < m_params.mc_window)
-            return false;
-        const auto [lo, hi] = std::minmax_element(m_window.begin(), m_window.end());
-        double mean = 0.0;
-        for (const double value : m_window)
-            mean += value;
-        mean /= static_cast<double>(m_window.size());
-        return *hi - *lo <= m_params.mc_tolerance / 100.0 * std::abs(mean);
     }
 
     /// The overlaps seen by the force pass were below the tolerance; confirm them on the
@@ -343,7 +321,7 @@ private:
         r.max_overlap_pair = now.pair;
         r.max_overlap_wall = now.wall;
         r.mass_centre_z = m_bed.mass_centre_z();
-        r.mass_centre_window = {m_window.begin(), m_window.end()};
+        r.mass_centre_window = m_window.values();
         return r;
     }
 
@@ -351,7 +329,7 @@ private:
     detail::SoftBed m_bed;
     std::vector<Vec3> m_force;
     std::vector<PassTotals> m_blocks;
-    std::deque<double> m_window;
+    detail::MassCentreWindow m_window;
     std::uint64_t m_steps = 0;
     double m_g = 0.0;
     double m_dt = fire_dt0;

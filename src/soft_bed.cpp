@@ -57,6 +57,17 @@ const Packing& SoftBed::packing_in_generation_order() const {
     return m_in_generation_order;
 }
 
+void SoftBed::fill_result(SoftSphereResult& result, double diameter) const {
+    const Overlaps final_overlaps = measure_overlaps(packing, container);
+    result.max_overlap_pair = final_overlaps.pair;
+    result.max_overlap_wall = final_overlaps.wall;
+    result.packing = packing_in_generation_order();
+    result.packing.scale(diameter);
+    result.container = Cylinder(container.radius() * diameter);
+    result.initial_height = initial_height * diameter;
+    result.neighbor_builds = list.builds();
+}
+
 double SoftBed::mass_centre_z() const {
     double weighted = 0.0, total = 0.0;
     for (const std::uint32_t k : slot) {

@@ -5,6 +5,7 @@
 #include <algorithm>
 #include <cmath>
 #include <cstdint>
+#include <deque>
 #include <random>
 #include <vector>
 
@@ -42,6 +43,38 @@ struct LinearOverlapLaw {
         else // coincident centres: separate them vertically, lower index downwards
             move.z += i_below ? -ck * overlap : ck * overlap;
     }
+};
+
+/// The last `window` mass-centre records and the paper's settling rule (section 3.3).
+class MassCentreWindow {
+public:
+    MassCentreWindow(std::uint32_t window, double tolerance_percent)
+        : m_window(window)
+        , m_fraction(tolerance_percent / 100.0) {}
+    void push(double value) {
+        m_values.push_back(value);
+        if (m_values.size() > m_window)
+            m_values.pop_front();
+    }
+    /// \return true when `window` successive values lie within the tolerance:
+    /// (max - min) <= tolerance/100 * |mean|.
+    bool settled() const {
+        if (m_values.size() < m_window)
+            return false;
+        const auto [lo, hi] = std::minmax_element(m_values.begin(), m_values.end());
+        double mean = 0.0;
+        for (double v : m_values)
+            mean += v;
+        mean /= static_cast<double>(m_values.size());
+        return *hi - *lo <= m_fraction * std::abs(mean);
+    }
+    std::vector<double> values() const { return {m_values.begin(), m_values.end()}; }
+    void clear() { m_values.clear(); }
+
+private:
+    std::uint32_t m_window;
+    double m_fraction;
+    std::deque<double> m_values;
 };
 
 /// Spheres of one soft-sphere bed in units of Dp, in a cylinder, stored in a spatial order
@@ -95,6 +128,10 @@ struct SoftBed {
 
     /// \return the spheres in generation order (refreshed at each call), units of Dp.
     const Packing& packing_in_generation_order() const;
+
+    /// Set the packing (generation order), container, L0, exact final overlaps and list
+    /// builds of `result`, lengths scaled from Dp to `diameter`.
+    void fill_result(SoftSphereResult& result, double diameter) const;
 
     /// Height of the mass centre, \f$\sum r_i^3 z_i / \sum r_i^3\f$, Dp, summed in generation
     /// order.

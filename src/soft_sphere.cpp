@@ -3,7 +3,6 @@
 #include <algorithm>
 #include <chrono>
 #include <cmath>
-#include <deque>
 #include <numbers>
 #include <optional>
 #include <random>
@@ -32,37 +31,6 @@ struct SweepStats {
     double wall = 0.0;  ///< largest sphere-wall overlap, Dp
     double top = 0.0;   ///< highest centre after the move, Dp
     bool finite = true; ///< every new position finite
-};
-
-/// The last `window` mass-centre records and the paper's settling rule (section 3.3).
-class MassCentreWindow {
-public:
-    MassCentreWindow(std::uint32_t window, double tolerance_percent)
-        : m_window(window)
-        , m_fraction(tolerance_percent / 100.0) {}
-    void push(double value) {
-        m_values.push_back(value);
-        if (m_values.size() > m_window)
-            m_values.pop_front();
-    }
-    /// \return true when `window` successive values lie within the tolerance:
-    /// (max - min) <= tolerance/100 * |mean|.
-    bool settled() const {
-        if (m_values.size() < m_window)
-            return false;
-        const auto [lo, hi] = std::minmax_element(m_values.begin(), m_values.end());
-        double mean = 0.0;
-        for (double v : m_values)
-            mean += v;
-        mean /= static_cast<double>(m_values.size());
-        return *hi - *lo <= m_fraction * std::abs(mean);
-    }
-    std::vector<double> values() const { return {m_values.begin(), m_values.end()}; }
-
-private:
-    std::uint32_t m_window;
-    double m_fraction;
-    std::deque<double> m_values;
 };
 
 } // namespace
@@ -231,7 +199,7 @@ struct SoftSphereGenerator::State : detail::SoftBed {
     }
 
     StageRecord record(std::string name, std::uint64_t start, const SweepStats& s,
-                       const MassCentreWindow& window) {
+                       const detail::MassCentreWindow& window) {
         StageRecord r;
         r.name = std::move(name);
         r.iterations = iterations - start;
@@ -262,7 +230,7 @@ const SoftSphereParameters& SoftSphereGenerator::parameters() const {
 StageRecord SoftSphereGenerator::run_initial_stage(const RunControl& control) {
     State& st = *m_state;
     const std::uint64_t start = st.iterations;
-    MassCentreWindow window(st.params.mc_window, st.params.mc_tolerance);
+    detail::MassCentreWindow window(st.params.mc_window, st.params.mc_tolerance);
     st.cg = 0.0;
     for (;;) {
         const SweepStats s = st.sweep(0.0);
@@ -278,7 +246,7 @@ StageRecord SoftSphereGenerator::run_intermediate_stage(const RunControl& contro
     State& st = *m_state;
     const SoftSphereParameters& p = st.params;
     const std::uint64_t start = st.iterations;
-    MassCentreWindow window(p.mc_window, p.mc_tolerance);
+    detail::MassCentreWindow window(p.mc_window, p.mc_tolerance);
     st.cg = 0.0; // "starting from a null initial value"
     for (;;) {
         const SweepStats s = st.sweep(st.cg);
@@ -302,7 +270,7 @@ StageRecord SoftSphereGenerator::run_final_stage(const RunControl& control) {
     State& st = *m_state;
     const SoftSphereParameters& p = st.params;
     const std::uint64_t start = st.iterations;
-    MassCentreWindow window(p.mc_window, p.mc_tolerance);
+    detail::MassCentreWindow window(p.mc_window, p.mc_tolerance);
     std::uint32_t steps = 0;
     // Below this Cg, gravity moves a sphere by less than 1e-8 of the tolerance per iteration.
     const double stalled_cg = 1e-8 * p.tolerance;
@@ -310,7 +278,7 @@ StageRecord SoftSphereGenerator::run_final_stage(const RunControl& control) {
         // A new step: Cg halved, held constant until the mass centre settles.
         st.cg *= 0.5;
         ++steps;
-        window = MassCentreWindow(p.mc_window, p.mc_tolerance);
+        window = detail::MassCentreWindow(p.mc_window, p.mc_tolerance);
         for (std::uint64_t k = 1;; ++k) {
             const SweepStats s = st.sweep(st.cg);
             st.check(s, "final", true);
@@ -353,17 +321,9 @@ SoftSphereResult SoftSphereGenerator::run(const RunControl& control) {
     st.stages.push_back(run_final_stage(control));
 
     SoftSphereResult result;
-    const double d = st.params.diameter;
-    const Overlaps final_overlaps = measure_overlaps(st.packing, st.container);
-    result.max_overlap_pair = final_overlaps.pair;
-    result.max_overlap_wall = final_overlaps.wall;
-    result.packing = st.packing_in_generation_order();
-    result.packing.scale(d);
-    result.container = Cylinder(st.container.radius() * d);
-    result.initial_height = st.initial_height * d;
+    st.fill_result(result, st.params.diameter);
     result.iterations = st.iterations;
     result.stages = st.stages;
-    result.neighbor_builds = st.list.builds();
     result.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
     return result;
 }
