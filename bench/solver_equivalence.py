@@ -71,7 +71,13 @@ def main():
                 run = os.path.join(args.out, solver, f"a{a:g}", f"seed{seed}")
                 reused = os.path.join(args.paper_runs, f"a{a:g}", f"seed{seed}")
                 if solver == "paper" and os.path.exists(os.path.join(reused, "summary.json")):
-                    run = reused
+                    with open(os.path.join(reused, "summary.json")) as f:
+                        s = json.load(f)
+                    # Reuse only the same bed: same Np, same band, the paper's solver.
+                    if (s["particles"] == particles_for(a, args.height)
+                            and s["parameters"]["band_clearance"] == 2
+                            and s["parameters"].get("solver", "paper") == "paper"):
+                        run = reused
                 if not os.path.exists(os.path.join(run, "summary.json")):
                     if verbose:
                         print(f"a = {a:g}, seed {seed}, {solver} ...", file=sys.stderr, flush=True)
@@ -93,7 +99,8 @@ def main():
         e_paper = sum(s["void_fraction"] for s in paper) / len(paper)
         e_fire = sum(s["void_fraction"] for s in fire) / len(fire)
         half = len(seeds) // 2
-        noise = rms(mean_profile(runs["paper"][:half]), mean_profile(runs["paper"][half:]))
+        noise = rms(mean_profile(runs["paper"][:half]), mean_profile(runs["paper"][half:])) \
+            if half > 0 else float("nan")
         diff = rms(mean_profile(runs["paper"]), mean_profile(runs["fire"]))
 
         def cost(s):

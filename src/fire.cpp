@@ -46,6 +46,9 @@ constexpr double fire_alpha0 = 0.5;
 constexpr double fire_f_alpha = 0.99;
 constexpr double fire_dt_max = 0.2; // stable: a sphere with 12 contacts has omega <= sqrt(24)
 constexpr double fire_dt0 = 0.05;
+// FIRE 2.0 (Guenole et al. 2020) keeps dt >= 0.02 dt_max, so that a run of uphill steps
+// cannot freeze the bed (which the mass-centre rule would take for a settled one).
+constexpr double fire_dt_min = 0.02 * fire_dt_max;
 // Largest move of one sphere in one step, Dp: keeps impacts of a falling bed gentle and the
 // Verlet list (skin/2 = 0.05 Dp by default) valid for several steps.
 constexpr double fire_max_step = 0.01;
@@ -208,13 +211,14 @@ private:
         // FIRE's control of dt and alpha.
         const bool uphill = !(forces.a > 0.0);
         if (!uphill) {
-            if (++m_positive > fire_n_min) {
+            m_positive = std::min(m_positive + 1, fire_n_min + 1); // no overflow on long runs
+            if (m_positive > fire_n_min) {
                 m_dt = std::min(m_dt * fire_f_inc, fire_dt_max);
                 m_alpha *= fire_f_alpha;
             }
         } else {
             m_positive = 0;
-            m_dt *= fire_f_dec;
+            m_dt = std::max(m_dt * fire_f_dec, fire_dt_min);
             m_alpha = fire_alpha0;
         }
         const double dt = m_dt;
@@ -292,9 +296,12 @@ private:
             what = fmt::format("the largest overlap grew to {:.3g} Dp", t.pair);
         if (!what.empty())
             throw ConvergenceError(fmt::format(
-                "the fire solver diverged in the {} stage at iteration {}: {}; lower --cg-step "
-                "(now {})",
-                stage, m_steps, what, m_params.cg_step));
+                "the fire solver diverged in the {} stage at iteration {}: {}{}", stage, m_steps,
+                what,
+                m_g > 0.0 ? fmt::format("; lower --cg-step (now {}) or raise --ck (now {}): "
+                                        "gravity grows by cg-step / ck per step",
+                                        m_params.cg_step, m_params.ck)
+                          : ""));
     }
 
     void report(const RunControl& control, std::string_view stage, const PassTotals& t,
@@ -308,7 +315,7 @@ private:
         if (control.should_stop && control.should_stop())
             throw Cancelled();
         if (control.on_progress)
-            control.on_progress({stage, m_steps, m_g, t.pair, t.wall, mass_centre});
+            control.on_progress({stage, m_steps, m_g * m_params.ck, t.pair, t.wall, mass_centre});
     }
 
     StageRecord record(std::string name, std::uint64_t start, std::uint32_t steps) const {
@@ -316,7 +323,7 @@ private:
         r.name = std::move(name);
         r.iterations = m_steps - start;
         r.steps = steps;
-        r.cg = m_g;
+        r.cg = m_g * m_params.ck; // the paper's Cg = Ck g, comparable between the solvers
         const Overlaps now = measure_overlaps(m_bed.packing, m_bed.container);
         r.max_overlap_pair = now.pair;
         r.max_overlap_wall = now.wall;

@@ -1,5 +1,6 @@
 #include <charconv>
 #include <cmath>
+#include <cstdlib>
 #include <string>
 
 #include <fmt/format.h>
@@ -46,7 +47,8 @@ CLI::Validator whole_in(unsigned long long low, unsigned long long high) {
 
 void use_threads(unsigned long long threads) {
     omp_set_num_threads(static_cast<int>(threads));
-    omp_set_dynamic(1);
+    if (std::getenv("OMP_DYNAMIC") == nullptr) // OMP_DYNAMIC=false keeps the count fixed
+        omp_set_dynamic(1);
 }
 
 } // namespace packbed::cli

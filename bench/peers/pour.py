@@ -28,7 +28,8 @@ D = 1e-3  # sphere diameter, m (as ../shared/reference/measurements.md)
 
 
 def random_start(n, a, seed, fraction=0.2):
-    """Random sequential addition of n spheres of diameter 1 in a cylinder of radius a/2."""
+    """Random sequential addition of n spheres of diameter 1 in a cylinder of radius a/2; the
+    solid fraction refers to the cylinder the centres can reach (radius a/2 - 1/2)."""
     rng = random.Random(seed)
     reach = a / 2 - 0.5
     height = n * (math.pi / 6) / (math.pi * reach * reach * fraction)
@@ -59,7 +60,8 @@ def write_data(path, centres, a, top):
 
 
 def largest_overlaps(path, radius):
-    """Largest pair and wall overlaps of a CSV or dump file, in units of the diameter."""
+    """Largest pair and wall overlaps of a CSV or dump file, in units of the diameter (the
+    floor is not counted: packbed's is rigid, LAMMPS's is a soft wall like the side)."""
     with open(path) as f:
         lines = f.read().splitlines()
     if lines[0].startswith("ITEM:"):
@@ -111,6 +113,9 @@ def main():
     if lmp is None:
         sys.exit("bench/peers/pour.py: lmp not found; run bench/peers/install.sh")
     a, n = args.aspect_ratio, args.particles
+    if not (a > 1.0 and n >= 1):
+        sys.exit(f"bench/peers/pour.py: --aspect-ratio {a:g} and --particles {n}: need a > 1 "
+                 "and at least one sphere")
     work = os.path.abspath(os.path.join(args.work, f"a{a:g}-n{n}-seed{args.seed}"))
     os.makedirs(work, exist_ok=True)
     centres, top = random_start(n, a, args.seed)

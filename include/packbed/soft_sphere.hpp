@@ -123,10 +123,11 @@ Overlaps measure_overlaps(const Packing& packing, const Cylinder& container);
 /// \return L0 in units of Dp.
 double initial_bed_height(std::uint64_t particles, double aspect_ratio, double e0);
 
-/// The algorithm, stage by stage. The constructor runs the generation stage (section 3.1);
-/// run() runs the three relaxation stages, or call them one by one (for tests and tools).
-/// Positions are kept in units of Dp internally. Not thread-safe; uses OpenMP inside
-/// (the simultaneous update is parallel and gives the same bits for any number of threads).
+/// The paper's algorithm (Solver::paper), stage by stage; `parameters.solver` is not looked
+/// at here (generate_soft_sphere dispatches on it). The constructor runs the generation stage
+/// (section 3.1); run() runs the three relaxation stages, or call them one by one (for tests and
+/// tools). Positions are kept in units of Dp internally. Not thread-safe; uses OpenMP inside (the
+/// simultaneous update is parallel and gives the same bits for any number of threads).
 class SoftSphereGenerator {
 public:
     /// \param parameters validated here (InvalidInput when wrong)
@@ -168,8 +169,10 @@ private:
 /// Relax the generation stage's bed with FIRE (see Solver::fire and src/fire.cpp): stages
 /// "initial" (no gravity, overlaps removed), "intermediate" (gravity under the control of
 /// eq. (7), mass-centre rule) and "final" (gravity halved until both largest overlaps are
-/// below the tolerance). `iterations` counts force evaluations; `cg` in a StageRecord is
-/// the gravity force per sphere in units of contact stiffness x Dp.
+/// below the tolerance). `iterations` counts force evaluations; `cg` in a StageRecord and in
+/// Progress is the paper's Cg = Ck g, g being the gravity force per sphere in units of
+/// contact stiffness x Dp (so the two solvers' values compare); `ck` enters only there and
+/// in the gravity step cg_step / ck.
 /// \throws ConvergenceError, Cancelled as SoftSphereGenerator::run
 SoftSphereResult relax_with_fire(const SoftSphereParameters& parameters,
                                  const RunControl& control = {});
