@@ -20,8 +20,8 @@
 // added in order: the same bits for any number of threads.
 #include <algorithm>
 #include <chrono>
+#include <string>
 #include <cmath>
-#include <optional>
 
 #include <fmt/format.h>
 
