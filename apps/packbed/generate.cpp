@@ -47,7 +47,7 @@ int run_generate(GenerateOptions& o) {
 
     std::signal(SIGINT, on_interrupt);
     std::signal(SIGTERM, on_interrupt);
-    TerminalProgress progress(progress_wanted(o.quiet));
+    TerminalProgress progress(progress_wanted(o.quiet), o.params);
     RunControl control;
     control.on_progress = [&](const Progress& p) { progress(p); };
     control.should_stop = [] { return interrupted.load(); };

@@ -2,6 +2,7 @@
 
 #include <cstdio>
 #include <cstdlib>
+#include <optional>
 
 #include <fmt/format.h>
 #include <unistd.h>
@@ -17,16 +18,17 @@ void TerminalProgress::operator()(const Progress& p) {
     if (!m_enabled)
         return;
     const auto now = std::chrono::steady_clock::now();
+    const double seconds = std::chrono::duration<double>(now - m_start).count();
+    const std::optional<double> left = m_time_left.update(p, seconds); // every report
     if (m_drawn && now - m_last < std::chrono::milliseconds(100))
         return;
     m_last = now;
     m_drawn = true;
-    const double seconds = std::chrono::duration<double>(now - m_start).count();
     fmt::print(stderr,
-               "\r\033[K{:>5.1f} s  {:<12} iteration {:>9}  Cg {:.3e}  overlap pair {:.2e} "
-               "wall {:.2e} Dp  mass centre {:.6f} Dp",
-               seconds, p.stage, p.iteration, p.cg, p.max_overlap_pair, p.max_overlap_wall,
-               p.mass_centre_z);
+               "\r\033[K{:>5.1f} s  {:<12} {:>14}  iteration {:>9}  Cg {:.3e}  overlap pair "
+               "{:.2e} wall {:.2e} Dp  mass centre {:.6f} Dp",
+               seconds, p.stage, left ? fmt::format("~{:.0f} s left", *left) : "estimating",
+               p.iteration, p.cg, p.max_overlap_pair, p.max_overlap_wall, p.mass_centre_z);
     std::fflush(stderr);
 }
 

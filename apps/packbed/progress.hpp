@@ -4,6 +4,7 @@
 #include <chrono>
 
 #include "packbed/soft_sphere.hpp"
+#include "packbed/time_left.hpp"
 
 namespace packbed::cli {
 
@@ -14,8 +15,10 @@ bool progress_wanted(bool quiet);
 class TerminalProgress {
 public:
     /// \param enabled when false, every call does nothing
-    explicit TerminalProgress(bool enabled)
-        : m_enabled(enabled) {}
+    /// \param parameters the run's, for the estimate of the time left in each stage
+    TerminalProgress(bool enabled, const SoftSphereParameters& parameters)
+        : m_enabled(enabled)
+        , m_time_left(parameters) {}
     ~TerminalProgress() { finish(); }
     TerminalProgress(const TerminalProgress&) = delete;
     TerminalProgress& operator=(const TerminalProgress&) = delete;
@@ -28,6 +31,7 @@ public:
 private:
     bool m_enabled;
     bool m_drawn = false;
+    StageTimeLeft m_time_left;
     std::chrono::steady_clock::time_point m_start = std::chrono::steady_clock::now();
     std::chrono::steady_clock::time_point m_last{};
 };

@@ -1,0 +1,51 @@
+// An estimate of the time left in a stage of a soft-sphere run, from its progress reports.
+#pragma once
+
+#include <cstddef>
+#include <deque>
+#include <optional>
+#include <string>
+#include <utility>
+#include <vector>
+
+#include "packbed/soft_sphere.hpp"
+
+namespace packbed {
+
+/// Estimates how long the current stage of a run (either solver) still takes. Each stage ends
+/// when one quantity q falls to 1:
+///  - "initial": q = max(pair overlap, wall overlap) / tolerance;
+///  - "final": the overlaps the current Cg leaves once the bed has settled, over the
+///    tolerance: q = q0 Cg / Cg0 (q0 and Cg0 at the stage's first report; the overlaps of a
+///    settled bed are proportional to Cg), fitted over the whole stage (it falls in steps);
+///  - "intermediate": q = spread of the last mc_window mass-centre records / (mc_tolerance
+///    percent of their mean), the paper's settling rule (section 3.3).
+/// Both solvers converge roughly geometrically, so ln q falls roughly linearly in time. The
+/// estimate is ln q / r, r being the least-squares rate of fall of ln q over the last half of
+/// the stage's reports (at least `min_reports`). There is none while q does not fall (Cg still
+/// ramping up, a rearranging bed), and it says nothing about the stages still to come.
+class StageTimeLeft {
+public:
+    /// \param parameters the run's parameters (tolerance, mc_window, mc_tolerance)
+    explicit StageTimeLeft(const SoftSphereParameters& parameters);
+
+    /// Take one progress report made `seconds` after the start of the run (any monotone
+    /// clock). \return the seconds left in the report's stage, or nothing when there is no
+    /// estimate yet.
+    std::optional<double> update(const Progress& progress, double seconds);
+
+    /// Reports taken into the fit (fewer give no estimate).
+    static constexpr std::size_t min_reports = 5;
+
+private:
+    double m_tolerance;
+    std::size_t m_mc_window;
+    double m_mc_fraction;
+    std::string m_stage;
+    double m_final_start_q = 0.0;  // q at the first report of the stage
+    double m_final_start_cg = 0.0; // Cg at the first report of the stage
+    std::deque<double> m_mass_centres;
+    std::vector<std::pair<double, double>> m_history; // (seconds, ln q) in this stage
+};
+
+} // namespace packbed

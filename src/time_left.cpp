@@ -1,0 +1,93 @@
+#include "packbed/time_left.hpp"
+
+#include <algorithm>
+#include <cmath>
+
+namespace packbed {
+
+namespace {
+
+// Longer stage histories are thinned (every other report dropped) so memory stays bounded.
+constexpr std::size_t max_history = 4096;
+// Least fall of ln q over the fitted reports that counts as a trend.
+constexpr double min_fall = 0.1;
+
+} // namespace
+
+StageTimeLeft::StageTimeLeft(const SoftSphereParameters& parameters)
+    : m_tolerance(parameters.tolerance)
+    , m_mc_window(parameters.mc_window)
+    , m_mc_fraction(parameters.mc_tolerance / 100.0) {}
+
+std::optional<double> StageTimeLeft::update(const Progress& progress, double seconds) {
+    if (progress.stage != m_stage) {
+        m_stage = progress.stage;
+        m_mass_centres.clear();
+        m_history.clear();
+        m_final_start_q =
+            std::max(progress.max_overlap_pair, progress.max_overlap_wall) / m_tolerance;
+        m_final_start_cg = progress.cg;
+    }
+    double q = 0.0;
+    if (m_stage == "intermediate") {
+        m_mass_centres.push_back(progress.mass_centre_z);
+        if (m_mass_centres.size() > m_mc_window)
+            m_mass_centres.pop_front();
+        if (m_mass_centres.size() < m_mc_window)
+            return std::nullopt;
+        const auto [lo, hi] = std::minmax_element(m_mass_centres.begin(), m_mass_centres.end());
+        double mean = 0.0;
+        for (const double v : m_mass_centres)
+            mean += v;
+        mean /= static_cast<double>(m_mass_centres.size());
+        q = (*hi - *lo) / (m_mc_fraction * std::abs(mean));
+    } else if (m_stage == "final" && m_final_start_cg > 0.0) {
+        // The overlaps of a settled bed are proportional to Cg: the overlaps this Cg leaves.
+        q = m_final_start_q * progress.cg / m_final_start_cg;
+        if (std::max(progress.max_overlap_pair, progress.max_overlap_wall) < m_tolerance)
+            q = 1.0;
+    } else {
+        q = std::max(progress.max_overlap_pair, progress.max_overlap_wall) / m_tolerance;
+    }
+    if (!(q > 0.0) || !std::isfinite(q))
+        return std::nullopt;
+    if (m_history.size() == max_history) {
+        std::size_t kept = 0;
+        for (std::size_t i = 1; i < m_history.size(); i += 2)
+            m_history[kept++] = m_history[i];
+        m_history.resize(kept);
+    }
+    m_history.emplace_back(seconds, std::log(q));
+    if (q <= 1.0)
+        return 0.0;
+
+    // Least-squares slope of ln q against time over the last half of the stage's reports.
+    const std::size_t n =
+        std::max(min_reports, m_stage == "final" ? m_history.size() : m_history.size() / 2);
+    if (m_history.size() < n)
+        return std::nullopt;
+    double st = 0.0, sy = 0.0;
+    const auto first = m_history.end() - static_cast<std::ptrdiff_t>(n);
+    for (auto it = first; it != m_history.end(); ++it) {
+        st += it->first;
+        sy += it->second;
+    }
+    const double mt = st / static_cast<double>(n), my = sy / static_cast<double>(n);
+    double stt = 0.0, sty = 0.0;
+    for (auto it = first; it != m_history.end(); ++it) {
+        stt += (it->first - mt) * (it->first - mt);
+        sty += (it->first - mt) * (it->second - my);
+    }
+    if (!(stt > 0.0))
+        return std::nullopt;
+    const double slope = sty / stt; // d ln q / dt
+    // No estimate unless q has clearly fallen over the fit (a tenth in ln q), so noise on a
+    // level q (a final-stage Cg held until the bed settles) does not read as a trend.
+    const double span = m_history.back().first - first->first;
+    if (!(-slope * span > min_fall))
+        return std::nullopt;
+    const double fitted_now = my + slope * (seconds - mt); // ln q on the fitted line
+    return std::max(0.0, fitted_now / -slope);
+}
+
+} // namespace packbed

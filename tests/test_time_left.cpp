@@ -1,0 +1,75 @@
+// The estimate of the time left in a stage (StageTimeLeft) against runs whose end is known.
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <optional>
+
+#include "packbed/time_left.hpp"
+
+namespace packbed {
+namespace {
+
+Progress report(std::string_view stage, double overlap, double mass_centre = 10.0) {
+    return {stage, 0, 0.0, overlap, 0.5 * overlap, mass_centre};
+}
+
+TEST(StageTimeLeft, GeometricFallOfTheOverlapsGivesTheTimeToTheTolerance) {
+    SoftSphereParameters p;
+    StageTimeLeft estimate(p);
+    // overlap = 100 tolerance e^{-t/2}: it reaches the tolerance at t = 2 ln 100 = 9.21 s.
+    std::optional<double> left;
+    for (int t = 0; t <= 8; ++t) {
+        left = estimate.update(report("initial", 100.0 * p.tolerance * std::exp(-0.5 * t)), t);
+        if (t + 1 < static_cast<int>(StageTimeLeft::min_reports)) {
+            EXPECT_FALSE(left) << "t = " << t;
+        }
+    }
+    ASSERT_TRUE(left);
+    EXPECT_NEAR(*left, 2.0 * std::log(100.0) - 8.0, 1e-9);
+    // Below the tolerance the stage is over.
+    EXPECT_EQ(estimate.update(report("initial", 0.5 * p.tolerance), 9.0), 0.0);
+}
+
+TEST(StageTimeLeft, NoEstimateWhileTheOverlapsDoNotFall) {
+    SoftSphereParameters p;
+    StageTimeLeft estimate(p);
+    for (int t = 0; t < 20; ++t)
+        EXPECT_FALSE(estimate.update(report("final", 3.0 * p.tolerance * (1.0 + 0.01 * t)), t));
+    StageTimeLeft flat(p);
+    for (int t = 0; t < 20; ++t)
+        EXPECT_FALSE(flat.update(report("final", 3.0 * p.tolerance), t));
+}
+
+TEST(StageTimeLeft, SettlingMassCentreGivesTheTimeToThePapersRule) {
+    SoftSphereParameters p; // mc_window 10, mc_tolerance 1e-4 percent
+    StageTimeLeft estimate(p);
+    // A new stage starts afresh: a history of the initial stage must not count.
+    for (int t = 0; t < 10; ++t)
+        estimate.update(report("initial", 1e3 * p.tolerance * std::exp(-t)), t);
+    // One record a second, mass centre 10 + 0.01 e^{-t/5} Dp.
+    auto mc = [](double t) { return 10.0 + 0.01 * std::exp(-0.2 * t); };
+    // The rule holds once the spread of the last 10 records is below 1e-6 of their mean.
+    auto spread_ratio = [&](double t) {
+        double mean = 0.0;
+        for (int k = 0; k < 10; ++k)
+            mean += mc(t - k) / 10.0;
+        return (mc(t - 9) - mc(t)) / (1e-6 * mean);
+    };
+    double lo = 0.0, hi = 200.0; // spread_ratio falls through 1 in between
+    for (int i = 0; i < 200; ++i)
+        (spread_ratio(0.5 * (lo + hi)) > 1.0 ? lo : hi) = 0.5 * (lo + hi);
+    const double settles_at = lo;
+    ASSERT_GT(settles_at, 30.0);
+    std::optional<double> left;
+    for (int t = 0; t <= 30; ++t) {
+        left = estimate.update(report("intermediate", 7e-3, mc(t)), 10.0 + t);
+        if (t < 9) {
+            EXPECT_FALSE(left) << "no full window yet at t = " << t;
+        }
+    }
+    ASSERT_TRUE(left);
+    EXPECT_NEAR(*left, settles_at - 30.0, 0.05);
+}
+
+} // namespace
+} // namespace packbed
