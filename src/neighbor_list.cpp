@@ -136,9 +136,47 @@ void NeighborList::build(std::span<const Vec3> centers, std::span<const double> 
         else
             std::sort(row, out, [&](std::uint32_t a, std::uint32_t b) { return key[a] < key[b]; });
     }
+    number_pairs();
     m_reference.assign(centers.begin(), centers.end());
     m_skin = skin;
     ++m_builds;
+}
+
+void NeighborList::number_pairs() {
+    const std::size_t n = m_offsets.size() - 1;
+    m_upper_offsets.assign(n + 1, 0);
+    for (std::size_t i = 0; i < n; ++i) {
+        std::uint32_t count = 0;
+        for (const std::uint32_t j : neighbors_of(i))
+            count += j > i ? 1 : 0;
+        m_upper_offsets[i + 1] = m_upper_offsets[i] + count;
+    }
+    m_upper.resize(m_upper_offsets[n]);
+    m_owner.resize(m_upper_offsets[n]);
+    m_pair_of.resize(m_neighbors.size());
+    // Pair (i, j > i) is numbered in row i; row j finds it among the upper neighbours of i.
+    // Each loop writes only its own row: the same numbers for any number of threads.
+#pragma omp parallel for schedule(static) if (n >= detail::parallel_min_spheres)
+    for (std::size_t i = 0; i < n; ++i) {
+        std::uint32_t p = m_upper_offsets[i];
+        for (std::uint32_t e = m_offsets[i]; e < m_offsets[i + 1]; ++e)
+            if (m_neighbors[e] > i) {
+                m_upper[p] = m_neighbors[e];
+                m_owner[p] = static_cast<std::uint32_t>(i);
+                m_pair_of[e] = p++;
+            }
+    }
+#pragma omp parallel for schedule(static) if (n >= detail::parallel_min_spheres)
+    for (std::size_t i = 0; i < n; ++i)
+        for (std::uint32_t e = m_offsets[i]; e < m_offsets[i + 1]; ++e) {
+            const std::uint32_t j = m_neighbors[e];
+            if (j > i)
+                continue;
+            std::uint32_t p = m_upper_offsets[j];
+            while (m_upper[p] != i)
+                ++p;
+            m_pair_of[e] = p;
+        }
 }
 
 bool NeighborList::needs_rebuild(std::span<const Vec3> centers) const {

@@ -44,6 +44,7 @@ void SoftBed::rebuild_list(double skin) {
         radii[k] = packing.radii[perm[k]];
     packing.radii.swap(radii);
     list.build(packing.centers, packing.radii, skin, order);
+    factor.resize(list.pairs());
     drift2 = 0.0;
 }
 

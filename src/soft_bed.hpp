@@ -3,11 +3,18 @@
 #pragma once
 
 #include <algorithm>
+#include <bit>
 #include <cmath>
 #include <cstdint>
 #include <deque>
+#include <limits>
 #include <random>
+#include <span>
 #include <vector>
+
+#if defined(__SSE2__)
+#include <emmintrin.h>
+#endif
 
 #include "packbed/container.hpp"
 #include "packbed/neighbor_list.hpp"
@@ -89,6 +96,8 @@ struct SoftBed {
     std::vector<std::uint32_t> slot;
     std::vector<Vec3> next;     // scratch, one per sphere
     std::vector<Vec3> velocity; // per sphere, stored order; empty for the paper's solver
+    std::vector<double> factor; // per listed pair, see pair_factors()
+    static constexpr std::size_t pair_chunk = 512; // pairs per work item of pair_factors()
     NeighborList list;
     double drift2 = 0.0;         // largest squared move since the last list build
     double initial_height = 0.0; // L0, Dp
@@ -108,6 +117,22 @@ struct SoftBed {
     /// rows in generation order.
     void rebuild_list(double skin);
 
+    /// Add the wall term of eq. (4) for a sphere at `xk` of radius `r` to `move`; track the
+    /// largest wall overlap. Spheres clearly inside (centre closer to the axis than
+    /// Rt - r - 1e-9 (Rt + 1)) skip the square root: the margin exceeds the rounding of
+    /// Cylinder::wall_contact by far, so the result is the same bits.
+    void add_wall_term(const Vec3& xk, double r, const LinearOverlapLaw& law, Vec3& move,
+                       double& wall) const {
+        const double inner = container.radius() - r - 1e-9 * (container.radius() + 1.0);
+        if (inner > 0.0 && xk.x * xk.x + xk.y * xk.y < inner * inner)
+            return;
+        const WallContact w = container.wall_contact(xk, r);
+        if (w.overlap > 0.0) {
+            wall = std::max(wall, w.overlap);
+            move += w.push * (law.ck * w.overlap);
+        }
+    }
+
     /// \return law-weighted sum of the pair and wall terms of sphere k (the move of eq. (4)
     /// without gravity and floor); `pair` and `wall` track the largest overlaps seen.
     Vec3 contact_move(std::size_t k, const LinearOverlapLaw& law, double& pair,
@@ -118,11 +143,81 @@ struct SoftBed {
         Vec3 move{};
         for (const auto j : list.neighbors_of(k))
             law.apply(xk, x[j], radius[k] + radius[j], order[k] < order[j], move, pair);
-        const WallContact w = container.wall_contact(xk, radius[k]);
-        if (w.overlap > 0.0) {
-            wall = std::max(wall, w.overlap);
-            move += w.push * (law.ck * w.overlap);
+        add_wall_term(xk, radius[k], law, move, wall);
+        return move;
+    }
+
+    /// First half of contact_move split in two passes (the simultaneous update, FIRE): the
+    /// factor \f$C_k \delta_{ij} / |r_{ij}|\f$ of each listed pair p in [begin, end),
+    /// computed once for both spheres and with no branch (+0 when they do not touch; +inf
+    /// when their centres coincide). \f$\delta\f$, \f$|r|\f$ and so the factor are the same
+    /// bits from either side (r_ji = -r_ij exactly). Two pairs share one SSE2 square root and
+    /// division where there is SSE2 (IEEE-exact either way). \return the largest overlap.
+    double pair_factors(std::size_t begin, std::size_t end, const LinearOverlapLaw& law) {
+        const Vec3* const x = packing.centers.data();
+        const double* const radius = packing.radii.data();
+        const std::uint32_t* const first = list.pair_first().data();
+        const std::uint32_t* const second = list.pair_second().data();
+        double* const f = factor.data();
+        double largest = 0.0;
+        std::size_t p = begin;
+#if defined(__SSE2__)
+        __m128d top = _mm_setzero_pd();
+        const __m128d ck = _mm_set1_pd(law.ck);
+        for (; p + 1 < end; p += 2) {
+            const std::uint32_t i0 = first[p], j0 = second[p], i1 = first[p + 1],
+                                j1 = second[p + 1];
+            const __m128d dist2 = _mm_set_pd(norm2(x[j1] - x[i1]), norm2(x[j0] - x[i0]));
+            const __m128d sum = _mm_set_pd(radius[i1] + radius[j1], radius[i0] + radius[j0]);
+            const __m128d dist = _mm_sqrt_pd(dist2);
+            const __m128d overlap = _mm_sub_pd(sum, dist);
+            const __m128d value = _mm_div_pd(_mm_mul_pd(ck, overlap), dist);
+            const __m128d touching = _mm_cmplt_pd(dist2, _mm_mul_pd(sum, sum));
+            _mm_storeu_pd(f + p, _mm_and_pd(value, touching));
+            top = _mm_max_pd(top, _mm_and_pd(overlap, touching));
         }
+        alignas(16) double tops[2];
+        _mm_store_pd(tops, top);
+        largest = std::max(tops[0], tops[1]);
+#endif
+        for (; p < end; ++p) {
+            const std::uint32_t i = first[p], j = second[p];
+            const double sum = radius[i] + radius[j];
+            const double dist2 = norm2(x[j] - x[i]);
+            const double dist = std::sqrt(dist2);
+            const double overlap = sum - dist;
+            const double value = law.ck * overlap / dist; // +inf for coincident centres
+            // Masks, not branches: whether a pair touches is not predictable.
+            const std::uint64_t touching = 0 - static_cast<std::uint64_t>(dist2 < sum * sum);
+            f[p] = std::bit_cast<double>(std::bit_cast<std::uint64_t>(value) & touching);
+            largest = std::max(
+                largest, std::bit_cast<double>(std::bit_cast<std::uint64_t>(overlap) & touching));
+        }
+        return largest;
+    }
+
+    /// Second half: contact_move of sphere k from the factors of pair_factors(), the same
+    /// bits (a factor of 0 leaves the sum unchanged: it never holds -0). `wall` tracks the
+    /// largest wall overlap.
+    Vec3 contact_move_from_factors(std::size_t k, const LinearOverlapLaw& law, double& wall) const {
+        const Vec3* const x = packing.centers.data();
+        const double* const radius = packing.radii.data();
+        const Vec3 xk = x[k];
+        const std::span<const std::uint32_t> row = list.neighbors_of(k);
+        const std::uint32_t* const pair_number = list.pair_numbers_of(k).data();
+        Vec3 move{};
+        for (std::size_t e = 0; e < row.size(); ++e) {
+            const std::uint32_t j = row[e];
+            const double f = factor[pair_number[e]];
+            if (f == std::numeric_limits<double>::infinity()) [[unlikely]] {
+                // Coincident centres, as LinearOverlapLaw.
+                const double overlap = radius[k] + radius[j];
+                move.z += order[k] < order[j] ? -law.ck * overlap : law.ck * overlap;
+            } else {
+                move -= (x[j] - xk) * f;
+            }
+        }
+        add_wall_term(xk, radius[k], law, move, wall);
         return move;
     }
 

@@ -110,14 +110,26 @@ struct SoftSphereGenerator::State : detail::SoftBed {
             return moved;
         };
         if constexpr (update == UpdateOrder::simultaneous) {
-#pragma omp parallel for schedule(static) reduction(max : pair, wall, top, drift)                  \
-    reduction(&& : finite) if (n >= detail::parallel_min_spheres)
-            for (std::size_t k = 0; k < n; ++k) {
-                const Vec3 moved = move_of(k, pair, wall);
-                finite = finite && is_finite(moved);
-                top = std::max(top, moved.z);
-                drift = std::max(drift, norm2(moved - reference[k]));
-                next[k] = moved;
+            // Two passes: the factor of each pair once, then the moves (contact_move's bits).
+#pragma omp parallel if (n >= detail::parallel_min_spheres)
+            {
+                const std::size_t pairs = list.pairs();
+                const std::size_t chunks = (pairs + pair_chunk - 1) / pair_chunk;
+#pragma omp for schedule(static) reduction(max : pair)
+                for (std::size_t c = 0; c < chunks; ++c)
+                    pair = std::max(pair, pair_factors(c * pair_chunk,
+                                                       std::min(pairs, (c + 1) * pair_chunk), law));
+#pragma omp for schedule(static) reduction(max : wall, top, drift) reduction(&& : finite)
+                for (std::size_t k = 0; k < n; ++k) {
+                    Vec3 move = contact_move_from_factors(k, law, wall);
+                    move.z -= gravity;
+                    Vec3 moved = x[k] + move;
+                    moved.z = std::max(moved.z, radius[k]);
+                    finite = finite && is_finite(moved);
+                    top = std::max(top, moved.z);
+                    drift = std::max(drift, norm2(moved - reference[k]));
+                    next[k] = moved;
+                }
             }
             packing.centers.swap(next);
         } else {

@@ -123,6 +123,51 @@ TEST(NeighborList, RowsFollowTheCallersKey) {
     EXPECT_EQ(keyed.reference()[9], c.centers[9]);
 }
 
+TEST(NeighborList, EveryPairIsNumberedOnceAndBothRowsFindIt) {
+    const Cloud c = random_cloud(1500, 7.0, true, 8);
+    std::vector<std::uint32_t> key(c.centers.size()); // rows in a shuffled order
+    for (std::uint32_t i = 0; i < key.size(); ++i)
+        key[i] = (i * 7919u) % static_cast<std::uint32_t>(key.size());
+    NeighborList list;
+    list.build(c.centers, c.radii, 0.1, key);
+    const auto first = list.pair_first();
+    const auto second = list.pair_second();
+    ASSERT_EQ(first.size(), list.pairs());
+    ASSERT_EQ(second.size(), list.pairs());
+    EXPECT_EQ(2 * list.pairs(), [&] {
+        std::size_t entries = 0;
+        for (std::size_t i = 0; i < c.centers.size(); ++i)
+            entries += list.neighbors_of(i).size();
+        return entries;
+    }());
+    std::set<std::pair<std::uint32_t, std::uint32_t>> numbered;
+    for (std::size_t p = 0; p < list.pairs(); ++p) {
+        EXPECT_LT(first[p], second[p]);
+        numbered.emplace(first[p], second[p]);
+    }
+    EXPECT_EQ(numbered, pairs_of(list, c.centers.size())); // each pair once
+    for (std::uint32_t i = 0; i < c.centers.size(); ++i) {
+        const auto row = list.neighbors_of(i);
+        const auto numbers = list.pair_numbers_of(i);
+        ASSERT_EQ(row.size(), numbers.size());
+        for (std::size_t e = 0; e < row.size(); ++e) {
+            const std::uint32_t p = numbers[e];
+            ASSERT_LT(p, list.pairs());
+            EXPECT_EQ(std::min(i, row[e]), first[p]);
+            EXPECT_EQ(std::max(i, row[e]), second[p]);
+        }
+        // Upper neighbours: the row's j > i, in row order, numbered from first_pair_of(i).
+        std::vector<std::uint32_t> upper;
+        for (const std::uint32_t j : row)
+            if (j > i)
+                upper.push_back(j);
+        const auto listed = list.upper_neighbors_of(i);
+        EXPECT_TRUE(std::equal(upper.begin(), upper.end(), listed.begin(), listed.end()));
+        for (std::size_t m = 0; m < listed.size(); ++m)
+            EXPECT_EQ(first[list.first_pair_of(i) + m], i);
+    }
+}
+
 TEST(SpatialOrder, IsAPermutationThatWalksTheCellsInOrder) {
     const Cloud c = random_cloud(3000, 10.0, false, 9);
     const double edge = 1.1;

@@ -39,6 +39,25 @@ public:
         return {m_neighbors.data() + m_offsets[i], m_neighbors.data() + m_offsets[i + 1]};
     }
 
+    /// \return the neighbours j > i of sphere i, in the order of its row: each listed pair once.
+    /// Pair number first_pair_of(i) + m is the m-th of them.
+    std::span<const std::uint32_t> upper_neighbors_of(std::size_t i) const {
+        return {m_upper.data() + m_upper_offsets[i], m_upper.data() + m_upper_offsets[i + 1]};
+    }
+    /// \return the number of the first pair of upper_neighbors_of(i).
+    std::size_t first_pair_of(std::size_t i) const { return m_upper_offsets[i]; }
+    /// \return for each entry of neighbors_of(i), the number of its pair: a quantity computed
+    /// once per pair is read from both of its rows.
+    std::span<const std::uint32_t> pair_numbers_of(std::size_t i) const {
+        return {m_pair_of.data() + m_offsets[i], m_pair_of.data() + m_offsets[i + 1]};
+    }
+    /// \return the number of listed pairs (each counted once).
+    std::size_t pairs() const { return m_upper.size(); }
+    /// \return pair p is (pair_first()[p], pair_second()[p]), first < second; pairs are
+    /// numbered row after row (see upper_neighbors_of).
+    std::span<const std::uint32_t> pair_first() const { return m_owner; }
+    std::span<const std::uint32_t> pair_second() const { return m_upper; }
+
     /// \return the number of builds since construction (for statistics).
     std::size_t builds() const { return m_builds; }
 
@@ -50,9 +69,15 @@ public:
     double drift_limit2() const { return 0.25 * m_skin * m_skin; }
 
 private:
+    void number_pairs();
+
     std::vector<std::uint32_t> m_offsets;
     std::vector<std::uint32_t> m_neighbors;
-    std::vector<Vec3> m_reference; // positions at the last build
+    std::vector<std::uint32_t> m_upper_offsets; // rows of upper neighbours (j > i)
+    std::vector<std::uint32_t> m_upper;
+    std::vector<std::uint32_t> m_owner;   // first sphere of each pair
+    std::vector<std::uint32_t> m_pair_of; // pair number of each entry of m_neighbors
+    std::vector<Vec3> m_reference;        // positions at the last build
     double m_skin = 0.0;
     std::size_t m_builds = 0;
 };

@@ -1,0 +1,64 @@
+// The solvers' internal kernels (src/soft_bed.hpp): the two-pass pair sum against the
+// one-pass reference, bit for bit, on hand-placed spheres with every special case.
+#include <cstring>
+#include <vector>
+
+#include <gtest/gtest.h>
+
+#include "soft_bed.hpp"
+
+namespace packbed::detail {
+namespace {
+
+bool same_bits(const Vec3& a, const Vec3& b) {
+    return std::memcmp(&a, &b, sizeof(Vec3)) == 0;
+}
+
+TEST(SoftBedKernels, PairFactorsGiveContactMovesBitForBit) {
+    SoftBed bed(4.0); // Rt = 2 Dp
+    const std::vector<Vec3> centres = {
+        {0.0, 0.0, 1.0},   {0.0, 0.0, 1.0},    // coincident centres
+        {0.9, 0.0, 1.0},                       // overlaps both of them by 0.1 Dp
+        {0.9, 1.0, 1.0},                       // touching sphere 2 exactly: no force
+        {1.6, 0.3, 1.2},   {-1.55, -0.4, 0.5}, // pressing into the wall
+        {0.2, -0.85, 1.3}, {-0.3, 0.45, 1.6},  // generic overlaps, in no symmetric place
+        {0.0, 0.0, 5.0},                       // alone
+    };
+    for (const Vec3& c : centres)
+        bed.packing.add(c, 0.5);
+    const std::size_t n = bed.packing.size();
+    bed.order.resize(n);
+    bed.slot.resize(n);
+    for (std::uint32_t i = 0; i < n; ++i)
+        bed.order[i] = bed.slot[i] = i;
+    bed.next.resize(n);
+    bed.rebuild_list(0.1);
+    ASSERT_GT(bed.list.pairs(), 5u);
+
+    for (const double ck : {0.3, 1.0}) {
+        const LinearOverlapLaw law{ck};
+        const double largest = bed.pair_factors(0, bed.list.pairs(), law);
+        double reference_largest = 0.0, reference_wall = 0.0, wall = 0.0;
+        for (std::size_t k = 0; k < n; ++k) {
+            const Vec3 reference = bed.contact_move(k, law, reference_largest, reference_wall);
+            const Vec3 two_pass = bed.contact_move_from_factors(k, law, wall);
+            EXPECT_TRUE(same_bits(reference, two_pass))
+                << "sphere " << bed.order[k] << " ck " << ck << ": (" << reference.x << ", "
+                << reference.y << ", " << reference.z << ") vs (" << two_pass.x << ", "
+                << two_pass.y << ", " << two_pass.z << ")";
+        }
+        EXPECT_EQ(largest, reference_largest);
+        EXPECT_EQ(largest, 1.0); // the coincident pair overlaps by a whole diameter
+        EXPECT_EQ(wall, reference_wall);
+        EXPECT_NEAR(wall, std::hypot(1.6, 0.3) + 0.5 - 2.0, 1e-15);
+    }
+    // The coincident pair moves apart vertically, the lower generation index downwards.
+    const LinearOverlapLaw law{0.3};
+    bed.pair_factors(0, bed.list.pairs(), law);
+    double wall = 0.0;
+    EXPECT_LT(bed.contact_move_from_factors(bed.slot[0], law, wall).z, 0.0);
+    EXPECT_GT(bed.contact_move_from_factors(bed.slot[1], law, wall).z, 0.0);
+}
+
+} // namespace
+} // namespace packbed::detail
