@@ -1,0 +1,143 @@
+#!/usr/bin/env python3
+"""Wall time and peak memory of `packbed generate` against Np, for both solvers (issue 5).
+
+For each solver and Np, runs `packbed generate --solver SOLVER --aspect-ratio A --particles Np
+--seed 1 --quiet` into OUT/<solver>/n<Np>/ (a = --aspect-ratio, except where --large gives
+another a for an Np, e.g. 1000000:50), with a wall-time limit per run: a run that reaches it
+is stopped and recorded as "> limit" (its time is then a lower bound), and a solver that hit
+the limit is not run at larger Np. Finished runs are not redone, nor stopped ones unless the
+limit is now longer (delete OUT to start over).
+Peak memory is the run's own maximum resident set size (os.wait4). Writes OUT/scaling.csv, prints a
+Markdown table and, where gnuplot exists, draws OUT/scaling.svg (log-log time against Np).
+
+Usage: bench/scaling.py [--packbed build/packbed] [--particles 1000,3000,...]
+                        [--aspect-ratio 20] [--large 1000000:50] [--solvers paper,fire]
+                        [--limit 600] [--threads 2] [--out results/scaling]
+"""
+import argparse
+import csv
+import json
+import os
+import shutil
+import subprocess
+import sys
+import time
+
+
+def run_one(args, solver, n, a, out):
+    summary = os.path.join(out, "summary.json")
+    record = os.path.join(out, "scaling.json")
+    if os.path.exists(record):
+        with open(record) as f:
+            old = json.load(f)
+        if old["finished"] or old["wall_s"] >= args.limit:  # a stopped run reruns if given more time
+            return old
+    os.makedirs(out, exist_ok=True)
+    cmd = [args.packbed, "generate", "--solver", solver, "--aspect-ratio", f"{a:g}",
+           "--particles", str(n), "--seed", "1", "--threads", str(args.threads), "--quiet",
+           "--out", out]
+    env = dict(os.environ, OMP_DYNAMIC="false")  # the threads asked for, whatever the load
+    start = time.monotonic()
+    proc = subprocess.Popen(cmd, env=env)
+    status, usage = None, None
+    while True:  # os.wait4: the child's own peak memory (ru_maxrss, KiB)
+        pid, raw, usage = os.wait4(proc.pid, os.WNOHANG)
+        if pid:
+            status = os.waitstatus_to_exitcode(raw)
+            break
+        if time.monotonic() - start > args.limit:
+            proc.kill()
+            _, _, usage = os.wait4(proc.pid, 0)
+            break
+        time.sleep(0.05)
+    proc.returncode = status if status is not None else -9  # reaped here, not by Popen
+    wall = time.monotonic() - start
+    peak_mib = usage.ru_maxrss / 1024.0
+    result = {"solver": solver, "particles": n, "aspect_ratio": a, "threads": args.threads,
+              "wall_s": round(wall, 2), "peak_mib": round(peak_mib, 1),
+              "finished": status == 0, "status": status}
+    if status == 0:
+        with open(summary) as f:
+            s = json.load(f)
+        result.update(seconds=s["seconds"], iterations=s["iterations"],
+                      void_fraction=s["void_fraction"])
+    with open(record, "w") as f:
+        json.dump(result, f, indent=1)
+    return result
+
+
+def plot(args, rows):
+    if not shutil.which("gnuplot"):
+        print("gnuplot not found: no plot", file=sys.stderr)
+        return
+    data, stopped = {}, {}
+    for r in rows:
+        (data if r["finished"] else stopped).setdefault(r["solver"], []).append(
+            (r["particles"], r["wall_s"]))
+    lines = ["set terminal svg size 760,500 font 'sans,12'",
+             f"set output '{os.path.join(args.out, 'scaling.svg')}'",
+             "set logscale xy", "set grid", "set key top left", "set xrange [500:2e6]",
+             "set yrange [1:3000]", "set xlabel 'spheres Np'",
+             "set ylabel 'wall time of packbed generate (s)'",
+             f"set title 'seed 1, {args.threads} threads, a = {args.aspect_ratio:g} "
+             f"(Np = 1e6: a = 50); open marks: stopped at the {args.limit:g} s limit'",
+             "$targets << EOD", "100000 60", "1000000 900", "EOD"]
+    plots = ["$targets with points pt 3 ps 2 lc rgb 'black' "
+             "title 'issue 5 targets (fire)'"]
+    colours = {"paper": "#9400d3", "fire": "#009e73"}
+    for solver, points in data.items():
+        lines.append(f"${solver} << EOD")
+        lines += [f"{n} {t}" for n, t in sorted(points)]
+        lines.append("EOD")
+        plots.append(f"${solver} with linespoints lw 2 pt 7 lc rgb '{colours.get(solver, 'blue')}' "
+                     f"title '{solver}'")
+    for solver, points in stopped.items():
+        lines.append(f"${solver}_stopped << EOD")
+        lines += [f"{n} {t}" for n, t in sorted(points)]
+        lines.append("EOD")
+        plots.append(f"${solver}_stopped with points pt 6 ps 1.5 "
+                     f"lc rgb '{colours.get(solver, 'blue')}' title '{solver}, stopped'")
+    lines.append("plot " + ", ".join(plots))
+    subprocess.run(["gnuplot"], input="\n".join(lines), text=True, check=True)
+
+
+def main():
+    p = argparse.ArgumentParser(description=__doc__, formatter_class=argparse.RawTextHelpFormatter)
+    p.add_argument("--packbed", default="build/packbed")
+    p.add_argument("--particles", default="1000,3000,10000,30000,100000,1000000")
+    p.add_argument("--aspect-ratio", type=float, default=20.0)
+    p.add_argument("--large", default="1000000:50", help="Np:a pairs with their own a")
+    p.add_argument("--solvers", default="paper,fire")
+    p.add_argument("--limit", type=float, default=600.0, help="seconds per run")
+    p.add_argument("--threads", type=int, default=2)
+    p.add_argument("--out", default="results/scaling")
+    args = p.parse_args()
+    if args.limit <= 0 or args.threads < 1:
+        sys.exit("scaling.py: --limit must be > 0 and --threads >= 1")
+    own_a = {int(k): float(v) for k, v in
+             (item.split(":") for item in args.large.split(",") if item)}
+    rows = []
+    print("| solver | Np | a | wall time (s) | iterations | void fraction | peak memory (MiB) |")
+    print("|---|---|---|---|---|---|---|")
+    for solver in args.solvers.split(","):
+        for n in sorted(int(float(x)) for x in args.particles.split(",")):
+            a = own_a.get(n, args.aspect_ratio)
+            r = run_one(args, solver, n, a, os.path.join(args.out, solver, f"n{n}"))
+            rows.append(r)
+            wall = f"{r['wall_s']:.1f}" if r["finished"] else f"> {r['wall_s']:.0f} (stopped)"
+            e = r.get("void_fraction")
+            print(f"| {solver} | {n} | {a:g} | {wall} | {r.get('iterations', '-')} "
+                  f"| {'-' if e is None else f'{e:.4f}'} | {r['peak_mib']:.0f} |", flush=True)
+            if not r["finished"]:
+                break  # larger beds take longer still
+    with open(os.path.join(args.out, "scaling.csv"), "w", newline="") as f:
+        w = csv.DictWriter(f, fieldnames=["solver", "particles", "aspect_ratio", "threads",
+                                          "wall_s", "finished", "iterations", "void_fraction",
+                                          "peak_mib"], extrasaction="ignore")
+        w.writeheader()
+        w.writerows(rows)
+    plot(args, rows)
+
+
+if __name__ == "__main__":
+    main()
