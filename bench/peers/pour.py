@@ -1,13 +1,15 @@
 #!/usr/bin/env python3
-"""packbed against LAMMPS pour-and-settle of the same bed (issue 5).
+"""packbed against LAMMPS and LIGGGHTS pour-and-settle of the same bed (issue 5).
 
 Places Np spheres at random, not touching, in a cylinder of aspect ratio a (random sequential
 addition, a solid fraction of 0.2, fixed seed), lets LAMMPS (Debian's `lmp`, GRANULAR
 package, bench/peers/lammps_pour.in) drop them frictionlessly until the kinetic energy per
-sphere is below 1e-6 m g D, and runs `packbed generate` on the same cylinder and Np with each
-solver. Prints, for each: wall time, void fraction (`packbed analyze`, 1 Dp clear of the ends)
-and the largest sphere-sphere and sphere-wall overlaps in Dp, then the time ratios.
-Installs nothing: run `sudo apt-get install lammps openmpi-bin` first (bench/peers/install.sh).
+sphere is below 1e-6 m g D, and does the same with LIGGGHTS (Debian's `liggghts`,
+bench/peers/liggghts_pour.in: the same model and stopping rule) where it is installed, and
+runs `packbed generate` on the same cylinder and Np with each solver. Prints, for each: wall
+time, void fraction (`packbed analyze`, 1 Dp clear of the ends) and the largest sphere-sphere
+and sphere-wall overlaps in Dp, then the time ratios of each peer to each solver.
+Installs nothing: run bench/peers/install.sh first (Debian's lammps, liggghts, openmpi-bin).
 
 Usage: bench/peers/pour.py [--packbed build/packbed] [--aspect-ratio 5] [--particles 500]
                            [--seed 1] [--ranks 2] [--work DIR]
@@ -136,6 +138,23 @@ def main():
     rows.append((f"LAMMPS pour-and-settle ({args.ranks} ranks)", seconds, e,
                  *largest_overlaps(dump, a / 2 * D)))
 
+    liggghts = shutil.which("liggghts")
+    if liggghts is None:
+        print("liggghts not found: LIGGGHTS not run (bench/peers/install.sh)", file=sys.stderr)
+    else:
+        dump = os.path.join(work, "liggghts.dump")
+        cmd = ["mpirun", "--allow-run-as-root", "-np", str(args.ranks), liggghts] \
+            if args.ranks > 1 else [liggghts]
+        start = time.perf_counter()
+        subprocess.run(cmd + ["-in", os.path.join(HERE, "liggghts_pour.in"), "-var", "DATA",
+                              data, "-var", "R", repr(a / 2 * D), "-var", "D", repr(D),
+                              "-var", "OUT", dump, "-log", os.path.join(work, "log.liggghts"),
+                              "-screen", "none"], check=True)
+        seconds = time.perf_counter() - start
+        e = analyze(args.packbed, dump, a / 2 * D, os.path.join(work, "liggghts-analysis"))
+        rows.append((f"LIGGGHTS pour-and-settle ({args.ranks} ranks)", seconds, e,
+                     *largest_overlaps(dump, a / 2 * D)))
+
     for solver in ("paper", "fire"):
         out = os.path.join(work, f"packbed-{solver}")
         start = time.perf_counter()
@@ -154,8 +173,11 @@ def main():
     print("|---|---|---|---|---|")
     for name, seconds, e, pair, wall in rows:
         print(f"| {name} | {seconds:.2f} | {e:.4f} | {pair:.2e} | {wall:.2e} |")
-    for name, seconds, *_ in rows[1:]:
-        print(f"time ratio LAMMPS / {name}: {rows[0][1] / seconds:.1f}")
+    peers = [r for r in rows if not r[0].startswith("packbed")]
+    for name, seconds, *_ in rows:
+        if name.startswith("packbed"):
+            for peer, peer_seconds, *_ in peers:
+                print(f"time ratio {peer.split()[0]} / {name}: {peer_seconds / seconds:.1f}")
 
 
 if __name__ == "__main__":
