@@ -85,18 +85,15 @@ def plot(args, rows):
     plots = ["$targets with points pt 3 ps 2 lc rgb 'black' "
              "title 'issue 5 targets (fire)'"]
     colours = {"paper": "#9400d3", "fire": "#009e73"}
-    for solver, points in data.items():
-        lines.append(f"${solver} << EOD")
-        lines += [f"{n} {t}" for n, t in sorted(points)]
-        lines.append("EOD")
-        plots.append(f"${solver} with linespoints lw 2 pt 7 lc rgb '{colours.get(solver, 'blue')}' "
-                     f"title '{solver}'")
-    for solver, points in stopped.items():
-        lines.append(f"${solver}_stopped << EOD")
-        lines += [f"{n} {t}" for n, t in sorted(points)]
-        lines.append("EOD")
-        plots.append(f"${solver}_stopped with points pt 6 ps 1.5 "
-                     f"lc rgb '{colours.get(solver, 'blue')}' title '{solver}, stopped'")
+    for points_of, suffix, style, label in ((data, "", "linespoints lw 2 pt 7", ""),
+                                            (stopped, "_stopped", "points pt 6 ps 1.5",
+                                             ", stopped")):
+        for solver, points in points_of.items():
+            lines.append(f"${solver}{suffix} << EOD")
+            lines += [f"{n} {t}" for n, t in sorted(points)]
+            lines.append("EOD")
+            plots.append(f"${solver}{suffix} with {style} "
+                         f"lc rgb '{colours.get(solver, 'blue')}' title '{solver}{label}'")
     lines.append("plot " + ", ".join(plots))
     subprocess.run(["gnuplot"], input="\n".join(lines), text=True, check=True)
 
