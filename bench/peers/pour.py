@@ -149,7 +149,7 @@ def main():
         subprocess.run(cmd + ["-in", os.path.join(HERE, "liggghts_pour.in"), "-var", "DATA",
                               data, "-var", "R", repr(a / 2 * D), "-var", "D", repr(D),
                               "-var", "OUT", dump, "-log", os.path.join(work, "log.liggghts"),
-                              "-screen", "none"], check=True)
+                              "-screen", "none"], check=True, cwd=work)  # its default log
         seconds = time.perf_counter() - start
         e = analyze(args.packbed, dump, a / 2 * D, os.path.join(work, "liggghts-analysis"))
         rows.append((f"LIGGGHTS pour-and-settle ({args.ranks} ranks)", seconds, e,
