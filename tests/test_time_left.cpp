@@ -40,6 +40,29 @@ TEST(StageTimeLeft, NoEstimateWhileTheOverlapsDoNotFall) {
         EXPECT_FALSE(flat.update(report("final", 3.0 * p.tolerance), t));
 }
 
+TEST(StageTimeLeft, FinalStageCountsTheCgHalvingsStillNeeded) {
+    SoftSphereParameters p;
+    StageTimeLeft estimate(p);
+    // The stage starts with overlaps of 64 tolerances at Cg0 and halves Cg every 2 s, four
+    // reports a halving: overlaps proportional to Cg reach the tolerance during the halving
+    // held from t = 12 s, so the stage ends between 12 and 14 s. The reported overlaps lag
+    // behind Cg (they settle), which must not matter.
+    const double cg0 = 1e-5;
+    std::optional<double> left;
+    for (int report = 0; report < 24; ++report) { // up to t = 5.75 s
+        const double t = 0.25 * report;
+        const int halvings = static_cast<int>(t / 2.0);
+        const double cg = cg0 * std::pow(0.5, halvings);
+        const double lagging = 64.0 * p.tolerance * std::pow(0.5, std::max(0, halvings - 1));
+        left = estimate.update({"final", 0, cg, lagging, 0.0, 10.0}, t);
+    }
+    ASSERT_TRUE(left);
+    // Fitted over the stage: ln q falls by ln 2 every 2 s. Half a second of slack for the
+    // fit to a staircase.
+    EXPECT_GT(*left, 12.0 - 5.75 - 0.5);
+    EXPECT_LT(*left, 14.0 - 5.75 + 0.5);
+}
+
 TEST(StageTimeLeft, SettlingMassCentreGivesTheTimeToThePapersRule) {
     SoftSphereParameters p; // mc_window 10, mc_tolerance 1e-4 percent
     StageTimeLeft estimate(p);
