@@ -1,0 +1,106 @@
+// Regular packings of touching balls: the tetrahedral (diamond) packing of Tsayger (2013),
+// "Discrete elements method: a new kind of initial conditions - tetrahedral packing of balls",
+// DEM6, Golden (Colorado), and the cubic, body-centred, face-centred and hexagonal close
+// packings, filling a region (a box or a cylinder) as initial conditions for DEM.
+#pragma once
+
+#include <cstdint>
+#include <optional>
+#include <string>
+#include <utility>
+#include <variant>
+#include <vector>
+
+#include "packbed/packing.hpp"
+#include "packbed/vec3.hpp"
+
+namespace packbed {
+
+/// The regular packings `packbed lattice` builds.
+enum class LatticeType {
+    diamond, ///< tetrahedral packing (Tsayger 2013, Table 1): coordination 4
+    sc,      ///< simple cubic (Slichter's cubic): coordination 6
+    bcc,     ///< body-centred cubic: coordination 8
+    fcc,     ///< face-centred cubic (Slichter's hexagonal, ABC stacking): coordination 12
+    hcp,     ///< hexagonal close packing (ABAB stacking): coordination 12
+};
+
+/// The names users pick a lattice by ("diamond", "sc", "bcc", "fcc", "hcp"): the one registry.
+const std::vector<std::pair<std::string, LatticeType>>& lattice_types();
+/// \return the name of a lattice type in lattice_types().
+std::string to_string(LatticeType type);
+
+/// The repeating cell of a lattice of touching balls of diameter 1: a rectangular box of edges
+/// `edges` with the ball centres `balls` inside it (fractions in [0, 1) of the edges, times the
+/// edges). Plain value type.
+struct UnitCell {
+    Vec3 edges;              ///< cell edge lengths, diameters
+    std::vector<Vec3> balls; ///< ball centres in the cell, diameters
+    int coordination = 0;    ///< touching neighbours of every ball of the infinite lattice
+    double porosity = 0.0;   ///< exact void fraction of the infinite lattice
+};
+
+/// \return the unit cell of `type` for balls of diameter 1:
+/// - diamond: Tsayger's Table 1, a cube of edge \f$4/\sqrt3\f$ with the balls A-H at
+///   (0,0,0), (2,2,0), (2,0,2), (0,2,2), (1,3,3), (3,1,3), (1,1,1), (3,3,1) over \f$\sqrt3\f$;
+///   porosity \f$1 - \pi\sqrt3/16\f$;
+/// - sc: a cube of edge 1, one ball; \f$1 - \pi/6\f$;
+/// - bcc: a cube of edge \f$2/\sqrt3\f$, corner and centre; \f$1 - \pi\sqrt3/8\f$;
+/// - fcc: a cube of edge \f$\sqrt2\f$, corner and face centres; \f$1 - \pi/(3\sqrt2)\f$;
+/// - hcp: the orthohexagonal cell \f$1 \times \sqrt3 \times 2\sqrt{2/3}\f$ with four balls at
+///   fractions (0,0,0), (1/2,1/2,0), (1/2,1/6,1/2), (0,2/3,1/2); \f$1 - \pi/(3\sqrt2)\f$.
+/// The porosity is \f$1 - n \frac{\pi}{6} / V_{cell}\f$, n balls per cell.
+UnitCell unit_cell(LatticeType type);
+
+/// A box \f$[0, L_x] \times [0, L_y] \times [0, L_z]\f$ (lengths in output units, > 0).
+struct BoxRegion {
+    Vec3 size;
+};
+/// A cylinder with the z axis as axis, from z = 0 to z = height (lengths in output units).
+struct CylinderRegion {
+    double diameter = 0.0;
+    double height = 0.0;
+};
+using LatticeRegion = std::variant<BoxRegion, CylinderRegion>;
+
+/// \return the volume of a region.
+double region_volume(const LatticeRegion& region);
+
+/// Which balls fill a region.
+enum class LatticeKeep {
+    whole,   ///< only balls wholly inside the region (within 1e-9 d, so balls that touch a wall
+             ///< exactly are kept)
+    centres, ///< every ball whose centre is inside the region
+};
+
+/// Everything `fill_lattice` needs. Plain value type; lengths in output units.
+struct LatticeParameters {
+    LatticeType type = LatticeType::diamond;
+    double diameter = 1.0; ///< ball diameter d, 1e-12 to 1e12
+    LatticeRegion region = BoxRegion{{10.0, 10.0, 10.0}};
+    /// Where the first ball of cell (0, 0, 0) lies (ball A of Table 1 for the diamond
+    /// packing); by default d/2 from each wall at the low corner of a box, on the axis d/2
+    /// above the floor of a cylinder.
+    std::optional<Vec3> origin;
+    LatticeKeep keep = LatticeKeep::whole;
+
+    /// Check every value. \throws InvalidInput naming the parameter, its value and the range.
+    void validate() const;
+};
+
+/// Fill the region with the lattice: every ball of every cell of the infinite lattice through
+/// the origin, kept by `keep`, in the order cell layer (z), row (y), position (x), then the
+/// cell's balls in unit_cell order. O(balls); the same output whatever the threads.
+/// \throws InvalidInput for invalid parameters or more than 1e8 balls
+Packing fill_lattice(const LatticeParameters& parameters);
+
+/// Contacts of a packing of equal balls of diameter d: pairs whose centres are d apart within
+/// `tolerance` d. \return the number of contacts of each ball, and the smallest centre distance
+/// over d (for "nobody closer than d").
+struct LatticeContacts {
+    std::vector<std::uint32_t> contacts; ///< per ball
+    double closest = 0.0;                ///< smallest centre distance / d (inf for < 2 balls)
+};
+LatticeContacts lattice_contacts(const Packing& packing, double tolerance = 1e-9);
+
+} // namespace packbed

@@ -1,0 +1,154 @@
+// Regular packings (Tsayger 2013 and the cubic / close packings) against geometry.
+#include <cmath>
+#include <numbers>
+
+#include <gtest/gtest.h>
+
+#include "packbed/error.hpp"
+#include "packbed/lattice.hpp"
+
+namespace packbed {
+namespace {
+
+constexpr double pi = std::numbers::pi;
+
+TEST(Lattice, DiamondCellIsTsaygersTable1) {
+    const UnitCell c = unit_cell(LatticeType::diamond);
+    const double s = std::sqrt(3.0);
+    EXPECT_DOUBLE_EQ(c.edges.x, 4.0 / s); // note 2 of Table 1
+    ASSERT_EQ(c.balls.size(), 8u);
+    const double table1[8][3] = {{0, 0, 0}, {2, 2, 0}, {2, 0, 2}, {0, 2, 2},  // A B C D
+                                 {1, 3, 3}, {3, 1, 3}, {1, 1, 1}, {3, 3, 1}}; // E F G H
+    for (int b = 0; b < 8; ++b) {
+        EXPECT_DOUBLE_EQ(c.balls[b].x, table1[b][0] / s) << "ball " << char('A' + b);
+        EXPECT_DOUBLE_EQ(c.balls[b].y, table1[b][1] / s) << "ball " << char('A' + b);
+        EXPECT_DOUBLE_EQ(c.balls[b].z, table1[b][2] / s) << "ball " << char('A' + b);
+    }
+    // Notes 3-5: E-D, F-C, G-A, G-B, G-C and B-H are one diameter apart.
+    enum { A, B, C, D, E, F, G, H };
+    for (const auto& [i, j] : {std::pair{E, D}, {F, C}, {G, A}, {G, B}, {G, C}, {B, H}})
+        EXPECT_NEAR(norm(c.balls[i] - c.balls[j]), 1.0, 1e-15) << char('A' + i) << char('A' + j);
+}
+
+TEST(Lattice, TsaygersWorkedExampleBallE) {
+    // Ball E of the cell at position 5, row 6, layer 3 lies at (21, 27, 15) / sqrt(3) d: fill
+    // a box with ball A of cell (0,0,0) at the origin and find it, here with d = 2.
+    LatticeParameters p;
+    p.type = LatticeType::diamond;
+    p.diameter = 2.0;
+    p.region = BoxRegion{{40.0, 40.0, 40.0}};
+    p.origin = Vec3{0.0, 0.0, 0.0};
+    p.keep = LatticeKeep::centres;
+    const Packing bed = fill_lattice(p);
+    const double s = std::sqrt(3.0);
+    const Vec3 expected{21.0 / s * 2.0, 27.0 / s * 2.0, 15.0 / s * 2.0};
+    double nearest = 1e9;
+    for (const Vec3& c : bed.centers)
+        nearest = std::min(nearest, norm(c - expected));
+    EXPECT_LT(nearest, 1e-12);
+}
+
+TEST(Lattice, PorositiesAreTheClosedForms) {
+    EXPECT_NEAR(unit_cell(LatticeType::sc).porosity, 1.0 - pi / 6.0, 1e-15);
+    EXPECT_NEAR(unit_cell(LatticeType::bcc).porosity, 1.0 - pi * std::sqrt(3.0) / 8.0, 1e-15);
+    EXPECT_NEAR(unit_cell(LatticeType::fcc).porosity, 1.0 - pi / (3.0 * std::sqrt(2.0)), 1e-15);
+    EXPECT_NEAR(unit_cell(LatticeType::hcp).porosity, 1.0 - pi / (3.0 * std::sqrt(2.0)), 1e-15);
+    EXPECT_NEAR(unit_cell(LatticeType::diamond).porosity, 1.0 - pi * std::sqrt(3.0) / 16.0, 1e-15);
+    EXPECT_NEAR(unit_cell(LatticeType::diamond).porosity, 0.65991, 5e-6); // Tsayger's value
+}
+
+class EveryLattice : public ::testing::TestWithParam<LatticeType> {};
+
+TEST_P(EveryLattice, InteriorBallsHaveExactlyTheirCoordinationAndNoneIsCloser) {
+    const UnitCell cell = unit_cell(GetParam());
+    LatticeParameters p;
+    p.type = GetParam();
+    p.region = BoxRegion{{8.0, 8.0, 8.0}};
+    const Packing bed = fill_lattice(p);
+    ASSERT_GT(bed.size(), 200u);
+    const LatticeContacts contacts = lattice_contacts(bed);
+    EXPECT_NEAR(contacts.closest, 1.0, 1e-12) << "no two balls closer than d";
+    std::size_t interior = 0;
+    for (std::size_t i = 0; i < bed.size(); ++i) {
+        const Vec3 c = bed.centers[i];
+        // More than one diameter from every wall: all neighbours are in the box.
+        if (std::min({c.x, c.y, c.z, 8.0 - c.x, 8.0 - c.y, 8.0 - c.z}) <= 1.5)
+            continue;
+        ++interior;
+        EXPECT_EQ(contacts.contacts[i], static_cast<unsigned>(cell.coordination))
+            << to_string(GetParam()) << " ball " << i;
+    }
+    EXPECT_GT(interior, 20u);
+}
+
+TEST_P(EveryLattice, LargeBoxPorosityTendsToTheLattices) {
+    // Balls wholly inside a box of side L leave a wall layer of order d / L empty (sides
+    // that are no whole number of cells, or the simple cubic lattice would fill them exactly).
+    const UnitCell cell = unit_cell(GetParam());
+    double previous_gap = 1.0;
+    for (const double side : {10.3, 20.3, 40.3}) {
+        LatticeParameters p;
+        p.type = GetParam();
+        p.region = BoxRegion{{side, side, side}};
+        const Packing bed = fill_lattice(p);
+        const double porosity =
+            1.0 - static_cast<double>(bed.size()) * pi / 6.0 / (side * side * side);
+        const double gap = porosity - cell.porosity;
+        EXPECT_GT(gap, 0.0) << "a finite box is looser";
+        EXPECT_LT(gap, 4.0 / side) << to_string(GetParam()) << " side " << side;
+        EXPECT_LT(gap, previous_gap);
+        previous_gap = gap;
+    }
+    EXPECT_LT(previous_gap, 0.1);
+}
+
+INSTANTIATE_TEST_SUITE_P(Types, EveryLattice,
+                         ::testing::Values(LatticeType::diamond, LatticeType::sc, LatticeType::bcc,
+                                           LatticeType::fcc, LatticeType::hcp),
+                         [](const auto& test) { return to_string(test.param); });
+
+TEST(Lattice, WholeBallsStayInsideTheCylinderAndTouchingOnesAreKept) {
+    LatticeParameters p;
+    p.type = LatticeType::sc;
+    p.region = CylinderRegion{5.0, 4.0}; // radius 2.5: centres up to 2.0 from the axis
+    const Packing bed = fill_lattice(p);
+    double widest = 0.0;
+    for (const Vec3& c : bed.centers) {
+        widest = std::max(widest, std::hypot(c.x, c.y));
+        EXPECT_GE(c.z, 0.5 - 1e-12);
+        EXPECT_LE(c.z, 3.5 + 1e-12);
+    }
+    EXPECT_NEAR(widest, 2.0, 1e-12); // (2, 0) and (0, 2) touch the wall exactly
+    // Layers z = 0.5 .. 3.5 (4), each the integer points with x^2 + y^2 <= 4: 13 of them.
+    EXPECT_EQ(bed.size(), 4u * 13u);
+}
+
+TEST(Lattice, CentresOptionKeepsBallsCutByTheWalls) {
+    LatticeParameters p;
+    p.type = LatticeType::sc;
+    p.region = BoxRegion{{3.0, 3.0, 3.0}};
+    p.origin = Vec3{0.0, 0.0, 0.0};
+    EXPECT_EQ(fill_lattice(p).size(), 8u); // 1 and 2 along each axis: whole balls
+    p.keep = LatticeKeep::centres;
+    EXPECT_EQ(fill_lattice(p).size(), 64u); // 0 to 3 along each axis
+}
+
+TEST(Lattice, BadParametersNameTheValue) {
+    LatticeParameters p;
+    p.region = BoxRegion{{10.0, -1.0, 10.0}};
+    try {
+        fill_lattice(p);
+        FAIL() << "a negative box side was accepted";
+    } catch (const InvalidInput& e) {
+        EXPECT_STREQ(e.what(), "region box:10,-1,10 is not allowed; allowed: three lengths > 0");
+    }
+    p.region = BoxRegion{{1e4, 1e4, 1e4}};
+    p.diameter = 1.0;
+    EXPECT_THROW(fill_lattice(p), InvalidInput); // about 3e11 balls
+    p.region = CylinderRegion{10.0, 10.0};
+    p.diameter = 0.0;
+    EXPECT_THROW(fill_lattice(p), InvalidInput);
+}
+
+} // namespace
+} // namespace packbed
