@@ -1,5 +1,9 @@
 #include "packbed/summary.hpp"
 
+#include <cmath>
+#include <numbers>
+#include <optional>
+
 #include "packbed/version.hpp"
 #include "packbed/volume.hpp"
 
@@ -103,6 +107,62 @@ nlohmann::json analysis_summary(const BedAnalysis& a, const AnalysisOptions& o) 
             {"files",
              {"radial_void_fraction.csv", "axial_void_fraction.csv",
               "radial_centre_distribution.csv", "coordination.csv", "pair_correlation.csv"}}};
+}
+
+nlohmann::json lattice_summary(const LatticeParameters& p, const Packing& packing) {
+    using nlohmann::json;
+    const UnitCell cell = unit_cell(p.type);
+    const double d = p.diameter;
+    const double r = 0.5 * d;
+    json summary;
+    summary["version"] = std::string(version);
+    summary["generator"] = "lattice";
+    summary["type"] = to_string(p.type);
+    summary["diameter"] = d;
+    summary["keep"] = p.keep == LatticeKeep::whole ? "whole" : "centres";
+    const double volume = region_volume(p.region);
+    std::optional<double> solid;
+    if (const auto* box = std::get_if<BoxRegion>(&p.region)) {
+        summary["region"] = {{"shape", "box"}, {"size", {box->size.x, box->size.y, box->size.z}}};
+        if (p.keep == LatticeKeep::whole)
+            solid = static_cast<double>(packing.size()) * std::numbers::pi / 6.0 * d * d * d;
+    } else {
+        const auto& c = std::get<CylinderRegion>(p.region);
+        summary["region"] = {{"shape", "cylinder"}, {"diameter", c.diameter}, {"height", c.height}};
+        summary["container"] = {{"shape", "cylinder"}, {"radius", 0.5 * c.diameter}};
+        double sum = 0.0;
+        for (const Vec3& centre : packing.centers)
+            sum += sphere_volume_in_cylinder_slab(centre, r, 0.5 * c.diameter, 0.0, c.height);
+        solid = sum;
+    }
+    const Vec3 origin = p.origin.value_or(
+        std::holds_alternative<BoxRegion>(p.region) ? Vec3{r, r, r} : Vec3{0.0, 0.0, r});
+    summary["origin"] = {origin.x, origin.y, origin.z};
+    summary["balls"] = packing.size();
+    summary["lattice"] = {{"porosity", cell.porosity},
+                          {"coordination", cell.coordination},
+                          {"cell_edges", {cell.edges.x * d, cell.edges.y * d, cell.edges.z * d}},
+                          {"balls_per_cell", cell.balls.size()}};
+    summary["porosity_region"] = solid ? json(1.0 - *solid / volume) : json(nullptr);
+    if (!solid)
+        summary["porosity_region_note"] =
+            "not computed: balls cut by the walls of a box (--keep centres)";
+    const LatticeContacts contacts = lattice_contacts(packing);
+    std::vector<std::uint64_t> histogram;
+    double total = 0.0;
+    for (const std::uint32_t k : contacts.contacts) {
+        if (histogram.size() <= k)
+            histogram.resize(k + 1, 0);
+        ++histogram[k];
+        total += k;
+    }
+    summary["contacts"] = {
+        {"tolerance_d", 1e-9},
+        {"mean", packing.size() ? total / static_cast<double>(packing.size()) : 0.0},
+        {"histogram", histogram},
+        {"closest_distance_d",
+         std::isfinite(contacts.closest) ? json(contacts.closest) : json(nullptr)}};
+    return summary;
 }
 
 } // namespace packbed

@@ -2,6 +2,7 @@
 #include <sys/wait.h>
 
 #include <algorithm>
+#include <cmath>
 #include <cstdio>
 #include <cstdlib>
 #include <filesystem>
@@ -361,9 +362,48 @@ INSTANTIATE_TEST_SUITE_P(
         BadInput{"generate --config @D/broken.toml",
                  "packbed: --config: line 1, column 16: Error while parsing value: could not "
                  "determine value type"},
+        BadInput{"lattice --region box:1,2",
+                 "packbed lattice: --region 'box:1,2' is not allowed; allowed: box:LX,LY,LZ or "
+                 "cylinder:D,H with lengths > 0"},
+        BadInput{"lattice --region cylinder:-3,2",
+                 "packbed lattice: --region 'cylinder:-3,2' is not allowed; allowed: "
+                 "box:LX,LY,LZ or cylinder:D,H with lengths > 0"},
+        BadInput{"lattice --origin 1,x,2",
+                 "packbed lattice: --origin '1,x,2' is not allowed; allowed: x,y,z (three finite "
+                 "numbers)"},
+        BadInput{"lattice --type honeycomb",
+                 "packbed: --type: honeycomb not in {diamond,sc,bcc,fcc,hcp}"},
+        BadInput{"lattice --region box:1e5,1e5,1e5",
+                 "packbed lattice: the region holds about 6.5e+14 balls of diameter 1; allowed: at "
+                 "most 1e8 (a larger diameter or a smaller region)"},
         BadInput{"generate --config @D/typed.toml",
                  "packbed: --config: line 1: key 'particles' has a value of the wrong type; "
                  "allowed: a number, a string or true/false"}));
+
+TEST(Cli, LatticeWritesTheBallsAndTheirNumbers) {
+    const fs::path d = scratch("lattice");
+    const Outcome o = packbed("lattice --type diamond --region box:10,10,10 --out " + d.string());
+    ASSERT_EQ(o.status, 0) << o.err;
+    const auto s = nlohmann::json::parse(slurp(d / "summary.json"));
+    // 4 cells of edge 4/sqrt(3) = 2.31 fit along each side of 10 (from d/2 on): 8 balls each.
+    EXPECT_EQ(s["balls"], 512);
+    EXPECT_NEAR(s["porosity_region"].get<double>(), 1.0 - 512 * M_PI / 6.0 / 1000.0, 1e-12);
+    EXPECT_NEAR(s["lattice"]["porosity"].get<double>(), 1.0 - M_PI * std::sqrt(3.0) / 16.0, 1e-15);
+    EXPECT_EQ(s["lattice"]["coordination"], 4);
+    EXPECT_EQ(s["contacts"]["histogram"].size(), 5u); // nobody has more than 4 contacts
+    EXPECT_NEAR(s["contacts"]["closest_distance_d"].get<double>(), 1.0, 1e-12);
+    const std::string csv = slurp(d / "particles.csv");
+    EXPECT_EQ(std::count(csv.begin(), csv.end(), '\n'), 513); // header + one row per ball
+    EXPECT_TRUE(fs::exists(d / "particles.vtu"));
+
+    // A cylinder is a bed: the analysis runs as for `generate`.
+    const fs::path c = scratch("cylinder");
+    ASSERT_EQ(packbed("lattice --type fcc --region cylinder:10,20 -q --out " + c.string()).status,
+              0);
+    const auto sc = nlohmann::json::parse(slurp(c / "summary.json"));
+    EXPECT_TRUE(sc["analysis"]["void_fraction"].is_number());
+    EXPECT_TRUE(fs::exists(c / "radial_void_fraction.csv"));
+}
 
 TEST(Cli, UnwritableOutputIsRefusedBeforeTheRun) {
     const fs::path d = scratch("unwritable");

@@ -59,18 +59,8 @@ int run_generate(GenerateOptions& o) {
     out.stage("particles.csv", particles_csv(result.packing));
     out.stage("particles.vtu", particles_vtu(result.packing));
     // The same analysis as `packbed analyze`, when the bed is tall enough for the band.
-    if (summary["void_fraction"].is_number()) {
-        AnalysisOptions analysis_options;
-        analysis_options.band_clearance = o.band_clearance;
-        const BedAnalysis analysis =
-            analyze_bed(result.packing, result.container, analysis_options);
-        summary["analysis"] = analysis_summary(analysis, analysis_options);
-        for (const auto& [name, text] : analysis_tables(analysis, result.container.radius()))
-            out.stage(name, text);
-        if (const std::string why = stage_plots(out, analysis, result.container.radius());
-            !why.empty())
-            summary["analysis"]["plots"] = why;
-    }
+    if (summary["void_fraction"].is_number())
+        stage_analysis(out, result.packing, result.container, o.band_clearance, summary);
     out.stage("summary.json", summary.dump(2) + "\n");
     out.commit();
     if (!o.quiet) {

@@ -14,6 +14,7 @@ namespace packbed::cli {
 Command register_generate(CLI::App& parent);
 Command register_analyze(CLI::App& parent);
 Command register_correlations(CLI::App& parent);
+Command register_lattice(CLI::App& parent);
 } // namespace packbed::cli
 
 int main(int argc, char** argv) {
@@ -25,8 +26,9 @@ int main(int argc, char** argv) {
                    "read a subcommand's options from this TOML file (keys are the option names, "
                    "e.g. aspect-ratio = 5); the command line wins");
     app.config_formatter(std::make_shared<cli::TomlConfig>(&app));
-    const std::vector<cli::Command> commands{
-        cli::register_generate(app), cli::register_analyze(app), cli::register_correlations(app)};
+    const std::vector<cli::Command> commands{cli::register_generate(app),
+                                             cli::register_lattice(app), cli::register_analyze(app),
+                                             cli::register_correlations(app)};
 
     try {
         app.parse(argc, argv);

@@ -11,6 +11,7 @@
 #include <unistd.h>
 
 #include "packbed/correlations.hpp"
+#include "packbed/summary.hpp"
 
 namespace packbed::cli {
 
@@ -95,6 +96,18 @@ std::string stage_plots(OutputDirectory& out, const BedAnalysis& a, double rt) {
     out.discard("radial_centre_distribution.svg");
     return status == 127 ? "gnuplot not found (Debian package gnuplot-nox): no plots"
                          : fmt::format("gnuplot failed (exit status {}): no plots", status);
+}
+
+void stage_analysis(OutputDirectory& out, const Packing& packing, const Cylinder& container,
+                    double band_clearance, nlohmann::json& summary) {
+    AnalysisOptions options;
+    options.band_clearance = band_clearance;
+    const BedAnalysis analysis = analyze_bed(packing, container, options);
+    summary["analysis"] = analysis_summary(analysis, options);
+    for (const auto& [name, text] : analysis_tables(analysis, container.radius()))
+        out.stage(name, text);
+    if (const std::string why = stage_plots(out, analysis, container.radius()); !why.empty())
+        summary["analysis"]["plots"] = why;
 }
 
 } // namespace packbed::cli

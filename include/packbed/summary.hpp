@@ -4,6 +4,7 @@
 #include <nlohmann/json.hpp>
 
 #include "packbed/analysis.hpp"
+#include "packbed/lattice.hpp"
 #include "packbed/soft_sphere.hpp"
 
 namespace packbed {
@@ -25,5 +26,12 @@ nlohmann::json soft_sphere_summary(const SoftSphereParameters& parameters,
 /// overall void fraction, coordination (mean with and without rattlers, rattlers, wall contacts),
 /// the reference diameter, and the options used.
 nlohmann::json analysis_summary(const BedAnalysis& analysis, const AnalysisOptions& options);
+
+/// The record of a lattice (`packbed lattice`): its parameters, the number of balls, the
+/// lattice's exact porosity and coordination, the porosity measured in the region (the balls'
+/// volume inside it over its volume: exact, cut balls included for a cylinder; null for
+/// balls cut by the walls of a box, not computed yet) and the contacts found (within 1e-9 d).
+/// Lengths in output units.
+nlohmann::json lattice_summary(const LatticeParameters& parameters, const Packing& packing);
 
 } // namespace packbed

@@ -1,0 +1,149 @@
+// `packbed lattice`: a regular packing (Tsayger's tetrahedral one, sc, bcc, fcc, hcp) filling
+// a box or a cylinder, as the initial state of a DEM simulation.
+#include <charconv>
+#include <cmath>
+#include <memory>
+#include <string>
+#include <vector>
+
+#include <fmt/format.h>
+
+#include "command.hpp"
+#include "packbed/error.hpp"
+#include "packbed/io.hpp"
+#include "packbed/lattice.hpp"
+#include "packbed/summary.hpp"
+#include "plots.hpp"
+
+namespace packbed::cli {
+
+namespace {
+
+struct LatticeOptions {
+    LatticeParameters params;
+    std::string type = "diamond";
+    std::string region = "box:10,10,10";
+    std::string origin;
+    std::string keep = "whole";
+    std::string out = "packbed-lattice";
+    double band_clearance = 1.0;
+    bool quiet = false;
+};
+
+/// The comma-separated finite numbers of `text`, or nothing when it is not exactly that.
+std::optional<std::vector<double>> numbers(std::string_view text) {
+    std::vector<double> values;
+    while (true) {
+        const std::size_t comma = text.find(',');
+        const std::string_view item = text.substr(0, comma);
+        double value = 0.0;
+        const auto [ptr, ec] = std::from_chars(item.data(), item.data() + item.size(), value);
+        if (item.empty() || ec != std::errc() || ptr != item.data() + item.size() ||
+            !std::isfinite(value))
+            return std::nullopt;
+        values.push_back(value);
+        if (comma == std::string_view::npos)
+            return values;
+        text.remove_prefix(comma + 1);
+    }
+}
+
+/// `box:LX,LY,LZ` or `cylinder:D,H`, lengths > 0.
+LatticeRegion parse_region(const std::string& text) {
+    const std::string allowed = "allowed: box:LX,LY,LZ or cylinder:D,H with lengths > 0";
+    const std::size_t colon = text.find(':');
+    const std::string shape = text.substr(0, colon);
+    const auto values = colon == std::string::npos ? std::nullopt : numbers(text.substr(colon + 1));
+    auto positive = [&] {
+        for (const double v : *values)
+            if (!(v > 0.0))
+                return false;
+        return true;
+    };
+    if (values && shape == "box" && values->size() == 3 && positive())
+        return BoxRegion{{(*values)[0], (*values)[1], (*values)[2]}};
+    if (values && shape == "cylinder" && values->size() == 2 && positive())
+        return CylinderRegion{(*values)[0], (*values)[1]};
+    throw InvalidInput(fmt::format("--region '{}' is not allowed; {}", text, allowed));
+}
+
+int run_lattice(LatticeOptions& o) {
+    for (const auto& [name, value] : lattice_types())
+        if (name == o.type)
+            o.params.type = value;
+    o.params.region = parse_region(o.region);
+    if (!o.origin.empty()) {
+        const auto xyz = numbers(o.origin);
+        if (!xyz || xyz->size() != 3)
+            throw InvalidInput(fmt::format(
+                "--origin '{}' is not allowed; allowed: x,y,z (three finite numbers)", o.origin));
+        o.params.origin = Vec3{(*xyz)[0], (*xyz)[1], (*xyz)[2]};
+    }
+    o.params.keep = o.keep == "centres" ? LatticeKeep::centres : LatticeKeep::whole;
+    o.params.validate();
+    OutputDirectory out(o.out); // refuse an unwritable directory before the work
+
+    const Packing packing = fill_lattice(o.params);
+    auto summary = lattice_summary(o.params, packing);
+    out.stage("particles.csv", particles_csv(packing));
+    out.stage("particles.vtu", particles_vtu(packing));
+    // A lattice in a cylinder is a bed: the same analysis as `generate`, when tall enough.
+    if (const auto* c = std::get_if<CylinderRegion>(&o.params.region);
+        c && !packing.centers.empty() && c->height > 2.0 * o.band_clearance * o.params.diameter)
+        stage_analysis(out, packing, Cylinder(0.5 * c->diameter), o.band_clearance, summary);
+    out.stage("summary.json", summary.dump(2) + "\n");
+    out.commit();
+    if (!o.quiet) {
+        fmt::print("packbed lattice: {} balls of a {} packing (coordination {}, porosity {:.5f})\n",
+                   packing.size(), o.type, summary["lattice"]["coordination"].get<int>(),
+                   summary["lattice"]["porosity"].get<double>());
+        if (summary["porosity_region"].is_number())
+            fmt::print("porosity in the region: {:.5f}; mean contacts found: {:.3f}\n",
+                       summary["porosity_region"].get<double>(),
+                       summary["contacts"]["mean"].get<double>());
+        fmt::print("results in {}/ (particles.csv, particles.vtu, summary.json)\n",
+                   out.path().string());
+    }
+    return 0;
+}
+
+} // namespace
+
+Command register_lattice(CLI::App& parent) {
+    auto options = std::make_shared<LatticeOptions>();
+    auto& o = *options;
+    CLI::App* app = parent.add_subcommand(
+        "lattice", "Fill a box or a cylinder with a regular packing of touching balls: "
+                   "tetrahedral (diamond, Tsayger 2013), sc, bcc, fcc or hcp");
+    app->option_defaults()->always_capture_default();
+    std::vector<std::string> type_names;
+    for (const auto& entry : lattice_types())
+        type_names.push_back(entry.first);
+    app->add_option("-t,--type", o.type,
+                    "diamond: coordination 4, porosity 0.660; sc: 6, 0.476; bcc: 8, 0.320; "
+                    "fcc and hcp: 12, 0.260")
+        ->check(CLI::IsMember(type_names));
+    app->add_option("-d,--diameter", o.params.diameter, "ball diameter d; the unit of the outputs")
+        ->check(real_in(1e-12, 1e12, false, false));
+    app->add_option("-r,--region", o.region,
+                    "box:LX,LY,LZ (from 0 to L along each axis) or cylinder:D,H (z axis, from "
+                    "z = 0 to H)");
+    app->add_option("--origin", o.origin,
+                    "x,y,z of the first ball of cell (0,0,0) (ball A of Tsayger's Table 1); "
+                    "default: d/2 from each wall at the low corner of a box, on the axis d/2 "
+                    "above the floor of a cylinder");
+    app->add_option("--keep", o.keep,
+                    "whole: only balls wholly inside the region; centres: every ball whose "
+                    "centre is inside")
+        ->check(CLI::IsMember({"whole", "centres"}));
+    app->add_option("-o,--out", o.out, "output directory (created if missing)");
+    app->add_option("--band-clearance", o.band_clearance,
+                    "cylinder: the analysis band starts and ends this far from floor and top, d")
+        ->check(real_in(0.0, 1e6, false, true));
+    app->add_flag("-q,--quiet", o.quiet, "no report on the terminal");
+    app->fallthrough();
+    app->footer("Exit status: 0 success, 2 bad input.");
+    return {app, [options] { return run_lattice(*options); }};
+}
+
+} // namespace packbed::cli
