@@ -1,0 +1,70 @@
+// Hydraulics of a bed of mono-sized spheres: the onset of fluidization from the Ergun-type
+// relation eq. (1) of Tsayger (2013) (Goroshko, Rosenbaum & Todes 1958), the fluid velocity it
+// gives as the initial condition of a DEM run, Ergun's and Eisfeld & Schnitzlein's pressure
+// drops, Wen & Yu's minimum fluidization and permeabilities. SI units throughout.
+#pragma once
+
+#include <string>
+#include <vector>
+
+#include "packbed/correlations.hpp"
+
+namespace packbed {
+
+/// The particles and the fluid. Plain value type, SI units.
+struct FluidAndParticles {
+    double diameter = 1e-3;         ///< particle diameter d, m, > 0
+    double particle_density = 2500; ///< kg/m^3, > fluid density (else nothing fluidizes)
+    double fluid_density = 1.2;     ///< kg/m^3, > 0
+    double viscosity = 1.8e-5;      ///< dynamic viscosity mu, Pa s, > 0
+    double gravity = 9.80665;       ///< g, m/s^2, > 0
+
+    /// \throws InvalidInput naming the value and what is allowed
+    void validate() const;
+};
+
+/// Archimedes number \f$Ar = g d^3 \rho (\rho_p - \rho) / \mu^2\f$ (Tsayger 2013).
+double archimedes_number(const FluidAndParticles& f);
+
+/// The two coefficients of eq. (1), \f$Ar = A\,Re + B\,Re^2\f$, at porosity e:
+/// \f$A = 150 (1 - e) / e^3\f$, \f$B = 1.75 / e^3\f$.
+struct FluidizationCoefficients {
+    double linear = 0.0;    ///< A
+    double quadratic = 0.0; ///< B
+};
+/// \param porosity e in (0, 1) \throws InvalidInput outside
+FluidizationCoefficients fluidization_coefficients(double porosity);
+
+/// The critical Reynolds number of eq. (1), the positive root of \f$B Re^2 + A Re - Ar = 0\f$,
+/// written \f$Re_c = 2 Ar / (A + \sqrt{A^2 + 4 B Ar})\f$ so that it loses no digits at small
+/// Ar (where \f$Re_c \to Ar/A\f$) nor overflows at large Ar (\f$\to \sqrt{Ar/B}\f$).
+/// \param archimedes Ar >= 0 \param porosity e in (0, 1)
+double critical_reynolds(double archimedes, double porosity);
+
+/// Superficial velocity from a particle Reynolds number: \f$w = Re\,\mu / (\rho d)\f$, m/s.
+double superficial_velocity(double reynolds, const FluidAndParticles& f);
+
+/// Ergun (1952): \f$\Delta P / L = 150 \mu u (1-e)^2 / (e^3 d^2) + 1.75 \rho u^2 (1-e) /
+/// (e^3 d)\f$, Pa/m, at superficial velocity u (m/s, >= 0).
+double ergun_pressure_gradient(double porosity, double velocity, const FluidAndParticles& f);
+
+/// Eisfeld & Schnitzlein (2001), spheres, the wall effect of a tube of aspect ratio a = D/d:
+/// \f$\psi = \Delta P\,d / (L \rho u^2) = K_1 A_w^2 (1-e)^2 / (Re\,e^3) + (A_w/B_w)(1-e)/e^3\f$,
+/// \f$A_w = 1 + 2/(3 a (1-e))\f$, \f$B_w = (k_1 a^{-2} + k_2)^2\f$, \f$K_1 = 154\f$,
+/// \f$k_1 = 1.15\f$, \f$k_2 = 0.87\f$, \f$Re = \rho u d / \mu\f$. Valid for
+/// \f$0.01 \le Re \le 17635\f$, \f$1.624 \le a \le 250\f$, \f$0.330 \le e \le 0.882\f$: outside,
+/// the value comes with a warning. \return Pa/m (velocity > 0)
+CorrelationValue eisfeld_schnitzlein_pressure_gradient(double porosity, double velocity,
+                                                       double aspect_ratio,
+                                                       const FluidAndParticles& f);
+
+/// Wen & Yu (1966): \f$Re_{mf} = \sqrt{33.7^2 + 0.0408\,Ar} - 33.7\f$, computed as
+/// \f$0.0408\,Ar / (\sqrt{33.7^2 + 0.0408\,Ar} + 33.7)\f$ (no cancellation at small Ar).
+double wen_yu_reynolds(double archimedes);
+
+/// Permeabilities, m^2: Carman-Kozeny \f$k = d^2 e^3 / (180 (1-e)^2)\f$ and the one of Ergun's
+/// linear term, \f$k = d^2 e^3 / (150 (1-e)^2)\f$.
+double carman_kozeny_permeability(double porosity, double diameter);
+double ergun_permeability(double porosity, double diameter);
+
+} // namespace packbed

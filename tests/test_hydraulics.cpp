@@ -1,0 +1,126 @@
+// Hydraulics (Tsayger 2013 eq. (1), Ergun, Eisfeld & Schnitzlein, Wen & Yu) against values
+// computed by hand from the formulas.
+#include <cmath>
+
+#include <gtest/gtest.h>
+
+#include "packbed/error.hpp"
+#include "packbed/hydraulics.hpp"
+
+namespace packbed {
+namespace {
+
+/// 1 mm glass-like spheres (2500 kg/m^3) in water (1000 kg/m^3, 1 mPa s).
+FluidAndParticles water() {
+    FluidAndParticles f;
+    f.diameter = 1e-3;
+    f.particle_density = 2500.0;
+    f.fluid_density = 1000.0;
+    f.viscosity = 1e-3;
+    return f;
+}
+
+TEST(Hydraulics, ArchimedesNumber) {
+    // 9.80665 * 1e-9 * 1000 * 1500 / 1e-6
+    EXPECT_NEAR(archimedes_number(water()), 14709.975, 1e-9);
+}
+
+TEST(Hydraulics, CoefficientsOfEquation1AtTsaygersPorosities) {
+    // Eqs. (2)-(4) from eq. (1) with the paper's rounded porosities. The linear terms and eqs.
+    // (3)-(4) agree with the printed 177.394, 728.79 and 16.226, 6397.5 and 100.7; the
+    // quadratic term of eq. (2) is 1.75 / 0.66^3 = 6.087, printed 5.087 (docs/hydraulics.md).
+    const auto tetrahedral = fluidization_coefficients(0.660);
+    EXPECT_NEAR(tetrahedral.linear, 177.394, 5e-4);
+    EXPECT_NEAR(tetrahedral.quadratic, 6.08704, 1e-5);
+    const auto cubic = fluidization_coefficients(0.476);
+    EXPECT_NEAR(cubic.linear, 728.79, 5e-3);
+    EXPECT_NEAR(cubic.quadratic, 16.226, 5e-4);
+    const auto hexagonal = fluidization_coefficients(0.259);
+    EXPECT_NEAR(hexagonal.linear, 6397.5, 0.05);
+    EXPECT_NEAR(hexagonal.quadratic, 100.7, 0.05);
+    // Permeability ratios (reciprocal linear terms): hexagonal to tetrahedral 36, as printed;
+    // hexagonal to cubic 8.78, printed 9.8.
+    EXPECT_NEAR(hexagonal.linear / tetrahedral.linear, 36.06, 0.01);
+    EXPECT_NEAR(hexagonal.linear / cubic.linear, 8.778, 0.001);
+}
+
+TEST(Hydraulics, CriticalReynoldsSolvesTheQuadraticAtEveryAr) {
+    const double e = 0.66;
+    const auto [a, b] = fluidization_coefficients(e);
+    for (const double ar : {1e-12, 1e-3, 1.0, 14709.975, 1e7, 1e30, 1e300}) {
+        const double re = critical_reynolds(ar, e);
+        ASSERT_TRUE(std::isfinite(re)) << ar;
+        EXPECT_NEAR((a * re + b * re * re) / ar, 1.0, 1e-13) << "Ar = " << ar;
+    }
+    // Limits: Stokes (Ar / A) and inertial (sqrt(Ar / B)).
+    EXPECT_NEAR(critical_reynolds(1e-12, e) / (1e-12 / a), 1.0, 1e-12);
+    EXPECT_NEAR(critical_reynolds(1e300, e) / std::sqrt(1e300 / b), 1.0, 1e-12);
+    EXPECT_EQ(critical_reynolds(0.0, e), 0.0);
+}
+
+TEST(Hydraulics, SuperficialVelocityOfTheCriticalReynolds) {
+    const FluidAndParticles f = water();
+    const double re = critical_reynolds(archimedes_number(f), 0.66);
+    // w = Re mu / (rho d) = Re * 1e-3 m/s here.
+    EXPECT_NEAR(superficial_velocity(re, f), re * 1e-3, 1e-15);
+}
+
+TEST(Hydraulics, ErgunPressureGradient) {
+    // 150 * 1e-3 * 0.01 * 0.36 / (0.064 * 1e-6) + 1.75 * 1000 * 1e-4 * 0.6 / (0.064 * 1e-3)
+    EXPECT_NEAR(ergun_pressure_gradient(0.4, 0.01, water()), 8437.5 + 1640.625, 1e-9);
+}
+
+TEST(Hydraulics, EisfeldSchnitzleinWithTheWallEffect) {
+    // Re = 10, A_w = 1 + 2/18, B_w = (0.0115 + 0.87)^2, psi = 120.35: dP/L = psi rho u^2 / d.
+    const CorrelationValue v = eisfeld_schnitzlein_pressure_gradient(0.4, 0.01, 10.0, water());
+    EXPECT_NEAR(v.value, 12034.99789, 1e-4);
+    EXPECT_TRUE(v.warning.empty());
+    // A tube of aspect ratio 300 is outside 1.624 <= a <= 250: a warning naming it.
+    const CorrelationValue wide = eisfeld_schnitzlein_pressure_gradient(0.4, 0.01, 300.0, water());
+    EXPECT_EQ(wide.warning, "Eisfeld & Schnitzlein (2001) evaluated outside its range: a = 300 "
+                            "(1.624 to 250)");
+    // The wall adds resistance: above Ergun at a = 10.
+    EXPECT_GT(v.value, ergun_pressure_gradient(0.4, 0.01, water()));
+}
+
+TEST(Hydraulics, WenYuMinimumFluidization) {
+    EXPECT_NEAR(wen_yu_reynolds(14709.975), 7.963616981726, 1e-9);
+    EXPECT_NEAR(wen_yu_reynolds(1e-9) / (0.0408e-9 / (2 * 33.7)), 1.0, 1e-9);
+}
+
+TEST(Hydraulics, Permeabilities) {
+    EXPECT_NEAR(carman_kozeny_permeability(0.4, 1e-3), 1e-6 * 0.064 / (180 * 0.36), 1e-22);
+    EXPECT_NEAR(ergun_permeability(0.4, 1e-3), 1e-6 * 0.064 / (150 * 0.36), 1e-22);
+}
+
+TEST(Hydraulics, BadInputsNameTheValue) {
+    FluidAndParticles f = water();
+    f.viscosity = 0.0;
+    try {
+        archimedes_number(f);
+        FAIL();
+    } catch (const InvalidInput& e) {
+        EXPECT_STREQ(e.what(), "viscosity = 0 is not allowed; allowed: > 0 (Pa s)");
+    }
+    f = water();
+    f.particle_density = 900.0;
+    try {
+        archimedes_number(f);
+        FAIL();
+    } catch (const InvalidInput& e) {
+        EXPECT_STREQ(e.what(), "particle-density = 900 is not allowed; allowed: > the fluid "
+                               "density (1000 kg/m^3): a particle lighter than the fluid does "
+                               "not settle or fluidize");
+    }
+    for (const double e : {0.0, 1.0, -0.2, 1.5, std::nan("")})
+        EXPECT_THROW(fluidization_coefficients(e), InvalidInput) << e;
+    try {
+        fluidization_coefficients(1.2);
+        FAIL();
+    } catch (const InvalidInput& e) {
+        EXPECT_STREQ(e.what(), "porosity = 1.2 is not allowed; allowed: 0 < porosity < 1");
+    }
+}
+
+} // namespace
+} // namespace packbed
