@@ -307,7 +307,8 @@ TEST_P(CliBadInput, ExitStatus2AndOneLineNamingOptionValueAndRange) {
     std::string args = GetParam().args;
     for (std::size_t at; (at = args.find("@D")) != std::string::npos;)
         args.replace(at, 2, d.string());
-    const Outcome o = packbed(args + " --out " + (d / "out").string());
+    const bool writes = args.rfind("hydraulics", 0) != 0; // hydraulics only prints
+    const Outcome o = packbed(writes ? args + " --out " + (d / "out").string() : args);
     EXPECT_EQ(o.status, 2) << o.err;
     std::string expected = GetParam().message;
     for (std::size_t at; (at = expected.find("@D")) != std::string::npos;)
@@ -376,6 +377,19 @@ INSTANTIATE_TEST_SUITE_P(
         BadInput{"lattice --region box:1e5,1e5,1e5",
                  "packbed lattice: the region holds about 6.5e+14 balls of diameter 1; allowed: at "
                  "most 1e8 (a larger diameter or a smaller region)"},
+        BadInput{"hydraulics --porosity 0.4 --particle-density 900",
+                 "packbed hydraulics: particle-density = 900 is not allowed; allowed: > the fluid "
+                 "density (998.2 kg/m^3): a particle lighter than the fluid does not settle or "
+                 "fluidize"},
+        BadInput{"hydraulics --porosity 0.4 --viscosity 0",
+                 "packbed: --viscosity: 0 is not allowed; allowed: a number > 0"},
+        BadInput{"hydraulics --porosity 1.2",
+                 "packbed: --porosity: 1.2 is not allowed; allowed: a number in (0, 1)"},
+        BadInput{"hydraulics",
+                 "packbed hydraulics: no porosity given; allowed: --porosity E (0 < E < 1) or "
+                 "--bed SUMMARY.json"},
+        BadInput{"hydraulics --bed @D/plain",
+                 "packbed hydraulics: --bed '@D/plain': @D/plain is not JSON"},
         BadInput{"generate --config @D/typed.toml",
                  "packbed: --config: line 1: key 'particles' has a value of the wrong type; "
                  "allowed: a number, a string or true/false"}));
@@ -403,6 +417,30 @@ TEST(Cli, LatticeWritesTheBallsAndTheirNumbers) {
     const auto sc = nlohmann::json::parse(slurp(c / "summary.json"));
     EXPECT_TRUE(sc["analysis"]["void_fraction"].is_number());
     EXPECT_TRUE(fs::exists(c / "radial_void_fraction.csv"));
+}
+
+TEST(Cli, HydraulicsOfALatticeFromItsSummary) {
+    const fs::path d = scratch("lattice");
+    ASSERT_EQ(packbed("lattice --type diamond --region box:5,5,5 -q --out " + d.string()).status,
+              0);
+    const Outcome o = packbed("hydraulics --json --bed " + d.string() +
+                              " --diameter 1e-3 --particle-density 2500 --fluid-density 1000 "
+                              "--viscosity 1e-3 --aspect-ratio 10");
+    ASSERT_EQ(o.status, 0) << o.err;
+    const auto j = nlohmann::json::parse(o.out);
+    const double e = 1.0 - M_PI * std::sqrt(3.0) / 16.0; // the lattice's, not the box's
+    EXPECT_NEAR(j["porosity"]["value"].get<double>(), e, 1e-15);
+    EXPECT_NEAR(j["archimedes"].get<double>(), 14709.975, 1e-8);
+    const double a = 150.0 * (1.0 - e) / (e * e * e), b = 1.75 / (e * e * e);
+    const double re = j["equation_1"]["critical_reynolds"].get<double>();
+    EXPECT_NEAR(a * re + b * re * re, 14709.975, 1e-8);
+    EXPECT_NEAR(j["equation_1"]["superficial_velocity_m_s"].get<double>(), re * 1e-3, 1e-15);
+    EXPECT_EQ(j["regular_packings"].size(), 3u);
+    // e = 0.66, Re = 36.7 and a = 10 lie in Eisfeld & Schnitzlein's range; the wall adds
+    // resistance to Ergun's.
+    EXPECT_TRUE(j["pressure_gradient"]["eisfeld_schnitzlein_in_range"].get<bool>());
+    EXPECT_GT(j["pressure_gradient"]["eisfeld_schnitzlein_Pa_m"].get<double>(),
+              j["pressure_gradient"]["ergun_Pa_m"].get<double>());
 }
 
 TEST(Cli, UnwritableOutputIsRefusedBeforeTheRun) {

@@ -15,6 +15,7 @@ Command register_generate(CLI::App& parent);
 Command register_analyze(CLI::App& parent);
 Command register_correlations(CLI::App& parent);
 Command register_lattice(CLI::App& parent);
+Command register_hydraulics(CLI::App& parent);
 } // namespace packbed::cli
 
 int main(int argc, char** argv) {
@@ -26,9 +27,9 @@ int main(int argc, char** argv) {
                    "read a subcommand's options from this TOML file (keys are the option names, "
                    "e.g. aspect-ratio = 5); the command line wins");
     app.config_formatter(std::make_shared<cli::TomlConfig>(&app));
-    const std::vector<cli::Command> commands{cli::register_generate(app),
-                                             cli::register_lattice(app), cli::register_analyze(app),
-                                             cli::register_correlations(app)};
+    const std::vector<cli::Command> commands{
+        cli::register_generate(app), cli::register_lattice(app), cli::register_hydraulics(app),
+        cli::register_analyze(app), cli::register_correlations(app)};
 
     try {
         app.parse(argc, argv);

@@ -1,0 +1,192 @@
+// `packbed hydraulics`: the fluid velocity that starts a DEM run of a fluidized bed (Tsayger
+// 2013, eq. (1)), pressure drops, minimum fluidization and permeability, for a porosity given
+// or read from a bed's summary.json.
+#include <filesystem>
+#include <fstream>
+#include <memory>
+#include <optional>
+#include <string>
+
+#include <fmt/format.h>
+#include <nlohmann/json.hpp>
+
+#include "command.hpp"
+#include "packbed/error.hpp"
+#include "packbed/hydraulics.hpp"
+#include "packbed/lattice.hpp"
+
+namespace packbed::cli {
+
+namespace {
+
+namespace fs = std::filesystem;
+
+struct HydraulicsOptions {
+    FluidAndParticles fluid{1e-3, 2500.0, 998.2, 1.002e-3, 9.80665}; // glass in water, 20 C
+    double porosity = 0.0;                                           // 0: from --bed
+    std::string bed;
+    double velocity = 0.0;     // 0: the critical velocity of eq. (1)
+    double aspect_ratio = 0.0; // 0: no wall-corrected pressure drop
+    bool json = false;
+};
+
+/// The porosity of a bed from its summary.json (or the directory holding it): a generated
+/// bed's overall void fraction, or a lattice's exact porosity (the paper's choice for eq. (1)).
+std::pair<double, std::string> porosity_of(const std::string& bed) {
+    fs::path path(bed);
+    if (fs::is_directory(path))
+        path /= "summary.json";
+    std::ifstream in(path);
+    if (!in)
+        throw InvalidInput(fmt::format("--bed '{}': cannot read {}", bed, path.string()));
+    nlohmann::json s;
+    try {
+        s = nlohmann::json::parse(in);
+    } catch (const nlohmann::json::exception&) {
+        throw InvalidInput(fmt::format("--bed '{}': {} is not JSON", bed, path.string()));
+    }
+    if (s.contains("lattice") && s["lattice"].contains("porosity") &&
+        s["lattice"]["porosity"].is_number())
+        return {s["lattice"]["porosity"].get<double>(),
+                fmt::format("{} lattice ({})", s.value("type", "?"), path.string())};
+    if (s.contains("void_fraction") && s["void_fraction"].is_number())
+        return {s["void_fraction"].get<double>(),
+                fmt::format("overall void fraction of {}", path.string())};
+    throw InvalidInput(fmt::format("--bed '{}': {} has no numeric lattice.porosity or "
+                                   "void_fraction; give --porosity",
+                                   bed, path.string()));
+}
+
+int run_hydraulics(const HydraulicsOptions& o) {
+    if (o.porosity > 0.0 && !o.bed.empty())
+        throw InvalidInput(fmt::format("--porosity {} and --bed '{}' both given; allowed: one of "
+                                       "them",
+                                       o.porosity, o.bed));
+    if (o.porosity <= 0.0 && o.bed.empty())
+        throw InvalidInput("no porosity given; allowed: --porosity E (0 < E < 1) or --bed "
+                           "SUMMARY.json");
+    const auto [e, origin] =
+        o.porosity > 0.0 ? std::pair{o.porosity, std::string("given")} : porosity_of(o.bed);
+    const FluidAndParticles& f = o.fluid;
+    const double ar = archimedes_number(f);
+    const auto coefficients = fluidization_coefficients(e);
+    const double re_c = critical_reynolds(ar, e);
+    const double w = superficial_velocity(re_c, f);
+    const double re_mf = wen_yu_reynolds(ar);
+    const double u = o.velocity > 0.0 ? o.velocity : w;
+    const double u_re = f.fluid_density * u * f.diameter / f.viscosity;
+    nlohmann::json out;
+    out["units"] = "SI: m, kg/m^3, Pa s, m/s, Pa/m, m^2";
+    out["porosity"] = {{"value", e}, {"from", origin}};
+    out["fluid_and_particles"] = {{"diameter_m", f.diameter},
+                                  {"particle_density_kg_m3", f.particle_density},
+                                  {"fluid_density_kg_m3", f.fluid_density},
+                                  {"viscosity_Pa_s", f.viscosity},
+                                  {"gravity_m_s2", f.gravity}};
+    out["archimedes"] = ar;
+    out["equation_1"] = {{"source", "Tsayger (2013) eq. (1), Goroshko, Rosenbaum & Todes (1958)"},
+                         {"formula", "Ar = 150 (1-e)/e^3 Re + 1.75/e^3 Re^2"},
+                         {"linear", coefficients.linear},
+                         {"quadratic", coefficients.quadratic},
+                         {"critical_reynolds", re_c},
+                         {"superficial_velocity_m_s", w}};
+    out["wen_yu_1966"] = {{"reynolds_mf", re_mf},
+                          {"velocity_mf_m_s", superficial_velocity(re_mf, f)}};
+    out["pressure_gradient"] = {
+        {"velocity_m_s", u}, {"reynolds", u_re}, {"ergun_Pa_m", ergun_pressure_gradient(e, u, f)}};
+    std::string warning;
+    if (o.aspect_ratio > 0.0) {
+        const CorrelationValue es = eisfeld_schnitzlein_pressure_gradient(e, u, o.aspect_ratio, f);
+        out["pressure_gradient"]["eisfeld_schnitzlein_Pa_m"] = es.value;
+        out["pressure_gradient"]["aspect_ratio"] = o.aspect_ratio;
+        out["pressure_gradient"]["eisfeld_schnitzlein_in_range"] = es.warning.empty();
+        warning = es.warning;
+    }
+    out["permeability_m2"] = {{"carman_kozeny", carman_kozeny_permeability(e, f.diameter)},
+                              {"ergun", ergun_permeability(e, f.diameter)}};
+    // Eqs. (2)-(4): eq. (1) at the exact porosities of the three regular packings.
+    const double hexagonal = fluidization_coefficients(unit_cell(LatticeType::fcc).porosity).linear;
+    for (const auto& [name, type] : {std::pair{"hexagonal (fcc, hcp)", LatticeType::fcc},
+                                     {"cubic (sc)", LatticeType::sc},
+                                     {"tetrahedral (diamond)", LatticeType::diamond}}) {
+        const double porosity = unit_cell(type).porosity;
+        const auto c = fluidization_coefficients(porosity);
+        out["regular_packings"].push_back({{"packing", name},
+                                           {"porosity", porosity},
+                                           {"linear", c.linear},
+                                           {"quadratic", c.quadratic},
+                                           {"permeability_over_hexagonal", hexagonal / c.linear},
+                                           {"critical_reynolds", critical_reynolds(ar, porosity)}});
+    }
+    if (!warning.empty())
+        fmt::print(stderr, "packbed hydraulics: warning: {}\n", warning);
+    if (o.json) {
+        fmt::print("{}\n", out.dump(2));
+        return 0;
+    }
+    fmt::print("porosity e = {:.5f} ({})\n", e, origin);
+    fmt::print("Archimedes number Ar = {:.6g}\n", ar);
+    fmt::print("eq. (1) at e: Ar = {:.6g} Re + {:.6g} Re^2\n", coefficients.linear,
+               coefficients.quadratic);
+    fmt::print("critical Re = {:.6g}; superficial velocity w = {:.6g} m/s (the initial fluid "
+               "velocity for DEM)\n",
+               re_c, w);
+    fmt::print("Wen & Yu (1966): Re_mf = {:.6g}, u_mf = {:.6g} m/s\n", re_mf,
+               superficial_velocity(re_mf, f));
+    fmt::print("at u = {:.6g} m/s (Re = {:.6g}): Ergun {:.6g} Pa/m", u, u_re,
+               ergun_pressure_gradient(e, u, f));
+    if (o.aspect_ratio > 0.0)
+        fmt::print(", Eisfeld & Schnitzlein (a = {}) {:.6g} Pa/m", o.aspect_ratio,
+                   out["pressure_gradient"]["eisfeld_schnitzlein_Pa_m"].get<double>());
+    fmt::print("\npermeability: Carman-Kozeny {:.6g} m^2, Ergun {:.6g} m^2\n",
+               carman_kozeny_permeability(e, f.diameter), ergun_permeability(e, f.diameter));
+    fmt::print("\nregular packings, eq. (1) at their exact porosities (Tsayger's eqs. 2-4):\n");
+    fmt::print("{:<22} {:>9} {:>10} {:>9} {:>13} {:>12}\n", "packing", "porosity", "A", "B",
+               "permeability", "critical Re");
+    for (const auto& row : out["regular_packings"])
+        fmt::print("{:<22} {:>9.5f} {:>10.6g} {:>9.5g} {:>13.4g} {:>12.6g}\n",
+                   row["packing"].get<std::string>(), row["porosity"].get<double>(),
+                   row["linear"].get<double>(), row["quadratic"].get<double>(),
+                   row["permeability_over_hexagonal"].get<double>(),
+                   row["critical_reynolds"].get<double>());
+    return 0;
+}
+
+} // namespace
+
+Command register_hydraulics(CLI::App& parent) {
+    auto options = std::make_shared<HydraulicsOptions>();
+    auto& o = *options;
+    CLI::App* app = parent.add_subcommand(
+        "hydraulics", "Onset of fluidization (Tsayger 2013, eq. 1) and the fluid velocity for a "
+                      "DEM start, pressure drops, Wen & Yu, permeability; SI units");
+    app->option_defaults()->always_capture_default();
+    const double inf = std::numeric_limits<double>::infinity();
+    app->add_option("-e,--porosity", o.porosity, "bed porosity (void fraction)")
+        ->check(real_in(0.0, 1.0, true, true));
+    app->add_option("--bed", o.bed,
+                    "a bed's summary.json (or its directory): a lattice's exact porosity or a "
+                    "generated bed's void fraction");
+    app->add_option("-d,--diameter", o.fluid.diameter, "particle diameter, m")
+        ->check(real_in(0.0, inf, true, true));
+    app->add_option("--particle-density", o.fluid.particle_density, "kg/m^3")
+        ->check(real_in(0.0, inf, true, true));
+    app->add_option("--fluid-density", o.fluid.fluid_density, "kg/m^3 (default: water, 20 C)")
+        ->check(real_in(0.0, inf, true, true));
+    app->add_option("--viscosity", o.fluid.viscosity, "dynamic viscosity, Pa s (default: water)")
+        ->check(real_in(0.0, inf, true, true));
+    app->add_option("-g,--gravity", o.fluid.gravity, "m/s^2")->check(real_in(0.0, inf, true, true));
+    app->add_option("-u,--velocity", o.velocity,
+                    "superficial velocity for the pressure drops, m/s (default: the critical one)")
+        ->check(real_in(0.0, inf, true, true));
+    app->add_option("-a,--aspect-ratio", o.aspect_ratio,
+                    "tube over particle diameter: adds Eisfeld & Schnitzlein's wall-corrected "
+                    "pressure drop")
+        ->check(real_in(1.0, inf, false, true));
+    app->add_flag("--json", o.json, "print everything as JSON");
+    app->fallthrough();
+    app->footer("Exit status: 0 success, 2 bad input (e.g. a particle lighter than the fluid).");
+    return {app, [options] { return run_hydraulics(*options); }};
+}
+
+} // namespace packbed::cli
