@@ -1,7 +1,7 @@
 #!/usr/bin/env bash
 # Install what packbed needs on Debian 12, from Debian's packages only; nothing when everything
 # is already there. Usage: scripts/install-deps.sh [--test]
-#   --test  also what the test suite needs beyond the build (VTK's Python reader)
+#   --test  also what the test suite needs beyond the build (VTK's Python reader, LAMMPS)
 set -euo pipefail
 
 packages=(
@@ -18,6 +18,7 @@ packages=(
 )
 if [[ ${1:-} == --test ]]; then
   packages+=(python3-vtk9)  # reads particles.vtu as ParaView does
+  packages+=(lammps)        # reads the data files of packbed export (lmp)
 fi
 
 missing=()

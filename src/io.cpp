@@ -1,6 +1,10 @@
 #include "packbed/io.hpp"
 
+#include <algorithm>
+#include <cmath>
 #include <fstream>
+#include <iterator>
+#include <limits>
 #include <system_error>
 
 #include <fmt/format.h>
@@ -17,6 +21,50 @@ std::string particles_csv(const Packing& packing) {
         const Vec3& c = packing.centers[i];
         // fmt's "{}" for double is the shortest representation that round-trips.
         fmt::format_to(std::back_inserter(out), "{},{},{},{}\n", c.x, c.y, c.z, packing.radii[i]);
+    }
+    return fmt::to_string(out);
+}
+
+AxisBox bounding_box(const Packing& packing) {
+    if (packing.size() == 0)
+        return {{0.0, 0.0, 0.0}, {1.0, 1.0, 1.0}};
+    const double inf = std::numeric_limits<double>::infinity();
+    AxisBox box{{inf, inf, inf}, {-inf, -inf, -inf}};
+    for (std::size_t i = 0; i < packing.size(); ++i) {
+        const Vec3 c = packing.centers[i];
+        const double r = packing.radii[i];
+        box.lo = {std::min(box.lo.x, c.x - r), std::min(box.lo.y, c.y - r),
+                  std::min(box.lo.z, c.z - r)};
+        box.hi = {std::max(box.hi.x, c.x + r), std::max(box.hi.y, c.y + r),
+                  std::max(box.hi.z, c.z + r)};
+    }
+    return box;
+}
+
+std::string lammps_data(const Packing& packing, double density, const AxisBox& box,
+                        std::string_view comment) {
+    if (!(std::isfinite(density) && density > 0.0))
+        throw InvalidInput(
+            fmt::format("density = {} is not allowed; allowed: a number > 0", density));
+    for (std::size_t i = 0; i < packing.size(); ++i) {
+        const Vec3 c = packing.centers[i];
+        if (!(c.x >= box.lo.x && c.x <= box.hi.x && c.y >= box.lo.y && c.y <= box.hi.y &&
+              c.z >= box.lo.z && c.z <= box.hi.z))
+            throw InvalidInput(fmt::format(
+                "sphere {} at ({}, {}, {}) lies outside the box [{}, {}] x [{}, {}] x [{}, {}]; "
+                "allowed: a box holding every centre",
+                i + 1, c.x, c.y, c.z, box.lo.x, box.hi.x, box.lo.y, box.hi.y, box.lo.z, box.hi.z));
+    }
+    fmt::memory_buffer out;
+    fmt::format_to(std::back_inserter(out), "{}\n\n{} atoms\n1 atom types\n\n", comment,
+                   packing.size());
+    fmt::format_to(std::back_inserter(out), "{} {} xlo xhi\n{} {} ylo yhi\n{} {} zlo zhi\n\n",
+                   box.lo.x, box.hi.x, box.lo.y, box.hi.y, box.lo.z, box.hi.z);
+    fmt::format_to(std::back_inserter(out), "Atoms # sphere\n\n");
+    for (std::size_t i = 0; i < packing.size(); ++i) {
+        const Vec3 c = packing.centers[i];
+        fmt::format_to(std::back_inserter(out), "{} 1 {} {} {} {} {}\n", i + 1,
+                       2.0 * packing.radii[i], density, c.x, c.y, c.z);
     }
     return fmt::to_string(out);
 }

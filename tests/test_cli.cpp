@@ -304,6 +304,7 @@ TEST_P(CliBadInput, ExitStatus2AndOneLineNamingOptionValueAndRange) {
     std::ofstream(d / "broken.toml") << "aspect-ratio = = 4\n";
     std::ofstream(d / "typed.toml") << "particles = [1, {a = 2}]\n";
     std::ofstream(d / "plain") << "x";
+    std::ofstream(d / "one.csv") << "x,y,z,r\n0,0,0,0.5\n";
     std::string args = GetParam().args;
     for (std::size_t at; (at = args.find("@D")) != std::string::npos;)
         args.replace(at, 2, d.string());
@@ -390,6 +391,14 @@ INSTANTIATE_TEST_SUITE_P(
                  "--bed SUMMARY.json"},
         BadInput{"hydraulics --bed @D/plain",
                  "packbed hydraulics: --bed '@D/plain': @D/plain is not JSON"},
+        BadInput{"export @D/one.csv --box 0,1,0,1,1,0",
+                 "packbed export: --box '0,1,0,1,1,0' is not allowed; allowed: "
+                 "xlo,xhi,ylo,yhi,zlo,zhi with lo < hi"},
+        BadInput{"export @D/one.csv --box 1,2,1,2,1,2",
+                 "packbed export: sphere 1 at (0, 0, 0) lies outside the box [1, 2] x [1, 2] x "
+                 "[1, 2]; allowed: a box holding every centre"},
+        BadInput{"export @D/one.csv --density 0",
+                 "packbed: --density: 0 is not allowed; allowed: a number > 0"},
         BadInput{"generate --config @D/typed.toml",
                  "packbed: --config: line 1: key 'particles' has a value of the wrong type; "
                  "allowed: a number, a string or true/false"}));
@@ -443,9 +452,54 @@ TEST(Cli, HydraulicsOfALatticeFromItsSummary) {
               j["pressure_gradient"]["ergun_Pa_m"].get<double>());
 }
 
+TEST(Cli, ExportedDataFileReadsBackInLammps) {
+    // Debian's lammps (`lmp`), installed by scripts/install-deps.sh --test; skipped without it.
+    if (std::system("command -v lmp >/dev/null 2>&1") != 0)
+        GTEST_SKIP() << "lmp (Debian package lammps) is not installed";
+    const fs::path d = scratch("lammps");
+    ASSERT_EQ(packbed("lattice --type bcc --diameter 0.002 --region box:0.01,0.01,0.01 -q --out " +
+                      d.string())
+                  .status,
+              0);
+    const Outcome e = packbed("export " + (d / "particles.csv").string() + " --out " +
+                              (d / "bed.data").string() + " --density 2600 -q");
+    ASSERT_EQ(e.status, 0) << e.err;
+    const auto summary = nlohmann::json::parse(slurp(d / "summary.json"));
+    const int balls = summary["balls"].get<int>();
+    ASSERT_GT(balls, 50);
+    std::ofstream(d / "in.roundtrip")
+        << "units si\natom_style sphere\natom_modify map array\nboundary f f f\n"
+        << "read_data " << (d / "bed.data").string() << "\n"
+        << "print \"ROUNDTRIP $(atoms) $(x[5]:%.17g) $(y[5]:%.17g) $(z[5]:%.17g) "
+           "$(mass[5]:%.17g)\"\n"; // radius[i] is no variable in LAMMPS 2021: the mass holds d
+    const std::string cmd =
+        "cd " + d.string() + " && lmp -in in.roundtrip -log none -echo none " + "> lmp.out 2>&1";
+    ASSERT_EQ(std::system(cmd.c_str()), 0) << slurp(d / "lmp.out");
+    const std::string out = slurp(d / "lmp.out");
+    const std::size_t at = out.find("ROUNDTRIP ");
+    ASSERT_NE(at, std::string::npos) << out;
+    std::istringstream line(out.substr(at + 10));
+    double atoms = 0, x = 0, y = 0, z = 0, mass = 0;
+    line >> atoms >> x >> y >> z >> mass;
+    EXPECT_EQ(atoms, balls);
+    // Sphere 5 of particles.csv (header, then one row per sphere).
+    std::istringstream csv(slurp(d / "particles.csv"));
+    std::string row;
+    for (int k = 0; k <= 5; ++k)
+        std::getline(csv, row);
+    double cx = 0, cy = 0, cz = 0, r = 0;
+    char comma = 0;
+    std::istringstream(row) >> cx >> comma >> cy >> comma >> cz >> comma >> r;
+    EXPECT_DOUBLE_EQ(x, cx);
+    EXPECT_DOUBLE_EQ(y, cy);
+    EXPECT_DOUBLE_EQ(z, cz);
+    EXPECT_NEAR(mass / (2600.0 * M_PI / 6.0 * 8e-9), 1.0, 1e-12); // density * pi d^3 / 6
+}
+
 TEST(Cli, UnwritableOutputIsRefusedBeforeTheRun) {
     const fs::path d = scratch("unwritable");
     std::ofstream(d / "plain") << "x";
+    std::ofstream(d / "one.csv") << "x,y,z,r\n0,0,0,0.5\n";
     const Outcome o = packbed(small + "--out " + (d / "plain" / "sub").string());
     EXPECT_EQ(o.status, 2);
     EXPECT_EQ(o.err, "packbed generate: --out " + (d / "plain" / "sub").string() +

@@ -16,6 +16,7 @@ Command register_analyze(CLI::App& parent);
 Command register_correlations(CLI::App& parent);
 Command register_lattice(CLI::App& parent);
 Command register_hydraulics(CLI::App& parent);
+Command register_export(CLI::App& parent);
 } // namespace packbed::cli
 
 int main(int argc, char** argv) {
@@ -29,7 +30,7 @@ int main(int argc, char** argv) {
     app.config_formatter(std::make_shared<cli::TomlConfig>(&app));
     const std::vector<cli::Command> commands{
         cli::register_generate(app), cli::register_lattice(app), cli::register_hydraulics(app),
-        cli::register_analyze(app), cli::register_correlations(app)};
+        cli::register_export(app),   cli::register_analyze(app), cli::register_correlations(app)};
 
     try {
         app.parse(argc, argv);

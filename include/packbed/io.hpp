@@ -3,6 +3,7 @@
 
 #include <filesystem>
 #include <string>
+#include <string_view>
 #include <utility>
 #include <vector>
 
@@ -20,6 +21,26 @@ std::string particles_csv(const Packing& packing);
 /// `radius` and `diameter`. ParaView shows it with the Point Gaussian representation or glyphs.
 /// \return the file's text.
 std::string particles_vtu(const Packing& packing);
+
+/// An axis-aligned box (lengths in the packing's units), lo < hi on every axis.
+struct AxisBox {
+    Vec3 lo, hi;
+};
+
+/// \return the smallest box holding every sphere whole (centre -/+ radius): the default box of
+/// a DEM data file. An empty packing gives the unit cube.
+AxisBox bounding_box(const Packing& packing);
+
+/// The spheres as a LAMMPS data file for `atom_style sphere` (LIGGGHTS: `atom_style
+/// granular`, the same columns): header with the atom count, one atom type and the box
+/// bounds, then `Atoms # sphere` rows `id type diameter density x y z` (ids from 1 in packing
+/// order, type 1). Numbers in shortest round-trip form.
+/// \param density particle density (mass per volume, in the units the DEM run uses; > 0)
+/// \param box must hold every centre (LAMMPS drops atoms outside a fixed box)
+/// \param comment first line of the file (no newline)
+/// \throws InvalidInput when the density is not > 0 or a centre is outside the box
+std::string lammps_data(const Packing& packing, double density, const AxisBox& box,
+                        std::string_view comment);
 
 /// The tables of a bed analysis as CSV texts, by file name:
 /// - `radial_void_fraction.csv`: `r,x_from_wall_d,void_fraction`, r the shell's mid-radius
