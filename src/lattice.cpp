@@ -29,6 +29,53 @@ UnitCell cell(Vec3 edges, std::vector<Vec3> fractions, int coordination) {
     return c;
 }
 
+/// A 3 x 3 rotation, rows first.
+struct Rotation {
+    double m[3][3] = {{1, 0, 0}, {0, 1, 0}, {0, 0, 1}};
+
+    Vec3 apply(const Vec3& v) const {
+        return {m[0][0] * v.x + m[0][1] * v.y + m[0][2] * v.z,
+                m[1][0] * v.x + m[1][1] * v.y + m[1][2] * v.z,
+                m[2][0] * v.x + m[2][1] * v.y + m[2][2] * v.z};
+    }
+    Vec3 apply_inverse(const Vec3& v) const { // the transpose
+        return {m[0][0] * v.x + m[1][0] * v.y + m[2][0] * v.z,
+                m[0][1] * v.x + m[1][1] * v.y + m[2][1] * v.z,
+                m[0][2] * v.x + m[1][2] * v.y + m[2][2] * v.z};
+    }
+    /// \return this rotation followed by `r`.
+    Rotation then(const Rotation& r) const {
+        Rotation out;
+        for (int i = 0; i < 3; ++i)
+            for (int j = 0; j < 3; ++j) {
+                out.m[i][j] = 0.0;
+                for (int k = 0; k < 3; ++k)
+                    out.m[i][j] += r.m[i][k] * m[k][j];
+            }
+        return out;
+    }
+};
+
+/// The rotation by `degrees` about axis x, y or z (right-handed). Multiples of 90 degrees are
+/// exact, so a lattice turned onto itself keeps every bit.
+Rotation about(char axis, double degrees) {
+    const double turns = degrees / 90.0;
+    double c = std::cos(degrees * pi / 180.0), s = std::sin(degrees * pi / 180.0);
+    if (turns == std::round(turns)) {
+        const int q = ((static_cast<int>(std::fmod(turns, 4.0)) % 4) + 4) % 4;
+        c = q == 0 ? 1.0 : q == 2 ? -1.0 : 0.0;
+        s = q == 1 ? 1.0 : q == 3 ? -1.0 : 0.0;
+    }
+    Rotation r;
+    const int i = axis == 'x' ? 1 : axis == 'y' ? 2 : 0; // the plane the rotation turns
+    const int j = axis == 'x' ? 2 : axis == 'y' ? 0 : 1;
+    r.m[i][i] = c;
+    r.m[i][j] = -s;
+    r.m[j][i] = s;
+    r.m[j][j] = c;
+    return r;
+}
+
 void require(bool ok, std::string_view what) {
     if (!ok)
         throw InvalidInput(std::string(what));
@@ -105,6 +152,11 @@ void LatticeParameters::validate() const {
                             "height > 0",
                             c.diameter, c.height));
     }
+    for (const auto& [axis, degrees] : rotations)
+        require((axis == 'x' || axis == 'y' || axis == 'z') && std::isfinite(degrees),
+                fmt::format("rotation {}:{} is not allowed; allowed: x, y or z and a finite angle "
+                            "in degrees",
+                            axis, degrees));
     if (origin)
         require(is_finite(*origin),
                 fmt::format("origin = {},{},{} is not allowed; allowed: finite coordinates",
@@ -140,14 +192,24 @@ Packing fill_lattice(const LatticeParameters& p) {
     Packing packing;
     if (!(hi.x >= lo.x && hi.y >= lo.y && hi.z >= lo.z))
         return packing; // the region is thinner than a ball
-    // Cells whose balls can reach the bounding box (every ball lies in [0, edge) of its cell).
-    auto range = [](double low, double high, double start, double edge) {
-        return std::pair{std::floor((low - start) / edge) - 1.0,
-                         std::ceil((high - start) / edge) + 1.0};
+    Rotation rotation;
+    for (const auto& [axis, degrees] : p.rotations)
+        rotation = rotation.then(about(axis, degrees));
+    // Cells whose balls can reach the bounding box: its corners in lattice coordinates (every
+    // ball lies in [0, edge) of its cell).
+    Vec3 qlo{1e300, 1e300, 1e300}, qhi{-1e300, -1e300, -1e300};
+    for (int corner = 0; corner < 8; ++corner) {
+        const Vec3 w{corner & 1 ? hi.x : lo.x, corner & 2 ? hi.y : lo.y, corner & 4 ? hi.z : lo.z};
+        const Vec3 q = rotation.apply_inverse(w - origin);
+        qlo = {std::min(qlo.x, q.x), std::min(qlo.y, q.y), std::min(qlo.z, q.z)};
+        qhi = {std::max(qhi.x, q.x), std::max(qhi.y, q.y), std::max(qhi.z, q.z)};
+    }
+    auto range = [](double low, double high, double edge) {
+        return std::pair{std::floor(low / edge) - 1.0, std::ceil(high / edge) + 1.0};
     };
-    const auto [i0, i1] = range(lo.x, hi.x, origin.x, edges.x);
-    const auto [j0, j1] = range(lo.y, hi.y, origin.y, edges.y);
-    const auto [k0, k1] = range(lo.z, hi.z, origin.z, edges.z);
+    const auto [i0, i1] = range(qlo.x, qhi.x, edges.x);
+    const auto [j0, j1] = range(qlo.y, qhi.y, edges.y);
+    const auto [k0, k1] = range(qlo.z, qhi.z, edges.z);
     const double estimate =
         region_volume(p.region) * (1.0 - cell.porosity) / (pi / 6.0 * d * d * d);
     require(estimate <= 1.2e8,
@@ -158,8 +220,9 @@ Packing fill_lattice(const LatticeParameters& p) {
         for (double j = j0; j <= j1; ++j)
             for (double i = i0; i <= i1; ++i)
                 for (const Vec3& b : cell.balls) {
-                    const Vec3 c{origin.x + i * edges.x + b.x * d, origin.y + j * edges.y + b.y * d,
-                                 origin.z + k * edges.z + b.z * d};
+                    const Vec3 c =
+                        origin + rotation.apply({i * edges.x + b.x * d, j * edges.y + b.y * d,
+                                                 k * edges.z + b.z * d});
                     if (c.x < lo.x || c.x > hi.x || c.y < lo.y || c.y > hi.y || c.z < lo.z ||
                         c.z > hi.z)
                         continue;

@@ -138,6 +138,9 @@ nlohmann::json lattice_summary(const LatticeParameters& p, const Packing& packin
     const Vec3 origin = p.origin.value_or(
         std::holds_alternative<BoxRegion>(p.region) ? Vec3{r, r, r} : Vec3{0.0, 0.0, r});
     summary["origin"] = {origin.x, origin.y, origin.z};
+    summary["rotations"] = json::array();
+    for (const auto& [axis, degrees] : p.rotations)
+        summary["rotations"].push_back({{"axis", std::string(1, axis)}, {"degrees", degrees}});
     summary["balls"] = packing.size();
     summary["lattice"] = {{"porosity", cell.porosity},
                           {"coordination", cell.coordination},

@@ -373,6 +373,9 @@ INSTANTIATE_TEST_SUITE_P(
         BadInput{"lattice --origin 1,x,2",
                  "packbed lattice: --origin '1,x,2' is not allowed; allowed: x,y,z (three finite "
                  "numbers)"},
+        BadInput{"lattice --rotate w:30",
+                 "packbed lattice: --rotate 'w:30' is not allowed; allowed: AXIS:DEGREES pairs "
+                 "separated by commas, AXIS x, y or z (e.g. z:30,x:10)"},
         BadInput{"lattice --type honeycomb",
                  "packbed: --type: honeycomb not in {diamond,sc,bcc,fcc,hcp}"},
         BadInput{"lattice --region box:1e5,1e5,1e5",

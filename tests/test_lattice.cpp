@@ -133,6 +133,54 @@ TEST(Lattice, CentresOptionKeepsBallsCutByTheWalls) {
     EXPECT_EQ(fill_lattice(p).size(), 64u); // 0 to 3 along each axis
 }
 
+TEST(Lattice, RotatedLatticesKeepTheirContactsAndStayInside) {
+    LatticeParameters p;
+    p.type = LatticeType::diamond;
+    p.region = BoxRegion{{9.0, 9.0, 9.0}};
+    p.origin = Vec3{4.5, 4.5, 4.5};
+    p.rotations = {{'z', 30.0}, {'x', 20.0}};
+    const Packing bed = fill_lattice(p);
+    ASSERT_GT(bed.size(), 200u);
+    const LatticeContacts contacts = lattice_contacts(bed);
+    EXPECT_NEAR(contacts.closest, 1.0, 1e-12);
+    std::size_t interior = 0;
+    for (std::size_t i = 0; i < bed.size(); ++i) {
+        const Vec3 c = bed.centers[i];
+        EXPECT_GE(std::min({c.x, c.y, c.z}), 0.5 - 1e-9);
+        EXPECT_LE(std::max({c.x, c.y, c.z}), 8.5 + 1e-9);
+        if (std::min({c.x, c.y, c.z, 9.0 - c.x, 9.0 - c.y, 9.0 - c.z}) > 1.5) {
+            ++interior;
+            EXPECT_EQ(contacts.contacts[i], 4u) << "ball " << i;
+        }
+    }
+    EXPECT_GT(interior, 20u);
+    // The ball at the origin stays there; a lattice vector turns: G - A = (1,1,1)/sqrt(3) d.
+    const double s = 1.0 / std::sqrt(3.0);
+    const double cz = std::cos(M_PI / 6), sz = std::sin(M_PI / 6);
+    const Vec3 after_z{cz * s - sz * s, sz * s + cz * s, s};
+    const double cx = std::cos(M_PI / 9), sx = std::sin(M_PI / 9);
+    const Vec3 expected = Vec3{4.5, 4.5, 4.5} + Vec3{after_z.x, cx * after_z.y - sx * after_z.z,
+                                                     sx * after_z.y + cx * after_z.z};
+    double nearest = 1e9;
+    for (const Vec3& c : bed.centers)
+        nearest = std::min(nearest, norm(c - expected));
+    EXPECT_LT(nearest, 1e-12);
+}
+
+TEST(Lattice, AQuarterTurnMapsTheCubicLatticesOntoThemselves) {
+    for (const LatticeType type : {LatticeType::sc, LatticeType::bcc, LatticeType::fcc}) {
+        LatticeParameters p;
+        p.type = type;
+        p.region = BoxRegion{{7.3, 7.3, 7.3}};
+        p.origin = Vec3{3.65, 3.65, 3.65}; // the box centre: the turn maps the box onto itself
+        const std::size_t plain = fill_lattice(p).size();
+        for (const char axis : {'x', 'y', 'z'}) {
+            p.rotations = {{axis, 90.0}};
+            EXPECT_EQ(fill_lattice(p).size(), plain) << to_string(type) << " " << axis;
+        }
+    }
+}
+
 TEST(Lattice, BadParametersNameTheValue) {
     LatticeParameters p;
     p.region = BoxRegion{{10.0, -1.0, 10.0}};

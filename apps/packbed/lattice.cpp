@@ -25,6 +25,7 @@ struct LatticeOptions {
     std::string region = "box:10,10,10";
     std::string origin;
     std::string keep = "whole";
+    std::string rotate;
     std::string out = "packbed-lattice";
     double band_clearance = 1.0;
     bool quiet = false;
@@ -80,6 +81,19 @@ int run_lattice(LatticeOptions& o) {
         o.params.origin = Vec3{(*xyz)[0], (*xyz)[1], (*xyz)[2]};
     }
     o.params.keep = o.keep == "centres" ? LatticeKeep::centres : LatticeKeep::whole;
+    for (std::string_view rest = o.rotate; !rest.empty();) { // AXIS:DEGREES,AXIS:DEGREES...
+        const std::size_t comma = rest.find(',');
+        const std::string_view item = rest.substr(0, comma);
+        const auto angle =
+            item.size() > 2 && item[1] == ':' ? numbers(item.substr(2)) : std::nullopt;
+        if (!angle || angle->size() != 1 || (item[0] != 'x' && item[0] != 'y' && item[0] != 'z'))
+            throw InvalidInput(fmt::format("--rotate '{}' is not allowed; allowed: AXIS:DEGREES "
+                                           "pairs separated by commas, AXIS x, y or z (e.g. "
+                                           "z:30,x:10)",
+                                           o.rotate));
+        o.params.rotations.emplace_back(item[0], angle->front());
+        rest = comma == std::string_view::npos ? std::string_view{} : rest.substr(comma + 1);
+    }
     o.params.validate();
     OutputDirectory out(o.out); // refuse an unwritable directory before the work
 
@@ -132,6 +146,9 @@ Command register_lattice(CLI::App& parent) {
                     "x,y,z of the first ball of cell (0,0,0) (ball A of Tsayger's Table 1); "
                     "default: d/2 from each wall at the low corner of a box, on the axis d/2 "
                     "above the floor of a cylinder");
+    app->add_option("--rotate", o.rotate,
+                    "turn the lattice about the origin: AXIS:DEGREES pairs applied in order, "
+                    "e.g. z:30,x:10");
     app->add_option("--keep", o.keep,
                     "whole: only balls wholly inside the region; centres: every ball whose "
                     "centre is inside")

@@ -83,6 +83,10 @@ struct LatticeParameters {
     /// above the floor of a cylinder.
     std::optional<Vec3> origin;
     LatticeKeep keep = LatticeKeep::whole;
+    /// Rotations of the lattice about the origin, applied in this order: (axis 'x', 'y' or 'z',
+    /// angle in degrees, counter-clockwise looking down the axis). Empty: the cell edges lie
+    /// along x, y and z.
+    std::vector<std::pair<char, double>> rotations;
 
     /// Check every value. \throws InvalidInput naming the parameter, its value and the range.
     void validate() const;
