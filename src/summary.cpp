@@ -121,11 +121,13 @@ nlohmann::json lattice_summary(const LatticeParameters& p, const Packing& packin
     summary["diameter"] = d;
     summary["keep"] = p.keep == LatticeKeep::whole ? "whole" : "centres";
     const double volume = region_volume(p.region);
-    std::optional<double> solid;
+    double solid = 0.0;
     if (const auto* box = std::get_if<BoxRegion>(&p.region)) {
         summary["region"] = {{"shape", "box"}, {"size", {box->size.x, box->size.y, box->size.z}}};
-        if (p.keep == LatticeKeep::whole)
-            solid = static_cast<double>(packing.size()) * std::numbers::pi / 6.0 * d * d * d;
+        double sum = 0.0;
+        for (const Vec3& centre : packing.centers)
+            sum += sphere_volume_in_box(centre, r, Vec3{}, box->size);
+        solid = sum;
     } else {
         const auto& c = std::get<CylinderRegion>(p.region);
         summary["region"] = {{"shape", "cylinder"}, {"diameter", c.diameter}, {"height", c.height}};
@@ -146,10 +148,7 @@ nlohmann::json lattice_summary(const LatticeParameters& p, const Packing& packin
                           {"coordination", cell.coordination},
                           {"cell_edges", {cell.edges.x * d, cell.edges.y * d, cell.edges.z * d}},
                           {"balls_per_cell", cell.balls.size()}};
-    summary["porosity_region"] = solid ? json(1.0 - *solid / volume) : json(nullptr);
-    if (!solid)
-        summary["porosity_region_note"] =
-            "not computed: balls cut by the walls of a box (--keep centres)";
+    summary["porosity_region"] = 1.0 - solid / volume;
     const LatticeContacts contacts = lattice_contacts(packing);
     std::vector<std::uint64_t> histogram;
     double total = 0.0;

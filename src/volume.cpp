@@ -4,8 +4,10 @@
 #include <array>
 #include <cmath>
 #include <numbers>
+#include <vector>
 
 #include <boost/math/quadrature/gauss.hpp>
+#include <boost/math/quadrature/tanh_sinh.hpp>
 #include <fmt/format.h>
 
 #include "packbed/error.hpp"
@@ -176,6 +178,94 @@ std::optional<Band> band_clear_of_ends(const Packing& packing, double clearance)
     if (!(band.z_high > band.z_low))
         return std::nullopt;
     return band;
+}
+
+namespace {
+
+/// \f$\int_0^t \sqrt{R^2 - x^2}\,dx\f$, t clamped to [-R, R].
+double half_chord_integral(double t, double radius) {
+    t = std::clamp(t, -radius, radius);
+    return 0.5 * (t * std::sqrt(std::max(0.0, radius * radius - t * t)) +
+                  radius * radius * std::asin(t / radius));
+}
+
+/// Area of the disk of radius R at the origin with x <= a and y <= b.
+double disk_lower_left(double radius, double a, double b) {
+    const double r = radius;
+    a = std::min(a, r);
+    if (a <= -r || b <= -r)
+        return 0.0;
+    auto chord = [&](double x1, double x2) { // integral of 2 sqrt(R^2 - x^2)
+        return x2 > x1 ? 2.0 * (half_chord_integral(x2, r) - half_chord_integral(x1, r)) : 0.0;
+    };
+    auto clipped = [&](double x1, double x2) { // integral of b + sqrt(R^2 - x^2)
+        return x2 > x1 ? b * (x2 - x1) + half_chord_integral(x2, r) - half_chord_integral(x1, r)
+                       : 0.0;
+    };
+    if (b >= r)
+        return chord(-r, a);
+    const double xb = std::sqrt(r * r - b * b); // where the chord's top end crosses y = b
+    if (b >= 0.0) // |x| > xb: the whole chord lies below b; |x| < xb: clipped at b
+        return chord(-r, std::min(a, -xb)) + clipped(-xb, std::min(a, xb)) + chord(xb, a);
+    return clipped(-xb, std::min(a, xb)); // b < 0: only |x| < xb reaches below b
+}
+
+/// Volume of the spherical segment of a sphere (radius r, centre height c) between two planes.
+double segment_volume(double r, double c, double z_low, double z_high) {
+    const double lo = std::max(z_low, c - r) - c, hi = std::min(z_high, c + r) - c;
+    if (!(hi > lo))
+        return 0.0;
+    // integral of pi (r^2 - t^2) dt
+    return std::numbers::pi * (r * r * (hi - lo) - (hi * hi * hi - lo * lo * lo) / 3.0);
+}
+
+} // namespace
+
+double disk_rectangle_area(double radius, double x_low, double x_high, double y_low,
+                           double y_high) {
+    if (!(x_high > x_low && y_high > y_low) || !(radius > 0.0))
+        return 0.0;
+    return disk_lower_left(radius, x_high, y_high) - disk_lower_left(radius, x_low, y_high) -
+           disk_lower_left(radius, x_high, y_low) + disk_lower_left(radius, x_low, y_low);
+}
+
+double sphere_volume_in_box(const Vec3& c, double r, const Vec3& low, const Vec3& high) {
+    const bool x_inside = c.x - r >= low.x && c.x + r <= high.x;
+    const bool y_inside = c.y - r >= low.y && c.y + r <= high.y;
+    if (x_inside && y_inside)
+        return segment_volume(r, c.z, low.z, high.z);
+    const double z_low = std::max(low.z, c.z - r), z_high = std::min(high.z, c.z + r);
+    if (!(z_high > z_low))
+        return 0.0;
+    auto slice = [&](double z) {
+        const double rho = std::sqrt(std::max(0.0, r * r - (z - c.z) * (z - c.z)));
+        return disk_rectangle_area(rho, low.x - c.x, high.x - c.x, low.y - c.y, high.y - c.y);
+    };
+    // The slice area has kinks where the slice's circle is tangent to an edge line of the box
+    // or passes through a corner: split there, and let tanh-sinh quadrature (exact to the
+    // tolerance at endpoint singularities) integrate each smooth piece.
+    std::vector<double> cuts{z_low, z_high};
+    const double dx[2] = {low.x - c.x, high.x - c.x}, dy[2] = {low.y - c.y, high.y - c.y};
+    auto add_cut = [&](double distance) { // slices whose radius equals `distance`
+        if (distance < r)
+            for (const double z : {c.z - std::sqrt(r * r - distance * distance),
+                                   c.z + std::sqrt(r * r - distance * distance)})
+                if (z > z_low && z < z_high)
+                    cuts.push_back(z);
+    };
+    for (int i = 0; i < 2; ++i) {
+        add_cut(std::abs(dx[i]));
+        add_cut(std::abs(dy[i]));
+        for (int j = 0; j < 2; ++j)
+            add_cut(std::hypot(dx[i], dy[j]));
+    }
+    std::sort(cuts.begin(), cuts.end());
+    static thread_local boost::math::quadrature::tanh_sinh<double> integrator;
+    double volume = 0.0;
+    for (std::size_t k = 0; k + 1 < cuts.size(); ++k)
+        if (cuts[k + 1] > cuts[k])
+            volume += integrator.integrate(slice, cuts[k], cuts[k + 1], 1e-12);
+    return volume;
 }
 
 } // namespace packbed

@@ -6,6 +6,7 @@
 
 #include "packbed/error.hpp"
 #include "packbed/lattice.hpp"
+#include "packbed/summary.hpp"
 
 namespace packbed {
 namespace {
@@ -178,6 +179,25 @@ TEST(Lattice, AQuarterTurnMapsTheCubicLatticesOntoThemselves) {
             p.rotations = {{axis, 90.0}};
             EXPECT_EQ(fill_lattice(p).size(), plain) << to_string(type) << " " << axis;
         }
+    }
+}
+
+TEST(Lattice, BoxOfWholeCellsWithCutBallsHasTheLatticesPorosity) {
+    // Centres kept from a lattice point at the corner of a box of whole cells: the pieces of
+    // the balls cut by the walls add up to exactly the cells' share, so the porosity measured
+    // in the box is the lattice's (exact volumes of balls cut by faces, edges and corners).
+    for (const LatticeType type :
+         {LatticeType::sc, LatticeType::bcc, LatticeType::fcc, LatticeType::diamond}) {
+        const UnitCell cell = unit_cell(type);
+        LatticeParameters p;
+        p.type = type;
+        p.diameter = 2.0;
+        p.region = BoxRegion{cell.edges * (3.0 * p.diameter)};
+        p.origin = Vec3{0.0, 0.0, 0.0};
+        p.keep = LatticeKeep::centres;
+        const auto summary = lattice_summary(p, fill_lattice(p));
+        EXPECT_NEAR(summary["porosity_region"].get<double>(), cell.porosity, 1e-10)
+            << to_string(type);
     }
 }
 

@@ -29,8 +29,8 @@ nlohmann::json analysis_summary(const BedAnalysis& analysis, const AnalysisOptio
 
 /// The record of a lattice (`packbed lattice`): its parameters, the number of balls, the
 /// lattice's exact porosity and coordination, the porosity measured in the region (the balls'
-/// volume inside it over its volume: exact, cut balls included for a cylinder; null for
-/// balls cut by the walls of a box, not computed yet) and the contacts found (within 1e-9 d).
+/// volume inside it over its volume, balls cut by the walls included: sphere_volume_in_box,
+/// sphere_volume_in_cylinder_slab) and the contacts found (within 1e-9 d).
 /// Lengths in output units.
 nlohmann::json lattice_summary(const LatticeParameters& parameters, const Packing& packing);
 

@@ -33,6 +33,21 @@ double disk_intersection_area(double r1, double r2, double distance);
 double sphere_volume_in_cylinder_slab(const Vec3& center, double radius, double cylinder_radius,
                                       double z_low, double z_high);
 
+/// Area of the disk of radius `radius` centred at the origin inside the rectangle
+/// [x_low, x_high] x [y_low, y_high], in closed form: inclusion-exclusion over the four
+/// "lower-left" regions {x <= a, y <= b}, each an integral of the chord
+/// \f$2\sqrt{R^2 - x^2}\f$ clipped at y = b, with antiderivative
+/// \f$\frac12 (x\sqrt{R^2 - x^2} + R^2 \arcsin(x/R))\f$.
+double disk_rectangle_area(double radius, double x_low, double x_high, double y_low, double y_high);
+
+/// Volume of a sphere inside an axis-aligned box. Exact: a ball wholly inside or cut only by
+/// the planes z = const uses the spherical-segment formula; otherwise the closed-form
+/// disk_rectangle_area of each horizontal slice is integrated over z by tanh-sinh quadrature
+/// (relative tolerance 1e-12) on the pieces between the heights where a slice's circle
+/// touches an edge line of the box or passes through a corner.
+/// \param center,radius the sphere (radius > 0) \param low,high the box corners (low <= high)
+double sphere_volume_in_box(const Vec3& center, double radius, const Vec3& low, const Vec3& high);
+
 /// Overall void fraction of a bed in a cylinder between two heights:
 /// \f$\varepsilon = 1 - \sum_i V_i / (\pi R_t^2 (z_{high} - z_{low}))\f$, with V_i the volume of
 /// sphere i inside the cylinder and the slab (sphere_volume_in_cylinder_slab).
