@@ -1,7 +1,7 @@
 #!/usr/bin/env bash
 # Install what packbed needs on Debian 12, from Debian's packages only; nothing when everything
 # is already there. Usage: scripts/install-deps.sh [--test]
-#   --test  also what the test suite needs beyond the build (VTK's Python reader, LAMMPS)
+#   --test  also what the test suite needs beyond the build (VTK's Python reader, LAMMPS, LIGGGHTS)
 set -euo pipefail
 
 packages=(
@@ -19,6 +19,7 @@ packages=(
 if [[ ${1:-} == --test ]]; then
   packages+=(python3-vtk9)  # reads particles.vtu as ParaView does
   packages+=(lammps)        # reads the data files of packbed export (lmp)
+  packages+=(liggghts)      # and LIGGGHTS reads them too
 fi
 
 missing=()

@@ -499,6 +499,48 @@ TEST(Cli, ExportedDataFileReadsBackInLammps) {
     EXPECT_NEAR(mass / (2600.0 * M_PI / 6.0 * 8e-9), 1.0, 1e-12); // density * pi d^3 / 6
 }
 
+TEST(Cli, ExportedDataFileReadsBackInLiggghts) {
+    // Debian's liggghts, installed by scripts/install-deps.sh --test; skipped without it.
+    if (std::system("command -v liggghts >/dev/null 2>&1") != 0)
+        GTEST_SKIP() << "liggghts (Debian package liggghts) is not installed";
+    const fs::path d = scratch("liggghts");
+    ASSERT_EQ(packbed("lattice --type diamond --diameter 0.002 --region cylinder:0.02,0.02 -q "
+                      "--out " +
+                      d.string())
+                  .status,
+              0);
+    ASSERT_EQ(packbed("export " + (d / "particles.csv").string() + " --format liggghts-data " +
+                      "--out " + (d / "bed.data").string() + " --density 2600 -q")
+                  .status,
+              0);
+    const int balls = nlohmann::json::parse(slurp(d / "summary.json"))["balls"].get<int>();
+    std::ofstream(d / "in.roundtrip")
+        << "atom_style granular\natom_modify map array\nboundary f f f\n"
+        << "communicate single vel yes\nunits si\n"
+        << "read_data " << (d / "bed.data").string() << "\n"
+        << "variable n equal atoms\nvariable z3 equal z[3]\nvariable m3 equal mass[3]\n"
+        << "print \"ROUNDTRIP ${n} ${z3} ${m3}\"\n";
+    const std::string cmd =
+        "cd " + d.string() + " && liggghts -in in.roundtrip -log none -echo none > out 2>&1";
+    ASSERT_EQ(std::system(cmd.c_str()), 0) << slurp(d / "out");
+    const std::string out = slurp(d / "out");
+    const std::size_t at = out.find("ROUNDTRIP ");
+    ASSERT_NE(at, std::string::npos) << out;
+    std::istringstream line(out.substr(at + 10));
+    double atoms = 0, z = 0, mass = 0;
+    line >> atoms >> z >> mass;
+    EXPECT_EQ(atoms, balls);
+    std::istringstream csv(slurp(d / "particles.csv"));
+    std::string row;
+    for (int k = 0; k <= 3; ++k)
+        std::getline(csv, row);
+    double cx = 0, cy = 0, cz = 0;
+    char comma = 0;
+    std::istringstream(row) >> cx >> comma >> cy >> comma >> cz;
+    EXPECT_NEAR(z, cz, 1e-14 * std::abs(cz) + 1e-300); // LIGGGHTS prints %.15g
+    EXPECT_NEAR(mass / (2600.0 * M_PI / 6.0 * 8e-9), 1.0, 1e-12);
+}
+
 TEST(Cli, UnwritableOutputIsRefusedBeforeTheRun) {
     const fs::path d = scratch("unwritable");
     std::ofstream(d / "plain") << "x";
