@@ -5,16 +5,13 @@
 #include <fmt/format.h>
 
 #include "packbed/error.hpp"
+#include "require.hpp"
 
 namespace packbed {
 
 namespace {
 
-void require(bool ok, std::string_view name, double value, std::string_view allowed) {
-    if (!ok)
-        throw InvalidInput(
-            fmt::format("{} = {} is not allowed; allowed: {}", name, value, allowed));
-}
+using detail::require;
 
 void require_porosity(double e) {
     require(std::isfinite(e) && e > 0.0 && e < 1.0, "porosity", e, "0 < porosity < 1");

@@ -10,18 +10,14 @@
 #include "packbed/error.hpp"
 #include "packbed/neighbor_list.hpp"
 #include "parallel.hpp"
+#include "require.hpp"
 #include "soft_bed.hpp"
 
 namespace packbed {
 
 namespace {
 
-/// Throw InvalidInput unless `ok`, naming the parameter, its value and what is allowed.
-void require(bool ok, std::string_view name, double value, std::string_view allowed) {
-    if (!ok)
-        throw InvalidInput(
-            fmt::format("{} = {} is not allowed; allowed: {}", name, value, allowed));
-}
+using detail::require;
 
 /// Largest values seen in one iteration.
 struct SweepStats {

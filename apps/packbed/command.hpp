@@ -2,7 +2,10 @@
 #pragma once
 
 #include <functional>
+#include <optional>
 #include <string>
+#include <string_view>
+#include <vector>
 
 #include <CLI/CLI.hpp>
 
@@ -21,6 +24,10 @@ CLI::Validator real_in(double low, double high, bool low_open, bool high_open);
 
 /// A whole number within [low, high].
 CLI::Validator whole_in(unsigned long long low, unsigned long long high);
+
+/// \return the comma-separated finite numbers of `text` ("1,2.5,-3"), or nothing when it is
+/// not exactly that (an empty item, a non-number, NaN or infinity).
+std::optional<std::vector<double>> comma_numbers(std::string_view text);
 
 /// Run the library's parallel loops on at most `threads` OpenMP threads, fewer while the
 /// machine is busy (OpenMP's dynamic adjustment, which in GCC's libgomp subtracts the load

@@ -39,32 +39,13 @@ struct ExportOptions {
 };
 
 AxisBox parse_box(const std::string& text) {
-    std::vector<double> v;
-    std::string item;
-    for (std::size_t start = 0;;) {
-        const std::size_t comma = text.find(',', start);
-        item = text.substr(start, comma == std::string::npos ? std::string::npos : comma - start);
-        std::size_t used = 0;
-        double value = 0.0;
-        try {
-            value = std::stod(item, &used);
-        } catch (const std::exception&) {
-            used = 0;
-        }
-        if (used == 0 || used != item.size() || !std::isfinite(value))
-            v.clear();
-        else
-            v.push_back(value);
-        if (used == 0 || comma == std::string::npos)
-            break;
-        start = comma + 1;
-    }
-    if (v.size() != 6 || !(v[0] < v[1] && v[2] < v[3] && v[4] < v[5]))
+    const auto v = comma_numbers(text);
+    if (!v || v->size() != 6 || !((*v)[0] < (*v)[1] && (*v)[2] < (*v)[3] && (*v)[4] < (*v)[5]))
         throw InvalidInput(
             fmt::format("--box '{}' is not allowed; allowed: xlo,xhi,ylo,yhi,zlo,zhi "
                         "with lo < hi",
                         text));
-    return {{v[0], v[2], v[4]}, {v[1], v[3], v[5]}};
+    return {{(*v)[0], (*v)[2], (*v)[4]}, {(*v)[1], (*v)[3], (*v)[5]}};
 }
 
 int run_export(const ExportOptions& o) {

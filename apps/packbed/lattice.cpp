@@ -1,6 +1,5 @@
 // `packbed lattice`: a regular packing (Tsayger's tetrahedral one, sc, bcc, fcc, hcp) filling
 // a box or a cylinder, as the initial state of a DEM simulation.
-#include <charconv>
 #include <cmath>
 #include <memory>
 #include <string>
@@ -31,30 +30,13 @@ struct LatticeOptions {
     bool quiet = false;
 };
 
-/// The comma-separated finite numbers of `text`, or nothing when it is not exactly that.
-std::optional<std::vector<double>> numbers(std::string_view text) {
-    std::vector<double> values;
-    while (true) {
-        const std::size_t comma = text.find(',');
-        const std::string_view item = text.substr(0, comma);
-        double value = 0.0;
-        const auto [ptr, ec] = std::from_chars(item.data(), item.data() + item.size(), value);
-        if (item.empty() || ec != std::errc() || ptr != item.data() + item.size() ||
-            !std::isfinite(value))
-            return std::nullopt;
-        values.push_back(value);
-        if (comma == std::string_view::npos)
-            return values;
-        text.remove_prefix(comma + 1);
-    }
-}
-
 /// `box:LX,LY,LZ` or `cylinder:D,H`, lengths > 0.
 LatticeRegion parse_region(const std::string& text) {
     const std::string allowed = "allowed: box:LX,LY,LZ or cylinder:D,H with lengths > 0";
     const std::size_t colon = text.find(':');
     const std::string shape = text.substr(0, colon);
-    const auto values = colon == std::string::npos ? std::nullopt : numbers(text.substr(colon + 1));
+    const auto values =
+        colon == std::string::npos ? std::nullopt : comma_numbers(text.substr(colon + 1));
     auto positive = [&] {
         for (const double v : *values)
             if (!(v > 0.0))
@@ -74,7 +56,7 @@ int run_lattice(LatticeOptions& o) {
             o.params.type = value;
     o.params.region = parse_region(o.region);
     if (!o.origin.empty()) {
-        const auto xyz = numbers(o.origin);
+        const auto xyz = comma_numbers(o.origin);
         if (!xyz || xyz->size() != 3)
             throw InvalidInput(fmt::format(
                 "--origin '{}' is not allowed; allowed: x,y,z (three finite numbers)", o.origin));
@@ -85,7 +67,7 @@ int run_lattice(LatticeOptions& o) {
         const std::size_t comma = rest.find(',');
         const std::string_view item = rest.substr(0, comma);
         const auto angle =
-            item.size() > 2 && item[1] == ':' ? numbers(item.substr(2)) : std::nullopt;
+            item.size() > 2 && item[1] == ':' ? comma_numbers(item.substr(2)) : std::nullopt;
         if (!angle || angle->size() != 1 || (item[0] != 'x' && item[0] != 'y' && item[0] != 'z'))
             throw InvalidInput(fmt::format("--rotate '{}' is not allowed; allowed: AXIS:DEGREES "
                                            "pairs separated by commas, AXIS x, y or z (e.g. "

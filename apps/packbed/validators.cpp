@@ -45,6 +45,23 @@ CLI::Validator whole_in(unsigned long long low, unsigned long long high) {
         allowed);
 }
 
+std::optional<std::vector<double>> comma_numbers(std::string_view text) {
+    std::vector<double> values;
+    while (true) {
+        const std::size_t comma = text.find(',');
+        const std::string_view item = text.substr(0, comma);
+        double value = 0.0;
+        const auto [ptr, ec] = std::from_chars(item.data(), item.data() + item.size(), value);
+        if (item.empty() || ec != std::errc() || ptr != item.data() + item.size() ||
+            !std::isfinite(value))
+            return std::nullopt;
+        values.push_back(value);
+        if (comma == std::string_view::npos)
+            return values;
+        text.remove_prefix(comma + 1);
+    }
+}
+
 void use_threads(unsigned long long threads) {
     omp_set_num_threads(static_cast<int>(threads));
     if (std::getenv("OMP_DYNAMIC") == nullptr) // OMP_DYNAMIC=false keeps the count fixed
