@@ -75,6 +75,10 @@ int run_hydraulics(const HydraulicsOptions& o) {
     const double re_mf = wen_yu_reynolds(ar);
     const double u = o.velocity > 0.0 ? o.velocity : w;
     const double u_re = f.fluid_density * u * f.diameter / f.viscosity;
+    const double u_mf = superficial_velocity(re_mf, f);
+    const double ergun = ergun_pressure_gradient(e, u, f);
+    const double k_carman_kozeny = carman_kozeny_permeability(e, f.diameter);
+    const double k_ergun = ergun_permeability(e, f.diameter);
     nlohmann::json out;
     out["units"] = "SI: m, kg/m^3, Pa s, m/s, Pa/m, m^2";
     out["porosity"] = {{"value", e}, {"from", origin}};
@@ -90,10 +94,8 @@ int run_hydraulics(const HydraulicsOptions& o) {
                          {"quadratic", coefficients.quadratic},
                          {"critical_reynolds", re_c},
                          {"superficial_velocity_m_s", w}};
-    out["wen_yu_1966"] = {{"reynolds_mf", re_mf},
-                          {"velocity_mf_m_s", superficial_velocity(re_mf, f)}};
-    out["pressure_gradient"] = {
-        {"velocity_m_s", u}, {"reynolds", u_re}, {"ergun_Pa_m", ergun_pressure_gradient(e, u, f)}};
+    out["wen_yu_1966"] = {{"reynolds_mf", re_mf}, {"velocity_mf_m_s", u_mf}};
+    out["pressure_gradient"] = {{"velocity_m_s", u}, {"reynolds", u_re}, {"ergun_Pa_m", ergun}};
     std::string warning;
     if (o.aspect_ratio > 0.0) {
         const CorrelationValue es = eisfeld_schnitzlein_pressure_gradient(e, u, o.aspect_ratio, f);
@@ -102,8 +104,7 @@ int run_hydraulics(const HydraulicsOptions& o) {
         out["pressure_gradient"]["eisfeld_schnitzlein_in_range"] = es.warning.empty();
         warning = es.warning;
     }
-    out["permeability_m2"] = {{"carman_kozeny", carman_kozeny_permeability(e, f.diameter)},
-                              {"ergun", ergun_permeability(e, f.diameter)}};
+    out["permeability_m2"] = {{"carman_kozeny", k_carman_kozeny}, {"ergun", k_ergun}};
     // Eqs. (2)-(4): eq. (1) at the exact porosities of the three regular packings.
     const double hexagonal = fluidization_coefficients(unit_cell(LatticeType::fcc).porosity).linear;
     for (const auto& [name, type] : {std::pair{"hexagonal (fcc, hcp)", LatticeType::fcc},
@@ -131,15 +132,13 @@ int run_hydraulics(const HydraulicsOptions& o) {
     fmt::print("critical Re = {:.6g}; superficial velocity w = {:.6g} m/s (the initial fluid "
                "velocity for DEM)\n",
                re_c, w);
-    fmt::print("Wen & Yu (1966): Re_mf = {:.6g}, u_mf = {:.6g} m/s\n", re_mf,
-               superficial_velocity(re_mf, f));
-    fmt::print("at u = {:.6g} m/s (Re = {:.6g}): Ergun {:.6g} Pa/m", u, u_re,
-               ergun_pressure_gradient(e, u, f));
+    fmt::print("Wen & Yu (1966): Re_mf = {:.6g}, u_mf = {:.6g} m/s\n", re_mf, u_mf);
+    fmt::print("at u = {:.6g} m/s (Re = {:.6g}): Ergun {:.6g} Pa/m", u, u_re, ergun);
     if (o.aspect_ratio > 0.0)
         fmt::print(", Eisfeld & Schnitzlein (a = {}) {:.6g} Pa/m", o.aspect_ratio,
                    out["pressure_gradient"]["eisfeld_schnitzlein_Pa_m"].get<double>());
-    fmt::print("\npermeability: Carman-Kozeny {:.6g} m^2, Ergun {:.6g} m^2\n",
-               carman_kozeny_permeability(e, f.diameter), ergun_permeability(e, f.diameter));
+    fmt::print("\npermeability: Carman-Kozeny {:.6g} m^2, Ergun {:.6g} m^2\n", k_carman_kozeny,
+               k_ergun);
     fmt::print("\nregular packings, eq. (1) at their exact porosities (Tsayger's eqs. 2-4):\n");
     fmt::print("{:<22} {:>9} {:>10} {:>9} {:>13} {:>12}\n", "packing", "porosity", "A", "B",
                "permeability", "critical Re");
