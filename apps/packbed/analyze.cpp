@@ -33,24 +33,6 @@ struct AnalyzeOptions {
     bool quiet = false;
 };
 
-/// The container radius from `summary.json` beside the particle file, if there is one.
-double radius_from_summary(const fs::path& particles) {
-    const fs::path summary = particles.parent_path() / "summary.json";
-    std::ifstream in(summary);
-    if (!in)
-        throw InvalidInput(fmt::format("--container-radius is needed: no summary.json next to {}",
-                                       particles.string()));
-    try {
-        const auto json = nlohmann::json::parse(in);
-        const double r = json.at("container").at("radius").get<double>();
-        if (r > 0.0)
-            return r;
-    } catch (const nlohmann::json::exception&) {
-    }
-    throw InvalidInput(
-        fmt::format("{}: no positive container.radius; give --container-radius", summary.string()));
-}
-
 /// Refuse spheres that stick out of the container by more than the tolerance.
 void check_inside(const ParticleFile& file, const std::string& name, double rt, double tolerance) {
     for (std::size_t i = 0; i < file.packing.size(); ++i) {
@@ -80,7 +62,10 @@ int run_analyze(AnalyzeOptions& o) {
             if (name == o.format)
                 file = read_particles(in, path.string(), value, read_options);
     }
-    const double rt = o.container_radius > 0.0 ? o.container_radius : radius_from_summary(path);
+    const double rt = o.container_radius > 0.0 ? o.container_radius : container_radius_beside(path).value_or(0.0);
+    if (!(rt > 0.0))
+        throw InvalidInput(fmt::format("--container-radius is needed: no summary.json next to {}",
+                                       path.string()));
     if (o.diameter > 0.0)
         o.analysis.diameter = o.diameter;
     const Cylinder container(rt);

@@ -1,6 +1,7 @@
 // The pieces every subcommand shares: how it registers, validators with our error wording.
 #pragma once
 
+#include <filesystem>
 #include <functional>
 #include <optional>
 #include <string>
@@ -35,5 +36,10 @@ std::optional<std::vector<double>> comma_numbers(std::string_view text);
 /// into minutes, and the results do not depend on the number of threads anyway. Setting
 /// OMP_DYNAMIC (e.g. false, for benchmarks) leaves the choice to OpenMP.
 void use_threads(unsigned long long threads);
+
+/// The container radius recorded in `summary.json` beside a particle file (written by
+/// `packbed generate`, `lattice`, `analyze`). \return nothing when there is no such file.
+/// \throws InvalidInput naming the file when it exists without a positive container.radius
+std::optional<double> container_radius_beside(const std::filesystem::path& particles);
 
 } // namespace packbed::cli

@@ -1,15 +1,19 @@
-// `packbed export`: any bed (generated, lattice, read from elsewhere) as a DEM data file.
+// `packbed export`: any bed (generated, lattice, read from elsewhere) as a DEM data file or as
+// a surface for meshers (STL, OBJ) with the contacts treated.
 #include <filesystem>
 #include <memory>
 #include <string>
 #include <vector>
 
 #include <fmt/format.h>
+#include <nlohmann/json.hpp>
 
 #include "command.hpp"
 #include "packbed/error.hpp"
 #include "packbed/io.hpp"
 #include "packbed/read.hpp"
+#include "packbed/surface.hpp"
+#include "packbed/volume.hpp"
 
 namespace packbed::cli {
 
@@ -17,13 +21,18 @@ namespace {
 
 namespace fs = std::filesystem;
 
-/// The data files `export` writes: LAMMPS `atom_style sphere` and LIGGGHTS `atom_style
-/// granular` read the same columns; the name sets the first-line comment and the hint.
-enum class ExportFormat { lammps_data, liggghts_data };
+/// What `export` writes. The data files: LAMMPS `atom_style sphere` and LIGGGHTS `atom_style
+/// granular` read the same columns; the name sets the first-line comment and the hint. The
+/// surfaces: see packbed/surface.hpp.
+enum class ExportFormat { lammps_data, liggghts_data, stl, stl_ascii, obj };
 
 const std::vector<std::pair<std::string, ExportFormat>>& export_formats() {
     static const std::vector<std::pair<std::string, ExportFormat>> formats{
-        {"lammps-data", ExportFormat::lammps_data}, {"liggghts-data", ExportFormat::liggghts_data}};
+        {"lammps-data", ExportFormat::lammps_data},
+        {"liggghts-data", ExportFormat::liggghts_data},
+        {"stl", ExportFormat::stl},
+        {"stl-ascii", ExportFormat::stl_ascii},
+        {"obj", ExportFormat::obj}};
     return formats;
 }
 
@@ -35,6 +44,13 @@ struct ExportOptions {
     std::string box;            // empty: the bounding box of the spheres
     double fluid_velocity = -1; // < 0: none
     double diameter = 0.0;      // XYZ files without radii
+    // Surfaces
+    std::string contacts = "none";
+    int refine = 3;
+    double edge = 0.0;             // > 0: overrides refine
+    double container_radius = 0.0; // 0: from summary.json beside the file, if any
+    double container_height = 0.0; // 0: the bed's top + 1 Dp
+    bool no_container = false;
     bool quiet = false;
 };
 
@@ -48,6 +64,94 @@ AxisBox parse_box(const std::string& text) {
     return {{(*v)[0], (*v)[2], (*v)[4]}, {(*v)[1], (*v)[3], (*v)[5]}};
 }
 
+/// STL or OBJ: treat the contacts, tessellate, write the surface and its volumes.
+int run_surface_export(const ExportOptions& o, ExportFormat format, const ParticleFile& file) {
+    const Contacts contacts = parse_contacts(o.contacts);
+    const double dp = file.packing.mean_diameter();
+    std::optional<SurfaceContainer> container;
+    const double rt = o.container_radius > 0.0
+                          ? o.container_radius
+                          : container_radius_beside(o.particles).value_or(0.0);
+    if (rt > 0.0) {
+        const double top = bed_top(file.packing);
+        const double height = o.container_height > 0.0 ? o.container_height : top + dp;
+        if (!(height > top))
+            throw InvalidInput(fmt::format(
+                "--container-height {} is not allowed; allowed: above the bed's top, {}", height,
+                top));
+        container = SurfaceContainer{Cylinder(rt), height};
+        for (std::size_t i = 0; i < file.packing.size(); ++i) {
+            const Vec3& c = file.packing.centers[i];
+            if (std::hypot(c.x, c.y) >= rt || c.z <= 0.0)
+                throw InvalidInput(fmt::format(
+                    "{}:{}: the sphere centre ({}, {}, {}) is outside the container (radius {}, "
+                    "floor z = 0); allowed: centres inside it",
+                    o.particles, file.lines[i], c.x, c.y, c.z, rt));
+        }
+    }
+    SurfaceOptions options;
+    double largest = 0.0;
+    for (const double r : file.packing.radii)
+        largest = std::max(largest, r);
+    options.level = o.edge > 0.0 ? icosphere_level_for_edge(largest, o.edge) : o.refine;
+    options.contacts = contacts;
+    options.container = container;
+    options.write_container = !o.no_container;
+    const std::vector<TreatedBody> bodies = treat_contacts(file.packing, contacts, container);
+    const std::vector<Solid> solids = bed_surface(bodies, options);
+
+    const fs::path out_path =
+        o.out.empty() ? fs::path(o.particles)
+                            .replace_extension(format == ExportFormat::obj ? ".obj" : ".stl")
+                      : fs::path(o.out);
+    OutputDirectory out(out_path.has_parent_path() ? out_path.parent_path() : fs::path("."));
+    const std::string name = out_path.filename().string();
+    write_surface(solids,
+                  format == ExportFormat::stl         ? SurfaceFormat::stl_binary
+                  : format == ExportFormat::stl_ascii ? SurfaceFormat::stl_ascii
+                                                      : SurfaceFormat::obj,
+                  out.reserve(name));
+    std::size_t triangles = 0;
+    nlohmann::ordered_json report;
+    report["particles"] = o.particles;
+    report["spheres"] = file.packing.size();
+    report["contacts"] = o.contacts;
+    report["diameter"] = dp;
+    report["icosphere_level"] = options.level;
+    report["solids"] = nlohmann::ordered_json::array();
+    for (const Solid& s : solids) {
+        triangles += s.mesh.triangles.size();
+        report["solids"].push_back({{"name", s.name}, {"triangles", s.mesh.triangles.size()}});
+    }
+    std::string change;
+    if (container) {
+        const TreatmentVolumes v = treatment_volumes(file.packing, bodies, *container);
+        report["container"] = {{"shape", "cylinder"},
+                               {"radius", rt},
+                               {"height", container->height}};
+        report["volumes"] = {{"container", v.container_volume},
+                             {"untouched_solid", v.untouched_solid},
+                             {"treated_solid", v.treated_solid},
+                             {"untouched_void_fraction", v.untouched_void_fraction},
+                             {"treated_void_fraction", v.treated_void_fraction},
+                             {"void_fraction_change",
+                              v.treated_void_fraction - v.untouched_void_fraction}};
+        change = fmt::format("; void fraction in the container (z 0 to {:.6g}) {:.6f} -> {:.6f} "
+                             "({:+.6f})",
+                             container->height, v.untouched_void_fraction,
+                             v.treated_void_fraction,
+                             v.treated_void_fraction - v.untouched_void_fraction);
+    }
+    out.stage(name + ".json", report.dump(2) + "\n");
+    out.commit();
+    if (!o.quiet)
+        fmt::print("packbed export: {} spheres to {} ({} triangles, icosphere level {}, contacts "
+                   "{}){}\n",
+                   file.packing.size(), out_path.string(), triangles, options.level, o.contacts,
+                   change);
+    return 0;
+}
+
 int run_export(const ExportOptions& o) {
     ExportFormat format = ExportFormat::lammps_data;
     for (const auto& [name, value] : export_formats())
@@ -57,6 +161,9 @@ int run_export(const ExportOptions& o) {
     if (o.diameter > 0.0)
         read.radius = 0.5 * o.diameter;
     const ParticleFile file = read_particles(o.particles, read);
+    if (format == ExportFormat::stl || format == ExportFormat::stl_ascii ||
+        format == ExportFormat::obj)
+        return run_surface_export(o, format, file);
     const AxisBox box = o.box.empty() ? bounding_box(file.packing) : parse_box(o.box);
     const fs::path out_path =
         o.out.empty() ? fs::path(o.particles).replace_extension(".data") : fs::path(o.out);
@@ -91,7 +198,7 @@ Command register_export(CLI::App& parent) {
     auto& o = *options;
     CLI::App* app = parent.add_subcommand(
         "export", "Write a bed (ours, a lattice, or one read from CSV, XYZ or a dump) as a "
-                  "LAMMPS or LIGGGHTS data file");
+                  "LAMMPS or LIGGGHTS data file, or as a surface (STL, OBJ) for meshers");
     app->option_defaults()->always_capture_default();
     const double inf = std::numeric_limits<double>::infinity();
     app->add_option("particles", o.particles, "particles.csv, .xyz or a LAMMPS/LIGGGHTS dump")
@@ -100,9 +207,31 @@ Command register_export(CLI::App& parent) {
     for (const auto& entry : export_formats())
         names.push_back(entry.first);
     app->add_option("-f,--format", o.format,
-                    "lammps-data (atom_style sphere) or liggghts-data (atom_style granular)")
+                    "lammps-data (atom_style sphere), liggghts-data (atom_style granular), stl "
+                    "(binary), stl-ascii (one named solid per part) or obj")
         ->check(CLI::IsMember(names));
-    app->add_option("-o,--out", o.out, "the data file (default: the particle file with .data)");
+    app->add_option("-o,--out", o.out,
+                    "the output file (default: the particle file with .data, .stl or .obj)");
+    app->add_option("--contacts", o.contacts,
+                    "surfaces: none, shrink:F (radii times 1 - F) or caps:H (flat faces H Dp "
+                    "apart at every contact closer than H Dp, and H Dp from the walls); F, H "
+                    "fractions of Dp (docs/surfaces.md)");
+    app->add_option("--refine", o.refine,
+                    "surfaces: icosphere level of each sphere (20 x 4^level triangles)")
+        ->check(CLI::Range(0, 7));
+    app->add_option("--edge", o.edge,
+                    "surfaces: largest mean triangle edge instead of --refine (file units)")
+        ->check(real_in(0.0, inf, true, true));
+    app->add_option("-R,--container-radius", o.container_radius,
+                    "surfaces: cylinder radius (default: summary.json beside the file; none if "
+                    "absent: no wall treatment, no container solids)")
+        ->check(real_in(0.0, inf, true, true));
+    app->add_option("--container-height", o.container_height,
+                    "surfaces: cylinder height from the floor z = 0 (default: the bed's top + 1 "
+                    "Dp)")
+        ->check(real_in(0.0, inf, true, true));
+    app->add_flag("--no-container", o.no_container,
+                  "surfaces: cut against the container but do not write its solids");
     app->add_option("--density", o.density, "particle density written for every atom")
         ->check(real_in(0.0, inf, true, true));
     app->add_option("--box", o.box,
@@ -115,7 +244,8 @@ Command register_export(CLI::App& parent) {
         ->check(real_in(0.0, inf, true, true));
     app->add_flag("-q,--quiet", o.quiet, "no report on the terminal");
     app->fallthrough();
-    app->footer("Exit status: 0 success, 2 bad input (a corrupt file, a sphere outside --box).");
+    app->footer("Exit status: 0 success, 2 bad input (a corrupt file, a sphere outside --box or "
+                "the container, a treatment that cannot separate the spheres).");
     return {app, [options] { return run_export(*options); }};
 }
 

@@ -1,12 +1,15 @@
 #include <charconv>
+#include <fstream>
 #include <cmath>
 #include <cstdlib>
 #include <string>
 
 #include <fmt/format.h>
+#include <nlohmann/json.hpp>
 #include <omp.h>
 
 #include "command.hpp"
+#include "packbed/error.hpp"
 
 namespace packbed::cli {
 
@@ -66,6 +69,26 @@ void use_threads(unsigned long long threads) {
     omp_set_num_threads(static_cast<int>(threads));
     if (std::getenv("OMP_DYNAMIC") == nullptr) // OMP_DYNAMIC=false keeps the count fixed
         omp_set_dynamic(1);
+}
+
+} // namespace packbed::cli
+
+namespace packbed::cli {
+
+std::optional<double> container_radius_beside(const std::filesystem::path& particles) {
+    const std::filesystem::path summary = particles.parent_path() / "summary.json";
+    std::ifstream in(summary);
+    if (!in)
+        return std::nullopt;
+    try {
+        const auto json = nlohmann::json::parse(in);
+        const double r = json.at("container").at("radius").get<double>();
+        if (r > 0.0)
+            return r;
+    } catch (const nlohmann::json::exception&) {
+    }
+    throw InvalidInput(
+        fmt::format("{}: no positive container.radius; give --container-radius", summary.string()));
 }
 
 } // namespace packbed::cli

@@ -1,0 +1,159 @@
+// Surfaces of a bed for meshers (particle-resolved CFD): each sphere tessellated, the contacts
+// treated so that no two bodies touch, the container as its own solids, and the exact change of
+// void fraction each treatment makes. Issue 6; the treatments are those of the CFD literature
+// (docs/surfaces.md).
+#pragma once
+
+#include <array>
+#include <cstdint>
+#include <filesystem>
+#include <optional>
+#include <string>
+#include <string_view>
+#include <utility>
+#include <vector>
+
+#include "packbed/container.hpp"
+#include "packbed/packing.hpp"
+#include "packbed/vec3.hpp"
+
+namespace packbed {
+
+/// A triangle mesh: triangles index `vertices` counter-clockwise seen from outside (the
+/// right-hand normal points out of the body).
+struct TriangleMesh {
+    std::vector<Vec3> vertices;
+    std::vector<std::array<std::uint32_t, 3>> triangles;
+
+    /// Append another mesh (its indices shifted).
+    void append(const TriangleMesh& other);
+    /// \return the enclosed volume by the divergence theorem (closed, outward mesh: > 0).
+    double volume() const;
+};
+
+/// The unit sphere as a subdivided icosahedron: `level` times each triangle split in four, new
+/// vertices pushed onto the sphere; 20 * 4^level triangles, every vertex on the sphere (so the
+/// polyhedron lies inside it). \param level 0 to 7
+TriangleMesh icosphere(int level);
+
+/// The icosphere level whose mean edge on a sphere of radius `radius` is at most `edge`
+/// (capped at 7). \param radius,edge lengths (> 0)
+int icosphere_level_for_edge(double radius, double edge);
+
+/// A half-space: the points x with dot(normal, x) <= offset are kept (normal of unit length).
+struct HalfSpace {
+    Vec3 normal;
+    double offset = 0.0;
+};
+
+/// Cut a closed convex mesh by a half-space and close the cut with a flat face (fanned from
+/// its centroid). Edges crossing the plane get one new vertex each, shared by the two
+/// triangles: the result is closed and outward when the input is. Vertices within `snap` of
+/// the plane are not cut near: those outside are moved onto it (along the normal, which for a
+/// polyhedron inscribed in a ball keeps them in the ball), those inside stay, so that the cut
+/// makes no sliver triangles; the cut face is then flat to within `snap`, never beyond the
+/// plane. \param snap >= 0, a small fraction of the mesh's edge length
+/// \return the kept part (empty when nothing is kept).
+TriangleMesh clip_convex(const TriangleMesh& mesh, const HalfSpace& half_space, double snap = 0.0);
+
+/// How contacts (and near contacts) are treated so that a mesher can resolve the gaps,
+/// parameters in units of the sphere diameter Dp (docs/surfaces.md has the usual values).
+enum class ContactTreatment {
+    none,   ///< spheres as they are (touching at points: for viewing, not for meshing)
+    shrink, ///< every radius times (1 - F): gaps of at least F Dp at contacts and walls
+    caps,   ///< each pair closer than H Dp cut by two planes H Dp apart (a cap from each
+            ///< sphere), each sphere closer than H Dp to the wall or floor cut by a plane
+            ///< H Dp from it: flat faces with a gap of H Dp
+};
+
+/// A treatment and its parameter (F or H, fraction of Dp).
+struct Contacts {
+    ContactTreatment treatment = ContactTreatment::none;
+    double parameter = 0.0;
+};
+
+/// The names users pick a treatment by ("none", "shrink", "caps"): the one registry.
+const std::vector<std::pair<std::string, ContactTreatment>>& contact_treatments();
+
+/// Parse "none", "shrink:F" or "caps:H" (F, H in (0, 0.5)).
+/// \throws InvalidInput naming the text and what is allowed
+Contacts parse_contacts(std::string_view text);
+
+/// The container a surface is cut against: a cylinder from the floor z = 0 to `height`.
+struct SurfaceContainer {
+    Cylinder cylinder{1.0};
+    double height = 1.0;
+};
+
+/// What bed_surface builds.
+struct SurfaceOptions {
+    int level = 3; ///< icosphere level of each sphere (see icosphere)
+    Contacts contacts;
+    std::optional<SurfaceContainer> container; ///< walls to cut against and to write
+    bool write_container = true; ///< add the container's solids ("wall", "bottom", "top")
+};
+
+/// A named closed part of the surface (an STL solid, an OBJ group).
+struct Solid {
+    std::string name;
+    TriangleMesh mesh;
+};
+
+/// Each sphere's body after the treatment, as exact geometry: the sphere (radius after
+/// shrinking) and the half-spaces that cut it (caps). Body i belongs to sphere i.
+struct TreatedBody {
+    Vec3 center;
+    double radius = 0.0;
+    std::vector<HalfSpace> cuts;
+};
+
+/// Apply a treatment. The reference diameter Dp is the packing's mean diameter.
+/// \throws InvalidInput when the treated bodies would still overlap (shrink: F Dp not above
+/// the largest overlap) or two caps of one sphere would overlap (caps: H too large), naming
+/// the sphere and what is allowed
+std::vector<TreatedBody> treat_contacts(const Packing& packing, const Contacts& contacts,
+                                        const std::optional<SurfaceContainer>& container);
+
+/// Exact solid volumes and void fractions of a bed inside its container, before and after a
+/// treatment. Untouched: sum of the spheres' volumes inside the container minus the lenses of
+/// overlapping pairs; treated: the bodies (disjoint and inside by construction), spherical caps
+/// in closed form, \f$V_{cap} = \pi c^2 (3 r - c) / 3\f$.
+struct TreatmentVolumes {
+    double container_volume = 0.0;  ///< pi Rt^2 height
+    double untouched_solid = 0.0;   ///< solid volume of the bed as it is
+    double treated_solid = 0.0;     ///< solid volume of the treated bodies
+    double untouched_void_fraction = 0.0;
+    double treated_void_fraction = 0.0;
+};
+
+/// \return the volumes for `bodies` = treat_contacts(packing, ...) in `container`.
+TreatmentVolumes treatment_volumes(const Packing& packing, const std::vector<TreatedBody>& bodies,
+                                   const SurfaceContainer& container);
+
+/// Volume of the part of a ball of radius r beyond a plane at distance s from its centre (a
+/// spherical cap of height c = r - s): \f$\pi c^2 (3 r - c) / 3\f$, 0 for s >= r.
+double spherical_cap_volume(double radius, double distance);
+
+/// Volume of the lens two balls share (radii r1, r2, centres d apart): 0 when they do not
+/// overlap, the smaller ball when one holds the other.
+double lens_volume(double r1, double r2, double distance);
+
+/// The surface: solid "particles" (every treated body tessellated: the icosphere scaled and
+/// clipped by its cuts; vertices on the sphere, so each polyhedron lies inside its body), and
+/// where the options ask for it the container as "wall" (a prism circumscribed about the
+/// cylinder, so that no sphere inside the cylinder meets it), "bottom" and "top".
+std::vector<Solid> bed_surface(const std::vector<TreatedBody>& bodies,
+                               const SurfaceOptions& options);
+
+/// The three formats.
+enum class SurfaceFormat { stl_binary, stl_ascii, obj };
+
+/// Write the solids to `path` (the caller provides the temporary name of an all-or-nothing
+/// output). STL binary: one solid, the names in the 80-byte header; STL ASCII: `solid NAME`
+/// per solid; OBJ: `g NAME` per solid, shared vertices. Numbers in single precision for STL
+/// (the format's), shortest round-trip doubles for OBJ.
+/// \throws std::runtime_error naming the file when writing fails
+void write_surface(const std::vector<Solid>& solids, SurfaceFormat format,
+                   const std::filesystem::path& path);
+
+} // namespace packbed
