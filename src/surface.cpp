@@ -399,26 +399,39 @@ std::vector<Solid> bed_surface(const std::vector<TreatedBody>& bodies,
         const int sides =
             std::clamp(static_cast<int>(std::ceil(2.0 * std::numbers::pi * rt / edge)), 48, 100000);
         const double corner = rt / std::cos(std::numbers::pi / sides);
-        TriangleMesh ring;
-        for (int k = 0; k < sides; ++k) {
-            const double angle = 2.0 * std::numbers::pi * k / sides;
-            ring.vertices.push_back({corner * std::cos(angle), corner * std::sin(angle), 0.0});
-        }
-        Solid wall{"wall", {}}, bottom{"bottom", {}}, top{"top", {}};
+        // The wall in rows about as tall as a side is wide, every other row turned by half a
+        // side, so that no two triangles are coplanar (the bottom and top are fans from the
+        // axis). Every vertex lies on the circle about the prism, every edge between rows is
+        // shorter than a side and so stays outside the cylinder.
+        const int rows = std::clamp(
+            static_cast<int>(std::ceil(h / (2.0 * corner * std::sin(std::numbers::pi / sides)))), 1,
+            4096);
         const auto s = static_cast<std::uint32_t>(sides);
+        auto ring_point = [&](int row, std::uint32_t k) {
+            const double angle = 2.0 * std::numbers::pi * (k + 0.5 * (row % 2)) / sides;
+            return Vec3{corner * std::cos(angle), corner * std::sin(angle),
+                        row == rows ? h : h * row / rows};
+        };
+        Solid wall{"wall", {}}, bottom{"bottom", {}}, top{"top", {}};
+        for (int row = 0; row <= rows; ++row)
+            for (std::uint32_t k = 0; k < s; ++k)
+                wall.mesh.vertices.push_back(ring_point(row, k));
         for (std::uint32_t k = 0; k < s; ++k) {
-            const Vec3 v = ring.vertices[k];
-            wall.mesh.vertices.push_back(v);
-            wall.mesh.vertices.push_back({v.x, v.y, h});
-            bottom.mesh.vertices.push_back(v);
-            top.mesh.vertices.push_back({v.x, v.y, h});
+            bottom.mesh.vertices.push_back(ring_point(0, k));
+            top.mesh.vertices.push_back(ring_point(rows, k));
         }
         bottom.mesh.vertices.push_back({0.0, 0.0, 0.0});
         top.mesh.vertices.push_back({0.0, 0.0, h});
+        for (std::uint32_t row = 0; row < static_cast<std::uint32_t>(rows); ++row)
+            for (std::uint32_t k = 0; k < s; ++k) {
+                // The upper vertex between lower k and k + 1, and the next one.
+                const std::uint32_t j = (k + row % 2) % s, j1 = (j + 1) % s;
+                const std::uint32_t a = row * s + k, b = row * s + (k + 1) % s;
+                wall.mesh.triangles.push_back({a, b, (row + 1) * s + j});
+                wall.mesh.triangles.push_back({(row + 1) * s + j, b, (row + 1) * s + j1});
+            }
         for (std::uint32_t k = 0; k < s; ++k) {
             const std::uint32_t k1 = (k + 1) % s;
-            wall.mesh.triangles.push_back({2 * k, 2 * k1, 2 * k1 + 1});
-            wall.mesh.triangles.push_back({2 * k, 2 * k1 + 1, 2 * k + 1});
             bottom.mesh.triangles.push_back({s, k1, k});
             top.mesh.triangles.push_back({s, k, k1});
         }
