@@ -1,7 +1,8 @@
 #!/usr/bin/env bash
 # Install what packbed needs on Debian 12, from Debian's packages only; nothing when everything
 # is already there. Usage: scripts/install-deps.sh [--test]
-#   --test  also what the test suite needs beyond the build (VTK's Python reader, LAMMPS, LIGGGHTS)
+#   --test  also what the test suite needs beyond the build (VTK's Python reader, LAMMPS, LIGGGHTS,
+#           admesh and OpenFOAM to check the surfaces and cases packbed export writes)
 set -euo pipefail
 
 packages=(
@@ -20,6 +21,8 @@ if [[ ${1:-} == --test ]]; then
   packages+=(python3-vtk9)  # reads particles.vtu as ParaView does
   packages+=(lammps)        # reads the data files of packbed export (lmp)
   packages+=(liggghts)      # and LIGGGHTS reads them too
+  packages+=(admesh)        # checks the STL surfaces of packbed export
+  packages+=(openfoam)      # surfaceCheck, blockMesh, snappyHexMesh, checkMesh on them
 fi
 
 missing=()
