@@ -181,8 +181,12 @@ OutputDirectory::~OutputDirectory() {
 }
 
 std::filesystem::path OutputDirectory::reserve(const std::string& name) {
-    const auto tmp = m_directory / fmt::format(".{}.tmp-{}", name, ::getpid());
-    m_staged.emplace_back(tmp, m_directory / name);
+    const auto final_path = m_directory / name;
+    std::error_code ec;
+    std::filesystem::create_directories(final_path.parent_path(), ec); // name = "sub/file"
+    const auto tmp = final_path.parent_path() /
+                     fmt::format(".{}.tmp-{}", final_path.filename().string(), ::getpid());
+    m_staged.emplace_back(tmp, final_path);
     return tmp;
 }
 

@@ -358,6 +358,58 @@ TreatmentVolumes treatment_volumes(const Packing& packing, const std::vector<Tre
     return v;
 }
 
+std::vector<Solid> container_solids(const Cylinder& cylinder, double z_low, double z_high,
+                                   double edge) {
+    // A prism circumscribed about the cylinder: its faces are tangent to the cylinder from
+    // outside, with sides about `edge` long.
+    const double rt = cylinder.radius();
+    const double h = z_high - z_low;
+    const int sides =
+        std::clamp(static_cast<int>(std::ceil(2.0 * std::numbers::pi * rt / edge)), 48, 100000);
+    const double corner = rt / std::cos(std::numbers::pi / sides);
+    // The wall in rows about as tall as a side is wide, every other row turned by half a
+    // side, so that no two triangles are coplanar (the bottom and top are fans from the
+    // axis). Each wall triangle projects onto the plane between a chord at distance Rt from
+    // the axis and the circle through the corners: the wall stays outside the cylinder.
+    const int rows = std::clamp(
+        static_cast<int>(std::ceil(h / (2.0 * corner * std::sin(std::numbers::pi / sides)))), 1,
+        4096);
+    const auto s = static_cast<std::uint32_t>(sides);
+    auto ring_point = [&](int row, std::uint32_t k) {
+        const double angle = 2.0 * std::numbers::pi * (k + 0.5 * (row % 2)) / sides;
+        return Vec3{corner * std::cos(angle), corner * std::sin(angle),
+                    row == rows ? z_high : z_low + h * row / rows};
+    };
+    Solid wall{"wall", {}}, bottom{"bottom", {}}, top{"top", {}};
+    for (int row = 0; row <= rows; ++row)
+        for (std::uint32_t k = 0; k < s; ++k)
+            wall.mesh.vertices.push_back(ring_point(row, k));
+    for (std::uint32_t k = 0; k < s; ++k) {
+        bottom.mesh.vertices.push_back(ring_point(0, k));
+        top.mesh.vertices.push_back(ring_point(rows, k));
+    }
+    bottom.mesh.vertices.push_back({0.0, 0.0, z_low});
+    top.mesh.vertices.push_back({0.0, 0.0, z_high});
+    for (std::uint32_t row = 0; row < static_cast<std::uint32_t>(rows); ++row)
+        for (std::uint32_t k = 0; k < s; ++k) {
+            // The upper vertex between lower k and k + 1, and the next one.
+            const std::uint32_t j = (k + row % 2) % s, j1 = (j + 1) % s;
+            const std::uint32_t a = row * s + k, b = row * s + (k + 1) % s;
+            wall.mesh.triangles.push_back({a, b, (row + 1) * s + j});
+            wall.mesh.triangles.push_back({(row + 1) * s + j, b, (row + 1) * s + j1});
+        }
+    for (std::uint32_t k = 0; k < s; ++k) {
+        const std::uint32_t k1 = (k + 1) % s;
+        bottom.mesh.triangles.push_back({s, k1, k});
+        top.mesh.triangles.push_back({s, k, k1});
+    }
+    std::vector<Solid> solids;
+    solids.push_back(std::move(wall));
+    solids.push_back(std::move(bottom));
+    solids.push_back(std::move(top));
+    return solids;
+}
+
 std::vector<Solid> bed_surface(const std::vector<TreatedBody>& bodies,
                                const SurfaceOptions& options) {
     const TriangleMesh unit = icosphere(options.level);
@@ -388,56 +440,14 @@ std::vector<Solid> bed_surface(const std::vector<TreatedBody>& bodies,
         solids[0].mesh.append(m);
 
     if (options.container && options.write_container) {
-        // A prism circumscribed about the cylinder: its faces are tangent to the cylinder from
-        // outside, with sides about as long as the spheres' edges.
-        const double rt = options.container->cylinder.radius();
-        const double h = options.container->height;
         double radius = 0.0;
         for (const TreatedBody& b : bodies)
             radius = std::max(radius, b.radius);
+        const double rt = options.container->cylinder.radius();
         const double edge = (radius > 0.0 ? radius : rt) * unit_edge(options.level);
-        const int sides =
-            std::clamp(static_cast<int>(std::ceil(2.0 * std::numbers::pi * rt / edge)), 48, 100000);
-        const double corner = rt / std::cos(std::numbers::pi / sides);
-        // The wall in rows about as tall as a side is wide, every other row turned by half a
-        // side, so that no two triangles are coplanar (the bottom and top are fans from the
-        // axis). Every vertex lies on the circle about the prism, every edge between rows is
-        // shorter than a side and so stays outside the cylinder.
-        const int rows = std::clamp(
-            static_cast<int>(std::ceil(h / (2.0 * corner * std::sin(std::numbers::pi / sides)))), 1,
-            4096);
-        const auto s = static_cast<std::uint32_t>(sides);
-        auto ring_point = [&](int row, std::uint32_t k) {
-            const double angle = 2.0 * std::numbers::pi * (k + 0.5 * (row % 2)) / sides;
-            return Vec3{corner * std::cos(angle), corner * std::sin(angle),
-                        row == rows ? h : h * row / rows};
-        };
-        Solid wall{"wall", {}}, bottom{"bottom", {}}, top{"top", {}};
-        for (int row = 0; row <= rows; ++row)
-            for (std::uint32_t k = 0; k < s; ++k)
-                wall.mesh.vertices.push_back(ring_point(row, k));
-        for (std::uint32_t k = 0; k < s; ++k) {
-            bottom.mesh.vertices.push_back(ring_point(0, k));
-            top.mesh.vertices.push_back(ring_point(rows, k));
-        }
-        bottom.mesh.vertices.push_back({0.0, 0.0, 0.0});
-        top.mesh.vertices.push_back({0.0, 0.0, h});
-        for (std::uint32_t row = 0; row < static_cast<std::uint32_t>(rows); ++row)
-            for (std::uint32_t k = 0; k < s; ++k) {
-                // The upper vertex between lower k and k + 1, and the next one.
-                const std::uint32_t j = (k + row % 2) % s, j1 = (j + 1) % s;
-                const std::uint32_t a = row * s + k, b = row * s + (k + 1) % s;
-                wall.mesh.triangles.push_back({a, b, (row + 1) * s + j});
-                wall.mesh.triangles.push_back({(row + 1) * s + j, b, (row + 1) * s + j1});
-            }
-        for (std::uint32_t k = 0; k < s; ++k) {
-            const std::uint32_t k1 = (k + 1) % s;
-            bottom.mesh.triangles.push_back({s, k1, k});
-            top.mesh.triangles.push_back({s, k, k1});
-        }
-        solids.push_back(std::move(wall));
-        solids.push_back(std::move(bottom));
-        solids.push_back(std::move(top));
+        for (Solid& s : container_solids(options.container->cylinder, 0.0,
+                                         options.container->height, edge))
+            solids.push_back(std::move(s));
     }
     return solids;
 }

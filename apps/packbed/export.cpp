@@ -11,6 +11,7 @@
 #include "command.hpp"
 #include "packbed/error.hpp"
 #include "packbed/io.hpp"
+#include "packbed/openfoam.hpp"
 #include "packbed/read.hpp"
 #include "packbed/surface.hpp"
 #include "packbed/volume.hpp"
@@ -24,7 +25,7 @@ namespace fs = std::filesystem;
 /// What `export` writes. The data files: LAMMPS `atom_style sphere` and LIGGGHTS `atom_style
 /// granular` read the same columns; the name sets the first-line comment and the hint. The
 /// surfaces: see packbed/surface.hpp.
-enum class ExportFormat { lammps_data, liggghts_data, stl, stl_ascii, obj };
+enum class ExportFormat { lammps_data, liggghts_data, stl, stl_ascii, obj, openfoam };
 
 const std::vector<std::pair<std::string, ExportFormat>>& export_formats() {
     static const std::vector<std::pair<std::string, ExportFormat>> formats{
@@ -32,7 +33,8 @@ const std::vector<std::pair<std::string, ExportFormat>>& export_formats() {
         {"liggghts-data", ExportFormat::liggghts_data},
         {"stl", ExportFormat::stl},
         {"stl-ascii", ExportFormat::stl_ascii},
-        {"obj", ExportFormat::obj}};
+        {"obj", ExportFormat::obj},
+        {"openfoam", ExportFormat::openfoam}};
     return formats;
 }
 
@@ -51,6 +53,7 @@ struct ExportOptions {
     double container_radius = 0.0; // 0: from summary.json beside the file, if any
     double container_height = 0.0; // 0: the bed's top + 1 Dp
     bool no_container = false;
+    OpenFoamMeshOptions mesh;
     bool quiet = false;
 };
 
@@ -64,7 +67,8 @@ AxisBox parse_box(const std::string& text) {
     return {{(*v)[0], (*v)[2], (*v)[4]}, {(*v)[1], (*v)[3], (*v)[5]}};
 }
 
-/// STL or OBJ: treat the contacts, tessellate, write the surface and its volumes.
+/// STL, OBJ or an OpenFOAM case: treat the contacts, tessellate, write the surfaces and the
+/// volumes.
 int run_surface_export(const ExportOptions& o, ExportFormat format, const ParticleFile& file) {
     const Contacts contacts = parse_contacts(o.contacts);
     const double dp = file.packing.mean_diameter();
@@ -98,8 +102,72 @@ int run_surface_export(const ExportOptions& o, ExportFormat format, const Partic
     options.container = container;
     options.write_container = !o.no_container;
     const std::vector<TreatedBody> bodies = treat_contacts(file.packing, contacts, container);
-    const std::vector<Solid> solids = bed_surface(bodies, options);
+    if (format == ExportFormat::openfoam && !container)
+        throw InvalidInput(fmt::format("--format openfoam needs the container: give "
+                                       "--container-radius (no summary.json next to {})",
+                                       o.particles));
 
+    // What every surface export reports (printed, and written as JSON beside the output).
+    nlohmann::ordered_json report;
+    report["particles"] = o.particles;
+    report["spheres"] = file.packing.size();
+    report["contacts"] = o.contacts;
+    report["diameter"] = dp;
+    report["icosphere_level"] = options.level;
+    std::optional<TreatmentVolumes> volumes;
+    std::string change;
+    if (container) {
+        const TreatmentVolumes& v = volumes.emplace(treatment_volumes(file.packing, bodies, *container));
+        report["container"] = {{"shape", "cylinder"}, {"radius", rt}, {"height", container->height}};
+        report["volumes"] = {{"container", v.container_volume},
+                             {"untouched_solid", v.untouched_solid},
+                             {"treated_solid", v.treated_solid},
+                             {"fluid", v.container_volume - v.treated_solid},
+                             {"untouched_void_fraction", v.untouched_void_fraction},
+                             {"treated_void_fraction", v.treated_void_fraction},
+                             {"void_fraction_change",
+                              v.treated_void_fraction - v.untouched_void_fraction}};
+        change = fmt::format("; void fraction in the container (z 0 to {:.6g}) {:.6f} -> {:.6f} "
+                             "({:+.6f})",
+                             container->height, v.untouched_void_fraction, v.treated_void_fraction,
+                             v.treated_void_fraction - v.untouched_void_fraction);
+    }
+
+    if (format == ExportFormat::openfoam) {
+        const OpenFoamCase foam =
+            openfoam_case(bodies, *container, *volumes, o.contacts, dp, options.level, o.mesh);
+        report["openfoam"] = {
+            {"cell_size", foam.cell_size},
+            {"particle_level", o.mesh.particle_level},
+            {"wall_level", o.mesh.wall_level},
+            {"location_in_mesh", {foam.location_in_mesh.x, foam.location_in_mesh.y,
+                                  foam.location_in_mesh.z}},
+            {"clearance", foam.clearance}};
+        const fs::path dir = o.out.empty() ? fs::path(o.particles).parent_path() / "openfoam"
+                                           : fs::path(o.out);
+        OutputDirectory out(dir);
+        for (const auto& [path, text] : foam.files)
+            out.stage(path, text);
+        write_surface(foam.particles, SurfaceFormat::stl_binary,
+                      out.reserve("constant/triSurface/particles.stl"));
+        write_surface(foam.wall, SurfaceFormat::stl_binary,
+                      out.reserve("constant/triSurface/wall.stl"));
+        out.stage("packbed.json", report.dump(2) + "\n");
+        out.commit();
+        if (!o.quiet)
+            fmt::print("packbed export: OpenFOAM case in {} ({} spheres, contacts {}{}); run "
+                       "blockMesh, snappyHexMesh -overwrite, checkMesh there\n",
+                       dir.string(), file.packing.size(), o.contacts, change);
+        return 0;
+    }
+
+    const std::vector<Solid> solids = bed_surface(bodies, options);
+    std::size_t triangles = 0;
+    report["solids"] = nlohmann::ordered_json::array();
+    for (const Solid& s : solids) {
+        triangles += s.mesh.triangles.size();
+        report["solids"].push_back({{"name", s.name}, {"triangles", s.mesh.triangles.size()}});
+    }
     const fs::path out_path =
         o.out.empty() ? fs::path(o.particles)
                             .replace_extension(format == ExportFormat::obj ? ".obj" : ".stl")
@@ -111,37 +179,6 @@ int run_surface_export(const ExportOptions& o, ExportFormat format, const Partic
                   : format == ExportFormat::stl_ascii ? SurfaceFormat::stl_ascii
                                                       : SurfaceFormat::obj,
                   out.reserve(name));
-    std::size_t triangles = 0;
-    nlohmann::ordered_json report;
-    report["particles"] = o.particles;
-    report["spheres"] = file.packing.size();
-    report["contacts"] = o.contacts;
-    report["diameter"] = dp;
-    report["icosphere_level"] = options.level;
-    report["solids"] = nlohmann::ordered_json::array();
-    for (const Solid& s : solids) {
-        triangles += s.mesh.triangles.size();
-        report["solids"].push_back({{"name", s.name}, {"triangles", s.mesh.triangles.size()}});
-    }
-    std::string change;
-    if (container) {
-        const TreatmentVolumes v = treatment_volumes(file.packing, bodies, *container);
-        report["container"] = {{"shape", "cylinder"},
-                               {"radius", rt},
-                               {"height", container->height}};
-        report["volumes"] = {{"container", v.container_volume},
-                             {"untouched_solid", v.untouched_solid},
-                             {"treated_solid", v.treated_solid},
-                             {"untouched_void_fraction", v.untouched_void_fraction},
-                             {"treated_void_fraction", v.treated_void_fraction},
-                             {"void_fraction_change",
-                              v.treated_void_fraction - v.untouched_void_fraction}};
-        change = fmt::format("; void fraction in the container (z 0 to {:.6g}) {:.6f} -> {:.6f} "
-                             "({:+.6f})",
-                             container->height, v.untouched_void_fraction,
-                             v.treated_void_fraction,
-                             v.treated_void_fraction - v.untouched_void_fraction);
-    }
     out.stage(name + ".json", report.dump(2) + "\n");
     out.commit();
     if (!o.quiet)
@@ -162,7 +199,7 @@ int run_export(const ExportOptions& o) {
         read.radius = 0.5 * o.diameter;
     const ParticleFile file = read_particles(o.particles, read);
     if (format == ExportFormat::stl || format == ExportFormat::stl_ascii ||
-        format == ExportFormat::obj)
+        format == ExportFormat::obj || format == ExportFormat::openfoam)
         return run_surface_export(o, format, file);
     const AxisBox box = o.box.empty() ? bounding_box(file.packing) : parse_box(o.box);
     const fs::path out_path =
@@ -208,10 +245,12 @@ Command register_export(CLI::App& parent) {
         names.push_back(entry.first);
     app->add_option("-f,--format", o.format,
                     "lammps-data (atom_style sphere), liggghts-data (atom_style granular), stl "
-                    "(binary), stl-ascii (one named solid per part) or obj")
+                    "(binary), stl-ascii (one named solid per part), obj, or openfoam (a case "
+                    "directory for blockMesh + snappyHexMesh)")
         ->check(CLI::IsMember(names));
     app->add_option("-o,--out", o.out,
-                    "the output file (default: the particle file with .data, .stl or .obj)");
+                    "the output file (default: the particle file with .data, .stl or .obj), or "
+                    "the case directory for openfoam (default: openfoam/ beside the file)");
     app->add_option("--contacts", o.contacts,
                     "surfaces: none, shrink:F (radii times 1 - F) or caps:H (flat faces H Dp "
                     "apart at every contact closer than H Dp, and H Dp from the walls); F, H "
@@ -232,6 +271,15 @@ Command register_export(CLI::App& parent) {
         ->check(real_in(0.0, inf, true, true));
     app->add_flag("--no-container", o.no_container,
                   "surfaces: cut against the container but do not write its solids");
+    app->add_option("--cells-per-diameter", o.mesh.cells_per_diameter,
+                    "openfoam: background (blockMesh) cells per particle diameter")
+        ->check(CLI::Range(1, 100));
+    app->add_option("--particle-level", o.mesh.particle_level,
+                    "openfoam: snappyHexMesh refinement level at the particles")
+        ->check(CLI::Range(0, 8));
+    app->add_option("--wall-level", o.mesh.wall_level,
+                    "openfoam: snappyHexMesh refinement level at the wall")
+        ->check(CLI::Range(0, 8));
     app->add_option("--density", o.density, "particle density written for every atom")
         ->check(real_in(0.0, inf, true, true));
     app->add_option("--box", o.box,

@@ -68,7 +68,8 @@ public:
     OutputDirectory(const OutputDirectory&) = delete;
     OutputDirectory& operator=(const OutputDirectory&) = delete;
 
-    /// Write `contents` to a temporary file for `name` (a file name inside the directory).
+    /// Write `contents` to a temporary file for `name` (a file name inside the directory, or a
+    /// relative path whose folders are then created: "system/controlDict").
     /// \throws std::runtime_error naming the file when writing fails
     void stage(const std::string& name, const std::string& contents);
 

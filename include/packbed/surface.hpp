@@ -145,6 +145,12 @@ double lens_volume(double r1, double r2, double distance);
 std::vector<Solid> bed_surface(const std::vector<TreatedBody>& bodies,
                                const SurfaceOptions& options);
 
+/// The container as solids "wall" (a prism circumscribed about the cylinder, sides about
+/// `edge` long, between z_low and z_high), "bottom" and "top" (fans from the axis); the three
+/// together are closed and outward. \param edge > 0
+std::vector<Solid> container_solids(const Cylinder& cylinder, double z_low, double z_high,
+                                   double edge);
+
 /// The three formats.
 enum class SurfaceFormat { stl_binary, stl_ascii, obj };
 

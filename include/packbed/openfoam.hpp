@@ -1,0 +1,47 @@
+// A ready OpenFOAM case for blockMesh + snappyHexMesh around a treated bed (issue 6): the
+// background box sized to the container, refinement levels tied to the particle diameter, a
+// locationInMesh certainly in the fluid. Written for OpenFOAM v1912 (Debian 12's package) and
+// later; the dictionaries use no keyword that newer releases dropped.
+#pragma once
+
+#include <string>
+#include <utility>
+#include <vector>
+
+#include "packbed/surface.hpp"
+
+namespace packbed {
+
+/// Mesh resolution, tied to the mean particle diameter Dp.
+struct OpenFoamMeshOptions {
+    int cells_per_diameter = 4; ///< background (blockMesh) cells per Dp, >= 1
+    int particle_level = 2;     ///< snappyHexMesh refinement level at the particles, 0 to 8
+    int wall_level = 1;         ///< ... at the container wall, 0 to 8
+};
+
+/// What openfoam_case builds: the text files by path inside the case directory, the two
+/// surfaces to write under constant/triSurface, and the numbers its README and users need.
+struct OpenFoamCase {
+    std::vector<std::pair<std::string, std::string>> files; ///< (relative path, contents)
+    std::vector<Solid> particles;                           ///< constant/triSurface/particles.stl
+    std::vector<Solid> wall;                                ///< constant/triSurface/wall.stl
+    Vec3 location_in_mesh;   ///< a point of the fluid, farthest from every surface we tried
+    double clearance = 0.0;  ///< its distance to the nearest surface (length)
+    double fluid_volume = 0; ///< exact void volume of the container with the treated bodies
+    double cell_size = 0.0;  ///< background cell edge (length)
+};
+
+/// The case for `bodies` (from treat_contacts) in `container`, surfaces tessellated with
+/// `level`. The box of blockMesh spans the cylinder with a margin of one background cell
+/// sideways and exactly the container's height, so its bottom and top faces become the
+/// patches "inlet" (z = 0) and "outlet" (z = height); snappyHexMesh cuts the particles (patch
+/// "particles") and the wall (patch "wall", a surface open at both ends reaching half a cell
+/// beyond them) out of it. `volumes` gives the exact fluid volume written in the README.
+/// \throws InvalidInput when the options are out of range or no point of the fluid clears
+/// every surface by two cells of the finest level
+OpenFoamCase openfoam_case(const std::vector<TreatedBody>& bodies,
+                           const SurfaceContainer& container, const TreatmentVolumes& volumes,
+                           const std::string& contacts, double diameter, int level,
+                           const OpenFoamMeshOptions& options = {});
+
+} // namespace packbed

@@ -1,0 +1,229 @@
+#include "packbed/openfoam.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <numbers>
+
+#include <fmt/format.h>
+
+#include "packbed/error.hpp"
+#include "require.hpp"
+
+namespace packbed {
+
+namespace {
+
+std::string header(const std::string& object, const std::string& location) {
+    return fmt::format("/*--- written by packbed export --format openfoam ---*/\n"
+                       "FoamFile\n{{\n    version 2.0;\n    format ascii;\n    class dictionary;\n"
+                       "    location \"{}\";\n    object {};\n}}\n\n",
+                       location, object);
+}
+
+/// The fluid point farthest from every surface among candidates on eight vertical lines
+/// (irrational fractions of the radius, so that no candidate lies on a cell face), every
+/// 0.05 Dp in height. Distances to a body are taken to its sphere (bodies lie inside their
+/// spheres, so the clearance is never overstated).
+std::pair<Vec3, double> farthest_fluid_point(const std::vector<TreatedBody>& bodies,
+                                             const SurfaceContainer& container, double dp) {
+    std::vector<std::size_t> by_z(bodies.size());
+    for (std::size_t i = 0; i < by_z.size(); ++i)
+        by_z[i] = i;
+    std::sort(by_z.begin(), by_z.end(),
+              [&](std::size_t a, std::size_t b) { return bodies[a].center.z < bodies[b].center.z; });
+    double largest = 0.0;
+    for (const TreatedBody& b : bodies)
+        largest = std::max(largest, b.radius);
+    const double rt = container.cylinder.radius();
+    Vec3 best{};
+    double best_clearance = -1.0;
+    constexpr double fractions[8][2] = {{0.0123, 0.0371},  {0.3137, 0.1291}, {-0.2719, 0.2213},
+                                        {0.1409, -0.4129}, {-0.5231, -0.0917}, {0.6143, 0.2753},
+                                        {-0.1733, 0.6571}, {0.4421, -0.5309}};
+    const double step = 0.05 * dp;
+    for (double z = 0.01237 * dp; z < container.height; z += step)
+        for (const auto& f : fractions) {
+            const Vec3 p{f[0] * rt, f[1] * rt, z};
+            double clearance =
+                std::min({rt - std::hypot(p.x, p.y), p.z, container.height - p.z});
+            if (clearance <= best_clearance)
+                continue;
+            // Bodies whose centre is within clearance + largest radius in height.
+            const auto low = std::lower_bound(by_z.begin(), by_z.end(), z - clearance - largest,
+                                              [&](std::size_t i, double v) {
+                                                  return bodies[i].center.z < v;
+                                              });
+            for (auto it = low; it != by_z.end() &&
+                                bodies[*it].center.z <= z + clearance + largest;
+                 ++it) {
+                const TreatedBody& b = bodies[*it];
+                clearance = std::min(clearance, norm(p - b.center) - b.radius);
+                if (clearance <= best_clearance)
+                    break;
+            }
+            if (clearance > best_clearance) {
+                best_clearance = clearance;
+                best = p;
+            }
+        }
+    return {best, best_clearance};
+}
+
+} // namespace
+
+OpenFoamCase openfoam_case(const std::vector<TreatedBody>& bodies,
+                           const SurfaceContainer& container, const TreatmentVolumes& volumes,
+                           const std::string& contacts, double diameter, int level,
+                           const OpenFoamMeshOptions& options) {
+    detail::require(options.cells_per_diameter >= 1 && options.cells_per_diameter <= 100,
+                    "--cells-per-diameter", options.cells_per_diameter, "1 to 100");
+    detail::require(options.particle_level >= 0 && options.particle_level <= 8,
+                    "--particle-level", options.particle_level, "0 to 8");
+    detail::require(options.wall_level >= 0 && options.wall_level <= 8, "--wall-level",
+                    options.wall_level, "0 to 8");
+    OpenFoamCase c;
+    const double rt = container.cylinder.radius();
+    const double height = container.height;
+    c.cell_size = diameter / options.cells_per_diameter;
+    c.fluid_volume = volumes.container_volume - volumes.treated_solid;
+    const double finest =
+        c.cell_size / std::ldexp(1.0, std::max(options.particle_level, options.wall_level));
+    std::tie(c.location_in_mesh, c.clearance) = farthest_fluid_point(bodies, container, diameter);
+    if (!(c.clearance > 2.0 * finest))
+        throw InvalidInput(fmt::format(
+            "no point of the fluid clears every surface by two of the finest cells ({:.4g}): the "
+            "largest clearance found is {:.4g}; allowed: a container taller than the bed, or "
+            "finer cells",
+            finest, c.clearance));
+
+    SurfaceOptions surface;
+    surface.level = level;
+    surface.container = container;
+    surface.write_container = false;
+    c.particles = bed_surface(bodies, surface);
+    double largest = 0.0;
+    for (const TreatedBody& b : bodies)
+        largest = std::max(largest, b.radius);
+    // The wall, open, half a background cell beyond both ends of the box.
+    std::vector<Solid> walls =
+        container_solids(container.cylinder, -0.5 * c.cell_size, height + 0.5 * c.cell_size,
+                         std::min(largest * 1.0515 / std::ldexp(1.0, level), 0.5 * c.cell_size));
+    c.wall.push_back(std::move(walls[0]));
+
+    // Background box: one cell beyond the cylinder sideways, exactly 0 to height in z.
+    const int n_side = static_cast<int>(std::ceil(2.0 * rt / c.cell_size)) + 2;
+    const double half = 0.5 * n_side * c.cell_size;
+    const int n_z = std::max(1, static_cast<int>(std::ceil(height / c.cell_size)));
+    std::string block = header("blockMeshDict", "system");
+    block += fmt::format(
+        "// Box around the cylinder (radius {rt}, height {h}); cells of {cell} (Dp / {cpd}).\n"
+        "convertToMeters 1;\n\nvertices\n(\n"
+        "    ({lo} {lo} 0) ({hi} {lo} 0) ({hi} {hi} 0) ({lo} {hi} 0)\n"
+        "    ({lo} {lo} {h}) ({hi} {lo} {h}) ({hi} {hi} {h}) ({lo} {hi} {h})\n);\n\n"
+        "blocks\n(\n    hex (0 1 2 3 4 5 6 7) ({n} {n} {nz}) simpleGrading (1 1 1)\n);\n\n"
+        "edges\n(\n);\n\nboundary\n(\n"
+        "    inlet\n    {{\n        type patch;\n        faces ((0 3 2 1));\n    }}\n"
+        "    outlet\n    {{\n        type patch;\n        faces ((4 5 6 7));\n    }}\n"
+        "    outside // outside the wall: no cells remain on it after snappyHexMesh\n"
+        "    {{\n        type patch;\n"
+        "        faces ((0 1 5 4) (1 2 6 5) (2 3 7 6) (3 0 4 7));\n    }}\n);\n",
+        fmt::arg("rt", rt), fmt::arg("h", height), fmt::arg("cell", c.cell_size),
+        fmt::arg("cpd", options.cells_per_diameter), fmt::arg("lo", -half), fmt::arg("hi", half),
+        fmt::arg("n", n_side), fmt::arg("nz", n_z));
+    c.files.emplace_back("system/blockMeshDict", block);
+
+    std::string snappy = header("snappyHexMeshDict", "system");
+    snappy += fmt::format(
+        "castellatedMesh true;\nsnap true;\naddLayers false;\n\n"
+        "geometry\n{{\n"
+        "    particles.stl {{ type triSurfaceMesh; name particles; }}\n"
+        "    wall.stl {{ type triSurfaceMesh; name wall; }}\n}}\n\n"
+        "castellatedMeshControls\n{{\n"
+        "    maxLocalCells 10000000;\n    maxGlobalCells 50000000;\n"
+        "    minRefinementCells 0;\n    maxLoadUnbalance 0.10;\n    nCellsBetweenLevels 2;\n"
+        "    features ();\n"
+        "    // Levels tied to Dp: a cell of level L at a surface is Dp / ({cpd} 2^L).\n"
+        "    refinementSurfaces\n    {{\n"
+        "        particles {{ level ({lp} {lp}); patchInfo {{ type wall; }} }}\n"
+        "        wall {{ level ({lw} {lw}); patchInfo {{ type wall; }} }}\n    }}\n"
+        "    resolveFeatureAngle 30;\n    refinementRegions {{}}\n"
+        "    // In the fluid, {clear} from the nearest surface.\n"
+        "    locationInMesh ({x} {y} {z});\n"
+        "    allowFreeStandingZoneFaces true;\n}}\n\n"
+        "snapControls\n{{\n    nSmoothPatch 3;\n    tolerance 2.0;\n    nSolveIter 30;\n"
+        "    nRelaxIter 5;\n    nFeatureSnapIter 10;\n    implicitFeatureSnap false;\n"
+        "    explicitFeatureSnap false;\n    multiRegionFeatureSnap false;\n}}\n\n"
+        "addLayersControls\n{{\n    relativeSizes true;\n    layers {{}}\n"
+        "    expansionRatio 1.0;\n    finalLayerThickness 0.3;\n    minThickness 0.1;\n"
+        "    nGrow 0;\n    featureAngle 60;\n    slipFeatureAngle 30;\n    nRelaxIter 3;\n"
+        "    nSmoothSurfaceNormals 1;\n    nSmoothNormals 3;\n    nSmoothThickness 10;\n"
+        "    maxFaceThicknessRatio 0.5;\n    maxThicknessToMedialRatio 0.3;\n"
+        "    minMedialAxisAngle 90;\n    nBufferCellsNoExtrude 0;\n    nLayerIter 50;\n}}\n\n"
+        "meshQualityControls\n{{\n    maxNonOrtho 65;\n    maxBoundarySkewness 20;\n"
+        "    maxInternalSkewness 4;\n    maxConcave 80;\n    minVol 1e-30;\n"
+        "    minTetQuality 1e-30;\n    minArea -1;\n    minTwist 0.02;\n"
+        "    minDeterminant 0.001;\n    minFaceWeight 0.05;\n    minVolRatio 0.01;\n"
+        "    minTriangleTwist -1;\n    nSmoothScale 4;\n    errorReduction 0.75;\n"
+        "    relaxed {{ maxNonOrtho 75; }}\n}}\n\n"
+        "mergeTolerance 1e-6;\n",
+        fmt::arg("cpd", options.cells_per_diameter), fmt::arg("lp", options.particle_level),
+        fmt::arg("lw", options.wall_level), fmt::arg("clear", c.clearance),
+        fmt::arg("x", c.location_in_mesh.x), fmt::arg("y", c.location_in_mesh.y),
+        fmt::arg("z", c.location_in_mesh.z));
+    c.files.emplace_back("system/snappyHexMeshDict", snappy);
+
+    c.files.emplace_back(
+        "system/controlDict",
+        header("controlDict", "system") +
+            "application simpleFoam;\nstartFrom startTime;\nstartTime 0;\nstopAt endTime;\n"
+            "endTime 1000;\ndeltaT 1;\nwriteControl timeStep;\nwriteInterval 100;\n"
+            "purgeWrite 0;\nwriteFormat ascii;\nwritePrecision 10;\nwriteCompression off;\n"
+            "timeFormat general;\ntimePrecision 6;\nrunTimeModifiable true;\n");
+    c.files.emplace_back("system/fvSchemes",
+                         header("fvSchemes", "system") +
+                             "ddtSchemes { default steadyState; }\n"
+                             "gradSchemes { default Gauss linear; }\n"
+                             "divSchemes { default none; }\n"
+                             "laplacianSchemes { default Gauss linear corrected; }\n"
+                             "interpolationSchemes { default linear; }\n"
+                             "snGradSchemes { default corrected; }\n");
+    c.files.emplace_back("system/fvSolution", header("fvSolution", "system") + "solvers {}\n");
+
+    const double bed_void = volumes.untouched_void_fraction;
+    c.files.emplace_back(
+        "README.md",
+        fmt::format(
+            "# Packed bed for snappyHexMesh (written by packbed export)\n\n"
+            "{n} particles of diameter {dp} in a cylinder of radius {rt}, from z = 0 to {h} "
+            "(lengths in the bed's unit; `convertToMeters 1`). Contacts: `{contacts}`.\n\n"
+            "```sh\nblockMesh\nsnappyHexMesh -overwrite\ncheckMesh\n```\n\n"
+            "(Debian's OpenFOAM runs these as they are; elsewhere source OpenFOAM's "
+            "`etc/bashrc` first.)\n\n"
+            "- `constant/triSurface/particles.stl`: every particle, closed and separate (patch "
+            "`particles`); `wall.stl`: the cylinder wall, open, reaching half a cell beyond "
+            "both ends (patch `wall`).\n"
+            "- Patches after meshing: `inlet` (z = 0), `outlet` (z = {h}), `particles`, `wall`; "
+            "`outside` keeps no faces.\n"
+            "- Background cells of {cell} (Dp / {cpd}); refinement level {lp} at the particles "
+            "(cells of {pcell}), {lw} at the wall (cells of {wcell}).\n"
+            "- `locationInMesh` ({x}, {y}, {z}): {clear} from the nearest surface.\n\n"
+            "Exact volumes (geometry, not the mesh): container {vc}; solid {vs} after the "
+            "treatment; fluid {vf}. Void fraction {e0:.6f} untouched, {e1:.6f} treated. "
+            "`checkMesh` prints the mesh's `Total volume`, to compare with the fluid volume: "
+            "gaps narrower than the finest cells are lost by the mesh, so refine where that "
+            "matters.\n",
+            fmt::arg("n", bodies.size()), fmt::arg("dp", diameter), fmt::arg("rt", rt),
+            fmt::arg("h", height), fmt::arg("contacts", contacts), fmt::arg("cell", c.cell_size),
+            fmt::arg("cpd", options.cells_per_diameter), fmt::arg("lp", options.particle_level),
+            fmt::arg("pcell", c.cell_size / std::ldexp(1.0, options.particle_level)),
+            fmt::arg("lw", options.wall_level),
+            fmt::arg("wcell", c.cell_size / std::ldexp(1.0, options.wall_level)),
+            fmt::arg("x", c.location_in_mesh.x), fmt::arg("y", c.location_in_mesh.y),
+            fmt::arg("z", c.location_in_mesh.z), fmt::arg("clear", c.clearance),
+            fmt::arg("vc", volumes.container_volume), fmt::arg("vs", volumes.treated_solid),
+            fmt::arg("vf", c.fluid_volume), fmt::arg("e0", bed_void),
+            fmt::arg("e1", volumes.treated_void_fraction)));
+    return c;
+}
+
+} // namespace packbed
