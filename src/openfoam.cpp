@@ -29,32 +29,30 @@ std::pair<Vec3, double> farthest_fluid_point(const std::vector<TreatedBody>& bod
     std::vector<std::size_t> by_z(bodies.size());
     for (std::size_t i = 0; i < by_z.size(); ++i)
         by_z[i] = i;
-    std::sort(by_z.begin(), by_z.end(),
-              [&](std::size_t a, std::size_t b) { return bodies[a].center.z < bodies[b].center.z; });
+    std::sort(by_z.begin(), by_z.end(), [&](std::size_t a, std::size_t b) {
+        return bodies[a].center.z < bodies[b].center.z;
+    });
     double largest = 0.0;
     for (const TreatedBody& b : bodies)
         largest = std::max(largest, b.radius);
     const double rt = container.cylinder.radius();
     Vec3 best{};
     double best_clearance = -1.0;
-    constexpr double fractions[8][2] = {{0.0123, 0.0371},  {0.3137, 0.1291}, {-0.2719, 0.2213},
+    constexpr double fractions[8][2] = {{0.0123, 0.0371},  {0.3137, 0.1291},   {-0.2719, 0.2213},
                                         {0.1409, -0.4129}, {-0.5231, -0.0917}, {0.6143, 0.2753},
                                         {-0.1733, 0.6571}, {0.4421, -0.5309}};
     const double step = 0.05 * dp;
     for (double z = 0.01237 * dp; z < container.height; z += step)
         for (const auto& f : fractions) {
             const Vec3 p{f[0] * rt, f[1] * rt, z};
-            double clearance =
-                std::min({rt - std::hypot(p.x, p.y), p.z, container.height - p.z});
+            double clearance = std::min({rt - std::hypot(p.x, p.y), p.z, container.height - p.z});
             if (clearance <= best_clearance)
                 continue;
             // Bodies whose centre is within clearance + largest radius in height.
-            const auto low = std::lower_bound(by_z.begin(), by_z.end(), z - clearance - largest,
-                                              [&](std::size_t i, double v) {
-                                                  return bodies[i].center.z < v;
-                                              });
-            for (auto it = low; it != by_z.end() &&
-                                bodies[*it].center.z <= z + clearance + largest;
+            const auto low =
+                std::lower_bound(by_z.begin(), by_z.end(), z - clearance - largest,
+                                 [&](std::size_t i, double v) { return bodies[i].center.z < v; });
+            for (auto it = low; it != by_z.end() && bodies[*it].center.z <= z + clearance + largest;
                  ++it) {
                 const TreatedBody& b = bodies[*it];
                 clearance = std::min(clearance, norm(p - b.center) - b.radius);
@@ -77,8 +75,8 @@ OpenFoamCase openfoam_case(const std::vector<TreatedBody>& bodies,
                            const OpenFoamMeshOptions& options) {
     detail::require(options.cells_per_diameter >= 1 && options.cells_per_diameter <= 100,
                     "--cells-per-diameter", options.cells_per_diameter, "1 to 100");
-    detail::require(options.particle_level >= 0 && options.particle_level <= 8,
-                    "--particle-level", options.particle_level, "0 to 8");
+    detail::require(options.particle_level >= 0 && options.particle_level <= 8, "--particle-level",
+                    options.particle_level, "0 to 8");
     detail::require(options.wall_level >= 0 && options.wall_level <= 8, "--wall-level",
                     options.wall_level, "0 to 8");
     OpenFoamCase c;
@@ -188,6 +186,7 @@ OpenFoamCase openfoam_case(const std::vector<TreatedBody>& bodies,
                              "interpolationSchemes { default linear; }\n"
                              "snGradSchemes { default corrected; }\n");
     c.files.emplace_back("system/fvSolution", header("fvSolution", "system") + "solvers {}\n");
+    c.files.emplace_back("case.foam", ""); // what ParaView opens the case by
 
     const double bed_void = volumes.untouched_void_fraction;
     c.files.emplace_back(
@@ -198,7 +197,7 @@ OpenFoamCase openfoam_case(const std::vector<TreatedBody>& bodies,
             "(lengths in the bed's unit; `convertToMeters 1`). Contacts: `{contacts}`.\n\n"
             "```sh\nblockMesh\nsnappyHexMesh -overwrite\ncheckMesh\n```\n\n"
             "(Debian's OpenFOAM runs these as they are; elsewhere source OpenFOAM's "
-            "`etc/bashrc` first.)\n\n"
+            "`etc/bashrc` first.) Open `case.foam` in ParaView to see the mesh.\n\n"
             "- `constant/triSurface/particles.stl`: every particle, closed and separate (patch "
             "`particles`); `wall.stl`: the cylinder wall, open, reaching half a cell beyond "
             "both ends (patch `wall`).\n"

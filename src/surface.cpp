@@ -53,8 +53,8 @@ TriangleMesh icosphere(int level) {
     detail::require(level >= 0 && level <= 7, "icosphere level", level, "0 to 7");
     const double p = std::numbers::phi;
     TriangleMesh m;
-    m.vertices = {{-1, p, 0}, {1, p, 0}, {-1, -p, 0}, {1, -p, 0}, {0, -1, p}, {0, 1, p},
-                  {0, -1, -p}, {0, 1, -p}, {p, 0, -1}, {p, 0, 1}, {-p, 0, -1}, {-p, 0, 1}};
+    m.vertices = {{-1, p, 0},  {1, p, 0},  {-1, -p, 0}, {1, -p, 0}, {0, -1, p},  {0, 1, p},
+                  {0, -1, -p}, {0, 1, -p}, {p, 0, -1},  {p, 0, 1},  {-p, 0, -1}, {-p, 0, 1}};
     for (Vec3& v : m.vertices)
         v *= 1.0 / norm(v);
     m.triangles = {{0, 11, 5}, {0, 5, 1},  {0, 1, 7},   {0, 7, 10}, {0, 10, 11},
@@ -192,7 +192,8 @@ Contacts parse_contacts(std::string_view text) {
             known = true;
         }
     const auto refuse = [&] {
-        return InvalidInput(fmt::format("--contacts '{}' is not allowed; allowed: {}", text, allowed));
+        return InvalidInput(
+            fmt::format("--contacts '{}' is not allowed; allowed: {}", text, allowed));
     };
     if (!known || (c.treatment == ContactTreatment::none) != (colon == std::string_view::npos))
         throw refuse();
@@ -253,7 +254,8 @@ std::vector<TreatedBody> treat_contacts(const Packing& packing, const Contacts& 
                 if (!(d > radii[i] + radii[j]))
                     throw InvalidInput(fmt::format(
                         "--contacts shrink:{} leaves spheres {} and {} overlapping (centres {:.6g} "
-                        "apart, shrunk radii {:.6g} and {:.6g}); allowed: F above the bed's largest "
+                        "apart, shrunk radii {:.6g} and {:.6g}); allowed: F above the bed's "
+                        "largest "
                         "overlap in Dp",
                         contacts.parameter, i + 1, j + 1, d, radii[i], radii[j]));
             }
@@ -311,7 +313,8 @@ std::vector<TreatedBody> treat_contacts(const Packing& packing, const Contacts& 
                     contacts.parameter, i + 1, x.x, x.y, x.z));
             for (std::size_t b = 0; b < a; ++b) {
                 const double sb = cuts[b].offset - dot(cuts[b].normal, x);
-                const double angle = std::acos(std::clamp(dot(cuts[a].normal, cuts[b].normal), -1.0, 1.0));
+                const double angle =
+                    std::acos(std::clamp(dot(cuts[a].normal, cuts[b].normal), -1.0, 1.0));
                 if (!(angle > std::acos(std::min(1.0, sa / r)) + std::acos(std::min(1.0, sb / r))))
                     throw InvalidInput(fmt::format(
                         "--contacts caps:{} gives sphere {} at ({:.6g}, {:.6g}, {:.6g}) two caps "
@@ -359,7 +362,7 @@ TreatmentVolumes treatment_volumes(const Packing& packing, const std::vector<Tre
 }
 
 std::vector<Solid> container_solids(const Cylinder& cylinder, double z_low, double z_high,
-                                   double edge) {
+                                    double edge) {
     // A prism circumscribed about the cylinder: its faces are tangent to the cylinder from
     // outside, with sides about `edge` long.
     const double rt = cylinder.radius();
@@ -445,8 +448,8 @@ std::vector<Solid> bed_surface(const std::vector<TreatedBody>& bodies,
             radius = std::max(radius, b.radius);
         const double rt = options.container->cylinder.radius();
         const double edge = (radius > 0.0 ? radius : rt) * unit_edge(options.level);
-        for (Solid& s : container_solids(options.container->cylinder, 0.0,
-                                         options.container->height, edge))
+        for (Solid& s :
+             container_solids(options.container->cylinder, 0.0, options.container->height, edge))
             solids.push_back(std::move(s));
     }
     return solids;
@@ -512,9 +515,9 @@ void write_surface(const std::vector<Solid>& solids, SurfaceFormat format,
             buffer += fmt::format("solid {}\n", s.name);
             for (const auto& t : s.mesh.triangles) {
                 const Vec3 n = facet_normal(s.mesh, t);
-                buffer += fmt::format(" facet normal {} {} {}\n  outer loop\n",
-                                      static_cast<float>(n.x), static_cast<float>(n.y),
-                                      static_cast<float>(n.z));
+                buffer +=
+                    fmt::format(" facet normal {} {} {}\n  outer loop\n", static_cast<float>(n.x),
+                                static_cast<float>(n.y), static_cast<float>(n.z));
                 for (const std::uint32_t v : t) {
                     const Vec3& p = s.mesh.vertices[v];
                     buffer += fmt::format("   vertex {} {} {}\n", static_cast<float>(p.x),

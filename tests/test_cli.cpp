@@ -305,6 +305,7 @@ TEST_P(CliBadInput, ExitStatus2AndOneLineNamingOptionValueAndRange) {
     std::ofstream(d / "typed.toml") << "particles = [1, {a = 2}]\n";
     std::ofstream(d / "plain") << "x";
     std::ofstream(d / "one.csv") << "x,y,z,r\n0,0,0,0.5\n";
+    std::ofstream(d / "two.csv") << "x,y,z,r\n0,0,1,0.5\n0.99,0,1,0.5\n";
     std::string args = GetParam().args;
     for (std::size_t at; (at = args.find("@D")) != std::string::npos;)
         args.replace(at, 2, d.string());
@@ -402,6 +403,24 @@ INSTANTIATE_TEST_SUITE_P(
                  "[1, 2]; allowed: a box holding every centre"},
         BadInput{"export @D/one.csv --density 0",
                  "packbed: --density: 0 is not allowed; allowed: a number > 0"},
+        BadInput{"export @D/one.csv --format stl --contacts caps:0.7",
+                 "packbed export: --contacts 'caps:0.7' is not allowed; allowed: none, shrink:F "
+                 "or caps:H with F, H fractions of Dp in (0, 0.5)"},
+        BadInput{"export @D/one.csv --format stl --contacts bridges:0.2",
+                 "packbed export: --contacts 'bridges:0.2' is not allowed; allowed: none, "
+                 "shrink:F or caps:H with F, H fractions of Dp in (0, 0.5)"},
+        BadInput{"export @D/two.csv --format stl --contacts shrink:0.005",
+                 "packbed export: --contacts shrink:0.005 leaves spheres 1 and 2 overlapping "
+                 "(centres 0.99 apart, shrunk radii 0.4975 and 0.4975); allowed: F above the "
+                 "bed's largest overlap in Dp"},
+        BadInput{"export @D/two.csv --format openfoam",
+                 "packbed export: --format openfoam needs the container: give "
+                 "--container-radius (no summary.json next to @D/two.csv)"},
+        BadInput{"export @D/one.csv --format stl --container-radius 2",
+                 "packbed export: @D/one.csv:2: the sphere centre (0, 0, 0) is outside the "
+                 "container (radius 2, floor z = 0); allowed: centres inside it"},
+        BadInput{"export @D/two.csv --format stl --refine 9",
+                 "packbed: --refine: '9' is not allowed; allowed: a whole number from 0 to 7"},
         BadInput{"generate --config @D/typed.toml",
                  "packbed: --config: line 1: key 'particles' has a value of the wrong type; "
                  "allowed: a number, a string or true/false"}));

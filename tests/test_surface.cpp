@@ -8,6 +8,7 @@
 #include <tuple>
 
 #include <gtest/gtest.h>
+#include <omp.h>
 
 #include "packbed/error.hpp"
 
@@ -285,4 +286,27 @@ TEST(Surface, SnappingAvoidsSliverTrianglesAtTheCut) {
     // Measured: 2.5e-10 without snapping, 6.2e-6 with it (short edges of the cut's fan).
     EXPECT_LT(worst_plain, 1e-8);
     EXPECT_GT(worst_snapped, 2e-6);
+}
+
+TEST(Surface, TheSameMeshesWhateverTheThreads) {
+    Packing p;
+    for (int i = 0; i < 40; ++i) // a column of touching spheres, zigzag
+        p.add({0.3 * (i % 2), 0.0, 0.5 + 0.954 * i}, 0.5);
+    SurfaceOptions o;
+    o.level = 2;
+    o.container = cylinder(2.0, 40.0);
+    const auto bodies = treat_contacts(p, parse_contacts("caps:0.02"), o.container);
+    omp_set_num_threads(1);
+    const auto one = bed_surface(bodies, o);
+    omp_set_num_threads(2);
+    const auto two = bed_surface(bodies, o);
+    ASSERT_EQ(one.size(), two.size());
+    for (std::size_t s = 0; s < one.size(); ++s) {
+        EXPECT_EQ(one[s].mesh.vertices, two[s].mesh.vertices);
+        EXPECT_EQ(one[s].mesh.triangles, two[s].mesh.triangles);
+    }
+    std::size_t cut = 0;
+    for (const TreatedBody& b : bodies)
+        cut += b.cuts.size();
+    EXPECT_EQ(cut, 2u * 39u + 1u); // every neighbour pair capped, the lowest on the floor too
 }

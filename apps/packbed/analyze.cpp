@@ -62,10 +62,11 @@ int run_analyze(AnalyzeOptions& o) {
             if (name == o.format)
                 file = read_particles(in, path.string(), value, read_options);
     }
-    const double rt = o.container_radius > 0.0 ? o.container_radius : container_radius_beside(path).value_or(0.0);
+    const double rt =
+        o.container_radius > 0.0 ? o.container_radius : container_radius_beside(path).value_or(0.0);
     if (!(rt > 0.0))
-        throw InvalidInput(fmt::format("--container-radius is needed: no summary.json next to {}",
-                                       path.string()));
+        throw InvalidInput(
+            fmt::format("--container-radius is needed: no summary.json next to {}", path.string()));
     if (o.diameter > 0.0)
         o.analysis.diameter = o.diameter;
     const Cylinder container(rt);

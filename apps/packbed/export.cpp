@@ -73,9 +73,8 @@ int run_surface_export(const ExportOptions& o, ExportFormat format, const Partic
     const Contacts contacts = parse_contacts(o.contacts);
     const double dp = file.packing.mean_diameter();
     std::optional<SurfaceContainer> container;
-    const double rt = o.container_radius > 0.0
-                          ? o.container_radius
-                          : container_radius_beside(o.particles).value_or(0.0);
+    const double rt = o.container_radius > 0.0 ? o.container_radius
+                                               : container_radius_beside(o.particles).value_or(0.0);
     if (rt > 0.0) {
         const double top = bed_top(file.packing);
         const double height = o.container_height > 0.0 ? o.container_height : top + dp;
@@ -117,16 +116,18 @@ int run_surface_export(const ExportOptions& o, ExportFormat format, const Partic
     std::optional<TreatmentVolumes> volumes;
     std::string change;
     if (container) {
-        const TreatmentVolumes& v = volumes.emplace(treatment_volumes(file.packing, bodies, *container));
-        report["container"] = {{"shape", "cylinder"}, {"radius", rt}, {"height", container->height}};
-        report["volumes"] = {{"container", v.container_volume},
-                             {"untouched_solid", v.untouched_solid},
-                             {"treated_solid", v.treated_solid},
-                             {"fluid", v.container_volume - v.treated_solid},
-                             {"untouched_void_fraction", v.untouched_void_fraction},
-                             {"treated_void_fraction", v.treated_void_fraction},
-                             {"void_fraction_change",
-                              v.treated_void_fraction - v.untouched_void_fraction}};
+        const TreatmentVolumes& v =
+            volumes.emplace(treatment_volumes(file.packing, bodies, *container));
+        report["container"] = {
+            {"shape", "cylinder"}, {"radius", rt}, {"height", container->height}};
+        report["volumes"] = {
+            {"container", v.container_volume},
+            {"untouched_solid", v.untouched_solid},
+            {"treated_solid", v.treated_solid},
+            {"fluid", v.container_volume - v.treated_solid},
+            {"untouched_void_fraction", v.untouched_void_fraction},
+            {"treated_void_fraction", v.treated_void_fraction},
+            {"void_fraction_change", v.treated_void_fraction - v.untouched_void_fraction}};
         change = fmt::format("; void fraction in the container (z 0 to {:.6g}) {:.6f} -> {:.6f} "
                              "({:+.6f})",
                              container->height, v.untouched_void_fraction, v.treated_void_fraction,
@@ -140,11 +141,11 @@ int run_surface_export(const ExportOptions& o, ExportFormat format, const Partic
             {"cell_size", foam.cell_size},
             {"particle_level", o.mesh.particle_level},
             {"wall_level", o.mesh.wall_level},
-            {"location_in_mesh", {foam.location_in_mesh.x, foam.location_in_mesh.y,
-                                  foam.location_in_mesh.z}},
+            {"location_in_mesh",
+             {foam.location_in_mesh.x, foam.location_in_mesh.y, foam.location_in_mesh.z}},
             {"clearance", foam.clearance}};
-        const fs::path dir = o.out.empty() ? fs::path(o.particles).parent_path() / "openfoam"
-                                           : fs::path(o.out);
+        const fs::path dir =
+            o.out.empty() ? fs::path(o.particles).parent_path() / "openfoam" : fs::path(o.out);
         OutputDirectory out(dir);
         for (const auto& [path, text] : foam.files)
             out.stage(path, text);
@@ -169,9 +170,9 @@ int run_surface_export(const ExportOptions& o, ExportFormat format, const Partic
         report["solids"].push_back({{"name", s.name}, {"triangles", s.mesh.triangles.size()}});
     }
     const fs::path out_path =
-        o.out.empty() ? fs::path(o.particles)
-                            .replace_extension(format == ExportFormat::obj ? ".obj" : ".stl")
-                      : fs::path(o.out);
+        o.out.empty()
+            ? fs::path(o.particles).replace_extension(format == ExportFormat::obj ? ".obj" : ".stl")
+            : fs::path(o.out);
     OutputDirectory out(out_path.has_parent_path() ? out_path.parent_path() : fs::path("."));
     const std::string name = out_path.filename().string();
     write_surface(solids,
@@ -257,7 +258,7 @@ Command register_export(CLI::App& parent) {
                     "fractions of Dp (docs/surfaces.md)");
     app->add_option("--refine", o.refine,
                     "surfaces: icosphere level of each sphere (20 x 4^level triangles)")
-        ->check(CLI::Range(0, 7));
+        ->check(whole_in(0, 7));
     app->add_option("--edge", o.edge,
                     "surfaces: largest mean triangle edge instead of --refine (file units)")
         ->check(real_in(0.0, inf, true, true));
@@ -273,13 +274,13 @@ Command register_export(CLI::App& parent) {
                   "surfaces: cut against the container but do not write its solids");
     app->add_option("--cells-per-diameter", o.mesh.cells_per_diameter,
                     "openfoam: background (blockMesh) cells per particle diameter")
-        ->check(CLI::Range(1, 100));
+        ->check(whole_in(1, 100));
     app->add_option("--particle-level", o.mesh.particle_level,
                     "openfoam: snappyHexMesh refinement level at the particles")
-        ->check(CLI::Range(0, 8));
+        ->check(whole_in(0, 8));
     app->add_option("--wall-level", o.mesh.wall_level,
                     "openfoam: snappyHexMesh refinement level at the wall")
-        ->check(CLI::Range(0, 8));
+        ->check(whole_in(0, 8));
     app->add_option("--density", o.density, "particle density written for every atom")
         ->check(real_in(0.0, inf, true, true));
     app->add_option("--box", o.box,

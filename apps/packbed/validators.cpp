@@ -1,7 +1,7 @@
 #include <charconv>
-#include <fstream>
 #include <cmath>
 #include <cstdlib>
+#include <fstream>
 #include <string>
 
 #include <fmt/format.h>

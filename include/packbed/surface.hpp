@@ -119,9 +119,9 @@ std::vector<TreatedBody> treat_contacts(const Packing& packing, const Contacts& 
 /// overlapping pairs; treated: the bodies (disjoint and inside by construction), spherical caps
 /// in closed form, \f$V_{cap} = \pi c^2 (3 r - c) / 3\f$.
 struct TreatmentVolumes {
-    double container_volume = 0.0;  ///< pi Rt^2 height
-    double untouched_solid = 0.0;   ///< solid volume of the bed as it is
-    double treated_solid = 0.0;     ///< solid volume of the treated bodies
+    double container_volume = 0.0; ///< pi Rt^2 height
+    double untouched_solid = 0.0;  ///< solid volume of the bed as it is
+    double treated_solid = 0.0;    ///< solid volume of the treated bodies
     double untouched_void_fraction = 0.0;
     double treated_void_fraction = 0.0;
 };
@@ -149,7 +149,7 @@ std::vector<Solid> bed_surface(const std::vector<TreatedBody>& bodies,
 /// `edge` long, between z_low and z_high), "bottom" and "top" (fans from the axis); the three
 /// together are closed and outward. \param edge > 0
 std::vector<Solid> container_solids(const Cylinder& cylinder, double z_low, double z_high,
-                                   double edge);
+                                    double edge);
 
 /// The three formats.
 enum class SurfaceFormat { stl_binary, stl_ascii, obj };
