@@ -12,6 +12,7 @@ packages=(
   nlohmann-json3-dev        # summary.json
   libfmt-dev                # formatting, shortest round-trip doubles
   libboost-dev              # Boost.Math tanh-sinh quadrature (header-only)
+  libcgal-dev               # mesh unions (packbed export --contacts enlarge/bridges)
   libgtest-dev              # tests
   libbenchmark-dev          # benchmarks
   python3                   # bench/ scripts, examples/validate.py

@@ -69,10 +69,9 @@ std::pair<Vec3, double> farthest_fluid_point(const std::vector<TreatedBody>& bod
 
 } // namespace
 
-OpenFoamCase openfoam_case(const std::vector<TreatedBody>& bodies,
-                           const SurfaceContainer& container, const TreatmentVolumes& volumes,
-                           const std::string& contacts, double diameter, int level,
-                           const OpenFoamMeshOptions& options) {
+OpenFoamCase openfoam_case(const TreatedBed& bed, const SurfaceContainer& container,
+                           const TreatmentVolumes& volumes, const std::string& contacts,
+                           double diameter, int level, const OpenFoamMeshOptions& options) {
     detail::require(options.cells_per_diameter >= 1 && options.cells_per_diameter <= 100,
                     "--cells-per-diameter", options.cells_per_diameter, "1 to 100");
     detail::require(options.particle_level >= 0 && options.particle_level <= 8, "--particle-level",
@@ -86,7 +85,14 @@ OpenFoamCase openfoam_case(const std::vector<TreatedBody>& bodies,
     c.fluid_volume = volumes.container_volume - volumes.treated_solid;
     const double finest =
         c.cell_size / std::ldexp(1.0, std::max(options.particle_level, options.wall_level));
+    const std::vector<TreatedBody>& bodies = bed.bodies;
     std::tie(c.location_in_mesh, c.clearance) = farthest_fluid_point(bodies, container, diameter);
+    // A bridge's part outside its spheres lies within about its radius of their contact
+    // point, which is on a sphere: it is at most that much closer than the spheres.
+    double widest = 0.0;
+    for (const Bridge& b : bed.bridges)
+        widest = std::max(widest, b.radius);
+    c.clearance -= 1.01 * widest;
     if (!(c.clearance > 2.0 * finest))
         throw InvalidInput(fmt::format(
             "no point of the fluid clears every surface by two of the finest cells ({:.4g}): the "
@@ -98,7 +104,7 @@ OpenFoamCase openfoam_case(const std::vector<TreatedBody>& bodies,
     surface.level = level;
     surface.container = container;
     surface.write_container = false;
-    c.particles = bed_surface(bodies, surface);
+    c.particles = bed_surface(bed, surface);
     double largest = 0.0;
     for (const TreatedBody& b : bodies)
         largest = std::max(largest, b.radius);

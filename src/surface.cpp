@@ -6,10 +6,12 @@
 #include <fstream>
 #include <numbers>
 #include <stdexcept>
+#include <tuple>
 #include <unordered_map>
 
 #include <fmt/format.h>
 
+#include "mesh_union.hpp"
 #include "packbed/error.hpp"
 #include "packbed/neighbor_list.hpp"
 #include "packbed/volume.hpp"
@@ -176,12 +178,15 @@ const std::vector<std::pair<std::string, ContactTreatment>>& contact_treatments(
     static const std::vector<std::pair<std::string, ContactTreatment>> names{
         {"none", ContactTreatment::none},
         {"shrink", ContactTreatment::shrink},
-        {"caps", ContactTreatment::caps}};
+        {"enlarge", ContactTreatment::enlarge},
+        {"caps", ContactTreatment::caps},
+        {"bridges", ContactTreatment::bridges}};
     return names;
 }
 
 Contacts parse_contacts(std::string_view text) {
-    const std::string allowed = "none, shrink:F or caps:H with F, H fractions of Dp in (0, 0.5)";
+    const std::string allowed = "none, shrink:F, enlarge:F, caps:H or bridges:D with F, H, D "
+                                "fractions of Dp in (0, 0.5)";
     const auto colon = text.find(':');
     const std::string_view name = text.substr(0, colon);
     Contacts c;
@@ -228,14 +233,92 @@ double lens_volume(double r1, double r2, double d) {
     return spherical_cap_volume(r1, d1) + spherical_cap_volume(r2, d - d1);
 }
 
-std::vector<TreatedBody> treat_contacts(const Packing& packing, const Contacts& contacts,
-                                        const std::optional<SurfaceContainer>& container) {
+double half_ball_in_cylinder(double radius, double rho) {
+    if (rho >= radius)
+        return 2.0 / 3.0 * std::numbers::pi * radius * radius * radius;
+    const double t = std::sqrt(radius * radius - rho * rho);
+    return std::numbers::pi * rho * rho * t +
+           std::numbers::pi *
+               (radius * radius * (radius - t) - (radius * radius * radius - t * t * t) / 3.0);
+}
+
+namespace {
+
+/// The name of a treatment in contact_treatments().
+std::string name_of(ContactTreatment treatment) {
+    for (const auto& [name, value] : contact_treatments())
+        if (value == treatment)
+            return name;
+    return "?";
+}
+
+/// Where something meets a sphere's surface: a disc about `axis` (unit) of angular radius
+/// `angle`. Two footprints of one sphere must not meet for the volumes to be sums of closed
+/// forms.
+struct Footprint {
+    Vec3 axis;
+    double angle;
+};
+
+void refuse_meeting_footprints(const std::vector<Footprint>& f, std::size_t sphere, const Vec3& x,
+                               const Contacts& contacts) {
+    for (std::size_t a = 0; a < f.size(); ++a)
+        for (std::size_t b = 0; b < a; ++b) {
+            const double angle = std::acos(std::clamp(dot(f[a].axis, f[b].axis), -1.0, 1.0));
+            if (!(angle > f[a].angle + f[b].angle))
+                throw InvalidInput(fmt::format(
+                    "--contacts {}:{} gives sphere {} at ({:.6g}, {:.6g}, {:.6g}) two caps, "
+                    "lenses or bridge ends that meet; allowed: a smaller parameter",
+                    name_of(contacts.treatment), contacts.parameter, sphere + 1, x.x, x.y, x.z));
+        }
+}
+
+/// Cut body b by a plane `gap` from the floor and from the wall where it comes closer than
+/// that.
+void cut_at_walls(TreatedBody& b, double gap, const std::optional<SurfaceContainer>& container) {
+    if (b.center.z - b.radius < gap)
+        b.cuts.push_back({{0.0, 0.0, -1.0}, -gap});
+    if (container) {
+        const double rt = container->cylinder.radius();
+        const double rho = std::hypot(b.center.x, b.center.y);
+        if (rt - rho - b.radius < gap && rho > 0.0)
+            b.cuts.push_back({{b.center.x / rho, b.center.y / rho, 0.0}, rt - gap});
+    }
+}
+
+/// The footprint of a cut (its cap) on body b. \throws InvalidInput when the cut reaches past
+/// the centre.
+Footprint cut_footprint(const TreatedBody& b, const HalfSpace& h, std::size_t sphere,
+                        const Contacts& contacts) {
+    const double s = h.offset - dot(h.normal, b.center);
+    if (!(s > 0.0))
+        throw InvalidInput(fmt::format(
+            "--contacts {}:{} cuts sphere {} at ({:.6g}, {:.6g}, {:.6g}) beyond its centre; "
+            "allowed: a smaller parameter",
+            name_of(contacts.treatment), contacts.parameter, sphere + 1, b.center.x, b.center.y,
+            b.center.z));
+    return {h.normal, std::acos(std::min(1.0, s / b.radius))};
+}
+
+} // namespace
+
+TreatedBed treat_contacts(const Packing& packing, const Contacts& contacts,
+                          const std::optional<SurfaceContainer>& container) {
     const std::size_t n = packing.size();
-    std::vector<TreatedBody> bodies(n);
+    TreatedBed bed;
+    bed.bodies.resize(n);
     for (std::size_t i = 0; i < n; ++i)
-        bodies[i] = {packing.centers[i], packing.radii[i], {}};
+        bed.bodies[i] = {packing.centers[i], packing.radii[i], {}};
     if (contacts.treatment == ContactTreatment::none || n == 0)
-        return bodies;
+        return bed;
+    std::vector<TreatedBody>& bodies = bed.bodies;
+    for (std::size_t i = 0; i < n; ++i)
+        if (!(packing.centers[i].z > 0.0))
+            throw InvalidInput(fmt::format(
+                "sphere {} at ({:.6g}, {:.6g}, {:.6g}) has its centre on or below the floor "
+                "z = 0; allowed: centres above the floor for --contacts {}",
+                i + 1, packing.centers[i].x, packing.centers[i].y, packing.centers[i].z,
+                name_of(contacts.treatment)));
     const double dp = packing.mean_diameter();
     const double length = contacts.parameter * dp;
     const double rt = container ? container->cylinder.radius() : 0.0;
@@ -266,94 +349,127 @@ std::vector<TreatedBody> treat_contacts(const Packing& packing, const Contacts& 
                     "the container; allowed: F above its overlap with the wall or floor",
                     contacts.parameter, i + 1, x.x, x.y, x.z));
         }
-        return bodies;
+        return bed;
     }
 
-    // Caps: every pair closer than `length` is cut by two planes `length` apart, placed
-    // symmetrically about the middle of the gap (or overlap) between the two surfaces.
+    // The footprint of everything that meets each sphere, to refuse parameters for which the
+    // closed-form volumes would not hold.
+    std::vector<std::vector<Footprint>> footprints(n);
+    if (contacts.treatment == ContactTreatment::enlarge)
+        for (TreatedBody& b : bodies)
+            b.radius *= 1.0 + contacts.parameter;
+    std::vector<double> radii(n);
+    for (std::size_t i = 0; i < n; ++i)
+        radii[i] = bodies[i].radius;
+    // Caps: pairs closer than `length`; bridges: closer than bridge_gap Dp; enlarge: the
+    // enlarged bodies that overlap (their lenses).
+    const double reach = contacts.treatment == ContactTreatment::caps      ? length
+                         : contacts.treatment == ContactTreatment::bridges ? bridge_gap * dp
+                                                                           : 1e-9 * dp;
     NeighborList list;
-    list.build(packing.centers, packing.radii, length);
+    list.build(packing.centers, radii, reach);
     for (std::size_t i = 0; i < n; ++i)
         for (const std::uint32_t j : list.upper_neighbors_of(i)) {
             const Vec3 r = packing.centers[j] - packing.centers[i];
             const double d = norm(r);
-            const double gap = d - packing.radii[i] - packing.radii[j];
-            if (!(gap < length))
+            const double gap = d - radii[i] - radii[j];
+            if (!(gap < reach) || (contacts.treatment == ContactTreatment::enlarge && gap >= 0.0))
                 continue;
-            if (!(d > 0.0))
+            if (!(d > std::max(radii[i], radii[j])))
                 throw InvalidInput(fmt::format(
-                    "spheres {} and {} have the same centre; allowed: distinct centres for "
-                    "--contacts caps",
-                    i + 1, j + 1));
+                    "spheres {} and {} overlap by more than a radius (centres {:.6g} apart); "
+                    "allowed: beds whose centres are farther apart than a radius for --contacts "
+                    "{}",
+                    i + 1, j + 1, d, name_of(contacts.treatment)));
             const Vec3 u = r * (1.0 / d);
-            const double si = packing.radii[i] + 0.5 * (gap - length);
-            const double sj = packing.radii[j] + 0.5 * (gap - length);
-            bodies[i].cuts.push_back({u, dot(u, packing.centers[i]) + si});
-            bodies[j].cuts.push_back({u * -1.0, dot(u * -1.0, packing.centers[j]) + sj});
-        }
-    for (std::size_t i = 0; i < n; ++i) {
-        const Vec3& x = packing.centers[i];
-        const double r = packing.radii[i];
-        const double floor_gap = x.z - r;
-        if (floor_gap < length) // plane z = length
-            bodies[i].cuts.push_back({{0.0, 0.0, -1.0}, -length});
-        if (container) {
-            const double rho = std::hypot(x.x, x.y);
-            if (rt - rho - r < length && rho > 0.0) // plane at rt - length from the axis
-                bodies[i].cuts.push_back({{x.x / rho, x.y / rho, 0.0}, rt - length});
-        }
-        // The caps of one sphere must not meet: each removes exactly its spherical cap.
-        const auto& cuts = bodies[i].cuts;
-        for (std::size_t a = 0; a < cuts.size(); ++a) {
-            const double sa = cuts[a].offset - dot(cuts[a].normal, x);
-            if (!(sa > 0.0))
-                throw InvalidInput(fmt::format(
-                    "--contacts caps:{} cuts sphere {} at ({:.6g}, {:.6g}, {:.6g}) beyond its "
-                    "centre; allowed: H below the sphere's gap to its neighbours plus its radius",
-                    contacts.parameter, i + 1, x.x, x.y, x.z));
-            for (std::size_t b = 0; b < a; ++b) {
-                const double sb = cuts[b].offset - dot(cuts[b].normal, x);
-                const double angle =
-                    std::acos(std::clamp(dot(cuts[a].normal, cuts[b].normal), -1.0, 1.0));
-                if (!(angle > std::acos(std::min(1.0, sa / r)) + std::acos(std::min(1.0, sb / r))))
-                    throw InvalidInput(fmt::format(
-                        "--contacts caps:{} gives sphere {} at ({:.6g}, {:.6g}, {:.6g}) two caps "
-                        "that meet; allowed: a smaller H",
-                        contacts.parameter, i + 1, x.x, x.y, x.z));
+            if (contacts.treatment == ContactTreatment::caps) {
+                const double si = radii[i] + 0.5 * (gap - length);
+                const double sj = radii[j] + 0.5 * (gap - length);
+                bodies[i].cuts.push_back({u, dot(u, packing.centers[i]) + si});
+                bodies[j].cuts.push_back({u * -1.0, dot(u * -1.0, packing.centers[j]) + sj});
+                continue;
             }
+            // The lens of an overlapping pair: its rim lies in the radical plane, d1 from i.
+            const double d1 = (d * d + radii[i] * radii[i] - radii[j] * radii[j]) / (2.0 * d);
+            const double lens_rim =
+                gap < 0.0 ? std::sqrt(std::max(0.0, radii[i] * radii[i] - d1 * d1)) : 0.0;
+            if (contacts.treatment == ContactTreatment::enlarge) {
+                footprints[i].push_back({u, std::acos(std::clamp(d1 / radii[i], -1.0, 1.0))});
+                footprints[j].push_back(
+                    {u * -1.0, std::acos(std::clamp((d - d1) / radii[j], -1.0, 1.0))});
+                continue;
+            }
+            const double rho = 0.5 * length; // bridges
+            if (!(lens_rim <= rho))
+                throw InvalidInput(fmt::format(
+                    "--contacts bridges:{} is thinner than the overlap of spheres {} and {} (its "
+                    "rim has radius {:.6g}); allowed: D above twice that, in Dp",
+                    contacts.parameter, i + 1, j + 1, lens_rim));
+            bed.bridges.push_back({static_cast<std::uint32_t>(i), j, rho});
+            footprints[i].push_back({u, std::asin(std::min(1.0, rho / radii[i]))});
+            footprints[j].push_back({u * -1.0, std::asin(std::min(1.0, rho / radii[j]))});
         }
+    const double wall_gap =
+        contacts.treatment == ContactTreatment::bridges ? bridge_gap * dp : length;
+    for (std::size_t i = 0; i < n; ++i) {
+        cut_at_walls(bodies[i], wall_gap, container);
+        for (const HalfSpace& h : bodies[i].cuts)
+            footprints[i].push_back(cut_footprint(bodies[i], h, i, contacts));
+        refuse_meeting_footprints(footprints[i], i, packing.centers[i], contacts);
     }
-    return bodies;
+    bed.unite = contacts.treatment == ContactTreatment::enlarge ||
+                contacts.treatment == ContactTreatment::bridges;
+    return bed;
 }
 
-TreatmentVolumes treatment_volumes(const Packing& packing, const std::vector<TreatedBody>& bodies,
+TreatmentVolumes treatment_volumes(const Packing& packing, const TreatedBed& bed,
                                    const SurfaceContainer& container) {
     TreatmentVolumes v;
     const double rt = container.cylinder.radius();
     v.container_volume = std::numbers::pi * rt * rt * container.height;
     const std::size_t n = packing.size();
+    const auto lenses = [&](const std::vector<double>& radii) {
+        double sum = 0.0;
+        if (n == 0)
+            return sum;
+        NeighborList list;
+        list.build(packing.centers, radii, 1e-9 * packing.mean_diameter());
+        for (std::size_t i = 0; i < n; ++i)
+            for (const std::uint32_t j : list.upper_neighbors_of(i))
+                sum +=
+                    lens_volume(radii[i], radii[j], norm(packing.centers[j] - packing.centers[i]));
+        return sum;
+    };
     for (std::size_t i = 0; i < n; ++i)
         v.untouched_solid += sphere_volume_in_cylinder_slab(packing.centers[i], packing.radii[i],
                                                             rt, 0.0, container.height);
-    if (n > 0) {
-        NeighborList list;
-        list.build(packing.centers, packing.radii, 1e-9 * packing.mean_diameter());
-        for (std::size_t i = 0; i < n; ++i)
-            for (const std::uint32_t j : list.upper_neighbors_of(i))
-                v.untouched_solid -= lens_volume(packing.radii[i], packing.radii[j],
-                                                 norm(packing.centers[j] - packing.centers[i]));
-    }
-    bool untreated = true;
+    v.untouched_solid -= lenses(packing.radii);
+    bool untreated = bed.bridges.empty();
     for (std::size_t i = 0; i < n; ++i)
-        untreated = untreated && bodies[i].radius == packing.radii[i] && bodies[i].cuts.empty();
+        untreated =
+            untreated && bed.bodies[i].radius == packing.radii[i] && bed.bodies[i].cuts.empty();
     if (untreated) {
         v.treated_solid = v.untouched_solid;
     } else {
-        for (const TreatedBody& b : bodies) {
+        std::vector<double> radii(n);
+        for (std::size_t i = 0; i < n; ++i) {
+            const TreatedBody& b = bed.bodies[i];
+            radii[i] = b.radius;
             double volume = 4.0 / 3.0 * std::numbers::pi * b.radius * b.radius * b.radius;
             for (const HalfSpace& h : b.cuts)
                 volume -= spherical_cap_volume(b.radius, h.offset - dot(h.normal, b.center));
             v.treated_solid += volume;
+        }
+        if (bed.unite)
+            v.treated_solid -= lenses(radii);
+        for (const Bridge& br : bed.bridges) {
+            const TreatedBody& a = bed.bodies[br.first];
+            const TreatedBody& b = bed.bodies[br.second];
+            const double d = norm(b.center - a.center);
+            v.treated_solid += std::numbers::pi * br.radius * br.radius * d -
+                               half_ball_in_cylinder(a.radius, br.radius) -
+                               half_ball_in_cylinder(b.radius, br.radius) +
+                               lens_volume(a.radius, b.radius, d);
         }
     }
     v.untouched_void_fraction = 1.0 - v.untouched_solid / v.container_volume;
@@ -413,14 +529,62 @@ std::vector<Solid> container_solids(const Cylinder& cylinder, double z_low, doub
     return solids;
 }
 
-std::vector<Solid> bed_surface(const std::vector<TreatedBody>& bodies,
-                               const SurfaceOptions& options) {
-    const TriangleMesh unit = icosphere(options.level);
+namespace {
+
+/// A prism of `sides` inscribed in the cylinder of radius `rho` about the segment a -> b, closed
+/// by flat ends (fans from the end centres), outward.
+TriangleMesh bridge_prism(const Vec3& a, const Vec3& b, double rho, int sides) {
+    const Vec3 axis = (b - a) * (1.0 / norm(b - a));
+    // A generic helper direction, so that the prisms of mirror-image bridges (in a lattice, or
+    // three spheres in a triangle) are not mirror images of each other: their intersections
+    // then never pass exactly through edges of both, which gives the union degenerate faces.
+    const Vec3 generic{0.5477, 0.2823, 0.7876}, other{-0.6192, 0.7711, 0.1480};
+    const Vec3 helper = std::abs(dot(axis, generic)) < 0.9 * norm(generic) ? generic : other;
+    Vec3 u = cross(axis, helper);
+    u *= 1.0 / norm(u);
+    const Vec3 w = cross(axis, u);
+    TriangleMesh m;
+    const auto s = static_cast<std::uint32_t>(sides);
+    for (const Vec3& end : {a, b})
+        for (std::uint32_t k = 0; k < s; ++k) {
+            const double angle = 2.0 * std::numbers::pi * k / sides;
+            m.vertices.push_back(end + (u * std::cos(angle) + w * std::sin(angle)) * rho);
+        }
+    m.vertices.push_back(a);
+    m.vertices.push_back(b);
+    for (std::uint32_t k = 0; k < s; ++k) {
+        const std::uint32_t k1 = (k + 1) % s;
+        m.triangles.push_back({k, k1, s + k1}); // (u, w, axis) right-handed: outward
+        m.triangles.push_back({k, s + k1, s + k});
+        m.triangles.push_back({2 * s, k1, k});             // end a, normal -axis
+        m.triangles.push_back({2 * s + 1, s + k, s + k1}); // end b, normal +axis
+    }
+    return m;
+}
+
+} // namespace
+
+std::vector<Solid> bed_surface(const TreatedBed& bed, const SurfaceOptions& options) {
+    const std::vector<TreatedBody>& bodies = bed.bodies;
+    // The icosphere turned by a generic rotation (angles 1, 2 and 3 radians about z, y and x):
+    // contact directions along the axes or lattice vectors then never pass through a vertex,
+    // so two touching spheres do not meet at a shared point of both tessellations.
+    TriangleMesh unit = icosphere(options.level);
+    for (Vec3& v : unit.vertices) {
+        const auto turn = [](double a, double b, double angle) {
+            return std::pair{a * std::cos(angle) - b * std::sin(angle),
+                             a * std::sin(angle) + b * std::cos(angle)};
+        };
+        std::tie(v.x, v.y) = turn(v.x, v.y, 1.0);
+        std::tie(v.z, v.x) = turn(v.z, v.x, 2.0);
+        std::tie(v.y, v.z) = turn(v.y, v.z, 3.0);
+    }
     double largest = 0.0;
     for (const TreatedBody& b : bodies)
         largest = std::max(largest, b.radius);
-    const double snap = 0.02 * largest * unit_edge(options.level);
-    std::vector<TriangleMesh> meshes(bodies.size());
+    const double edge = largest * unit_edge(options.level);
+    const double snap = 0.02 * edge;
+    std::vector<TriangleMesh> meshes(bodies.size() + bed.bridges.size());
 #pragma omp parallel for schedule(dynamic, 64)
     for (std::size_t i = 0; i < bodies.size(); ++i) {
         TriangleMesh m = unit;
@@ -430,26 +594,62 @@ std::vector<Solid> bed_surface(const std::vector<TreatedBody>& bodies,
             m = clip_convex(m, h, snap);
         meshes[i] = std::move(m);
     }
+    for (std::size_t k = 0; k < bed.bridges.size(); ++k) {
+        const Bridge& br = bed.bridges[k];
+        const int sides =
+            std::max(12, static_cast<int>(std::ceil(2.0 * std::numbers::pi * br.radius / edge)));
+        // The prism ends inside the two spheres, halfway from each centre to where the
+        // cylinder leaves it: not at the centres, where the ends of several bridges would
+        // coincide (degenerate intersections for the union). The volume outside the spheres is
+        // the same.
+        const TreatedBody& a = bodies[br.first];
+        const TreatedBody& b = bodies[br.second];
+        const Vec3 axis = (b.center - a.center) * (1.0 / norm(b.center - a.center));
+        const auto inset = [&](const TreatedBody& body) {
+            return 0.5 * std::sqrt(body.radius * body.radius - br.radius * br.radius);
+        };
+        meshes[bodies.size() + k] =
+            bridge_prism(a.center + axis * inset(a), b.center - axis * inset(b), br.radius, sides);
+    }
     std::vector<Solid> solids(1);
     solids[0].name = "particles";
-    std::size_t nv = 0, nt = 0;
-    for (const TriangleMesh& m : meshes) {
-        nv += m.vertices.size();
-        nt += m.triangles.size();
+    if (bed.unite) {
+        // Neighbours in the tree of unions should be neighbours in space: bodies by height,
+        // each bridge after the lower of its two bodies.
+        std::vector<std::size_t> order(meshes.size());
+        std::vector<double> key(meshes.size());
+        for (std::size_t i = 0; i < bodies.size(); ++i)
+            key[i] = bodies[i].center.z;
+        for (std::size_t k = 0; k < bed.bridges.size(); ++k)
+            key[bodies.size() + k] = std::min(bodies[bed.bridges[k].first].center.z,
+                                              bodies[bed.bridges[k].second].center.z);
+        for (std::size_t i = 0; i < order.size(); ++i)
+            order[i] = i;
+        std::stable_sort(order.begin(), order.end(),
+                         [&](std::size_t a, std::size_t b) { return key[a] < key[b]; });
+        std::vector<TriangleMesh> ordered;
+        ordered.reserve(meshes.size());
+        for (const std::size_t i : order)
+            ordered.push_back(std::move(meshes[i]));
+        // Edges below 1e-4 of a sphere's edge length would collapse in single precision.
+        solids[0].mesh = detail::mesh_union(std::move(ordered), 1e-4 * edge);
+    } else {
+        std::size_t nv = 0, nt = 0;
+        for (const TriangleMesh& m : meshes) {
+            nv += m.vertices.size();
+            nt += m.triangles.size();
+        }
+        solids[0].mesh.vertices.reserve(nv);
+        solids[0].mesh.triangles.reserve(nt);
+        for (const TriangleMesh& m : meshes)
+            solids[0].mesh.append(m);
     }
-    solids[0].mesh.vertices.reserve(nv);
-    solids[0].mesh.triangles.reserve(nt);
-    for (const TriangleMesh& m : meshes)
-        solids[0].mesh.append(m);
 
     if (options.container && options.write_container) {
-        double radius = 0.0;
-        for (const TreatedBody& b : bodies)
-            radius = std::max(radius, b.radius);
         const double rt = options.container->cylinder.radius();
-        const double edge = (radius > 0.0 ? radius : rt) * unit_edge(options.level);
         for (Solid& s :
-             container_solids(options.container->cylinder, 0.0, options.container->height, edge))
+             container_solids(options.container->cylinder, 0.0, options.container->height,
+                              largest > 0.0 ? edge : rt * unit_edge(options.level)))
             solids.push_back(std::move(s));
     }
     return solids;
@@ -457,8 +657,15 @@ std::vector<Solid> bed_surface(const std::vector<TreatedBody>& bodies,
 
 namespace {
 
+/// The unit normal of a facet as STL stores it: from its corners rounded to single precision,
+/// so that it agrees with the normal a reader computes from the file.
 Vec3 facet_normal(const TriangleMesh& m, const std::array<std::uint32_t, 3>& t) {
-    const Vec3 n = cross(m.vertices[t[1]] - m.vertices[t[0]], m.vertices[t[2]] - m.vertices[t[0]]);
+    const auto rounded = [&](std::uint32_t v) {
+        const Vec3& p = m.vertices[v];
+        return Vec3{static_cast<float>(p.x), static_cast<float>(p.y), static_cast<float>(p.z)};
+    };
+    const Vec3 a = rounded(t[0]);
+    const Vec3 n = cross(rounded(t[1]) - a, rounded(t[2]) - a);
     const double length = norm(n);
     return length > 0.0 ? n * (1.0 / length) : Vec3{};
 }

@@ -404,11 +404,14 @@ INSTANTIATE_TEST_SUITE_P(
         BadInput{"export @D/one.csv --density 0",
                  "packbed: --density: 0 is not allowed; allowed: a number > 0"},
         BadInput{"export @D/one.csv --format stl --contacts caps:0.7",
-                 "packbed export: --contacts 'caps:0.7' is not allowed; allowed: none, shrink:F "
-                 "or caps:H with F, H fractions of Dp in (0, 0.5)"},
+                 "packbed export: --contacts 'caps:0.7' is not allowed; allowed: none, shrink:F, "
+                 "enlarge:F, caps:H or bridges:D with F, H, D fractions of Dp in (0, 0.5)"},
+        BadInput{"export @D/one.csv --format stl --contacts glue:0.2",
+                 "packbed export: --contacts 'glue:0.2' is not allowed; allowed: none, shrink:F, "
+                 "enlarge:F, caps:H or bridges:D with F, H, D fractions of Dp in (0, 0.5)"},
         BadInput{"export @D/one.csv --format stl --contacts bridges:0.2",
-                 "packbed export: --contacts 'bridges:0.2' is not allowed; allowed: none, "
-                 "shrink:F or caps:H with F, H fractions of Dp in (0, 0.5)"},
+                 "packbed export: sphere 1 at (0, 0, 0) has its centre on or below the floor "
+                 "z = 0; allowed: centres above the floor for --contacts bridges"},
         BadInput{"export @D/two.csv --format stl --contacts shrink:0.005",
                  "packbed export: --contacts shrink:0.005 leaves spheres 1 and 2 overlapping "
                  "(centres 0.99 apart, shrunk radii 0.4975 and 0.4975); allowed: F above the "

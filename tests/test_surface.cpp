@@ -113,11 +113,11 @@ TEST(Surface, CapsOnTwoTouchingSpheres) {
     const Packing p = two_touching();
     const SurfaceContainer box = cylinder(3.0, 2.0);
     const auto bodies = treat_contacts(p, parse_contacts("caps:0.02"), box);
-    ASSERT_EQ(bodies[0].cuts.size(), 1u); // floor 0.5 away, wall 2 away: the pair only
-    ASSERT_EQ(bodies[1].cuts.size(), 1u);
+    ASSERT_EQ(bodies.bodies[0].cuts.size(), 1u); // floor 0.5 away, wall 2 away: the pair only
+    ASSERT_EQ(bodies.bodies[1].cuts.size(), 1u);
     // Planes at x = -0.01 and x = +0.01: faces 0.02 Dp apart, a cap of height 0.01 off each.
-    EXPECT_NEAR(bodies[0].cuts[0].offset, -0.01, 1e-15);
-    EXPECT_NEAR(bodies[1].cuts[0].offset, -0.01, 1e-15); // normal -x: -x <= -0.01
+    EXPECT_NEAR(bodies.bodies[0].cuts[0].offset, -0.01, 1e-15);
+    EXPECT_NEAR(bodies.bodies[1].cuts[0].offset, -0.01, 1e-15); // normal -x: -x <= -0.01
     const TreatmentVolumes v = treatment_volumes(p, bodies, box);
     const double cap = pi * 0.01 * 0.01 * (1.5 - 0.01) / 3.0; // 1.5603e-4
     EXPECT_NEAR(v.untouched_solid, 2.0 * sphere_volume(0.5), 1e-14);
@@ -147,7 +147,7 @@ TEST(Surface, CapsOnASphereTouchingTheWallAndTheFloor) {
     p.add({1.5, 0.0, 0.5}, 0.5); // touches the wall of radius 2 and the floor
     const SurfaceContainer c = cylinder(2.0, 2.0);
     const auto bodies = treat_contacts(p, parse_contacts("caps:0.02"), c);
-    ASSERT_EQ(bodies[0].cuts.size(), 2u);
+    ASSERT_EQ(bodies.bodies[0].cuts.size(), 2u);
     // Floor: plane z = 0.02; wall: plane x = 1.98 (gap 0.02 Dp to the wall at the face's
     // centre). Each removes a cap of height 0.02: pi 0.02^2 (1.5 - 0.02) / 3 = 6.1994e-4.
     const double cap = pi * 0.02 * 0.02 * (1.5 - 0.02) / 3.0;
@@ -174,7 +174,7 @@ TEST(Surface, ShrinkOnTwoTouchingSpheresAndOnASphereAtTheWall) {
     const Packing p = two_touching();
     const SurfaceContainer box = cylinder(3.0, 2.0);
     const auto bodies = treat_contacts(p, parse_contacts("shrink:0.02"), box);
-    EXPECT_DOUBLE_EQ(bodies[0].radius, 0.49);
+    EXPECT_DOUBLE_EQ(bodies.bodies[0].radius, 0.49);
     const TreatmentVolumes v = treatment_volumes(p, bodies, box);
     EXPECT_NEAR(v.treated_solid, 2.0 * 4.0 / 3.0 * pi * 0.117649, 1e-14); // 0.49^3
     Packing wall;
@@ -218,7 +218,7 @@ TEST(Surface, ContactsTextIsParsedOrRefused) {
     EXPECT_EQ(c.treatment, ContactTreatment::caps);
     EXPECT_DOUBLE_EQ(c.parameter, 0.01);
     for (const char* bad : {"caps", "caps:", "caps:0", "caps:0.5", "caps:x", "shrink:-0.1",
-                            "none:0.1", "bridges:0.1", "enlarge:0.01", "caps:0.01x"})
+                            "none:0.1", "bridges:0.5", "enlarge:0", "caps:0.01x", "glue:0.1"})
         EXPECT_THROW(parse_contacts(bad), InvalidInput) << bad;
 }
 
@@ -306,7 +306,116 @@ TEST(Surface, TheSameMeshesWhateverTheThreads) {
         EXPECT_EQ(one[s].mesh.triangles, two[s].mesh.triangles);
     }
     std::size_t cut = 0;
-    for (const TreatedBody& b : bodies)
+    for (const TreatedBody& b : bodies.bodies)
         cut += b.cuts.size();
     EXPECT_EQ(cut, 2u * 39u + 1u); // every neighbour pair capped, the lowest on the floor too
+}
+
+TEST(Surface, EnlargeOnTwoTouchingSpheresIsTheirUnion) {
+    const Packing p = two_touching();
+    const SurfaceContainer box = cylinder(3.0, 2.0);
+    const TreatedBed bed = treat_contacts(p, parse_contacts("enlarge:0.02"), box);
+    EXPECT_TRUE(bed.unite);
+    EXPECT_DOUBLE_EQ(bed.bodies[0].radius, 0.51);
+    EXPECT_TRUE(bed.bodies[0].cuts.empty()); // floor 0.49 away: no cap
+    // Two balls of radius 0.51, centres 1 apart, minus their lens
+    // pi (4 r + d) (2 r - d)^2 / 12 = pi 3.04 0.02^2 / 12.
+    const double ball = 4.0 / 3.0 * pi * 0.51 * 0.51 * 0.51;
+    const double lens = pi * 3.04 * 0.0004 / 12.0;
+    const TreatmentVolumes v = treatment_volumes(p, bed, box);
+    EXPECT_NEAR(v.treated_solid, 2.0 * ball - lens, 1e-14);
+    SurfaceOptions o;
+    o.level = 5;
+    o.container = box;
+    o.write_container = false;
+    const auto solids = bed_surface(bed, o);
+    ASSERT_EQ(solids.size(), 1u);
+    EXPECT_TRUE(closed_and_oriented({&solids[0].mesh})); // one closed body, the union
+    EXPECT_NEAR(solids[0].mesh.volume() / v.treated_solid, 1.0, 1.5e-3);
+    EXPECT_LT(solids[0].mesh.volume(), v.treated_solid);
+}
+
+TEST(Surface, EnlargeOnASphereTouchingTheWallAndTheFloor) {
+    Packing p;
+    p.add({1.5, 0.0, 0.5}, 0.5);
+    const SurfaceContainer c = cylinder(2.0, 2.0);
+    const TreatedBed bed = treat_contacts(p, parse_contacts("enlarge:0.02"), c);
+    ASSERT_EQ(bed.bodies[0].cuts.size(), 2u);
+    // Radius 0.51 pressing 0.01 into the floor and the wall, cut 0.02 from each: two caps of
+    // height 0.03, pi 0.03^2 (1.53 - 0.03) / 3 each.
+    const double cap = pi * 0.0009 * 1.5 / 3.0;
+    const TreatmentVolumes v = treatment_volumes(p, bed, c);
+    EXPECT_NEAR(v.treated_solid, 4.0 / 3.0 * pi * 0.51 * 0.51 * 0.51 - 2.0 * cap, 1e-14);
+    SurfaceOptions o;
+    o.level = 4;
+    o.container = c;
+    const auto solids = bed_surface(bed, o);
+    EXPECT_TRUE(closed_and_oriented({&solids[0].mesh}));
+    for (const Vec3& x : solids[0].mesh.vertices) {
+        EXPECT_LE(x.x, 1.98 + 1e-12);
+        EXPECT_GE(x.z, 0.02 - 1e-12);
+    }
+}
+
+TEST(Surface, BridgesOnTwoTouchingSpheres) {
+    const Packing p = two_touching();
+    const SurfaceContainer box = cylinder(3.0, 2.0);
+    const TreatedBed bed = treat_contacts(p, parse_contacts("bridges:0.2"), box);
+    ASSERT_EQ(bed.bridges.size(), 1u);
+    EXPECT_DOUBLE_EQ(bed.bridges[0].radius, 0.1);
+    // The bridge adds what lies within 0.1 of the axis between the two spheres: the gap at
+    // distance s from the axis is 1 - 2 sqrt(0.25 - s^2), so the volume is the integral of
+    // 2 pi s (1 - 2 sqrt(0.25 - s^2)) ds from 0 to 0.1 = pi 0.01 - 4 pi / 3 (0.125 - 0.24^1.5).
+    const double added = pi * 0.01 - 4.0 * pi / 3.0 * (0.125 - std::pow(0.24, 1.5));
+    EXPECT_NEAR(added, 3.163e-4, 1e-7);
+    const TreatmentVolumes v = treatment_volumes(p, bed, box);
+    EXPECT_NEAR(v.treated_solid, 2.0 * sphere_volume(0.5) + added, 1e-14);
+    SurfaceOptions o;
+    o.level = 5;
+    o.container = box;
+    o.write_container = false;
+    const auto solids = bed_surface(bed, o);
+    EXPECT_TRUE(closed_and_oriented({&solids[0].mesh}));
+    // The tessellation loses 0.1 % of each ball and of the bridge's prism.
+    EXPECT_NEAR(solids[0].mesh.volume() / v.treated_solid, 1.0, 1.5e-3);
+}
+
+TEST(Surface, BridgesOnASphereTouchingTheWall) {
+    Packing p;
+    p.add({1.5, 0.0, 1.0}, 0.5); // touches the wall of radius 2 only
+    const SurfaceContainer c = cylinder(2.0, 2.0);
+    const TreatedBed bed = treat_contacts(p, parse_contacts("bridges:0.2"), c);
+    EXPECT_TRUE(bed.bridges.empty());
+    ASSERT_EQ(bed.bodies[0].cuts.size(), 1u);
+    // The wall contact is capped bridge_gap = 0.01 Dp from the wall: a cap of height 0.01.
+    const TreatmentVolumes v = treatment_volumes(p, bed, c);
+    EXPECT_NEAR(v.treated_solid, sphere_volume(0.5) - pi * 1e-4 * (1.5 - 0.01) / 3.0, 1e-14);
+}
+
+TEST(Surface, UnionTreatmentsRefuseWhatTheirVolumesCannotHold) {
+    Packing deep; // overlapping by 0.1 Dp: the lens rim has radius 0.218
+    deep.add({0.0, 0.0, 1.0}, 0.5);
+    deep.add({0.9, 0.0, 1.0}, 0.5);
+    const SurfaceContainer box = cylinder(3.0, 2.0);
+    EXPECT_THROW(treat_contacts(deep, parse_contacts("bridges:0.2"), box), InvalidInput);
+    EXPECT_NO_THROW(treat_contacts(deep, parse_contacts("bridges:0.45"), box));
+    Packing t; // three spheres touching in a triangle
+    t.add({0.0, 0.0, 1.0}, 0.5);
+    t.add({1.0, 0.0, 1.0}, 0.5);
+    t.add({0.5, std::sqrt(0.75), 1.0}, 0.5);
+    EXPECT_THROW(treat_contacts(t, parse_contacts("enlarge:0.45"), box), InvalidInput);
+    // Where they are accepted, the closed forms are the volume of the union CGAL builds, to
+    // the tessellation's deficit (level 5: below 0.15 %).
+    for (const char* text : {"enlarge:0.05", "bridges:0.3"}) {
+        const TreatedBed bed = treat_contacts(t, parse_contacts(text), box);
+        SurfaceOptions o;
+        o.level = 5;
+        o.container = box;
+        o.write_container = false;
+        const auto solids = bed_surface(bed, o);
+        EXPECT_TRUE(closed_and_oriented({&solids[0].mesh})) << text;
+        const double exact = treatment_volumes(t, bed, box).treated_solid;
+        EXPECT_NEAR(solids[0].mesh.volume() / exact, 1.0, 1.5e-3) << text;
+        EXPECT_LT(solids[0].mesh.volume(), exact) << text;
+    }
 }

@@ -100,7 +100,7 @@ int run_surface_export(const ExportOptions& o, ExportFormat format, const Partic
     options.contacts = contacts;
     options.container = container;
     options.write_container = !o.no_container;
-    const std::vector<TreatedBody> bodies = treat_contacts(file.packing, contacts, container);
+    const TreatedBed bodies = treat_contacts(file.packing, contacts, container);
     if (format == ExportFormat::openfoam && !container)
         throw InvalidInput(fmt::format("--format openfoam needs the container: give "
                                        "--container-radius (no summary.json next to {})",

@@ -31,7 +31,7 @@ struct OpenFoamCase {
     double cell_size = 0.0;  ///< background cell edge (length)
 };
 
-/// The case for `bodies` (from treat_contacts) in `container`, surfaces tessellated with
+/// The case for `bed` (from treat_contacts) in `container`, surfaces tessellated with
 /// `level`. The box of blockMesh spans the cylinder with a margin of one background cell
 /// sideways and exactly the container's height, so its bottom and top faces become the
 /// patches "inlet" (z = 0) and "outlet" (z = height); snappyHexMesh cuts the particles (patch
@@ -39,9 +39,8 @@ struct OpenFoamCase {
 /// beyond them) out of it. `volumes` gives the exact fluid volume written in the README.
 /// \throws InvalidInput when the options are out of range or no point of the fluid clears
 /// every surface by two cells of the finest level
-OpenFoamCase openfoam_case(const std::vector<TreatedBody>& bodies,
-                           const SurfaceContainer& container, const TreatmentVolumes& volumes,
-                           const std::string& contacts, double diameter, int level,
-                           const OpenFoamMeshOptions& options = {});
+OpenFoamCase openfoam_case(const TreatedBed& bed, const SurfaceContainer& container,
+                           const TreatmentVolumes& volumes, const std::string& contacts,
+                           double diameter, int level, const OpenFoamMeshOptions& options = {});
 
 } // namespace packbed

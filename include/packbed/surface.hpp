@@ -59,23 +59,33 @@ TriangleMesh clip_convex(const TriangleMesh& mesh, const HalfSpace& half_space, 
 /// How contacts (and near contacts) are treated so that a mesher can resolve the gaps,
 /// parameters in units of the sphere diameter Dp (docs/surfaces.md has the usual values).
 enum class ContactTreatment {
-    none,   ///< spheres as they are (touching at points: for viewing, not for meshing)
-    shrink, ///< every radius times (1 - F): gaps of at least F Dp at contacts and walls
-    caps,   ///< each pair closer than H Dp cut by two planes H Dp apart (a cap from each
-            ///< sphere), each sphere closer than H Dp to the wall or floor cut by a plane
-            ///< H Dp from it: flat faces with a gap of H Dp
+    none,    ///< spheres as they are (touching at points: for viewing, not for meshing)
+    shrink,  ///< every radius times (1 - F): gaps of F Dp at contacts, F Dp / 2 at the walls
+    enlarge, ///< every radius times (1 + F), the union of the bodies; wall and floor contacts
+             ///< capped F Dp from them
+    caps,    ///< each pair closer than H Dp cut by two planes H Dp apart (a cap from each
+             ///< sphere), each sphere closer than H Dp to the wall or floor cut by a plane
+             ///< H Dp from it: flat faces with a gap of H Dp
+    bridges, ///< a cylinder of diameter D Dp along the line of centres of each pair closer than
+             ///< bridge_gap Dp, the union of spheres and bridges; wall and floor contacts capped
+             ///< bridge_gap Dp from them
 };
 
-/// A treatment and its parameter (F or H, fraction of Dp).
+/// Pairs closer than this (Dp) get a bridge, and spheres closer than this to the wall or floor
+/// a cap, under ContactTreatment::bridges.
+constexpr double bridge_gap = 0.01;
+
+/// A treatment and its parameter (F, H or D, fraction of Dp).
 struct Contacts {
     ContactTreatment treatment = ContactTreatment::none;
     double parameter = 0.0;
 };
 
-/// The names users pick a treatment by ("none", "shrink", "caps"): the one registry.
+/// The names users pick a treatment by ("none", "shrink", "enlarge", "caps", "bridges"): the
+/// one registry.
 const std::vector<std::pair<std::string, ContactTreatment>>& contact_treatments();
 
-/// Parse "none", "shrink:F" or "caps:H" (F, H in (0, 0.5)).
+/// Parse "none", "shrink:F", "enlarge:F", "caps:H" or "bridges:D" (parameter in (0, 0.5)).
 /// \throws InvalidInput naming the text and what is allowed
 Contacts parse_contacts(std::string_view text);
 
@@ -100,24 +110,43 @@ struct Solid {
 };
 
 /// Each sphere's body after the treatment, as exact geometry: the sphere (radius after
-/// shrinking) and the half-spaces that cut it (caps). Body i belongs to sphere i.
+/// shrinking or enlarging) and the half-spaces that cut it (caps). Body i belongs to sphere i.
 struct TreatedBody {
     Vec3 center;
     double radius = 0.0;
     std::vector<HalfSpace> cuts;
 };
 
+/// A bridge: the cylinder of `radius` along the segment between the centres of bodies `first`
+/// and `second`.
+struct Bridge {
+    std::uint32_t first = 0, second = 0;
+    double radius = 0.0;
+};
+
+/// A treated bed: the bodies, the bridges, and whether the surface is their union (enlarge,
+/// bridges) or the bodies one by one (disjoint by construction).
+struct TreatedBed {
+    std::vector<TreatedBody> bodies;
+    std::vector<Bridge> bridges;
+    bool unite = false;
+};
+
 /// Apply a treatment. The reference diameter Dp is the packing's mean diameter.
-/// \throws InvalidInput when the treated bodies would still overlap (shrink: F Dp not above
-/// the largest overlap) or two caps of one sphere would overlap (caps: H too large), naming
-/// the sphere and what is allowed
-std::vector<TreatedBody> treat_contacts(const Packing& packing, const Contacts& contacts,
-                                        const std::optional<SurfaceContainer>& container);
+/// \throws InvalidInput when the treated geometry would not be what the treatment promises,
+/// naming the spheres and what is allowed: shrink leaving bodies overlapping (F Dp not above
+/// the largest overlap); two caps, lenses or bridge ends of one sphere meeting (the parameter
+/// too large); a bridge thinner than the lens of its overlapping pair
+TreatedBed treat_contacts(const Packing& packing, const Contacts& contacts,
+                          const std::optional<SurfaceContainer>& container);
 
 /// Exact solid volumes and void fractions of a bed inside its container, before and after a
 /// treatment. Untouched: sum of the spheres' volumes inside the container minus the lenses of
-/// overlapping pairs; treated: the bodies (disjoint and inside by construction), spherical caps
-/// in closed form, \f$V_{cap} = \pi c^2 (3 r - c) / 3\f$.
+/// overlapping pairs; treated: the bodies (inside by construction) minus their caps,
+/// \f$V_{cap} = \pi c^2 (3 r - c) / 3\f$, minus the lenses of overlapping bodies (enlarge,
+/// bridges), plus each bridge's part outside its two spheres,
+/// \f$\pi \rho^2 d - H(r_i) - H(r_j) + V_{lens}\f$ with H the part of a sphere within \f$\rho\f$
+/// of the axis on the bridge's side of its centre (half_ball_in_cylinder). All closed forms.
 struct TreatmentVolumes {
     double container_volume = 0.0; ///< pi Rt^2 height
     double untouched_solid = 0.0;  ///< solid volume of the bed as it is
@@ -126,9 +155,15 @@ struct TreatmentVolumes {
     double treated_void_fraction = 0.0;
 };
 
-/// \return the volumes for `bodies` = treat_contacts(packing, ...) in `container`.
-TreatmentVolumes treatment_volumes(const Packing& packing, const std::vector<TreatedBody>& bodies,
+/// \return the volumes for `bed` = treat_contacts(packing, ...) in `container`.
+TreatmentVolumes treatment_volumes(const Packing& packing, const TreatedBed& bed,
                                    const SurfaceContainer& container);
+
+/// Volume of the part of a ball (radius r) on one side of a plane through its centre and
+/// within distance rho of the axis normal to that plane:
+/// \f$\pi \rho^2 t + \pi (r^2 (r - t) - (r^3 - t^3) / 3)\f$, \f$t = \sqrt{r^2 - \rho^2}\f$
+/// (the half ball when rho >= r).
+double half_ball_in_cylinder(double radius, double rho);
 
 /// Volume of the part of a ball of radius r beyond a plane at distance s from its centre (a
 /// spherical cap of height c = r - s): \f$\pi c^2 (3 r - c) / 3\f$, 0 for s >= r.
@@ -139,11 +174,12 @@ double spherical_cap_volume(double radius, double distance);
 double lens_volume(double r1, double r2, double distance);
 
 /// The surface: solid "particles" (every treated body tessellated: the icosphere scaled and
-/// clipped by its cuts; vertices on the sphere, so each polyhedron lies inside its body), and
+/// clipped by its cuts, vertices on the sphere, so each polyhedron lies inside its body; each
+/// bridge a prism inscribed in its cylinder; for a bed to unite, the union of all of them by
+/// CGAL's corefinement), and
 /// where the options ask for it the container as "wall" (a prism circumscribed about the
 /// cylinder, so that no sphere inside the cylinder meets it), "bottom" and "top".
-std::vector<Solid> bed_surface(const std::vector<TreatedBody>& bodies,
-                               const SurfaceOptions& options);
+std::vector<Solid> bed_surface(const TreatedBed& bed, const SurfaceOptions& options);
 
 /// The container as solids "wall" (a prism circumscribed about the cylinder, sides about
 /// `edge` long, between z_low and z_high), "bottom" and "top" (fans from the axis); the three
