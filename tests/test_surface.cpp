@@ -5,6 +5,7 @@
 #include <fstream>
 #include <map>
 #include <numbers>
+#include <sstream>
 #include <tuple>
 
 #include <gtest/gtest.h>
@@ -418,4 +419,74 @@ TEST(Surface, UnionTreatmentsRefuseWhatTheirVolumesCannotHold) {
         EXPECT_NEAR(solids[0].mesh.volume() / exact, 1.0, 1.5e-3) << text;
         EXPECT_LT(solids[0].mesh.volume(), exact) << text;
     }
+}
+
+TEST(Surface, NoneOnTwoTouchingSpheresAndOnASphereTouchingTheWall) {
+    const SurfaceContainer box = cylinder(3.0, 2.0);
+    const Packing two = two_touching();
+    const TreatedBed bed = treat_contacts(two, parse_contacts("none"), box);
+    EXPECT_FALSE(bed.unite);
+    const TreatmentVolumes v = treatment_volumes(two, bed, box);
+    EXPECT_NEAR(v.untouched_solid, 2.0 * sphere_volume(0.5), 1e-14); // touching: no lens
+    EXPECT_EQ(v.treated_solid, v.untouched_solid);
+    Packing wall;
+    wall.add({1.5, 0.0, 1.0}, 0.5);
+    const SurfaceContainer c = cylinder(2.0, 2.0);
+    const TreatmentVolumes w = treatment_volumes(wall, treat_contacts(wall, {}, c), c);
+    EXPECT_NEAR(w.untouched_solid, sphere_volume(0.5), 1e-12); // inside, touching the wall
+    EXPECT_NEAR(w.untouched_void_fraction, 1.0 - sphere_volume(0.5) / (8.0 * pi), 1e-12);
+}
+
+TEST(Surface, ObjSharesVerticesAndNamesItsGroups) {
+    const Packing p = two_touching();
+    SurfaceOptions o;
+    o.level = 2;
+    o.container = cylinder(3.0, 2.0);
+    const auto solids =
+        bed_surface(treat_contacts(p, parse_contacts("bridges:0.2"), o.container), o);
+    std::size_t vertices = 0, triangles = 0;
+    for (const Solid& s : solids) {
+        vertices += s.mesh.vertices.size();
+        triangles += s.mesh.triangles.size();
+    }
+    const auto dir = std::filesystem::temp_directory_path() / "packbed_test_obj";
+    std::filesystem::create_directories(dir);
+    write_surface(solids, SurfaceFormat::obj, dir / "bed.obj");
+    std::ifstream in(dir / "bed.obj");
+    std::string line, groups;
+    std::size_t v = 0, f = 0, largest_index = 0;
+    while (std::getline(in, line)) {
+        v += line.rfind("v ", 0) == 0 ? 1 : 0;
+        if (line.rfind("f ", 0) == 0) {
+            ++f;
+            std::istringstream row(line.substr(2));
+            for (std::size_t k; row >> k;)
+                largest_index = std::max(largest_index, k);
+        }
+        if (line.rfind("g ", 0) == 0)
+            groups += line.substr(2) + ",";
+    }
+    EXPECT_EQ(v, vertices);
+    EXPECT_EQ(f, triangles);
+    EXPECT_EQ(largest_index, vertices); // 1-based, global
+    EXPECT_EQ(groups, "particles,wall,bottom,top,");
+    std::filesystem::remove_all(dir);
+}
+
+TEST(Surface, TheSameUnionWhateverTheThreads) {
+    Packing p;
+    for (int i = 0; i < 6; ++i)
+        p.add({0.3 * (i % 2), 0.0, 0.5 + 0.954 * i}, 0.5);
+    SurfaceOptions o;
+    o.level = 2;
+    o.container = cylinder(2.0, 7.0);
+    o.write_container = false;
+    const TreatedBed bed = treat_contacts(p, parse_contacts("enlarge:0.02"), o.container);
+    omp_set_num_threads(1);
+    const auto one = bed_surface(bed, o);
+    omp_set_num_threads(2);
+    const auto two = bed_surface(bed, o);
+    EXPECT_EQ(one[0].mesh.vertices, two[0].mesh.vertices);
+    EXPECT_EQ(one[0].mesh.triangles, two[0].mesh.triangles);
+    EXPECT_TRUE(closed_and_oriented({&one[0].mesh}));
 }
