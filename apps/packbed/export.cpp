@@ -101,6 +101,15 @@ int run_surface_export(const ExportOptions& o, ExportFormat format, const Partic
     options.container = container;
     options.write_container = !o.no_container;
     const TreatedBed bodies = treat_contacts(file.packing, contacts, container);
+    if (container)
+        for (std::size_t i = 0; i < bodies.bodies.size(); ++i) {
+            const TreatedBody& b = bodies.bodies[i];
+            if (!(b.center.z + b.radius < container->height))
+                throw InvalidInput(fmt::format(
+                    "--container-height {} is not allowed; allowed: above the top of every "
+                    "treated sphere (sphere {} reaches {})",
+                    container->height, i + 1, b.center.z + b.radius));
+        }
     if (format == ExportFormat::openfoam && !container)
         throw InvalidInput(fmt::format("--format openfoam needs the container: give "
                                        "--container-radius (no summary.json next to {})",
