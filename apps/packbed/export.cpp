@@ -97,13 +97,12 @@ int run_surface_export(const ExportOptions& o, ExportFormat format, const Partic
     for (const double r : file.packing.radii)
         largest = std::max(largest, r);
     options.level = o.edge > 0.0 ? icosphere_level_for_edge(largest, o.edge) : o.refine;
-    options.contacts = contacts;
     options.container = container;
     options.write_container = !o.no_container;
-    const TreatedBed bodies = treat_contacts(file.packing, contacts, container);
+    const TreatedBed bed = treat_contacts(file.packing, contacts, container);
     if (container)
-        for (std::size_t i = 0; i < bodies.bodies.size(); ++i) {
-            const TreatedBody& b = bodies.bodies[i];
+        for (std::size_t i = 0; i < bed.bodies.size(); ++i) {
+            const TreatedBody& b = bed.bodies[i];
             if (!(b.center.z + b.radius < container->height))
                 throw InvalidInput(fmt::format(
                     "--container-height {} is not allowed; allowed: above the top of every "
@@ -126,7 +125,7 @@ int run_surface_export(const ExportOptions& o, ExportFormat format, const Partic
     std::string change;
     if (container) {
         const TreatmentVolumes& v =
-            volumes.emplace(treatment_volumes(file.packing, bodies, *container));
+            volumes.emplace(treatment_volumes(file.packing, bed, *container));
         report["container"] = {
             {"shape", "cylinder"}, {"radius", rt}, {"height", container->height}};
         report["volumes"] = {
@@ -145,7 +144,7 @@ int run_surface_export(const ExportOptions& o, ExportFormat format, const Partic
 
     if (format == ExportFormat::openfoam) {
         const OpenFoamCase foam =
-            openfoam_case(bodies, *container, *volumes, o.contacts, dp, options.level, o.mesh);
+            openfoam_case(bed, *container, *volumes, o.contacts, dp, options.level, o.mesh);
         report["openfoam"] = {
             {"cell_size", foam.cell_size},
             {"particle_level", o.mesh.particle_level},
@@ -171,7 +170,7 @@ int run_surface_export(const ExportOptions& o, ExportFormat format, const Partic
         return 0;
     }
 
-    const std::vector<Solid> solids = bed_surface(bodies, options);
+    const std::vector<Solid> solids = bed_surface(bed, options);
     std::size_t triangles = 0;
     report["solids"] = nlohmann::ordered_json::array();
     for (const Solid& s : solids) {

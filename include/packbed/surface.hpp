@@ -97,9 +97,8 @@ struct SurfaceContainer {
 
 /// What bed_surface builds.
 struct SurfaceOptions {
-    int level = 3; ///< icosphere level of each sphere (see icosphere)
-    Contacts contacts;
-    std::optional<SurfaceContainer> container; ///< walls to cut against and to write
+    int level = 3;                             ///< icosphere level of each sphere (see icosphere)
+    std::optional<SurfaceContainer> container; ///< the container whose solids are written
     bool write_container = true; ///< add the container's solids ("wall", "bottom", "top")
 };
 
