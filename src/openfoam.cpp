@@ -121,7 +121,7 @@ OpenFoamCase openfoam_case(const TreatedBed& bed, const SurfaceContainer& contai
     std::string block = header("blockMeshDict", "system");
     block += fmt::format(
         "// Box around the cylinder (radius {rt}, height {h}); cells of {cell} (Dp / {cpd}).\n"
-        "convertToMeters 1;\n\nvertices\n(\n"
+        "scale 1;\n\nvertices\n(\n"
         "    ({lo} {lo} 0) ({hi} {lo} 0) ({hi} {hi} 0) ({lo} {hi} 0)\n"
         "    ({lo} {lo} {h}) ({hi} {lo} {h}) ({hi} {hi} {h}) ({lo} {hi} {h})\n);\n\n"
         "blocks\n(\n    hex (0 1 2 3 4 5 6 7) ({n} {n} {nz}) simpleGrading (1 1 1)\n);\n\n"
@@ -200,10 +200,11 @@ OpenFoamCase openfoam_case(const TreatedBed& bed, const SurfaceContainer& contai
         fmt::format(
             "# Packed bed for snappyHexMesh (written by packbed export)\n\n"
             "{n} particles of diameter {dp} in a cylinder of radius {rt}, from z = 0 to {h} "
-            "(lengths in the bed's unit; `convertToMeters 1`). Contacts: `{contacts}`.\n\n"
+            "(lengths in the bed's unit; `scale 1`). Contacts: `{contacts}`.\n\n"
             "```sh\nblockMesh\nsnappyHexMesh -overwrite\ncheckMesh\n```\n\n"
-            "(Debian's OpenFOAM runs these as they are; elsewhere source OpenFOAM's "
-            "`etc/bashrc` first.) Open `case.foam` in ParaView to see the mesh.\n\n"
+            "(Debian's OpenFOAM needs `export WM_PROJECT_DIR=/usr/share/openfoam` first, "
+            "where its `etc/` is; elsewhere source OpenFOAM's `etc/bashrc`.) Open `case.foam` "
+            "in ParaView to see the mesh.\n\n"
             "- `constant/triSurface/particles.stl`: every particle, closed and separate (patch "
             "`particles`); `wall.stl`: the cylinder wall, open, reaching half a cell beyond "
             "both ends (patch `wall`).\n"
