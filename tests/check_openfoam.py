@@ -15,13 +15,13 @@ import subprocess
 import sys
 import tempfile
 
+from openfoam_env import openfoam_env
+
 exe = sys.argv[1]
 if not all(shutil.which(p) for p in ("blockMesh", "snappyHexMesh", "checkMesh")):
     print("blockMesh, snappyHexMesh or checkMesh (Debian package openfoam) is missing: skipped")
     sys.exit(77)
-env = dict(os.environ)
-if "WM_PROJECT_DIR" not in env and os.path.isdir("/usr/share/openfoam"):
-    env["WM_PROJECT_DIR"] = "/usr/share/openfoam"  # Debian's OpenFOAM finds its etc/ there
+env = openfoam_env()
 work = tempfile.mkdtemp(prefix="packbed-foam-")
 case = os.path.join(work, "case")
 

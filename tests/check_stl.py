@@ -16,13 +16,13 @@ import subprocess
 import sys
 import tempfile
 
+from openfoam_env import openfoam_env
+
 exe = sys.argv[1]
 if not shutil.which("admesh") or not shutil.which("surfaceCheck"):
     print("admesh or surfaceCheck (Debian packages admesh, openfoam) is not installed: skipped")
     sys.exit(77)
-env = dict(os.environ)
-if "WM_PROJECT_DIR" not in env and os.path.isdir("/usr/share/openfoam"):
-    env["WM_PROJECT_DIR"] = "/usr/share/openfoam"  # Debian's OpenFOAM finds its etc/ there
+env = openfoam_env()
 work = tempfile.mkdtemp(prefix="packbed-stl-")
 
 
