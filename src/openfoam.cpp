@@ -111,7 +111,7 @@ OpenFoamCase openfoam_case(const TreatedBed& bed, const SurfaceContainer& contai
     // The wall, open, half a background cell beyond both ends of the box.
     std::vector<Solid> walls =
         container_solids(container.cylinder, -0.5 * c.cell_size, height + 0.5 * c.cell_size,
-                         std::min(largest * 1.0515 / std::ldexp(1.0, level), 0.5 * c.cell_size));
+                         std::min(largest * icosphere_edge(level), 0.5 * c.cell_size));
     c.wall.push_back(std::move(walls[0]));
 
     // Background box: one cell beyond the cylinder sideways, exactly 0 to height in z.

@@ -29,12 +29,6 @@ std::uint64_t edge_key(std::uint32_t a, std::uint32_t b) {
     return a < b ? (std::uint64_t{a} << 32) | b : (std::uint64_t{b} << 32) | a;
 }
 
-/// Mean edge of the unit icosphere of a level: the icosahedron's edge 1.0515 halved per level
-/// (the projection onto the sphere lengthens it a little; this is a bound from below).
-double unit_edge(int level) {
-    return 1.0515 / std::ldexp(1.0, level);
-}
-
 } // namespace
 
 void TriangleMesh::append(const TriangleMesh& other) {
@@ -88,9 +82,13 @@ TriangleMesh icosphere(int level) {
     return m;
 }
 
+double icosphere_edge(int level) {
+    return 1.0515 / std::ldexp(1.0, level);
+}
+
 int icosphere_level_for_edge(double radius, double edge) {
     int level = 0;
-    while (level < 7 && radius * unit_edge(level) > edge)
+    while (level < 7 && radius * icosphere_edge(level) > edge)
         ++level;
     return level;
 }
@@ -582,7 +580,7 @@ std::vector<Solid> bed_surface(const TreatedBed& bed, const SurfaceOptions& opti
     double largest = 0.0;
     for (const TreatedBody& b : bodies)
         largest = std::max(largest, b.radius);
-    const double edge = largest * unit_edge(options.level);
+    const double edge = largest * icosphere_edge(options.level);
     const double snap = 0.02 * edge;
     const auto body_mesh = [&](std::size_t i) {
         TriangleMesh m = unit;
@@ -659,7 +657,7 @@ std::vector<Solid> bed_surface(const TreatedBed& bed, const SurfaceOptions& opti
         const double rt = options.container->cylinder.radius();
         for (Solid& s :
              container_solids(options.container->cylinder, 0.0, options.container->height,
-                              largest > 0.0 ? edge : rt * unit_edge(options.level)))
+                              largest > 0.0 ? edge : rt * icosphere_edge(options.level)))
             solids.push_back(std::move(s));
     }
     return solids;

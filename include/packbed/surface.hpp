@@ -36,6 +36,10 @@ struct TriangleMesh {
 /// polyhedron lies inside it). \param level 0 to 7
 TriangleMesh icosphere(int level);
 
+/// The edge of the unit icosphere of a level: the icosahedron's edge 1.0515 halved per level
+/// (projecting onto the sphere lengthens the edges a little: a bound from below).
+double icosphere_edge(int level);
+
 /// The icosphere level whose mean edge on a sphere of radius `radius` is at most `edge`
 /// (capped at 7). \param radius,edge lengths (> 0)
 int icosphere_level_for_edge(double radius, double edge);
