@@ -18,6 +18,10 @@
 // tolerance (the first cut goes straight to the g that should leave half the tolerance, the
 // overlaps of a settled bed being proportional to g). Every global sum runs over fixed blocks
 // added in order: the same bits for any number of threads.
+// A bed taller than twice layer_height is relaxed in layers (relax_with_fire): a tall column
+// under eq. (7) gets a gravity that shrinks as its height grows (the bottom layer carries the
+// whole column), so it falls and settles ever more slowly; a layer gets the gravity of a
+// short bed, and a step costs only the layer's spheres.
 #include <algorithm>
 #include <chrono>
 #include <cmath>
@@ -111,21 +115,32 @@ double pair_factors(detail::SoftBed& bed, const detail::LinearOverlapLaw& law) {
     return largest;
 }
 
+/// The three stages of the fire solver on one bed. Spheres 0 to fixed - 1 (generation order)
+/// do not move (the settled layers under a layer, see relax_with_fire); the mass-centre rule
+/// measures the other spheres' mass centre from the height `datum`.
 class Fire {
 public:
-    explicit Fire(const SoftSphereParameters& p)
+    Fire(const SoftSphereParameters& p, detail::SoftBed& bed, std::uint32_t fixed, double datum,
+         std::uint64_t steps, std::uint32_t layer = 0, std::uint32_t layers = 1)
         : m_params(p)
-        , m_bed(p.aspect_ratio)
-        , m_window(p.mc_window, p.mc_tolerance) {
-        m_bed.generate(p);
+        , m_bed(bed)
+        , m_window(p.mc_window, p.mc_tolerance)
+        , m_fixed(fixed)
+        , m_datum(datum)
+        , m_steps(steps)
+        , m_layer(layer)
+        , m_layers(layers) {
         m_bed.velocity.assign(m_bed.packing.size(), Vec3{});
         m_force.resize(m_bed.packing.size());
     }
 
-    SoftSphereResult run(const RunControl& control) {
-        const auto t0 = std::chrono::steady_clock::now();
+    /// \return the number of steps taken so far (counted from the `steps` given)
+    std::uint64_t steps() const { return m_steps; }
+
+    /// Run the initial, intermediate and final stages. \return their records.
+    std::vector<StageRecord> relax(const RunControl& control) {
         const SoftSphereParameters& p = m_params;
-        SoftSphereResult result;
+        std::vector<StageRecord> stages;
 
         // "initial": overlaps of the random start removed, no gravity.
         std::uint64_t start = m_steps;
@@ -135,7 +150,7 @@ public:
             if (s.pair < p.tolerance && s.wall < p.tolerance && converged_overlaps())
                 break;
         }
-        result.stages.push_back(record("initial", start, 1));
+        stages.push_back(record("initial", start, 1));
 
         // "intermediate": gravity under eq. (7), in force units g = Cg / Ck; until the mass
         // centre settles.
@@ -152,7 +167,7 @@ public:
             if (m_steps % p.mc_period == 0 && m_window.settled())
                 break;
         }
-        result.stages.push_back(record("intermediate", start, 1));
+        stages.push_back(record("intermediate", start, 1));
 
         // "final": g halved, each value held until the mass centre settles, until both
         // overlaps are below the tolerance.
@@ -186,13 +201,8 @@ public:
                     break;
             }
         }
-        result.stages.push_back(record("final", start, steps));
-
-        m_bed.fill_result(result, p.diameter);
-        result.iterations = m_steps;
-        result.seconds =
-            std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
-        return result;
+        stages.push_back(record("final", start, steps));
+        return stages;
     }
 
 private:
@@ -214,7 +224,13 @@ private:
         // Forces (the pair factors once per pair, then each sphere's sum); a = F.v,
         // b = |F|^2, speed2 = |v|^2 (a sum here).
         const double largest_pair = pair_factors(bed, law);
+        const std::uint32_t* const order = bed.order.data();
+        const std::uint32_t fixed = m_fixed;
         PassTotals forces = for_each_block(n, m_blocks, [&](std::size_t k, PassTotals& t) {
+            if (order[k] < fixed) {
+                f[k] = Vec3{};
+                return;
+            }
             Vec3 force = bed.contact_move_from_factors(k, law, t.wall);
             force.z -= g;
             if (x[k].z <= radius[k] && force.z < 0.0)
@@ -253,6 +269,8 @@ private:
         // One pass: half step back and stop after an uphill step, v <- v + dt F, mixing,
         // x <- x + dt v with no step longer than fire_max_step, the rigid floor.
         const PassTotals moves = for_each_block(n, m_blocks, [&](std::size_t k, PassTotals& t) {
+            if (order[k] < fixed)
+                return;
             Vec3 xk = x[k];
             Vec3 vk = v[k];
             if (uphill) {
@@ -281,7 +299,7 @@ private:
             check(moves, stage);
         ++m_steps;
         if (m_steps % p.mc_period == 0) {
-            const double mc = bed.mass_centre_z();
+            const double mc = bed.mass_centre_z(m_fixed) - m_datum;
             m_window.push(mc);
             report(control, stage, forces, mc);
         }
@@ -334,7 +352,8 @@ private:
         if (control.should_stop && control.should_stop())
             throw Cancelled();
         if (control.on_progress)
-            control.on_progress({stage, m_steps, m_g * m_params.ck, t.pair, t.wall, mass_centre});
+            control.on_progress({stage, m_steps, m_g * m_params.ck, t.pair, t.wall, mass_centre,
+                                 m_layer, m_layers});
     }
 
     StageRecord record(std::string name, std::uint64_t start, std::uint32_t steps) const {
@@ -346,17 +365,20 @@ private:
         const Overlaps now = measure_overlaps(m_bed.packing, m_bed.container);
         r.max_overlap_pair = now.pair;
         r.max_overlap_wall = now.wall;
-        r.mass_centre_z = m_bed.mass_centre_z();
+        r.mass_centre_z = m_bed.mass_centre_z(m_fixed);
         r.mass_centre_window = m_window.values();
         return r;
     }
 
     SoftSphereParameters m_params;
-    detail::SoftBed m_bed;
+    detail::SoftBed& m_bed;
     std::vector<Vec3> m_force;
     std::vector<PassTotals> m_blocks;
     detail::MassCentreWindow m_window;
-    std::uint64_t m_steps = 0;
+    std::uint32_t m_fixed;
+    double m_datum;
+    std::uint64_t m_steps;
+    std::uint32_t m_layer, m_layers;
     double m_g = 0.0;
     double m_dt = fire_dt0;
     double m_alpha = fire_alpha0;
@@ -365,10 +387,135 @@ private:
 
 } // namespace
 
+std::uint32_t fire_layers(const SoftSphereParameters& p) {
+    const double height = initial_bed_height(p.particles, p.aspect_ratio, p.e0);
+    if (p.layer_height <= 0.0 || height <= 2.0 * p.layer_height)
+        return 1;
+    return static_cast<std::uint32_t>(std::min(height / p.layer_height, 1e6));
+}
+
+namespace {
+
+// A layer is relaxed with the top layer_band Dp of the bed below it free to move (the loose
+// surface the new layer compacts) and a shell of fixed spheres under that band.
+constexpr double layer_band = 4.0;
+constexpr double layer_shell = 1.5; // > 1 Dp: no free sphere reaches past the shell
+
+} // namespace
+
 SoftSphereResult relax_with_fire(const SoftSphereParameters& parameters,
                                  const RunControl& control) {
     parameters.validate();
-    return Fire(parameters).run(control);
+    const auto t0 = std::chrono::steady_clock::now();
+    const SoftSphereParameters& p = parameters;
+    detail::SoftBed bed(p.aspect_ratio);
+    bed.generate(p);
+    SoftSphereResult result;
+    const std::uint32_t layers = fire_layers(p);
+    std::uint64_t steps = 0, builds = 0;
+    if (layers == 1) {
+        if (control.resume)
+            throw InvalidInput("a checkpoint can only resume a fire run in layers (L0 > 2 "
+                               "layer-height); this run is relaxed in one piece");
+        Fire fire(p, bed, 0, 0.0, 0);
+        result.stages = fire.relax(control);
+        steps = fire.steps();
+        builds = bed.list.builds();
+    } else {
+        // Layers: the generation stage's bed cut into `layers` slices of equal height; each
+        // slice, moved down to just above the bed below, relaxed by the three stages with the
+        // top layer_band of that bed free and the rest fixed.
+        const Packing start = bed.packing_in_generation_order();
+        const std::size_t n = start.size();
+        const double slice = bed.initial_height / layers;
+        std::vector<std::vector<std::uint32_t>> members(layers);
+        for (std::uint32_t i = 0; i < n; ++i) {
+            const double z = start.centers[i].z - start.radii[i];
+            const auto l = static_cast<std::uint32_t>(std::clamp(z / slice, 0.0, layers - 1.0));
+            members[l].push_back(i);
+        }
+        std::vector<Vec3> position = start.centers;
+        std::vector<std::uint32_t> placed; // settled spheres, layer by layer
+        placed.reserve(n);
+        double top = 0.0; // highest settled centre
+        std::uint32_t first = 0;
+        if (const LayerCheckpoint* from = control.resume) {
+            if (from->packing.size() != n || from->layers_done > layers)
+                throw InvalidInput(fmt::format(
+                    "the checkpoint holds {} spheres after {} layers; this run has {} spheres "
+                    "in {} layers",
+                    from->packing.size(), from->layers_done, n, layers));
+            position = from->packing.centers;
+            top = from->top;
+            steps = from->iterations;
+            builds = from->neighbor_builds;
+            result.stages = from->stages;
+            first = from->layers_done;
+            for (std::uint32_t l = 0; l < first; ++l)
+                placed.insert(placed.end(), members[l].begin(), members[l].end());
+        }
+        detail::SoftBed part(p.aspect_ratio);
+        for (std::uint32_t l = first; l < layers; ++l) {
+            // the part's spheres: fixed shell, free band, new slice (each in a fixed order)
+            std::vector<std::uint32_t> ids, band;
+            const double datum = l == 0 ? 0.0 : top - layer_band;
+            for (const std::uint32_t i : placed) {
+                if (position[i].z > datum)
+                    band.push_back(i);
+                else if (position[i].z > datum - layer_shell)
+                    ids.push_back(i);
+            }
+            const auto fixed = static_cast<std::uint32_t>(ids.size());
+            ids.insert(ids.end(), band.begin(), band.end());
+            const double lift = l == 0 ? 0.0 : top + 1.0 - l * slice;
+            for (const std::uint32_t i : members[l]) {
+                position[i].z += lift;
+                ids.push_back(i);
+            }
+            Packing spheres;
+            spheres.centers.reserve(ids.size());
+            spheres.radii.reserve(ids.size());
+            for (const std::uint32_t i : ids)
+                spheres.add(position[i], start.radii[i]);
+            part.assign(std::move(spheres), (l == 0 ? 0.0 : top + 1.0) + slice);
+            Fire fire(p, part, fixed, datum, steps, l, layers);
+            std::vector<StageRecord> stages = fire.relax(control);
+            steps = fire.steps();
+            builds += part.list.builds();
+            if (result.stages.empty()) {
+                result.stages = std::move(stages);
+            } else {
+                for (std::size_t s = 0; s < stages.size(); ++s) {
+                    stages[s].iterations += result.stages[s].iterations;
+                    stages[s].steps += result.stages[s].steps;
+                }
+                result.stages = std::move(stages);
+            }
+            const Packing& moved = part.packing_in_generation_order();
+            for (std::size_t k = fixed; k < ids.size(); ++k) {
+                position[ids[k]] = moved.centers[k];
+                top = std::max(top, moved.centers[k].z);
+            }
+            placed.insert(placed.end(), members[l].begin(), members[l].end());
+            if (control.on_layer) {
+                LayerCheckpoint state{l + 1, steps, builds, top, {}, result.stages};
+                state.packing.centers = position;
+                state.packing.radii = start.radii;
+                control.on_layer(state);
+            }
+        }
+        Packing all;
+        all.centers = std::move(position);
+        all.radii = start.radii;
+        bed.assign(std::move(all), bed.initial_height);
+        result.stages.back().mass_centre_z = bed.mass_centre_z();
+    }
+    bed.fill_result(result, p.diameter);
+    result.neighbor_builds = builds;
+    result.layers = layers;
+    result.iterations = steps;
+    result.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+    return result;
 }
 
 } // namespace packbed

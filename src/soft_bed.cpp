@@ -17,6 +17,20 @@ void SoftBed::generate(const SoftSphereParameters& params) {
         const double z = initial_height * uniform01(rng) + 0.5;
         packing.add({r * std::cos(theta), r * std::sin(theta), z}, 0.5);
     }
+    reset_order();
+}
+
+void SoftBed::assign(Packing spheres, double height) {
+    packing = std::move(spheres);
+    initial_height = height;
+    ceiling = 4.0 * height + 10.0 * 2.0 * container.radius() + 10.0;
+    list = NeighborList{};
+    velocity.clear();
+    drift2 = 0.0;
+    reset_order();
+}
+
+void SoftBed::reset_order() {
     order.resize(packing.size());
     slot.resize(packing.size());
     for (std::uint32_t i = 0; i < order.size(); ++i)
@@ -69,9 +83,10 @@ void SoftBed::fill_result(SoftSphereResult& result, double diameter) const {
     result.neighbor_builds = list.builds();
 }
 
-double SoftBed::mass_centre_z() const {
+double SoftBed::mass_centre_z(std::uint32_t first) const {
     double weighted = 0.0, total = 0.0;
-    for (const std::uint32_t k : slot) {
+    for (std::size_t i = first; i < slot.size(); ++i) {
+        const std::uint32_t k = slot[i];
         const double m = packing.radii[k] * packing.radii[k] * packing.radii[k];
         weighted += m * packing.centers[k].z;
         total += m;

@@ -109,6 +109,10 @@ struct SoftBed {
     /// Section 3.1: L0 from eq. (6), centres uniform over the accessible cross-section.
     void generate(const SoftSphereParameters& params);
 
+    /// Take `spheres` (units of Dp) as the bed, in their order as the generation order, with
+    /// L0 = `height` (sets the ceiling); no list, no velocities.
+    void assign(Packing spheres, double height);
+
     /// \return true when the Verlet list must be rebuilt before the next evaluation: none
     /// yet, or a sphere moved more than skin/2 (the caller keeps drift2 up to date).
     bool list_stale() const { return list.builds() == 0 || drift2 > list.drift_limit2(); }
@@ -228,11 +232,13 @@ struct SoftBed {
     /// builds of `result`, lengths scaled from Dp to `diameter`.
     void fill_result(SoftSphereResult& result, double diameter) const;
 
-    /// Height of the mass centre, \f$\sum r_i^3 z_i / \sum r_i^3\f$, Dp, summed in generation
-    /// order.
-    double mass_centre_z() const;
+    /// Height of the mass centre of spheres `first` to the last (generation order),
+    /// \f$\sum r_i^3 z_i / \sum r_i^3\f$, Dp, summed in generation order.
+    double mass_centre_z(std::uint32_t first = 0) const;
 
 private:
+    void reset_order(); // order and slot the identity, scratch sized
+
     mutable Packing m_in_generation_order;
 };
 

@@ -52,6 +52,8 @@ void SoftSphereParameters::validate() const {
     require(mc_tolerance > 0.0 && mc_tolerance <= 100.0, "mc-tolerance", mc_tolerance,
             "0 < mc-tolerance <= 100 (percent)");
     require(skin > 0.0 && skin <= 1.0, "skin", skin, "0 < skin <= 1 (Dp)");
+    require(layer_height == 0.0 || (layer_height >= 10.0 && layer_height <= 1e6), "layer-height",
+            layer_height, "0 (one piece) or 10 to 1000000 (Dp)");
     require(max_iterations >= 1, "max-iterations", static_cast<double>(max_iterations), ">= 1");
 }
 

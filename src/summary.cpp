@@ -43,6 +43,7 @@ nlohmann::json soft_sphere_summary(const SoftSphereParameters& p, const SoftSphe
     summary["iterations"] = result.iterations;
     summary["initial_height"] = result.initial_height;
     summary["neighbor_list_builds"] = result.neighbor_builds;
+    summary["layers"] = result.layers;
     json stages = json::array();
     for (const auto& s : result.stages)
         stages.push_back({{"name", s.name},
@@ -65,6 +66,7 @@ nlohmann::json soft_sphere_summary(const SoftSphereParameters& p, const SoftSphe
                              {"update", to_string(p.update)},
                              {"solver", to_string(p.solver)},
                              {"skin", p.skin},
+                             {"layer_height", p.layer_height},
                              {"max_iterations", p.max_iterations},
                              {"band_clearance", band_clearance},
                              {"threads", threads}};
@@ -76,6 +78,7 @@ nlohmann::json soft_sphere_summary(const SoftSphereParameters& p, const SoftSphe
                         {"tolerance", "Dp"},
                         {"mc_tolerance", "percent"},
                         {"skin", "Dp"},
+                        {"layer_height", "Dp"},
                         {"band_clearance", "Dp"}};
     summary["seconds"] = result.seconds;
     return summary;

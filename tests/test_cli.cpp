@@ -118,20 +118,81 @@ TEST(Cli, SameSeedSameBytesWhateverTheThreads) {
     EXPECT_NE(slurp(a / "particles.csv"), slurp(c / "particles.csv")); // other update order
 }
 
-TEST(Cli, FireSolverSameBytesWhateverTheThreads) {
-    // 1 200 spheres: above the size where the steps run in parallel (the library test
-    // FireSolver.TrajectoryIsIndependentOfThreadCount forces two threads; here a busy machine
-    // may give the second run fewer).
+TEST(Cli, FireSolverInLayersSameBytesWhateverTheThreads) {
+    // 2 000 spheres at a = 10 in two layers of 10 Dp (L0 = 25.2 Dp): each layer's part holds
+    // about 1 000 spheres or more, the size from which the steps run in parallel (the library
+    // test FireSolver.TrajectoryIsIndependentOfThreadCount forces two threads on a bed in one
+    // piece; here a busy machine may give the second run fewer).
     const fs::path a = scratch("f1"), b = scratch("f2");
-    const std::string bed =
-        "generate --solver fire --aspect-ratio 10 --particles 1200 --seed 4 --quiet ";
+    const std::string bed = "generate --solver fire --aspect-ratio 10 --particles 2000 --seed 4 "
+                            "--layer-height 10 --quiet ";
     ASSERT_EQ(packbed(bed + "--threads 1 --out " + a.string()).status, 0);
     ASSERT_EQ(packbed(bed + "--threads 2 --out " + b.string()).status, 0);
     EXPECT_EQ(slurp(a / "particles.csv"), slurp(b / "particles.csv"));
     const auto s = nlohmann::json::parse(slurp(a / "summary.json"));
+    EXPECT_EQ(s["layers"], 2);
+    EXPECT_EQ(s["parameters"]["layer_height"], 10.0);
     EXPECT_EQ(s["parameters"]["solver"], "fire");
     EXPECT_LT(s["max_overlap_pair"].get<double>(), 1e-4);
     EXPECT_LT(s["max_overlap_wall"].get<double>(), 1e-4);
+}
+
+TEST(Cli, CheckpointResumesToTheSameBytes) {
+    // Three layers of about 200 spheres (a = 5, L0 = 30.2 Dp, layers of 10 Dp). The second
+    // run stops in the third layer (--max-iterations, exit 1) and leaves the checkpoint of
+    // the second; the third run resumes from it and must write what the first wrote.
+    const fs::path a = scratch("whole"), b = scratch("resumed"), c = scratch("ckpt");
+    const std::string bed = "generate --solver fire --aspect-ratio 5 --particles 600 --seed 1 "
+                            "--layer-height 10 ";
+    const std::string checkpoint = (c / "bed.ckpt").string();
+    ASSERT_EQ(packbed(bed + "--quiet --out " + a.string()).status, 0);
+    const Outcome stopped = packbed(bed + "--quiet --max-iterations 40000 --checkpoint " +
+                                    checkpoint + " --out " + b.string());
+    EXPECT_EQ(stopped.status, 1) << stopped.err;
+    ASSERT_TRUE(fs::exists(checkpoint));
+    EXPECT_FALSE(fs::exists(b / "particles.csv"));
+    const Outcome resumed = packbed(bed + "--checkpoint " + checkpoint + " --out " + b.string());
+    ASSERT_EQ(resumed.status, 0) << resumed.err;
+    EXPECT_NE(resumed.err.find("resuming from " + checkpoint + " after layer 2 of 3"),
+              std::string::npos)
+        << resumed.err;
+    EXPECT_EQ(slurp(a / "particles.csv"), slurp(b / "particles.csv"));
+    EXPECT_EQ(slurp(a / "particles.vtu"), slurp(b / "particles.vtu"));
+    const auto sa = nlohmann::json::parse(slurp(a / "summary.json"));
+    const auto sb = nlohmann::json::parse(slurp(b / "summary.json"));
+    EXPECT_EQ(sa["iterations"], sb["iterations"]);
+    EXPECT_EQ(sa["stages"], sb["stages"]);
+}
+
+TEST(Cli, CheckpointOfAnotherRunIsRefused) {
+    const fs::path d = scratch("refused");
+    const std::string checkpoint = (d / "bed.ckpt").string();
+    const std::string bed = "generate --solver fire --aspect-ratio 5 --particles 600 "
+                            "--layer-height 10 --quiet --out " +
+                            (d / "out").string() + " --checkpoint " + checkpoint;
+    auto one_line = [](const Outcome& o) {
+        return std::count(o.err.begin(), o.err.end(), '\n') == 1;
+    };
+    // A bed in one piece has no layers to resume from.
+    Outcome o = packbed(small + "--solver fire --checkpoint " + checkpoint);
+    EXPECT_EQ(o.status, 2);
+    EXPECT_TRUE(one_line(o)) << o.err;
+    EXPECT_NE(o.err.find("only a fire run in layers can be resumed"), std::string::npos) << o.err;
+    // Not a checkpoint.
+    std::ofstream(checkpoint) << "x,y,z,r\n0,0,0.5,0.5\n";
+    o = packbed(bed);
+    EXPECT_EQ(o.status, 2);
+    EXPECT_TRUE(one_line(o)) << o.err;
+    EXPECT_NE(o.err.find(checkpoint + ": not a packbed checkpoint"), std::string::npos) << o.err;
+    // Another seed's checkpoint.
+    fs::remove(checkpoint);
+    ASSERT_EQ(packbed(bed + " --seed 3 --max-iterations 20000").status, 1);
+    ASSERT_TRUE(fs::exists(checkpoint));
+    o = packbed(bed + " --seed 4");
+    EXPECT_EQ(o.status, 2);
+    EXPECT_TRUE(one_line(o)) << o.err;
+    EXPECT_NE(o.err.find("seed = 3, this run has 4"), std::string::npos) << o.err;
+    EXPECT_FALSE(fs::exists(d / "out" / "particles.csv"));
 }
 
 TEST(Cli, QuietPrintsNothing) {

@@ -1,14 +1,18 @@
 // `packbed generate`: the soft-sphere bed of Salvat et al. (2005) in a cylinder.
 #include <atomic>
 #include <csignal>
+#include <filesystem>
 #include <limits>
 #include <memory>
+#include <optional>
 
 #include <fmt/format.h>
 #include <omp.h>
 
 #include "command.hpp"
 #include "packbed/analysis.hpp"
+#include "packbed/checkpoint.hpp"
+#include "packbed/error.hpp"
 #include "packbed/io.hpp"
 #include "packbed/soft_sphere.hpp"
 #include "packbed/summary.hpp"
@@ -29,6 +33,7 @@ struct GenerateOptions {
     std::string update = to_string(SoftSphereParameters{}.update);
     std::string solver = to_string(SoftSphereParameters{}.solver);
     std::string out = "packbed-out";
+    std::string checkpoint; // empty: none
     double band_clearance = 1.0;
     unsigned long long threads = static_cast<unsigned long long>(omp_get_num_procs());
     bool quiet = false;
@@ -51,6 +56,27 @@ int run_generate(GenerateOptions& o) {
     RunControl control;
     control.on_progress = [&](const Progress& p) { progress(p); };
     control.should_stop = [] { return interrupted.load(); };
+    std::optional<LayerCheckpoint> resume;
+    if (!o.checkpoint.empty()) {
+        if (o.params.solver != Solver::fire || fire_layers(o.params) == 1)
+            throw InvalidInput(fmt::format(
+                "--checkpoint {}: only a fire run in layers can be resumed, this run is {}; "
+                "allowed: --solver fire with an initial height L0 = {:.4g} Dp above twice "
+                "--layer-height (now {})",
+                o.checkpoint, o.params.solver == Solver::fire ? "in one piece" : "paper mode",
+                initial_bed_height(o.params.particles, o.params.aspect_ratio, o.params.e0),
+                o.params.layer_height));
+        if (std::filesystem::exists(o.checkpoint)) {
+            resume = read_checkpoint(o.checkpoint, o.params);
+            control.resume = &*resume;
+            if (!o.quiet)
+                fmt::print(stderr, "packbed generate: resuming from {} after layer {} of {}\n",
+                           o.checkpoint, resume->layers_done, fire_layers(o.params));
+        }
+        control.on_layer = [&](const LayerCheckpoint& state) {
+            write_checkpoint(o.checkpoint, o.params, state);
+        };
+    }
     const SoftSphereResult result = generate_soft_sphere(o.params, control);
     progress.finish();
 
@@ -145,6 +171,13 @@ Command register_generate(CLI::App& parent) {
         ->check(CLI::IsMember(solver_names));
     app->add_option("--skin", p.skin, "Verlet neighbour-list skin, Dp")
         ->check(real_in(0.0, 1.0, true, false));
+    app->add_option("--layer-height", p.layer_height,
+                    "fire solver: a bed whose initial height L0 exceeds twice this is relaxed in "
+                    "layers about this tall, bottom first; 0: in one piece (Dp; 0 or 10 to 1e6)")
+        ->check(real_in(0.0, 1e6, false, false));
+    app->add_option("--checkpoint", o.checkpoint,
+                    "fire solver in layers: save the state to this file after each layer, and "
+                    "resume from it when it exists (the same options give the same bytes)");
     app->add_option("--max-iterations", p.max_iterations, "give up after this many iterations")
         ->check(whole_in(1, std::numeric_limits<std::uint64_t>::max()));
     app->add_option("--band-clearance", o.band_clearance,

@@ -60,7 +60,10 @@ struct SoftSphereParameters {
     UpdateOrder update = UpdateOrder::simultaneous; ///< see UpdateOrder; docs/performance.md
     Solver solver = Solver::paper;                  ///< see Solver
     double skin = 0.1;                              ///< Verlet-list skin, Dp; (0, 1]
-    std::uint64_t max_iterations = 200'000'000;     ///< give up (ConvergenceError) beyond this
+    /// Fire solver: a bed whose L0 (eq. 6) exceeds twice this is relaxed in layers of about
+    /// this height, bottom first (relax_with_fire); 0: in one piece. Dp; 0 or [10, 1e6].
+    double layer_height = 30.0;
+    std::uint64_t max_iterations = 200'000'000; ///< give up (ConvergenceError) beyond this
 
     /// Check every value and their combinations.
     /// \throws InvalidInput naming the parameter, its value and the allowed range.
@@ -81,19 +84,38 @@ struct StageRecord {
 
 /// Where a run stands, for progress displays.
 struct Progress {
-    std::string_view stage;  ///< stage name
-    std::uint64_t iteration; ///< total iterations so far
-    double cg;               ///< current gravity parameter
-    double max_overlap_pair; ///< Dp, as seen in the last iteration
-    double max_overlap_wall; ///< Dp, as seen in the last iteration
-    double mass_centre_z;    ///< Dp
+    std::string_view stage;   ///< stage name
+    std::uint64_t iteration;  ///< total iterations so far
+    double cg;                ///< current gravity parameter
+    double max_overlap_pair;  ///< Dp, as seen in the last iteration
+    double max_overlap_wall;  ///< Dp, as seen in the last iteration
+    double mass_centre_z;     ///< Dp (fire solver in layers: above the free band's bottom)
+    std::uint32_t layer = 0;  ///< fire solver: the layer being relaxed, from 0
+    std::uint32_t layers = 1; ///< fire solver: number of layers (1: the bed in one piece)
 };
 
-/// Hooks a caller may give a run: both optional, called every mc_period iterations from the
-/// thread that called run().
+/// The state of a fire run in layers (relax_with_fire) after `layers_done` whole layers:
+/// enough to resume it and end with the same bits as a run that was never stopped.
+struct LayerCheckpoint {
+    std::uint32_t layers_done = 0;     ///< layers relaxed, from the bottom
+    std::uint64_t iterations = 0;      ///< steps so far, all layers
+    std::uint64_t neighbor_builds = 0; ///< Verlet-list builds so far
+    double top = 0.0;                  ///< highest centre of the relaxed layers, Dp
+    Packing packing;                   ///< every sphere in generation order, Dp (those of the
+                                       ///< layers still to come where the generation put them)
+    std::vector<StageRecord> stages;   ///< stage records so far (iterations summed over layers)
+};
+
+/// Hooks a caller may give a run, all optional. on_progress and should_stop are called every
+/// mc_period iterations from the thread that called run().
 struct RunControl {
     std::function<void(const Progress&)> on_progress; ///< progress report
     std::function<bool()> should_stop;                ///< return true to cancel (throws Cancelled)
+    /// Fire solver in layers: called after each layer with the state to save.
+    std::function<void(const LayerCheckpoint&)> on_layer;
+    /// Fire solver in layers: continue from this state (of the same parameters) instead of
+    /// from the generation stage.
+    const LayerCheckpoint* resume = nullptr;
 };
 
 /// The outcome of a run. Lengths of `packing` and `container` are in output units (diameter).
@@ -106,6 +128,7 @@ struct SoftSphereResult {
     double max_overlap_wall = 0.0;     ///< largest sphere-wall overlap of the result, Dp
     std::vector<StageRecord> stages;   ///< initial, intermediate, final
     std::uint64_t neighbor_builds = 0; ///< Verlet-list rebuilds
+    std::uint32_t layers = 1;          ///< layers the fire solver built the bed in
     double seconds = 0.0;              ///< wall time of run()
 };
 
@@ -176,6 +199,10 @@ private:
 /// \throws ConvergenceError, Cancelled as SoftSphereGenerator::run
 SoftSphereResult relax_with_fire(const SoftSphereParameters& parameters,
                                  const RunControl& control = {});
+
+/// \return the number of layers relax_with_fire builds a bed in: floor(L0 / layer_height)
+/// when L0 > 2 layer_height, else 1.
+std::uint32_t fire_layers(const SoftSphereParameters& parameters);
 
 /// Run the whole algorithm with the chosen solver: SoftSphereGenerator(parameters).run(control)
 /// or relax_with_fire(parameters, control).

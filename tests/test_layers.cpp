@@ -1,0 +1,195 @@
+// The fire solver in layers (tall beds) and its checkpoints: the layer count, the bed it
+// ends with, resuming to the same bits, refusing a checkpoint of another run or a damaged one.
+#include <cmath>
+#include <cstring>
+#include <filesystem>
+#include <fstream>
+#include <string>
+
+#include <gtest/gtest.h>
+
+#include "packbed/checkpoint.hpp"
+#include "packbed/error.hpp"
+#include "packbed/soft_sphere.hpp"
+#include "packbed/volume.hpp"
+
+using namespace packbed;
+namespace fs = std::filesystem;
+
+namespace {
+
+/// a = 5, 600 spheres, layers 10 Dp: L0 = 30.2 Dp, three layers of about 200 spheres.
+SoftSphereParameters three_layers() {
+    SoftSphereParameters p;
+    p.aspect_ratio = 5.0;
+    p.particles = 600;
+    p.seed = 1;
+    p.solver = Solver::fire;
+    p.layer_height = 10.0;
+    return p;
+}
+
+/// Every state passed to on_layer, and the result.
+struct Recorded {
+    std::vector<LayerCheckpoint> states;
+    SoftSphereResult result;
+};
+
+Recorded run_recording(const SoftSphereParameters& p, const LayerCheckpoint* resume = nullptr) {
+    Recorded r;
+    RunControl control;
+    control.on_layer = [&](const LayerCheckpoint& s) { r.states.push_back(s); };
+    control.resume = resume;
+    r.result = relax_with_fire(p, control);
+    return r;
+}
+
+bool same_bits(const Packing& a, const Packing& b) {
+    return a.size() == b.size() &&
+           std::memcmp(a.centers.data(), b.centers.data(), a.size() * sizeof(Vec3)) == 0 &&
+           std::memcmp(a.radii.data(), b.radii.data(), a.size() * sizeof(double)) == 0;
+}
+
+fs::path scratch_file(const std::string& name) {
+    const fs::path d = fs::temp_directory_path() / "packbed-test-layers";
+    fs::create_directories(d);
+    return d / name;
+}
+
+} // namespace
+
+TEST(FireLayers, CountFollowsTheInitialHeight) {
+    SoftSphereParameters p;
+    p.solver = Solver::fire;
+    // The paper's case, L0 = 25.2 Dp, and the a = 10 validation beds (28.3 Dp): one piece.
+    EXPECT_EQ(fire_layers(p), 1u);
+    p.aspect_ratio = 10.0;
+    p.particles = 2250;
+    EXPECT_EQ(fire_layers(p), 1u);
+    // a = 20, 30 000 spheres: L0 = 2/3 30000 / (400 x 0.53) = 94.3 Dp, floor(94.3 / 30) = 3.
+    p.aspect_ratio = 20.0;
+    p.particles = 30000;
+    EXPECT_EQ(fire_layers(p), 3u);
+    // a = 50, a million: L0 = 503.1 Dp, 16 layers.
+    p.aspect_ratio = 50.0;
+    p.particles = 1000000;
+    EXPECT_EQ(fire_layers(p), 16u);
+    p.layer_height = 0.0; // one piece on request
+    EXPECT_EQ(fire_layers(p), 1u);
+    EXPECT_EQ(fire_layers(three_layers()), 3u);
+    p.layer_height = 5.0;
+    EXPECT_THROW(p.validate(), InvalidInput);
+}
+
+TEST(FireLayers, BedReachesTheToleranceInsideTheContainer) {
+    const SoftSphereParameters p = three_layers();
+    const Recorded r = run_recording(p);
+    const SoftSphereResult& res = r.result;
+    EXPECT_EQ(res.layers, 3u);
+    ASSERT_EQ(r.states.size(), 3u);
+    EXPECT_EQ(r.states.back().layers_done, 3u);
+    EXPECT_EQ(r.states.back().iterations, res.iterations);
+    // Measured here on the whole bed, not taken from the solver.
+    const Overlaps o = measure_overlaps(res.packing, res.container);
+    EXPECT_LT(o.pair, 1e-4);
+    EXPECT_LT(o.wall, 1e-4);
+    EXPECT_EQ(o.pair, res.max_overlap_pair);
+    ASSERT_EQ(res.stages.size(), 3u);
+    EXPECT_EQ(res.stages[0].iterations + res.stages[1].iterations + res.stages[2].iterations,
+              res.iterations);
+    EXPECT_EQ(res.stages[1].steps, 3u); // each layer once through the intermediate stage
+    double top = 0.0;
+    for (std::size_t i = 0; i < res.packing.size(); ++i) {
+        EXPECT_LE(std::hypot(res.packing.centers[i].x, res.packing.centers[i].y), 2.0 + 1e-4);
+        EXPECT_GE(res.packing.centers[i].z, 0.5);
+        top = std::max(top, res.packing.centers[i].z);
+    }
+    // Each layer's spheres were moved down onto the one below: the bed is one column, about
+    // 600 (pi / 6) / (pi 2.5^2 (1 - e)) = 28 Dp tall at e = 0.43, not L0 plus gaps.
+    EXPECT_GT(top, 24.0);
+    EXPECT_LT(top, 30.0);
+    const auto band = band_clear_of_ends(res.packing, 2.0);
+    ASSERT_TRUE(band);
+    const double e = void_fraction(res.packing, res.container, band->z_low, band->z_high);
+    EXPECT_NEAR(e, 0.4329, 0.005); // the paper's a = 5 bed (docs/validation.md), seed spread
+}
+
+TEST(FireLayers, ResumingFromAnyLayerGivesTheSameBits) {
+    const SoftSphereParameters p = three_layers();
+    const Recorded whole = run_recording(p);
+    ASSERT_EQ(whole.states.size(), 3u);
+    for (std::size_t k = 0; k < 2; ++k) {
+        const Recorded resumed = run_recording(p, &whole.states[k]);
+        EXPECT_TRUE(same_bits(resumed.result.packing, whole.result.packing))
+            << "after layer " << k + 1;
+        EXPECT_EQ(resumed.result.iterations, whole.result.iterations);
+        EXPECT_EQ(resumed.result.neighbor_builds, whole.result.neighbor_builds);
+        EXPECT_EQ(resumed.states.size(), 2 - k); // only the layers still to come
+    }
+    // Through a file: the doubles go out and come back with every bit.
+    const fs::path file = scratch_file("resume.ckpt");
+    write_checkpoint(file, p, whole.states[0]);
+    const LayerCheckpoint back = read_checkpoint(file, p);
+    EXPECT_TRUE(same_bits(back.packing, whole.states[0].packing));
+    ASSERT_EQ(back.stages.size(), whole.states[0].stages.size());
+    EXPECT_EQ(back.stages[1].mass_centre_window, whole.states[0].stages[1].mass_centre_window);
+    EXPECT_EQ(back.top, whole.states[0].top);
+    const Recorded from_file = run_recording(p, &back);
+    EXPECT_TRUE(same_bits(from_file.result.packing, whole.result.packing));
+    // A state of another bed is refused.
+    LayerCheckpoint wrong = whole.states[0];
+    wrong.packing.centers.pop_back();
+    wrong.packing.radii.pop_back();
+    EXPECT_THROW(run_recording(p, &wrong), InvalidInput);
+}
+
+TEST(FireLayers, CheckpointOfAnotherRunOrDamagedIsRefused) {
+    SoftSphereParameters p = three_layers();
+    LayerCheckpoint state;
+    state.layers_done = 1;
+    state.iterations = 1234;
+    state.top = 9.5;
+    state.packing.add({0.25, -0.5, 0.5}, 0.5);
+    state.packing.add({1.0, 0.0, 1.5}, 0.5);
+    const fs::path file = scratch_file("refuse.ckpt");
+    write_checkpoint(file, p, state);
+    EXPECT_FALSE(fs::exists(fs::path(file.string() + ".partial")));
+    EXPECT_EQ(read_checkpoint(file, p).iterations, 1234u);
+    p.max_iterations = 99; // may differ: it only bounds the run
+    EXPECT_NO_THROW(read_checkpoint(file, p));
+
+    auto message = [&](const fs::path& f, const SoftSphereParameters& q) {
+        try {
+            read_checkpoint(f, q);
+        } catch (const InvalidInput& e) {
+            return std::string(e.what());
+        }
+        return std::string("accepted");
+    };
+    SoftSphereParameters other = p;
+    other.seed = 2;
+    EXPECT_NE(message(file, other).find("seed = 1, this run has 2"), std::string::npos);
+    other = p;
+    other.layer_height = 12.0;
+    EXPECT_NE(message(file, other).find("layer-height"), std::string::npos);
+
+    std::string bytes;
+    {
+        std::ifstream in(file, std::ios::binary);
+        bytes.assign(std::istreambuf_iterator<char>(in), std::istreambuf_iterator<char>());
+    }
+    auto variant = [&](const std::string& name, const std::string& contents) {
+        const fs::path f = scratch_file(name);
+        std::ofstream(f, std::ios::binary) << contents;
+        return message(f, p);
+    };
+    std::string flipped = bytes;
+    flipped[flipped.size() - 3] ^= 0x10; // one bit of the last radius
+    EXPECT_NE(variant("flipped.ckpt", flipped).find("corrupt (the data do not match their hash)"),
+              std::string::npos);
+    EXPECT_NE(variant("short.ckpt", bytes.substr(0, bytes.size() - 8)).find("cut short"),
+              std::string::npos);
+    EXPECT_NE(variant("csv.ckpt", "x,y,z,r\n0,0,0.5,0.5\n").find("not a packbed checkpoint"),
+              std::string::npos);
+    EXPECT_NE(message(scratch_file("missing.ckpt"), p).find("cannot be read"), std::string::npos);
+}
