@@ -90,4 +90,23 @@ std::optional<double> StageTimeLeft::update(const Progress& progress, double sec
     return std::max(0.0, fitted_now / -slope);
 }
 
+std::optional<double> LayerTimeLeft::update(const Progress& progress, double seconds) {
+    if (!m_started || progress.layer != m_layer) {
+        if (m_started && progress.layer == m_layer + 1) {
+            ++m_timed;
+            m_timed_seconds += seconds - m_layer_start;
+        }
+        m_started = true;
+        m_layer = progress.layer;
+        m_layer_start = seconds;
+    }
+    if (m_timed == 0)
+        return std::nullopt;
+    const double mean = m_timed_seconds / m_timed;
+    const double to_come = progress.layers > progress.layer + 1
+                               ? static_cast<double>(progress.layers - progress.layer - 1)
+                               : 0.0;
+    return mean * to_come + std::max(0.0, mean - (seconds - m_layer_start));
+}
+
 } // namespace packbed

@@ -94,5 +94,30 @@ TEST(StageTimeLeft, SettlingMassCentreGivesTheTimeToThePapersRule) {
     EXPECT_NEAR(*left, settles_at - 30.0, 0.05);
 }
 
+TEST(LayerTimeLeft, MeanLayerTimeTimesTheLayersToCome) {
+    // Four layers; the first reported from t = 0 to 10 s, the second from t = 10 s. At t = 12 s:
+    // two layers still to come after the current one, 10 s each, and 8 s of the current one.
+    LayerTimeLeft estimate;
+    auto at = [&](std::uint32_t layer, double seconds) {
+        Progress p{"intermediate", 0, 1e-5, 7e-3, 0.0, 12.0};
+        p.layer = layer;
+        p.layers = 4;
+        return estimate.update(p, seconds);
+    };
+    for (double t = 0.0; t < 10.0; t += 1.0)
+        EXPECT_FALSE(at(0, t)) << "no layer over yet at t = " << t;
+    ASSERT_TRUE(at(1, 10.0));
+    const std::optional<double> left = at(1, 12.0);
+    ASSERT_TRUE(left);
+    EXPECT_DOUBLE_EQ(*left, 2 * 10.0 + 8.0);
+    // A layer slower than the mean: nothing left of it, the rest by the mean.
+    EXPECT_DOUBLE_EQ(*at(1, 25.0), 2 * 10.0);
+    // Second layer over after 20 s: mean 15 s, one layer to come plus all of the current one.
+    EXPECT_DOUBLE_EQ(*at(2, 30.0), 15.0 + 15.0);
+    // The last layer: only what is left of it.
+    EXPECT_DOUBLE_EQ(*at(3, 45.0), 15.0);
+    EXPECT_DOUBLE_EQ(*at(3, 70.0), 0.0);
+}
+
 } // namespace
 } // namespace packbed

@@ -1,6 +1,5 @@
 #include "progress.hpp"
 
-#include <algorithm>
 #include <cstdio>
 #include <cstdlib>
 #include <optional>
@@ -22,28 +21,15 @@ void TerminalProgress::operator()(const Progress& p) {
     const auto now = std::chrono::steady_clock::now();
     const double seconds = std::chrono::duration<double>(now - m_start).count();
     const std::optional<double> stage_left = m_time_left.update(p, seconds); // every report
-    double left = stage_left.value_or(0.0);
-    bool known = stage_left.has_value();
-    std::string layer;
-    if (p.layers > 1) {
-        // In layers: the mean time of the layers finished in this process, for those to come.
-        if (p.layer != m_layer) {
-            if (m_layer_start >= 0.0 && p.layer == m_layer + 1)
-                ++m_layers_timed, m_layer_seconds += seconds - m_layer_start;
-            m_layer = p.layer;
-            m_layer_start = seconds;
-        }
-        known = m_layers_timed > 0;
-        if (known) {
-            const double mean = m_layer_seconds / m_layers_timed;
-            left =
-                mean * (p.layers - p.layer - 1) + std::max(0.0, mean - (seconds - m_layer_start));
-        }
-        layer = fmt::format("layer {}/{}  ", p.layer + 1, p.layers);
-    }
+    const std::optional<double> run_left = m_layers_left.update(p, seconds);
+    // In layers the time left in the run; in one piece, in the stage.
+    const std::optional<double> left = p.layers > 1 ? run_left : stage_left;
+    const std::string layer =
+        p.layers > 1 ? fmt::format("layer {}/{}  ", p.layer + 1, p.layers) : std::string();
     if (m_drawn && now - m_last < std::chrono::milliseconds(100))
         return;
-    const std::string left_text = known ? fmt::format("~{:.0f} s left", left) : "estimating";
+    const std::string left_text =
+        left.has_value() ? fmt::format("~{:.0f} s left", left.value_or(0.0)) : "estimating";
     m_last = now;
     m_drawn = true;
     fmt::print(stderr,

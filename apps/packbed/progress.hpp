@@ -2,7 +2,6 @@
 #pragma once
 
 #include <chrono>
-#include <cstdint>
 
 #include "packbed/soft_sphere.hpp"
 #include "packbed/time_left.hpp"
@@ -35,10 +34,7 @@ private:
     StageTimeLeft m_time_left;
     std::chrono::steady_clock::time_point m_start = std::chrono::steady_clock::now();
     std::chrono::steady_clock::time_point m_last{};
-    std::uint32_t m_layer = 0;    // fire in layers: the layer last reported
-    double m_layer_start = -1.0;  // seconds at its first report
-    int m_layers_timed = 0;       // layers seen from start to end in this process
-    double m_layer_seconds = 0.0; // their time
+    LayerTimeLeft m_layers_left;
 };
 
 } // namespace packbed::cli

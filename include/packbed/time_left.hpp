@@ -2,6 +2,7 @@
 #pragma once
 
 #include <cstddef>
+#include <cstdint>
 #include <deque>
 #include <optional>
 #include <string>
@@ -46,6 +47,24 @@ private:
     double m_final_start_cg = 0.0; // Cg at the first report of the stage
     std::deque<double> m_mass_centres;
     std::vector<std::pair<double, double>> m_history; // (seconds, ln q) in this stage
+};
+
+/// Estimates how long a fire run in layers (relax_with_fire) still takes: the mean time of the
+/// layers seen from their first report to the next layer's, times the layers still to come,
+/// plus what the current layer has left of that mean. Nothing until one layer is over (a
+/// resumed run starts at a layer's beginning, so its first layer counts too).
+class LayerTimeLeft {
+public:
+    /// Take one progress report made `seconds` after the start of the run. \return the
+    /// seconds left in the run, or nothing when there is no estimate yet.
+    std::optional<double> update(const Progress& progress, double seconds);
+
+private:
+    bool m_started = false;
+    std::uint32_t m_layer = 0;
+    double m_layer_start = 0.0;
+    std::uint32_t m_timed = 0;
+    double m_timed_seconds = 0.0;
 };
 
 } // namespace packbed
