@@ -1,5 +1,6 @@
 #include "packbed/checkpoint.hpp"
 
+#include <algorithm>
 #include <bit>
 #include <cmath>
 #include <cstdint>
@@ -13,6 +14,7 @@
 #include <nlohmann/json.hpp>
 
 #include "packbed/error.hpp"
+#include "packbed/summary.hpp"
 
 namespace packbed {
 
@@ -25,17 +27,12 @@ static_assert(std::endian::native == std::endian::little,
 
 constexpr const char* magic = "packbed-checkpoint 1";
 
-/// Every parameter that changes what a run computes (max_iterations does not).
+/// The parameters a checkpoint records and a resumed run must match: all but max_iterations,
+/// which only bounds the run.
 json parameters_json(const SoftSphereParameters& p) {
-    return json::array(
-        {json::array({"aspect-ratio", p.aspect_ratio}), json::array({"particles", p.particles}),
-         json::array({"seed", p.seed}), json::array({"diameter", p.diameter}),
-         json::array({"e0", p.e0}), json::array({"ck", p.ck}), json::array({"cg-step", p.cg_step}),
-         json::array({"overlap-low", p.overlap_low}), json::array({"overlap-high", p.overlap_high}),
-         json::array({"tolerance", p.tolerance}), json::array({"mc-period", p.mc_period}),
-         json::array({"mc-window", p.mc_window}), json::array({"mc-tolerance", p.mc_tolerance}),
-         json::array({"update", to_string(p.update)}), json::array({"solver", to_string(p.solver)}),
-         json::array({"skin", p.skin}), json::array({"layer-height", p.layer_height})});
+    json all = soft_sphere_parameters_json(p);
+    all.erase("max_iterations");
+    return all;
 }
 
 json stage_json(const StageRecord& s) {
@@ -169,15 +166,15 @@ LayerCheckpoint read_checkpoint(const std::filesystem::path& path,
     }
 
     const json wanted = parameters_json(parameters);
-    for (std::size_t k = 0; k < wanted.size(); ++k) {
-        const json* found = nullptr;
-        for (const json& entry : stored)
-            if (entry.is_array() && entry.size() == 2 && entry[0] == wanted[k][0])
-                found = &entry[1];
-        if (!found || *found != wanted[k][1])
-            throw refuse(fmt::format("it was taken with {} = {}, this run has {}",
-                                     wanted[k][0].get<std::string>(),
-                                     found ? found->dump() : "(none)", wanted[k][1].dump()));
+    for (const auto& [key, value] : wanted.items()) {
+        const auto found = stored.find(key);
+        if (found == stored.end() || *found != value) {
+            std::string option = key; // the command line's name
+            std::replace(option.begin(), option.end(), '_', '-');
+            throw refuse(fmt::format("it was taken with {} = {}, this run has {}", option,
+                                     found == stored.end() ? "(none)" : found->dump(),
+                                     value.dump()));
+        }
     }
     if (data.size() != spheres * 4 * sizeof(double))
         throw refuse(fmt::format("cut short or padded ({} bytes of data for {} spheres, "

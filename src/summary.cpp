@@ -9,6 +9,27 @@
 
 namespace packbed {
 
+nlohmann::json soft_sphere_parameters_json(const SoftSphereParameters& p) {
+    return {{"aspect_ratio", p.aspect_ratio},
+            {"particles", p.particles},
+            {"seed", p.seed},
+            {"diameter", p.diameter},
+            {"e0", p.e0},
+            {"ck", p.ck},
+            {"cg_step", p.cg_step},
+            {"overlap_low", p.overlap_low},
+            {"overlap_high", p.overlap_high},
+            {"tolerance", p.tolerance},
+            {"mc_period", p.mc_period},
+            {"mc_window", p.mc_window},
+            {"mc_tolerance", p.mc_tolerance},
+            {"update", to_string(p.update)},
+            {"solver", to_string(p.solver)},
+            {"skin", p.skin},
+            {"layer_height", p.layer_height},
+            {"max_iterations", p.max_iterations}};
+}
+
 nlohmann::json soft_sphere_summary(const SoftSphereParameters& p, const SoftSphereResult& result,
                                    double band_clearance, int threads) {
     using nlohmann::json;
@@ -54,22 +75,13 @@ nlohmann::json soft_sphere_summary(const SoftSphereParameters& p, const SoftSphe
                           {"max_overlap_wall", s.max_overlap_wall},
                           {"mass_centre_z", s.mass_centre_z * d}});
     summary["stages"] = stages;
-    summary["parameters"] = {{"e0", p.e0},
-                             {"ck", p.ck},
-                             {"cg_step", p.cg_step},
-                             {"overlap_low", p.overlap_low},
-                             {"overlap_high", p.overlap_high},
-                             {"tolerance", p.tolerance},
-                             {"mc_period", p.mc_period},
-                             {"mc_window", p.mc_window},
-                             {"mc_tolerance", p.mc_tolerance},
-                             {"update", to_string(p.update)},
-                             {"solver", to_string(p.solver)},
-                             {"skin", p.skin},
-                             {"layer_height", p.layer_height},
-                             {"max_iterations", p.max_iterations},
-                             {"band_clearance", band_clearance},
-                             {"threads", threads}};
+    summary["parameters"] = soft_sphere_parameters_json(p);
+    summary["parameters"].erase("aspect_ratio"); // these four are at the top level
+    summary["parameters"].erase("particles");
+    summary["parameters"].erase("seed");
+    summary["parameters"].erase("diameter");
+    summary["parameters"]["band_clearance"] = band_clearance;
+    summary["parameters"]["threads"] = threads;
     summary["units"] = {{"length", "diameter units as given by --diameter"},
                         {"max_overlap_pair", "Dp"},
                         {"max_overlap_wall", "Dp"},

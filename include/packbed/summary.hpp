@@ -9,6 +9,10 @@
 
 namespace packbed {
 
+/// Every field of `parameters` as a JSON object (keys: the field names; the update order and
+/// solver by name): the `parameters` of summary.json, and what a checkpoint must match.
+nlohmann::json soft_sphere_parameters_json(const SoftSphereParameters& parameters);
+
 /// Everything a user needs to know about a soft-sphere run: inputs, every parameter, the
 /// container, the overall void fraction over the band clear of the ends, the largest overlaps,
 /// the stages, the time and the version. Lengths in output units unless a key says "_dp".
