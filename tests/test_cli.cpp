@@ -412,6 +412,11 @@ INSTANTIATE_TEST_SUITE_P(
         BadInput{"generate --overlap-low 0.02 --overlap-high 0.01",
                  "packbed generate: overlap-high = 0.01 is not allowed; allowed: overlap-low "
                  "(0.02) < overlap-high < 0.5 (Dp)"},
+        BadInput{"generate --layer-height 5",
+                 "packbed generate: layer-height = 5 is not allowed; allowed: 0 (one piece) or "
+                 "10 to 1000000 (Dp)"},
+        BadInput{"generate --layer-height -1",
+                 "packbed: --layer-height: -1 is not allowed; allowed: a number in [0, 1e+06]"},
         BadInput{"generate --update sideways",
                  "packbed: --update: sideways not in {in-place,simultaneous}"},
         BadInput{"generate --solver newton", "packbed: --solver: newton not in {paper,fire}"},
@@ -420,9 +425,9 @@ INSTANTIATE_TEST_SUITE_P(
                  "'packbed generate --help' for the options"},
         BadInput{"generate --config @D/unknown.toml",
                  "packbed: --config: line 2: unknown key 'warp_speed'; allowed: aspect-ratio, "
-                 "band-clearance, cg-step, ck, diameter, e0, max-iterations, mc-period, "
-                 "mc-tolerance, mc-window, out, overlap-high, overlap-low, particles, quiet, "
-                 "seed, skin, solver, threads, tolerance, update"},
+                 "band-clearance, cg-step, checkpoint, ck, diameter, e0, layer-height, "
+                 "max-iterations, mc-period, mc-tolerance, mc-window, out, overlap-high, "
+                 "overlap-low, particles, quiet, seed, skin, solver, threads, tolerance, update"},
         BadInput{"generate --config @D/broken.toml",
                  "packbed: --config: line 1, column 16: Error while parsing value: could not "
                  "determine value type"},
