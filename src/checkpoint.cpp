@@ -8,6 +8,7 @@
 #include <fstream>
 #include <iterator>
 #include <string>
+#include <string_view>
 #include <system_error>
 
 #include <fmt/format.h>
@@ -25,7 +26,10 @@ using nlohmann::json;
 static_assert(std::endian::native == std::endian::little,
               "checkpoint data are written as the host's doubles, little-endian");
 
-constexpr const char* magic = "packbed-checkpoint 1";
+// The first line: the format's name and number. Format 1 (commit 803e157 only) listed the
+// parameters as [name, value] pairs; format 2 as an object (soft_sphere_parameters_json).
+constexpr std::string_view magic = "packbed-checkpoint ";
+constexpr int format = 2;
 
 /// The parameters a checkpoint records and a resumed run must match: all but max_iterations,
 /// which only bounds the run.
@@ -110,7 +114,7 @@ void write_checkpoint(const std::filesystem::path& path, const SoftSphereParamet
     temporary += ".partial";
     {
         std::ofstream out(temporary, std::ios::binary | std::ios::trunc);
-        out << magic << '\n' << header.dump() << '\n';
+        out << magic << format << '\n' << header.dump() << '\n';
         out.write(data.data(), static_cast<std::streamsize>(data.size()));
         out.close();
         if (!out)
@@ -138,9 +142,13 @@ LayerCheckpoint read_checkpoint(const std::filesystem::path& path,
     if (!in)
         throw refuse("cannot be read");
     std::string line;
-    if (!std::getline(in, line) || line != magic)
-        throw refuse("not a packbed checkpoint (its first line is not '" + std::string(magic) +
-                     "')");
+    if (!std::getline(in, line) || !line.starts_with(magic))
+        throw refuse(
+            fmt::format("not a packbed checkpoint (its first line is not '{}{}')", magic, format));
+    if (line != fmt::format("{}{}", magic, format))
+        throw refuse(fmt::format("written in checkpoint format '{}', this packbed reads format "
+                                 "{} (resume with the packbed that wrote it)",
+                                 line.substr(magic.size()), format));
     std::string header_text;
     if (!std::getline(in, header_text))
         throw refuse("cut short (no header)");

@@ -191,5 +191,10 @@ TEST(FireLayers, CheckpointOfAnotherRunOrDamagedIsRefused) {
               std::string::npos);
     EXPECT_NE(variant("csv.ckpt", "x,y,z,r\n0,0,0.5,0.5\n").find("not a packbed checkpoint"),
               std::string::npos);
+    std::string older = bytes;
+    older.replace(0, older.find('\n'), "packbed-checkpoint 1");
+    EXPECT_NE(
+        variant("older.ckpt", older).find("checkpoint format '1', this packbed reads format 2"),
+        std::string::npos);
     EXPECT_NE(message(scratch_file("missing.ckpt"), p).find("cannot be read"), std::string::npos);
 }

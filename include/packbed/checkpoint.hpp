@@ -10,7 +10,7 @@ namespace packbed {
 
 /// Write `checkpoint`, taken in a run with `parameters`, to `path`: under a temporary name in
 /// the same folder, then renamed, so that `path` always holds a whole checkpoint.
-/// Format: a line `packbed-checkpoint 1`; one line of JSON (the parameters, the counters, the
+/// Format: a line `packbed-checkpoint 2`; one line of JSON (the parameters, the counters, the
 /// stage records, the sphere count and the FNV-1a 64 hash of the data); then the data: x, y,
 /// z and r of every sphere in generation order, little-endian IEEE doubles.
 /// \throws InvalidInput naming the file when it cannot be written
