@@ -178,6 +178,11 @@ TEST(Cli, CheckpointOfAnotherRunIsRefused) {
     EXPECT_EQ(o.status, 2);
     EXPECT_TRUE(one_line(o)) << o.err;
     EXPECT_NE(o.err.find("only a fire run in layers can be resumed"), std::string::npos) << o.err;
+    // A folder that does not exist: refused before the run.
+    o = packbed(bed + "/no/such/folder/bed.ckpt");
+    EXPECT_EQ(o.status, 2);
+    EXPECT_TRUE(one_line(o)) << o.err;
+    EXPECT_NE(o.err.find("cannot be written"), std::string::npos) << o.err;
     // Not a checkpoint.
     std::ofstream(checkpoint) << "x,y,z,r\n0,0,0.5,0.5\n";
     o = packbed(bed);

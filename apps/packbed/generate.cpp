@@ -2,6 +2,7 @@
 #include <atomic>
 #include <csignal>
 #include <filesystem>
+#include <fstream>
 #include <limits>
 #include <memory>
 #include <optional>
@@ -66,6 +67,16 @@ int run_generate(GenerateOptions& o) {
                 o.checkpoint, o.params.solver == Solver::fire ? "in one piece" : "paper mode",
                 initial_bed_height(o.params.particles, o.params.aspect_ratio, o.params.e0),
                 o.params.layer_height));
+        {
+            // Refuse an unwritable checkpoint now, not after the first layer.
+            const std::string probe = o.checkpoint + ".partial";
+            const bool writable = static_cast<bool>(std::ofstream(probe, std::ios::app));
+            std::filesystem::remove(probe);
+            if (!writable)
+                throw InvalidInput(fmt::format("--checkpoint {}: cannot be written; allowed: a "
+                                               "file in a writable folder",
+                                               o.checkpoint));
+        }
         if (std::filesystem::exists(o.checkpoint)) {
             resume = read_checkpoint(o.checkpoint, o.params);
             control.resume = &*resume;
