@@ -435,8 +435,6 @@ SoftSphereResult relax_with_fire(const SoftSphereParameters& parameters,
             members[l].push_back(i);
         }
         std::vector<Vec3> position = start.centers;
-        std::vector<std::uint32_t> placed; // settled spheres, layer by layer
-        placed.reserve(n);
         double top = 0.0; // highest settled centre
         std::uint32_t first = 0;
         if (const LayerCheckpoint* from = control.resume) {
@@ -451,20 +449,19 @@ SoftSphereResult relax_with_fire(const SoftSphereParameters& parameters,
             builds = from->neighbor_builds;
             result.stages = from->stages;
             first = from->layers_done;
-            for (std::uint32_t l = 0; l < first; ++l)
-                placed.insert(placed.end(), members[l].begin(), members[l].end());
         }
         detail::SoftBed part(p.aspect_ratio);
         for (std::uint32_t l = first; l < layers; ++l) {
             // the part's spheres: fixed shell, free band, new slice (each in a fixed order)
             std::vector<std::uint32_t> ids, band;
             const double datum = l == 0 ? 0.0 : top - layer_band;
-            for (const std::uint32_t i : placed) {
-                if (position[i].z > datum)
-                    band.push_back(i);
-                else if (position[i].z > datum - layer_shell)
-                    ids.push_back(i);
-            }
+            for (std::uint32_t below = 0; below < l; ++below) // the settled layers
+                for (const std::uint32_t i : members[below]) {
+                    if (position[i].z > datum)
+                        band.push_back(i);
+                    else if (position[i].z > datum - layer_shell)
+                        ids.push_back(i);
+                }
             const auto fixed = static_cast<std::uint32_t>(ids.size());
             ids.insert(ids.end(), band.begin(), band.end());
             const double lift = l == 0 ? 0.0 : top + 1.0 - l * slice;
@@ -496,7 +493,6 @@ SoftSphereResult relax_with_fire(const SoftSphereParameters& parameters,
                 position[ids[k]] = moved.centers[k];
                 top = std::max(top, moved.centers[k].z);
             }
-            placed.insert(placed.end(), members[l].begin(), members[l].end());
             if (control.on_layer) {
                 LayerCheckpoint state{l + 1, steps, builds, top, {}, result.stages};
                 state.packing.centers = position;
