@@ -6,6 +6,8 @@
 #include <limits>
 #include <utility>
 
+#include <omp.h>
+
 #include "parallel.hpp"
 
 namespace packbed {
@@ -73,19 +75,17 @@ struct CellGrid {
         return (static_cast<std::size_t>(iz) * ny + iy) * nx + ix;
     }
 
-    /// Call f(j) for every sphere j in the 27 cells around the cell of sphere i.
-    template <class F> void for_each_nearby(std::size_t i, F&& f) const {
+    /// Call f(begin, end) for the runs of `sorted` that hold the spheres of the 27 cells around
+    /// the cell of sphere i: the up to 3 cells of a row along x are one run.
+    template <class F> void for_each_run(std::size_t i, F&& f) const {
         const std::size_t c = cell_of[i];
         const int ix = static_cast<int>(c % nx);
         const int iy = static_cast<int>((c / nx) % ny);
         const int iz = static_cast<int>(c / (static_cast<std::size_t>(nx) * ny));
+        const int x0 = std::max(ix - 1, 0), x1 = std::min(ix + 1, nx - 1);
         for (int z = std::max(iz - 1, 0); z <= std::min(iz + 1, nz - 1); ++z)
             for (int y = std::max(iy - 1, 0); y <= std::min(iy + 1, ny - 1); ++y)
-                for (int x = std::max(ix - 1, 0); x <= std::min(ix + 1, nx - 1); ++x) {
-                    const std::size_t n = cell(x, y, z);
-                    for (std::uint32_t k = cell_start[n]; k < cell_start[n + 1]; ++k)
-                        f(sorted[k]);
-                }
+                f(cell_start[cell(x0, y, z)], cell_start[cell(x1, y, z) + 1]);
     }
 };
 
@@ -110,31 +110,49 @@ void NeighborList::build(std::span<const Vec3> centers, std::span<const double> 
         const double cut = radii[i] + radii[j] + skin;
         return j != i && norm2(centers[j] - centers[i]) < cut * cut;
     };
-    // Two passes (count, then fill) so that each row is written by one thread only and the
-    // list is the same whatever the number of threads.
-    std::vector<std::uint32_t> counts(n);
-#pragma omp parallel for schedule(static) if (n >= detail::parallel_min_spheres)
-    for (std::size_t i = 0; i < n; ++i) {
-        std::uint32_t count = 0;
-        grid.for_each_nearby(i, [&](std::uint32_t j) { count += within(i, j) ? 1 : 0; });
-        counts[i] = count;
-    }
+    // One search per sphere: each thread fills the rows of one contiguous range of spheres
+    // into its own buffer, then copies them to their place; the rows and their order are the
+    // same whatever the number of threads.
     m_offsets.assign(n + 1, 0);
-    for (std::size_t i = 0; i < n; ++i)
-        m_offsets[i + 1] = m_offsets[i] + counts[i];
-    m_neighbors.resize(m_offsets[n]);
-#pragma omp parallel for schedule(static) if (n >= detail::parallel_min_spheres)
-    for (std::size_t i = 0; i < n; ++i) {
-        std::uint32_t* out = m_neighbors.data() + m_offsets[i];
-        std::uint32_t* const row = out;
-        grid.for_each_nearby(i, [&](std::uint32_t j) {
-            if (within(i, j))
-                *out++ = j;
-        });
-        if (key.empty())
-            std::sort(row, out);
-        else
-            std::sort(row, out, [&](std::uint32_t a, std::uint32_t b) { return key[a] < key[b]; });
+    const bool parallel = n >= detail::parallel_min_spheres;
+    std::vector<std::vector<std::uint32_t>> buffers(parallel ? omp_get_max_threads() : 1);
+#pragma omp parallel if (parallel)
+    {
+        const auto threads = static_cast<std::size_t>(omp_get_num_threads());
+        const auto t = static_cast<std::size_t>(omp_get_thread_num());
+        const std::size_t begin = n * t / threads, end = n * (t + 1) / threads;
+        std::vector<std::uint32_t>& rows = buffers[t];
+        rows.reserve(8 * (end - begin));
+        for (std::size_t i = begin; i < end; ++i) {
+            const std::size_t first = rows.size();
+            std::size_t candidates = 0;
+            grid.for_each_run(i, [&](std::uint32_t b, std::uint32_t e) { candidates += e - b; });
+            rows.resize(first + candidates);
+            std::size_t count = first; // every candidate written, the kept ones counted
+            grid.for_each_run(i, [&](std::uint32_t b, std::uint32_t e) {
+                for (std::uint32_t k = b; k < e; ++k) {
+                    const std::uint32_t j = grid.sorted[k];
+                    rows[count] = j;
+                    count += within(i, j) ? 1 : 0;
+                }
+            });
+            rows.resize(count);
+            const auto row = rows.begin() + static_cast<std::ptrdiff_t>(first);
+            if (key.empty())
+                std::sort(row, rows.end());
+            else
+                std::sort(row, rows.end(),
+                          [&](std::uint32_t a, std::uint32_t b) { return key[a] < key[b]; });
+            m_offsets[i + 1] = static_cast<std::uint32_t>(rows.size() - first);
+        }
+#pragma omp barrier
+#pragma omp single
+        {
+            for (std::size_t i = 0; i < n; ++i)
+                m_offsets[i + 1] += m_offsets[i];
+            m_neighbors.resize(m_offsets[n]);
+        }
+        std::copy(rows.begin(), rows.end(), m_neighbors.begin() + m_offsets[begin]);
     }
     number_pairs();
     m_reference.assign(centers.begin(), centers.end());
@@ -145,37 +163,45 @@ void NeighborList::build(std::span<const Vec3> centers, std::span<const double> 
 void NeighborList::number_pairs() {
     const std::size_t n = m_offsets.size() - 1;
     m_upper_offsets.assign(n + 1, 0);
+    const std::uint32_t* const offsets = m_offsets.data();
+    const std::uint32_t* const neighbors = m_neighbors.data();
     for (std::size_t i = 0; i < n; ++i) {
         std::uint32_t count = 0;
-        for (const std::uint32_t j : neighbors_of(i))
-            count += j > i ? 1 : 0;
+        for (std::uint32_t e = offsets[i]; e < offsets[i + 1]; ++e)
+            count += neighbors[e] > i ? 1 : 0;
         m_upper_offsets[i + 1] = m_upper_offsets[i] + count;
     }
     m_upper.resize(m_upper_offsets[n]);
     m_owner.resize(m_upper_offsets[n]);
     m_pair_of.resize(m_neighbors.size());
+    // Local pointers: the loops write through them, and the compiler could not otherwise keep
+    // the members' data pointers in registers.
+    const std::uint32_t* const upper_offsets = m_upper_offsets.data();
+    std::uint32_t* const upper = m_upper.data();
+    std::uint32_t* const owner = m_owner.data();
+    std::uint32_t* const pair_of = m_pair_of.data();
     // Pair (i, j > i) is numbered in row i; row j finds it among the upper neighbours of i.
     // Each loop writes only its own row: the same numbers for any number of threads.
 #pragma omp parallel for schedule(static) if (n >= detail::parallel_min_spheres)
     for (std::size_t i = 0; i < n; ++i) {
-        std::uint32_t p = m_upper_offsets[i];
-        for (std::uint32_t e = m_offsets[i]; e < m_offsets[i + 1]; ++e)
-            if (m_neighbors[e] > i) {
-                m_upper[p] = m_neighbors[e];
-                m_owner[p] = static_cast<std::uint32_t>(i);
-                m_pair_of[e] = p++;
+        std::uint32_t p = upper_offsets[i];
+        for (std::uint32_t e = offsets[i]; e < offsets[i + 1]; ++e)
+            if (neighbors[e] > i) {
+                upper[p] = neighbors[e];
+                owner[p] = static_cast<std::uint32_t>(i);
+                pair_of[e] = p++;
             }
     }
 #pragma omp parallel for schedule(static) if (n >= detail::parallel_min_spheres)
     for (std::size_t i = 0; i < n; ++i)
-        for (std::uint32_t e = m_offsets[i]; e < m_offsets[i + 1]; ++e) {
-            const std::uint32_t j = m_neighbors[e];
+        for (std::uint32_t e = offsets[i]; e < offsets[i + 1]; ++e) {
+            const std::uint32_t j = neighbors[e];
             if (j > i)
                 continue;
-            std::uint32_t p = m_upper_offsets[j];
-            while (m_upper[p] != i)
+            std::uint32_t p = upper_offsets[j];
+            while (upper[p] != i)
                 ++p;
-            m_pair_of[e] = p;
+            pair_of[e] = p;
         }
 }
 

@@ -4,6 +4,7 @@
 #include <set>
 
 #include <gtest/gtest.h>
+#include <omp.h>
 
 #include "packbed/neighbor_list.hpp"
 
@@ -65,6 +66,32 @@ TEST_P(NeighborListVsBruteForce, SamePairs) {
 INSTANTIATE_TEST_SUITE_P(Skins, NeighborListVsBruteForce,
                          ::testing::Combine(::testing::Values(0.0, 0.1, 0.4),
                                             ::testing::Values(false, true)));
+
+TEST(NeighborList, SameRowsAndPairNumbersWhateverTheThreads) {
+    // 2 000 spheres: above detail::parallel_min_spheres, so the rows are found by several
+    // threads, each into its own buffer; the list must not depend on how they split the rows.
+    const Cloud c = random_cloud(2000, 8.0, true, 5);
+    auto rows_and_pairs = [&](int threads) {
+        const int saved = omp_get_max_threads();
+        omp_set_num_threads(threads);
+        NeighborList list;
+        list.build(c.centers, c.radii, 0.1);
+        omp_set_num_threads(saved);
+        std::vector<std::uint32_t> out;
+        for (std::size_t i = 0; i < c.centers.size(); ++i) {
+            const auto row = list.neighbors_of(i);
+            const auto numbers = list.pair_numbers_of(i);
+            out.push_back(static_cast<std::uint32_t>(row.size()));
+            out.insert(out.end(), row.begin(), row.end());
+            out.insert(out.end(), numbers.begin(), numbers.end());
+        }
+        return out;
+    };
+    const auto one = rows_and_pairs(1);
+    ASSERT_GT(one.size(), 2 * 2000u + 2000u); // some rows have neighbours
+    EXPECT_EQ(rows_and_pairs(2), one);
+    EXPECT_EQ(rows_and_pairs(3), one);
+}
 
 TEST(NeighborList, RebuildOnlyAfterHalfSkinDisplacement) {
     Cloud c = random_cloud(100, 4.0, false, 7);
