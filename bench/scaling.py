@@ -77,7 +77,7 @@ def plot(args, rows):
     lines = ["set terminal svg size 760,500 font 'sans,12'",
              f"set output '{os.path.join(args.out, 'scaling.svg')}'",
              "set logscale xy", "set grid", "set key top left", "set xrange [500:2e6]",
-             "set yrange [1:3000]", "set xlabel 'spheres Np'",
+             "set yrange [1:30000]", "set xlabel 'spheres Np'",
              "set ylabel 'wall time of packbed generate (s)'",
              f"set title 'seed 1, {args.threads} threads, a = {args.aspect_ratio:g} "
              f"(Np = 1e6: a = 50); open marks: stopped at the {args.limit:g} s limit'",

@@ -98,7 +98,7 @@ std::vector<std::uint32_t> spatial_order(std::span<const Vec3> centers, double e
 }
 
 void NeighborList::build(std::span<const Vec3> centers, std::span<const double> radii, double skin,
-                         std::span<const std::uint32_t> key) {
+                         std::span<const std::uint32_t> key, bool number_pairs) {
     assert(centers.size() == radii.size());
     assert(key.empty() || key.size() == centers.size());
     const std::size_t n = centers.size();
@@ -113,6 +113,8 @@ void NeighborList::build(std::span<const Vec3> centers, std::span<const double> 
     // One search per sphere: each thread fills the rows of one contiguous range of spheres
     // into its own buffer, then copies them to their place; the rows and their order are the
     // same whatever the number of threads.
+    // The buffers are freed before the pairs are numbered: no more memory at its peak than
+    // the rows and the pair arrays.
     m_offsets.assign(n + 1, 0);
     const bool parallel = n >= detail::parallel_min_spheres;
     std::vector<std::vector<std::uint32_t>> buffers(parallel ? omp_get_max_threads() : 1);
@@ -154,7 +156,16 @@ void NeighborList::build(std::span<const Vec3> centers, std::span<const double> 
         }
         std::copy(rows.begin(), rows.end(), m_neighbors.begin() + m_offsets[begin]);
     }
-    number_pairs();
+    buffers = {};
+    if (number_pairs) {
+        this->number_pairs();
+    } else {
+        m_upper_offsets.assign(n + 1, 0);
+        for (auto* v : {&m_upper, &m_owner, &m_pair_of}) {
+            v->clear();
+            v->shrink_to_fit();
+        }
+    }
     m_reference.assign(centers.begin(), centers.end());
     m_skin = skin;
     ++m_builds;

@@ -93,6 +93,21 @@ TEST(NeighborList, SameRowsAndPairNumbersWhateverTheThreads) {
     EXPECT_EQ(rows_and_pairs(3), one);
 }
 
+TEST(NeighborList, RowsOnlyKeepTheRowsAndNoPairs) {
+    const Cloud c = random_cloud(2000, 8.0, false, 9);
+    NeighborList numbered, rows_only;
+    numbered.build(c.centers, c.radii, 0.2);
+    rows_only.build(c.centers, c.radii, 0.2, {}, false);
+    ASSERT_GT(numbered.pairs(), 1000u);
+    EXPECT_EQ(rows_only.pairs(), 0u);
+    for (std::size_t i = 0; i < c.centers.size(); ++i) {
+        const auto a = numbered.neighbors_of(i), b = rows_only.neighbors_of(i);
+        ASSERT_TRUE(std::equal(a.begin(), a.end(), b.begin(), b.end())) << "row " << i;
+        EXPECT_TRUE(rows_only.upper_neighbors_of(i).empty());
+        EXPECT_TRUE(rows_only.pair_numbers_of(i).empty());
+    }
+}
+
 TEST(NeighborList, RebuildOnlyAfterHalfSkinDisplacement) {
     Cloud c = random_cloud(100, 4.0, false, 7);
     NeighborList list;

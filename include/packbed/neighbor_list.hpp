@@ -27,8 +27,11 @@ public:
     /// \param key when not empty, rows are ordered by increasing key[j] instead of j (one
     /// value per sphere, all different): a caller that stores its spheres in another order
     /// than its own numbering keeps the order in which neighbours are summed.
+    /// \param number_pairs false: rows only, no pair numbers (upper_neighbors_of,
+    /// pair_numbers_of, pairs() and the pair arrays are empty), which saves their memory
+    /// (twice that of the rows) for callers that only walk the rows.
     void build(std::span<const Vec3> centers, std::span<const double> radii, double skin,
-               std::span<const std::uint32_t> key = {});
+               std::span<const std::uint32_t> key = {}, bool number_pairs = true);
 
     /// \return true when some sphere has moved more than skin/2 since the last build (or
     /// there was no build yet, or the number of spheres changed).
@@ -49,6 +52,8 @@ public:
     /// \return for each entry of neighbors_of(i), the number of its pair: a quantity computed
     /// once per pair is read from both of its rows.
     std::span<const std::uint32_t> pair_numbers_of(std::size_t i) const {
+        if (m_pair_of.empty()) // built without pair numbers
+            return {};
         return {m_pair_of.data() + m_offsets[i], m_pair_of.data() + m_offsets[i + 1]};
     }
     /// \return the number of listed pairs (each counted once).
