@@ -98,7 +98,7 @@ std::vector<std::uint32_t> spatial_order(std::span<const Vec3> centers, double e
 }
 
 void NeighborList::build(std::span<const Vec3> centers, std::span<const double> radii, double skin,
-                         std::span<const std::uint32_t> key, bool number_pairs) {
+                         std::span<const std::uint32_t> key, bool with_pair_numbers) {
     assert(centers.size() == radii.size());
     assert(key.empty() || key.size() == centers.size());
     const std::size_t n = centers.size();
@@ -113,8 +113,6 @@ void NeighborList::build(std::span<const Vec3> centers, std::span<const double> 
     // One search per sphere: each thread fills the rows of one contiguous range of spheres
     // into its own buffer, then copies them to their place; the rows and their order are the
     // same whatever the number of threads.
-    // The buffers are freed before the pairs are numbered: no more memory at its peak than
-    // the rows and the pair arrays.
     m_offsets.assign(n + 1, 0);
     const bool parallel = n >= detail::parallel_min_spheres;
     std::vector<std::vector<std::uint32_t>> buffers(parallel ? omp_get_max_threads() : 1);
@@ -156,9 +154,9 @@ void NeighborList::build(std::span<const Vec3> centers, std::span<const double> 
         }
         std::copy(rows.begin(), rows.end(), m_neighbors.begin() + m_offsets[begin]);
     }
-    buffers = {};
-    if (number_pairs) {
-        this->number_pairs();
+    buffers = {}; // freed before the numbering: the peak stays that of rows and pair arrays
+    if (with_pair_numbers) {
+        number_pairs();
     } else {
         m_upper_offsets.assign(n + 1, 0);
         for (auto* v : {&m_upper, &m_owner, &m_pair_of}) {

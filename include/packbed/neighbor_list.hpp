@@ -27,11 +27,11 @@ public:
     /// \param key when not empty, rows are ordered by increasing key[j] instead of j (one
     /// value per sphere, all different): a caller that stores its spheres in another order
     /// than its own numbering keeps the order in which neighbours are summed.
-    /// \param number_pairs false: rows only, no pair numbers (upper_neighbors_of,
+    /// \param with_pair_numbers false: rows only, no pair numbers (upper_neighbors_of,
     /// pair_numbers_of, pairs() and the pair arrays are empty), which saves their memory
     /// (twice that of the rows) for callers that only walk the rows.
     void build(std::span<const Vec3> centers, std::span<const double> radii, double skin,
-               std::span<const std::uint32_t> key = {}, bool number_pairs = true);
+               std::span<const std::uint32_t> key = {}, bool with_pair_numbers = true);
 
     /// \return true when some sphere has moved more than skin/2 since the last build (or
     /// there was no build yet, or the number of spheres changed).
