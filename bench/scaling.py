@@ -35,7 +35,7 @@ def run_one(args, solver, n, a, out):
     os.makedirs(out, exist_ok=True)
     cmd = [args.packbed, "generate", "--solver", solver, "--aspect-ratio", f"{a:g}",
            "--particles", str(n), "--seed", "1", "--threads", str(args.threads), "--quiet",
-           "--out", out]
+           "--force", "--out", out]
     env = dict(os.environ, OMP_DYNAMIC="false")  # the threads asked for, whatever the load
     start = time.monotonic()
     proc = subprocess.Popen(cmd, env=env)

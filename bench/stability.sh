@@ -19,7 +19,7 @@ for ck in $cks; do
     row="| $ck | $seed |"
     for update in in-place simultaneous; do
       if "$exe" generate -a "$a" -n "$n" -s "$seed" --ck "$ck" --update "$update" \
-          --max-iterations "$max" --quiet --threads 1 --out "$out/run" 2>"$out/err"; then
+          --max-iterations "$max" --quiet --threads 1 --force --out "$out/run" 2>"$out/err"; then
         cell=$(python3 -c "import json,sys; s=json.load(open(sys.argv[1])); print(f\"{s['iterations']} it, e = {s['void_fraction']:.4f}\")" "$out/run/summary.json")
       else
         cell="fails: $(sed -E 's/^packbed generate: //; s/ \(.*//; s/;.*//' "$out/err")"

@@ -26,7 +26,7 @@ for seed in $seeds; do
       extra=(--update "${config%%:*}" --threads "${config##*:}")
     fi
     "$exe" generate --aspect-ratio "$a" --particles "$n" --seed "$seed" "${extra[@]}" \
-      --quiet --out "$out/run"
+      --quiet --force --out "$out/run"
     python3 - "$out/run/summary.json" <<'PY'
 import json, sys
 s = json.load(open(sys.argv[1]))

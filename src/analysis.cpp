@@ -3,13 +3,18 @@
 #include <algorithm>
 #include <cmath>
 #include <cstdint>
+#include <exception>
+#include <limits>
 #include <numbers>
+#include <span>
+#include <string>
 #include <utility>
 
 #include <fmt/format.h>
+#include <omp.h>
 
 #include "packbed/error.hpp"
-#include "packbed/neighbor_list.hpp"
+#include "packbed/limits.hpp"
 #include "parallel.hpp"
 
 namespace packbed {
@@ -22,50 +27,84 @@ constexpr double pi = std::numbers::pi;
 /// are added in chunk order: the same bits whatever the number of threads.
 constexpr std::size_t chunk_size = 1024;
 
-/// Add per-chunk partial sums in order. `partials` holds nchunks rows of `bins` values.
-std::vector<double> reduce_chunks(const std::vector<double>& partials, std::size_t bins) {
-    std::vector<double> total(bins, 0.0);
-    for (std::size_t at = 0; at < partials.size(); at += bins)
-        for (std::size_t k = 0; k < bins; ++k)
-            total[k] += partials[at + k];
-    return total;
-}
+/// The partial histograms held at once, values (2^24: 128 MB): chunks are processed in
+/// batches that fit, so the memory does not grow with bins x spheres.
+constexpr std::size_t partial_values = std::size_t{1} << 24;
 
-/// Run `per_sphere(i, row)` for every sphere, `row` being its chunk's partial histogram.
+/// The first exception thrown by the bodies of a parallel loop, rethrown after it: one that
+/// escapes an OpenMP region terminates the process. (The loops allocate nothing; this holds
+/// for whatever a volume routine might throw.)
+class ParallelErrors {
+public:
+    template <class F> void run(F&& body) noexcept {
+        try {
+            body();
+        } catch (...) {
+#pragma omp critical(packbed_analysis_errors)
+            if (!m_first)
+                m_first = std::current_exception();
+        }
+    }
+    void rethrow() const {
+        if (m_first)
+            std::rethrow_exception(m_first);
+    }
+
+private:
+    std::exception_ptr m_first;
+};
+
+/// Run `per_sphere(i, row)` for every sphere, `row` being its chunk's partial histogram of
+/// `bins` values, and add the rows in chunk order (batches of chunks at a time: the same
+/// additions in the same order as all at once).
 template <class F>
 std::vector<double> histogram_over_spheres(std::size_t n, std::size_t bins, F&& per_sphere) {
     const std::size_t chunks = (n + chunk_size - 1) / chunk_size;
-    std::vector<double> partials(chunks * bins, 0.0);
+    const std::size_t batch = std::clamp<std::size_t>(partial_values / bins, 1, chunks);
+    std::vector<double> total(bins, 0.0);
+    std::vector<double> partials(batch * bins);
+    for (std::size_t first = 0; first < chunks; first += batch) {
+        const std::size_t count = std::min(batch, chunks - first);
+        std::fill(partials.begin(), partials.begin() + static_cast<std::ptrdiff_t>(count * bins),
+                  0.0);
+        ParallelErrors errors;
 #pragma omp parallel for schedule(dynamic, 1) if (n >= detail::parallel_min_spheres)
-    for (std::size_t c = 0; c < chunks; ++c) {
-        double* row = partials.data() + c * bins;
-        for (std::size_t i = c * chunk_size; i < std::min(n, (c + 1) * chunk_size); ++i)
-            per_sphere(i, row);
+        for (std::size_t b = 0; b < count; ++b)
+            errors.run([&] {
+                const std::size_t c = first + b;
+                double* row = partials.data() + b * bins;
+                for (std::size_t i = c * chunk_size; i < std::min(n, (c + 1) * chunk_size); ++i)
+                    per_sphere(i, row);
+            });
+        errors.rethrow();
+        for (std::size_t b = 0; b < count; ++b)
+            for (std::size_t k = 0; k < bins; ++k)
+                total[k] += partials[b * bins + k];
     }
-    return reduce_chunks(partials, bins);
+    return total;
 }
 
-/// e(r) over shells [b_{k+1}, b_k], b_k = Rt - k w (wall first); exact volumes.
+/// e(r) over `shells` shells [b_{k+1}, b_k], b_k = Rt - k w (wall first); exact volumes.
 std::vector<ProfileBin> radial_void_fraction(const Packing& packing, double rt, double width,
-                                             const Band& band) {
-    const auto shells = static_cast<std::size_t>(std::ceil(rt / width - 1e-9));
+                                             const Band& band, std::size_t shells) {
     auto boundary = [&](std::size_t k) {
         return std::max(rt - static_cast<double>(k) * width, 0.0);
     };
+    const double last_shell = static_cast<double>(shells - 1);
     const auto solid =
         histogram_over_spheres(packing.size(), shells, [&](std::size_t i, double* row) {
             const Vec3& c = packing.centers[i];
             const double radius = packing.radii[i];
             const double rho = std::hypot(c.x, c.y);
-            // Shells that can hold part of the sphere: boundaries between rho - R and rho + R.
+            // Shells that can hold part of the sphere: boundaries between rho - R and rho + R
+            // (clamped in double, before the casts).
             const double outer = rho + radius, inner = rho - radius;
-            const auto k_first =
-                static_cast<std::size_t>(std::max(std::floor((rt - outer) / width), 0.0));
-            if (k_first >= shells)
+            const double first = std::max(std::floor((rt - outer) / width), 0.0);
+            if (first > last_shell)
                 return;
-            const auto k_last =
-                std::min(shells - 1,
-                         static_cast<std::size_t>(std::max(std::ceil((rt - inner) / width), 0.0)));
+            const auto k_first = static_cast<std::size_t>(first);
+            const auto k_last = static_cast<std::size_t>(
+                std::min(last_shell, std::max(std::ceil((rt - inner) / width), 0.0)));
             auto inside = [&](double cylinder) {
                 return cylinder <= 0.0 ? 0.0
                                        : sphere_volume_in_cylinder_slab(c, radius, cylinder,
@@ -87,12 +126,11 @@ std::vector<ProfileBin> radial_void_fraction(const Packing& packing, double rt, 
     return out;
 }
 
-/// e(z) over slabs [k h, (k+1) h] from the floor to the top of the bed; exact volumes.
+/// e(z) over `slabs` slabs [k h, (k+1) h] from the floor to the top of the bed; exact volumes.
 /// The spheres are taken in order of height, so each chunk touches a short run of slabs and
 /// keeps a partial row for that run only: memory O(N) however tall the bed.
 std::vector<ProfileBin> axial_void_fraction(const Packing& packing, double rt, double height,
-                                            double top) {
-    const auto slabs = static_cast<std::size_t>(std::ceil(top / height - 1e-9));
+                                            std::size_t slabs) {
     const std::size_t n = packing.size();
     std::vector<std::uint32_t> order(n);
     for (std::size_t i = 0; i < n; ++i)
@@ -101,41 +139,63 @@ std::vector<ProfileBin> axial_void_fraction(const Packing& packing, double rt, d
         return packing.centers[a].z < packing.centers[b].z ||
                (packing.centers[a].z == packing.centers[b].z && a < b);
     });
+    const double last_slab = static_cast<double>(slabs - 1);
     auto slab_range = [&](std::size_t i) {
         const Vec3& c = packing.centers[i];
         const double r = packing.radii[i];
-        const auto first = static_cast<std::size_t>(std::max(std::floor((c.z - r) / height), 0.0));
-        const auto last = std::min(
-            slabs - 1, static_cast<std::size_t>(std::max(std::floor((c.z + r) / height), 0.0)));
+        const auto first =
+            static_cast<std::size_t>(std::clamp(std::floor((c.z - r) / height), 0.0, last_slab));
+        const auto last =
+            static_cast<std::size_t>(std::clamp(std::floor((c.z + r) / height), 0.0, last_slab));
         return std::pair{std::min(first, last), last};
     };
+    // The run of slabs of each chunk first (no allocation in the parallel loops), then the
+    // chunks' rows in batches of bounded size, added in chunk order.
     const std::size_t chunks = (n + chunk_size - 1) / chunk_size;
-    std::vector<std::size_t> row_start(chunks);
-    std::vector<std::vector<double>> rows(chunks);
-#pragma omp parallel for schedule(dynamic, 1) if (n >= detail::parallel_min_spheres)
+    std::vector<std::size_t> row_start(chunks), row_end(chunks);
+#pragma omp parallel for schedule(static) if (n >= detail::parallel_min_spheres)
     for (std::size_t c = 0; c < chunks; ++c) {
-        const std::size_t begin = c * chunk_size, end = std::min(n, begin + chunk_size);
         std::size_t lo = slabs, hi = 0;
-        for (std::size_t s = begin; s < end; ++s) {
+        for (std::size_t s = c * chunk_size; s < std::min(n, (c + 1) * chunk_size); ++s) {
             const auto [first, last] = slab_range(order[s]);
             lo = std::min(lo, first);
             hi = std::max(hi, last);
         }
         row_start[c] = lo;
-        rows[c].assign(hi - lo + 1, 0.0);
-        for (std::size_t s = begin; s < end; ++s) {
-            const std::size_t i = order[s];
-            const auto [first, last] = slab_range(i);
-            for (std::size_t k = first; k <= last; ++k)
-                rows[c][k - lo] += sphere_volume_in_cylinder_slab(
-                    packing.centers[i], packing.radii[i], rt, static_cast<double>(k) * height,
-                    static_cast<double>(k + 1) * height);
-        }
+        row_end[c] = hi + 1;
     }
     std::vector<double> solid(slabs, 0.0);
-    for (std::size_t c = 0; c < chunks; ++c) // in chunk order: the same bits for any threads
-        for (std::size_t j = 0; j < rows[c].size(); ++j)
-            solid[row_start[c] + j] += rows[c][j];
+    std::vector<double> rows;
+    std::vector<std::size_t> row_at(chunks);
+    for (std::size_t first = 0; first < chunks;) {
+        std::size_t end = first, values = 0;
+        while (end < chunks &&
+               (end == first || values + (row_end[end] - row_start[end]) <= partial_values)) {
+            row_at[end] = values;
+            values += row_end[end] - row_start[end];
+            ++end;
+        }
+        rows.assign(values, 0.0);
+        ParallelErrors errors;
+#pragma omp parallel for schedule(dynamic, 1) if (n >= detail::parallel_min_spheres)
+        for (std::size_t c = first; c < end; ++c)
+            errors.run([&] {
+                double* row = rows.data() + row_at[c];
+                for (std::size_t s = c * chunk_size; s < std::min(n, (c + 1) * chunk_size); ++s) {
+                    const std::size_t i = order[s];
+                    const auto [k_first, k_last] = slab_range(i);
+                    for (std::size_t k = k_first; k <= k_last; ++k)
+                        row[k - row_start[c]] += sphere_volume_in_cylinder_slab(
+                            packing.centers[i], packing.radii[i], rt,
+                            static_cast<double>(k) * height, static_cast<double>(k + 1) * height);
+                }
+            });
+        errors.rethrow();
+        for (std::size_t c = first; c < end; ++c) // in chunk order: the same bits for any threads
+            for (std::size_t j = 0; j < row_end[c] - row_start[c]; ++j)
+                solid[row_start[c] + j] += rows[row_at[c] + j];
+        first = end;
+    }
     std::vector<ProfileBin> out(slabs);
     for (std::size_t k = 0; k < slabs; ++k) {
         const double lo = static_cast<double>(k) * height, hi = lo + height;
@@ -148,10 +208,9 @@ bool in_band(const Vec3& c, const Band& band) {
     return c.z >= band.z_low && c.z <= band.z_high;
 }
 
-/// Relative number density of centres in annuli [b_{k+1}, b_k], b_k = Rt - k w.
+/// Relative number density of centres in `bins` annuli [b_{k+1}, b_k], b_k = Rt - k w.
 std::vector<ProfileBin> centre_distribution(const Packing& packing, double rt, double width,
-                                            const Band& band) {
-    const auto bins = static_cast<std::size_t>(std::ceil(rt / width - 1e-9));
+                                            const Band& band, std::size_t bins) {
     std::vector<double> count(bins, 0.0);
     double total = 0.0;
     for (const Vec3& c : packing.centers) {
@@ -174,36 +233,205 @@ std::vector<ProfileBin> centre_distribution(const Packing& packing, double rt, d
     return out;
 }
 
-Coordination coordination(const Packing& packing, const Cylinder& container, double tolerance,
-                          const Band& band) {
-    // The list keeps d < r_i + r_j + skin (strict); a contact is gap <= tolerance, so the skin
-    // is a hair larger than the tolerance (exactly touching spheres at tolerance 0).
-    NeighborList list;
-    list.build(packing.centers, packing.radii, tolerance + 1e-9 * (1.0 + tolerance), {}, false);
+/// A uniform grid of cubic cells over the bounding box of the centres, the spheres sorted by
+/// cell (counting sort), for the pair searches of the contacts and g(r). It stores no pairs
+/// (a search visits them), so its memory is O(N) whatever the distance searched; the rows of
+/// a NeighborList for g(r) to 20 Dp would take 130 GB for 1e6 spheres. Read-only once built:
+/// may be searched from several threads.
+class PairGrid {
+public:
+    /// \param edge the cell edge, at least the longest distance a search in the 27 cells
+    /// around a sphere must find; it grows (x 1.5) until there are at most 8 N + 64 cells.
+    PairGrid(std::span<const Vec3> centers, double edge) {
+        Vec3 lo{std::numeric_limits<double>::max(), std::numeric_limits<double>::max(),
+                std::numeric_limits<double>::max()};
+        Vec3 hi{-lo.x, -lo.y, -lo.z};
+        for (const Vec3& c : centers) {
+            lo = {std::min(lo.x, c.x), std::min(lo.y, c.y), std::min(lo.z, c.z)};
+            hi = {std::max(hi.x, c.x), std::max(hi.y, c.y), std::max(hi.z, c.z)};
+        }
+        const double max_cells = 8.0 * static_cast<double>(centers.size()) + 64.0;
+        auto along = [&](double extent, double e) { return std::floor(extent / e) + 1.0; };
+        auto cells = [&](double e) {
+            return along(hi.x - lo.x, e) * along(hi.y - lo.y, e) * along(hi.z - lo.z, e);
+        };
+        while (!(cells(edge) <= max_cells))
+            edge *= 1.5;
+        m_origin = lo;
+        m_edge = edge;
+        m_nx = static_cast<int>(along(hi.x - lo.x, edge));
+        m_ny = static_cast<int>(along(hi.y - lo.y, edge));
+        m_nz = static_cast<int>(along(hi.z - lo.z, edge));
+        const std::size_t ncells = static_cast<std::size_t>(m_nx) * m_ny * m_nz;
+        m_cell_start.assign(ncells + 1, 0);
+        m_cell_of.resize(centers.size());
+        for (std::size_t i = 0; i < centers.size(); ++i) {
+            const Vec3 d = centers[i] - m_origin;
+            const std::size_t c = cell(index(d.x, m_nx), index(d.y, m_ny), index(d.z, m_nz));
+            m_cell_of[i] = static_cast<std::uint32_t>(c);
+            ++m_cell_start[c + 1];
+        }
+        for (std::size_t c = 0; c < ncells; ++c) {
+            m_largest_cell = std::max(m_largest_cell, m_cell_start[c + 1]);
+            m_cell_start[c + 1] += m_cell_start[c];
+        }
+        m_sorted.resize(centers.size());
+        std::vector<std::uint32_t> fill(m_cell_start.begin(), m_cell_start.end() - 1);
+        for (std::size_t i = 0; i < centers.size(); ++i)
+            m_sorted[fill[m_cell_of[i]]++] = static_cast<std::uint32_t>(i);
+    }
+
+    double edge() const { return m_edge; }
+    /// \return the most spheres in one cell.
+    std::uint32_t largest_cell() const { return m_largest_cell; }
+
+    /// \return how many cells out a search must look to find every sphere within `reach` of
+    /// a centre (at least 1, at most the grid).
+    int cells_within(double reach) const {
+        const double k = std::ceil(reach / m_edge);
+        return static_cast<int>(
+            std::clamp(k, 1.0, static_cast<double>(std::max({m_nx, m_ny, m_nz}))));
+    }
+
+    /// Call f(j) for every sphere j (sphere i included) in the cells up to k cells out from
+    /// the cell of sphere i.
+    template <class F> void for_each_near(std::size_t i, int k, F&& f) const {
+        for_each_run(i, k, [&](std::uint32_t begin, std::uint32_t end) {
+            for (std::uint32_t s = begin; s < end; ++s)
+                f(m_sorted[s]);
+        });
+    }
+
+    /// \return the work of for_each_near(i, k): the spheres it visits plus the runs of cells.
+    std::uint64_t work(std::size_t i, int k) const {
+        std::uint64_t w = 0;
+        for_each_run(i, k, [&](std::uint32_t begin, std::uint32_t end) { w += 1 + (end - begin); });
+        return w;
+    }
+
+private:
+    int index(double v, int n) const {
+        const double k = std::floor(v / m_edge); // clamped in double: no overflow in the cast
+        if (!(k > 0.0))
+            return 0;
+        return k >= n - 1 ? n - 1 : static_cast<int>(k);
+    }
+    std::size_t cell(int ix, int iy, int iz) const {
+        return (static_cast<std::size_t>(iz) * m_ny + iy) * m_nx + ix;
+    }
+    /// f(begin, end) for the runs of m_sorted in the cells k out: the cells of a row along x
+    /// are one run.
+    template <class F> void for_each_run(std::size_t i, int k, F&& f) const {
+        const std::size_t c = m_cell_of[i];
+        const int ix = static_cast<int>(c % m_nx);
+        const int iy = static_cast<int>((c / m_nx) % m_ny);
+        const int iz = static_cast<int>(c / (static_cast<std::size_t>(m_nx) * m_ny));
+        const int x0 = std::max(ix - k, 0), x1 = std::min(ix + k, m_nx - 1);
+        for (int z = std::max(iz - k, 0); z <= std::min(iz + k, m_nz - 1); ++z)
+            for (int y = std::max(iy - k, 0); y <= std::min(iy + k, m_ny - 1); ++y)
+                f(m_cell_start[cell(x0, y, z)], m_cell_start[cell(x1, y, z) + 1]);
+    }
+
+    Vec3 m_origin;
+    double m_edge = 1.0;
+    int m_nx = 1, m_ny = 1, m_nz = 1;
+    std::vector<std::uint32_t> m_cell_start; // size ncells + 1
+    std::vector<std::uint32_t> m_sorted;     // sphere indices ordered by cell
+    std::vector<std::uint32_t> m_cell_of;    // cell of each sphere
+    std::uint32_t m_largest_cell = 0;
+};
+
+/// Cells a hair larger than the distance searched: a pair that distance apart lies in
+/// neighbouring cells despite the rounding of the cell indices (< 1e-7 of a cell, the grid
+/// having at most 8 N + 64 cells along an axis).
+constexpr double cell_margin = 1.0 + 1e-6;
+
+/// The contact search. Spheres up to `small_radius` (the largest radius, or the mean diameter
+/// if some sphere is larger) find their contacts among themselves in the 27 cells around their
+/// own, of edge 2 small_radius + tolerance; a larger sphere searches as many cells as its own
+/// reach needs and counts its contacts for both spheres. One huge sphere among small ones
+/// then costs about N checks, not N per sphere.
+struct ContactSearch {
+    double tolerance = 0.0;
+    double small_radius = 0.0;
+    double largest_radius = 0.0;
+    PairGrid grid;
+    std::vector<std::uint32_t> large; // spheres above small_radius
+    std::uint64_t work = 0;           // distance checks (and cells) the search takes
+
+    ContactSearch(const Packing& packing, double tol, const Band& band, double mean_diameter)
+        : tolerance(tol)
+        , small_radius(std::min(*std::max_element(packing.radii.begin(), packing.radii.end()),
+                                mean_diameter))
+        , largest_radius(*std::max_element(packing.radii.begin(), packing.radii.end()))
+        , grid(packing.centers, (2.0 * small_radius + tol) * cell_margin) {
+        for (std::size_t i = 0; i < packing.size(); ++i) {
+            if (packing.radii[i] > small_radius) {
+                large.push_back(static_cast<std::uint32_t>(i));
+                work += grid.work(i, reach_of(packing.radii[i]));
+            } else if (in_band(packing.centers[i], band)) {
+                work += grid.work(i, 1);
+            }
+        }
+    }
+
+    /// Cells out a sphere of radius r searches to find every sphere it may touch.
+    int reach_of(double r) const {
+        return grid.cells_within((r + largest_radius + tolerance) * cell_margin);
+    }
+};
+
+Coordination coordination(const Packing& packing, const Cylinder& container,
+                          const ContactSearch& search, const Band& band) {
+    const std::size_t n = packing.size();
+    const double tolerance = search.tolerance, small = search.small_radius;
+    const Vec3* const x = packing.centers.data();
+    const double* const radius = packing.radii.data();
+    // A contact is gap <= tolerance, gap = |x_j - x_i| - r_i - r_j, subtracted in this order
+    // for sphere i (whichever sphere finds the pair).
+    auto touching = [&](std::size_t i, std::size_t j) {
+        return norm(x[j] - x[i]) - radius[i] - radius[j] <= tolerance;
+    };
+    std::vector<std::uint32_t> contacts(n, 0);
+#pragma omp parallel for schedule(dynamic, 256) if (n >= detail::parallel_min_spheres)
+    for (std::size_t i = 0; i < n; ++i) {
+        if (radius[i] > small || !in_band(x[i], band))
+            continue;
+        std::uint32_t count = 0;
+        search.grid.for_each_near(i, 1, [&](std::uint32_t j) {
+            count += j != i && radius[j] <= small && touching(i, j) ? 1 : 0;
+        });
+        contacts[i] = count;
+    }
+    for (const std::uint32_t i : search.large) // few: serially, as they add to others' counts
+        search.grid.for_each_near(i, search.reach_of(radius[i]), [&](std::uint32_t j) {
+            if (j == i)
+                return;
+            contacts[i] += touching(i, j) ? 1 : 0;
+            if (radius[j] <= small)
+                contacts[j] += touching(j, i) ? 1 : 0;
+        });
+
     Coordination out;
     std::size_t contacts_total = 0, contacts_stable = 0;
-    for (std::size_t i = 0; i < packing.size(); ++i) {
-        const Vec3& c = packing.centers[i];
-        const double gap_wall = container.radius() - (std::hypot(c.x, c.y) + packing.radii[i]);
+    for (std::size_t i = 0; i < n; ++i) {
+        const Vec3& c = x[i];
+        const double gap_wall = container.radius() - (std::hypot(c.x, c.y) + radius[i]);
         const bool wall = gap_wall <= tolerance;
         out.wall_contacts += wall ? 1 : 0;
         if (!in_band(c, band))
             continue;
         out.wall_contacts_in_band += wall ? 1 : 0;
-        std::size_t contacts = 0;
-        for (const auto j : list.neighbors_of(i)) {
-            const double gap = norm(packing.centers[j] - c) - packing.radii[i] - packing.radii[j];
-            contacts += gap <= tolerance ? 1 : 0;
-        }
-        if (out.histogram.size() <= contacts)
-            out.histogram.resize(contacts + 1, 0);
-        ++out.histogram[contacts];
+        const std::size_t k = contacts[i];
+        if (out.histogram.size() <= k)
+            out.histogram.resize(k + 1, 0);
+        ++out.histogram[k];
         ++out.spheres;
-        contacts_total += contacts;
-        if (contacts + (wall ? 1 : 0) < 4) {
+        contacts_total += k;
+        if (k + (wall ? 1 : 0) < 4) {
             ++out.rattlers;
         } else {
-            contacts_stable += contacts;
+            contacts_stable += k;
         }
     }
     if (out.spheres > 0)
@@ -214,26 +442,43 @@ Coordination coordination(const Packing& packing, const Cylinder& container, dou
     return out;
 }
 
+/// g(r) over `bins` bins of `width` up to `range`, from the pairs `grid` (cells of edge >=
+/// range) finds.
 std::vector<ProfileBin> pair_correlation(const Packing& packing, double rt, double range,
-                                         double width, const Band& band) {
-    const double min_radius = *std::min_element(packing.radii.begin(), packing.radii.end());
-    NeighborList list;
-    // rows only: at a range of 3 Dp a bed has about 110 listed neighbours per sphere
-    list.build(packing.centers, packing.radii, std::max(range - 2.0 * min_radius, 0.0), {}, false);
-    const auto bins = static_cast<std::size_t>(std::ceil(range / width - 1e-9));
-    std::vector<double> count(bins, 0.0);
-    double in = 0.0;
-    for (std::size_t i = 0; i < packing.size(); ++i) {
-        if (!in_band(packing.centers[i], band))
-            continue;
-        in += 1.0;
-        for (const auto j : list.neighbors_of(i)) {
-            const double d = norm(packing.centers[j] - packing.centers[i]);
-            // d/width may round up to `bins` when d is just below the range: last bin.
-            if (d < range)
-                count[std::min(static_cast<std::size_t>(d / width), bins - 1)] += 1.0;
+                                         double width, const Band& band, std::size_t bins,
+                                         const PairGrid& grid) {
+    const std::size_t n = packing.size();
+    const Vec3* const x = packing.centers.data();
+    // Whole-number counts, so their sum is the same in any order: one histogram per thread,
+    // as many threads as 128 MB of histograms allow.
+    const bool parallel = n >= detail::parallel_min_spheres;
+    const int copies =
+        parallel ? static_cast<int>(std::clamp<std::size_t>(
+                       partial_values / bins, 1, static_cast<std::size_t>(omp_get_max_threads())))
+                 : 1;
+    std::vector<std::uint64_t> counts(static_cast<std::size_t>(copies) * bins, 0);
+#pragma omp parallel num_threads(copies) if (parallel && copies > 1)
+    {
+        std::uint64_t* const count = counts.data() + omp_get_thread_num() * bins;
+#pragma omp for schedule(dynamic, 256)
+        for (std::size_t i = 0; i < n; ++i) {
+            if (!in_band(x[i], band))
+                continue;
+            grid.for_each_near(i, 1, [&](std::uint32_t j) {
+                const double d = norm(x[j] - x[i]);
+                // d/width may round up to `bins` when d is just below the range: last bin.
+                if (j != i && d < range)
+                    ++count[std::min(static_cast<std::size_t>(d / width), bins - 1)];
+            });
         }
     }
+    std::vector<double> count(bins, 0.0);
+    for (int t = 0; t < copies; ++t)
+        for (std::size_t k = 0; k < bins; ++k)
+            count[k] += static_cast<double>(counts[static_cast<std::size_t>(t) * bins + k]);
+    double in = 0.0;
+    for (std::size_t i = 0; i < n; ++i)
+        in += in_band(x[i], band) ? 1.0 : 0.0;
     const double density = in / (pi * rt * rt * (band.z_high - band.z_low));
     std::vector<ProfileBin> out(bins);
     for (std::size_t k = 0; k < bins; ++k) {
@@ -244,31 +489,193 @@ std::vector<ProfileBin> pair_correlation(const Packing& packing, double rt, doub
     return out;
 }
 
+/// Refuse a sphere or an option that no measurement can use.
+void check_input(const Packing& packing, double rt, const AnalysisOptions& o) {
+    if (packing.size() > limits::max_spheres)
+        throw InvalidInput(fmt::format("the bed has {} spheres; allowed: at most {}",
+                                       packing.size(), limits::max_spheres));
+    const double far = limits::max_length;
+    for (std::size_t i = 0; i < packing.size(); ++i) {
+        const Vec3& c = packing.centers[i];
+        const double r = packing.radii[i];
+        if (!(std::abs(c.x) <= far && std::abs(c.y) <= far && std::abs(c.z) <= far && r > 0.0 &&
+              r <= far))
+            throw InvalidInput(
+                fmt::format("sphere {} at ({}, {}, {}) of radius {} is not allowed; allowed: "
+                            "coordinates within {:g} of the origin and a radius > 0 up to {:g}",
+                            i + 1, c.x, c.y, c.z, r, far, far));
+    }
+    if (!(rt > 0.0 && rt <= far))
+        throw InvalidInput(fmt::format("--container-radius = {} is not allowed; "
+                                       "allowed: > 0 and at most {:g}",
+                                       rt, far));
+    auto positive = [](double v, std::string_view name) {
+        if (!(std::isfinite(v) && v > 0.0))
+            throw InvalidInput(fmt::format("{} = {} is not allowed; allowed: > 0 (Dp)", name, v));
+    };
+    positive(o.shell_width, "--shell-width");
+    positive(o.slab_height, "--slab-height");
+    positive(o.centre_bin, "--centre-bin");
+    positive(o.rdf_range, "--rdf-range");
+    positive(o.rdf_bin, "--rdf-bin");
+    for (const auto& [v, name] : {std::pair{o.band_clearance, "--band-clearance"},
+                                  std::pair{o.contact_tolerance, "--contact-tolerance"}})
+        if (!(std::isfinite(v) && v >= 0.0))
+            throw InvalidInput(fmt::format("{} = {} is not allowed; allowed: >= 0 (Dp)", name, v));
+}
+
+/// The most bins a profile of n spheres may have (limits.hpp).
+double bin_budget(std::size_t n) {
+    return std::max(limits::min_profile_bins,
+                    limits::profile_bins_per_sphere * static_cast<double>(n));
+}
+
+/// ceil(extent / width - 1e-9) and at least 1, in double: compared with the budget before any
+/// cast.
+double bins_over(double extent, double width) {
+    return std::max(1.0, std::ceil(extent / width - 1e-9));
+}
+
+/// " (N spheres: the larger of 1e6 and 100 per sphere)", for the messages.
+std::string budget_reason(std::size_t n) {
+    return fmt::format("{} spheres: the larger of {:g} and {:g} per sphere", n,
+                       limits::min_profile_bins, limits::profile_bins_per_sphere);
+}
+
+/// The number of axial slabs, checked: a bed made tall by a sphere far above the rest is
+/// refused saying so.
+std::size_t axial_slabs(const Packing& packing, double height, double slab, double dp) {
+    const double slabs = bins_over(height, slab * dp);
+    const double budget = bin_budget(packing.size());
+    if (slabs <= budget)
+        return static_cast<std::size_t>(slabs);
+    // The top of the highest sphere and of the next highest.
+    double first = -std::numeric_limits<double>::infinity(), second = first;
+    for (std::size_t i = 0; i < packing.size(); ++i) {
+        const double top = packing.centers[i].z + packing.radii[i];
+        if (top > first) {
+            second = first;
+            first = top;
+        } else if (top > second) {
+            second = top;
+        }
+    }
+    const std::string outlier =
+        packing.size() > 1 && first - second > 0.5 * height
+            ? fmt::format("; its highest sphere (top at z = {:.6g}) is {:.3g} Dp above the next "
+                          "highest (top at z = {:.6g}): remove it, or raise --slab-height",
+                          first, (first - second) / dp, second)
+            : "; raise --slab-height";
+    throw InvalidInput(fmt::format(
+        "the bed is {:.6g} tall (the top of its highest sphere), which needs {:.3g} "
+        "slabs of --slab-height {} Dp (Dp = {:.6g}) for the axial profile; allowed: at most "
+        "{:.3g} ({}){}",
+        height, slabs, slab, dp, budget, budget_reason(packing.size()), outlier));
+}
+
+/// The number of bins of `width` Dp across the container radius, checked.
+std::size_t radial_bins(const Packing& packing, double rt, double width, double dp,
+                        std::string_view option, std::string_view noun, std::string_view profile) {
+    const double bins = bins_over(rt, width * dp);
+    const double budget = bin_budget(packing.size());
+    if (bins <= budget)
+        return static_cast<std::size_t>(bins);
+    double reach = 0.0; // how far the spheres reach from the axis
+    for (std::size_t i = 0; i < packing.size(); ++i)
+        reach = std::max(reach,
+                         std::hypot(packing.centers[i].x, packing.centers[i].y) + packing.radii[i]);
+    throw InvalidInput(fmt::format(
+        "--container-radius {} needs {:.3g} {} of {} {} Dp (Dp = {:.6g}) for the {}; "
+        "allowed: at most {:.3g} ({}){}",
+        rt, bins, noun, option, width, dp, profile, budget, budget_reason(packing.size()),
+        reach < 0.5 * rt ? fmt::format("; the spheres reach only {:.6g} from the axis", reach)
+                         : fmt::format("; lower --container-radius or raise {}", option)));
+}
+
+/// The most distance checks a pair search to `distance` may take (limits.hpp).
+double pair_budget(std::size_t n, double distance, double mean_diameter) {
+    const double scale = std::max(1.0, std::pow(distance / mean_diameter, 3));
+    return std::max(limits::min_pair_checks,
+                    limits::pair_checks_per_sphere * static_cast<double>(n) * scale);
+}
+
 } // namespace
 
 BedAnalysis analyze_bed(const Packing& packing, const Cylinder& container,
                         const AnalysisOptions& options) {
     if (packing.size() == 0)
-        throw InvalidInput("analyze: the bed has no spheres");
+        throw InvalidInput("the bed has no spheres");
+    const double rt = container.radius();
+    check_input(packing, rt, options);
     BedAnalysis out;
-    out.diameter = options.diameter.value_or(packing.mean_diameter());
+    const double mean_diameter = packing.mean_diameter();
+    out.diameter = options.diameter.value_or(mean_diameter);
     const double dp = out.diameter;
+    // Bins and search distances are set in Dp: a Dp far from the spheres' size measures
+    // nothing (a bin per sphere, or every sphere in one bin) and multiplies the work.
+    const double ratio = limits::max_reference_diameter_ratio;
+    if (!(dp >= mean_diameter / ratio && dp <= mean_diameter * ratio))
+        throw InvalidInput(fmt::format(
+            "--diameter = {} is not allowed; allowed: {:.6g} to {:.6g} ({:g} to {:g} "
+            "times the spheres' mean diameter, {:.6g})",
+            dp, mean_diameter / ratio, mean_diameter * ratio, 1.0 / ratio, ratio, mean_diameter));
     const auto band = band_clear_of_ends(packing, options.band_clearance * dp);
     if (!band)
         throw InvalidInput(fmt::format(
-            "analyze: the bed (top at {:.6g}) is not taller than twice the band clearance ({} Dp); "
+            "the bed (top at {:.6g}) is not taller than twice the band clearance ({} Dp); "
             "lower the band clearance",
             bed_top(packing), options.band_clearance));
     out.band = *band;
-    const double rt = container.radius();
+
+    // Every bin count and the work of the pair searches, checked before any of it is done.
+    const std::size_t shells = radial_bins(packing, rt, options.shell_width, dp, "--shell-width",
+                                           "shells", "radial profile");
+    const std::size_t centre_bins = radial_bins(packing, rt, options.centre_bin, dp, "--centre-bin",
+                                                "bins", "centre distribution");
+    const std::size_t slabs = axial_slabs(packing, bed_top(packing), options.slab_height, dp);
+    const double rdf_range = options.rdf_range * dp, rdf_bin = options.rdf_bin * dp;
+    const double rdf_bins = bins_over(rdf_range, rdf_bin);
+    const double budget = bin_budget(packing.size());
+    if (!(rdf_bins <= budget))
+        throw InvalidInput(fmt::format("--rdf-range {} Dp needs {:.3g} bins of --rdf-bin "
+                                       "{} Dp for g(r); allowed: at most {:.3g} ({})",
+                                       options.rdf_range, rdf_bins, options.rdf_bin, budget,
+                                       budget_reason(packing.size())));
+    const ContactSearch contacts(packing, options.contact_tolerance * dp, *band, mean_diameter);
+    const double contact_budget = pair_budget(packing.size(), contacts.grid.edge(), mean_diameter);
+    if (!(static_cast<double>(contacts.work) <= contact_budget))
+        throw InvalidInput(fmt::format(
+            "finding the contacts would take {:.3g} distance checks; allowed: at most "
+            "{:.3g} for {} spheres ({:g} per sphere, times the cube of the search distance {:.3g} "
+            "over the mean diameter {:.3g}): the spheres are piled on each other (up to {} "
+            "centres within {:.3g}) or far larger than the mean (the largest diameter is {:.3g})",
+            static_cast<double>(contacts.work), contact_budget, packing.size(),
+            limits::pair_checks_per_sphere, contacts.grid.edge(), mean_diameter,
+            contacts.grid.largest_cell(), contacts.grid.edge(), 2.0 * contacts.largest_radius));
+    const PairGrid rdf_grid(packing.centers, rdf_range * cell_margin);
+    std::uint64_t rdf_work = 0;
+    for (std::size_t i = 0; i < packing.size(); ++i)
+        rdf_work += in_band(packing.centers[i], *band) ? rdf_grid.work(i, 1) : 0;
+    const double rdf_budget = pair_budget(packing.size(), rdf_grid.edge(), mean_diameter);
+    if (!(static_cast<double>(rdf_work) <= rdf_budget))
+        throw InvalidInput(fmt::format(
+            "g(r) up to --rdf-range {} Dp would take {:.3g} distance checks; allowed: "
+            "at most {:.3g} for {} spheres ({:g} per sphere, times the cube of the search "
+            "distance {:.3g} over the mean diameter {:.3g}): the spheres are piled on each other "
+            "(up to {} centres within {:.3g}); lower --rdf-range",
+            options.rdf_range, static_cast<double>(rdf_work), rdf_budget, packing.size(),
+            limits::pair_checks_per_sphere, rdf_grid.edge(), mean_diameter, rdf_grid.largest_cell(),
+            rdf_grid.edge()));
+
     out.void_fraction = void_fraction(packing, container, band->z_low, band->z_high);
-    out.radial_void_fraction = radial_void_fraction(packing, rt, options.shell_width * dp, *band);
-    out.axial_void_fraction =
-        axial_void_fraction(packing, rt, options.slab_height * dp, bed_top(packing));
-    out.centre_distribution = centre_distribution(packing, rt, options.centre_bin * dp, *band);
-    out.coordination = coordination(packing, container, options.contact_tolerance * dp, *band);
-    out.pair_correlation =
-        pair_correlation(packing, rt, options.rdf_range * dp, options.rdf_bin * dp, *band);
+    out.radial_void_fraction =
+        radial_void_fraction(packing, rt, options.shell_width * dp, *band, shells);
+    out.axial_void_fraction = axial_void_fraction(packing, rt, options.slab_height * dp, slabs);
+    out.centre_distribution =
+        centre_distribution(packing, rt, options.centre_bin * dp, *band, centre_bins);
+    out.coordination = coordination(packing, container, contacts, *band);
+    out.pair_correlation = pair_correlation(packing, rt, rdf_range, rdf_bin, *band,
+                                            static_cast<std::size_t>(rdf_bins), rdf_grid);
     return out;
 }
 

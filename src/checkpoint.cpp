@@ -7,6 +7,7 @@
 #include <cstring>
 #include <fstream>
 #include <iterator>
+#include <limits>
 #include <string>
 #include <string_view>
 #include <system_error>
@@ -15,6 +16,9 @@
 #include <nlohmann/json.hpp>
 
 #include "packbed/error.hpp"
+#include "packbed/files.hpp"
+#include "packbed/limits.hpp"
+#include "packbed/output.hpp"
 #include "packbed/summary.hpp"
 
 namespace packbed {
@@ -27,9 +31,12 @@ static_assert(std::endian::native == std::endian::little,
               "checkpoint data are written as the host's doubles, little-endian");
 
 // The first line: the format's name and number. Format 1 (commit 803e157 only) listed the
-// parameters as [name, value] pairs; format 2 as an object (soft_sphere_parameters_json).
+// parameters as [name, value] pairs; format 2 as an object (soft_sphere_parameters_json), its
+// hash covering the data only; format 3 has the hash on a line of its own, covering the header
+// line and the data.
 constexpr std::string_view magic = "packbed-checkpoint ";
-constexpr int format = 2;
+constexpr int format = 3;
+constexpr std::string_view hash_label = "fnv1a64 ";
 
 /// The parameters a checkpoint records and a resumed run must match: all but max_iterations,
 /// which only bounds the run.
@@ -50,27 +57,18 @@ json stage_json(const StageRecord& s) {
             {"mass_centre_window", s.mass_centre_window}};
 }
 
-StageRecord stage_from_json(const json& j) {
-    StageRecord s;
-    s.name = j.at("name").get<std::string>();
-    s.iterations = j.at("iterations").get<std::uint64_t>();
-    s.steps = j.at("steps").get<std::uint32_t>();
-    s.cg = j.at("cg").get<double>();
-    s.max_overlap_pair = j.at("max_overlap_pair").get<double>();
-    s.max_overlap_wall = j.at("max_overlap_wall").get<double>();
-    s.mass_centre_z = j.at("mass_centre_z").get<double>();
-    s.mass_centre_window = j.at("mass_centre_window").get<std::vector<double>>();
-    return s;
-}
-
-/// FNV-1a, 64 bits.
-std::uint64_t fnv1a(const std::string& bytes) {
-    std::uint64_t h = 0xcbf29ce484222325ULL;
+/// FNV-1a, 64 bits, continued from `h`.
+std::uint64_t fnv1a(std::string_view bytes, std::uint64_t h = 0xcbf29ce484222325ULL) {
     for (const char c : bytes) {
         h ^= static_cast<unsigned char>(c);
         h *= 0x100000001b3ULL;
     }
     return h;
+}
+
+/// The hash line of a header line and its data.
+std::string hash_line(std::string_view header, std::string_view data) {
+    return fmt::format("{}{:016x}", hash_label, fnv1a(data, fnv1a("\n", fnv1a(header))));
 }
 
 void append(std::string& bytes, double value) {
@@ -79,7 +77,7 @@ void append(std::string& bytes, double value) {
     bytes.append(raw, sizeof value);
 }
 
-double take(const std::string& bytes, std::size_t at) {
+double take(std::string_view bytes, std::size_t at) {
     double value;
     std::memcpy(&value, bytes.data() + at, sizeof value);
     return value;
@@ -101,107 +99,202 @@ void write_checkpoint(const std::filesystem::path& path, const SoftSphereParamet
     json stages = json::array();
     for (const StageRecord& s : checkpoint.stages)
         stages.push_back(stage_json(s));
-    const json header = {{"parameters", parameters_json(parameters)},
-                         {"layers_done", checkpoint.layers_done},
-                         {"iterations", checkpoint.iterations},
-                         {"neighbor_builds", checkpoint.neighbor_builds},
-                         {"top", checkpoint.top},
-                         {"stages", stages},
-                         {"spheres", packing.size()},
-                         {"fnv1a64", fmt::format("{:016x}", fnv1a(data))}};
+    const std::string header = json{
+        {"parameters", parameters_json(parameters)},
+        {"layers_done", checkpoint.layers_done},
+        {"iterations", checkpoint.iterations},
+        {"neighbor_builds", checkpoint.neighbor_builds},
+        {"top", checkpoint.top},
+        {"stages", stages},
+        {"spheres",
+         packing.size()}}.dump();
+    const std::string first = fmt::format("{}{}\n", magic, format);
+    const std::string hash = hash_line(header, data) + "\n";
+    replace_file(path, "--checkpoint", {first, header, "\n", hash, data});
+}
 
-    std::filesystem::path temporary = path;
-    temporary += ".partial";
-    {
-        std::ofstream out(temporary, std::ios::binary | std::ios::trunc);
-        out << magic << format << '\n' << header.dump() << '\n';
-        out.write(data.data(), static_cast<std::streamsize>(data.size()));
-        out.close();
-        if (!out)
-            throw InvalidInput(
-                fmt::format("--checkpoint {}: cannot be written; allowed: a file in a "
-                            "writable folder with room for {} bytes",
-                            path.string(), data.size()));
+namespace {
+
+/// Reads the fields of a checkpoint's header, refusing any value out of its range with a
+/// message naming the field.
+class HeaderReader {
+public:
+    HeaderReader(std::string_view name)
+        : m_name(printable(name)) {}
+
+    [[noreturn]] void refuse(const std::string& what) const {
+        throw InvalidInput(fmt::format("--checkpoint {}: {}; allowed: a checkpoint written by "
+                                       "`packbed generate --checkpoint` with the same options",
+                                       m_name, what));
     }
-    std::error_code error;
-    std::filesystem::rename(temporary, path, error);
-    if (error)
-        throw InvalidInput(fmt::format("--checkpoint {}: cannot be written ({}); allowed: a "
-                                       "file in a writable folder",
-                                       path.string(), error.message()));
+
+    /// `key` of `object`, which must be there.
+    const json& at(const json& object, const char* key, std::string_view where) const {
+        if (!object.is_object() || !object.contains(key))
+            refuse(fmt::format("corrupt checkpoint: no field {}{}", where, key));
+        return object[key];
+    }
+
+    std::uint64_t whole(const json& object, const char* key, std::uint64_t low, std::uint64_t high,
+                        std::string_view where = "") const {
+        const json& v = at(object, key, where);
+        if (!v.is_number_unsigned() || v.get<std::uint64_t>() < low ||
+            v.get<std::uint64_t>() > high)
+            refuse(fmt::format("corrupt checkpoint: {}{} = {} is not allowed; allowed: a whole "
+                               "number from {} to {}",
+                               where, key, printable(v.dump().substr(0, 40)), low, high));
+        return v.get<std::uint64_t>();
+    }
+
+    double real(const json& object, const char* key, double low, double high,
+                std::string_view where = "") const {
+        const json& v = at(object, key, where);
+        const double value = v.is_number() ? v.get<double>() : std::nan("");
+        if (!(value >= low && value <= high))
+            refuse(fmt::format("corrupt checkpoint: {}{} = {} is not allowed; allowed: a number "
+                               "from {} to {}",
+                               where, key, printable(v.dump().substr(0, 40)), low, high));
+        return value;
+    }
+
+private:
+    std::string m_name;
+};
+
+} // namespace
+
+LayerCheckpoint read_checkpoint(std::istream& in, std::string_view name,
+                                const SoftSphereParameters& parameters) {
+    const HeaderReader field(name);
+    std::string line, header_text, hash;
+    if (read_line(in, line, 64) != LineRead::line || !line.starts_with(magic))
+        field.refuse(
+            fmt::format("not a packbed checkpoint (its first line is not '{}{}')", magic, format));
+    if (line != fmt::format("{}{}", magic, format))
+        field.refuse(fmt::format("written in checkpoint format '{}', this packbed reads format "
+                                 "{} (resume with the packbed that wrote it)",
+                                 printable(line.substr(magic.size())), format));
+    if (read_line(in, header_text, limits::max_line_length) != LineRead::line)
+        field.refuse("corrupt checkpoint: no header line (cut short or too long)");
+    if (read_line(in, hash, 64) != LineRead::line || !hash.starts_with(hash_label))
+        field.refuse("corrupt checkpoint: no hash line");
+
+    // The data: exactly the spheres of this run, then the end of the file.
+    const std::uint64_t particles = parameters.particles;
+    if (particles > limits::max_spheres)
+        field.refuse(fmt::format("this run has {} spheres", particles));
+    std::string data(particles * 4 * sizeof(double), '\0');
+    in.read(data.data(), static_cast<std::streamsize>(data.size()));
+    const auto got = static_cast<std::size_t>(in.gcount());
+    if (got != data.size() || in.peek() != std::char_traits<char>::eof())
+        field.refuse(fmt::format("corrupt checkpoint: {} bytes of data where {} spheres need {}",
+                                 got == data.size() ? "more" : std::to_string(got), particles,
+                                 data.size()));
+    if (hash_line(header_text, data) != hash)
+        field.refuse("corrupt checkpoint: the header and data do not match their hash");
+
+    json header;
+    try {
+        header = json::parse(header_text);
+    } catch (const json::exception& e) {
+        field.refuse(fmt::format("corrupt checkpoint: the header is not JSON ({})",
+                                 printable(std::string_view(e.what()).substr(0, 120))));
+    }
+    const json& stored = field.at(header, "parameters", "");
+    const json wanted = parameters_json(parameters);
+    for (const auto& [key, value] : wanted.items()) {
+        const auto found = stored.is_object() ? stored.find(key) : stored.end();
+        if (!stored.is_object() || found == stored.end() || *found != value) {
+            std::string option = key; // the command line's name
+            std::replace(option.begin(), option.end(), '_', '-');
+            field.refuse(fmt::format("it was taken with {} = {}, this run has {}", option,
+                                     !stored.is_object() || found == stored.end()
+                                         ? "(none)"
+                                         : printable(found->dump().substr(0, 40)),
+                                     value.dump()));
+        }
+    }
+
+    // Every field within what this run can have produced.
+    const std::uint32_t layers = fire_layers(parameters);
+    const double a = parameters.aspect_ratio;
+    const double height = initial_bed_height(particles, a, parameters.e0);
+    // Internal lengths are in Dp: centres inside the cylinder, the bed no taller than its
+    // generated height or a single file of all its spheres, whichever is taller.
+    const double z_high = std::max(height, static_cast<double>(particles)) + 2.0;
+    LayerCheckpoint checkpoint;
+    checkpoint.layers_done =
+        static_cast<std::uint32_t>(field.whole(header, "layers_done", 1, layers));
+    checkpoint.iterations =
+        field.whole(header, "iterations", 0, std::numeric_limits<std::int64_t>::max());
+    checkpoint.neighbor_builds =
+        field.whole(header, "neighbor_builds", 0, std::numeric_limits<std::int64_t>::max());
+    checkpoint.top = field.real(header, "top", 0.0, z_high);
+    field.whole(header, "spheres", particles, particles);
+    const json& stages = field.at(header, "stages", "");
+    const char* names[] = {"initial", "intermediate", "final"};
+    if (!stages.is_array() || stages.size() != 3)
+        field.refuse("corrupt checkpoint: stages is not a list of the 3 stages");
+    std::uint64_t stage_iterations = 0;
+    for (std::size_t k = 0; k < 3; ++k) {
+        const json& j = stages[k];
+        const std::string where = fmt::format("stages[{}].", k);
+        const json& stage_name = field.at(j, "name", where);
+        if (stage_name != names[k])
+            field.refuse(fmt::format("corrupt checkpoint: {}name = {} is not allowed; allowed: "
+                                     "\"{}\"",
+                                     where, printable(stage_name.dump().substr(0, 40)), names[k]));
+        StageRecord s;
+        s.name = names[k];
+        s.iterations = field.whole(j, "iterations", 0, checkpoint.iterations, where);
+        s.steps = static_cast<std::uint32_t>(
+            field.whole(j, "steps", 1, std::numeric_limits<std::uint32_t>::max(), where));
+        s.cg = field.real(j, "cg", 0.0, 1.0, where);
+        s.max_overlap_pair = field.real(j, "max_overlap_pair", 0.0, 1.0, where);
+        s.max_overlap_wall = field.real(j, "max_overlap_wall", 0.0, 1.0, where);
+        s.mass_centre_z = field.real(j, "mass_centre_z", -1.0, z_high, where);
+        const json& window = field.at(j, "mass_centre_window", where);
+        if (!window.is_array() || window.size() > parameters.mc_window)
+            field.refuse(fmt::format("corrupt checkpoint: {}mass_centre_window is not a list of "
+                                     "at most {} numbers",
+                                     where, parameters.mc_window));
+        for (const json& v : window) {
+            const double z = v.is_number() ? v.get<double>() : std::nan("");
+            if (!(z >= -1.0 && z <= z_high))
+                field.refuse(fmt::format("corrupt checkpoint: {}mass_centre_window holds {}; "
+                                         "allowed: numbers from -1 to {}",
+                                         where, printable(v.dump().substr(0, 40)), z_high));
+            s.mass_centre_window.push_back(z);
+        }
+        stage_iterations += s.iterations;
+        checkpoint.stages.push_back(std::move(s));
+    }
+    if (stage_iterations != checkpoint.iterations)
+        field.refuse(fmt::format("corrupt checkpoint: the stages' iterations add up to {}, not "
+                                 "iterations = {}",
+                                 stage_iterations, checkpoint.iterations));
+
+    checkpoint.packing.centers.reserve(particles);
+    checkpoint.packing.radii.reserve(particles);
+    const double reach = 0.5 * a + 1.0;
+    for (std::size_t i = 0; i < particles; ++i) {
+        const std::size_t at = i * 4 * sizeof(double);
+        const Vec3 c{take(data, at), take(data, at + 8), take(data, at + 16)};
+        const double r = take(data, at + 24);
+        if (!(std::abs(c.x) <= reach && std::abs(c.y) <= reach && c.z >= -1.0 && c.z <= z_high &&
+              r > 0.0 && r <= 0.5 * a))
+            field.refuse(fmt::format("corrupt checkpoint: sphere {} is at ({}, {}, {}) with "
+                                     "radius {}, outside the container",
+                                     i, c.x, c.y, c.z, r));
+        checkpoint.packing.add(c, r);
+    }
+    return checkpoint;
 }
 
 LayerCheckpoint read_checkpoint(const std::filesystem::path& path,
                                 const SoftSphereParameters& parameters) {
-    const auto refuse = [&](const std::string& what) {
-        return InvalidInput(fmt::format("--checkpoint {}: {}; allowed: a checkpoint written by "
-                                        "`packbed generate --checkpoint` with the same options",
-                                        path.string(), what));
-    };
-    std::ifstream in(path, std::ios::binary);
-    if (!in)
-        throw refuse("cannot be read");
-    std::string line;
-    if (!std::getline(in, line) || !line.starts_with(magic))
-        throw refuse(
-            fmt::format("not a packbed checkpoint (its first line is not '{}{}')", magic, format));
-    if (line != fmt::format("{}{}", magic, format))
-        throw refuse(fmt::format("written in checkpoint format '{}', this packbed reads format "
-                                 "{} (resume with the packbed that wrote it)",
-                                 line.substr(magic.size()), format));
-    std::string header_text;
-    if (!std::getline(in, header_text))
-        throw refuse("cut short (no header)");
-    const std::string data((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
-
-    LayerCheckpoint checkpoint;
-    std::size_t spheres = 0;
-    std::string hash;
-    json stored;
-    try {
-        const json header = json::parse(header_text);
-        stored = header.at("parameters");
-        checkpoint.layers_done = header.at("layers_done").get<std::uint32_t>();
-        checkpoint.iterations = header.at("iterations").get<std::uint64_t>();
-        checkpoint.neighbor_builds = header.at("neighbor_builds").get<std::uint64_t>();
-        checkpoint.top = header.at("top").get<double>();
-        for (const json& s : header.at("stages"))
-            checkpoint.stages.push_back(stage_from_json(s));
-        spheres = header.at("spheres").get<std::size_t>();
-        hash = header.at("fnv1a64").get<std::string>();
-    } catch (const json::exception& e) {
-        throw refuse(fmt::format("corrupt header ({})", e.what()));
-    }
-
-    const json wanted = parameters_json(parameters);
-    for (const auto& [key, value] : wanted.items()) {
-        const auto found = stored.find(key);
-        if (found == stored.end() || *found != value) {
-            std::string option = key; // the command line's name
-            std::replace(option.begin(), option.end(), '_', '-');
-            throw refuse(fmt::format("it was taken with {} = {}, this run has {}", option,
-                                     found == stored.end() ? "(none)" : found->dump(),
-                                     value.dump()));
-        }
-    }
-    if (data.size() != spheres * 4 * sizeof(double))
-        throw refuse(fmt::format("cut short or padded ({} bytes of data for {} spheres, "
-                                 "expected {})",
-                                 data.size(), spheres, spheres * 4 * sizeof(double)));
-    if (fmt::format("{:016x}", fnv1a(data)) != hash)
-        throw refuse("corrupt (the data do not match their hash)");
-    checkpoint.packing.centers.reserve(spheres);
-    checkpoint.packing.radii.reserve(spheres);
-    for (std::size_t i = 0; i < spheres; ++i) {
-        const std::size_t at = i * 4 * sizeof(double);
-        const Vec3 c{take(data, at), take(data, at + 8), take(data, at + 16)};
-        const double r = take(data, at + 24);
-        if (!is_finite(c) || !(r > 0.0) || !std::isfinite(r))
-            throw refuse(fmt::format("corrupt (sphere {} is at ({}, {}, {}) with radius {})", i,
-                                     c.x, c.y, c.z, r));
-        checkpoint.packing.add(c, r);
-    }
-    return checkpoint;
+    std::ifstream in = open_regular_file("--checkpoint", path);
+    return read_checkpoint(in, path.native(), parameters);
 }
 
 } // namespace packbed

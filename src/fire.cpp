@@ -450,11 +450,19 @@ SoftSphereResult relax_with_fire(const SoftSphereParameters& parameters,
             result.stages = from->stages;
             first = from->layers_done;
         }
+        // Slices holding no sphere (a loose start, e0 near 1, cut into more slices than it has
+        // spheres) are skipped: there is nothing to relax, and the next slice is laid on the
+        // highest settled layer, on the floor while none has settled.
+        bool on_floor =
+            std::all_of(members.begin(), members.begin() + first,
+                        [](const auto& slice_members) { return slice_members.empty(); });
         detail::SoftBed part(p.aspect_ratio);
         for (std::uint32_t l = first; l < layers; ++l) {
+            if (members[l].empty())
+                continue;
             // the part's spheres: fixed shell, free band, new slice (each in a fixed order)
             std::vector<std::uint32_t> ids, band;
-            const double datum = l == 0 ? 0.0 : top - layer_band;
+            const double datum = on_floor ? 0.0 : top - layer_band;
             for (std::uint32_t below = 0; below < l; ++below) // the settled layers
                 for (const std::uint32_t i : members[below]) {
                     if (position[i].z > datum)
@@ -464,7 +472,8 @@ SoftSphereResult relax_with_fire(const SoftSphereParameters& parameters,
                 }
             const auto fixed = static_cast<std::uint32_t>(ids.size());
             ids.insert(ids.end(), band.begin(), band.end());
-            const double lift = l == 0 ? 0.0 : top + 1.0 - l * slice;
+            const double base = on_floor ? 0.0 : top + 1.0; // where the slice's bottom goes
+            const double lift = base - l * slice;
             for (const std::uint32_t i : members[l]) {
                 position[i].z += lift;
                 ids.push_back(i);
@@ -474,7 +483,7 @@ SoftSphereResult relax_with_fire(const SoftSphereParameters& parameters,
             spheres.radii.reserve(ids.size());
             for (const std::uint32_t i : ids)
                 spheres.add(position[i], start.radii[i]);
-            part.assign(std::move(spheres), (l == 0 ? 0.0 : top + 1.0) + slice);
+            part.assign(std::move(spheres), base + slice);
             Fire fire(p, part, fixed, datum, steps, l, layers);
             std::vector<StageRecord> stages = fire.relax(control);
             steps = fire.steps();
@@ -493,6 +502,7 @@ SoftSphereResult relax_with_fire(const SoftSphereParameters& parameters,
                 position[ids[k]] = moved.centers[k];
                 top = std::max(top, moved.centers[k].z);
             }
+            on_floor = false;
             if (control.on_layer) {
                 LayerCheckpoint state{l + 1, steps, builds, top, {}, result.stages};
                 state.packing.centers = position;
@@ -504,7 +514,8 @@ SoftSphereResult relax_with_fire(const SoftSphereParameters& parameters,
         all.centers = std::move(position);
         all.radii = start.radii;
         bed.assign(std::move(all), bed.initial_height);
-        result.stages.back().mass_centre_z = bed.mass_centre_z();
+        if (!result.stages.empty())
+            result.stages.back().mass_centre_z = bed.mass_centre_z();
     }
     bed.fill_result(result, p.diameter);
     result.neighbor_builds = builds;

@@ -2,13 +2,10 @@
 
 #include <algorithm>
 #include <cmath>
-#include <fstream>
 #include <iterator>
 #include <limits>
-#include <system_error>
 
 #include <fmt/format.h>
-#include <unistd.h>
 
 #include "packbed/error.hpp"
 
@@ -151,79 +148,6 @@ std::vector<std::pair<std::string, std::string>> analysis_tables(const BedAnalys
         {"coordination.csv", coordination},
         {"pair_correlation.csv", profile_csv("r,r_d,g", a.pair_correlation, in_dp)},
     };
-}
-
-OutputDirectory::OutputDirectory(std::filesystem::path directory)
-    : m_directory(std::move(directory)) {
-    std::error_code ec;
-    std::filesystem::create_directories(m_directory, ec);
-    if (ec || !std::filesystem::is_directory(m_directory))
-        throw InvalidInput(fmt::format("--out {}: cannot create the directory ({}); allowed: a "
-                                       "directory you can write to",
-                                       m_directory.string(),
-                                       ec ? ec.message() : "a file has that name"));
-    // Probe by creating a file: permission bits alone do not tell (root, read-only mounts).
-    const auto probe = m_directory / fmt::format(".packbed-probe-{}", ::getpid());
-    std::ofstream(probe).put('\n');
-    const bool writable = std::filesystem::exists(probe, ec);
-    std::filesystem::remove(probe, ec);
-    if (!writable)
-        throw InvalidInput(fmt::format(
-            "--out {}: the directory is not writable; allowed: a directory you can write to",
-            m_directory.string()));
-}
-
-OutputDirectory::~OutputDirectory() {
-    for (const auto& [tmp, final_path] : m_staged) {
-        std::error_code ec;
-        std::filesystem::remove(tmp, ec);
-    }
-}
-
-std::filesystem::path OutputDirectory::reserve(const std::string& name) {
-    const auto final_path = m_directory / name;
-    std::error_code ec;
-    std::filesystem::create_directories(final_path.parent_path(), ec); // name = "sub/file"
-    const auto tmp = final_path.parent_path() /
-                     fmt::format(".{}.tmp-{}", final_path.filename().string(), ::getpid());
-    m_staged.emplace_back(tmp, final_path);
-    return tmp;
-}
-
-void OutputDirectory::stage(const std::string& name, const std::string& contents) {
-    const auto tmp = reserve(name);
-    std::ofstream file(tmp, std::ios::binary | std::ios::trunc);
-    file.write(contents.data(), static_cast<std::streamsize>(contents.size()));
-    file.close();
-    if (!file)
-        throw std::runtime_error(fmt::format("cannot write {}", tmp.string()));
-}
-
-void OutputDirectory::discard(const std::string& name) {
-    const auto final_path = m_directory / name;
-    std::erase_if(m_staged, [&](const auto& entry) {
-        if (entry.second != final_path)
-            return false;
-        std::error_code ec;
-        std::filesystem::remove(entry.first, ec);
-        return true;
-    });
-}
-
-void OutputDirectory::commit() {
-    // All or nothing: a missing temporary stops the commit before any file is renamed.
-    for (const auto& [tmp, final_path] : m_staged)
-        if (!std::filesystem::exists(tmp))
-            throw std::runtime_error(
-                fmt::format("cannot write {}: its temporary file is missing", final_path.string()));
-    for (const auto& [tmp, final_path] : m_staged) {
-        std::error_code ec;
-        std::filesystem::rename(tmp, final_path, ec);
-        if (ec)
-            throw std::runtime_error(fmt::format("cannot rename {} to {}: {}", tmp.string(),
-                                                 final_path.string(), ec.message()));
-    }
-    m_staged.clear();
 }
 
 } // namespace packbed

@@ -2,12 +2,14 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstdint>
 #include <limits>
 #include <numbers>
 
 #include <fmt/format.h>
 
 #include "packbed/error.hpp"
+#include "packbed/limits.hpp"
 #include "packbed/neighbor_list.hpp"
 
 namespace packbed {
@@ -137,70 +139,105 @@ double region_volume(const LatticeRegion& region) {
     return pi / 4.0 * c.diameter * c.diameter * c.height;
 }
 
-void LatticeParameters::validate() const {
-    require(std::isfinite(diameter) && diameter >= 1e-12 && diameter <= 1e12,
-            fmt::format("diameter = {} is not allowed; allowed: 1e-12 to 1e12", diameter));
-    auto length_ok = [](double v) { return std::isfinite(v) && v > 0.0 && v <= 1e15; };
-    if (const auto* box = std::get_if<BoxRegion>(&region)) {
+namespace {
+
+/// The checks of single values (LatticeParameters::validate without the fill's size).
+void check_values(const LatticeParameters& p) {
+    require(std::isfinite(p.diameter) && p.diameter >= limits::min_diameter &&
+                p.diameter <= limits::max_diameter,
+            fmt::format("diameter = {} is not allowed; allowed: {:g} to {:g}", p.diameter,
+                        limits::min_diameter, limits::max_diameter));
+    auto length_ok = [](double v) {
+        return std::isfinite(v) && v > 0.0 && v <= limits::max_length;
+    };
+    if (const auto* box = std::get_if<BoxRegion>(&p.region)) {
         require(length_ok(box->size.x) && length_ok(box->size.y) && length_ok(box->size.z),
-                fmt::format("region box:{},{},{} is not allowed; allowed: three lengths > 0",
-                            box->size.x, box->size.y, box->size.z));
+                fmt::format("--region box:{},{},{} is not allowed; allowed: three lengths > 0 and "
+                            "at most {:g}",
+                            box->size.x, box->size.y, box->size.z, limits::max_length));
     } else {
-        const auto& c = std::get<CylinderRegion>(region);
+        const auto& c = std::get<CylinderRegion>(p.region);
         require(length_ok(c.diameter) && length_ok(c.height),
-                fmt::format("region cylinder:{},{} is not allowed; allowed: diameter and "
-                            "height > 0",
-                            c.diameter, c.height));
+                fmt::format("--region cylinder:{},{} is not allowed; allowed: diameter and "
+                            "height > 0 and at most {:g}",
+                            c.diameter, c.height, limits::max_length));
     }
-    for (const auto& [axis, degrees] : rotations)
+    for (const auto& [axis, degrees] : p.rotations)
         require((axis == 'x' || axis == 'y' || axis == 'z') && std::isfinite(degrees),
                 fmt::format("rotation {}:{} is not allowed; allowed: x, y or z and a finite angle "
                             "in degrees",
                             axis, degrees));
-    if (origin)
-        require(is_finite(*origin),
+    if (p.origin)
+        require(is_finite(*p.origin),
                 fmt::format("origin = {},{},{} is not allowed; allowed: finite coordinates",
-                            origin->x, origin->y, origin->z));
+                            p.origin->x, p.origin->y, p.origin->z));
 }
 
-Packing fill_lattice(const LatticeParameters& p) {
-    p.validate();
-    const UnitCell cell = unit_cell(p.type);
+std::string region_text(const LatticeRegion& region) {
+    if (const auto* box = std::get_if<BoxRegion>(&region))
+        return fmt::format("box:{},{},{}", box->size.x, box->size.y, box->size.z);
+    const auto& c = std::get<CylinderRegion>(region);
+    return fmt::format("cylinder:{},{}", c.diameter, c.height);
+}
+
+/// Where fill_lattice looks: the box the kept centres lie in (and, for a cylinder, their
+/// largest squared distance from the axis), and the cells whose balls can reach that box.
+struct FillPlan {
+    Vec3 lo, hi, origin;
+    double reach2 = 0.0;
+    bool is_box = true;
+    bool empty = false; // the region is thinner than a ball: nothing to keep
+    Rotation rotation;
+    std::int64_t i0 = 0, i1 = -1, j0 = 0, j1 = -1, k0 = 0, k1 = -1;
+};
+
+/// \throws InvalidInput when the origin is so far from the region that the positions lose
+/// their precision, or the region holds or needs trying too many balls.
+FillPlan plan_fill(const LatticeParameters& p, const UnitCell& cell) {
+    FillPlan f;
     const double d = p.diameter;
     const double r = 0.5 * d;
     const Vec3 edges = cell.edges * d;
     const bool whole = p.keep == LatticeKeep::whole;
     const double slack = 1e-9 * d; // balls touching a wall exactly stay in
-    // Bounding box of the centres to keep, and the test for one centre.
-    Vec3 lo, hi, origin;
-    double reach2 = 0.0; // cylinder: largest squared distance of a kept centre from the axis
-    const bool is_box = std::holds_alternative<BoxRegion>(p.region);
+    f.is_box = std::holds_alternative<BoxRegion>(p.region);
     const double margin = whole ? r - slack : -slack;
-    if (is_box) {
+    if (f.is_box) {
         const Vec3 size = std::get<BoxRegion>(p.region).size;
-        lo = {margin, margin, margin};
-        hi = size - lo;
-        origin = p.origin.value_or(Vec3{r, r, r});
+        f.lo = {margin, margin, margin};
+        f.hi = size - f.lo;
+        f.origin = p.origin.value_or(Vec3{r, r, r});
     } else {
         const auto& c = std::get<CylinderRegion>(p.region);
         const double reach = 0.5 * c.diameter - margin;
-        reach2 = reach * reach;
-        lo = {-reach, -reach, margin};
-        hi = {reach, reach, c.height - margin};
-        origin = p.origin.value_or(Vec3{0.0, 0.0, r});
+        f.reach2 = reach * reach;
+        f.lo = {-reach, -reach, margin};
+        f.hi = {reach, reach, c.height - margin};
+        f.origin = p.origin.value_or(Vec3{0.0, 0.0, r});
     }
-    Packing packing;
-    if (!(hi.x >= lo.x && hi.y >= lo.y && hi.z >= lo.z))
-        return packing; // the region is thinner than a ball
-    Rotation rotation;
+    if (!(f.hi.x >= f.lo.x && f.hi.y >= f.lo.y && f.hi.z >= f.lo.z)) {
+        f.empty = true;
+        return f;
+    }
+    // The positions are origin + (a multiple of the cell edges): the farther the origin, the
+    // fewer of their bits remain.
+    const Vec3& o = f.origin;
+    const double away = std::max(
+        {f.lo.x - o.x, o.x - f.hi.x, f.lo.y - o.y, o.y - f.hi.y, f.lo.z - o.z, o.z - f.hi.z, 0.0});
+    require(away <= limits::max_lattice_origin_offset * d,
+            fmt::format("--origin {},{},{} is not allowed ({:.3g} ball diameters from the region: "
+                        "the positions would lose their precision); allowed: within {:g} ball "
+                        "diameters of the region",
+                        o.x, o.y, o.z, away / d, limits::max_lattice_origin_offset));
     for (const auto& [axis, degrees] : p.rotations)
-        rotation = rotation.then(about(axis, degrees));
+        f.rotation = f.rotation.then(about(axis, degrees));
     // Cells whose balls can reach the bounding box: its corners in lattice coordinates (every
     // ball lies in [0, edge) of its cell).
     Vec3 qlo{1e300, 1e300, 1e300}, qhi{-1e300, -1e300, -1e300};
     for (int corner = 0; corner < 8; ++corner) {
-        const Vec3 w{corner & 1 ? hi.x : lo.x, corner & 2 ? hi.y : lo.y, corner & 4 ? hi.z : lo.z};
-        const Vec3 q = rotation.apply_inverse(w - origin);
+        const Vec3 w{corner & 1 ? f.hi.x : f.lo.x, corner & 2 ? f.hi.y : f.lo.y,
+                     corner & 4 ? f.hi.z : f.lo.z};
+        const Vec3 q = f.rotation.apply_inverse(w - f.origin);
         qlo = {std::min(qlo.x, q.x), std::min(qlo.y, q.y), std::min(qlo.z, q.z)};
         qhi = {std::max(qhi.x, q.x), std::max(qhi.y, q.y), std::max(qhi.z, q.z)};
     }
@@ -212,25 +249,63 @@ Packing fill_lattice(const LatticeParameters& p) {
     const auto [k0, k1] = range(qlo.z, qhi.z, edges.z);
     const double estimate =
         region_volume(p.region) * (1.0 - cell.porosity) / (pi / 6.0 * d * d * d);
-    require(estimate <= 1.2e8,
+    require(estimate <= 1.2 * static_cast<double>(limits::max_spheres),
             fmt::format("the region holds about {:.3g} balls of diameter {}; allowed: at most "
                         "1e8 (a larger diameter or a smaller region)",
                         estimate, d));
-    for (double k = k0; k <= k1; ++k)
-        for (double j = j0; j <= j1; ++j)
-            for (double i = i0; i <= i1; ++i)
+    // A region thin in some direction holds few balls but may span many cells in another.
+    const double ni = i1 - i0 + 1.0, nj = j1 - j0 + 1.0, nk = k1 - k0 + 1.0;
+    const double positions = ni * nj * nk * static_cast<double>(cell.balls.size());
+    require(positions <= limits::max_lattice_positions,
+            fmt::format("--region {} is not allowed with {} balls of diameter {}: filling it "
+                        "would try {:.3g} ball positions ({:.3g} x {:.3g} x {:.3g} cells, {} per "
+                        "cell); allowed: at most {:g} (a larger diameter or a smaller region)",
+                        region_text(p.region), to_string(p.type), d, positions, ni, nj, nk,
+                        cell.balls.size(), limits::max_lattice_positions));
+    // The ranges now span at most 1e9 cells, within max_lattice_origin_offset diameters (plus
+    // the region) of the origin: integer loop counters (a double one past 2^53 has i + 1 == i).
+    f.i0 = static_cast<std::int64_t>(i0);
+    f.i1 = static_cast<std::int64_t>(i1);
+    f.j0 = static_cast<std::int64_t>(j0);
+    f.j1 = static_cast<std::int64_t>(j1);
+    f.k0 = static_cast<std::int64_t>(k0);
+    f.k1 = static_cast<std::int64_t>(k1);
+    return f;
+}
+
+} // namespace
+
+void LatticeParameters::validate() const {
+    check_values(*this);
+    plan_fill(*this, unit_cell(type));
+}
+
+Packing fill_lattice(const LatticeParameters& p) {
+    check_values(p);
+    const UnitCell cell = unit_cell(p.type);
+    const FillPlan f = plan_fill(p, cell);
+    const double d = p.diameter;
+    const double r = 0.5 * d;
+    const Vec3 edges = cell.edges * d;
+    Packing packing;
+    if (f.empty)
+        return packing;
+    for (std::int64_t k = f.k0; k <= f.k1; ++k)
+        for (std::int64_t j = f.j0; j <= f.j1; ++j)
+            for (std::int64_t i = f.i0; i <= f.i1; ++i)
                 for (const Vec3& b : cell.balls) {
                     const Vec3 c =
-                        origin + rotation.apply({i * edges.x + b.x * d, j * edges.y + b.y * d,
-                                                 k * edges.z + b.z * d});
-                    if (c.x < lo.x || c.x > hi.x || c.y < lo.y || c.y > hi.y || c.z < lo.z ||
-                        c.z > hi.z)
+                        f.origin + f.rotation.apply({static_cast<double>(i) * edges.x + b.x * d,
+                                                     static_cast<double>(j) * edges.y + b.y * d,
+                                                     static_cast<double>(k) * edges.z + b.z * d});
+                    if (c.x < f.lo.x || c.x > f.hi.x || c.y < f.lo.y || c.y > f.hi.y ||
+                        c.z < f.lo.z || c.z > f.hi.z)
                         continue;
-                    if (!is_box && c.x * c.x + c.y * c.y > reach2)
+                    if (!f.is_box && c.x * c.x + c.y * c.y > f.reach2)
                         continue;
                     packing.add(c, r);
                 }
-    require(packing.size() <= 100'000'000,
+    require(packing.size() <= limits::max_spheres,
             fmt::format("the region holds {} balls; allowed: at most 1e8", packing.size()));
     return packing;
 }

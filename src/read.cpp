@@ -8,8 +8,11 @@
 #include <sstream>
 
 #include <fmt/format.h>
+#include <nlohmann/json.hpp>
 
 #include "packbed/error.hpp"
+#include "packbed/files.hpp"
+#include "packbed/limits.hpp"
 
 namespace packbed {
 
@@ -61,12 +64,11 @@ class LineReader {
 public:
     LineReader(std::istream& input, std::string_view name)
         : m_input(input)
-        , m_name(name) {}
+        , m_name(printable(name)) {}
 
     /// Next line that is not blank and not a '#' comment; false at the end.
     bool next(std::string& line) {
-        while (std::getline(m_input, line)) {
-            ++m_line;
+        while (get(line)) {
             if (m_line == 1 && line.rfind("\xEF\xBB\xBF", 0) == 0) // UTF-8 byte-order mark
                 line.erase(0, 3);
             if (!line.empty() && line.back() == '\r')
@@ -79,12 +81,7 @@ public:
     }
 
     /// Next line as it is (blank allowed); false at the end.
-    bool raw(std::string& line) {
-        if (!std::getline(m_input, line))
-            return false;
-        ++m_line;
-        return true;
-    }
+    bool raw(std::string& line) { return get(line); }
 
     [[noreturn]] void fail(std::string_view reason) const {
         throw InvalidInput(fmt::format("{}:{}: {}", m_name, m_line, reason));
@@ -98,26 +95,62 @@ public:
         double value = 0.0;
         const char* end = field.data() + field.size();
         const auto [ptr, ec] = std::from_chars(field.data(), end, value);
+        const std::string shown_column = printable(column.substr(0, 40));
         if (field.empty())
-            fail(fmt::format("column '{}' is empty; a number is needed", column));
+            fail(fmt::format("column '{}' is empty; a number is needed", shown_column));
         if (ec != std::errc() || ptr != end)
-            fail(fmt::format("column '{}' value '{}' is not a number", column, field));
+            fail(fmt::format("column '{}' value '{}' is not a number", shown_column,
+                             printable(field.substr(0, 40))));
         if (!std::isfinite(value))
-            fail(fmt::format("column '{}' value '{}' is not a finite number", column, field));
+            fail(fmt::format("column '{}' value '{}' is not a finite number", shown_column,
+                             printable(field.substr(0, 40))));
         return value;
+    }
+
+    /// A count of spheres declared by the file as a size, refused beyond limits::max_spheres.
+    std::size_t count(double declared, std::string_view what, double low) const {
+        if (!(declared >= low && declared <= static_cast<double>(limits::max_spheres)) ||
+            declared != std::floor(declared))
+            fail(fmt::format("{} {} is not allowed; allowed: a whole number from {} to {}", what,
+                             declared, low, limits::max_spheres));
+        return static_cast<std::size_t>(declared);
     }
 
     /// A sphere from its fields; the size must be > 0. `is_diameter` halves it.
     void add(ParticleFile& out, double x, double y, double z, double size, bool is_diameter,
              std::string_view size_column) const {
-        if (!(size > 0.0))
-            fail(fmt::format("column '{}' value {} is not allowed; a {} must be > 0", size_column,
-                             size, is_diameter ? "diameter" : "radius"));
+        if (out.packing.size() >= limits::max_spheres)
+            fail(fmt::format("more than {} spheres; allowed: at most that many",
+                             limits::max_spheres));
+        if (!(size > 0.0 && size <= limits::max_length))
+            fail(fmt::format("column '{}' value {} is not allowed; a {} must be > 0 and at most "
+                             "{:g}",
+                             printable(size_column.substr(0, 40)), size,
+                             is_diameter ? "diameter" : "radius", limits::max_length));
+        for (const auto& [value, axis] : {std::pair{x, "x"}, {y, "y"}, {z, "z"}})
+            if (!(std::abs(value) <= limits::max_length))
+                fail(fmt::format("{} = {} is not allowed; allowed: a coordinate from {:g} to {:g}",
+                                 axis, value, -limits::max_length, limits::max_length));
         out.packing.add({x, y, z}, is_diameter ? 0.5 * size : size);
         out.lines.push_back(m_line);
     }
 
 private:
+    /// The next line, within limits::max_line_length; false at the end.
+    bool get(std::string& line) {
+        const LineRead read = read_line(m_input, line, limits::max_line_length);
+        if (read == LineRead::end)
+            return false;
+        if (read == LineRead::error)
+            fail_file("cannot be read (an input/output error); allowed: a readable regular file");
+        ++m_line;
+        if (read == LineRead::too_long)
+            fail(fmt::format("a line longer than {} bytes; allowed: lines up to that length (is "
+                             "this a text file?)",
+                             limits::max_line_length));
+        return true;
+    }
+
     std::istream& m_input;
     std::string m_name;
     std::size_t m_line = 0;
@@ -193,10 +226,7 @@ ParticleFile read_xyz(LineReader& in, const ReadOptions& options) {
     std::string line;
     if (!in.next(line))
         in.fail_file("empty file; expected the number of spheres on the first line");
-    const double declared = in.number(trim(line), "count");
-    if (declared < 1 || declared != std::floor(declared))
-        in.fail(fmt::format("the count {} is not a whole number >= 1", declared));
-    const auto count = static_cast<std::size_t>(declared);
+    const std::size_t count = in.count(in.number(trim(line), "count"), "the count", 1);
     if (!in.raw(line)) // the comment line, which may be blank
         in.fail_file("ends after the count line; expected a comment line and the spheres");
     while (out.packing.size() < count && in.next(line)) {
@@ -228,21 +258,19 @@ ParticleFile read_lammps_dump(LineReader& in) {
     do {
         const auto t = trim(line);
         if (t.rfind("ITEM:", 0) != 0)
-            in.fail(fmt::format("expected an ITEM: line, found '{}'", t.substr(0, 40)));
-        const auto item = trim(t.substr(5));
+            in.fail(fmt::format("expected an ITEM: line, found '{}'", printable(t.substr(0, 40))));
+        const std::string item(trim(t.substr(5))); // a copy: `line` is read over below
         if (item.rfind("NUMBER OF ATOMS", 0) == 0) {
             if (!in.next(line))
                 in.fail_file("ends after ITEM: NUMBER OF ATOMS");
-            const double n = in.number(trim(line), "NUMBER OF ATOMS");
-            if (n < 0 || n != std::floor(n)) // 0: a frame before particles were inserted
-                in.fail(fmt::format("the number of atoms {} is not a whole number >= 0", n));
-            atoms = static_cast<std::size_t>(n);
+            // 0: a frame before particles were inserted
+            atoms = in.count(in.number(trim(line), "NUMBER OF ATOMS"), "the number of atoms", 0);
             have_count = true;
         } else if (item.rfind("ATOMS", 0) == 0) {
             if (!have_count)
                 in.fail("ITEM: ATOMS before ITEM: NUMBER OF ATOMS");
             std::vector<std::string> header;
-            for (const auto f : split_spaces(item.substr(5)))
+            for (const auto f : split_spaces(std::string_view(item).substr(5)))
                 header.push_back(lower(f));
             if (find_column(header, {"x", "xu"}) < 0 && find_column(header, {"xs", "xsu"}) >= 0)
                 in.fail("scaled coordinates (xs ys zs) are not supported; allowed: dump x y z or "
@@ -268,7 +296,7 @@ ParticleFile read_lammps_dump(LineReader& in) {
                 if (!in.next(line))
                     in.fail_file("ends inside ITEM: BOX BOUNDS");
         } else if (!in.next(line)) { // TIMESTEP and other one-value items
-            in.fail_file(fmt::format("ends after ITEM: {}", item));
+            in.fail_file(fmt::format("ends after ITEM: {}", printable(item.substr(0, 40))));
         }
     } while (in.next(line));
     if (out.packing.size() == 0)
@@ -282,7 +310,11 @@ std::string extension_of(const std::filesystem::path& path) {
 
 } // namespace
 
-ParticleFormat detect_particle_format(const std::filesystem::path& path) {
+namespace {
+
+/// The format from the extension or, failing that, the first line of `file` (which is then
+/// read again from its start).
+ParticleFormat detect(std::istream& file, const std::filesystem::path& path) {
     const std::string ext = extension_of(path);
     if (ext == ".csv")
         return ParticleFormat::csv;
@@ -290,13 +322,12 @@ ParticleFormat detect_particle_format(const std::filesystem::path& path) {
         return ParticleFormat::xyz;
     if (ext == ".dump" || ext == ".lammpstrj")
         return ParticleFormat::lammps_dump;
-    std::ifstream file(path);
-    if (!file)
-        throw InvalidInput(fmt::format("{}: cannot open the file", path.string()));
-    LineReader in(file, path.string());
+    LineReader in(file, path.native());
     std::string line;
     if (!in.next(line))
         in.fail_file("empty file");
+    file.clear();
+    file.seekg(0);
     const auto t = trim(line);
     if (t.rfind("ITEM:", 0) == 0)
         return ParticleFormat::lammps_dump;
@@ -305,6 +336,13 @@ ParticleFormat detect_particle_format(const std::filesystem::path& path) {
     if (t.find_first_not_of("0123456789") == std::string_view::npos)
         return ParticleFormat::xyz;
     in.fail("cannot tell the format; allowed: .csv, .xyz, .dump or .lammpstrj files");
+}
+
+} // namespace
+
+ParticleFormat detect_particle_format(const std::filesystem::path& path) {
+    std::ifstream file = open_regular_file("", path);
+    return detect(file, path);
 }
 
 ParticleFile read_particles(std::istream& input, std::string_view name, ParticleFormat format,
@@ -322,11 +360,65 @@ ParticleFile read_particles(std::istream& input, std::string_view name, Particle
 }
 
 ParticleFile read_particles(const std::filesystem::path& path, const ReadOptions& options) {
-    const ParticleFormat format = detect_particle_format(path);
-    std::ifstream file(path);
-    if (!file)
-        throw InvalidInput(fmt::format("{}: cannot open the file", path.string()));
-    return read_particles(file, path.string(), format, options);
+    std::ifstream file = open_regular_file("", path);
+    const ParticleFormat format = options.format ? *options.format : detect(file, path);
+    return read_particles(file, path.native(), format, options);
+}
+
+BedSummary read_bed_summary(std::istream& input, std::string_view name) {
+    const std::string shown = printable(name);
+    nlohmann::json json;
+    try {
+        json = nlohmann::json::parse(input);
+    } catch (const nlohmann::json::exception& e) {
+        throw InvalidInput(fmt::format("{}: not a summary.json ({}); allowed: the summary.json of "
+                                       "packbed generate, lattice or analyze",
+                                       shown,
+                                       printable(std::string_view(e.what()).substr(0, 200))));
+    }
+    if (!json.is_object())
+        throw InvalidInput(fmt::format("{}: not a summary.json (not a JSON object); allowed: the "
+                                       "summary.json of packbed generate, lattice or analyze",
+                                       shown));
+    BedSummary out;
+    // A number in (0, high], or in (0, 1) for a porosity.
+    auto number = [&](const nlohmann::json& parent, const char* key, const char* path,
+                      double high) -> std::optional<double> {
+        if (!parent.is_object() || !parent.contains(key) || parent[key].is_null())
+            return std::nullopt;
+        const nlohmann::json& v = parent[key];
+        const double value = v.is_number() ? v.get<double>() : std::nan("");
+        const bool porosity = high == 1.0;
+        if (!(value > 0.0 && (porosity ? value < 1.0 : value <= high)))
+            throw InvalidInput(fmt::format("{}: {} = {} is not allowed; allowed: a number in (0, "
+                                           "{:g}{}",
+                                           shown, path, printable(v.dump().substr(0, 40)), high,
+                                           porosity ? ")" : "]"));
+        return value;
+    };
+    if (json.contains("container"))
+        out.container_radius =
+            number(json["container"], "radius", "container.radius", limits::max_length);
+    if (json.contains("lattice")) {
+        out.porosity = number(json["lattice"], "porosity", "lattice.porosity", 1.0);
+        const auto type = json.find("type");
+        if (out.porosity)
+            out.porosity_source =
+                fmt::format("lattice {}", type != json.end() && type->is_string()
+                                              ? printable(type->get<std::string>())
+                                              : "?");
+    }
+    if (!out.porosity) {
+        out.porosity = number(json, "void_fraction", "void_fraction", 1.0);
+        if (out.porosity)
+            out.porosity_source = "void fraction";
+    }
+    return out;
+}
+
+BedSummary read_bed_summary(const std::filesystem::path& path) {
+    std::istringstream text(read_small_file("", path, limits::max_small_file));
+    return read_bed_summary(text, path.native());
 }
 
 const std::vector<std::pair<std::string, ParticleFormat>>& particle_formats() {

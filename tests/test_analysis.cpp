@@ -1,12 +1,17 @@
 // Bed analysis: exact profiles against hand-computed single spheres, lattices of known
 // porosity and coordination, identities, and thread independence.
+#include <bit>
 #include <cmath>
+#include <cstdint>
 #include <numbers>
+#include <random>
+#include <string>
 
 #include <gtest/gtest.h>
 #include <omp.h>
 
 #include "packbed/analysis.hpp"
+#include "packbed/error.hpp"
 
 using namespace packbed;
 constexpr double pi = std::numbers::pi;
@@ -40,6 +45,70 @@ Packing lattice(const std::vector<Vec3>& basis, double a, double rt, int layers)
 
 const std::vector<Vec3> simple_cubic{{0, 0, 0}};
 const std::vector<Vec3> face_centred{{0, 0, 0}, {0.5, 0.5, 0}, {0.5, 0, 0.5}, {0, 0.5, 0.5}};
+
+/// FNV-1a over the bits of every number of an analysis: equal only if every bit is.
+inline std::uint64_t fingerprint(const BedAnalysis& a) {
+    std::uint64_t h = 14695981039346656037ull;
+    auto add = [&](std::uint64_t v) {
+        for (int b = 0; b < 8; ++b) {
+            h ^= (v >> (8 * b)) & 0xff;
+            h *= 1099511628211ull;
+        }
+    };
+    auto real = [&](double v) { add(std::bit_cast<std::uint64_t>(v)); };
+    real(a.diameter);
+    real(a.band.z_low);
+    real(a.band.z_high);
+    real(a.void_fraction);
+    for (const auto* profile : {&a.radial_void_fraction, &a.axial_void_fraction,
+                                &a.centre_distribution, &a.pair_correlation}) {
+        add(profile->size());
+        for (const ProfileBin& b : *profile) {
+            real(b.low);
+            real(b.high);
+            real(b.value);
+        }
+    }
+    const Coordination& c = a.coordination;
+    real(c.mean);
+    real(c.mean_without_rattlers);
+    for (const std::size_t v : {c.rattlers, c.spheres, c.wall_contacts, c.wall_contacts_in_band})
+        add(v);
+    for (const std::size_t v : c.histogram)
+        add(v);
+    return h;
+}
+
+/// 2000 spheres of radii 0.35 to 0.65 at random (overlapping) in a cylinder of radius 5 up to
+/// z = 30, and one of radius 2 at (0, 0, 15): a fixed bed for the fingerprint of the analysis.
+inline Packing random_bed() {
+    std::mt19937_64 rng(7);
+    auto uniform = [&] { return static_cast<double>(rng() >> 11) * 0x1.0p-53; };
+    Packing p;
+    for (int i = 0; i < 2000; ++i) {
+        const double r = 0.35 + 0.3 * uniform();
+        const double rho = (5.0 - r) * std::sqrt(uniform());
+        const double theta = 2.0 * std::numbers::pi * uniform();
+        p.add({rho * std::cos(theta), rho * std::sin(theta), r + (30.0 - 2.0 * r) * uniform()}, r);
+    }
+    p.add({0.0, 0.0, 15.0}, 2.0);
+    return p;
+}
+
+/// \return the message of the InvalidInput analyze_bed throws, or "accepted".
+std::string refusal(const Packing& p, double rt, const AnalysisOptions& o = {}) {
+    try {
+        analyze_bed(p, Cylinder(rt), o);
+    } catch (const InvalidInput& e) {
+        return e.what();
+    }
+    return "accepted";
+}
+
+/// 40 spheres of diameter 1: 8 layers of 5 (a cross) in a cylinder of radius 1.5, top z = 8.
+Packing forty() {
+    return lattice(simple_cubic, 1.0, 1.5, 8);
+}
 
 /// Void fraction of the shells inside radius `within`, from the radial profile.
 double inner_void_fraction(const BedAnalysis& a, double within) {
@@ -216,4 +285,134 @@ TEST(Analysis, SameBitsWhateverTheThreads) {
     for (std::size_t k = 0; k < one.axial_void_fraction.size(); ++k)
         EXPECT_EQ(one.axial_void_fraction[k].value, two.axial_void_fraction[k].value);
     EXPECT_EQ(one.void_fraction, two.void_fraction);
+}
+
+TEST(Analysis, SameBitsAsBeforeTheLimits) {
+    // Fingerprints of every number of the analysis of a fixed polydisperse bed with one large
+    // sphere, taken with the analysis before the bin and pair-search limits (a NeighborList
+    // for contacts and g(r), one histogram per chunk): the limits change no result.
+    const Packing p = random_bed();
+    AnalysisOptions o;
+    o.contact_tolerance = 0.05;
+    const BedAnalysis a = analyze_bed(p, Cylinder(5.0), o);
+    EXPECT_EQ(a.coordination.histogram.size(), 86u); // the large sphere touches 85
+    EXPECT_EQ(a.coordination.histogram.back(), 1u);
+    EXPECT_EQ(fingerprint(a), 0x29b494ad52950405u);
+    EXPECT_EQ(fingerprint(analyze_bed(p, Cylinder(5.0))), 0x03a633497bf6adebu);
+}
+
+TEST(AnalysisLimits, SphereFarAboveTheRestIsRefusedSayingWhy) {
+    // A row 0,0,1e7,0.5 made 2e8 slabs (16 GB, a 6 GB table); at 1e15 bad_alloc was thrown in
+    // an OpenMP region (terminate).
+    Packing p = forty();
+    ASSERT_EQ(p.size(), 40u);
+    p.add({0.0, 0.0, 1e7}, 0.5);
+    EXPECT_EQ(refusal(p, 1.5),
+              "the bed is 1e+07 tall (the top of its highest sphere), which needs 2e+08 "
+              "slabs of --slab-height 0.05 Dp (Dp = 1) for the axial profile; allowed: at most "
+              "1e+06 (41 spheres: the larger of 1e+06 and 100 per sphere); its highest sphere "
+              "(top at z = 1e+07) is 1e+07 Dp above the next highest (top at z = 8): remove it, "
+              "or raise --slab-height");
+    p.centers.back().z = 1e15;
+    EXPECT_EQ(refusal(p, 1.5),
+              "the bed is 1e+15 tall (the top of its highest sphere), which needs 2e+16 "
+              "slabs of --slab-height 0.05 Dp (Dp = 1) for the axial profile; allowed: at most "
+              "1e+06 (41 spheres: the larger of 1e+06 and 100 per sphere); its highest sphere "
+              "(top at z = 1e+15) is 1e+15 Dp above the next highest (top at z = 8): remove it, "
+              "or raise --slab-height");
+    // Within the limit (5e4 Dp of 0.05 Dp slabs) it is measured: 40 000.5 / 0.05 slabs, the
+    // last holding a cap of the far sphere (to the rounding of slab bounds near 4e4).
+    p.centers.back().z = 4e4;
+    const BedAnalysis a = analyze_bed(p, Cylinder(1.5));
+    ASSERT_EQ(a.axial_void_fraction.size(), 800010u);
+    const double cap = pi * 0.05 * 0.05 * (1.5 - 0.05) / 3.0; // height 0.05 of a sphere R 0.5
+    EXPECT_NEAR(1.0 - a.axial_void_fraction.back().value, cap / (pi * 1.5 * 1.5 * 0.05), 1e-10);
+    EXPECT_EQ(a.axial_void_fraction[400000].value, 1.0); // empty slabs between
+}
+
+TEST(AnalysisLimits, ContainerFarWiderThanTheBedIsRefused) {
+    const Packing p = forty();
+    // 1e300 overflowed the float-to-size cast of the shell count (SIGSEGV).
+    EXPECT_EQ(refusal(p, 1e300), "--container-radius = 1e+300 is not allowed; allowed: > "
+                                 "0 and at most 1e+15");
+    // 1e9 asked for 5e10 shells (bad_alloc).
+    EXPECT_EQ(refusal(p, 1e9),
+              "--container-radius 1000000000 needs 5e+10 shells of --shell-width 0.02 Dp "
+              "(Dp = 1) for the radial profile; allowed: at most 1e+06 (40 spheres: the larger of "
+              "1e+06 and 100 per sphere); the spheres reach only 1.5 from the axis");
+    AnalysisOptions o;
+    o.shell_width = 1.0;
+    EXPECT_EQ(refusal(p, 1e5, o),
+              "--container-radius 100000 needs 5e+06 bins of --centre-bin 0.02 Dp (Dp = "
+              "1) for the centre distribution; allowed: at most 1e+06 (40 spheres: the larger of "
+              "1e+06 and 100 per sphere); the spheres reach only 1.5 from the axis");
+    o = {};
+    o.rdf_bin = 1e-6;
+    EXPECT_EQ(refusal(p, 1.5, o),
+              "--rdf-range 3 Dp needs 3e+06 bins of --rdf-bin 1e-06 Dp for g(r); "
+              "allowed: at most 1e+06 (40 spheres: the larger of 1e+06 and 100 per sphere)");
+    EXPECT_EQ(refusal(p, 2e4), "accepted"); // 1e6 shells: at the limit
+}
+
+TEST(AnalysisLimits, ReferenceDiameterFarFromTheSpheresIsRefused) {
+    // 1e-9 gave bad_alloc, 1e-6 ran 27 s and aborted: bins and g(r) in units of a diameter
+    // a million times smaller than the spheres.
+    const Packing p = forty();
+    AnalysisOptions o;
+    o.diameter = 1e-9;
+    EXPECT_EQ(refusal(p, 1.5, o), "--diameter = 1e-09 is not allowed; allowed: 0.1 to 10 "
+                                  "(0.1 to 10 times the spheres' mean diameter, 1)");
+    o.diameter = 1e-6;
+    EXPECT_EQ(refusal(p, 1.5, o), "--diameter = 1e-06 is not allowed; allowed: 0.1 to 10 "
+                                  "(0.1 to 10 times the spheres' mean diameter, 1)");
+    o.diameter = 10.5;
+    EXPECT_EQ(refusal(p, 1.5, o), "--diameter = 10.5 is not allowed; allowed: 0.1 to 10 "
+                                  "(0.1 to 10 times the spheres' mean diameter, 1)");
+    o.diameter = 0.1;
+    EXPECT_EQ(analyze_bed(p, Cylinder(1.5), o).diameter, 0.1);
+}
+
+TEST(AnalysisLimits, SpheresPiledOnEachOtherAreRefused) {
+    // 20 000 spheres at one point: every pair a contact, N^2 = 4e8 distance checks (and the
+    // rows of a neighbour list of as many entries).
+    Packing p;
+    p.add({0.0, 0.0, 0.5}, 0.5);
+    for (int i = 0; i < 20000; ++i)
+        p.add({0.0, 0.0, 5.0}, 0.5);
+    p.add({0.0, 0.0, 9.5}, 0.5);
+    EXPECT_EQ(refusal(p, 1.0),
+              "finding the contacts would take 4e+08 distance checks; allowed: at most "
+              "1e+08 for 20002 spheres (1000 per sphere, times the cube of the search distance "
+              "1 over the mean diameter 1): the spheres are piled on each other (up to 20000 "
+              "centres within 1) or far larger than the mean (the largest diameter is 1)");
+}
+
+TEST(AnalysisLimits, OneHugeSphereCountsItsContactsWithoutSearchingEveryPair) {
+    // One sphere of radius 50 resting on a layered bed of spheres of diameter 1: its contacts
+    // are found by its own search, the others' in cells of about 1 Dp; the histogram is the
+    // brute-force one.
+    Packing p = lattice(simple_cubic, 1.0, 12.0, 6); // top z = 6
+    const std::size_t small = p.size();
+    p.add({0.3, 0.2, 6.0 + 50.0 - 0.02}, 50.0); // sinks 0.02 into the top layer
+    AnalysisOptions o;
+    o.contact_tolerance = 0.05;
+    o.band_clearance = 0.5;
+    const BedAnalysis a = analyze_bed(p, Cylinder(60.0), o);
+    const double tolerance = 0.05 * a.diameter;
+    std::vector<std::size_t> expected;
+    std::size_t huge_contacts = 0;
+    for (std::size_t i = 0; i < p.size(); ++i) {
+        if (!(p.centers[i].z >= a.band.z_low && p.centers[i].z <= a.band.z_high))
+            continue;
+        std::size_t k = 0;
+        for (std::size_t j = 0; j < p.size(); ++j)
+            k += j != i && norm(p.centers[j] - p.centers[i]) - p.radii[i] - p.radii[j] <= tolerance;
+        if (expected.size() <= k)
+            expected.resize(k + 1, 0);
+        ++expected[k];
+        if (i == small)
+            huge_contacts = k;
+    }
+    EXPECT_EQ(a.coordination.histogram, expected);
+    EXPECT_GT(huge_contacts, 4u);
 }

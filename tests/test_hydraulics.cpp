@@ -1,6 +1,7 @@
 // Hydraulics (Tsayger 2013 eq. (1), Ergun, Eisfeld & Schnitzlein, Wen & Yu) against values
 // computed by hand from the formulas.
 #include <cmath>
+#include <string>
 
 #include <gtest/gtest.h>
 
@@ -100,7 +101,7 @@ TEST(Hydraulics, BadInputsNameTheValue) {
         archimedes_number(f);
         FAIL();
     } catch (const InvalidInput& e) {
-        EXPECT_STREQ(e.what(), "viscosity = 0 is not allowed; allowed: > 0 (Pa s)");
+        EXPECT_STREQ(e.what(), "viscosity = 0 is not allowed; allowed: 1e-07 to 10000 Pa s");
     }
     f = water();
     f.particle_density = 900.0;
@@ -120,6 +121,98 @@ TEST(Hydraulics, BadInputsNameTheValue) {
     } catch (const InvalidInput& e) {
         EXPECT_STREQ(e.what(), "porosity = 1.2 is not allowed; allowed: 0 < porosity < 1");
     }
+}
+
+/// \return the message of the InvalidInput `f` throws, or "accepted".
+template <class F> std::string refusal(F&& f) {
+    try {
+        f();
+    } catch (const InvalidInput& e) {
+        return e.what();
+    }
+    return "accepted";
+}
+
+TEST(Hydraulics, PhysicalRangesAreRefusedBeyondTheirEnds) {
+    // A diameter of 1e-300 m gave Ar = 0, then Ergun 0 / 0: "-nan Pa/m".
+    FluidAndParticles f = water();
+    f.diameter = 1e-300;
+    EXPECT_EQ(refusal([&] { archimedes_number(f); }),
+              "diameter = 1e-300 is not allowed; allowed: 1e-09 to 10 m");
+    f.diameter = 1e200; // Ar overflowed to inf
+    EXPECT_EQ(refusal([&] { archimedes_number(f); }),
+              "diameter = 1e+200 is not allowed; allowed: 1e-09 to 10 m");
+    f = water();
+    f.fluid_density = 1e-4;
+    EXPECT_EQ(refusal([&] { archimedes_number(f); }),
+              "fluid-density = 0.0001 is not allowed; allowed: 0.001 to 30000 kg/m^3");
+    f = water();
+    f.particle_density = 1e5;
+    EXPECT_EQ(refusal([&] { archimedes_number(f); }),
+              "particle-density = 100000 is not allowed; allowed: 0.001 to 30000 kg/m^3");
+    f = water();
+    f.gravity = 1e7;
+    EXPECT_EQ(refusal([&] { archimedes_number(f); }),
+              "gravity = 10000000 is not allowed; allowed: 1e-06 to 1e+06 m/s^2");
+    EXPECT_EQ(refusal([&] { eisfeld_schnitzlein_pressure_gradient(0.4, 0.1, 2e4, water()); }),
+              "aspect-ratio = 20000 is not allowed; allowed: 1 to 10000");
+}
+
+TEST(Hydraulics, EveryResultIsFiniteAtTheEndsOfTheRanges) {
+    // Every corner of the ranges, at a near-solid, the densest lattice's and a near-empty
+    // porosity, with the critical velocity, the largest and the smallest: all numbers finite.
+    int corners = 0;
+    for (const double d : {1e-9, 10.0})
+        for (const double g : {1e-6, 1e6})
+            for (const double rho : {1e-3, 29999.0})
+                for (const double rho_p : {2e-3, 3e4})
+                    for (const double mu : {1e-7, 1e4})
+                        for (const double e : {1e-3, 0.2595, 0.999}) {
+                            if (rho_p <= rho)
+                                continue;
+                            const FluidAndParticles f{d, rho_p, rho, mu, g};
+                            const double ar = archimedes_number(f);
+                            const double re = critical_reynolds(ar, e);
+                            const double w = superficial_velocity(re, f);
+                            const double u_mf = superficial_velocity(wen_yu_reynolds(ar), f);
+                            for (const double u : {w, 1e4, 1e-300}) {
+                                const double dp = ergun_pressure_gradient(e, u, f);
+                                const double es =
+                                    eisfeld_schnitzlein_pressure_gradient(e, u, 1e4, f).value;
+                                ASSERT_TRUE(std::isfinite(dp) && std::isfinite(es))
+                                    << d << " " << g << " " << rho << " " << rho_p << " " << mu
+                                    << " " << e << " " << u;
+                                EXPECT_LT(dp, 1e38);
+                            }
+                            EXPECT_TRUE(std::isfinite(ar) && std::isfinite(w) &&
+                                        std::isfinite(u_mf));
+                            EXPECT_TRUE(std::isfinite(carman_kozeny_permeability(e, d)));
+                            ++corners;
+                        }
+    EXPECT_EQ(corners, 72); // 96 less the 24 of a particle lighter than the fluid
+}
+
+TEST(Hydraulics, ResultsThatAreNotFiniteAreRefusedNamingTheInputs) {
+    // A porosity of 1e-300: e^3 underflows to 0, the coefficients and Ergun are infinite.
+    EXPECT_EQ(refusal([] { fluidization_coefficients(1e-300); }),
+              "the coefficient A of eq. (1) is not a finite number (inf) for porosity = 1e-300; "
+              "allowed: inputs that give one (change porosity)");
+    EXPECT_EQ(refusal([] { ergun_pressure_gradient(1e-300, 0.1, water()); }),
+              "the Ergun pressure gradient is not a finite number (inf) for porosity = 1e-300, "
+              "velocity = 0.1, diameter = 0.001, fluid-density = 1000, viscosity = 0.001; "
+              "allowed: inputs that give one (change porosity, velocity, diameter, fluid-density "
+              "or viscosity)");
+    EXPECT_EQ(refusal([] { ergun_pressure_gradient(1e-300, 0.0, water()); }), // 0 / 0
+              "the Ergun pressure gradient is not a finite number (nan) for porosity = 1e-300, "
+              "velocity = 0, diameter = 0.001, fluid-density = 1000, viscosity = 0.001; allowed: "
+              "inputs that give one (change porosity, velocity, diameter, fluid-density or "
+              "viscosity)");
+    FluidAndParticles syrup = water();
+    syrup.viscosity = 10.0; // w = Re mu / (rho d) = 10 Re m/s
+    EXPECT_EQ(refusal([&] { superficial_velocity(1e308, syrup); }),
+              "the velocity is not a finite number (inf) for Re = 1e+308, viscosity = 10, "
+              "fluid-density = 1000, diameter = 0.001; allowed: inputs that give one (change Re, "
+              "viscosity, fluid-density or diameter)");
 }
 
 } // namespace

@@ -1,7 +1,4 @@
-// Output files: round-trip CSV, a VTU that is well-formed, all-or-nothing directories.
-#include <cstdlib>
-#include <filesystem>
-#include <fstream>
+// Output files: round-trip CSV, a VTU that is well-formed.
 #include <sstream>
 
 #include <gtest/gtest.h>
@@ -10,7 +7,6 @@
 #include "packbed/io.hpp"
 
 using namespace packbed;
-namespace fs = std::filesystem;
 
 namespace {
 Packing three_spheres() {
@@ -21,11 +17,6 @@ Packing three_spheres() {
     return p;
 }
 
-fs::path fresh_dir(const std::string& name) {
-    const fs::path d = fs::temp_directory_path() / ("packbed-test-io-" + name);
-    fs::remove_all(d);
-    return d;
-}
 } // namespace
 
 TEST(ParticlesCsv, HeaderAndRoundTripPrecision) {
@@ -63,43 +54,4 @@ TEST(ParticlesVtu, CountsAndArrays) {
         ++close;
     EXPECT_EQ(open, 6u);
     EXPECT_EQ(close, 6u);
-}
-
-TEST(OutputDirectory, NothingAppearsBeforeCommit) {
-    const fs::path d = fresh_dir("commit");
-    {
-        OutputDirectory out(d);
-        out.stage("a.txt", "alpha\n");
-        out.stage("b.txt", "beta\n");
-        EXPECT_FALSE(fs::exists(d / "a.txt"));
-        out.commit();
-    }
-    std::ifstream a(d / "a.txt");
-    std::string text;
-    std::getline(a, text);
-    EXPECT_EQ(text, "alpha");
-    EXPECT_TRUE(fs::exists(d / "b.txt"));
-    EXPECT_EQ(std::distance(fs::directory_iterator(d), fs::directory_iterator{}), 2);
-}
-
-TEST(OutputDirectory, AbandonedOutputLeavesNoFile) {
-    const fs::path d = fresh_dir("abandon");
-    {
-        OutputDirectory out(d);
-        out.stage("a.txt", "alpha\n");
-    } // destroyed without commit, as after an exception
-    EXPECT_TRUE(fs::is_directory(d));
-    EXPECT_EQ(std::distance(fs::directory_iterator(d), fs::directory_iterator{}), 0);
-}
-
-TEST(OutputDirectory, PathUnderAFileIsRefused) {
-    const fs::path d = fresh_dir("file");
-    fs::create_directories(d);
-    std::ofstream(d / "plain").put('x');
-    try {
-        OutputDirectory out(d / "plain" / "sub");
-        FAIL() << "expected InvalidInput";
-    } catch (const InvalidInput& e) {
-        EXPECT_NE(std::string(e.what()).find("cannot create the directory"), std::string::npos);
-    }
 }

@@ -1,6 +1,7 @@
 // Regular packings (Tsayger 2013 and the cubic / close packings) against geometry.
 #include <cmath>
 #include <numbers>
+#include <string>
 
 #include <gtest/gtest.h>
 
@@ -201,6 +202,16 @@ TEST(Lattice, BoxOfWholeCellsWithCutBallsHasTheLatticesPorosity) {
     }
 }
 
+/// \return the message fill_lattice refuses `p` with, or "accepted".
+std::string message_of(const LatticeParameters& p) {
+    try {
+        fill_lattice(p);
+    } catch (const InvalidInput& e) {
+        return e.what();
+    }
+    return "accepted";
+}
+
 TEST(Lattice, BadParametersNameTheValue) {
     LatticeParameters p;
     p.region = BoxRegion{{10.0, -1.0, 10.0}};
@@ -208,14 +219,66 @@ TEST(Lattice, BadParametersNameTheValue) {
         fill_lattice(p);
         FAIL() << "a negative box side was accepted";
     } catch (const InvalidInput& e) {
-        EXPECT_STREQ(e.what(), "region box:10,-1,10 is not allowed; allowed: three lengths > 0");
+        EXPECT_STREQ(e.what(), "--region box:10,-1,10 is not allowed; allowed: three lengths > 0 "
+                               "and at most 1e+15");
     }
+    // The real limit, not "> 0" alone.
+    p.region = BoxRegion{{1e16, 10.0, 10.0}};
+    EXPECT_EQ(message_of(p), "--region box:1e+16,10,10 is not allowed; allowed: three lengths > 0 "
+                             "and at most 1e+15");
+    p.region = CylinderRegion{10.0, 2e15};
+    EXPECT_EQ(message_of(p),
+              "--region cylinder:10,2000000000000000 is not allowed; allowed: diameter and "
+              "height > 0 and at most 1e+15");
     p.region = BoxRegion{{1e4, 1e4, 1e4}};
     p.diameter = 1.0;
     EXPECT_THROW(fill_lattice(p), InvalidInput); // about 3e11 balls
     p.region = CylinderRegion{10.0, 10.0};
     p.diameter = 0.0;
     EXPECT_THROW(fill_lattice(p), InvalidInput);
+}
+
+TEST(Lattice, FarOriginIsRefusedNotLoopedOver) {
+    // At x = 1e18 a double loop counter stopped changing (i + 1 == i): the fill never ended.
+    LatticeParameters p;
+    p.type = LatticeType::sc;
+    p.origin = Vec3{1e18, 0.0, 0.0};
+    EXPECT_EQ(message_of(p), "--origin 1e+18,0,0 is not allowed (1e+18 ball diameters from the "
+                             "region: the positions would lose their precision); allowed: within "
+                             "1e+06 ball diameters of the region");
+    EXPECT_THROW(p.validate(), InvalidInput); // the command line refuses it before any output
+    // Within the limit the lattice is the same, to the bit, as one through a nearer origin a
+    // whole number of cells away.
+    p.origin = Vec3{0.5 - 1e5, 0.5, 0.5 + 1e5};
+    const Packing far = fill_lattice(p);
+    p.origin.reset(); // (d/2, d/2, d/2)
+    const Packing near = fill_lattice(p);
+    ASSERT_EQ(far.size(), 1000u);
+    ASSERT_EQ(far.size(), near.size());
+    for (std::size_t i = 0; i < far.size(); ++i) {
+        EXPECT_EQ(far.centers[i].x, near.centers[i].x);
+        EXPECT_EQ(far.centers[i].y, near.centers[i].y);
+        EXPECT_EQ(far.centers[i].z, near.centers[i].z);
+    }
+}
+
+TEST(Lattice, LongThinRegionIsRefusedByTheCellsItSpans) {
+    // 1e11 x 0.001 x 0.001 holds about 5e4 balls' volume, so the volume check let it through,
+    // and the fill then visited about 1e12 cells.
+    LatticeParameters p;
+    p.type = LatticeType::sc;
+    p.keep = LatticeKeep::centres;
+    p.region = BoxRegion{{1e11, 0.001, 0.001}};
+    EXPECT_EQ(message_of(p),
+              "--region box:100000000000,0.001,0.001 is not allowed with sc balls of diameter 1: "
+              "filling it would try 1.6e+12 ball positions (1e+11 x 4 x 4 cells, 1 per cell); "
+              "allowed: at most 1e+09 (a larger diameter or a smaller region)");
+    // The same thin region at a length the limit allows: one row of balls, centres at x = k + 1/2.
+    p.region = BoxRegion{{1e5, 1.0, 1.0}};
+    const Packing row = fill_lattice(p);
+    ASSERT_EQ(row.size(), 100000u);
+    EXPECT_EQ(row.centers.back().x, 99999.5);
+    EXPECT_EQ(row.centers.back().z, 0.5);
 }
 
 } // namespace

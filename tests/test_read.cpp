@@ -1,5 +1,7 @@
 // Reading beds from CSV, XYZ and LAMMPS dumps: the same spheres from every format, and each
 // bad file refused with its line and reason.
+#include <sys/stat.h>
+
 #include <filesystem>
 #include <fstream>
 #include <sstream>
@@ -76,7 +78,8 @@ TEST(ReadParticles, EveryFormatGivesTheSameSpheres) {
     EXPECT_EQ(f.lines, (std::vector<std::size_t>{22, 23, 24}));
     // XYZ without radius column, radius given.
     std::istringstream xyz("3\ncomment\nC 0.1 -0.25 0.5\nC 1.125 0 0.5\nC 0.5 0.75 1.3\n");
-    const auto g = read_particles(xyz, "e.xyz", ParticleFormat::xyz, {.radius = 0.5});
+    const auto g =
+        read_particles(xyz, "e.xyz", ParticleFormat::xyz, {.radius = 0.5, .format = std::nullopt});
     EXPECT_EQ(g.packing.radii[2], 0.5);
     EXPECT_EQ(g.packing.centers[2], reference().centers[2]);
 }
@@ -142,10 +145,13 @@ INSTANTIATE_TEST_SUITE_P(
                 "bed:2: column 'y' is empty; a number is needed"},
         BadFile{ParticleFormat::csv, "x,y,z,r\n1,2,nan,0.5\n",
                 "bed:2: column 'z' value 'nan' is not a finite number"},
-        BadFile{ParticleFormat::csv, "x,y,z,r\n1,2,3,-0.5\n",
-                "bed:2: column 'r' value -0.5 is not allowed; a radius must be > 0"},
-        BadFile{ParticleFormat::csv, "x,y,z,diameter\n1,2,3,0\n",
-                "bed:2: column 'diameter' value 0 is not allowed; a diameter must be > 0"},
+        BadFile{
+            ParticleFormat::csv, "x,y,z,r\n1,2,3,-0.5\n",
+            "bed:2: column 'r' value -0.5 is not allowed; a radius must be > 0 and at most 1e+15"},
+        BadFile{
+            ParticleFormat::csv, "x,y,z,diameter\n1,2,3,0\n",
+            "bed:2: column 'diameter' value 0 is not allowed; a diameter must be > 0 and at most "
+            "1e+15"},
         BadFile{ParticleFormat::xyz, "3\n\nC 0 0 0 0.5\n", "bed: declares 3 spheres but holds 1"},
         BadFile{ParticleFormat::xyz, "1\n\nC 0 0 0 0.5\nC 1 1 1 0.5\n",
                 "bed:4: more lines than the 1 spheres the first line declares"},
@@ -165,4 +171,90 @@ INSTANTIATE_TEST_SUITE_P(
                 "ITEM: TIMESTEP\n0\nITEM: NUMBER OF ATOMS\n1\nITEM: ATOMS id x y z\n1 0 0 0\n",
                 "bed:5: missing column 'r'; needed: x, y, z and r, radius, d or diameter"},
         BadFile{ParticleFormat::lammps_dump, "",
-                "bed: empty file; expected a LAMMPS dump starting with ITEM: TIMESTEP"}));
+                "bed: empty file; expected a LAMMPS dump starting with ITEM: TIMESTEP"},
+        // The audit's cases: undefined behaviour before (a float-to-integer overflow, then
+        // "0 spheres"; a message read from a line already overwritten).
+        BadFile{ParticleFormat::xyz, "1e308\n\n",
+                "bed:1: the count 1e+308 is not allowed; allowed: a whole number from 1 to "
+                "100000000"},
+        BadFile{ParticleFormat::lammps_dump, "ITEM: TIMESTEP\n0\nITEM: NUMBER OF ATOMS\n1e20\n",
+                "bed:4: the number of atoms 1e+20 is not allowed; allowed: a whole number from 0 "
+                "to 100000000"},
+        BadFile{ParticleFormat::lammps_dump,
+                "ITEM: TIMESTEP WITH A LONG NAME, LONGER THAN THE SMALL-STRING BUFFER\n"
+                "# a comment line longer still, so that reading it reallocates the line buffer\n",
+                "bed: ends after ITEM: TIMESTEP WITH A LONG NAME, LONGER THAN T"},
+        // Control characters and long fields are shown escaped and cut: one line.
+        BadFile{ParticleFormat::csv, "x,y,z,r\n1,\x1b[2J\x1b[H,3,0.5\n",
+                "bed:2: column 'y' value '\\x1b[2J\\x1b[H' is not a number"},
+        BadFile{ParticleFormat::lammps_dump, "ITEM:\x1b]0;pwned\x07\n",
+                "bed: ends after ITEM: \\x1b]0;pwned\\x07"},
+        // Coordinates where a double no longer resolves a sphere are refused.
+        BadFile{ParticleFormat::csv, "x,y,z,r\n1,2,1e300,0.5\n",
+                "bed:2: z = 1e+300 is not allowed; allowed: a coordinate from -1e+15 to 1e+15"}));
+
+TEST(ReadParticles, LinesAndFilesAreBounded) {
+    // A line longer than limits::max_line_length (1 MiB): refused at that length, not read whole.
+    EXPECT_EQ(error_of("x,y,z,r\n" + std::string(3 << 20, '1') + "\n", ParticleFormat::csv),
+              "bed:2: a line longer than 1048576 bytes; allowed: lines up to that length (is this "
+              "a text file?)");
+    EXPECT_EQ(error_of(std::string(2 << 20, '\0'), ParticleFormat::xyz),
+              "bed:1: a line longer than 1048576 bytes; allowed: lines up to that length (is this "
+              "a text file?)");
+    // Not regular files: refused at once, where a FIFO waited for a writer for ever and
+    // /dev/zero filled memory.
+    const fs::path dir = write("placeholder", "").parent_path();
+    const fs::path fifo = dir / "bed.fifo";
+    fs::remove(fifo);
+    ASSERT_EQ(::mkfifo(fifo.c_str(), 0600), 0);
+    for (const fs::path& path : {fifo, fs::path("/dev/zero"), dir, fs::path("/proc/self/mem")}) {
+        try {
+            read_particles(path);
+            ADD_FAILURE() << path << " was read";
+        } catch (const InvalidInput& e) {
+            EXPECT_NE(std::string(e.what()).find("; allowed: a readable regular file"),
+                      std::string::npos)
+                << e.what();
+        }
+    }
+}
+
+TEST(ReadBedSummary, ContainerAndPorosityOrARefusalNamingTheKey) {
+    auto read = [](const std::string& text) {
+        std::istringstream in(text);
+        return read_bed_summary(in, "summary.json");
+    };
+    auto error = [&](const std::string& text) {
+        try {
+            read(text);
+        } catch (const InvalidInput& e) {
+            return std::string(e.what());
+        }
+        return std::string("accepted");
+    };
+    const BedSummary bed = read(R"({"container": {"shape": "cylinder", "radius": 2.5},
+                                    "void_fraction": 0.41})");
+    EXPECT_EQ(bed.container_radius, 2.5);
+    EXPECT_EQ(bed.porosity, 0.41);
+    EXPECT_EQ(bed.porosity_source, "void fraction");
+    const BedSummary lattice = read(R"({"type": "diamond", "lattice": {"porosity": 0.66}})");
+    EXPECT_FALSE(lattice.container_radius);
+    EXPECT_EQ(lattice.porosity, 0.66);
+    EXPECT_EQ(lattice.porosity_source, "lattice diamond");
+    EXPECT_FALSE(read(R"({"void_fraction": null})").porosity); // a bed too short to measure
+    EXPECT_EQ(error(R"({"container": {"radius": -1}})"),
+              "summary.json: container.radius = -1 is not allowed; allowed: a number in (0, "
+              "1e+15]");
+    EXPECT_EQ(error(R"({"container": {"radius": "2"}})"),
+              "summary.json: container.radius = \"2\" is not allowed; allowed: a number in (0, "
+              "1e+15]");
+    EXPECT_EQ(error(R"({"void_fraction": 1.5})"),
+              "summary.json: void_fraction = 1.5 is not allowed; allowed: a number in (0, 1)");
+    EXPECT_EQ(error("[[[[").substr(0, 30), "summary.json: not a summary.js");
+    EXPECT_EQ(error("[1, 2]"), "summary.json: not a summary.json (not a JSON object); allowed: "
+                               "the summary.json of packbed generate, lattice or analyze");
+    // Deep nesting is read and refused, not a stack overflow.
+    EXPECT_EQ(error(std::string(100000, '[') + std::string(100000, ']')),
+              "summary.json: not a summary.json (not a JSON object); allowed: the summary.json of "
+              "packbed generate, lattice or analyze");
+}

@@ -1,6 +1,5 @@
 // `packbed analyze`: structure of a bed from any source (ours, LAMMPS, LIGGGHTS, XYZ).
 #include <filesystem>
-#include <fstream>
 #include <memory>
 
 #include <fmt/format.h>
@@ -10,7 +9,10 @@
 #include "command.hpp"
 #include "packbed/analysis.hpp"
 #include "packbed/error.hpp"
+#include "packbed/files.hpp"
 #include "packbed/io.hpp"
+#include "packbed/limits.hpp"
+#include "packbed/output.hpp"
 #include "packbed/read.hpp"
 #include "packbed/summary.hpp"
 #include "plots.hpp"
@@ -31,6 +33,7 @@ struct AnalyzeOptions {
     AnalysisOptions analysis;
     unsigned long long threads = static_cast<unsigned long long>(omp_get_num_procs());
     bool quiet = false;
+    bool force = false;
 };
 
 /// Refuse spheres that stick out of the container by more than the tolerance.
@@ -44,7 +47,8 @@ void check_inside(const ParticleFile& file, const std::string& name, double rt, 
             throw InvalidInput(fmt::format(
                 "{}:{}: the sphere at ({}, {}, {}) sticks out of the container (radius {}, floor "
                 "z = 0) by {:.4g}; allowed: up to {:.4g} (--outside-tolerance, in Dp)",
-                name, file.lines[i], c.x, c.y, c.z, rt, std::max(out_wall, below), tolerance));
+                printable(name), file.lines[i], c.x, c.y, c.z, rt, std::max(out_wall, below),
+                tolerance));
     }
 }
 
@@ -53,20 +57,15 @@ int run_analyze(AnalyzeOptions& o) {
     ReadOptions read_options;
     if (o.diameter > 0.0)
         read_options.radius = 0.5 * o.diameter;
-    ParticleFile file;
-    if (o.format == "auto") {
-        file = read_particles(path, read_options);
-    } else {
-        std::ifstream in(path);
-        for (const auto& [name, value] : particle_formats())
-            if (name == o.format)
-                file = read_particles(in, path.string(), value, read_options);
-    }
+    for (const auto& [name, value] : particle_formats())
+        if (name == o.format)
+            read_options.format = value;
+    const ParticleFile file = read_particles(path, read_options);
     const double rt =
         o.container_radius > 0.0 ? o.container_radius : container_radius_beside(path).value_or(0.0);
     if (!(rt > 0.0))
-        throw InvalidInput(
-            fmt::format("--container-radius is needed: no summary.json next to {}", path.string()));
+        throw InvalidInput(fmt::format("--container-radius is needed: no summary.json next to {}",
+                                       printable(path.native())));
     if (o.diameter > 0.0)
         o.analysis.diameter = o.diameter;
     const Cylinder container(rt);
@@ -74,7 +73,8 @@ int run_analyze(AnalyzeOptions& o) {
     check_inside(file, path.string(), rt, o.outside_tolerance * dp);
 
     const fs::path out_dir = o.out.empty() ? path.parent_path() / "analysis" : fs::path(o.out);
-    OutputDirectory out(out_dir);
+    OutputDirectory out(out_dir, "--out", OutputKind::directory, o.force);
+    out.keep("the particles file", path);
     use_threads(o.threads);
     const BedAnalysis analysis = analyze_bed(file.packing, container, o.analysis);
 
@@ -120,7 +120,7 @@ Command register_analyze(CLI::App& parent) {
     app->add_option("particles", o.particles,
                     "the bed: CSV (x,y,z,r or d, optional id), XYZ, or LAMMPS/LIGGGHTS dump")
         ->required()
-        ->check(CLI::ExistingFile);
+        ->check(path_text());
     std::vector<std::string> formats{"auto"};
     for (const auto& entry : particle_formats())
         formats.push_back(entry.first);
@@ -128,12 +128,17 @@ Command register_analyze(CLI::App& parent) {
         ->check(CLI::IsMember(formats));
     app->add_option("-R,--container-radius", o.container_radius,
                     "cylinder radius Rt (file units); default: summary.json next to the file")
-        ->check(real_in(0.0, inf, true, true));
-    app->add_option("-o,--out", o.out, "output directory; default: analysis/ next to the file");
+        ->check(real_in(0.0, limits::max_length, true, false));
+    app->add_option("-o,--out", o.out,
+                    "output directory: a new or empty one (created), or an existing one with "
+                    "--force; default: analysis/ next to the file")
+        ->check(path_text());
+    app->add_flag("--force", o.force,
+                  "replace a non-empty output directory whole (its old files are deleted)");
     app->add_option("-d,--diameter", o.diameter,
                     "reference diameter Dp, and the sphere size of XYZ files without radius; "
                     "default: the mean sphere diameter")
-        ->check(real_in(1e-12, 1e12, false, false));
+        ->check(real_in(limits::min_diameter, limits::max_diameter, false, false));
     app->add_option("--band-clearance", a.band_clearance,
                     "properties refer to the band this far from floor and top, Dp")
         ->check(real_in(0.0, inf, false, true));

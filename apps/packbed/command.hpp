@@ -23,6 +23,10 @@ struct Command {
 /// the option name.
 CLI::Validator real_in(double low, double high, bool low_open, bool high_open);
 
+/// A path: not empty, no control characters (newline, tab, ...), at most 4095 bytes
+/// (packbed::path_problem). Paths are checked as text only here; files are checked when opened.
+CLI::Validator path_text();
+
 /// A whole number within [low, high].
 CLI::Validator whole_in(unsigned long long low, unsigned long long high);
 
@@ -39,7 +43,8 @@ void use_threads(unsigned long long threads);
 
 /// The container radius recorded in `summary.json` beside a particle file (written by
 /// `packbed generate`, `lattice`, `analyze`). \return nothing when there is no such file.
-/// \throws InvalidInput naming the file when it exists without a positive container.radius
+/// \throws InvalidInput naming the file when it exists but is not a regular file, not a
+/// summary, or has no container.radius in (0, limits::max_length]
 std::optional<double> container_radius_beside(const std::filesystem::path& particles);
 
 } // namespace packbed::cli

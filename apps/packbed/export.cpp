@@ -10,8 +10,11 @@
 
 #include "command.hpp"
 #include "packbed/error.hpp"
+#include "packbed/files.hpp"
 #include "packbed/io.hpp"
+#include "packbed/limits.hpp"
 #include "packbed/openfoam.hpp"
+#include "packbed/output.hpp"
 #include "packbed/read.hpp"
 #include "packbed/surface.hpp"
 #include "packbed/volume.hpp"
@@ -55,6 +58,7 @@ struct ExportOptions {
     bool no_container = false;
     OpenFoamMeshOptions mesh;
     bool quiet = false;
+    bool force = false;
 };
 
 AxisBox parse_box(const std::string& text) {
@@ -63,13 +67,45 @@ AxisBox parse_box(const std::string& text) {
         throw InvalidInput(
             fmt::format("--box '{}' is not allowed; allowed: xlo,xhi,ylo,yhi,zlo,zhi "
                         "with lo < hi",
-                        text));
+                        printable(text)));
     return {{(*v)[0], (*v)[2], (*v)[4]}, {(*v)[1], (*v)[3], (*v)[5]}};
+}
+
+/// The output file `out_path` and the files `sidecars` beside it, reserved before any work:
+/// the folder is checked, and no output may be the input.
+std::unique_ptr<OutputDirectory> file_output(const ExportOptions& o, const fs::path& out_path,
+                                             const std::vector<std::string>& sidecars) {
+    if (!out_path.has_filename() || out_path.filename() == "." || out_path.filename() == "..")
+        throw InvalidInput(fmt::format("--out {} is not allowed; allowed: a file name",
+                                       printable(out_path.native())));
+    auto out = std::make_unique<OutputDirectory>(out_path.has_parent_path() ? out_path.parent_path()
+                                                                            : fs::path("."),
+                                                 "--out", OutputKind::files);
+    out->keep("the particles file", o.particles);
+    const std::string name = out_path.filename().string();
+    out->reserve(name);
+    for (const std::string& sidecar : sidecars)
+        out->reserve(name + sidecar);
+    return out;
 }
 
 /// STL, OBJ or an OpenFOAM case: treat the contacts, tessellate, write the surfaces and the
 /// volumes.
 int run_surface_export(const ExportOptions& o, ExportFormat format, const ParticleFile& file) {
+    // The output first, so that everything that can refuse it does before the work.
+    const fs::path out_path =
+        !o.out.empty() ? fs::path(o.out)
+        : format == ExportFormat::openfoam
+            ? fs::path(o.particles).parent_path() / "openfoam"
+            : fs::path(o.particles)
+                  .replace_extension(format == ExportFormat::obj ? ".obj" : ".stl");
+    std::unique_ptr<OutputDirectory> out;
+    if (format == ExportFormat::openfoam) {
+        out = std::make_unique<OutputDirectory>(out_path, "--out", OutputKind::directory, o.force);
+        out->keep("the particles file", o.particles);
+    } else {
+        out = file_output(o, out_path, {".json"});
+    }
     const Contacts contacts = parse_contacts(o.contacts);
     const double dp = file.packing.mean_diameter();
     std::optional<SurfaceContainer> container;
@@ -89,7 +125,7 @@ int run_surface_export(const ExportOptions& o, ExportFormat format, const Partic
                 throw InvalidInput(fmt::format(
                     "{}:{}: the sphere centre ({}, {}, {}) is outside the container (radius {}, "
                     "floor z = 0); allowed: centres inside it",
-                    o.particles, file.lines[i], c.x, c.y, c.z, rt));
+                    printable(o.particles), file.lines[i], c.x, c.y, c.z, rt));
         }
     }
     SurfaceOptions options;
@@ -112,7 +148,7 @@ int run_surface_export(const ExportOptions& o, ExportFormat format, const Partic
     if (format == ExportFormat::openfoam && !container)
         throw InvalidInput(fmt::format("--format openfoam needs the container: give "
                                        "--container-radius (no summary.json next to {})",
-                                       o.particles));
+                                       printable(o.particles)));
 
     // What every surface export reports (printed, and written as JSON beside the output).
     nlohmann::ordered_json report;
@@ -152,21 +188,18 @@ int run_surface_export(const ExportOptions& o, ExportFormat format, const Partic
             {"location_in_mesh",
              {foam.location_in_mesh.x, foam.location_in_mesh.y, foam.location_in_mesh.z}},
             {"clearance", foam.clearance}};
-        const fs::path dir =
-            o.out.empty() ? fs::path(o.particles).parent_path() / "openfoam" : fs::path(o.out);
-        OutputDirectory out(dir);
         for (const auto& [path, text] : foam.files)
-            out.stage(path, text);
+            out->stage(path, text);
         write_surface(foam.particles, SurfaceFormat::stl_binary,
-                      out.reserve("constant/triSurface/particles.stl"));
+                      out->reserve("constant/triSurface/particles.stl"));
         write_surface(foam.wall, SurfaceFormat::stl_binary,
-                      out.reserve("constant/triSurface/wall.stl"));
-        out.stage("packbed.json", report.dump(2) + "\n");
-        out.commit();
+                      out->reserve("constant/triSurface/wall.stl"));
+        out->stage("packbed.json", report.dump(2) + "\n");
+        out->commit();
         if (!o.quiet)
             fmt::print("packbed export: OpenFOAM case in {} ({} spheres, contacts {}{}); run "
                        "blockMesh, snappyHexMesh -overwrite, checkMesh there\n",
-                       dir.string(), file.packing.size(), o.contacts, change);
+                       out_path.string(), file.packing.size(), o.contacts, change);
         return 0;
     }
 
@@ -177,19 +210,14 @@ int run_surface_export(const ExportOptions& o, ExportFormat format, const Partic
         triangles += s.mesh.triangles.size();
         report["solids"].push_back({{"name", s.name}, {"triangles", s.mesh.triangles.size()}});
     }
-    const fs::path out_path =
-        o.out.empty()
-            ? fs::path(o.particles).replace_extension(format == ExportFormat::obj ? ".obj" : ".stl")
-            : fs::path(o.out);
-    OutputDirectory out(out_path.has_parent_path() ? out_path.parent_path() : fs::path("."));
     const std::string name = out_path.filename().string();
     write_surface(solids,
                   format == ExportFormat::stl         ? SurfaceFormat::stl_binary
                   : format == ExportFormat::stl_ascii ? SurfaceFormat::stl_ascii
                                                       : SurfaceFormat::obj,
-                  out.reserve(name));
-    out.stage(name + ".json", report.dump(2) + "\n");
-    out.commit();
+                  out->reserve(name));
+    out->stage(name + ".json", report.dump(2) + "\n");
+    out->commit();
     if (!o.quiet)
         fmt::print("packbed export: {} spheres to {} ({} triangles, icosphere level {}, contacts "
                    "{}){}\n",
@@ -213,6 +241,10 @@ int run_export(const ExportOptions& o) {
     const AxisBox box = o.box.empty() ? bounding_box(file.packing) : parse_box(o.box);
     const fs::path out_path =
         o.out.empty() ? fs::path(o.particles).replace_extension(".data") : fs::path(o.out);
+    const std::string name = out_path.filename().string();
+    const auto out = file_output(o, out_path,
+                                 o.fluid_velocity >= 0.0 ? std::vector<std::string>{".fluid.in"}
+                                                         : std::vector<std::string>{});
     const std::string program = format == ExportFormat::lammps_data ? "LAMMPS" : "LIGGGHTS";
     std::string comment = fmt::format("{} spheres from {} (packbed export, {} atom_style {})",
                                       file.packing.size(), o.particles, program,
@@ -220,14 +252,13 @@ int run_export(const ExportOptions& o) {
     if (o.fluid_velocity >= 0.0)
         comment +=
             fmt::format("; fluid superficial velocity {} (packbed hydraulics)", o.fluid_velocity);
-    OutputDirectory out(out_path.has_parent_path() ? out_path.parent_path() : fs::path("."));
-    out.stage(out_path.filename().string(), lammps_data(file.packing, o.density, box, comment));
+    out->stage(name, lammps_data(file.packing, o.density, box, comment));
     if (o.fluid_velocity >= 0.0)
-        out.stage(out_path.filename().string() + ".fluid.in",
-                  fmt::format("# for the coupling: include this file in the {} input\n"
-                              "variable fluid_velocity equal {}\n",
-                              program, o.fluid_velocity));
-    out.commit();
+        out->stage(name + ".fluid.in",
+                   fmt::format("# for the coupling: include this file in the {} input\n"
+                               "variable fluid_velocity equal {}\n",
+                               program, o.fluid_velocity));
+    out->commit();
     if (!o.quiet)
         fmt::print("packbed export: {} spheres to {} ({}: read_data {}{})\n", file.packing.size(),
                    out_path.string(), program, out_path.filename().string(),
@@ -248,7 +279,8 @@ Command register_export(CLI::App& parent) {
     app->option_defaults()->always_capture_default();
     const double inf = std::numeric_limits<double>::infinity();
     app->add_option("particles", o.particles, "particles.csv, .xyz or a LAMMPS/LIGGGHTS dump")
-        ->required();
+        ->required()
+        ->check(path_text());
     std::vector<std::string> names;
     for (const auto& entry : export_formats())
         names.push_back(entry.first);
@@ -259,7 +291,12 @@ Command register_export(CLI::App& parent) {
         ->check(CLI::IsMember(names));
     app->add_option("-o,--out", o.out,
                     "the output file (default: the particle file with .data, .stl or .obj), or "
-                    "the case directory for openfoam (default: openfoam/ beside the file)");
+                    "the case directory for openfoam (default: openfoam/ beside the file; a new "
+                    "or empty one, or an existing one with --force)")
+        ->check(path_text());
+    app->add_flag("--force", o.force,
+                  "openfoam: replace a non-empty case directory whole (its old files are "
+                  "deleted); files are replaced without it");
     app->add_option("--contacts", o.contacts,
                     "surfaces: none, shrink:F (radii times 1 - F) or caps:H (flat faces H Dp "
                     "apart at every contact closer than H Dp, and H Dp from the walls); F, H "

@@ -1,8 +1,5 @@
 // `packbed generate`: the soft-sphere bed of Salvat et al. (2005) in a cylinder.
-#include <atomic>
-#include <csignal>
 #include <filesystem>
-#include <fstream>
 #include <limits>
 #include <memory>
 #include <optional>
@@ -15,6 +12,8 @@
 #include "packbed/checkpoint.hpp"
 #include "packbed/error.hpp"
 #include "packbed/io.hpp"
+#include "packbed/limits.hpp"
+#include "packbed/output.hpp"
 #include "packbed/soft_sphere.hpp"
 #include "packbed/summary.hpp"
 #include "plots.hpp"
@@ -23,11 +22,6 @@
 namespace packbed::cli {
 
 namespace {
-
-std::atomic<bool> interrupted{false};
-extern "C" void on_interrupt(int) {
-    interrupted = true;
-}
 
 struct GenerateOptions {
     SoftSphereParameters params;
@@ -38,6 +32,7 @@ struct GenerateOptions {
     double band_clearance = 1.0;
     unsigned long long threads = static_cast<unsigned long long>(omp_get_num_procs());
     bool quiet = false;
+    bool force = false;
 };
 
 int run_generate(GenerateOptions& o) {
@@ -48,15 +43,13 @@ int run_generate(GenerateOptions& o) {
         if (name == o.solver)
             o.params.solver = value;
     o.params.validate();
-    OutputDirectory out(o.out); // refuse an unwritable directory before the run
+    // Every check before the run: the output directory, the checkpoint.
+    OutputDirectory out(o.out, "--out", OutputKind::directory, o.force);
     use_threads(o.threads);
 
-    std::signal(SIGINT, on_interrupt);
-    std::signal(SIGTERM, on_interrupt);
     TerminalProgress progress(progress_wanted(o.quiet), o.params);
     RunControl control;
     control.on_progress = [&](const Progress& p) { progress(p); };
-    control.should_stop = [] { return interrupted.load(); };
     std::optional<LayerCheckpoint> resume;
     if (!o.checkpoint.empty()) {
         if (o.params.solver != Solver::fire || fire_layers(o.params) == 1)
@@ -67,16 +60,8 @@ int run_generate(GenerateOptions& o) {
                 o.checkpoint, o.params.solver == Solver::fire ? "in one piece" : "paper mode",
                 initial_bed_height(o.params.particles, o.params.aspect_ratio, o.params.e0),
                 o.params.layer_height));
-        {
-            // Refuse an unwritable checkpoint now, not after the first layer.
-            const std::string probe = o.checkpoint + ".partial";
-            const bool writable = static_cast<bool>(std::ofstream(probe, std::ios::app));
-            std::filesystem::remove(probe);
-            if (!writable)
-                throw InvalidInput(fmt::format("--checkpoint {}: cannot be written; allowed: a "
-                                               "file in a writable folder",
-                                               o.checkpoint));
-        }
+        check_writable_file("--checkpoint", o.checkpoint); // now, not after the first layer
+        out.keep("--checkpoint", o.checkpoint);
         if (std::filesystem::exists(o.checkpoint)) {
             resume = read_checkpoint(o.checkpoint, o.params);
             control.resume = &*resume;
@@ -136,14 +121,19 @@ Command register_generate(CLI::App& parent) {
     app->add_option("-a,--aspect-ratio", p.aspect_ratio, "a = 2 Rt / Dp, tube over sphere diameter")
         ->check(real_in(1.0, 1e4, false, false));
     app->add_option("-n,--particles", p.particles, "Np, number of spheres")
-        ->check(whole_in(1, 100'000'000));
+        ->check(whole_in(1, limits::max_spheres));
     app->add_option("-s,--seed", p.seed, "seed of the random generation stage")
         ->check(whole_in(0, std::numeric_limits<std::uint64_t>::max()));
     app->add_option("-d,--diameter", p.diameter,
                     "sphere diameter Dp; the unit of every length "
                     "in the outputs")
-        ->check(real_in(1e-12, 1e12, false, false));
-    app->add_option("-o,--out", o.out, "output directory (created if missing)");
+        ->check(real_in(limits::min_diameter, limits::max_diameter, false, false));
+    app->add_option("-o,--out", o.out,
+                    "output directory: a new or empty one (created), or an existing one with "
+                    "--force")
+        ->check(path_text());
+    app->add_flag("--force", o.force,
+                  "replace a non-empty output directory whole (its old files are deleted)");
     app->add_option("--e0", p.e0, "initial overall void fraction for L0, eq. (6)")
         ->check(real_in(0.0, 1.0, true, true));
     app->add_option("--ck", p.ck, "elasticity parameter Ck of eq. (4)")
@@ -188,7 +178,8 @@ Command register_generate(CLI::App& parent) {
         ->check(real_in(0.0, 1e6, false, false));
     app->add_option("--checkpoint", o.checkpoint,
                     "fire solver in layers: save the state to this file after each layer, and "
-                    "resume from it when it exists (the same options give the same bytes)");
+                    "resume from it when it exists (the same options give the same bytes)")
+        ->check(path_text());
     app->add_option("--max-iterations", p.max_iterations, "give up after this many iterations")
         ->check(whole_in(1, std::numeric_limits<std::uint64_t>::max()));
     app->add_option("--band-clearance", o.band_clearance,

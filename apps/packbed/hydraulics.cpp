@@ -1,19 +1,22 @@
 // `packbed hydraulics`: the fluid velocity that starts a DEM run of a fluidized bed (Tsayger
 // 2013, eq. (1)), pressure drops, minimum fluidization and permeability, for a porosity given
 // or read from a bed's summary.json.
+#include <cmath>
 #include <filesystem>
-#include <fstream>
 #include <memory>
 #include <optional>
 #include <string>
+#include <system_error>
 
 #include <fmt/format.h>
 #include <nlohmann/json.hpp>
 
 #include "command.hpp"
 #include "packbed/error.hpp"
+#include "packbed/files.hpp"
 #include "packbed/hydraulics.hpp"
 #include "packbed/lattice.hpp"
+#include "packbed/limits.hpp"
 
 namespace packbed::cli {
 
@@ -34,14 +37,14 @@ struct HydraulicsOptions {
 /// bed's overall void fraction, or a lattice's exact porosity (the paper's choice for eq. (1)).
 std::pair<double, std::string> porosity_of(const std::string& bed) {
     fs::path path(bed);
-    if (fs::is_directory(path))
+    std::error_code error;
+    if (fs::is_directory(path, error))
         path /= "summary.json";
-    std::ifstream in(path);
-    if (!in)
-        throw InvalidInput(fmt::format("--bed '{}': cannot read {}", bed, path.string()));
+    // A regular file of bounded size (a FIFO, a device or /dev/zero is refused, not read).
+    const std::string text = read_small_file("--bed", path, limits::max_small_file);
     nlohmann::json s;
     try {
-        s = nlohmann::json::parse(in);
+        s = nlohmann::json::parse(text);
     } catch (const nlohmann::json::exception&) {
         throw InvalidInput(fmt::format("--bed '{}': {} is not JSON", bed, path.string()));
     }
@@ -55,6 +58,23 @@ std::pair<double, std::string> porosity_of(const std::string& bed) {
     throw InvalidInput(fmt::format("--bed '{}': {} has no numeric lattice.porosity or "
                                    "void_fraction; give --porosity",
                                    bed, path.string()));
+}
+
+/// \return the path of the first number of `value` that is not finite (nlohmann::json prints
+/// them as null), or nothing.
+std::string first_not_finite(const nlohmann::json& value, const std::string& path = "") {
+    if (value.is_number_float())
+        return std::isfinite(value.get<double>()) ? "" : path;
+    if (value.is_object() || value.is_array()) {
+        std::size_t index = 0;
+        for (auto it = value.begin(); it != value.end(); ++it, ++index) {
+            const std::string key = value.is_object() ? it.key() : std::to_string(index);
+            if (std::string bad = first_not_finite(*it, path.empty() ? key : path + "." + key);
+                !bad.empty())
+                return bad;
+        }
+    }
+    return "";
 }
 
 int run_hydraulics(const HydraulicsOptions& o) {
@@ -119,6 +139,13 @@ int run_hydraulics(const HydraulicsOptions& o) {
                                            {"permeability_over_hexagonal", hexagonal / c.linear},
                                            {"critical_reynolds", critical_reynolds(ar, porosity)}});
     }
+    // The library refuses results that are not finite; this holds for what is computed here.
+    if (const std::string bad = first_not_finite(out); !bad.empty())
+        throw InvalidInput(fmt::format(
+            "{} is not a finite number for porosity = {}, diameter = {}, particle-density = {}, "
+            "fluid-density = {}, viscosity = {}, gravity = {}, velocity = {}; allowed: inputs "
+            "that give one",
+            bad, e, f.diameter, f.particle_density, f.fluid_density, f.viscosity, f.gravity, u));
     if (!warning.empty())
         fmt::print(stderr, "packbed hydraulics: warning: {}\n", warning);
     if (o.json) {
@@ -160,28 +187,34 @@ Command register_hydraulics(CLI::App& parent) {
         "hydraulics", "Onset of fluidization (Tsayger 2013, eq. 1) and the fluid velocity for a "
                       "DEM start, pressure drops, Wen & Yu, permeability; SI units");
     app->option_defaults()->always_capture_default();
-    const double inf = std::numeric_limits<double>::infinity();
+    // Physical ranges (limits.hpp): nanoparticles to boulders, gases to liquid metals,
+    // microgravity to centrifuges.
     app->add_option("-e,--porosity", o.porosity, "bed porosity (void fraction)")
         ->check(real_in(0.0, 1.0, true, true));
     app->add_option("--bed", o.bed,
                     "a bed's summary.json (or its directory): a lattice's exact porosity or a "
                     "generated bed's void fraction");
-    app->add_option("-d,--diameter", o.fluid.diameter, "particle diameter, m")
-        ->check(real_in(0.0, inf, true, true));
-    app->add_option("--particle-density", o.fluid.particle_density, "kg/m^3")
-        ->check(real_in(0.0, inf, true, true));
-    app->add_option("--fluid-density", o.fluid.fluid_density, "kg/m^3 (default: water, 20 C)")
-        ->check(real_in(0.0, inf, true, true));
-    app->add_option("--viscosity", o.fluid.viscosity, "dynamic viscosity, Pa s (default: water)")
-        ->check(real_in(0.0, inf, true, true));
-    app->add_option("-g,--gravity", o.fluid.gravity, "m/s^2")->check(real_in(0.0, inf, true, true));
+    app->add_option("-d,--diameter", o.fluid.diameter, "particle diameter, m (1 nm to 10 m)")
+        ->check(real_in(limits::min_particle_diameter_m, limits::max_particle_diameter_m, false,
+                        false));
+    app->add_option("--particle-density", o.fluid.particle_density,
+                    "kg/m^3, above the fluid's (aerogels to tungsten)")
+        ->check(real_in(limits::min_density_kg_m3, limits::max_density_kg_m3, false, false));
+    app->add_option("--fluid-density", o.fluid.fluid_density,
+                    "kg/m^3 (default: water, 20 C; gases at low pressure to mercury)")
+        ->check(real_in(limits::min_density_kg_m3, limits::max_density_kg_m3, false, false));
+    app->add_option("--viscosity", o.fluid.viscosity,
+                    "dynamic viscosity, Pa s (default: water; gases to heavy oils)")
+        ->check(real_in(limits::min_viscosity_pa_s, limits::max_viscosity_pa_s, false, false));
+    app->add_option("-g,--gravity", o.fluid.gravity, "m/s^2 (microgravity to centrifuges)")
+        ->check(real_in(limits::min_gravity_m_s2, limits::max_gravity_m_s2, false, false));
     app->add_option("-u,--velocity", o.velocity,
                     "superficial velocity for the pressure drops, m/s (default: the critical one)")
-        ->check(real_in(0.0, inf, true, true));
+        ->check(real_in(0.0, limits::max_velocity_m_s, true, false));
     app->add_option("-a,--aspect-ratio", o.aspect_ratio,
                     "tube over particle diameter: adds Eisfeld & Schnitzlein's wall-corrected "
                     "pressure drop")
-        ->check(real_in(1.0, inf, false, true));
+        ->check(real_in(1.0, limits::max_tube_aspect_ratio, false, false));
     app->add_flag("--json", o.json, "print everything as JSON");
     app->fallthrough();
     app->footer("Exit status: 0 success, 2 bad input (e.g. a particle lighter than the fluid).");

@@ -11,6 +11,7 @@
 #include "packbed/error.hpp"
 #include "packbed/io.hpp"
 #include "packbed/lattice.hpp"
+#include "packbed/limits.hpp"
 #include "packbed/summary.hpp"
 #include "plots.hpp"
 
@@ -30,16 +31,18 @@ struct LatticeOptions {
     bool quiet = false;
 };
 
-/// `box:LX,LY,LZ` or `cylinder:D,H`, lengths > 0.
+/// `box:LX,LY,LZ` or `cylinder:D,H`, lengths in (0, limits::max_length].
 LatticeRegion parse_region(const std::string& text) {
-    const std::string allowed = "allowed: box:LX,LY,LZ or cylinder:D,H with lengths > 0";
+    const std::string allowed =
+        fmt::format("allowed: box:LX,LY,LZ or cylinder:D,H with lengths > 0 and at most {:g}",
+                    limits::max_length);
     const std::size_t colon = text.find(':');
     const std::string shape = text.substr(0, colon);
     const auto values =
         colon == std::string::npos ? std::nullopt : comma_numbers(text.substr(colon + 1));
     auto positive = [&] {
         for (const double v : *values)
-            if (!(v > 0.0))
+            if (!(v > 0.0 && v <= limits::max_length))
                 return false;
         return true;
     };
@@ -120,14 +123,14 @@ Command register_lattice(CLI::App& parent) {
                     "fcc and hcp: 12, 0.260")
         ->check(CLI::IsMember(type_names));
     app->add_option("-d,--diameter", o.params.diameter, "ball diameter d; the unit of the outputs")
-        ->check(real_in(1e-12, 1e12, false, false));
+        ->check(real_in(limits::min_diameter, limits::max_diameter, false, false));
     app->add_option("-r,--region", o.region,
                     "box:LX,LY,LZ (from 0 to L along each axis) or cylinder:D,H (z axis, from "
-                    "z = 0 to H)");
+                    "z = 0 to H), lengths up to 1e15");
     app->add_option("--origin", o.origin,
-                    "x,y,z of the first ball of cell (0,0,0) (ball A of Tsayger's Table 1); "
-                    "default: d/2 from each wall at the low corner of a box, on the axis d/2 "
-                    "above the floor of a cylinder");
+                    "x,y,z of the first ball of cell (0,0,0) (ball A of Tsayger's Table 1), "
+                    "within 1e6 d of the region; default: d/2 from each wall at the low corner "
+                    "of a box, on the axis d/2 above the floor of a cylinder");
     app->add_option("--rotate", o.rotate,
                     "turn the lattice about the origin: AXIS:DEGREES pairs applied in order, "
                     "e.g. z:30,x:10");

@@ -7,7 +7,7 @@
 
 #include "packbed/analysis.hpp"
 #include "packbed/container.hpp"
-#include "packbed/io.hpp"
+#include "packbed/output.hpp"
 
 namespace packbed::cli {
 

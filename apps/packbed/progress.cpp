@@ -6,7 +6,10 @@
 #include <string>
 
 #include <fmt/format.h>
+#include <sys/ioctl.h>
 #include <unistd.h>
+
+#include "interrupt.hpp"
 
 namespace packbed::cli {
 
@@ -32,11 +35,18 @@ void TerminalProgress::operator()(const Progress& p) {
         left.has_value() ? fmt::format("~{:.0f} s left", left.value_or(0.0)) : "estimating";
     m_last = now;
     m_drawn = true;
-    fmt::print(stderr,
-               "\r\033[K{:>5.1f} s  {}{:<12} {:>14}  iteration {:>9}  Cg {:.3e}  overlap pair "
-               "{:.2e} wall {:.2e} Dp  mass centre {:.6f} Dp",
-               seconds, layer, p.stage, left_text, p.iteration, p.cg, p.max_overlap_pair,
-               p.max_overlap_wall, p.mass_centre_z);
+    progress_line_drawn(true);
+    std::string line = fmt::format(
+        "{:>5.1f} s  {}{:<12} {:>14}  iteration {:>9}  Cg {:.3e}  overlap pair {:.2e} wall "
+        "{:.2e} Dp  mass centre {:.6f} Dp",
+        seconds, layer, p.stage, left_text, p.iteration, p.cg, p.max_overlap_pair,
+        p.max_overlap_wall, p.mass_centre_z);
+    // One line that fits the terminal (a wrapped line could not be redrawn in place).
+    struct winsize size {};
+    if (::ioctl(STDERR_FILENO, TIOCGWINSZ, &size) == 0 && size.ws_col > 1 &&
+        line.size() >= size.ws_col)
+        line.resize(size.ws_col - 1u);
+    fmt::print(stderr, "\r\033[K{}", line);
     std::fflush(stderr);
 }
 
@@ -44,6 +54,7 @@ void TerminalProgress::finish() {
     if (m_enabled && m_drawn) {
         fmt::print(stderr, "\r\033[K");
         std::fflush(stderr);
+        progress_line_drawn(false);
     }
     m_drawn = false;
 }

@@ -1,15 +1,15 @@
 #include <charconv>
 #include <cmath>
 #include <cstdlib>
-#include <fstream>
 #include <string>
 
 #include <fmt/format.h>
-#include <nlohmann/json.hpp>
 #include <omp.h>
 
 #include "command.hpp"
 #include "packbed/error.hpp"
+#include "packbed/files.hpp"
+#include "packbed/read.hpp"
 
 namespace packbed::cli {
 
@@ -24,7 +24,7 @@ CLI::Validator real_in(double low, double high, bool low_open, bool high_open) {
             const char* end = text.data() + text.size();
             const auto [ptr, ec] = std::from_chars(text.data(), end, value);
             if (ec != std::errc() || ptr != end || !std::isfinite(value))
-                return fmt::format("'{}' is not allowed; allowed: {}", text, allowed);
+                return fmt::format("'{}' is not allowed; allowed: {}", printable(text), allowed);
             const bool above = low_open ? value > low : value >= low;
             const bool below = high_open ? value < high : value <= high;
             if (!above || !below)
@@ -42,10 +42,23 @@ CLI::Validator whole_in(unsigned long long low, unsigned long long high) {
             const char* end = text.data() + text.size();
             const auto [ptr, ec] = std::from_chars(text.data(), end, value);
             if (ec != std::errc() || ptr != end || value < low || value > high)
-                return fmt::format("'{}' is not allowed; allowed: {}", text, allowed);
+                return fmt::format("'{}' is not allowed; allowed: {}", printable(text), allowed);
             return {};
         },
         allowed);
+}
+
+CLI::Validator path_text() {
+    return CLI::Validator(
+        [](std::string& text) -> std::string {
+            const std::string problem = path_problem(text);
+            if (problem.empty())
+                return {};
+            return fmt::format("'{}' is not allowed ({}); allowed: a path of at most 4095 bytes "
+                               "without control characters (newline, tab, ...)",
+                               printable(text.substr(0, 200)), problem);
+        },
+        "PATH");
 }
 
 std::optional<std::vector<double>> comma_numbers(std::string_view text) {
@@ -71,24 +84,16 @@ void use_threads(unsigned long long threads) {
         omp_set_dynamic(1);
 }
 
-} // namespace packbed::cli
-
-namespace packbed::cli {
-
 std::optional<double> container_radius_beside(const std::filesystem::path& particles) {
     const std::filesystem::path summary = particles.parent_path() / "summary.json";
-    std::ifstream in(summary);
-    if (!in)
+    std::error_code ec;
+    if (!std::filesystem::exists(std::filesystem::symlink_status(summary, ec)))
         return std::nullopt;
-    try {
-        const auto json = nlohmann::json::parse(in);
-        const double r = json.at("container").at("radius").get<double>();
-        if (r > 0.0)
-            return r;
-    } catch (const nlohmann::json::exception&) {
-    }
-    throw InvalidInput(
-        fmt::format("{}: no positive container.radius; give --container-radius", summary.string()));
+    const BedSummary bed = read_bed_summary(summary);
+    if (!bed.container_radius)
+        throw InvalidInput(fmt::format("{}: no container.radius; give --container-radius",
+                                       printable(summary.native())));
+    return bed.container_radius;
 }
 
 } // namespace packbed::cli

@@ -97,7 +97,7 @@ def largest_overlaps(path, radius):
 
 def analyze(packbed, path, radius, out):
     subprocess.run([packbed, "analyze", path, "--container-radius", repr(radius), "--out", out,
-                    "--quiet"], check=True, stdout=subprocess.DEVNULL)
+                    "--force", "--quiet"], check=True, stdout=subprocess.DEVNULL)
     with open(os.path.join(out, "summary.json")) as f:
         return json.load(f)["void_fraction"]
 
@@ -159,7 +159,8 @@ def main():
         out = os.path.join(work, f"packbed-{solver}")
         start = time.perf_counter()
         subprocess.run([args.packbed, "generate", "--solver", solver, "--aspect-ratio", f"{a:g}",
-                        "--particles", str(n), "--seed", str(args.seed), "--quiet", "--out", out],
+                        "--particles", str(n), "--seed", str(args.seed), "--quiet", "--force",
+                        "--out", out],
                        check=True)
         seconds = time.perf_counter() - start
         with open(os.path.join(out, "summary.json")) as f:

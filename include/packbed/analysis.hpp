@@ -16,7 +16,8 @@ namespace packbed {
 /// What to measure and how finely. Lengths marked Dp are in units of the reference diameter
 /// (`diameter`, or the mean sphere diameter when not given). Plain value type.
 struct AnalysisOptions {
-    std::optional<double> diameter;  ///< reference diameter Dp (length); default: mean diameter
+    std::optional<double> diameter;  ///< reference diameter Dp (length), 0.1 to 10 times the
+                                     ///< mean diameter; default: the mean diameter
     double band_clearance = 1.0;     ///< the axial band keeps this far from floor and top, Dp
     double shell_width = 0.02;       ///< width of the cylindrical shells of e(r), Dp
     double slab_height = 0.05;       ///< height of the slabs of e(z), Dp
@@ -72,9 +73,22 @@ struct BedAnalysis {
 /// - g(r): pairs with the first sphere in the band, normalised by the mean number density of
 ///   centres in the band and the shell volume 4 pi r^2 dr. Not corrected for the container
 ///   boundary, so it falls below 1 at distances comparable to the container radius.
-/// \param packing the spheres (any order) \param container the cylinder
-/// \param options see AnalysisOptions
-/// \return the measurements. \throws InvalidInput for an empty bed or a band that is empty.
+/// - Contacts and g(r) come from a cell grid searched without storing the pairs (memory O(N)):
+///   spheres up to the mean diameter search the 27 cells around their own, a larger sphere the
+///   cells its reach needs, so one huge sphere costs about N distance checks, not N per sphere.
+/// - The work is bounded by what the input justifies (limits.hpp, where the reasons are): per
+///   profile at most max(min_profile_bins, profile_bins_per_sphere N) bins, today
+///   max(1e6, 100 N); per pair search at most max(min_pair_checks, pair_checks_per_sphere N
+///   max(1, (c / D)^3)) distance checks, c the search distance and D the mean diameter; a
+///   reference diameter within max_reference_diameter_ratio (10) of the mean diameter. Beyond
+///   them the bed is refused before any work, naming the option to change (--slab-height,
+///   --shell-width, --centre-bin, --rdf-bin, --rdf-range, --container-radius, --diameter) or
+///   the sphere that makes the bed too tall.
+/// \param packing the spheres (any order; coordinates and radii within limits::max_length)
+/// \param container the cylinder (radius > 0, at most limits::max_length)
+/// \param options see AnalysisOptions (widths and the range > 0, tolerances >= 0)
+/// \return the measurements. \throws InvalidInput for an empty bed, a band that is empty, a
+/// value outside the ranges above, or a bed beyond the limits.
 BedAnalysis analyze_bed(const Packing& packing, const Cylinder& container,
                         const AnalysisOptions& options = {});
 

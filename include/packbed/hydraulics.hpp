@@ -11,17 +11,20 @@
 
 namespace packbed {
 
-/// The particles and the fluid. Plain value type, SI units.
+/// The particles and the fluid. Plain value type, SI units; the ranges are limits.hpp's.
 struct FluidAndParticles {
-    double diameter = 1e-3;         ///< particle diameter d, m, > 0
-    double particle_density = 2500; ///< kg/m^3, > fluid density (else nothing fluidizes)
-    double fluid_density = 1.2;     ///< kg/m^3, > 0
-    double viscosity = 1.8e-5;      ///< dynamic viscosity mu, Pa s, > 0
-    double gravity = 9.80665;       ///< g, m/s^2, > 0
+    double diameter = 1e-3;         ///< particle diameter d, m, 1e-9 to 10
+    double particle_density = 2500; ///< kg/m^3, > fluid density (else nothing fluidizes), <= 3e4
+    double fluid_density = 1.2;     ///< kg/m^3, 1e-3 to 3e4
+    double viscosity = 1.8e-5;      ///< dynamic viscosity mu, Pa s, 1e-7 to 1e4
+    double gravity = 9.80665;       ///< g, m/s^2, 1e-6 to 1e6
 
     /// \throws InvalidInput naming the value and what is allowed
     void validate() const;
 };
+
+// Every function below throws InvalidInput for an input outside its range, and for a result
+// that is not a finite number (an overflow), naming the inputs it was computed from.
 
 /// Archimedes number \f$Ar = g d^3 \rho (\rho_p - \rho) / \mu^2\f$ (Tsayger 2013).
 double archimedes_number(const FluidAndParticles& f);
@@ -32,7 +35,7 @@ struct FluidizationCoefficients {
     double linear = 0.0;    ///< A
     double quadratic = 0.0; ///< B
 };
-/// \param porosity e in (0, 1) \throws InvalidInput outside
+/// \param porosity e in (0, 1) \throws InvalidInput outside, or when e^3 underflows (e < 1e-103)
 FluidizationCoefficients fluidization_coefficients(double porosity);
 
 /// The critical Reynolds number of eq. (1), the positive root of \f$B Re^2 + A Re - Ar = 0\f$,
@@ -53,7 +56,7 @@ double ergun_pressure_gradient(double porosity, double velocity, const FluidAndP
 /// \f$A_w = 1 + 2/(3 a (1-e))\f$, \f$B_w = (k_1 a^{-2} + k_2)^2\f$, \f$K_1 = 154\f$,
 /// \f$k_1 = 1.15\f$, \f$k_2 = 0.87\f$, \f$Re = \rho u d / \mu\f$. Valid for
 /// \f$0.01 \le Re \le 17635\f$, \f$1.624 \le a \le 250\f$, \f$0.330 \le e \le 0.882\f$: outside,
-/// the value comes with a warning. \return Pa/m (velocity > 0)
+/// the value comes with a warning. \return Pa/m (velocity > 0, aspect ratio 1 to 1e4)
 CorrelationValue eisfeld_schnitzlein_pressure_gradient(double porosity, double velocity,
                                                        double aspect_ratio,
                                                        const FluidAndParticles& f);

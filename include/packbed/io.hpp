@@ -1,4 +1,5 @@
-// Writing beds to files: CSV, VTK XML (ParaView), and all-or-nothing output directories.
+// Beds and their analysis as file contents: CSV, VTK XML (ParaView), LAMMPS data. Where the
+// files go, whole or not at all: output.hpp.
 #pragma once
 
 #include <filesystem>
@@ -53,44 +54,5 @@ std::string lammps_data(const Packing& packing, double density, const AxisBox& b
 /// \return (file name, contents) pairs.
 std::vector<std::pair<std::string, std::string>> analysis_tables(const BedAnalysis& analysis,
                                                                  double container_radius);
-
-/// A set of files written all or nothing. Each file is first written under a temporary name
-/// in the target directory; commit() renames them all into place. If the object is destroyed
-/// without commit() (an error, an interruption), the temporary files are removed and no
-/// target file is touched. Not thread-safe.
-class OutputDirectory {
-public:
-    /// Create the directory if needed and check that it is writable.
-    /// \param directory the output directory
-    /// \throws InvalidInput naming the directory when it cannot be created or written
-    explicit OutputDirectory(std::filesystem::path directory);
-    ~OutputDirectory();
-    OutputDirectory(const OutputDirectory&) = delete;
-    OutputDirectory& operator=(const OutputDirectory&) = delete;
-
-    /// Write `contents` to a temporary file for `name` (a file name inside the directory, or a
-    /// relative path whose folders are then created: "system/controlDict").
-    /// \throws std::runtime_error naming the file when writing fails
-    void stage(const std::string& name, const std::string& contents);
-
-    /// Reserve the temporary path of `name` for a file another program writes (e.g. a plot);
-    /// it is renamed into place by commit() like staged files, and removed if not committed.
-    /// \return the temporary path to write to.
-    std::filesystem::path reserve(const std::string& name);
-
-    /// Forget a staged or reserved file and remove its temporary (e.g. a plot that failed).
-    void discard(const std::string& name);
-
-    /// Rename every staged file to its final name, after checking that all of them exist.
-    /// \throws std::runtime_error naming the file when one is missing or a rename fails
-    void commit();
-
-    /// \return the directory.
-    const std::filesystem::path& path() const { return m_directory; }
-
-private:
-    std::filesystem::path m_directory;
-    std::vector<std::pair<std::filesystem::path, std::filesystem::path>> m_staged; // tmp, final
-};
 
 } // namespace packbed

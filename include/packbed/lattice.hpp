@@ -80,7 +80,8 @@ struct LatticeParameters {
     LatticeRegion region = BoxRegion{{10.0, 10.0, 10.0}};
     /// Where the first ball of cell (0, 0, 0) lies (ball A of Table 1 for the diamond
     /// packing); by default d/2 from each wall at the low corner of a box, on the axis d/2
-    /// above the floor of a cylinder.
+    /// above the floor of a cylinder. At most 1e6 d from the region
+    /// (limits::max_lattice_origin_offset): farther, the positions lose their precision.
     std::optional<Vec3> origin;
     LatticeKeep keep = LatticeKeep::whole;
     /// Rotations of the lattice about the origin, applied in this order: (axis 'x', 'y' or 'z',
@@ -88,14 +89,17 @@ struct LatticeParameters {
     /// along x, y and z.
     std::vector<std::pair<char, double>> rotations;
 
-    /// Check every value. \throws InvalidInput naming the parameter, its value and the range.
+    /// Check every value, and that the fill stays within its limits (limits.hpp: at most
+    /// max_spheres balls and max_lattice_positions positions tried, an origin within
+    /// max_lattice_origin_offset diameters of the region). \throws InvalidInput naming the
+    /// parameter (the command line's option), its value and the range.
     void validate() const;
 };
 
 /// Fill the region with the lattice: every ball of every cell of the infinite lattice through
 /// the origin, kept by `keep`, in the order cell layer (z), row (y), position (x), then the
 /// cell's balls in unit_cell order. O(balls); the same output whatever the threads.
-/// \throws InvalidInput for invalid parameters or more than 1e8 balls
+/// \throws InvalidInput for invalid parameters or a fill beyond its limits (see validate)
 Packing fill_lattice(const LatticeParameters& parameters);
 
 /// Contacts of a packing of equal balls of diameter d: pairs whose centres are d apart within

@@ -28,6 +28,7 @@ const std::vector<std::pair<std::string, ParticleFormat>>& particle_formats();
 /// What a file does not say itself.
 struct ReadOptions {
     std::optional<double> radius; ///< radius for XYZ files without a radius column (length, > 0)
+    std::optional<ParticleFormat> format; ///< the file's format; default: detect_particle_format
 };
 
 /// Spheres read from a file, with the line each came from (1-based) for later messages.
@@ -41,12 +42,32 @@ struct ParticleFile {
 /// its first line. \throws InvalidInput naming the file when no format fits.
 ParticleFormat detect_particle_format(const std::filesystem::path& path);
 
-/// Read a file. Refuses, with InvalidInput naming the file, the line and the reason: an empty
-/// file, a missing column, a missing or non-numeric field, NaN or infinity, a radius <= 0.
+/// Read a file. Refuses, with InvalidInput naming the file, the line and the reason: what is
+/// not a regular file (a directory, a FIFO, a device: see open_regular_file), an empty file, a
+/// missing column, a missing or non-numeric field, NaN or infinity, a radius <= 0, a line
+/// longer than limits::max_line_length, more than limits::max_spheres spheres.
 ParticleFile read_particles(const std::filesystem::path& path, const ReadOptions& options = {});
 
 /// Read from a stream; `name` is used in messages.
 ParticleFile read_particles(std::istream& input, std::string_view name, ParticleFormat format,
                             const ReadOptions& options = {});
+
+/// What a bed's summary.json (written by `packbed generate`, `lattice` or `analyze`) tells a
+/// later command about the bed.
+struct BedSummary {
+    std::optional<double> container_radius; ///< container.radius (length), when present
+    std::optional<double> porosity;         ///< a lattice's exact porosity or the void fraction
+    std::string porosity_source; ///< "lattice TYPE" or "void fraction", when porosity is set
+};
+
+/// Read a summary.json. Absent keys are left empty; present ones must be right.
+/// \param name names the file in messages
+/// 	hrows InvalidInput naming the file when it is not JSON, or when container.radius is not
+/// a number in (0, limits::max_length] or the porosity not a number in (0, 1)
+BedSummary read_bed_summary(std::istream& input, std::string_view name);
+
+/// Read a summary.json file (at most limits::max_small_file bytes; a regular file, see
+/// open_regular_file). 	hrows InvalidInput as above
+BedSummary read_bed_summary(const std::filesystem::path& path);
 
 } // namespace packbed

@@ -1,0 +1,118 @@
+// packbed's command line: it parses, dispatches to one subcommand and maps errors to exit
+// statuses.
+#include "app.hpp"
+
+#include <cstdio>
+#include <string_view>
+#include <vector>
+
+#include <fmt/format.h>
+
+#include "interrupt.hpp"
+#include "packbed/error.hpp"
+#include "packbed/files.hpp"
+#include "packbed/limits.hpp"
+#include "packbed/version.hpp"
+#include "toml_config.hpp"
+
+namespace packbed::cli {
+Command register_generate(CLI::App& parent);
+Command register_analyze(CLI::App& parent);
+Command register_correlations(CLI::App& parent);
+Command register_lattice(CLI::App& parent);
+Command register_hydraulics(CLI::App& parent);
+Command register_export(CLI::App& parent);
+
+std::vector<Command> build_app(CLI::App& app) {
+    app.set_version_flag("-V,--version", std::string("packbed ") + version);
+    app.require_subcommand(1);
+    app.set_config("--config", "",
+                   "read a subcommand's options from this TOML file (keys are the option names, "
+                   "e.g. aspect-ratio = 5); the command line wins");
+    app.config_formatter(std::make_shared<TomlConfig>(&app));
+    return {register_generate(app), register_lattice(app), register_hydraulics(app),
+            register_export(app),   register_analyze(app), register_correlations(app)};
+}
+
+namespace {
+
+/// Check the files `--config FILE` names before CLI11 opens them (it would wait for ever on a
+/// FIFO and read a file of any size): regular files of at most limits::max_small_file bytes.
+/// \throws InvalidInput naming the file otherwise
+void check_config_files(int argc, char** argv) {
+    for (int i = 1; i < argc; ++i) {
+        const std::string_view arg = argv[i];
+        if (arg == "--config" && i + 1 < argc)
+            read_small_file("--config", argv[i + 1], limits::max_small_file);
+        else if (arg.starts_with("--config="))
+            read_small_file("--config", std::string(arg.substr(9)), limits::max_small_file);
+    }
+}
+
+} // namespace
+
+int run(int argc, char** argv) {
+    handle_interrupts();
+    CLI::App app("packbed: packed beds of spheres for CFD and DEM", "packbed");
+    const std::vector<Command> commands = build_app(app);
+
+    // Every message is one line: what a user typed is shown with control characters escaped.
+    try {
+        check_config_files(argc, argv);
+    } catch (const InvalidInput& e) {
+        fmt::print(stderr, "packbed: {}\n", e.what());
+        return 2;
+    }
+    try {
+        app.parse(argc, argv);
+    } catch (const CLI::CallForHelp& e) {
+        return app.exit(e);
+    } catch (const CLI::CallForAllHelp& e) {
+        return app.exit(e);
+    } catch (const CLI::CallForVersion& e) {
+        return app.exit(e);
+    } catch (const CLI::ParseError& e) {
+        const auto selected = app.get_subcommands();
+        if (selected.empty())
+            for (const std::string& word : app.remaining())
+                if (!word.starts_with("-")) {
+                    std::string names;
+                    for (const Command& command : commands)
+                        names += (names.empty() ? "" : ", ") + command.app->get_name();
+                    fmt::print(stderr, "packbed: '{}' is not a subcommand; allowed: {}\n",
+                               printable(word.substr(0, 80)), names);
+                    return 2;
+                }
+        if (dynamic_cast<const CLI::ExtrasError*>(&e))
+            fmt::print(stderr, "packbed: {}; run 'packbed {}--help' for the options\n",
+                       printable(e.what()),
+                       selected.empty() ? "" : selected.front()->get_name() + " ");
+        else
+            fmt::print(stderr, "packbed: {}\n", printable(e.what()));
+        return 2;
+    }
+    for (const auto& command : commands) {
+        if (!command.app->parsed())
+            continue;
+        const std::string name = command.app->get_name();
+        set_command_name(name);
+        try {
+            return command.run();
+        } catch (const InvalidInput& e) {
+            await_interrupt();
+            fmt::print(stderr, "packbed {}: {}\n", name, printable(e.what()));
+            return 2;
+        } catch (const Cancelled&) {
+            await_interrupt();
+            fmt::print(stderr, "packbed {}: interrupted; nothing was written\n", name);
+            return 130;
+        } catch (const std::exception& e) {
+            await_interrupt();
+            fmt::print(stderr, "packbed {}: {}\n", name, printable(e.what()));
+            return 1;
+        }
+    }
+    return 2;
+}
+
+} // namespace packbed::cli

@@ -1,0 +1,90 @@
+#include "interrupt.hpp"
+
+#include <pthread.h>
+#include <signal.h>
+#include <sys/wait.h>
+#include <unistd.h>
+
+#include <atomic>
+#include <cstdio>
+#include <mutex>
+#include <thread>
+
+#include <fmt/format.h>
+
+#include "packbed/output.hpp"
+
+namespace packbed::cli {
+
+namespace {
+
+std::atomic<pid_t> g_child{0};
+std::atomic<bool> g_progress_drawn{false};
+std::mutex g_name_mutex;
+std::string g_name = "packbed";
+// Held by the handler thread from the signal to _exit: whoever else takes it waits for ever.
+std::mutex g_exit_mutex;
+
+sigset_t handled_signals() {
+    sigset_t set;
+    sigemptyset(&set);
+    sigaddset(&set, SIGINT);
+    sigaddset(&set, SIGTERM);
+    sigaddset(&set, SIGHUP);
+    return set;
+}
+
+/// The handler thread: a plain thread woken by sigwait, so what it does need not be
+/// async-signal-safe.
+void wait_for_signals(sigset_t set) {
+    for (;;) {
+        int signal = 0;
+        if (sigwait(&set, &signal) != 0)
+            continue;
+        std::lock_guard exit_lock(g_exit_mutex);
+        // The child first, so that it creates nothing in the folders about to be removed.
+        if (const pid_t child = g_child.load(); child > 0) {
+            ::kill(-child, SIGKILL);
+            siginfo_t info{};
+            ::waitid(P_PID, static_cast<id_t>(child), &info, WEXITED | WNOWAIT);
+        }
+        if (cancel_outputs())
+            continue; // the results were already in place: the run ends as it would have
+        std::string message;
+        {
+            std::lock_guard lock(g_name_mutex);
+            message =
+                fmt::format("{}packbed{}{}: interrupted; nothing was written\n",
+                            g_progress_drawn ? "\r\033[K" : "", g_name.empty() ? "" : " ", g_name);
+        }
+        (void)!::write(STDERR_FILENO, message.data(), message.size());
+        ::_exit(130);
+    }
+}
+
+} // namespace
+
+void handle_interrupts() {
+    const sigset_t set = handled_signals();
+    pthread_sigmask(SIG_BLOCK, &set, nullptr);
+    std::thread(wait_for_signals, set).detach();
+}
+
+void set_command_name(const std::string& name) {
+    std::lock_guard lock(g_name_mutex);
+    g_name = name;
+}
+
+void watch_child(pid_t pid) {
+    g_child = pid;
+}
+
+void progress_line_drawn(bool drawn) {
+    g_progress_drawn = drawn;
+}
+
+void await_interrupt() {
+    std::lock_guard lock(g_exit_mutex); // held by the handler thread until it ends the process
+}
+
+} // namespace packbed::cli

@@ -1,0 +1,35 @@
+// Ctrl-C, SIGTERM and SIGHUP, handled in one place for every subcommand: an interrupted
+// command leaves nothing behind and exits 130, whenever the signal comes before its outputs
+// are in place.
+#pragma once
+
+#include <sys/types.h>
+
+#include <string>
+
+namespace packbed::cli {
+
+/// Block SIGINT, SIGTERM and SIGHUP in the calling thread, and so in every thread it starts
+/// later (OpenMP's), and start the thread that waits for them. When one arrives, that thread
+/// stops the child program being waited on (watch_child), removes every output not yet in
+/// place (cancel_outputs), erases the progress line, prints "packbed COMMAND: interrupted;
+/// nothing was written" and ends the process with status 130. If the outputs were already in
+/// place, it does nothing and the run ends normally. Call once, first thing in main.
+void handle_interrupts();
+
+/// Name the subcommand for the message.
+void set_command_name(const std::string& name);
+
+/// Tell the interrupt handler about a child process (in its own process group) to kill first,
+/// or 0 when there is none.
+void watch_child(pid_t pid);
+
+/// Tell the interrupt handler whether a progress line is on the terminal.
+void progress_line_drawn(bool drawn);
+
+/// For the main thread before it reports an error: while an interrupt is being handled (the
+/// error may be its doing, e.g. Cancelled from an output it removed), wait for the handler
+/// thread to end the process with status 130; otherwise return at once.
+void await_interrupt();
+
+} // namespace packbed::cli

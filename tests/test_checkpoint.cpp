@@ -1,0 +1,185 @@
+// Checkpoints of the fire solver in layers: a real one reads back; one taken with other options,
+// damaged, or edited by hand (even with its hash recomputed) is refused naming what is wrong,
+// and never crashes or hangs the reader.
+#include <cstdint>
+#include <cstring>
+#include <filesystem>
+#include <fstream>
+#include <iterator>
+#include <string>
+
+#include <fmt/format.h>
+#include <gtest/gtest.h>
+#include <nlohmann/json.hpp>
+
+#include "packbed/checkpoint.hpp"
+#include "packbed/error.hpp"
+#include "packbed/soft_sphere.hpp"
+
+using namespace packbed;
+namespace fs = std::filesystem;
+using nlohmann::json;
+
+namespace {
+
+/// a = 5, 600 spheres, layers 10 Dp: three layers (as in test_layers.cpp).
+SoftSphereParameters three_layers() {
+    SoftSphereParameters p;
+    p.aspect_ratio = 5.0;
+    p.particles = 600;
+    p.seed = 1;
+    p.solver = Solver::fire;
+    p.layer_height = 10.0;
+    return p;
+}
+
+/// The bytes of a real checkpoint after the first of three layers (computed once).
+const std::string& real_checkpoint() {
+    static const std::string bytes = [] {
+        const SoftSphereParameters p = three_layers();
+        LayerCheckpoint first;
+        RunControl control;
+        control.on_layer = [&](const LayerCheckpoint& s) {
+            if (s.layers_done == 1)
+                first = s;
+        };
+        relax_with_fire(p, control);
+        const fs::path file = fs::temp_directory_path() / "packbed-test-checkpoint-real.ckpt";
+        write_checkpoint(file, p, first);
+        std::ifstream in(file, std::ios::binary);
+        return std::string(std::istreambuf_iterator<char>(in), std::istreambuf_iterator<char>());
+    }();
+    return bytes;
+}
+
+/// A checkpoint's four parts: the format line, the header, the hash line, the data.
+struct Parts {
+    std::string format, header, hash, data;
+};
+
+Parts split(const std::string& bytes) {
+    const std::size_t a = bytes.find('\n'), b = bytes.find('\n', a + 1),
+                      c = bytes.find('\n', b + 1);
+    return {bytes.substr(0, a), bytes.substr(a + 1, b - a - 1), bytes.substr(b + 1, c - b - 1),
+            bytes.substr(c + 1)};
+}
+
+/// FNV-1a 64 of `bytes`, continued from `h` (the published algorithm, as the format states).
+std::uint64_t fnv1a(const std::string& bytes, std::uint64_t h = 0xcbf29ce484222325ULL) {
+    for (const char c : bytes) {
+        h ^= static_cast<unsigned char>(c);
+        h *= 0x100000001b3ULL;
+    }
+    return h;
+}
+
+/// A checkpoint with `header` and `data`, its hash recomputed as a forger would.
+std::string forged(const std::string& header, const std::string& data) {
+    return "packbed-checkpoint 3\n" + header + "\n" +
+           fmt::format("fnv1a64 {:016x}\n", fnv1a(data, fnv1a(header + "\n"))) + data;
+}
+
+/// What reading `bytes` as a checkpoint of three_layers() says: "accepted" or the refusal.
+std::string verdict(const std::string& bytes) {
+    const fs::path file = fs::temp_directory_path() / "packbed-test-checkpoint-case.ckpt";
+    std::ofstream(file, std::ios::binary) << bytes;
+    try {
+        read_checkpoint(file, three_layers());
+    } catch (const InvalidInput& e) {
+        return e.what();
+    }
+    return "accepted";
+}
+
+/// The real checkpoint with one header field changed by `edit`, the hash recomputed.
+template <class F> std::string with_header(F&& edit) {
+    const Parts parts = split(real_checkpoint());
+    json header = json::parse(parts.header);
+    edit(header);
+    return verdict(forged(header.dump(), parts.data));
+}
+
+bool says(const std::string& message, const std::string& part) {
+    return message.find(part) != std::string::npos;
+}
+
+} // namespace
+
+TEST(Checkpoint, ARealOneReadsBackAndItsHashCoversHeaderAndData) {
+    const Parts parts = split(real_checkpoint());
+    EXPECT_EQ(parts.format, "packbed-checkpoint 3");
+    EXPECT_EQ(parts.data.size(), 600u * 4 * 8);
+    EXPECT_EQ(parts.hash,
+              fmt::format("fnv1a64 {:016x}", fnv1a(parts.data, fnv1a(parts.header + "\n"))));
+    EXPECT_EQ(verdict(real_checkpoint()), "accepted");
+    EXPECT_EQ(with_header([](json&) {}), "accepted"); // the same bytes, rewritten
+
+    // One digit of the header changed without the hash: before format 3 this was not noticed.
+    std::string edited = real_checkpoint();
+    edited.replace(edited.find("\"layers_done\":1"), 15, "\"layers_done\":2");
+    EXPECT_TRUE(says(verdict(edited), "the header and data do not match their hash"));
+    std::string flipped = real_checkpoint();
+    flipped[flipped.size() - 3] ^= 0x10; // one bit of the last radius
+    EXPECT_TRUE(says(verdict(flipped), "the header and data do not match their hash"));
+}
+
+TEST(Checkpoint, EditedFieldsAreRefusedNamingTheField) {
+    // The audit's cases: each crashed, hung or was taken as valid before.
+    EXPECT_TRUE(says(with_header([](json& h) { h["stages"] = json::array(); }),
+                     "corrupt checkpoint: stages is not a list of the 3 stages")); // SIGSEGV
+    EXPECT_TRUE(says(with_header([](json& h) { h["stages"].erase(1); }),
+                     "stages is not a list of the 3 stages")); // heap-buffer-overflow
+    EXPECT_TRUE(says(with_header([](json& h) { h["top"] = 1e300; }),
+                     "corrupt checkpoint: top = 1e+300 is not allowed; allowed: a number from 0 "
+                     "to")); // a hang
+    EXPECT_TRUE(says(with_header([](json& h) { h["spheres"] = (1ULL << 59) + 500; }),
+                     "corrupt checkpoint: spheres = 576460752303423988 is not allowed; allowed: "
+                     "a whole number from 600 to 600")); // a wrapped size check
+    EXPECT_TRUE(says(with_header([](json& h) { h["layers_done"] = 4294967296ULL; }),
+                     "layers_done = 4294967296 is not allowed; allowed: a whole number from 1 "
+                     "to 3")); // another bed, exit 0
+    EXPECT_TRUE(says(with_header([](json& h) { h["iterations"] = -1; }),
+                     "iterations = -1 is not allowed")); // nonsense in summary.json
+    EXPECT_TRUE(says(with_header([](json& h) { h["iterations"] = h["iterations"].get<int>() + 1; }),
+                     "the stages' iterations add up to"));
+    EXPECT_TRUE(says(with_header([](json& h) { h["iterations"] = 7; }),
+                     "stages[0].iterations = ")); // more than the run's iterations
+    EXPECT_TRUE(says(with_header([](json& h) { h["stages"][0]["name"] = "final"; }),
+                     "stages[0].name = \"final\" is not allowed"));
+    EXPECT_TRUE(says(with_header([](json& h) { h["stages"][2]["cg"] = "x"; }),
+                     "stages[2].cg = \"x\" is not allowed"));
+    EXPECT_TRUE(says(with_header([](json& h) { h.erase("neighbor_builds"); }),
+                     "corrupt checkpoint: no field neighbor_builds"));
+    EXPECT_TRUE(says(with_header([](json& h) { h["parameters"]["seed"] = 2; }),
+                     "it was taken with seed = 2, this run has 1"));
+    EXPECT_TRUE(says(with_header([](json& h) { h = json::array(); }), "no field parameters"));
+}
+
+TEST(Checkpoint, DataOutsideTheContainerOrOfTheWrongSizeIsRefused) {
+    const Parts parts = split(real_checkpoint());
+    std::string data = parts.data;
+    const double far = 1e300;
+    std::memcpy(data.data() + 16, &far, sizeof far); // z of the first sphere
+    EXPECT_TRUE(says(verdict(forged(parts.header, data)),
+                     "corrupt checkpoint: sphere 0 is at (")); // the hash alone would pass it
+    EXPECT_TRUE(says(verdict(forged(parts.header, parts.data.substr(8))),
+                     "19192 bytes of data where 600 spheres need 19200"));
+    EXPECT_TRUE(says(verdict(forged(parts.header, parts.data + "x")),
+                     "more bytes of data where 600 spheres need 19200"));
+}
+
+TEST(Checkpoint, OtherFilesAreRefused) {
+    EXPECT_TRUE(says(verdict("x,y,z,r\n0,0,0.5,0.5\n"), "not a packbed checkpoint"));
+    EXPECT_TRUE(says(verdict(std::string(1 << 20, '\0')), "not a packbed checkpoint"));
+    std::string older = real_checkpoint();
+    older.replace(0, older.find('\n'), "packbed-checkpoint 2");
+    EXPECT_TRUE(says(verdict(older), "checkpoint format '2', this packbed reads format 3"));
+    EXPECT_TRUE(says(verdict("packbed-checkpoint 3\n" + std::string(2 << 20, '{')),
+                     "no header line (cut short or too long)"));
+    try {
+        read_checkpoint(fs::temp_directory_path(), three_layers());
+        FAIL() << "a directory was read as a checkpoint";
+    } catch (const InvalidInput& e) {
+        EXPECT_TRUE(says(e.what(), ": a directory; allowed: a readable regular file"));
+    }
+}
