@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <cassert>
 #include <cmath>
+#include <exception>
 #include <limits>
 #include <utility>
 
@@ -116,44 +117,63 @@ void NeighborList::build(std::span<const Vec3> centers, std::span<const double> 
     m_offsets.assign(n + 1, 0);
     const bool parallel = n >= detail::parallel_min_spheres;
     std::vector<std::vector<std::uint32_t>> buffers(parallel ? omp_get_max_threads() : 1);
+    // An exception (bad_alloc) must not leave the parallel region, which would end the
+    // process, nor skip a barrier: it is kept and thrown after the region.
+    std::exception_ptr error;
 #pragma omp parallel if (parallel)
     {
         const auto threads = static_cast<std::size_t>(omp_get_num_threads());
         const auto t = static_cast<std::size_t>(omp_get_thread_num());
         const std::size_t begin = n * t / threads, end = n * (t + 1) / threads;
         std::vector<std::uint32_t>& rows = buffers[t];
-        rows.reserve(8 * (end - begin));
-        for (std::size_t i = begin; i < end; ++i) {
-            const std::size_t first = rows.size();
-            std::size_t candidates = 0;
-            grid.for_each_run(i, [&](std::uint32_t b, std::uint32_t e) { candidates += e - b; });
-            rows.resize(first + candidates);
-            std::size_t count = first; // every candidate written, the kept ones counted
-            grid.for_each_run(i, [&](std::uint32_t b, std::uint32_t e) {
-                for (std::uint32_t k = b; k < e; ++k) {
-                    const std::uint32_t j = grid.sorted[k];
-                    rows[count] = j;
-                    count += within(i, j) ? 1 : 0;
-                }
-            });
-            rows.resize(count);
-            const auto row = rows.begin() + static_cast<std::ptrdiff_t>(first);
-            if (key.empty())
-                std::sort(row, rows.end());
-            else
-                std::sort(row, rows.end(),
-                          [&](std::uint32_t a, std::uint32_t b) { return key[a] < key[b]; });
-            m_offsets[i + 1] = static_cast<std::uint32_t>(rows.size() - first);
+        try {
+            rows.reserve(8 * (end - begin));
+            for (std::size_t i = begin; i < end; ++i) {
+                const std::size_t first = rows.size();
+                std::size_t candidates = 0;
+                grid.for_each_run(i,
+                                  [&](std::uint32_t b, std::uint32_t e) { candidates += e - b; });
+                rows.resize(first + candidates);
+                std::size_t count = first; // every candidate written, the kept ones counted
+                grid.for_each_run(i, [&](std::uint32_t b, std::uint32_t e) {
+                    for (std::uint32_t k = b; k < e; ++k) {
+                        const std::uint32_t j = grid.sorted[k];
+                        rows[count] = j;
+                        count += within(i, j) ? 1 : 0;
+                    }
+                });
+                rows.resize(count);
+                const auto row = rows.begin() + static_cast<std::ptrdiff_t>(first);
+                if (key.empty())
+                    std::sort(row, rows.end());
+                else
+                    std::sort(row, rows.end(),
+                              [&](std::uint32_t a, std::uint32_t b) { return key[a] < key[b]; });
+                m_offsets[i + 1] = static_cast<std::uint32_t>(rows.size() - first);
+            }
+        } catch (...) {
+#pragma omp critical(packbed_neighbor_list_error)
+            if (!error)
+                error = std::current_exception();
         }
 #pragma omp barrier
 #pragma omp single
         {
-            for (std::size_t i = 0; i < n; ++i)
-                m_offsets[i + 1] += m_offsets[i];
-            m_neighbors.resize(m_offsets[n]);
+            if (!error) {
+                for (std::size_t i = 0; i < n; ++i)
+                    m_offsets[i + 1] += m_offsets[i];
+                try {
+                    m_neighbors.resize(m_offsets[n]);
+                } catch (...) {
+                    error = std::current_exception();
+                }
+            }
         }
-        std::copy(rows.begin(), rows.end(), m_neighbors.begin() + m_offsets[begin]);
+        if (!error)
+            std::copy(rows.begin(), rows.end(), m_neighbors.begin() + m_offsets[begin]);
     }
+    if (error)
+        std::rethrow_exception(error);
     buffers = {}; // freed before the numbering: the peak stays that of rows and pair arrays
     if (with_pair_numbers) {
         number_pairs();

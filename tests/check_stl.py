@@ -27,8 +27,10 @@ work = tempfile.mkdtemp(prefix="packbed-stl-")
 
 
 def run(*args):
+    # admesh 0.98 prints the 80-byte STL header past its end (into the facet count): bytes
+    # that need not be UTF-8.
     return subprocess.run(args, cwd=work, env=env, check=True, capture_output=True,
-                          text=True).stdout
+                          text=True, errors="replace").stdout
 
 
 def admesh(stl, parts, normals_kept):
