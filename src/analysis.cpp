@@ -622,9 +622,9 @@ BedAnalysis analyze_bed(const Packing& packing, const Cylinder& container,
     const auto band = band_clear_of_ends(packing, options.band_clearance * dp);
     if (!band)
         throw InvalidInput(fmt::format(
-            "the bed (top at {:.6g}) is not taller than twice the band clearance ({} Dp); "
-            "lower the band clearance",
-            bed_top(packing), options.band_clearance));
+            "--band-clearance {} Dp is not allowed for this bed (top at {:.6g}, {:.6g} Dp); "
+            "allowed: less than half its height",
+            options.band_clearance, bed_top(packing), bed_top(packing) / dp));
     out.band = *band;
 
     // Every bin count and the work of the pair searches, checked before any of it is done.

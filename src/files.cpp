@@ -125,7 +125,9 @@ std::string read_small_file(std::string_view input, const std::filesystem::path&
     }
     if (file.bad())
         throw InvalidInput(
-            fmt::format("{}: cannot be read; allowed: a readable regular file", shown));
+            fmt::format("{}: cannot be read (an input/output error); allowed: a readable regular "
+                        "file",
+                        shown));
     return text;
 }
 

@@ -250,9 +250,10 @@ FillPlan plan_fill(const LatticeParameters& p, const UnitCell& cell) {
     const double estimate =
         region_volume(p.region) * (1.0 - cell.porosity) / (pi / 6.0 * d * d * d);
     require(estimate <= 1.2 * static_cast<double>(limits::max_spheres),
-            fmt::format("the region holds about {:.3g} balls of diameter {}; allowed: at most "
-                        "1e8 (a larger diameter or a smaller region)",
-                        estimate, d));
+            fmt::format("--region {} holds about {:.3g} {} balls of --diameter {}; allowed: at "
+                        "most {:g} (a larger --diameter or a smaller --region)",
+                        region_text(p.region), estimate, to_string(p.type), d,
+                        static_cast<double>(limits::max_spheres)));
     // A region thin in some direction holds few balls but may span many cells in another.
     const double ni = i1 - i0 + 1.0, nj = j1 - j0 + 1.0, nk = k1 - k0 + 1.0;
     const double positions = ni * nj * nk * static_cast<double>(cell.balls.size());
@@ -288,9 +289,7 @@ Packing fill_lattice(const LatticeParameters& p) {
     const double r = 0.5 * d;
     const Vec3 edges = cell.edges * d;
     Packing packing;
-    if (f.empty)
-        return packing;
-    for (std::int64_t k = f.k0; k <= f.k1; ++k)
+    for (std::int64_t k = f.k0; !f.empty && k <= f.k1; ++k)
         for (std::int64_t j = f.j0; j <= f.j1; ++j)
             for (std::int64_t i = f.i0; i <= f.i1; ++i)
                 for (const Vec3& b : cell.balls) {
@@ -306,7 +305,14 @@ Packing fill_lattice(const LatticeParameters& p) {
                     packing.add(c, r);
                 }
     require(packing.size() <= limits::max_spheres,
-            fmt::format("the region holds {} balls; allowed: at most 1e8", packing.size()));
+            fmt::format("--region {} holds {} {} balls of --diameter {}; allowed: at most {:g}",
+                        region_text(p.region), packing.size(), to_string(p.type), d,
+                        static_cast<double>(limits::max_spheres)));
+    require(packing.size() > 0,
+            fmt::format("--region {} holds no {} ball of --diameter {}{}; allowed: a region "
+                        "that holds one",
+                        region_text(p.region), to_string(p.type), d,
+                        p.keep == LatticeKeep::whole ? " wholly inside it" : " centred in it"));
     return packing;
 }
 

@@ -210,6 +210,10 @@ fs::path OutputDirectory::final_path(const std::string& name) const {
     return m_target / name;
 }
 
+fs::path OutputDirectory::given_path(const std::string& name) const {
+    return m_path == "." ? fs::path(name) : m_path / name;
+}
+
 void OutputDirectory::keep(std::string_view input, const fs::path& path) {
     if (m_kind == OutputKind::directory && m_replace && inside(path, m_target))
         throw InvalidInput(fmt::format("{} {} lies in {} {}, which --force would replace; "
@@ -220,7 +224,7 @@ void OutputDirectory::keep(std::string_view input, const fs::path& path) {
         if (same_file(path, final_path(name)))
             throw InvalidInput(fmt::format("{} {}: the output {} would overwrite it; allowed: "
                                            "an output that is not an input",
-                                           input, shown(path), shown(final_path(name))));
+                                           input, shown(path), shown(given_path(name))));
     m_kept.emplace_back(std::string(input), path);
 }
 
@@ -233,7 +237,7 @@ fs::path OutputDirectory::reserve(const std::string& name) {
         if (same_file(path, target))
             throw InvalidInput(fmt::format("{} {}: the output {} would overwrite it; allowed: "
                                            "an output that is not an input",
-                                           input, shown(path), shown(target)));
+                                           input, shown(path), shown(given_path(name))));
     std::error_code ec;
     const fs::file_status status = fs::symlink_status(target, ec);
     // A file replaces a file or a link (the link itself, not what it points to); never a
@@ -241,7 +245,7 @@ fs::path OutputDirectory::reserve(const std::string& name) {
     if (m_kind == OutputKind::files && fs::exists(status) && !fs::is_regular_file(status) &&
         !fs::is_symlink(status))
         throw InvalidInput(fmt::format("{} {}: {} has that name; allowed: a regular file name",
-                                       m_input, shown(target),
+                                       m_input, shown(given_path(name)),
                                        fs::is_directory(status) ? "a directory"
                                        : fs::is_fifo(status)    ? "a FIFO"
                                                                 : "a device or socket"));
@@ -255,7 +259,7 @@ fs::path OutputDirectory::reserve(const std::string& name) {
         ::open(staged.c_str(), O_WRONLY | O_CREAT | O_EXCL | O_NOFOLLOW | O_CLOEXEC, 0666);
     if (fd < 0 && errno != EEXIST)
         throw std::runtime_error(
-            fmt::format("cannot write {}: {}", shown(target), std::strerror(errno)));
+            fmt::format("cannot write {}: {}", shown(given_path(name)), std::strerror(errno)));
     if (fd >= 0)
         ::close(fd);
     if (std::find(m_names.begin(), m_names.end(), name) == m_names.end())
@@ -272,7 +276,7 @@ void OutputDirectory::stage(const std::string& name, const std::string& contents
     if (registry().cancelled)
         throw Cancelled();
     if (!file)
-        throw std::runtime_error(fmt::format("cannot write {}", shown(final_path(name))));
+        throw std::runtime_error(fmt::format("cannot write {}", shown(given_path(name))));
 }
 
 void OutputDirectory::discard(const std::string& name) {
@@ -293,7 +297,7 @@ void OutputDirectory::commit() {
     for (const std::string& name : m_names)
         if (!fs::is_regular_file(fs::symlink_status(m_staging / name, ec)))
             throw std::runtime_error(fmt::format("cannot write {}: its staged file is missing",
-                                                 shown(final_path(name))));
+                                                 shown(given_path(name))));
     auto fail = [&](const fs::path& what, int error) {
         return std::runtime_error(fmt::format("{} {}: cannot put {} in place ({}); nothing was "
                                               "written",

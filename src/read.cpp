@@ -403,15 +403,15 @@ BedSummary read_bed_summary(std::istream& input, std::string_view name) {
         out.porosity = number(json["lattice"], "porosity", "lattice.porosity", 1.0);
         const auto type = json.find("type");
         if (out.porosity)
-            out.porosity_source =
-                fmt::format("lattice {}", type != json.end() && type->is_string()
-                                              ? printable(type->get<std::string>())
-                                              : "?");
+            out.porosity_source = fmt::format("the porosity of the {} lattice",
+                                              type != json.end() && type->is_string()
+                                                  ? printable(type->get<std::string>())
+                                                  : "?");
     }
     if (!out.porosity) {
         out.porosity = number(json, "void_fraction", "void_fraction", 1.0);
         if (out.porosity)
-            out.porosity_source = "void fraction";
+            out.porosity_source = "the overall void fraction";
     }
     return out;
 }

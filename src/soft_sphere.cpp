@@ -8,6 +8,7 @@
 #include <fmt/format.h>
 
 #include "packbed/error.hpp"
+#include "packbed/limits.hpp"
 #include "packbed/neighbor_list.hpp"
 #include "parallel.hpp"
 #include "require.hpp"
@@ -37,16 +38,20 @@ void SoftSphereParameters::validate() const {
     // Bounded so that lengths, and volumes (diameter^3), stay finite doubles in every unit.
     require(diameter >= 1e-12 && diameter <= 1e12, "diameter", diameter, "1e-12 to 1e12");
     require(e0 > 0.0 && e0 < 1.0, "e0", e0, "0 < e0 < 1");
-    require(ck > 0.0 && ck < 1.0, "ck", ck,
-            "0 < ck < 1 (from ck = 1 on, even a single overlapping pair does not converge)");
+    require(ck >= limits::min_ck && ck < 1.0, "ck", ck,
+            fmt::format("{:g} <= ck < 1 (from ck = 1 on, even a single overlapping pair does not "
+                        "converge; below {:g} the iterations grow past any useful number)",
+                        limits::min_ck, limits::min_ck));
     require(cg_step > 0.0 && cg_step <= 5e-6, "cg-step", cg_step,
             "0 < cg-step <= 5e-6 (larger steps keep Cg from settling)");
     require(overlap_low > 0.0 && overlap_low < 0.5, "overlap-low", overlap_low,
             "0 < overlap-low < 0.5 (Dp)");
     require(overlap_high > overlap_low && overlap_high < 0.5, "overlap-high", overlap_high,
             fmt::format("overlap-low ({}) < overlap-high < 0.5 (Dp)", overlap_low));
-    require(tolerance > 0.0 && tolerance <= 1e-2, "tolerance", tolerance,
-            "0 < tolerance <= 0.01 (Dp)");
+    require(tolerance >= limits::min_tolerance && tolerance <= 1e-2, "tolerance", tolerance,
+            fmt::format("{:g} <= tolerance <= 0.01 (Dp; below {:g} the rounding of the positions "
+                        "is not below the tolerance)",
+                        limits::min_tolerance, limits::min_tolerance));
     require(mc_period >= 1 && mc_period <= 1'000'000, "mc-period", mc_period, "1 to 1000000");
     require(mc_window >= 2 && mc_window <= 10'000, "mc-window", mc_window, "2 to 10000");
     require(mc_tolerance > 0.0 && mc_tolerance <= 100.0, "mc-tolerance", mc_tolerance,

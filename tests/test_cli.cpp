@@ -342,8 +342,10 @@ TEST(Cli, AnalyzeRefusesASphereOutsideTheContainer) {
                          "Dp)\n");
     const Outcome m = packbed("analyze " + (d / "bed.csv").string());
     EXPECT_EQ(m.status, 2);
-    EXPECT_EQ(m.err, "packbed analyze: --container-radius is needed: no summary.json next to " +
-                         (d / "bed.csv").string() + "\n");
+    EXPECT_EQ(m.err,
+              "packbed analyze: --container-radius is needed: no summary.json with a container "
+              "radius next to " +
+                  (d / "bed.csv").string() + "\n");
 }
 
 TEST(Cli, VersionAndHelp) {
@@ -356,151 +358,7 @@ TEST(Cli, VersionAndHelp) {
     EXPECT_NE(h.out.find("=0.47"), std::string::npos); // defaults are shown
 }
 
-struct BadInput {
-    const char* args;
-    const char* message; // the whole single line on stderr
-};
-
-void PrintTo(const BadInput& b, std::ostream* os) {
-    *os << b.args;
-}
-
-class CliBadInput : public ::testing::TestWithParam<BadInput> {};
-
-TEST_P(CliBadInput, ExitStatus2AndOneLineNamingOptionValueAndRange) {
-    const fs::path d = scratch("bad");
-    std::ofstream(d / "unknown.toml") << "aspect-ratio = 4\nwarp_speed = 9\n";
-    std::ofstream(d / "broken.toml") << "aspect-ratio = = 4\n";
-    std::ofstream(d / "typed.toml") << "particles = [1, {a = 2}]\n";
-    std::ofstream(d / "plain") << "x";
-    std::ofstream(d / "one.csv") << "x,y,z,r\n0,0,0,0.5\n";
-    std::ofstream(d / "two.csv") << "x,y,z,r\n0,0,1,0.5\n0.99,0,1,0.5\n";
-    std::string args = GetParam().args;
-    for (std::size_t at; (at = args.find("@D")) != std::string::npos;)
-        args.replace(at, 2, d.string());
-    const bool writes = args.rfind("hydraulics", 0) != 0; // hydraulics only prints
-    const Outcome o = packbed(writes ? args + " --out " + (d / "out").string() : args);
-    EXPECT_EQ(o.status, 2) << o.err;
-    std::string expected = GetParam().message;
-    for (std::size_t at; (at = expected.find("@D")) != std::string::npos;)
-        expected.replace(at, 2, d.string());
-    EXPECT_EQ(o.err, expected + "\n");
-    EXPECT_FALSE(fs::exists(d / "out" / "particles.csv"));
-}
-
-INSTANTIATE_TEST_SUITE_P(
-    Cases, CliBadInput,
-    ::testing::Values(
-        BadInput{"generate --aspect-ratio five",
-                 "packbed: --aspect-ratio: 'five' is not allowed; allowed: a number in [1, 10000]"},
-        BadInput{"generate --aspect-ratio 0.8",
-                 "packbed: --aspect-ratio: 0.8 is not allowed; allowed: a number in [1, 10000]"},
-        BadInput{"generate --aspect-ratio nan",
-                 "packbed: --aspect-ratio: 'nan' is not allowed; allowed: a number in [1, 10000]"},
-        BadInput{"generate --particles 0",
-                 "packbed: --particles: '0' is not allowed; allowed: a whole number from 1 to "
-                 "100000000"},
-        BadInput{"generate --particles -5",
-                 "packbed: --particles: '-5' is not allowed; allowed: a whole number from 1 to "
-                 "100000000"},
-        BadInput{"generate --particles 2.5",
-                 "packbed: --particles: '2.5' is not allowed; allowed: a whole number from 1 to "
-                 "100000000"},
-        BadInput{"generate --diameter -1",
-                 "packbed: --diameter: -1 is not allowed; allowed: a number in [1e-12, 1e+12]"},
-        BadInput{"generate --diameter 0",
-                 "packbed: --diameter: 0 is not allowed; allowed: a number in [1e-12, 1e+12]"},
-        BadInput{"generate --diameter 1e300",
-                 "packbed: --diameter: 1e300 is not allowed; allowed: a number in [1e-12, 1e+12]"},
-        BadInput{"generate --ck 1.2",
-                 "packbed: --ck: 1.2 is not allowed; allowed: a number in (0, 1)"},
-        BadInput{"generate --e0 1", "packbed: --e0: 1 is not allowed; allowed: a number in (0, 1)"},
-        BadInput{"generate --cg-step 1e-3",
-                 "packbed: --cg-step: 1e-3 is not allowed; allowed: a number in (0, 5e-06]"},
-        BadInput{"generate --overlap-low 0.02 --overlap-high 0.01",
-                 "packbed generate: overlap-high = 0.01 is not allowed; allowed: overlap-low "
-                 "(0.02) < overlap-high < 0.5 (Dp)"},
-        BadInput{"generate --layer-height 5",
-                 "packbed generate: layer-height = 5 is not allowed; allowed: 0 (one piece) or "
-                 "10 to 1000000 (Dp)"},
-        BadInput{"generate --layer-height -1",
-                 "packbed: --layer-height: -1 is not allowed; allowed: a number in [0, 1e+06]"},
-        BadInput{"generate --update sideways",
-                 "packbed: --update: sideways not in {in-place,simultaneous}"},
-        BadInput{"generate --solver newton", "packbed: --solver: newton not in {paper,fire}"},
-        BadInput{"generate --warp-speed 9",
-                 "packbed: The following arguments were not expected: 9 --warp-speed; run "
-                 "'packbed generate --help' for the options"},
-        BadInput{"generate --config @D/unknown.toml",
-                 "packbed: --config: line 2: unknown key 'warp_speed'; allowed: aspect-ratio, "
-                 "band-clearance, cg-step, checkpoint, ck, diameter, e0, force, layer-height, "
-                 "max-iterations, mc-period, mc-tolerance, mc-window, out, overlap-high, "
-                 "overlap-low, particles, quiet, seed, skin, solver, threads, tolerance, update"},
-        BadInput{"generate --config @D/broken.toml",
-                 "packbed: --config: line 1, column 16: Error while parsing value: could not "
-                 "determine value type"},
-        BadInput{"lattice --region box:1,2",
-                 "packbed lattice: --region 'box:1,2' is not allowed; allowed: box:LX,LY,LZ or "
-                 "cylinder:D,H with lengths > 0 and at most 1e+15"},
-        BadInput{"lattice --region cylinder:-3,2",
-                 "packbed lattice: --region 'cylinder:-3,2' is not allowed; allowed: "
-                 "box:LX,LY,LZ or cylinder:D,H with lengths > 0 and at most 1e+15"},
-        BadInput{"lattice --origin 1,x,2",
-                 "packbed lattice: --origin '1,x,2' is not allowed; allowed: x,y,z (three finite "
-                 "numbers)"},
-        BadInput{"lattice --rotate w:30",
-                 "packbed lattice: --rotate 'w:30' is not allowed; allowed: AXIS:DEGREES pairs "
-                 "separated by commas, AXIS x, y or z (e.g. z:30,x:10)"},
-        BadInput{"lattice --type honeycomb",
-                 "packbed: --type: honeycomb not in {diamond,sc,bcc,fcc,hcp}"},
-        BadInput{"lattice --region box:1e5,1e5,1e5",
-                 "packbed lattice: the region holds about 6.5e+14 balls of diameter 1; allowed: at "
-                 "most 1e8 (a larger diameter or a smaller region)"},
-        BadInput{"hydraulics --porosity 0.4 --particle-density 900",
-                 "packbed hydraulics: particle-density = 900 is not allowed; allowed: > the fluid "
-                 "density (998.2 kg/m^3): a particle lighter than the fluid does not settle or "
-                 "fluidize"},
-        BadInput{"hydraulics --porosity 0.4 --viscosity 0",
-                 "packbed: --viscosity: 0 is not allowed; allowed: a number in [1e-07, 10000]"},
-        BadInput{"hydraulics --porosity 1.2",
-                 "packbed: --porosity: 1.2 is not allowed; allowed: a number in (0, 1)"},
-        BadInput{"hydraulics",
-                 "packbed hydraulics: no porosity given; allowed: --porosity E (0 < E < 1) or "
-                 "--bed SUMMARY.json"},
-        BadInput{"hydraulics --bed @D/plain",
-                 "packbed hydraulics: --bed '@D/plain': @D/plain is not JSON"},
-        BadInput{"export @D/one.csv --box 0,1,0,1,1,0",
-                 "packbed export: --box '0,1,0,1,1,0' is not allowed; allowed: "
-                 "xlo,xhi,ylo,yhi,zlo,zhi with lo < hi"},
-        BadInput{"export @D/one.csv --box 1,2,1,2,1,2",
-                 "packbed export: sphere 1 at (0, 0, 0) lies outside the box [1, 2] x [1, 2] x "
-                 "[1, 2]; allowed: a box holding every centre"},
-        BadInput{"export @D/one.csv --density 0",
-                 "packbed: --density: 0 is not allowed; allowed: a number > 0"},
-        BadInput{"export @D/one.csv --format stl --contacts caps:0.7",
-                 "packbed export: --contacts 'caps:0.7' is not allowed; allowed: none, shrink:F, "
-                 "enlarge:F, caps:H or bridges:D with F, H, D fractions of Dp in (0, 0.5)"},
-        BadInput{"export @D/one.csv --format stl --contacts glue:0.2",
-                 "packbed export: --contacts 'glue:0.2' is not allowed; allowed: none, shrink:F, "
-                 "enlarge:F, caps:H or bridges:D with F, H, D fractions of Dp in (0, 0.5)"},
-        BadInput{"export @D/one.csv --format stl --contacts bridges:0.2",
-                 "packbed export: sphere 1 at (0, 0, 0) has its centre on or below the floor "
-                 "z = 0; allowed: centres above the floor for --contacts bridges"},
-        BadInput{"export @D/two.csv --format stl --contacts shrink:0.005",
-                 "packbed export: --contacts shrink:0.005 leaves spheres 1 and 2 overlapping "
-                 "(centres 0.99 apart, shrunk radii 0.4975 and 0.4975); allowed: F above the "
-                 "bed's largest overlap in Dp"},
-        BadInput{"export @D/two.csv --format openfoam",
-                 "packbed export: --format openfoam needs the container: give "
-                 "--container-radius (no summary.json next to @D/two.csv)"},
-        BadInput{"export @D/one.csv --format stl --container-radius 2",
-                 "packbed export: @D/one.csv:2: the sphere centre (0, 0, 0) is outside the "
-                 "container (radius 2, floor z = 0); allowed: centres inside it"},
-        BadInput{"export @D/two.csv --format stl --refine 9",
-                 "packbed: --refine: '9' is not allowed; allowed: a whole number from 0 to 7"},
-        BadInput{"generate --config @D/typed.toml",
-                 "packbed: --config: line 1: key 'particles' has a value of the wrong type; "
-                 "allowed: a number, a string or true/false"}));
+// Bad input (exit 2, one line, nothing left behind): tests/test_bad_input.cpp.
 
 TEST(Cli, LatticeWritesTheBallsAndTheirNumbers) {
     const fs::path d = scratch("lattice");

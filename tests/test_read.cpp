@@ -236,11 +236,11 @@ TEST(ReadBedSummary, ContainerAndPorosityOrARefusalNamingTheKey) {
                                     "void_fraction": 0.41})");
     EXPECT_EQ(bed.container_radius, 2.5);
     EXPECT_EQ(bed.porosity, 0.41);
-    EXPECT_EQ(bed.porosity_source, "void fraction");
+    EXPECT_EQ(bed.porosity_source, "the overall void fraction");
     const BedSummary lattice = read(R"({"type": "diamond", "lattice": {"porosity": 0.66}})");
     EXPECT_FALSE(lattice.container_radius);
     EXPECT_EQ(lattice.porosity, 0.66);
-    EXPECT_EQ(lattice.porosity_source, "lattice diamond");
+    EXPECT_EQ(lattice.porosity_source, "the porosity of the diamond lattice");
     EXPECT_FALSE(read(R"({"void_fraction": null})").porosity); // a bed too short to measure
     EXPECT_EQ(error(R"({"container": {"radius": -1}})"),
               "summary.json: container.radius = -1 is not allowed; allowed: a number in (0, "

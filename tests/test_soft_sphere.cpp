@@ -366,8 +366,13 @@ INSTANTIATE_TEST_SUITE_P(
                                    [](SoftSphereParameters& p) { p.diameter = -1; }},
                       BadParameter{"e0 = 1 is not allowed; allowed: 0 < e0 < 1",
                                    [](SoftSphereParameters& p) { p.e0 = 1.0; }},
-                      BadParameter{"ck = 1.5 is not allowed; allowed: 0 < ck < 1",
+                      BadParameter{"ck = 1.5 is not allowed; allowed: 0.01 <= ck < 1",
                                    [](SoftSphereParameters& p) { p.ck = 1.5; }},
+                      BadParameter{"ck = 1e-300 is not allowed; allowed: 0.01 <= ck < 1",
+                                   [](SoftSphereParameters& p) { p.ck = 1e-300; }},
+                      BadParameter{"tolerance = 1e-16 is not allowed; allowed: 1e-12 <= "
+                                   "tolerance <= 0.01",
+                                   [](SoftSphereParameters& p) { p.tolerance = 1e-16; }},
                       BadParameter{"cg-step = 0.001 is not allowed; allowed: 0 < cg-step <= 5e-6",
                                    [](SoftSphereParameters& p) { p.cg_step = 1e-3; }},
                       BadParameter{

@@ -64,7 +64,8 @@ int run_analyze(AnalyzeOptions& o) {
     const double rt =
         o.container_radius > 0.0 ? o.container_radius : container_radius_beside(path).value_or(0.0);
     if (!(rt > 0.0))
-        throw InvalidInput(fmt::format("--container-radius is needed: no summary.json next to {}",
+        throw InvalidInput(fmt::format("--container-radius is needed: no summary.json with a "
+                                       "container radius next to {}",
                                        printable(path.native())));
     if (o.diameter > 0.0)
         o.analysis.diameter = o.diameter;
@@ -125,7 +126,7 @@ Command register_analyze(CLI::App& parent) {
     for (const auto& entry : particle_formats())
         formats.push_back(entry.first);
     app->add_option("--format", o.format, "file format; auto: from the extension or first line")
-        ->check(CLI::IsMember(formats));
+        ->check(one_of(formats));
     app->add_option("-R,--container-radius", o.container_radius,
                     "cylinder radius Rt (file units); default: summary.json next to the file")
         ->check(real_in(0.0, limits::max_length, true, false));

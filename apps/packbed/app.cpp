@@ -38,15 +38,20 @@ namespace {
 
 /// Check the files `--config FILE` names before CLI11 opens them (it would wait for ever on a
 /// FIFO and read a file of any size): regular files of at most limits::max_small_file bytes.
-/// \throws InvalidInput naming the file otherwise
-void check_config_files(int argc, char** argv) {
+/// \return the last one named ("" for none). \throws InvalidInput naming the file otherwise
+std::string check_config_files(int argc, char** argv) {
+    std::string name;
     for (int i = 1; i < argc; ++i) {
         const std::string_view arg = argv[i];
         if (arg == "--config" && i + 1 < argc)
-            read_small_file("--config", argv[i + 1], limits::max_small_file);
+            name = argv[i + 1];
         else if (arg.starts_with("--config="))
-            read_small_file("--config", std::string(arg.substr(9)), limits::max_small_file);
+            name = arg.substr(9);
+        else
+            continue;
+        read_small_file("--config", name, limits::max_small_file);
     }
+    return name;
 }
 
 } // namespace
@@ -58,7 +63,9 @@ int run(int argc, char** argv) {
 
     // Every message is one line: what a user typed is shown with control characters escaped.
     try {
-        check_config_files(argc, argv);
+        const std::string config = check_config_files(argc, argv);
+        if (const auto toml = std::dynamic_pointer_cast<TomlConfig>(app.get_config_formatter()))
+            toml->set_file_name(config);
     } catch (const InvalidInput& e) {
         fmt::print(stderr, "packbed: {}\n", e.what());
         return 2;
@@ -73,20 +80,27 @@ int run(int argc, char** argv) {
         return app.exit(e);
     } catch (const CLI::ParseError& e) {
         const auto selected = app.get_subcommands();
-        if (selected.empty())
-            for (const std::string& word : app.remaining())
-                if (!word.starts_with("-")) {
-                    std::string names;
-                    for (const Command& command : commands)
-                        names += (names.empty() ? "" : ", ") + command.app->get_name();
-                    fmt::print(stderr, "packbed: '{}' is not a subcommand; allowed: {}\n",
-                               printable(word.substr(0, 80)), names);
-                    return 2;
-                }
+        if (selected.empty()) { // no subcommand: say what was given instead, and what is allowed
+            std::string names;
+            for (const Command& command : commands)
+                names += (names.empty() ? "" : ", ") + command.app->get_name();
+            const auto remaining = app.remaining();
+            const auto word = remaining.begin();
+            if (word == remaining.end())
+                fmt::print(stderr, "packbed: a subcommand is required; allowed: {}\n", names);
+            else if (word->starts_with("-"))
+                fmt::print(stderr,
+                           "packbed: '{}' is not an option of packbed itself; allowed: a "
+                           "subcommand first ({}), or --help, --version, --config FILE\n",
+                           printable(word->substr(0, 80)), names);
+            else
+                fmt::print(stderr, "packbed: '{}' is not a subcommand; allowed: {}\n",
+                           printable(word->substr(0, 80)), names);
+            return 2;
+        }
         if (dynamic_cast<const CLI::ExtrasError*>(&e))
-            fmt::print(stderr, "packbed: {}; run 'packbed {}--help' for the options\n",
-                       printable(e.what()),
-                       selected.empty() ? "" : selected.front()->get_name() + " ");
+            fmt::print(stderr, "packbed: {}; run 'packbed {} --help' for the options\n",
+                       printable(e.what()), selected.front()->get_name());
         else
             fmt::print(stderr, "packbed: {}\n", printable(e.what()));
         return 2;

@@ -27,6 +27,9 @@ CLI::Validator real_in(double low, double high, bool low_open, bool high_open);
 /// (packbed::path_problem). Paths are checked as text only here; files are checked when opened.
 CLI::Validator path_text();
 
+/// One of `names` (exactly). The message quotes the value, so an empty one shows as ''.
+CLI::Validator one_of(std::vector<std::string> names);
+
 /// A whole number within [low, high].
 CLI::Validator whole_in(unsigned long long low, unsigned long long high);
 
@@ -42,9 +45,10 @@ std::optional<std::vector<double>> comma_numbers(std::string_view text);
 void use_threads(unsigned long long threads);
 
 /// The container radius recorded in `summary.json` beside a particle file (written by
-/// `packbed generate`, `lattice`, `analyze`). \return nothing when there is no such file.
+/// `packbed generate`, `lattice`, `analyze`). \return nothing when there is no such file or it
+/// names no container (a lattice in a box).
 /// \throws InvalidInput naming the file when it exists but is not a regular file, not a
-/// summary, or has no container.radius in (0, limits::max_length]
+/// summary, or has a container.radius outside (0, limits::max_length]
 std::optional<double> container_radius_beside(const std::filesystem::path& particles);
 
 } // namespace packbed::cli

@@ -146,9 +146,10 @@ int run_surface_export(const ExportOptions& o, ExportFormat format, const Partic
                     container->height, i + 1, b.center.z + b.radius));
         }
     if (format == ExportFormat::openfoam && !container)
-        throw InvalidInput(fmt::format("--format openfoam needs the container: give "
-                                       "--container-radius (no summary.json next to {})",
-                                       printable(o.particles)));
+        throw InvalidInput(
+            fmt::format("--format openfoam needs the container: give "
+                        "--container-radius (no summary.json with a container radius next to {})",
+                        printable(o.particles)));
 
     // What every surface export reports (printed, and written as JSON beside the output).
     nlohmann::ordered_json report;
@@ -288,7 +289,7 @@ Command register_export(CLI::App& parent) {
                     "lammps-data (atom_style sphere), liggghts-data (atom_style granular), stl "
                     "(binary), stl-ascii (one named solid per part), obj, or openfoam (a case "
                     "directory for blockMesh + snappyHexMesh)")
-        ->check(CLI::IsMember(names));
+        ->check(one_of(names));
     app->add_option("-o,--out", o.out,
                     "the output file (default: the particle file with .data, .stl or .obj), or "
                     "the case directory for openfoam (default: openfoam/ beside the file; a new "

@@ -137,7 +137,7 @@ Command register_generate(CLI::App& parent) {
     app->add_option("--e0", p.e0, "initial overall void fraction for L0, eq. (6)")
         ->check(real_in(0.0, 1.0, true, true));
     app->add_option("--ck", p.ck, "elasticity parameter Ck of eq. (4)")
-        ->check(real_in(0.0, 1.0, true, true));
+        ->check(real_in(limits::min_ck, 1.0, false, true));
     app->add_option("--cg-step", p.cg_step, "step of the gravity parameter Cg, eq. (7)")
         ->check(real_in(0.0, 5e-6, true, false));
     app->add_option("--overlap-low", p.overlap_low,
@@ -148,7 +148,7 @@ Command register_generate(CLI::App& parent) {
         ->check(real_in(0.0, 0.5, true, true));
     app->add_option("--tolerance", p.tolerance,
                     "largest sphere-sphere and sphere-wall overlap allowed at the end, Dp")
-        ->check(real_in(0.0, 1e-2, true, false));
+        ->check(real_in(limits::min_tolerance, 1e-2, false, false));
     app->add_option("--mc-period", p.mc_period, "iterations between mass-centre records")
         ->check(whole_in(1, 1'000'000));
     app->add_option("--mc-window", p.mc_window, "successive mass-centre records that must agree")
@@ -162,14 +162,14 @@ Command register_generate(CLI::App& parent) {
     app->add_option("--update", o.update,
                     "in-place: each sphere moves in turn (Gauss-Seidel); simultaneous: all move "
                     "from the old positions (Jacobi, uses --threads)")
-        ->check(CLI::IsMember(update_names));
+        ->check(one_of(update_names));
     std::vector<std::string> solver_names;
     for (const auto& entry : solvers())
         solver_names.push_back(entry.first);
     app->add_option("--solver", o.solver,
                     "paper: the iteration of Salvat et al. (2005); fire: the same energy "
                     "minimised with FIRE, far fewer iterations (docs/performance.md)")
-        ->check(CLI::IsMember(solver_names));
+        ->check(one_of(solver_names));
     app->add_option("--skin", p.skin, "Verlet neighbour-list skin, Dp")
         ->check(real_in(0.0, 1.0, true, false));
     app->add_option("--layer-height", p.layer_height,

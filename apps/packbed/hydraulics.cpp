@@ -17,6 +17,7 @@
 #include "packbed/hydraulics.hpp"
 #include "packbed/lattice.hpp"
 #include "packbed/limits.hpp"
+#include "packbed/read.hpp"
 
 namespace packbed::cli {
 
@@ -40,24 +41,18 @@ std::pair<double, std::string> porosity_of(const std::string& bed) {
     std::error_code error;
     if (fs::is_directory(path, error))
         path /= "summary.json";
-    // A regular file of bounded size (a FIFO, a device or /dev/zero is refused, not read).
-    const std::string text = read_small_file("--bed", path, limits::max_small_file);
-    nlohmann::json s;
-    try {
-        s = nlohmann::json::parse(text);
-    } catch (const nlohmann::json::exception&) {
-        throw InvalidInput(fmt::format("--bed '{}': {} is not JSON", bed, path.string()));
+    BedSummary summary;
+    try { // a regular file of bounded size, the porosity in (0, 1)
+        summary = read_bed_summary(path);
+    } catch (const InvalidInput& e) {
+        throw InvalidInput(fmt::format("--bed {}", e.what()));
     }
-    if (s.contains("lattice") && s["lattice"].contains("porosity") &&
-        s["lattice"]["porosity"].is_number())
-        return {s["lattice"]["porosity"].get<double>(),
-                fmt::format("{} lattice ({})", s.value("type", "?"), path.string())};
-    if (s.contains("void_fraction") && s["void_fraction"].is_number())
-        return {s["void_fraction"].get<double>(),
-                fmt::format("overall void fraction of {}", path.string())};
-    throw InvalidInput(fmt::format("--bed '{}': {} has no numeric lattice.porosity or "
-                                   "void_fraction; give --porosity",
-                                   bed, path.string()));
+    if (!summary.porosity)
+        throw InvalidInput(fmt::format("--bed {}: no lattice.porosity or void_fraction; give "
+                                       "--porosity",
+                                       printable(path.native())));
+    return {*summary.porosity,
+            fmt::format("{} of {}", summary.porosity_source, printable(path.native()))};
 }
 
 /// \return the path of the first number of `value` that is not finite (nlohmann::json prints
@@ -193,7 +188,8 @@ Command register_hydraulics(CLI::App& parent) {
         ->check(real_in(0.0, 1.0, true, true));
     app->add_option("--bed", o.bed,
                     "a bed's summary.json (or its directory): a lattice's exact porosity or a "
-                    "generated bed's void fraction");
+                    "generated bed's void fraction")
+        ->check(path_text());
     app->add_option("-d,--diameter", o.fluid.diameter, "particle diameter, m (1 nm to 10 m)")
         ->check(real_in(limits::min_particle_diameter_m, limits::max_particle_diameter_m, false,
                         false));

@@ -21,7 +21,7 @@ namespace {
 std::atomic<pid_t> g_child{0};
 std::atomic<bool> g_progress_drawn{false};
 std::mutex g_name_mutex;
-std::string g_name = "packbed";
+std::string g_name; // the subcommand, once chosen
 // Held by the handler thread from the signal to _exit: whoever else takes it waits for ever.
 std::mutex g_exit_mutex;
 
@@ -42,14 +42,16 @@ void wait_for_signals(sigset_t set) {
         if (sigwait(&set, &signal) != 0)
             continue;
         std::lock_guard exit_lock(g_exit_mutex);
-        // The child first, so that it creates nothing in the folders about to be removed.
+        // The outputs first: from here on no commit can happen, whatever the main thread does
+        // once the child below is gone (a child still writing into the removed staging folder
+        // can create nothing there).
+        if (cancel_outputs())
+            continue; // the results were already in place: the run ends as it would have
         if (const pid_t child = g_child.load(); child > 0) {
             ::kill(-child, SIGKILL);
             siginfo_t info{};
             ::waitid(P_PID, static_cast<id_t>(child), &info, WEXITED | WNOWAIT);
         }
-        if (cancel_outputs())
-            continue; // the results were already in place: the run ends as it would have
         std::string message;
         {
             std::lock_guard lock(g_name_mutex);

@@ -29,6 +29,7 @@ struct LatticeOptions {
     std::string out = "packbed-lattice";
     double band_clearance = 1.0;
     bool quiet = false;
+    bool force = false;
 };
 
 /// `box:LX,LY,LZ` or `cylinder:D,H`, lengths in (0, limits::max_length].
@@ -80,7 +81,8 @@ int run_lattice(LatticeOptions& o) {
         rest = comma == std::string_view::npos ? std::string_view{} : rest.substr(comma + 1);
     }
     o.params.validate();
-    OutputDirectory out(o.out); // refuse an unwritable directory before the work
+    // Every check before the work.
+    OutputDirectory out(o.out, "--out", OutputKind::directory, o.force);
 
     const Packing packing = fill_lattice(o.params);
     auto summary = lattice_summary(o.params, packing);
@@ -121,7 +123,7 @@ Command register_lattice(CLI::App& parent) {
     app->add_option("-t,--type", o.type,
                     "diamond: coordination 4, porosity 0.660; sc: 6, 0.476; bcc: 8, 0.320; "
                     "fcc and hcp: 12, 0.260")
-        ->check(CLI::IsMember(type_names));
+        ->check(one_of(type_names));
     app->add_option("-d,--diameter", o.params.diameter, "ball diameter d; the unit of the outputs")
         ->check(real_in(limits::min_diameter, limits::max_diameter, false, false));
     app->add_option("-r,--region", o.region,
@@ -137,8 +139,13 @@ Command register_lattice(CLI::App& parent) {
     app->add_option("--keep", o.keep,
                     "whole: only balls wholly inside the region; centres: every ball whose "
                     "centre is inside")
-        ->check(CLI::IsMember({"whole", "centres"}));
-    app->add_option("-o,--out", o.out, "output directory (created if missing)");
+        ->check(one_of({"whole", "centres"}));
+    app->add_option("-o,--out", o.out,
+                    "output directory: a new or empty one (created), or an existing one with "
+                    "--force")
+        ->check(path_text());
+    app->add_flag("--force", o.force,
+                  "replace a non-empty output directory whole (its old files are deleted)");
     app->add_option("--band-clearance", o.band_clearance,
                     "cylinder: the analysis band starts and ends this far from floor and top, d")
         ->check(real_in(0.0, 1e6, false, true));

@@ -6,6 +6,8 @@
 #include <fmt/format.h>
 #include <toml++/toml.h>
 
+#include "packbed/files.hpp"
+
 namespace packbed::cli {
 
 namespace {
@@ -20,7 +22,7 @@ std::string line_of(const toml::node& node) {
 }
 
 /// One TOML scalar as the text CLI11 would have received on the command line.
-std::string scalar_text(const toml::node& node, const std::string& key) {
+std::string scalar_text(const toml::node& node, const std::string& key, const std::string& where) {
     if (const auto* v = node.as_integer())
         return std::to_string(v->get());
     if (const auto* v = node.as_floating_point())
@@ -29,25 +31,27 @@ std::string scalar_text(const toml::node& node, const std::string& key) {
         return v->get() ? "true" : "false";
     if (const auto* v = node.as_string())
         return v->get();
-    throw CLI::ConfigError(fmt::format("--config: {}: key '{}' has a value of the wrong type; "
+    throw CLI::ConfigError(fmt::format("{}: {}: key '{}' has a value of the wrong type; "
                                        "allowed: a number, a string or true/false",
-                                       line_of(node), key));
+                                       where, line_of(node), key));
 }
 
 } // namespace
 
 std::vector<CLI::ConfigItem> TomlConfig::from_config(std::istream& input) const {
+    const std::string where =
+        m_file_name.empty() ? std::string("--config") : "--config " + printable(m_file_name);
     toml::table root;
     try {
         root = toml::parse(input);
     } catch (const toml::parse_error& e) {
-        throw CLI::ConfigError(fmt::format("--config: line {}, column {}: {}",
+        throw CLI::ConfigError(fmt::format("{}: line {}, column {}: {}", where,
                                            e.source().begin.line, e.source().begin.column,
                                            e.description()));
     }
     const auto selected = m_root->get_subcommands();
     if (selected.empty())
-        throw CLI::ConfigError("--config: a subcommand must be given with a config file");
+        throw CLI::ConfigError(where + ": a subcommand must be given with a config file");
     const CLI::App& command = *selected.front();
     const std::string section = command.get_name();
     const std::set<std::string> allowed = configurable_names(command);
@@ -56,23 +60,23 @@ std::vector<CLI::ConfigItem> TomlConfig::from_config(std::istream& input) const 
         const std::string key = normalise(std::string(raw_key.str()));
         if (node.is_table())
             throw CLI::ConfigError(
-                fmt::format("--config: {}: unknown table '{}'; allowed: top-level keys or [{}]",
-                            line_of(node), raw_key.str(), section));
+                fmt::format("{}: {}: unknown table '{}'; allowed: top-level keys or [{}]", where,
+                            line_of(node), printable(raw_key.str()), section));
         if (!allowed.count(key)) {
             std::string names;
             for (const auto& n : allowed)
                 names += (names.empty() ? "" : ", ") + n;
-            throw CLI::ConfigError(fmt::format("--config: {}: unknown key '{}'; allowed: {}",
-                                               line_of(node), raw_key.str(), names));
+            throw CLI::ConfigError(fmt::format("{}: {}: unknown key '{}'; allowed: {}", where,
+                                               line_of(node), printable(raw_key.str()), names));
         }
         CLI::ConfigItem item;
         item.parents = {section};
         item.name = key;
         if (const auto* array = node.as_array())
             for (const auto& element : *array)
-                item.inputs.push_back(scalar_text(element, key));
+                item.inputs.push_back(scalar_text(element, key, where));
         else
-            item.inputs.push_back(scalar_text(node, key));
+            item.inputs.push_back(scalar_text(node, key, where));
         result.push_back(std::move(item));
     };
     for (const auto& [key, node] : root) {

@@ -22,10 +22,13 @@ public:
         : m_root(root) {}
 
     std::vector<CLI::ConfigItem> from_config(std::istream& input) const override;
+    /// Name the file being read in messages ("--config FILE: line 3: ...").
+    void set_file_name(std::string name) { m_file_name = std::move(name); }
     std::string to_config(const CLI::App*, bool, bool, std::string) const override;
 
 private:
     const CLI::App* m_root;
+    std::string m_file_name;
 };
 
 /// \return the long names (without dashes) of the options of `app` that a config may set.

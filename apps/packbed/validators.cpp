@@ -1,9 +1,11 @@
+#include <algorithm>
 #include <charconv>
 #include <cmath>
 #include <cstdlib>
 #include <string>
 
 #include <fmt/format.h>
+#include <fmt/ranges.h>
 #include <omp.h>
 
 #include "command.hpp"
@@ -48,6 +50,20 @@ CLI::Validator whole_in(unsigned long long low, unsigned long long high) {
         allowed);
 }
 
+CLI::Validator one_of(std::vector<std::string> names) {
+    std::string allowed;
+    for (const std::string& name : names)
+        allowed += (allowed.empty() ? "" : ", ") + name;
+    return CLI::Validator(
+        [names, allowed](std::string& text) -> std::string {
+            if (std::find(names.begin(), names.end(), text) != names.end())
+                return {};
+            return fmt::format("'{}' is not allowed; allowed: {}", printable(text.substr(0, 80)),
+                               allowed);
+        },
+        "{" + fmt::format("{}", fmt::join(names, ",")) + "}");
+}
+
 CLI::Validator path_text() {
     return CLI::Validator(
         [](std::string& text) -> std::string {
@@ -89,11 +105,7 @@ std::optional<double> container_radius_beside(const std::filesystem::path& parti
     std::error_code ec;
     if (!std::filesystem::exists(std::filesystem::symlink_status(summary, ec)))
         return std::nullopt;
-    const BedSummary bed = read_bed_summary(summary);
-    if (!bed.container_radius)
-        throw InvalidInput(fmt::format("{}: no container.radius; give --container-radius",
-                                       printable(summary.native())));
-    return bed.container_radius;
+    return read_bed_summary(summary).container_radius; // none for a box lattice
 }
 
 } // namespace packbed::cli

@@ -99,7 +99,8 @@ struct LatticeParameters {
 /// Fill the region with the lattice: every ball of every cell of the infinite lattice through
 /// the origin, kept by `keep`, in the order cell layer (z), row (y), position (x), then the
 /// cell's balls in unit_cell order. O(balls); the same output whatever the threads.
-/// \throws InvalidInput for invalid parameters or a fill beyond its limits (see validate)
+/// \throws InvalidInput for invalid parameters, a fill beyond its limits (see validate), or a
+/// region that holds no ball
 Packing fill_lattice(const LatticeParameters& parameters);
 
 /// Contacts of a packing of equal balls of diameter d: pairs whose centres are d apart within

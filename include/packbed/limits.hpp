@@ -69,6 +69,16 @@ inline constexpr double max_gravity_m_s2 = 1e6;
 inline constexpr double max_velocity_m_s = 1e4; ///< superficial velocity, > 0
 inline constexpr double max_tube_aspect_ratio = 1e4;
 
+/// The smallest final overlap tolerance of generate (Dp): a position of a bed 1000 Dp tall is
+/// rounded to about 1e-13 Dp, so a tolerance below this may never be reached (with 1e-16 a run
+/// went on until --max-iterations). The paper's solver reaches about 1e-7 at most; below, it
+/// stops with exit status 1 and says so.
+inline constexpr double min_tolerance = 1e-12;
+
+/// The smallest elasticity parameter Ck of eq. (4): the iterations grow as 1/Ck (0.3 is the
+/// paper's; 1e-300 moved nothing and ran until --max-iterations).
+inline constexpr double min_ck = 0.01;
+
 /// The longest line a text reader accepts (bytes): far above any real line, and it bounds the
 /// memory a file without newlines can take.
 inline constexpr std::size_t max_line_length = 1 << 20;

@@ -73,7 +73,8 @@ public:
     const std::filesystem::path& path() const { return m_path; }
 
 private:
-    std::filesystem::path final_path(const std::string& name) const;
+    std::filesystem::path final_path(const std::string& name) const; // absolute
+    std::filesystem::path given_path(const std::string& name) const; // as the user gave it
 
     std::filesystem::path m_path;    // as given
     std::filesystem::path m_target;  // absolute, normalised

@@ -57,7 +57,8 @@ ParticleFile read_particles(std::istream& input, std::string_view name, Particle
 struct BedSummary {
     std::optional<double> container_radius; ///< container.radius (length), when present
     std::optional<double> porosity;         ///< a lattice's exact porosity or the void fraction
-    std::string porosity_source; ///< "lattice TYPE" or "void fraction", when porosity is set
+    /// "the porosity of the TYPE lattice" or "the overall void fraction", when porosity is set
+    std::string porosity_source;
 };
 
 /// Read a summary.json. Absent keys are left empty; present ones must be right.
