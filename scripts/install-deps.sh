@@ -24,6 +24,9 @@ if [[ ${1:-} == --test ]]; then
   packages+=(liggghts)      # and LIGGGHTS reads them too
   packages+=(admesh)        # checks the STL surfaces of packbed export
   packages+=(openfoam)      # surfaceCheck, blockMesh, snappyHexMesh, checkMesh on them
+  packages+=(clang)               # scripts/test-sanitize.sh and scripts/fuzz.sh: clang 14,
+  packages+=(libclang-rt-14-dev)  # its ASan/UBSan/libFuzzer runtimes,
+  packages+=(libomp-dev)          # and OpenMP for clang (libomp)
 fi
 
 missing=()
