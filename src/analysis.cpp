@@ -13,6 +13,7 @@
 #include <fmt/format.h>
 #include <omp.h>
 
+#include "cell_grid.hpp"
 #include "packbed/error.hpp"
 #include "packbed/limits.hpp"
 #include "parallel.hpp"
@@ -233,113 +234,10 @@ std::vector<ProfileBin> centre_distribution(const Packing& packing, double rt, d
     return out;
 }
 
-/// A uniform grid of cubic cells over the bounding box of the centres, the spheres sorted by
-/// cell (counting sort), for the pair searches of the contacts and g(r). It stores no pairs
-/// (a search visits them), so its memory is O(N) whatever the distance searched; the rows of
-/// a NeighborList for g(r) to 20 Dp would take 130 GB for 1e6 spheres. Read-only once built:
-/// may be searched from several threads.
-class PairGrid {
-public:
-    /// \param edge the cell edge, at least the longest distance a search in the 27 cells
-    /// around a sphere must find; it grows (x 1.5) until there are at most 8 N + 64 cells.
-    PairGrid(std::span<const Vec3> centers, double edge) {
-        Vec3 lo{std::numeric_limits<double>::max(), std::numeric_limits<double>::max(),
-                std::numeric_limits<double>::max()};
-        Vec3 hi{-lo.x, -lo.y, -lo.z};
-        for (const Vec3& c : centers) {
-            lo = {std::min(lo.x, c.x), std::min(lo.y, c.y), std::min(lo.z, c.z)};
-            hi = {std::max(hi.x, c.x), std::max(hi.y, c.y), std::max(hi.z, c.z)};
-        }
-        const double max_cells = 8.0 * static_cast<double>(centers.size()) + 64.0;
-        auto along = [&](double extent, double e) { return std::floor(extent / e) + 1.0; };
-        auto cells = [&](double e) {
-            return along(hi.x - lo.x, e) * along(hi.y - lo.y, e) * along(hi.z - lo.z, e);
-        };
-        while (!(cells(edge) <= max_cells))
-            edge *= 1.5;
-        m_origin = lo;
-        m_edge = edge;
-        m_nx = static_cast<int>(along(hi.x - lo.x, edge));
-        m_ny = static_cast<int>(along(hi.y - lo.y, edge));
-        m_nz = static_cast<int>(along(hi.z - lo.z, edge));
-        const std::size_t ncells = static_cast<std::size_t>(m_nx) * m_ny * m_nz;
-        m_cell_start.assign(ncells + 1, 0);
-        m_cell_of.resize(centers.size());
-        for (std::size_t i = 0; i < centers.size(); ++i) {
-            const Vec3 d = centers[i] - m_origin;
-            const std::size_t c = cell(index(d.x, m_nx), index(d.y, m_ny), index(d.z, m_nz));
-            m_cell_of[i] = static_cast<std::uint32_t>(c);
-            ++m_cell_start[c + 1];
-        }
-        for (std::size_t c = 0; c < ncells; ++c) {
-            m_largest_cell = std::max(m_largest_cell, m_cell_start[c + 1]);
-            m_cell_start[c + 1] += m_cell_start[c];
-        }
-        m_sorted.resize(centers.size());
-        std::vector<std::uint32_t> fill(m_cell_start.begin(), m_cell_start.end() - 1);
-        for (std::size_t i = 0; i < centers.size(); ++i)
-            m_sorted[fill[m_cell_of[i]]++] = static_cast<std::uint32_t>(i);
-    }
-
-    double edge() const { return m_edge; }
-    /// \return the most spheres in one cell.
-    std::uint32_t largest_cell() const { return m_largest_cell; }
-
-    /// \return how many cells out a search must look to find every sphere within `reach` of
-    /// a centre (at least 1, at most the grid).
-    int cells_within(double reach) const {
-        const double k = std::ceil(reach / m_edge);
-        return static_cast<int>(
-            std::clamp(k, 1.0, static_cast<double>(std::max({m_nx, m_ny, m_nz}))));
-    }
-
-    /// Call f(j) for every sphere j (sphere i included) in the cells up to k cells out from
-    /// the cell of sphere i.
-    template <class F> void for_each_near(std::size_t i, int k, F&& f) const {
-        for_each_run(i, k, [&](std::uint32_t begin, std::uint32_t end) {
-            for (std::uint32_t s = begin; s < end; ++s)
-                f(m_sorted[s]);
-        });
-    }
-
-    /// \return the work of for_each_near(i, k): the spheres it visits plus the runs of cells.
-    std::uint64_t work(std::size_t i, int k) const {
-        std::uint64_t w = 0;
-        for_each_run(i, k, [&](std::uint32_t begin, std::uint32_t end) { w += 1 + (end - begin); });
-        return w;
-    }
-
-private:
-    int index(double v, int n) const {
-        const double k = std::floor(v / m_edge); // clamped in double: no overflow in the cast
-        if (!(k > 0.0))
-            return 0;
-        return k >= n - 1 ? n - 1 : static_cast<int>(k);
-    }
-    std::size_t cell(int ix, int iy, int iz) const {
-        return (static_cast<std::size_t>(iz) * m_ny + iy) * m_nx + ix;
-    }
-    /// f(begin, end) for the runs of m_sorted in the cells k out: the cells of a row along x
-    /// are one run.
-    template <class F> void for_each_run(std::size_t i, int k, F&& f) const {
-        const std::size_t c = m_cell_of[i];
-        const int ix = static_cast<int>(c % m_nx);
-        const int iy = static_cast<int>((c / m_nx) % m_ny);
-        const int iz = static_cast<int>(c / (static_cast<std::size_t>(m_nx) * m_ny));
-        const int x0 = std::max(ix - k, 0), x1 = std::min(ix + k, m_nx - 1);
-        for (int z = std::max(iz - k, 0); z <= std::min(iz + k, m_nz - 1); ++z)
-            for (int y = std::max(iy - k, 0); y <= std::min(iy + k, m_ny - 1); ++y)
-                f(m_cell_start[cell(x0, y, z)], m_cell_start[cell(x1, y, z) + 1]);
-    }
-
-    Vec3 m_origin;
-    double m_edge = 1.0;
-    int m_nx = 1, m_ny = 1, m_nz = 1;
-    std::vector<std::uint32_t> m_cell_start; // size ncells + 1
-    std::vector<std::uint32_t> m_sorted;     // sphere indices ordered by cell
-    std::vector<std::uint32_t> m_cell_of;    // cell of each sphere
-    std::uint32_t m_largest_cell = 0;
-};
+/// The pair searches of the contacts and g(r) visit pairs in a CellGrid without storing them,
+/// so their memory is O(N) whatever the distance searched (the rows of a NeighborList for g(r)
+/// to 20 Dp would take 130 GB for 1e6 spheres).
+using detail::CellGrid;
 
 /// Cells a hair larger than the distance searched: a pair that distance apart lies in
 /// neighbouring cells despite the rounding of the cell indices (< 1e-7 of a cell, the grid
@@ -355,7 +253,7 @@ struct ContactSearch {
     double tolerance = 0.0;
     double small_radius = 0.0;
     double largest_radius = 0.0;
-    PairGrid grid;
+    CellGrid grid;
     std::vector<std::uint32_t> large; // spheres above small_radius
     std::uint64_t work = 0;           // distance checks (and cells) the search takes
 
@@ -446,7 +344,7 @@ Coordination coordination(const Packing& packing, const Cylinder& container,
 /// range) finds.
 std::vector<ProfileBin> pair_correlation(const Packing& packing, double rt, double range,
                                          double width, const Band& band, std::size_t bins,
-                                         const PairGrid& grid) {
+                                         const CellGrid& grid) {
     const std::size_t n = packing.size();
     const Vec3* const x = packing.centers.data();
     // Whole-number counts, so their sum is the same in any order: one histogram per thread,
@@ -642,7 +540,7 @@ BedAnalysis analyze_bed(const Packing& packing, const Cylinder& container,
                                        options.rdf_range, rdf_bins, options.rdf_bin, budget,
                                        budget_reason(packing.size())));
     const ContactSearch contacts(packing, options.contact_tolerance * dp, *band, mean_diameter);
-    const double contact_budget = pair_budget(packing.size(), contacts.grid.edge(), mean_diameter);
+    const double contact_budget = pair_budget(packing.size(), contacts.grid.edge, mean_diameter);
     if (!(static_cast<double>(contacts.work) <= contact_budget))
         throw InvalidInput(fmt::format(
             "finding the contacts would take {:.3g} distance checks; allowed: at most "
@@ -650,13 +548,13 @@ BedAnalysis analyze_bed(const Packing& packing, const Cylinder& container,
             "over the mean diameter {:.3g}): the spheres are piled on each other (up to {} "
             "centres within {:.3g}) or far larger than the mean (the largest diameter is {:.3g})",
             static_cast<double>(contacts.work), contact_budget, packing.size(),
-            limits::pair_checks_per_sphere, contacts.grid.edge(), mean_diameter,
-            contacts.grid.largest_cell(), contacts.grid.edge(), 2.0 * contacts.largest_radius));
-    const PairGrid rdf_grid(packing.centers, rdf_range * cell_margin);
+            limits::pair_checks_per_sphere, contacts.grid.edge, mean_diameter,
+            contacts.grid.largest_cell, contacts.grid.edge, 2.0 * contacts.largest_radius));
+    const CellGrid rdf_grid(packing.centers, rdf_range * cell_margin);
     std::uint64_t rdf_work = 0;
     for (std::size_t i = 0; i < packing.size(); ++i)
         rdf_work += in_band(packing.centers[i], *band) ? rdf_grid.work(i, 1) : 0;
-    const double rdf_budget = pair_budget(packing.size(), rdf_grid.edge(), mean_diameter);
+    const double rdf_budget = pair_budget(packing.size(), rdf_grid.edge, mean_diameter);
     if (!(static_cast<double>(rdf_work) <= rdf_budget))
         throw InvalidInput(fmt::format(
             "g(r) up to --rdf-range {} Dp would take {:.3g} distance checks; allowed: "
@@ -664,8 +562,8 @@ BedAnalysis analyze_bed(const Packing& packing, const Cylinder& container,
             "distance {:.3g} over the mean diameter {:.3g}): the spheres are piled on each other "
             "(up to {} centres within {:.3g}); lower --rdf-range",
             options.rdf_range, static_cast<double>(rdf_work), rdf_budget, packing.size(),
-            limits::pair_checks_per_sphere, rdf_grid.edge(), mean_diameter, rdf_grid.largest_cell(),
-            rdf_grid.edge()));
+            limits::pair_checks_per_sphere, rdf_grid.edge, mean_diameter, rdf_grid.largest_cell,
+            rdf_grid.edge));
 
     out.void_fraction = void_fraction(packing, container, band->z_low, band->z_high);
     out.radial_void_fraction =

@@ -9,88 +9,12 @@
 
 #include <omp.h>
 
+#include "cell_grid.hpp"
 #include "parallel.hpp"
 
 namespace packbed {
 
-namespace {
-
-/// A uniform grid of cubic cells over the bounding box of the centres, with the spheres
-/// sorted by cell (counting sort). Cell edge >= the largest interaction distance, so the
-/// neighbours of a sphere lie in its own and the 26 adjacent cells.
-struct CellGrid {
-    Vec3 origin;
-    double inv_edge = 0.0;
-    int nx = 1, ny = 1, nz = 1;
-    std::vector<std::uint32_t> cell_start; // size ncells + 1
-    std::vector<std::uint32_t> sorted;     // sphere indices ordered by cell
-    std::vector<std::uint32_t> cell_of;    // cell of each sphere
-
-    int clamp_index(double v, int n) const {
-        const double k = std::floor(v * inv_edge); // clamped in double: no UB on overflow
-        if (!(k > 0.0))
-            return 0;
-        return k >= n - 1 ? n - 1 : static_cast<int>(k);
-    }
-
-    void build(std::span<const Vec3> centers, double edge) {
-        Vec3 lo{std::numeric_limits<double>::max(), std::numeric_limits<double>::max(),
-                std::numeric_limits<double>::max()};
-        Vec3 hi{-lo.x, -lo.y, -lo.z};
-        for (const auto& c : centers) {
-            lo = {std::min(lo.x, c.x), std::min(lo.y, c.y), std::min(lo.z, c.z)};
-            hi = {std::max(hi.x, c.x), std::max(hi.y, c.y), std::max(hi.z, c.z)};
-        }
-        // Keep the number of cells O(N) even if the spheres are spread far apart.
-        const double max_cells = 8.0 * static_cast<double>(centers.size()) + 64.0;
-        auto count = [&](double e) {
-            return std::floor((hi.x - lo.x) / e + 1) * std::floor((hi.y - lo.y) / e + 1) *
-                   std::floor((hi.z - lo.z) / e + 1);
-        };
-        while (count(edge) > max_cells)
-            edge *= 1.5;
-        origin = lo;
-        inv_edge = 1.0 / edge;
-        nx = static_cast<int>((hi.x - lo.x) * inv_edge) + 1;
-        ny = static_cast<int>((hi.y - lo.y) * inv_edge) + 1;
-        nz = static_cast<int>((hi.z - lo.z) * inv_edge) + 1;
-        const std::size_t ncells = static_cast<std::size_t>(nx) * ny * nz;
-        cell_start.assign(ncells + 1, 0);
-        cell_of.resize(centers.size());
-        for (std::size_t i = 0; i < centers.size(); ++i) {
-            const Vec3 d = centers[i] - origin;
-            const std::size_t c =
-                cell(clamp_index(d.x, nx), clamp_index(d.y, ny), clamp_index(d.z, nz));
-            cell_of[i] = static_cast<std::uint32_t>(c);
-            ++cell_start[c + 1];
-        }
-        for (std::size_t c = 0; c < ncells; ++c)
-            cell_start[c + 1] += cell_start[c];
-        sorted.resize(centers.size());
-        std::vector<std::uint32_t> fill(cell_start.begin(), cell_start.end() - 1);
-        for (std::size_t i = 0; i < centers.size(); ++i)
-            sorted[fill[cell_of[i]]++] = static_cast<std::uint32_t>(i);
-    }
-
-    std::size_t cell(int ix, int iy, int iz) const {
-        return (static_cast<std::size_t>(iz) * ny + iy) * nx + ix;
-    }
-
-    /// Call f(begin, end) for the runs of `sorted` that hold the spheres of the 27 cells around
-    /// the cell of sphere i: the up to 3 cells of a row along x are one run.
-    template <class F> void for_each_run(std::size_t i, F&& f) const {
-        const std::size_t c = cell_of[i];
-        const int ix = static_cast<int>(c % nx);
-        const int iy = static_cast<int>((c / nx) % ny);
-        const int iz = static_cast<int>(c / (static_cast<std::size_t>(nx) * ny));
-        const int x0 = std::max(ix - 1, 0), x1 = std::min(ix + 1, nx - 1);
-        for (int z = std::max(iz - 1, 0); z <= std::min(iz + 1, nz - 1); ++z)
-            for (int y = std::max(iy - 1, 0); y <= std::min(iy + 1, ny - 1); ++y)
-                f(cell_start[cell(x0, y, z)], cell_start[cell(x1, y, z) + 1]);
-    }
-};
-
-} // namespace
+using detail::CellGrid;
 
 std::vector<std::uint32_t> spatial_order(std::span<const Vec3> centers, double edge) {
     CellGrid grid;

@@ -29,9 +29,11 @@
 
 #include <gtest/gtest.h>
 
-extern char** environ;
+#include "run_packbed.hpp"
 
 namespace fs = std::filesystem;
+using packbed::test::exe;
+using packbed::test::slurp;
 
 namespace {
 
@@ -46,56 +48,10 @@ struct Outcome {
     std::string err;
 };
 
-/// The binary under test: PACKBED_TEST_EXE from the environment (e.g. an older build, to see
-/// the cases fail), else the one built with the tests.
-std::string exe() {
-    const char* e = std::getenv("PACKBED_TEST_EXE");
-    return e != nullptr && *e != '\0' ? e : PACKBED_EXE;
-}
-
-std::string slurp(const fs::path& path) {
-    std::ifstream in(path, std::ios::binary);
-    std::ostringstream s;
-    s << in.rdbuf();
-    return s.str();
-}
-
 /// Run PACKBED_EXE with `args` (no shell) in `cwd`, stdin from /dev/null, CI unset, stdout and
 /// stderr into files in `io`; killed (its whole process group) after time_limit.
 Outcome run_packbed(const std::vector<std::string>& args, const fs::path& cwd, const fs::path& io) {
-    std::vector<std::string> words{exe()};
-    words.insert(words.end(), args.begin(), args.end());
-    std::vector<char*> argv;
-    for (std::string& w : words)
-        argv.push_back(w.data());
-    argv.push_back(nullptr);
-    std::vector<char*> envp;
-    for (char** e = environ; *e != nullptr; ++e)
-        if (std::strncmp(*e, "CI=", 3) != 0)
-            envp.push_back(*e);
-    envp.push_back(nullptr);
-    const std::string out = (io / "out").string(), err = (io / "err").string();
-    const std::string dir = cwd.string();
-
-    const pid_t pid = ::fork();
-    if (pid == 0) { // only async-signal-safe calls until exec
-        ::setpgid(0, 0);
-        sigset_t none;
-        sigemptyset(&none);
-        ::sigprocmask(SIG_SETMASK, &none, nullptr);
-        for (const int s : {SIGINT, SIGTERM, SIGHUP, SIGPIPE})
-            ::signal(s, SIG_DFL);
-        const int in = ::open("/dev/null", O_RDONLY);
-        const int o = ::open(out.c_str(), O_WRONLY | O_CREAT | O_TRUNC, 0644);
-        const int e = ::open(err.c_str(), O_WRONLY | O_CREAT | O_TRUNC, 0644);
-        if (in < 0 || o < 0 || e < 0 || ::chdir(dir.c_str()) != 0)
-            ::_exit(127);
-        ::dup2(in, STDIN_FILENO);
-        ::dup2(o, STDOUT_FILENO);
-        ::dup2(e, STDERR_FILENO);
-        ::execve(argv[0], argv.data(), envp.data());
-        ::_exit(127);
-    }
+    const pid_t pid = packbed::test::spawn(args, cwd, io);
     Outcome outcome;
     if (pid < 0) {
         outcome.err = "fork failed";

@@ -46,9 +46,12 @@
 
 #include <gtest/gtest.h>
 
-extern char** environ;
+#include "run_packbed.hpp"
 
 namespace fs = std::filesystem;
+using packbed::test::exe;
+using packbed::test::slurp;
+namespace test = packbed::test;
 using Clock = std::chrono::steady_clock;
 using namespace std::chrono_literals;
 
@@ -56,18 +59,6 @@ namespace {
 
 /// A run that does not end within this after its signal hangs: killed, and the test fails.
 constexpr auto time_limit = 60s;
-
-std::string exe() {
-    const char* e = std::getenv("PACKBED_TEST_EXE");
-    return e != nullptr && *e != '\0' ? e : PACKBED_EXE;
-}
-
-std::string slurp(const fs::path& path) {
-    std::ifstream in(path, std::ios::binary);
-    std::ostringstream s;
-    s << in.rdbuf();
-    return s.str();
-}
 
 /// The running test's scratch folder, private to this process: the same test may run in
 /// several processes at once (two people running the suite).
@@ -89,44 +80,9 @@ fs::path scratch(const std::string& name) {
     return d;
 }
 
-/// Start `packbed ARGS` in `root/work` (no shell; stdin /dev/null; CI unset; the signals packbed
-/// handles at their defaults, whatever the test runner set), stdout and stderr into `root/io`.
+/// Start `packbed ARGS` in `root/work`, stdout and stderr into `root/io` (run_packbed.hpp).
 pid_t spawn(const std::vector<std::string>& args, const fs::path& root) {
-    std::vector<std::string> words{exe()};
-    words.insert(words.end(), args.begin(), args.end());
-    std::vector<char*> argv;
-    for (std::string& w : words)
-        argv.push_back(w.data());
-    argv.push_back(nullptr);
-    std::vector<char*> envp;
-    for (char** e = environ; *e != nullptr; ++e)
-        if (std::strncmp(*e, "CI=", 3) != 0)
-            envp.push_back(*e);
-    envp.push_back(nullptr);
-    const std::string out = (root / "io" / "out").string(), err = (root / "io" / "err").string();
-    const std::string dir = (root / "work").string();
-    const pid_t pid = ::fork();
-    if (pid == 0) {      // only async-signal-safe calls until exec
-        ::setpgid(0, 0); // a process group of its own, as a shell's job: see interrupt()
-        sigset_t none;
-        sigemptyset(&none);
-        ::sigprocmask(SIG_SETMASK, &none, nullptr);
-        for (const int s : {SIGINT, SIGTERM, SIGHUP, SIGPIPE})
-            ::signal(s, SIG_DFL);
-        const int in = ::open("/dev/null", O_RDONLY);
-        const int o = ::open(out.c_str(), O_WRONLY | O_CREAT | O_TRUNC, 0644);
-        const int e = ::open(err.c_str(), O_WRONLY | O_CREAT | O_TRUNC, 0644);
-        if (in < 0 || o < 0 || e < 0 || ::chdir(dir.c_str()) != 0)
-            ::_exit(127);
-        ::dup2(in, STDIN_FILENO);
-        ::dup2(o, STDOUT_FILENO);
-        ::dup2(e, STDERR_FILENO);
-        ::execve(argv[0], argv.data(), envp.data());
-        ::_exit(127);
-    }
-    if (pid > 0)
-        ::setpgid(pid, pid); // also here, so that it is done before any signal is sent
-    return pid;
+    return test::spawn(args, root / "work", root / "io");
 }
 
 /// Send `signal` as a user does: SIGINT is Ctrl-C, which the terminal sends to the whole

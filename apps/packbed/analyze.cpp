@@ -130,12 +130,7 @@ Command register_analyze(CLI::App& parent) {
     app->add_option("-R,--container-radius", o.container_radius,
                     "cylinder radius Rt (file units); default: summary.json next to the file")
         ->check(real_in(0.0, limits::max_length, true, false));
-    app->add_option("-o,--out", o.out,
-                    "output directory: a new or empty one (created), or an existing one with "
-                    "--force; default: analysis/ next to the file")
-        ->check(path_text());
-    app->add_flag("--force", o.force,
-                  "replace a non-empty output directory whole (its old files are deleted)");
+    add_output_directory(*app, o.out, o.force, "analysis/ next to the file");
     app->add_option("-d,--diameter", o.diameter,
                     "reference diameter Dp, and the sphere size of XYZ files without radius; "
                     "default: the mean sphere diameter")

@@ -27,6 +27,12 @@ CLI::Validator real_in(double low, double high, bool low_open, bool high_open);
 /// (packbed::path_problem). Paths are checked as text only here; files are checked when opened.
 CLI::Validator path_text();
 
+/// The options of a subcommand that writes an output directory (OutputDirectory): -o,--out
+/// (a path, see path_text) and --force. \param default_text what --out defaults to, when that
+/// is not the option's own default value (shown in --help), or ""
+void add_output_directory(CLI::App& app, std::string& out, bool& force,
+                          const std::string& default_text = "");
+
 /// One of `names` (exactly). The message quotes the value, so an empty one shows as ''.
 CLI::Validator one_of(std::vector<std::string> names);
 

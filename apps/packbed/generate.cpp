@@ -128,12 +128,7 @@ Command register_generate(CLI::App& parent) {
                     "sphere diameter Dp; the unit of every length "
                     "in the outputs")
         ->check(real_in(limits::min_diameter, limits::max_diameter, false, false));
-    app->add_option("-o,--out", o.out,
-                    "output directory: a new or empty one (created), or an existing one with "
-                    "--force")
-        ->check(path_text());
-    app->add_flag("--force", o.force,
-                  "replace a non-empty output directory whole (its old files are deleted)");
+    add_output_directory(*app, o.out, o.force);
     app->add_option("--e0", p.e0, "initial overall void fraction for L0, eq. (6)")
         ->check(real_in(0.0, 1.0, true, true));
     app->add_option("--ck", p.ck, "elasticity parameter Ck of eq. (4)")

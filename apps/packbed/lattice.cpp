@@ -140,12 +140,7 @@ Command register_lattice(CLI::App& parent) {
                     "whole: only balls wholly inside the region; centres: every ball whose "
                     "centre is inside")
         ->check(one_of({"whole", "centres"}));
-    app->add_option("-o,--out", o.out,
-                    "output directory: a new or empty one (created), or an existing one with "
-                    "--force")
-        ->check(path_text());
-    app->add_flag("--force", o.force,
-                  "replace a non-empty output directory whole (its old files are deleted)");
+    add_output_directory(*app, o.out, o.force);
     app->add_option("--band-clearance", o.band_clearance,
                     "cylinder: the analysis band starts and ends this far from floor and top, d")
         ->check(real_in(0.0, 1e6, false, true));

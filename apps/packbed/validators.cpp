@@ -77,6 +77,17 @@ CLI::Validator path_text() {
         "PATH");
 }
 
+void add_output_directory(CLI::App& app, std::string& out, bool& force,
+                          const std::string& default_text) {
+    app.add_option("-o,--out", out,
+                   "output directory: a new or empty one (created), or an existing one with "
+                   "--force" +
+                       (default_text.empty() ? std::string() : "; default: " + default_text))
+        ->check(path_text());
+    app.add_flag("--force", force,
+                 "replace a non-empty output directory whole (its old files are deleted)");
+}
+
 std::optional<std::vector<double>> comma_numbers(std::string_view text) {
     std::vector<double> values;
     while (true) {

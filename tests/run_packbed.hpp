@@ -1,0 +1,79 @@
+// The packbed binary run from tests as a user runs it: no shell (the arguments reach it byte
+// for byte), stdin from /dev/null, CI unset, the signals it handles at their defaults whatever
+// the test runner set, in a process group of its own (as a shell's job).
+#pragma once
+
+#include <fcntl.h>
+#include <signal.h>
+#include <sys/types.h>
+#include <unistd.h>
+
+#include <cstdlib>
+#include <cstring>
+#include <filesystem>
+#include <fstream>
+#include <sstream>
+#include <string>
+#include <vector>
+
+extern char** environ;
+
+namespace packbed::test {
+
+/// The binary under test: PACKBED_TEST_EXE from the environment (e.g. an older build, to see
+/// the cases fail), else the one built with the tests.
+inline std::string exe() {
+    const char* e = std::getenv("PACKBED_TEST_EXE");
+    return e != nullptr && *e != '\0' ? e : PACKBED_EXE;
+}
+
+/// \return the bytes of a file ("" when it cannot be read).
+inline std::string slurp(const std::filesystem::path& path) {
+    std::ifstream in(path, std::ios::binary);
+    std::ostringstream s;
+    s << in.rdbuf();
+    return s.str();
+}
+
+/// Start `packbed ARGS` in `cwd`, its stdout and stderr into the files `io/out` and `io/err`.
+/// \return its pid (also its process group), or -1 when fork fails.
+inline pid_t spawn(const std::vector<std::string>& args, const std::filesystem::path& cwd,
+                   const std::filesystem::path& io) {
+    std::vector<std::string> words{exe()};
+    words.insert(words.end(), args.begin(), args.end());
+    std::vector<char*> argv;
+    for (std::string& w : words)
+        argv.push_back(w.data());
+    argv.push_back(nullptr);
+    std::vector<char*> envp;
+    for (char** e = environ; *e != nullptr; ++e)
+        if (std::strncmp(*e, "CI=", 3) != 0)
+            envp.push_back(*e);
+    envp.push_back(nullptr);
+    const std::string out = (io / "out").string(), err = (io / "err").string();
+    const std::string dir = cwd.string();
+    const pid_t pid = ::fork();
+    if (pid == 0) { // only async-signal-safe calls until exec
+        ::setpgid(0, 0);
+        sigset_t none;
+        sigemptyset(&none);
+        ::sigprocmask(SIG_SETMASK, &none, nullptr);
+        for (const int s : {SIGINT, SIGTERM, SIGHUP, SIGPIPE})
+            ::signal(s, SIG_DFL);
+        const int in = ::open("/dev/null", O_RDONLY);
+        const int o = ::open(out.c_str(), O_WRONLY | O_CREAT | O_TRUNC, 0644);
+        const int e = ::open(err.c_str(), O_WRONLY | O_CREAT | O_TRUNC, 0644);
+        if (in < 0 || o < 0 || e < 0 || ::chdir(dir.c_str()) != 0)
+            ::_exit(127);
+        ::dup2(in, STDIN_FILENO);
+        ::dup2(o, STDOUT_FILENO);
+        ::dup2(e, STDERR_FILENO);
+        ::execve(argv[0], argv.data(), envp.data());
+        ::_exit(127);
+    }
+    if (pid > 0)
+        ::setpgid(pid, pid); // also here, so that it is done before any signal is sent
+    return pid;
+}
+
+} // namespace packbed::test
