@@ -122,11 +122,14 @@ public:
         if (out.packing.size() >= limits::max_spheres)
             fail(fmt::format("more than {} spheres; allowed: at most that many",
                              limits::max_spheres));
-        if (!(size > 0.0 && size <= limits::max_length))
-            fail(fmt::format("column '{}' value {} is not allowed; a {} must be > 0 and at most "
-                             "{:g}",
+        // The diameter range of the command line's --diameter (a radius of 5e-324 would
+        // otherwise halve to 0, and the analysis divides by it).
+        const double scale = is_diameter ? 1.0 : 0.5;
+        if (!(size >= scale * limits::min_diameter && size <= scale * limits::max_diameter))
+            fail(fmt::format("column '{}' value {} is not allowed; a {} must be from {:g} to {:g}",
                              printable(size_column.substr(0, 40)), size,
-                             is_diameter ? "diameter" : "radius", limits::max_length));
+                             is_diameter ? "diameter" : "radius", scale * limits::min_diameter,
+                             scale * limits::max_diameter));
         for (const auto& [value, axis] : {std::pair{x, "x"}, {y, "y"}, {z, "z"}})
             if (!(std::abs(value) <= limits::max_length))
                 fail(fmt::format("{} = {} is not allowed; allowed: a coordinate from {:g} to {:g}",

@@ -701,7 +701,7 @@ INSTANTIATE_TEST_SUITE_P(
               "packbed analyze: nan.csv:2: column 'r' value 'nan' is not a finite number"),
         exact("analyze negative.csv -R 2",
               "packbed analyze: negative.csv:2: column 'r' value -1 is not allowed; a radius "
-              "must be > 0 and at most 1e+15"),
+              "must be from 5e-13 to 5e+11"),
         exact(std::vector<std::string>{"analyze", "", "-R", "2"},
               "packbed: particles: '' is not allowed (an empty path); " + a_path),
         exact(std::vector<std::string>{"analyze", "nl\ndir/bed.csv", "-R", "2"},

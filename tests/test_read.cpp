@@ -147,11 +147,14 @@ INSTANTIATE_TEST_SUITE_P(
                 "bed:2: column 'z' value 'nan' is not a finite number"},
         BadFile{
             ParticleFormat::csv, "x,y,z,r\n1,2,3,-0.5\n",
-            "bed:2: column 'r' value -0.5 is not allowed; a radius must be > 0 and at most 1e+15"},
-        BadFile{
-            ParticleFormat::csv, "x,y,z,diameter\n1,2,3,0\n",
-            "bed:2: column 'diameter' value 0 is not allowed; a diameter must be > 0 and at most "
-            "1e+15"},
+            "bed:2: column 'r' value -0.5 is not allowed; a radius must be from 5e-13 to 5e+11"},
+        BadFile{ParticleFormat::csv, "x,y,z,diameter\n1,2,3,0\n",
+                "bed:2: column 'diameter' value 0 is not allowed; a diameter must be from 1e-12 to "
+                "1e+12"},
+        // A diameter whose half is 0 (issue 14's fuzzing: 5e-324 halved is 0).
+        BadFile{ParticleFormat::csv, "x,y,z,diameter\n1,2,3,5e-324\n",
+                "bed:2: column 'diameter' value 5e-324 is not allowed; a diameter must be from "
+                "1e-12 to 1e+12"},
         BadFile{ParticleFormat::xyz, "3\n\nC 0 0 0 0.5\n", "bed: declares 3 spheres but holds 1"},
         BadFile{ParticleFormat::xyz, "1\n\nC 0 0 0 0.5\nC 1 1 1 0.5\n",
                 "bed:4: more lines than the 1 spheres the first line declares"},

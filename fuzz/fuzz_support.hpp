@@ -1,0 +1,91 @@
+// What the fuzz targets share: the rule that a reader either returns a valid result or throws
+// one of the exception types it documents. Anything else is a finding: the target prints it
+// and aborts, and libFuzzer saves the input (crash-<hash>) and prints the stack.
+#pragma once
+
+#include <cmath>
+#include <cstddef>
+#include <cstdint>
+#include <cstdio>
+#include <cstdlib>
+#include <exception>
+#include <memory>
+#include <sstream>
+#include <string>
+#include <string_view>
+#include <typeinfo>
+
+#include <cxxabi.h>
+
+#include "packbed/error.hpp"
+#include "packbed/read.hpp"
+
+namespace packbed::fuzz {
+
+/// The input bytes as a string (readers take streams).
+inline std::string text_of(const std::uint8_t* data, std::size_t size) {
+    return {reinterpret_cast<const char*>(data), size};
+}
+
+/// Report a finding and abort (libFuzzer then saves the input and prints the stack).
+[[noreturn]] inline void finding(std::string_view what) {
+    std::fprintf(stderr, "\n==packbed-fuzz== FINDING: %.*s\n", static_cast<int>(what.size()),
+                 what.data());
+    std::fflush(stderr);
+    std::abort();
+}
+
+/// The demangled name of a type.
+inline std::string type_name(const std::type_info& type) {
+    int status = 0;
+    std::unique_ptr<char, void (*)(void*)> name(
+        abi::__cxa_demangle(type.name(), nullptr, nullptr, &status), std::free);
+    return status == 0 && name ? std::string(name.get()) : std::string(type.name());
+}
+
+/// Call from a `catch (...)` after the expected types: names the exception and aborts.
+[[noreturn]] inline void unexpected_exception() {
+    try {
+        throw;
+    } catch (const std::exception& e) {
+        finding("unexpected exception " + type_name(typeid(e)) + ": " + e.what());
+    } catch (...) {
+        finding("unexpected exception of a type not derived from std::exception");
+    }
+}
+
+/// What read_particles promises of what it returns: one line number per sphere, increasing,
+/// finite centres, finite radii > 0, at least one sphere.
+inline void check_particles(const ParticleFile& file) {
+    const Packing& p = file.packing;
+    if (p.size() == 0)
+        finding("read_particles returned no spheres");
+    if (p.radii.size() != p.size() || file.lines.size() != p.size())
+        finding("read_particles returned arrays of different lengths");
+    for (std::size_t i = 0; i < p.size(); ++i) {
+        const Vec3& c = p.centers[i];
+        if (!std::isfinite(c.x) || !std::isfinite(c.y) || !std::isfinite(c.z))
+            finding("read_particles returned a centre that is not finite, line " +
+                    std::to_string(file.lines[i]));
+        if (!std::isfinite(p.radii[i]) || !(p.radii[i] > 0.0))
+            finding("read_particles returned a radius that is not finite and > 0, line " +
+                    std::to_string(file.lines[i]));
+        if (file.lines[i] == 0 || (i > 0 && file.lines[i] <= file.lines[i - 1]))
+            finding("read_particles returned line numbers that are not increasing from 1");
+    }
+}
+
+/// read_particles on the input: a valid ParticleFile or InvalidInput, nothing else.
+inline void read_particles_or_invalid(const std::uint8_t* data, std::size_t size,
+                                      std::string_view name, ParticleFormat format,
+                                      const ReadOptions& options = {}) {
+    std::istringstream input(text_of(data, size));
+    try {
+        check_particles(read_particles(input, name, format, options));
+    } catch (const InvalidInput&) {
+    } catch (...) {
+        unexpected_exception();
+    }
+}
+
+} // namespace packbed::fuzz
