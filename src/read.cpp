@@ -402,6 +402,7 @@ BedSummary read_bed_summary(std::istream& input, std::string_view name) {
     if (json.contains("container"))
         out.container_radius =
             number(json["container"], "radius", "container.radius", limits::max_length);
+    out.diameter = number(json, "diameter", "diameter", limits::max_diameter);
     if (json.contains("lattice")) {
         out.porosity = number(json["lattice"], "porosity", "lattice.porosity", 1.0);
         const auto type = json.find("type");

@@ -385,6 +385,65 @@ TEST(Cli, LatticeWritesTheBallsAndTheirNumbers) {
     EXPECT_TRUE(fs::exists(c / "radial_void_fraction.csv"));
 }
 
+// Issue 15: the diameter a bed records is used (read as metres) unless --diameter is given, and
+// a cylinder's tube gives the aspect ratio of the wall-corrected pressure drop.
+TEST(Cli, HydraulicsTakesTheBedsDiameterAndTube) {
+    const fs::path box = scratch("box2mm");
+    ASSERT_EQ(packbed("lattice --type diamond --diameter 0.002 --region box:0.02,0.02,0.02 -q "
+                      "--out " +
+                      box.string())
+                  .status,
+              0);
+    const Outcome from_bed = packbed("hydraulics --json --bed " + box.string());
+    const Outcome given = packbed("hydraulics --json --bed " + box.string() + " --diameter 0.002");
+    ASSERT_EQ(from_bed.status, 0) << from_bed.err;
+    ASSERT_EQ(given.status, 0) << given.err;
+    const auto b = nlohmann::json::parse(from_bed.out);
+    const auto g = nlohmann::json::parse(given.out);
+    EXPECT_EQ(b["fluid_and_particles"]["diameter_m"].get<double>(), 0.002);
+    EXPECT_NE(b["fluid_and_particles"]["diameter_from"].get<std::string>().find("read as metres"),
+              std::string::npos);
+    EXPECT_EQ(g["fluid_and_particles"]["diameter_from"], "given");
+    EXPECT_EQ(b["equation_1"]["superficial_velocity_m_s"],
+              g["equation_1"]["superficial_velocity_m_s"]);
+    // Ar = g d^3 rho_f (rho_p - rho_f) / mu^2 with d = 2 mm, glass in water (the defaults).
+    const double ar = 9.80665 * 8e-9 * 998.2 * (2500.0 - 998.2) / (1.002e-3 * 1.002e-3);
+    EXPECT_NEAR(b["archimedes"].get<double>(), ar, 1e-9 * ar);
+    EXPECT_FALSE(b["pressure_gradient"].contains("aspect_ratio")); // a box: no tube
+
+    // A cylinder 20 mm wide of 2 mm balls: a = 10 from the bed, unless given.
+    const fs::path tube = scratch("tube2mm");
+    ASSERT_EQ(packbed("lattice --type fcc --diameter 0.002 --region cylinder:0.02,0.02 -q --out " +
+                      tube.string())
+                  .status,
+              0);
+    const Outcome t = packbed("hydraulics --json --bed " + tube.string());
+    ASSERT_EQ(t.status, 0) << t.err;
+    const auto tj = nlohmann::json::parse(t.out);
+    EXPECT_NEAR(tj["pressure_gradient"]["aspect_ratio"].get<double>(), 10.0, 1e-12);
+    const Outcome t5 = packbed("hydraulics --json --aspect-ratio 5 --bed " + tube.string());
+    ASSERT_EQ(t5.status, 0) << t5.err;
+    EXPECT_EQ(nlohmann::json::parse(t5.out)["pressure_gradient"]["aspect_ratio"], 5.0);
+
+    // A bed in other units (a diameter of 20, read as 20 m) is refused, naming the way out.
+    const fs::path big = scratch("units");
+    ASSERT_EQ(
+        packbed("lattice --type sc --diameter 20 --region box:100,100,100 -q --out " + big.string())
+            .status,
+        0);
+    const Outcome u = packbed("hydraulics --bed " + big.string());
+    EXPECT_EQ(u.status, 2);
+    EXPECT_NE(u.err.find("diameter = 20 is not allowed as metres"), std::string::npos) << u.err;
+    EXPECT_EQ(packbed("hydraulics --bed " + big.string() + " --diameter 0.02").status, 0);
+    // The default diameter 1 has no unit: refused too.
+    const fs::path unitless = scratch("unitless");
+    ASSERT_EQ(packbed("lattice --type sc --region box:5,5,5 -q --out " + unitless.string()).status,
+              0);
+    const Outcome n = packbed("hydraulics --bed " + unitless.string());
+    EXPECT_EQ(n.status, 2);
+    EXPECT_NE(n.err.find("diameter = 1, packbed's default"), std::string::npos) << n.err;
+}
+
 TEST(Cli, HydraulicsOfALatticeFromItsSummary) {
     const fs::path d = scratch("lattice");
     ASSERT_EQ(packbed("lattice --type diamond --region box:5,5,5 -q --out " + d.string()).status,

@@ -240,7 +240,10 @@ TEST(ReadBedSummary, ContainerAndPorosityOrARefusalNamingTheKey) {
     EXPECT_EQ(bed.container_radius, 2.5);
     EXPECT_EQ(bed.porosity, 0.41);
     EXPECT_EQ(bed.porosity_source, "the overall void fraction");
-    const BedSummary lattice = read(R"({"type": "diamond", "lattice": {"porosity": 0.66}})");
+    EXPECT_FALSE(bed.diameter);
+    const BedSummary lattice =
+        read(R"({"type": "diamond", "diameter": 0.002, "lattice": {"porosity": 0.66}})");
+    EXPECT_EQ(lattice.diameter, 0.002);
     EXPECT_FALSE(lattice.container_radius);
     EXPECT_EQ(lattice.porosity, 0.66);
     EXPECT_EQ(lattice.porosity_source, "the porosity of the diamond lattice");
@@ -251,6 +254,8 @@ TEST(ReadBedSummary, ContainerAndPorosityOrARefusalNamingTheKey) {
     EXPECT_EQ(error(R"({"container": {"radius": "2"}})"),
               "summary.json: container.radius = \"2\" is not allowed; allowed: a number in (0, "
               "1e+15]");
+    EXPECT_EQ(error(R"({"diameter": 0})"),
+              "summary.json: diameter = 0 is not allowed; allowed: a number in (0, 1e+12]");
     EXPECT_EQ(error(R"({"void_fraction": 1.5})"),
               "summary.json: void_fraction = 1.5 is not allowed; allowed: a number in (0, 1)");
     EXPECT_EQ(error("[[[[").substr(0, 30), "summary.json: not a summary.js");

@@ -32,11 +32,23 @@ struct HydraulicsOptions {
     double velocity = 0.0;     // 0: the critical velocity of eq. (1)
     double aspect_ratio = 0.0; // 0: no wall-corrected pressure drop
     bool json = false;
+    bool diameter_given = false;     // --diameter on the command line (or in --config)
+    bool aspect_ratio_given = false; // --aspect-ratio likewise
+};
+
+/// What hydraulics takes from a bed's summary.json.
+struct BedFacts {
+    double porosity = 0.0;
+    std::string porosity_from;
+    std::optional<double> diameter;         ///< the spheres' diameter, in the bed's length unit
+    std::optional<double> container_radius; ///< likewise
+    std::string shown;                      ///< the summary's path, printable
 };
 
 /// The porosity of a bed from its summary.json (or the directory holding it): a generated
-/// bed's overall void fraction, or a lattice's exact porosity (the paper's choice for eq. (1)).
-std::pair<double, std::string> porosity_of(const std::string& bed) {
+/// bed's overall void fraction, or a lattice's exact porosity (the paper's choice for eq. (1));
+/// and the spheres' diameter and container radius it records.
+BedFacts bed_facts(const std::string& bed) {
     fs::path path(bed);
     std::error_code error;
     if (fs::is_directory(path, error))
@@ -47,12 +59,13 @@ std::pair<double, std::string> porosity_of(const std::string& bed) {
     } catch (const InvalidInput& e) {
         throw InvalidInput(fmt::format("--bed {}", e.what()));
     }
+    const std::string shown = printable(path.native());
     if (!summary.porosity)
         throw InvalidInput(fmt::format("--bed {}: no lattice.porosity or void_fraction; give "
                                        "--porosity",
-                                       printable(path.native())));
-    return {*summary.porosity,
-            fmt::format("{} of {}", summary.porosity_source, printable(path.native()))};
+                                       shown));
+    return {*summary.porosity, fmt::format("{} of {}", summary.porosity_source, shown),
+            summary.diameter, summary.container_radius, shown};
 }
 
 /// \return the path of the first number of `value` that is not finite (nlohmann::json prints
@@ -80,9 +93,43 @@ int run_hydraulics(const HydraulicsOptions& o) {
     if (o.porosity <= 0.0 && o.bed.empty())
         throw InvalidInput("no porosity given; allowed: --porosity E (0 < E < 1) or --bed "
                            "SUMMARY.json");
-    const auto [e, origin] =
-        o.porosity > 0.0 ? std::pair{o.porosity, std::string("given")} : porosity_of(o.bed);
-    const FluidAndParticles& f = o.fluid;
+    FluidAndParticles f = o.fluid;
+    double aspect_ratio = o.aspect_ratio;
+    std::string aspect_ratio_from = "given";
+    double e = o.porosity;
+    std::string origin = "given";
+    std::string diameter_from = o.diameter_given ? "given" : "the default";
+    if (!o.bed.empty()) {
+        // A bed's lengths are in the unit of its --diameter; hydraulics reads them as metres
+        // unless --diameter is given (issue 15: the default 1 mm was used silently).
+        const BedFacts bed = bed_facts(o.bed);
+        e = bed.porosity;
+        origin = bed.porosity_from;
+        if (!o.diameter_given && bed.diameter) {
+            if (*bed.diameter == 1.0) // generate's and lattice's default: no unit at all
+                throw InvalidInput(fmt::format(
+                    "--bed {}: diameter = 1, packbed's default (lengths in sphere diameters, "
+                    "no unit); allowed: give --diameter in metres",
+                    bed.shown));
+            if (!(*bed.diameter >= limits::min_particle_diameter_m &&
+                  *bed.diameter <= limits::max_particle_diameter_m))
+                throw InvalidInput(fmt::format(
+                    "--bed {}: diameter = {} is not allowed as metres; allowed: {:g} to {:g} m, "
+                    "or give --diameter in metres",
+                    bed.shown, *bed.diameter, limits::min_particle_diameter_m,
+                    limits::max_particle_diameter_m));
+            f.diameter = *bed.diameter;
+            diameter_from = fmt::format("the diameter of {}, read as metres", bed.shown);
+        }
+        // The tube of a cylindrical bed gives the wall-corrected pressure drop.
+        if (!o.aspect_ratio_given && bed.diameter && bed.container_radius) {
+            const double a = 2.0 * *bed.container_radius / *bed.diameter;
+            if (a > 1.0 && a <= limits::max_tube_aspect_ratio) {
+                aspect_ratio = a;
+                aspect_ratio_from = fmt::format("2 container.radius / diameter of {}", bed.shown);
+            }
+        }
+    }
     const double ar = archimedes_number(f);
     const auto coefficients = fluidization_coefficients(e);
     const double re_c = critical_reynolds(ar, e);
@@ -98,6 +145,7 @@ int run_hydraulics(const HydraulicsOptions& o) {
     out["units"] = "SI: m, kg/m^3, Pa s, m/s, Pa/m, m^2";
     out["porosity"] = {{"value", e}, {"from", origin}};
     out["fluid_and_particles"] = {{"diameter_m", f.diameter},
+                                  {"diameter_from", diameter_from},
                                   {"particle_density_kg_m3", f.particle_density},
                                   {"fluid_density_kg_m3", f.fluid_density},
                                   {"viscosity_Pa_s", f.viscosity},
@@ -112,10 +160,11 @@ int run_hydraulics(const HydraulicsOptions& o) {
     out["wen_yu_1966"] = {{"reynolds_mf", re_mf}, {"velocity_mf_m_s", u_mf}};
     out["pressure_gradient"] = {{"velocity_m_s", u}, {"reynolds", u_re}, {"ergun_Pa_m", ergun}};
     std::string warning;
-    if (o.aspect_ratio > 0.0) {
-        const CorrelationValue es = eisfeld_schnitzlein_pressure_gradient(e, u, o.aspect_ratio, f);
+    if (aspect_ratio > 0.0) {
+        const CorrelationValue es = eisfeld_schnitzlein_pressure_gradient(e, u, aspect_ratio, f);
         out["pressure_gradient"]["eisfeld_schnitzlein_Pa_m"] = es.value;
-        out["pressure_gradient"]["aspect_ratio"] = o.aspect_ratio;
+        out["pressure_gradient"]["aspect_ratio"] = aspect_ratio;
+        out["pressure_gradient"]["aspect_ratio_from"] = aspect_ratio_from;
         out["pressure_gradient"]["eisfeld_schnitzlein_in_range"] = es.warning.empty();
         warning = es.warning;
     }
@@ -148,6 +197,7 @@ int run_hydraulics(const HydraulicsOptions& o) {
         return 0;
     }
     fmt::print("porosity e = {:.5f} ({})\n", e, origin);
+    fmt::print("particle diameter d = {:.6g} m ({})\n", f.diameter, diameter_from);
     fmt::print("Archimedes number Ar = {:.6g}\n", ar);
     fmt::print("eq. (1) at e: Ar = {:.6g} Re + {:.6g} Re^2\n", coefficients.linear,
                coefficients.quadratic);
@@ -156,8 +206,8 @@ int run_hydraulics(const HydraulicsOptions& o) {
                re_c, w);
     fmt::print("Wen & Yu (1966): Re_mf = {:.6g}, u_mf = {:.6g} m/s\n", re_mf, u_mf);
     fmt::print("at u = {:.6g} m/s (Re = {:.6g}): Ergun {:.6g} Pa/m", u, u_re, ergun);
-    if (o.aspect_ratio > 0.0)
-        fmt::print(", Eisfeld & Schnitzlein (a = {}) {:.6g} Pa/m", o.aspect_ratio,
+    if (aspect_ratio > 0.0)
+        fmt::print(", Eisfeld & Schnitzlein (a = {:.6g}) {:.6g} Pa/m", aspect_ratio,
                    out["pressure_gradient"]["eisfeld_schnitzlein_Pa_m"].get<double>());
     fmt::print("\npermeability: Carman-Kozeny {:.6g} m^2, Ergun {:.6g} m^2\n", k_carman_kozeny,
                k_ergun);
@@ -188,7 +238,8 @@ Command register_hydraulics(CLI::App& parent) {
         ->check(real_in(0.0, 1.0, true, true));
     app->add_option("--bed", o.bed,
                     "a bed's summary.json (or its directory): a lattice's exact porosity or a "
-                    "generated bed's void fraction")
+                    "generated bed's void fraction; also its diameter, read as metres, unless "
+                    "--diameter, and a cylinder's aspect ratio unless --aspect-ratio")
         ->check(path_text());
     app->add_option("-d,--diameter", o.fluid.diameter, "particle diameter, m (1 nm to 10 m)")
         ->check(real_in(limits::min_particle_diameter_m, limits::max_particle_diameter_m, false,
@@ -214,7 +265,11 @@ Command register_hydraulics(CLI::App& parent) {
     app->add_flag("--json", o.json, "print everything as JSON");
     app->fallthrough();
     app->footer("Exit status: 0 success, 2 bad input (e.g. a particle lighter than the fluid).");
-    return {app, [options] { return run_hydraulics(*options); }};
+    return {app, [options, app] {
+                options->diameter_given = app->count("--diameter") > 0;
+                options->aspect_ratio_given = app->count("--aspect-ratio") > 0;
+                return run_hydraulics(*options);
+            }};
 }
 
 } // namespace packbed::cli

@@ -56,6 +56,7 @@ ParticleFile read_particles(std::istream& input, std::string_view name, Particle
 /// later command about the bed.
 struct BedSummary {
     std::optional<double> container_radius; ///< container.radius (length), when present
+    std::optional<double> diameter;         ///< the spheres' diameter (length), when present
     std::optional<double> porosity;         ///< a lattice's exact porosity or the void fraction
     /// "the porosity of the TYPE lattice" or "the overall void fraction", when porosity is set
     std::string porosity_source;
@@ -64,7 +65,8 @@ struct BedSummary {
 /// Read a summary.json. Absent keys are left empty; present ones must be right.
 /// \param name names the file in messages
 /// 	hrows InvalidInput naming the file when it is not JSON, or when container.radius is not
-/// a number in (0, limits::max_length] or the porosity not a number in (0, 1)
+/// a number in (0, limits::max_length], the diameter not one in (0, limits::max_diameter] or
+/// the porosity not a number in (0, 1)
 BedSummary read_bed_summary(std::istream& input, std::string_view name);
 
 /// Read a summary.json file (at most limits::max_small_file bytes; a regular file, see
