@@ -8,12 +8,14 @@
 #include <sys/types.h>
 #include <unistd.h>
 
+#include <algorithm>
 #include <cstdlib>
 #include <cstring>
 #include <filesystem>
 #include <fstream>
 #include <sstream>
 #include <string>
+#include <system_error>
 #include <vector>
 
 extern char** environ;
@@ -74,6 +76,54 @@ inline pid_t spawn(const std::vector<std::string>& args, const std::filesystem::
     if (pid > 0)
         ::setpgid(pid, pid); // also here, so that it is done before any signal is sent
     return pid;
+}
+
+/// Every entry under `root`, hidden ones included, links not followed, sorted, one line each:
+/// its path and type; a regular file described by `describe_file(path, size)`, a link by its
+/// target. What tests compare before and after a run to see what it left behind.
+template <class DescribeFile>
+std::string listing(const std::filesystem::path& root, DescribeFile describe_file) {
+    namespace fs = std::filesystem;
+    std::vector<std::string> lines;
+    std::error_code ec;
+    for (fs::recursive_directory_iterator it(root, fs::directory_options::none, ec), end;
+         !ec && it != end; it.increment(ec)) {
+        const fs::path& p = it->path();
+        std::string line = p.lexically_relative(root).string() + " ";
+        switch (fs::symlink_status(p, ec).type()) {
+        case fs::file_type::regular:
+            line += describe_file(p, fs::file_size(p, ec));
+            break;
+        case fs::file_type::directory:
+            line += "dir";
+            break;
+        case fs::file_type::symlink:
+            line += "link -> " + fs::read_symlink(p, ec).string();
+            break;
+        case fs::file_type::fifo:
+            line += "fifo";
+            break;
+        case fs::file_type::character:
+            line += "char";
+            break;
+        case fs::file_type::block:
+            line += "block";
+            break;
+        case fs::file_type::socket:
+            line += "socket";
+            break;
+        default:
+            line += "other";
+        }
+        lines.push_back(line);
+    }
+    if (ec)
+        lines.push_back("(listing failed: " + ec.message() + ")");
+    std::sort(lines.begin(), lines.end());
+    std::string all;
+    for (const auto& l : lines)
+        all += l + "\n";
+    return all;
 }
 
 } // namespace packbed::test

@@ -75,55 +75,15 @@ Outcome run_packbed(const std::vector<std::string>& args, const fs::path& cwd, c
     return outcome;
 }
 
-/// Every entry under `root`, hidden ones included, one line each: its path, its type, and its
-/// size and a hash of its contents (regular files up to 4 MiB), or its target (links). Links
-/// are not followed.
+/// What is under `root`: regular files by their size and a hash of their contents (up to
+/// 4 MiB), the rest by type or link target (packbed::test::listing).
 std::string listing(const fs::path& root) {
-    std::vector<std::string> lines;
-    std::error_code ec;
-    for (fs::recursive_directory_iterator it(root, fs::directory_options::none, ec), end;
-         !ec && it != end; it.increment(ec)) {
-        const fs::path& p = it->path();
-        std::string line = p.lexically_relative(root).string() + " ";
-        const fs::file_status s = fs::symlink_status(p, ec);
-        switch (s.type()) {
-        case fs::file_type::regular: {
-            const auto size = fs::file_size(p, ec);
-            line += "file " + std::to_string(size);
-            if (size <= (4u << 20))
-                line += " " + std::to_string(std::hash<std::string>{}(slurp(p)));
-            break;
-        }
-        case fs::file_type::directory:
-            line += "dir";
-            break;
-        case fs::file_type::symlink:
-            line += "link -> " + fs::read_symlink(p, ec).string();
-            break;
-        case fs::file_type::fifo:
-            line += "fifo";
-            break;
-        case fs::file_type::character:
-            line += "char";
-            break;
-        case fs::file_type::block:
-            line += "block";
-            break;
-        case fs::file_type::socket:
-            line += "socket";
-            break;
-        default:
-            line += "other";
-        }
-        lines.push_back(line);
-    }
-    if (ec)
-        lines.push_back("(listing failed: " + ec.message() + ")");
-    std::sort(lines.begin(), lines.end());
-    std::string all;
-    for (const auto& l : lines)
-        all += l + "\n";
-    return all;
+    return packbed::test::listing(root, [](const fs::path& p, std::uintmax_t size) {
+        std::string line = "file " + std::to_string(size);
+        if (size <= (4u << 20))
+            line += " " + std::to_string(std::hash<std::string>{}(slurp(p)));
+        return line;
+    });
 }
 
 void write(const fs::path& path, const std::string& text) {

@@ -127,35 +127,16 @@ bool compared(const fs::path& p) {
     return ext == ".csv" || ext == ".vtu" || ext == ".stl";
 }
 
-/// Every entry under `root`, hidden ones included, one line each: its path and type; for the
-/// outputs that do not depend on the run (.csv, .vtu, .stl) the size and a hash of the contents,
-/// for other files (summary.json holds the run's seconds) whether they are empty.
+/// What is under `root` (packbed::test::listing): the outputs that do not depend on the run
+/// (.csv, .vtu, .stl) by their size and a hash of their contents, other files (summary.json
+/// holds the run's seconds) by whether they are empty.
 std::string listing(const fs::path& root) {
-    std::vector<std::string> lines;
-    std::error_code ec;
-    for (fs::recursive_directory_iterator it(root, fs::directory_options::none, ec), end;
-         !ec && it != end; it.increment(ec)) {
-        const fs::path& p = it->path();
-        std::string line = p.lexically_relative(root).string() + " ";
-        const fs::file_status s = fs::symlink_status(p, ec);
-        if (fs::is_regular_file(s)) {
-            const auto size = fs::file_size(p, ec);
-            line += compared(p) ? "file " + std::to_string(size) + " " +
-                                      std::to_string(std::hash<std::string>{}(slurp(p)))
-                    : size > 0 ? "file, not empty"
-                               : "file, empty";
-        } else if (fs::is_directory(s)) {
-            line += "dir";
-        } else {
-            line += "other";
-        }
-        lines.push_back(line);
-    }
-    std::sort(lines.begin(), lines.end());
-    std::string all;
-    for (const auto& l : lines)
-        all += l + "\n";
-    return all;
+    return packbed::test::listing(root, [](const fs::path& p, std::uintmax_t size) {
+        return compared(p) ? "file " + std::to_string(size) + " " +
+                                 std::to_string(std::hash<std::string>{}(slurp(p)))
+               : size > 0 ? std::string("file, not empty")
+                          : std::string("file, empty");
+    });
 }
 
 std::set<std::string> lines_of(const std::string& text) {
