@@ -26,7 +26,7 @@ import sys
 import time
 
 HERE = os.path.dirname(os.path.abspath(__file__))
-D = 1e-3  # sphere diameter, m (as ../shared/reference/measurements.md)
+D = 1e-3  # sphere diameter, m (as the peers' reference runs, docs/sources.md#peers)
 
 
 def random_start(n, a, seed, fraction=0.2):
