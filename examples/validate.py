@@ -65,6 +65,8 @@ def main():
     p.add_argument("--height", type=float, default=25.0, help="bed height in diameters")
     p.add_argument("--band-clearance", type=float, default=2.0, help="in diameters")
     p.add_argument("--profiles-at", default="7.99", help="aspect ratio of the Fig. 2-3 profiles")
+    p.add_argument("--solver", default="paper", choices=["paper", "fire"],
+                   help="paper (default here): the article's own schedule, as docs/validation.md")
     p.add_argument("--out", default="results/validation")
     p.add_argument("--verbose", action="store_true", help="progress even when not on a terminal")
     args = p.parse_args()
@@ -81,7 +83,7 @@ def main():
             progress(f"[{k}/{len(todo)}] a = {a:g}, seed {seed}: done before", verbose)
             continue
         start = time.time()
-        subprocess.run([args.packbed, "generate", "--aspect-ratio", f"{a:g}",
+        subprocess.run([args.packbed, "generate", "--solver", args.solver, "--aspect-ratio", f"{a:g}",
                         "--particles", str(particles_for(a, args.height)), "--seed", str(seed),
                         "--band-clearance", f"{args.band_clearance:g}", "--quiet",
                         "--out", run], check=True)

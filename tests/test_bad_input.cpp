@@ -538,6 +538,10 @@ INSTANTIATE_TEST_SUITE_P(
               "--checkpoint` with the same options"),
         exact("generate --checkpoint ck",
               "packbed generate: --checkpoint ck: only a fire run in layers can be resumed, this "
+              "run is in one piece; allowed: --solver fire with an initial height L0 = 25.16 Dp "
+              "above twice --layer-height (now 30)"),
+        exact("generate --solver paper --checkpoint ck",
+              "packbed generate: --checkpoint ck: only a fire run in layers can be resumed, this "
               "run is paper mode; allowed: --solver fire with an initial height L0 = 25.16 Dp "
               "above twice --layer-height (now 30)")));
 

@@ -109,7 +109,9 @@ TEST(Cli, DiameterScalesEveryLength) {
 
 TEST(Cli, SameSeedSameBytesWhateverTheThreads) {
     const fs::path a = scratch("t1"), b = scratch("t2"), c = scratch("t2b");
-    const std::string bed = "generate --aspect-ratio 3 --particles 80 --seed 2 --quiet ";
+    // --update is the paper's schedule's (the default solver, fire, has one order).
+    const std::string bed = "generate --solver paper --aspect-ratio 3 --particles 80 --seed 2 "
+                            "--quiet ";
     ASSERT_EQ(packbed(bed + "--update simultaneous --threads 1 --out " + a.string()).status, 0);
     ASSERT_EQ(packbed(bed + "--update simultaneous --threads 2 --out " + b.string()).status, 0);
     ASSERT_EQ(packbed(bed + "--update in-place --out " + c.string()).status, 0);
@@ -203,6 +205,44 @@ TEST(Cli, CheckpointOfAnotherRunIsRefused) {
     EXPECT_FALSE(fs::exists(d / "out" / "particles.csv"));
 }
 
+/// What `packbed ARGS` draws on a pseudo-terminal COLUMNS wide (util-linux `script`), stdout
+/// discarded: the bytes the terminal receives on stderr.
+std::string drawn_on_terminal(const std::string& args, int columns, const fs::path& d) {
+    const std::string inner = "stty cols " + std::to_string(columns) + " rows 24; env -u CI " +
+                              PACKBED_EXE + " " + args + " >/dev/null";
+    const std::string cmd =
+        "script -qefc '" + inner + "' /dev/null >" + (d / "tty").string() + " </dev/null 2>&1";
+    EXPECT_EQ(std::system(cmd.c_str()), 0) << cmd;
+    return slurp(d / "tty");
+}
+
+TEST(Cli, ProgressLineFitsAnEightyColumnTerminal) {
+    // The paper's schedule on a = 4, 200 spheres: about a second, about ten redraws.
+    for (int columns : {80, 100}) {
+        const fs::path d = scratch("tty" + std::to_string(columns));
+        const std::string tty = drawn_on_terminal(
+            "generate --solver paper -a 4 -n 200 --out " + (d / "out").string(), columns, d);
+        // Each redraw is "\r\033[K" then the line; the last erases it.
+        std::vector<std::string> lines;
+        for (std::size_t at = tty.find("\r\033[K"); at != std::string::npos;) {
+            const std::size_t next = tty.find("\r\033[K", at + 4);
+            lines.push_back(
+                tty.substr(at + 4, next == std::string::npos ? std::string::npos : next - at - 4));
+            at = next;
+        }
+        ASSERT_GE(lines.size(), 3u) << tty;
+        EXPECT_EQ(lines.back(), ""); // erased at the end, nothing left on the terminal
+        for (std::size_t i = 0; i + 1 < lines.size(); ++i) {
+            EXPECT_LE(lines[i].size(), static_cast<std::size_t>(columns - 1)) << lines[i];
+            EXPECT_EQ(lines[i].find('\n'), std::string::npos) << lines[i]; // redrawn in place
+            EXPECT_NE(lines[i].find("overlaps "), std::string::npos) << lines[i];
+            if (columns == 100) { // wide enough for the iteration too
+                EXPECT_NE(lines[i].find(" it "), std::string::npos) << lines[i];
+            }
+        }
+    }
+}
+
 TEST(Cli, QuietPrintsNothing) {
     const fs::path d = scratch("quiet");
     const Outcome o = packbed(small + "--quiet --out " + d.string());
@@ -224,6 +264,27 @@ TEST(Cli, ConfigFileSetsOptionsAndTheCommandLineWins) {
     EXPECT_EQ(s["aspect_ratio"], 3.0);
     EXPECT_EQ(s["seed"], 4); // command line wins
     EXPECT_EQ(s["parameters"]["ck"], 0.25);
+}
+
+TEST(Cli, TheShippedExampleConfigIsReadAsItSays) {
+    // examples/bed.toml as shipped, with fewer spheres so the test stays short (the README's
+    // check runs it whole): every key it sets reaches the run.
+    const fs::path d = scratch("example-config");
+    const Outcome o = packbed("generate --quiet --config " PACKBED_SOURCE_DIR
+                              "/examples/bed.toml --particles 60 --out " +
+                              (d / "out").string());
+    ASSERT_EQ(o.status, 0) << o.err;
+    const auto s = nlohmann::json::parse(slurp(d / "out" / "summary.json"));
+    EXPECT_EQ(s["aspect_ratio"], 7.99);
+    EXPECT_EQ(s["particles"], 60); // the command line wins
+    EXPECT_EQ(s["diameter"], 0.003);
+    EXPECT_EQ(s["seed"], 3);
+    EXPECT_EQ(s["parameters"]["solver"], "fire");
+    EXPECT_EQ(s["parameters"]["tolerance"], 1e-4);
+    EXPECT_EQ(s["parameters"]["e0"], 0.47);
+    // 2 Rt = 7.99 Dp of 3 mm
+    EXPECT_NEAR(s["container"]["radius"].get<double>(), 7.99 * 0.003 / 2, 1e-15);
+    EXPECT_LE(s["max_overlap_pair"].get<double>(), 1e-4);
 }
 
 TEST(Cli, InterruptedRunLeavesNoFile) {
@@ -259,7 +320,9 @@ TEST(Cli, GenerateAlsoWritesTheAnalysis) {
             EXPECT_NE(svg.find("<svg"), std::string::npos) << name;
             EXPECT_NE(svg.find("</svg>"), std::string::npos) << name;
         }
-        EXPECT_NE(slurp(d / "radial_void_fraction.svg").find("mueller-1992"), std::string::npos);
+        // The legend names the correlations as people cite them.
+        EXPECT_NE(slurp(d / "radial_void_fraction.svg").find("Mueller (1992)"), std::string::npos);
+        EXPECT_NE(slurp(d / "radial_void_fraction.svg").find("de Klerk (2003)"), std::string::npos);
     } else {
         EXPECT_EQ(s["analysis"]["plots"],
                   "gnuplot not found (Debian package gnuplot-nox): no plots");

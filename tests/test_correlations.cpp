@@ -1,5 +1,6 @@
 // Published correlations: hand-computed values and validity-range warnings.
 #include <cmath>
+#include <limits>
 
 #include <gtest/gtest.h>
 
@@ -41,7 +42,33 @@ TEST(MeanVoidFraction, HandComputedValues) {
 TEST(MeanVoidFraction, OutsideTheRangeWarns) {
     EXPECT_EQ(mean("benyahia-oneill-2005")(20.0).warning, "");
     EXPECT_EQ(mean("benyahia-oneill-2005")(60.0).warning,
-              "benyahia-oneill-2005: a = 60 is outside its validity range [1.5, 50]");
+              "Benyahia & O'Neill (2005): a = 60 is outside its validity range (1.5 <= a <= 50)");
+}
+
+TEST(MeanVoidFraction, AValueThatIsNotAVoidFractionWarns) {
+    // Zou & Yu's dense formula at a = 1.5: 0.372 + 0.002 (exp(10.204) - 1) = 54.39; no source
+    // we have states its range, so the value itself tells that the formula does not hold.
+    const auto dense = mean("zou-yu-1995-dense")(1.5);
+    EXPECT_NEAR(dense.value, 0.372 + 0.002 * (std::exp(15.306 / 1.5) - 1), 1e-9);
+    EXPECT_NEAR(dense.value, 54.39, 0.005);
+    EXPECT_EQ(dense.warning, "Zou & Yu (1995), dense gives 54.39 at a = 1.5, which is not a void "
+                             "fraction (it must lie in (0, 1)): the formula does not hold at "
+                             "this aspect ratio");
+    EXPECT_NEAR(mean("zou-yu-1995-loose")(1.5).value, 12.80, 0.005);
+    EXPECT_NE(mean("zou-yu-1995-loose")(1.5).warning, "");
+    // At a = 5 both are void fractions (0.413 and 0.475) and no range is stated: no warning.
+    EXPECT_EQ(mean("zou-yu-1995-dense")(5.0).warning, "");
+    // Its value passes 1 at exp(15.306 / a) = 1 + 0.628 / 0.002, a = 2.66.
+    const double a_one = 15.306 / std::log(1.0 + 0.628 / 0.002);
+    EXPECT_EQ(mean("zou-yu-1995-dense")(a_one * 1.001).warning, "");
+    EXPECT_NE(mean("zou-yu-1995-dense")(a_one * 0.999).warning, "");
+}
+
+TEST(Correlations, ValidityRangeForUsers) {
+    EXPECT_EQ(validity_range(1.5, 50.0), "1.5 <= a <= 50");
+    EXPECT_EQ(validity_range(2.02, std::numeric_limits<double>::infinity()), "a >= 2.02");
+    EXPECT_EQ(validity_range(1.0, std::numeric_limits<double>::infinity()),
+              "no range stated by the source");
 }
 
 TEST(RadialVoidFraction, WallValueMinimumAndBulk) {

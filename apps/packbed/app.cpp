@@ -23,6 +23,36 @@ Command register_lattice(CLI::App& parent);
 Command register_hydraulics(CLI::App& parent);
 Command register_export(CLI::App& parent);
 
+namespace {
+
+/// An option whose default is a "not given" marker (0 for a radius that must be > 0, -1 for a
+/// velocity that must be >= 0) would show `=0` in --help next to a range that excludes it: its
+/// default is hidden, and its description says what happens when it is not given.
+void hide_defaults_outside_their_range(CLI::App& app) {
+    for (CLI::Option* option : app.get_options()) {
+        std::string shown = option->get_default_str();
+        if (shown.empty())
+            continue;
+        for (int i = 0;; ++i) {
+            CLI::Validator* check = nullptr;
+            try {
+                check = option->get_validator(i);
+            } catch (const CLI::OptionNotFound&) {
+                break;
+            }
+            std::string value = shown;
+            if (!(*check)(value).empty()) {
+                option->default_str("");
+                break;
+            }
+        }
+    }
+    for (CLI::App* sub : app.get_subcommands({}))
+        hide_defaults_outside_their_range(*sub);
+}
+
+} // namespace
+
 std::vector<Command> build_app(CLI::App& app) {
     app.set_version_flag("-V,--version", std::string("packbed ") + version);
     app.require_subcommand(1);
@@ -30,8 +60,11 @@ std::vector<Command> build_app(CLI::App& app) {
                    "read a subcommand's options from this TOML file (keys are the option names, "
                    "e.g. aspect-ratio = 5); the command line wins");
     app.config_formatter(std::make_shared<TomlConfig>(&app));
-    return {register_generate(app), register_lattice(app), register_hydraulics(app),
-            register_export(app),   register_analyze(app), register_correlations(app)};
+    std::vector<Command> commands{register_generate(app),   register_lattice(app),
+                                  register_hydraulics(app), register_export(app),
+                                  register_analyze(app),    register_correlations(app)};
+    hide_defaults_outside_their_range(app);
+    return commands;
 }
 
 namespace {

@@ -24,11 +24,13 @@ int run_correlations(const CorrelationOptions& o) {
     std::vector<std::string> warnings;
     for (const auto& c : mean_void_fraction_correlations()) {
         const auto v = c(o.aspect_ratio);
-        out["mean_void_fraction"][std::string(c.name)] = {{"value", v.value},
-                                                          {"formula", c.formula},
-                                                          {"source", c.source},
-                                                          {"status", c.status},
-                                                          {"in_range", v.warning.empty()}};
+        out["mean_void_fraction"][std::string(c.name)] = {
+            {"value", v.value},
+            {"formula", c.formula},
+            {"source", c.source},
+            {"label", c.label},
+            {"validity", validity_range(c.a_low, c.a_high)},
+            {"in_range", v.warning.empty()}};
         if (!v.warning.empty())
             warnings.push_back(v.warning);
     }
@@ -36,7 +38,8 @@ int run_correlations(const CorrelationOptions& o) {
         auto& profile = out["radial_void_fraction"][std::string(c.name)];
         profile["formula"] = c.formula;
         profile["source"] = c.source;
-        profile["status"] = c.status;
+        profile["label"] = c.label;
+        profile["validity"] = validity_range(c.a_low, c.a_high);
         std::string warning;
         for (double z = 0.0; z <= o.profile_to + 1e-12; z += o.profile_step) {
             const auto v = c(z, o.aspect_ratio);
@@ -55,9 +58,15 @@ int run_correlations(const CorrelationOptions& o) {
         return 0;
     }
     fmt::print("mean void fraction at a = {}:\n", o.aspect_ratio);
-    for (const auto& c : mean_void_fraction_correlations())
-        fmt::print("  {:<22} {:.4f}  ({}; {})\n", c.name, c(o.aspect_ratio).value, c.source,
-                   c.status);
+    for (const auto& c : mean_void_fraction_correlations()) {
+        const auto v = c(o.aspect_ratio);
+        // A value outside (0, 1) is not printed as if it were one; the warning above says why.
+        const std::string value =
+            v.value > 0.0 && v.value < 1.0 ? fmt::format("{:.4f}", v.value) : "  --  ";
+        fmt::print("  {:<26} {}  {}{}\n", c.label, value, validity_range(c.a_low, c.a_high),
+                   v.warning.empty() ? "" : " (see the warning)");
+    }
+    fmt::print("formulas and publications: packbed correlations --json\n");
     return 0;
 }
 

@@ -234,7 +234,8 @@ Command register_hydraulics(CLI::App& parent) {
     app->option_defaults()->always_capture_default();
     // Physical ranges (limits.hpp): nanoparticles to boulders, gases to liquid metals,
     // microgravity to centrifuges.
-    app->add_option("-e,--porosity", o.porosity, "bed porosity (void fraction)")
+    app->add_option("-e,--porosity", o.porosity,
+                    "bed porosity (void fraction); one of --porosity and --bed is needed")
         ->check(real_in(0.0, 1.0, true, true));
     app->add_option("--bed", o.bed,
                     "a bed's summary.json (or its directory): a lattice's exact porosity or a "

@@ -85,8 +85,13 @@ std::string stage_plots(OutputDirectory& out, const BedAnalysis& a, double rt) {
         for (double z = 0.0; z <= x_max + 1e-12; z += 0.01)
             script += fmt::format("{} {}\n", z, c(z, aspect_ratio).value);
         script += "EOD\n";
+        // The legend names the correlation as people cite it; in gnuplot's single-quoted
+        // strings a quote is written twice.
+        std::string title;
+        for (char ch : c.label)
+            title += ch == '\'' ? std::string("''") : std::string(1, ch);
         curves += fmt::format(", ${} using 1:2 with lines title '{}{}'",
-                              c.name.substr(0, c.name.find('-')), c.name,
+                              c.name.substr(0, c.name.find('-')), title,
                               c(0.0, aspect_ratio).warning.empty() ? "" : " (outside range)");
     }
     // Every name gnuplot sees is one of ours, relative to the staging folder it runs in.

@@ -18,6 +18,26 @@ bool progress_wanted(bool quiet) {
     return !quiet && ::isatty(STDERR_FILENO) && !(ci && *ci);
 }
 
+std::string fit_status_line(const std::vector<std::string>& fields, std::size_t columns) {
+    const std::size_t width = columns > 1 ? columns - 1 : 0;
+    std::vector<bool> kept(fields.size(), false);
+    std::size_t used = 0;
+    for (std::size_t i = 0; i < fields.size(); ++i) {
+        const std::size_t need = fields[i].size() + (used > 0 ? 2 : 0);
+        if (used + need <= width) {
+            kept[i] = true;
+            used += need;
+        }
+    }
+    std::string line;
+    for (std::size_t i = 0; i < fields.size(); ++i)
+        if (kept[i])
+            line += (line.empty() ? "" : "  ") + fields[i];
+    if (line.empty() && !fields.empty())
+        line = fields.front().substr(0, width);
+    return line;
+}
+
 void TerminalProgress::operator()(const Progress& p) {
     if (!m_enabled)
         return;
@@ -27,8 +47,6 @@ void TerminalProgress::operator()(const Progress& p) {
     const std::optional<double> run_left = m_layers_left.update(p, seconds);
     // In layers the time left in the run; in one piece, in the stage.
     const std::optional<double> left = p.layers > 1 ? run_left : stage_left;
-    const std::string layer =
-        p.layers > 1 ? fmt::format("layer {}/{}  ", p.layer + 1, p.layers) : std::string();
     if (m_drawn && now - m_last < std::chrono::milliseconds(100))
         return;
     const std::string left_text =
@@ -36,17 +54,23 @@ void TerminalProgress::operator()(const Progress& p) {
     m_last = now;
     m_drawn = true;
     progress_line_drawn(true);
-    std::string line = fmt::format(
-        "{:>5.1f} s  {}{:<12} {:>14}  iteration {:>9}  Cg {:.3e}  overlap pair {:.2e} wall "
-        "{:.2e} Dp  mass centre {:.6f} Dp",
-        seconds, layer, p.stage, left_text, p.iteration, p.cg, p.max_overlap_pair,
-        p.max_overlap_wall, p.mass_centre_z);
+    // Most important first: on an 80-column terminal the line ends after the overlaps.
+    std::vector<std::string> fields{fmt::format("{:>5.1f} s", seconds),
+                                    fmt::format("{:<12}", p.stage)};
+    if (p.layers > 1)
+        fields.insert(fields.begin() + 1, fmt::format("layer {}/{}", p.layer + 1, p.layers));
+    fields.push_back(fmt::format("{:>12}", left_text));
+    fields.push_back(
+        fmt::format("overlaps {:.1e}/{:.1e} Dp", p.max_overlap_pair, p.max_overlap_wall));
+    fields.push_back(fmt::format("it {:>9}", p.iteration));
+    fields.push_back(fmt::format("Cg {:.2e}", p.cg));
+    fields.push_back(fmt::format("mass centre {:.6f} Dp", p.mass_centre_z));
     // One line that fits the terminal (a wrapped line could not be redrawn in place).
     struct winsize size {};
-    if (::ioctl(STDERR_FILENO, TIOCGWINSZ, &size) == 0 && size.ws_col > 1 &&
-        line.size() >= size.ws_col)
-        line.resize(size.ws_col - 1u);
-    fmt::print(stderr, "\r\033[K{}", line);
+    std::size_t columns = 80;
+    if (::ioctl(STDERR_FILENO, TIOCGWINSZ, &size) == 0 && size.ws_col > 1)
+        columns = size.ws_col;
+    fmt::print(stderr, "\r\033[K{}", fit_status_line(fields, columns));
     std::fflush(stderr);
 }
 

@@ -2,6 +2,8 @@
 #pragma once
 
 #include <chrono>
+#include <string>
+#include <vector>
 
 #include "packbed/soft_sphere.hpp"
 #include "packbed/time_left.hpp"
@@ -10,6 +12,13 @@ namespace packbed::cli {
 
 /// \return true when progress should be drawn: stderr is a terminal, CI is not set, not quiet.
 bool progress_wanted(bool quiet);
+
+/// The fields of a status line joined by two spaces, in order, keeping only those that fit in
+/// `columns` - 1 characters (a line as wide as the terminal wraps on some terminals): the
+/// fields come most important first, so a narrow terminal drops the last ones. A first field
+/// wider than the line is cut.
+std::string fit_status_line(const std::vector<std::string>& fields_by_priority,
+                            std::size_t columns);
 
 /// Redraws one status line on stderr at most ten times a second. Not thread-safe.
 class TerminalProgress {
