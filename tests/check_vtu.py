@@ -1,5 +1,6 @@
 #!/usr/bin/env python3
-"""particles.vtu read by VTK's own XML reader (the one ParaView uses for .vtu): as many
+"""particles.vtu read by VTK's own XML reader (the one ParaView uses for .vtu; from
+python3-paraview or python3-vtk9, whichever is installed): as many
 points and vertex cells as spheres, a `radius` array, and the same numbers as particles.csv.
 Usage: check_vtu.py PACKBED. Exit 77 (reported as skipped by ctest) when VTK is missing."""
 import csv
@@ -10,7 +11,7 @@ import tempfile
 try:
     from vtkmodules.vtkIOXML import vtkXMLUnstructuredGridReader
 except ImportError:
-    print("python3-vtk9 is not installed: skipped")
+    print("neither python3-paraview nor python3-vtk9 is installed: skipped")
     sys.exit(77)
 
 exe = sys.argv[1]
