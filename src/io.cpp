@@ -123,7 +123,9 @@ std::string profile_csv(std::string_view header, const std::vector<ProfileBin>& 
     fmt::format_to(std::back_inserter(out), "{}\n", header);
     for (const auto& b : bins) {
         const double mid = 0.5 * (b.low + b.high);
-        fmt::format_to(std::back_inserter(out), "{},{},{}\n", mid, scaled(mid), b.value);
+        // Positions to 12 significant digits: the bin centre of shell 123 of 0.02 Dp is 2.47,
+        // not the 2.4699999999999998 its floating-point sum gives; values as computed.
+        fmt::format_to(std::back_inserter(out), "{:.12g},{:.12g},{}\n", mid, scaled(mid), b.value);
     }
     return fmt::to_string(out);
 }
@@ -139,14 +141,15 @@ std::vector<std::pair<std::string, std::string>> analysis_tables(const BedAnalys
     for (std::size_t k = 0; k < a.coordination.histogram.size(); ++k)
         coordination += fmt::format("{},{}\n", k, a.coordination.histogram[k]);
     return {
-        {"radial_void_fraction.csv",
-         profile_csv("r,x_from_wall_d,void_fraction", a.radial_void_fraction, from_wall)},
+        {"radial_void_fraction.csv", profile_csv("radial_position,x_from_wall_d,void_fraction",
+                                                 a.radial_void_fraction, from_wall)},
         {"axial_void_fraction.csv",
          profile_csv("z,z_d,void_fraction", a.axial_void_fraction, in_dp)},
         {"radial_centre_distribution.csv",
-         profile_csv("r,x_from_wall_d,relative_density", a.centre_distribution, from_wall)},
+         profile_csv("radial_position,x_from_wall_d,relative_density", a.centre_distribution,
+                     from_wall)},
         {"coordination.csv", coordination},
-        {"pair_correlation.csv", profile_csv("r,r_d,g", a.pair_correlation, in_dp)},
+        {"pair_correlation.csv", profile_csv("distance,distance_d,g", a.pair_correlation, in_dp)},
     };
 }
 

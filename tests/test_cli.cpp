@@ -308,7 +308,32 @@ TEST(Cli, GenerateAlsoWritesTheAnalysis) {
          {"radial_void_fraction.csv", "axial_void_fraction.csv", "radial_centre_distribution.csv",
           "coordination.csv", "pair_correlation.csv"})
         EXPECT_TRUE(fs::exists(d / name)) << name;
-    EXPECT_EQ(slurp(d / "radial_void_fraction.csv").rfind("r,x_from_wall_d,void_fraction\n", 0),
+    // One name per meaning (`r` is the sphere radius of particles.csv), and bin centres as
+    // decimals: shell k of 0.02 Dp in a tube of Rt = 1.5 is centred at 0.01 + 0.02 k Dp from the
+    // wall, radius 1.49 - 0.02 k, written without floating-point noise (2.4699999999999998).
+    std::istringstream radial(slurp(d / "radial_void_fraction.csv"));
+    std::string line;
+    std::getline(radial, line);
+    EXPECT_EQ(line, "radial_position,x_from_wall_d,void_fraction");
+    int k = 0;
+    for (; std::getline(radial, line); ++k) {
+        const std::string centre = std::to_string(149 - 2 * k); // hundredths
+        const std::string from_wall = std::to_string(1 + 2 * k);
+        auto decimal = [](const std::string& hundredths) {
+            const std::string padded =
+                std::string(hundredths.size() < 3 ? 3 - hundredths.size() : 0, '0') + hundredths;
+            std::string text =
+                padded.substr(0, padded.size() - 2) + "." + padded.substr(padded.size() - 2);
+            while (text.back() == '0')
+                text.pop_back();
+            return text;
+        };
+        EXPECT_EQ(line.rfind(decimal(centre) + "," + decimal(from_wall) + ",", 0), 0u) << line;
+    }
+    EXPECT_EQ(k, 75); // 1.5 Dp of 0.02 Dp shells
+    EXPECT_EQ(slurp(d / "pair_correlation.csv").rfind("distance,distance_d,g\n", 0), 0u);
+    EXPECT_EQ(slurp(d / "radial_centre_distribution.csv")
+                  .rfind("radial_position,x_from_wall_d,relative_density\n", 0),
               0u);
     const auto s = nlohmann::json::parse(slurp(d / "summary.json"));
     EXPECT_EQ(s["analysis"]["void_fraction"], s["void_fraction"]);

@@ -44,12 +44,17 @@ std::string lammps_data(const Packing& packing, double density, const AxisBox& b
                         std::string_view comment);
 
 /// The tables of a bed analysis as CSV texts, by file name:
-/// - `radial_void_fraction.csv`: `r,x_from_wall_d,void_fraction`, r the shell's mid-radius
-///   (length), x_from_wall_d = (Rt - r) / Dp as in Salvat et al. (2005), wall first;
+/// - `radial_void_fraction.csv`: `radial_position,x_from_wall_d,void_fraction`, the shell's
+///   mid-radius (length), x_from_wall_d = (Rt - radial_position) / Dp as in Salvat et al.
+///   (2005), wall first;
 /// - `axial_void_fraction.csv`: `z,z_d,void_fraction`, z the slab's mid-height;
-/// - `radial_centre_distribution.csv`: `r,x_from_wall_d,relative_density` (see analyze_bed);
+/// - `radial_centre_distribution.csv`: `radial_position,x_from_wall_d,relative_density` (see
+///   analyze_bed);
 /// - `coordination.csv`: `contacts,spheres`, the histogram of sphere-sphere contacts;
-/// - `pair_correlation.csv`: `r,r_d,g`.
+/// - `pair_correlation.csv`: `distance,distance_d,g`.
+/// Positions are written to 12 significant digits (bin centres without floating-point noise),
+/// values as computed (shortest round trip). `r` is never a column name here: in particles.csv
+/// it is the sphere's radius.
 /// \param analysis what analyze_bed returned \param container_radius Rt (length)
 /// \return (file name, contents) pairs.
 std::vector<std::pair<std::string, std::string>> analysis_tables(const BedAnalysis& analysis,
