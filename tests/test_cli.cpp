@@ -340,11 +340,18 @@ TEST(Cli, GenerateAlsoWritesTheAnalysis) {
     EXPECT_GT(s["analysis"]["coordination"]["mean"].get<double>(), 3.0);
     // Plots when gnuplot is installed (CI installs it); otherwise the reason is recorded.
     if (std::system("command -v gnuplot >/dev/null 2>&1") == 0) {
-        for (const char* name : {"radial_void_fraction.svg", "radial_centre_distribution.svg"}) {
-            const std::string svg = slurp(d / name);
+        for (const char* name : {"radial_void_fraction", "radial_centre_distribution",
+                                 "axial_void_fraction", "pair_correlation"}) {
+            const std::string svg = slurp(d / (std::string(name) + ".svg"));
             EXPECT_NE(svg.find("<svg"), std::string::npos) << name;
             EXPECT_NE(svg.find("</svg>"), std::string::npos) << name;
+            const std::string png = slurp(d / (std::string(name) + ".png"));
+            EXPECT_EQ(png.rfind("\x89PNG\r\n\x1a\n", 0), 0u) << name; // the PNG signature
+            EXPECT_GT(png.size(), 5000u) << name;
         }
+        // The centre distribution's wall peak (tens of times the mean) is drawn off scale.
+        EXPECT_NE(slurp(d / "radial_centre_distribution.svg").find("(off scale)"),
+                  std::string::npos);
         // The legend names the correlations as people cite them.
         EXPECT_NE(slurp(d / "radial_void_fraction.svg").find("Mueller (1992)"), std::string::npos);
         EXPECT_NE(slurp(d / "radial_void_fraction.svg").find("de Klerk (2003)"), std::string::npos);

@@ -79,6 +79,15 @@ std::string stage_plots(OutputDirectory& out, const BedAnalysis& a, double rt) {
     const double x_max = rt / dp;
     std::string script = datablock("bed", a.radial_void_fraction, rt, dp) +
                          datablock("centres", a.centre_distribution, rt, dp);
+    // The axial profile and g(r) against z/Dp and r/Dp.
+    auto scaled_block = [&](std::string_view name, const std::vector<ProfileBin>& bins) {
+        std::string block = fmt::format("${} << EOD\n", name);
+        for (const auto& b : bins)
+            block += fmt::format("{} {}\n", 0.5 * (b.low + b.high) / dp, b.value);
+        return block + "EOD\n";
+    };
+    script +=
+        scaled_block("axial", a.axial_void_fraction) + scaled_block("rdf", a.pair_correlation);
     std::string curves;
     for (const auto& c : radial_void_fraction_correlations()) {
         script += fmt::format("${} << EOD\n", c.name.substr(0, c.name.find('-')));
@@ -94,30 +103,74 @@ std::string stage_plots(OutputDirectory& out, const BedAnalysis& a, double rt) {
                               c.name.substr(0, c.name.find('-')), title,
                               c(0.0, aspect_ratio).warning.empty() ? "" : " (outside range)");
     }
+    // The centre distribution's peak at one radius from the wall is 10-40 times the mean at
+    // fine bins: drawn to scale it flattens the rest. Above 4 the axis is cut and the peak's
+    // height written beside it.
+    double peak = 0.0, peak_at = 0.0;
+    for (const auto& b : a.centre_distribution)
+        if (b.value > peak) {
+            peak = b.value;
+            peak_at = (rt - 0.5 * (b.low + b.high)) / dp;
+        }
+    const double centre_top = 4.0;
+    const std::string centre_range =
+        peak > centre_top
+            ? fmt::format("set yrange [0:{}]\nset label 1 'peak {:.3g} at {:.3g} Dp (off scale)' "
+                          "at {:.4g},{} left offset 1,0\n",
+                          centre_top, peak, peak_at, peak_at, 0.93 * centre_top)
+            : "set yrange [0:*]\n";
     // Every name gnuplot sees is one of ours, relative to the staging folder it runs in.
-    const auto radial_svg = out.reserve("radial_void_fraction.svg");
-    const auto centres_svg = out.reserve("radial_centre_distribution.svg");
+    const std::vector<std::string> names{"radial_void_fraction", "radial_centre_distribution",
+                                         "axial_void_fraction", "pair_correlation"};
+    std::vector<std::filesystem::path> files;
+    for (const auto& name : names)
+        for (const char* extension : {".svg", ".png"})
+            files.push_back(out.reserve(name + extension));
     const auto script_path = out.reserve("plots.gp");
     const std::filesystem::path folder = script_path.parent_path();
-    script += fmt::format(
-        "set terminal svg size 800,450 background '#ffffff'\n"
-        "set xlabel 'distance from the wall (Rt - r)/Dp'\nset xrange [0:{0}]\nset key top right\n"
-        "set output '{1}'\nset ylabel 'radial void fraction'\n"
-        "set title 'Radial void fraction, a = {3:.4g}, band z = {4:.4g} to {5:.4g}'\n"
-        "plot $bed using 1:2 with lines lw 2 lc rgb 'black' title 'this bed'{6}\n"
-        "set output '{2}'\nset ylabel 'centre density / mean'\n"
-        "set title 'Radial distribution of sphere centres, a = {3:.4g}'\n"
-        "plot $centres using 1:2 with steps lw 2 lc rgb 'black' title 'this bed'\n",
-        x_max, radial_svg.filename().string(), centres_svg.filename().string(), aspect_ratio,
-        a.band.z_low, a.band.z_high, curves);
+    // The same four plots for each terminal: SVG for documents, PNG (cairo) for everything else.
+    const std::pair<const char*, const char*> terminals[] = {
+        {"svg", "set terminal svg size 800,450 background '#ffffff'"},
+        {"png", "set terminal pngcairo size 1000,560 background '#ffffff'"}};
+    for (const auto& [extension, terminal] : terminals)
+        script += fmt::format(
+            "{terminal}\nunset label 1\nset key top right\nset autoscale y\n"
+            "set xlabel 'distance from the wall (Rt - r)/Dp'\nset xrange [0:{x_max}]\n"
+            "set output 'radial_void_fraction.{ext}'\nset ylabel 'radial void fraction'\n"
+            "set title 'Radial void fraction, a = {a:.4g}, band z = {low:.4g} to {high:.4g}'\n"
+            "plot $bed using 1:2 with lines lw 2 lc rgb 'black' title 'this bed'{curves}\n"
+            "set output 'radial_centre_distribution.{ext}'\nset ylabel 'centre density / mean'\n"
+            "set title 'Radial distribution of sphere centres, a = {a:.4g}'\n{centre_range}"
+            "plot $centres using 1:2 with steps lw 2 lc rgb 'black' title 'this bed'\n"
+            "unset label 1\nset autoscale y\n"
+            "set output 'axial_void_fraction.{ext}'\nset xlabel 'height above the floor z/Dp'\n"
+            "set xrange [0:*]\nset ylabel 'axial void fraction'\nset yrange [0:1]\n"
+            "set title 'Axial void fraction; the band measured lies between the dashed lines'\n"
+            "set arrow 1 from {low_d:.6g},0 to {low_d:.6g},1 nohead dt 2\n"
+            "set arrow 2 from {high_d:.6g},0 to {high_d:.6g},1 nohead dt 2\n"
+            "plot $axial using 1:2 with steps lw 1 lc rgb 'black' title 'this bed'\n"
+            "unset arrow 1\nunset arrow 2\nset autoscale y\n"
+            "set output 'pair_correlation.{ext}'\nset xlabel 'centre distance r/Dp'\n"
+            "set xrange [0:*]\nset ylabel 'g(r)'\nset yrange [0:*]\n"
+            "set title 'Pair correlation of centres in the band'\n"
+            "plot $rdf using 1:2 with steps lw 1 lc rgb 'black' title 'this bed', 1 with lines "
+            "dt 2 lc rgb 'grey' notitle\nset autoscale y\n",
+            fmt::arg("terminal", terminal), fmt::arg("ext", extension), fmt::arg("x_max", x_max),
+            fmt::arg("a", aspect_ratio), fmt::arg("low", a.band.z_low),
+            fmt::arg("high", a.band.z_high), fmt::arg("low_d", a.band.z_low / dp),
+            fmt::arg("high_d", a.band.z_high / dp), fmt::arg("curves", curves),
+            fmt::arg("centre_range", centre_range));
     std::ofstream(script_path) << script;
     const int status = run_gnuplot(folder, script_path.filename().string());
     out.discard("plots.gp");
-    if (status == 0 && std::filesystem::exists(radial_svg) && std::filesystem::exists(centres_svg))
+    bool all = status == 0;
+    for (const auto& file : files)
+        all = all && std::filesystem::exists(file) && std::filesystem::file_size(file) > 0;
+    if (all)
         return {};
     // No plots, but the rest of the output stands.
-    out.discard("radial_void_fraction.svg");
-    out.discard("radial_centre_distribution.svg");
+    for (const auto& file : files)
+        out.discard(file.filename().string());
     return status == 127 ? "gnuplot not found (Debian package gnuplot-nox): no plots"
                          : fmt::format("gnuplot failed (exit status {}): no plots", status);
 }
