@@ -282,7 +282,8 @@ INSTANTIATE_TEST_SUITE_P(
         exact("frobnicate", "packbed: 'frobnicate' is not a subcommand; " + subcommands),
         exact(std::vector<std::string>{""}, "packbed: '' is not a subcommand; " + subcommands),
         exact(std::vector<std::string>{"gen\nerate"},
-              "packbed: 'gen\\nerate' is not a subcommand; " + subcommands),
+              "packbed: 'gen\\nerate' is not a subcommand (did you mean generate?); " +
+                  subcommands),
         naming("", {}),             // "A subcommand is required": see the report
         naming("--frobnicate", {}), // same message, not naming --frobnicate
         exact("--config missing.toml generate",

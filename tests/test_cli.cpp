@@ -243,6 +243,24 @@ TEST(Cli, ProgressLineFitsAnEightyColumnTerminal) {
     }
 }
 
+TEST(Cli, AMistypedNameGetsTheClosestOne) {
+    const Outcome option = packbed("generate --aspect-rato 5");
+    EXPECT_EQ(option.status, 2);
+    EXPECT_EQ(option.err, "packbed: The following arguments were not expected: 5 --aspect-rato "
+                          "(did you mean --aspect-ratio?); run 'packbed generate --help' for the "
+                          "options\n");
+    const Outcome inherited_form = packbed("analyze bed.csv --contianer-radius=3");
+    EXPECT_NE(inherited_form.err.find("(did you mean --container-radius?)"), std::string::npos)
+        << inherited_form.err;
+    const Outcome subcommand = packbed("generat");
+    EXPECT_EQ(subcommand.status, 2);
+    EXPECT_EQ(subcommand.err, "packbed: 'generat' is not a subcommand (did you mean generate?); "
+                              "allowed: generate, lattice, hydraulics, export, analyze, "
+                              "correlations\n");
+    // Nothing close: no guess.
+    EXPECT_EQ(packbed("generate --zzzzzz 4").err.find("did you mean"), std::string::npos);
+}
+
 TEST(Cli, QuietPrintsNothing) {
     const fs::path d = scratch("quiet");
     const Outcome o = packbed(small + "--quiet --out " + d.string());

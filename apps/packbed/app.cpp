@@ -2,6 +2,8 @@
 // statuses.
 #include "app.hpp"
 
+#include <algorithm>
+
 #include <cstdio>
 #include <string_view>
 #include <vector>
@@ -87,6 +89,50 @@ std::string check_config_files(int argc, char** argv) {
     return name;
 }
 
+/// Edit distance (insertions, deletions, substitutions, swaps of neighbours) between a and b.
+std::size_t edit_distance(std::string_view a, std::string_view b) {
+    std::vector<std::vector<std::size_t>> d(a.size() + 1, std::vector<std::size_t>(b.size() + 1));
+    for (std::size_t i = 0; i <= a.size(); ++i)
+        d[i][0] = i;
+    for (std::size_t j = 0; j <= b.size(); ++j)
+        d[0][j] = j;
+    for (std::size_t i = 1; i <= a.size(); ++i)
+        for (std::size_t j = 1; j <= b.size(); ++j) {
+            d[i][j] = std::min({d[i - 1][j] + 1, d[i][j - 1] + 1,
+                                d[i - 1][j - 1] + (a[i - 1] == b[j - 1] ? 0 : 1)});
+            if (i > 1 && j > 1 && a[i - 1] == b[j - 2] && a[i - 2] == b[j - 1])
+                d[i][j] = std::min(d[i][j], d[i - 2][j - 2] + 1);
+        }
+    return d[a.size()][b.size()];
+}
+
+/// "did you mean X?" for the candidate closest to `word` (at most 2 edits, or a third of its
+/// length for long words), or "" when none is close.
+std::string did_you_mean(std::string_view word, const std::vector<std::string>& candidates) {
+    if (word.size() > 100)
+        return {};
+    std::string best;
+    std::size_t best_distance = std::max<std::size_t>(2, word.size() / 3) + 1;
+    for (const auto& candidate : candidates) {
+        const std::size_t distance = edit_distance(word, candidate);
+        if (distance < best_distance) {
+            best_distance = distance;
+            best = candidate;
+        }
+    }
+    return best.empty() ? std::string() : fmt::format("did you mean {}?", best);
+}
+
+/// The long options of a subcommand as typed ("--aspect-ratio"), the inherited ones included.
+std::vector<std::string> long_options(const CLI::App& app) {
+    std::vector<std::string> names;
+    for (const CLI::App* a = &app; a != nullptr; a = a->get_parent())
+        for (const CLI::Option* option : a->get_options())
+            for (const auto& name : option->get_lnames())
+                names.push_back("--" + name);
+    return names;
+}
+
 } // namespace
 
 int run(int argc, char** argv) {
@@ -126,15 +172,31 @@ int run(int argc, char** argv) {
                            "packbed: '{}' is not an option of packbed itself; allowed: a "
                            "subcommand first ({}), or --help, --version, --config FILE\n",
                            printable(word->substr(0, 80)), names);
-            else
-                fmt::print(stderr, "packbed: '{}' is not a subcommand; allowed: {}\n",
-                           printable(word->substr(0, 80)), names);
+            else {
+                std::vector<std::string> candidates;
+                for (const Command& command : commands)
+                    candidates.push_back(command.app->get_name());
+                const std::string hint = did_you_mean(*word, candidates);
+                fmt::print(stderr, "packbed: '{}' is not a subcommand{}; allowed: {}\n",
+                           printable(word->substr(0, 80)), hint.empty() ? "" : " (" + hint + ")",
+                           names);
+            }
             return 2;
         }
-        if (dynamic_cast<const CLI::ExtrasError*>(&e))
-            fmt::print(stderr, "packbed: {}; run 'packbed {} --help' for the options\n",
-                       printable(e.what()), selected.front()->get_name());
-        else
+        if (dynamic_cast<const CLI::ExtrasError*>(&e)) {
+            // A mistyped option: the closest option of that subcommand.
+            std::string suggestion;
+            for (const auto& extra : app.remaining(true))
+                if (extra.starts_with("--")) {
+                    suggestion = did_you_mean(extra.substr(0, extra.find('=')),
+                                              long_options(*selected.front()));
+                    if (!suggestion.empty())
+                        suggestion = " (" + suggestion + ")";
+                    break;
+                }
+            fmt::print(stderr, "packbed: {}{}; run 'packbed {} --help' for the options\n",
+                       printable(e.what()), printable(suggestion), selected.front()->get_name());
+        } else
             fmt::print(stderr, "packbed: {}\n", printable(e.what()));
         return 2;
     }
