@@ -14,6 +14,7 @@
 #include <string>
 #include <string_view>
 #include <typeinfo>
+#include <vector>
 
 #include <cxxabi.h>
 
@@ -73,6 +74,47 @@ inline void check_particles(const ParticleFile& file) {
         if (file.lines[i] == 0 || (i > 0 && file.lines[i] <= file.lines[i - 1]))
             finding("read_particles returned line numbers that are not increasing from 1");
     }
+}
+
+/// What read_particle_frames promises of each frame: as check_particles, except that a frame
+/// may have no spheres; frames numbered 1, 2, ... in order.
+inline void check_frames(const std::vector<ParticleFile>& frames) {
+    if (frames.empty())
+        finding("read_particle_frames returned no frame");
+    for (std::size_t k = 0; k < frames.size(); ++k) {
+        if (frames[k].frame != k + 1)
+            finding("read_particle_frames returned frames not numbered 1, 2, ... in order");
+        if (frames[k].packing.size() > 0)
+            check_particles(frames[k]);
+        else if (!frames[k].lines.empty() || !frames[k].packing.radii.empty())
+            finding("read_particle_frames returned an empty frame with lines or radii");
+    }
+}
+
+/// read_particle_frames on the input: valid frames or InvalidInput, nothing else.
+inline void read_frames_or_invalid(const std::uint8_t* data, std::size_t size,
+                                   std::string_view name, ParticleFormat format,
+                                   const ReadOptions& options = {}) {
+    std::istringstream input(text_of(data, size));
+    try {
+        check_frames(read_particle_frames(input, name, format, options));
+    } catch (const InvalidInput&) {
+    } catch (...) {
+        unexpected_exception();
+    }
+}
+
+/// Options that exercise the rest of the reader: a radius for files without one, a frame
+/// counted from the end (read twice), an axis and a floor, a small limit on decompressed
+/// bytes (gzip inputs).
+inline ReadOptions other_options() {
+    ReadOptions o;
+    o.radius = 0.5;
+    o.frame = -2;
+    o.axis = {1.5, -2.0};
+    o.floor = 0.25;
+    o.max_bytes = 4096;
+    return o;
 }
 
 /// read_particles on the input: a valid ParticleFile or InvalidInput, nothing else.

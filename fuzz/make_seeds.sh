@@ -50,4 +50,10 @@ n=$(($(wc -l <small/particles.csv) - 1))
   printf -- '-1.5 1.5\n-1.5 1.5\n0 4\nITEM: ATOMS id type x y z diameter\n'
   tail -n +2 small/particles.csv | awk -F, '{print NR, 1, $1, $2, $3, 2 * $4}'; } \
   >"$corpus/fuzz_dump/generate-a3-n12.dump"
+# The same bed as packbed export's LAMMPS data file (fuzz_data), and gzip-compressed copies.
+"$packbed" export -q small/particles.csv --out small.data
+cp small.data "$corpus/fuzz_data/generate-a3-n12.data"
+gzip -9n <small.data >"$corpus/fuzz_data/generate-a3-n12.data.gz"
+gzip -9n <small/particles.csv >"$corpus/fuzz_csv/generate-a3-n12.csv.gz"
+gzip -9n <"$corpus/fuzz_dump/generate-a3-n12.dump" >"$corpus/fuzz_dump/generate-a3-n12.dump.gz"
 echo "make_seeds: seeds regenerated with $packbed"

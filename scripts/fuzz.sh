@@ -18,7 +18,7 @@
 set -euo pipefail
 cd "$(dirname "$0")/.."
 
-all=(csv xyz dump toml checkpoint summary)
+all=(csv xyz dump data toml checkpoint summary)
 seconds=600
 if [[ $# -gt 0 && $1 =~ ^[0-9]+$ ]]; then
   seconds=$1

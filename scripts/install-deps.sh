@@ -18,6 +18,7 @@ packages=(
   libfmt-dev                # formatting, shortest round-trip doubles
   libboost-dev              # Boost.Math tanh-sinh quadrature (header-only)
   libcgal-dev               # mesh unions (packbed export --contacts enlarge/bridges)
+  zlib1g-dev                # gzip-compressed bed files (.dump.gz, .csv.gz)
   libgtest-dev              # tests
   libbenchmark-dev          # benchmarks
   python3                   # bench/ scripts, examples/validate.py

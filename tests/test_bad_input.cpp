@@ -148,6 +148,15 @@ void prepare(const fs::path& d) {
     fs::create_directory(d / "sumfifo");
     write(d / "sumfifo" / "bed.csv", column(40));
     ASSERT_EQ(::mkfifo((d / "sumfifo" / "summary.json").c_str(), 0644), 0);
+    // The readers' new inputs: two XYZ frames, a dump without a size column, a gzip file cut
+    // short (the first 29 bytes of a 39-byte one).
+    write(d / "frames.xyz", "1\n\nC 0 0 0.5 0.5\n2\n\nC 0 0 0.5 0.5\nC 0 0 1.5 0.5\n");
+    write(d / "nosize.dump", "ITEM: TIMESTEP\n0\nITEM: NUMBER OF ATOMS\n1\nITEM: BOX BOUNDS ff ff "
+                             "ff\n-1 1\n-1 1\n0 2\nITEM: ATOMS id x y z\n1 0 0 0.5\n");
+    write(d / "cut.csv.gz", std::string("\x1f\x8b\x08\x00\x00\x00\x00\x00\x02\x03\xab\xd0\xa9"
+                                        "\xd4\xa9\xd2\x29\xe2\x32\xd0\x01\x42\x3d\x53\x10\x06"
+                                        "\xb3\x0d\xa1",
+                                        29));
     // Issue 14 item 1: a bed in a directory with a newline in its name.
     fs::create_directory(d / "nl\ndir");
     write(d / "nl\ndir" / "bed.csv", column(40));
@@ -272,6 +281,10 @@ const std::string subcommands =
 const std::string a_path = "allowed: a path of at most 4095 bytes without control characters "
                            "(newline, tab, ...)";
 const std::string regular = "allowed: a readable regular file";
+const std::string frame_allowed =
+    "allowed: a whole number other than 0: 1 the first frame, 2 the second, ..., -1 the last, -2 "
+    "the one before";
+const std::string axis_allowed = "allowed: X,Y: two numbers from -1e+15 to 1e+15 (file units)";
 const std::string not_empty =
     "exists and is not empty; allowed: a new or empty directory, or --force to replace it whole";
 
@@ -656,8 +669,9 @@ INSTANTIATE_TEST_SUITE_P(
               "packbed analyze: zeros:1: a line longer than 1048576 bytes; allowed: lines up to "
               "that length (is this a text file?)"),
         exact("analyze plain -R 2",
-              "packbed analyze: plain:1: cannot tell the format; allowed: .csv, .xyz, .dump or "
-              ".lammpstrj files"),
+              "packbed analyze: plain:1: cannot tell the format; allowed: .csv, .tsv, .xyz, "
+              ".dump, .lammpstrj or .data files (also .gz), or a table whose header names x, y "
+              "and z"),
         exact("analyze empty.csv -R 2",
               "packbed analyze: empty.csv: empty file; expected a header line such as x,y,z,r"),
         exact("analyze header.csv -R 2",
@@ -739,7 +753,61 @@ INSTANTIATE_TEST_SUITE_P(
         exact("analyze bed.csv -R 1 --threads 0",
               "packbed: --threads: '0' is not allowed; allowed: a whole number from 1 to 1024"),
         exact("analyze bed.csv -R 1 --format png",
-              "packbed: --format: 'png' is not allowed; allowed: auto, csv, xyz, lammps-dump"),
+              "packbed: --format: 'png' is not allowed; allowed: auto, csv, xyz, lammps-dump, "
+              "lammps-data"),
+        // Frames, the container's axis and floor, inputs of the newer readers.
+        exact("analyze bed.csv -R 1 --frame 0",
+              "packbed: --frame: '0' is not allowed; " + frame_allowed),
+        exact("analyze bed.csv -R 1 --frame x",
+              "packbed: --frame: 'x' is not allowed; " + frame_allowed),
+        exact("analyze bed.csv -R 1 --frame 1.5",
+              "packbed: --frame: '1.5' is not allowed; " + frame_allowed),
+        exact("analyze bed.csv -R 1 --frame 99999999999999999999",
+              "packbed: --frame: '99999999999999999999' is not allowed; " + frame_allowed),
+        exact("analyze bed.csv -R 1 --frame 2",
+              "packbed analyze: bed.csv: frame 2 is not allowed: the file has 1 frame; allowed: 1 "
+              "or -1"),
+        exact("analyze frames.xyz -R 1 --frame 3",
+              "packbed analyze: frames.xyz: frame 3 is not allowed: the file has 2 frames; "
+              "allowed: 1 to 2, or -1 to -2 counting from the end"),
+        exact("analyze frames.xyz -R 1 --frame -3",
+              "packbed analyze: frames.xyz: frame -3 is not allowed: the file has 2 frames; "
+              "allowed: 1 to 2, or -1 to -2 counting from the end"),
+        exact("analyze bed.csv -R 1 --frames some",
+              "packbed: --frames: 'some' is not allowed; allowed: all"),
+        naming("analyze bed.csv -R 1 --frames all --frame 1", {"--frame", "--frames", "excludes"}),
+        exact("analyze bed.csv -R 1 --axis 1",
+              "packbed: --axis: '1' is not allowed; " + axis_allowed),
+        exact("analyze bed.csv -R 1 --axis 1,2,3",
+              "packbed: --axis: '1,2,3' is not allowed; " + axis_allowed),
+        exact("analyze bed.csv -R 1 --axis 1,nan",
+              "packbed: --axis: '1,nan' is not allowed; " + axis_allowed),
+        exact("analyze bed.csv -R 1 --axis 1e300,0",
+              "packbed: --axis: '1e300,0' is not allowed; " + axis_allowed),
+        exact(std::vector<std::string>{"analyze", "bed.csv", "-R", "1", "--axis", ""},
+              "packbed: --axis: '' is not allowed; " + axis_allowed),
+        exact("analyze bed.csv -R 1 --floor nan",
+              "packbed: --floor: 'nan' is not allowed; allowed: a number in [-1e+15, 1e+15]"),
+        exact("analyze bed.csv -R 1 --floor 1e300",
+              "packbed: --floor: 1e300 is not allowed; allowed: a number in [-1e+15, 1e+15]"),
+        exact("analyze bed.csv -R 1 --axis 5,0",
+              "packbed analyze: bed.csv:2: the sphere at (-5, 0, 0.5) (from --axis and --floor) "
+              "sticks out of the container (radius 1, floor z = 0) by 4.5; allowed: up to 0.01 "
+              "(--outside-tolerance, in Dp)"),
+        exact("analyze bed.csv -R 1 --floor 1",
+              "packbed analyze: bed.csv:2: the sphere at (0, 0, -0.5) (from --axis and --floor) "
+              "sticks out of the container (radius 1, floor z = 0) by 1; allowed: up to 0.01 "
+              "(--outside-tolerance, in Dp)"),
+        exact("analyze frames.xyz -R 1 --frames all --floor 1",
+              "packbed analyze: frame 1: frames.xyz:3: the sphere at (0, 0, -0.5) (from --axis "
+              "and --floor) sticks out of the container (radius 1, floor z = 0) by 1; allowed: "
+              "up to 0.01 (--outside-tolerance, in Dp)"),
+        exact("analyze nosize.dump -R 1",
+              "packbed analyze: nosize.dump:9: missing column 'r'; needed: x, y, z and r, radius, "
+              "d or diameter, or give the diameter (--diameter)"),
+        exact("analyze cut.csv.gz -R 1",
+              "packbed analyze: cut.csv.gz: the gzip data ends early (a truncated .gz file?); "
+              "allowed: a complete gzip file"),
         naming(std::vector<std::string>{"analyze", "bed.csv", "-R", "1", "--format", ""},
                {"--format"}),
         // --out.
@@ -883,6 +951,17 @@ INSTANTIATE_TEST_SUITE_P(
               "packbed: --fluid-velocity: -1 is not allowed; allowed: a number >= 0"),
         exact("export two.csv --diameter 0",
               "packbed: --diameter: 0 is not allowed; allowed: a number > 0"),
+        exact("export two.csv --frame 0", "packbed: --frame: '0' is not allowed; " + frame_allowed),
+        exact("export two.csv --frame 2",
+              "packbed export: two.csv: frame 2 is not allowed: the file has 1 frame; allowed: 1 "
+              "or -1"),
+        exact("export two.csv --axis 1,x",
+              "packbed: --axis: '1,x' is not allowed; " + axis_allowed),
+        exact("export two.csv --floor inf",
+              "packbed: --floor: 'inf' is not allowed; allowed: a number in [-1e+15, 1e+15]"),
+        exact("export cut.csv.gz --out x.data",
+              "packbed export: cut.csv.gz: the gzip data ends early (a truncated .gz file?); "
+              "allowed: a complete gzip file"),
         exact("export @D/two.csv --format stl --refine 9",
               "packbed: --refine: '9' is not allowed; allowed: a whole number from 0 to 7"),
         exact("export two.csv --format stl --refine -1",

@@ -2,12 +2,14 @@
 #include <sys/wait.h>
 
 #include <algorithm>
+#include <array>
 #include <cmath>
 #include <cstdio>
 #include <cstdlib>
 #include <filesystem>
 #include <fstream>
 #include <sstream>
+#include <vector>
 
 #include <gtest/gtest.h>
 #include <nlohmann/json.hpp>
@@ -259,6 +261,75 @@ TEST(Cli, AMistypedNameGetsTheClosestOne) {
                               "correlations\n");
     // Nothing close: no guess.
     EXPECT_EQ(packbed("generate --zzzzzz 4").err.find("did you mean"), std::string::npos);
+}
+
+// The time series of a dump with its axis off the origin and its floor at z = 1: the last
+// snapshot's void fraction is that of the same bed analysed as it was generated, and every
+// snapshot has its row.
+TEST(Cli, AnalyzeFramesAllWritesTheVoidFractionSeries) {
+    const fs::path d = scratch("series");
+    ASSERT_EQ(packbed(small + "--quiet --out " + (d / "bed").string()).status, 0);
+    ASSERT_EQ(packbed("analyze --quiet " + (d / "bed" / "particles.csv").string() + " --out " +
+                      (d / "a").string())
+                  .status,
+              0);
+    // Three snapshots: the bed 4, 2 and 0 above its final place, moved to axis (3, -7) and
+    // floor 1 (undone on reading, to rounding).
+    std::ifstream csv(d / "bed" / "particles.csv");
+    std::string line;
+    std::getline(csv, line); // x,y,z,r
+    std::vector<std::array<double, 4>> rows;
+    for (double x, y, z, r; std::getline(csv, line);) {
+        std::replace(line.begin(), line.end(), ',', ' ');
+        std::istringstream(line) >> x >> y >> z >> r;
+        rows.push_back({x, y, z, r});
+    }
+    std::ofstream dump(d / "bed.dump");
+    dump.precision(17);
+    for (const int lift : {4, 2, 0}) {
+        dump << "ITEM: TIMESTEP\n"
+             << 1000 * (4 - lift) << "\nITEM: NUMBER OF ATOMS\n"
+             << rows.size() << "\nITEM: BOX BOUNDS ff ff ff\n-20 20\n-20 20\n0 100\n"
+             << "ITEM: ATOMS id type x y z radius\n";
+        for (std::size_t i = 0; i < rows.size(); ++i)
+            dump << i + 1 << " 1 " << rows[i][0] + 3 << " " << rows[i][1] - 7 << " "
+                 << rows[i][2] + 1 + lift << " " << rows[i][3] << "\n";
+    }
+    dump.close();
+    const Outcome o = packbed("analyze --quiet " + (d / "bed.dump").string() +
+                              " --container-radius 1.5 --axis 3,-7 --floor 1 --frames all --out " +
+                              (d / "b").string());
+    ASSERT_EQ(o.status, 0) << o.err;
+    const auto a = nlohmann::json::parse(slurp(d / "a" / "summary.json"));
+    const auto b = nlohmann::json::parse(slurp(d / "b" / "summary.json"));
+    EXPECT_EQ(b["axis"], nlohmann::json::array({3.0, -7.0}));
+    EXPECT_EQ(b["floor"], 1.0);
+    EXPECT_EQ(b["frames"], 3);
+    EXPECT_EQ(b["frame"], 3);
+    EXPECT_EQ(b["timestep"], 4000);
+    EXPECT_NEAR(b["void_fraction"].get<double>(), a["void_fraction"].get<double>(), 1e-12);
+    std::istringstream series(slurp(d / "b" / "void_fraction_series.csv"));
+    std::getline(series, line);
+    EXPECT_EQ(line, "frame,timestep,void_fraction,particles");
+    std::vector<double> e;
+    for (int k = 1; std::getline(series, line); ++k) {
+        std::replace(line.begin(), line.end(), ',', ' ');
+        std::istringstream fields(line);
+        int frame = 0;
+        long long step = 0;
+        double value = 0;
+        std::size_t n = 0;
+        fields >> frame >> step >> value >> n;
+        EXPECT_EQ(frame, k);
+        EXPECT_EQ(step, 1000 * (2 * k - 2));
+        EXPECT_EQ(n, rows.size());
+        e.push_back(value);
+    }
+    ASSERT_EQ(e.size(), 3u);
+    // A bed lifted off the floor holds less in the band: its void fraction is larger.
+    EXPECT_GT(e[0], e[1]);
+    EXPECT_GT(e[1], e[2]);
+    EXPECT_NEAR(e[2], a["void_fraction"].get<double>(), 1e-12);
 }
 
 TEST(Cli, QuietPrintsNothing) {

@@ -1,6 +1,8 @@
 // `packbed analyze`: structure of a bed from any source (ours, LAMMPS, LIGGGHTS, XYZ).
+#include <charconv>
 #include <filesystem>
 #include <memory>
+#include <optional>
 
 #include <fmt/format.h>
 #include <nlohmann/json.hpp>
@@ -30,14 +32,18 @@ struct AnalyzeOptions {
     std::string out;               // default: analysis/ next to the file
     double diameter = 0.0;         // 0: the mean sphere diameter
     double outside_tolerance = 0.01;
+    InputPlacement placement; // --frame, --axis, --floor
+    std::string frames;       // "all": every frame, and void_fraction_series.csv
     AnalysisOptions analysis;
     unsigned long long threads = static_cast<unsigned long long>(omp_get_num_procs());
     bool quiet = false;
     bool force = false;
 };
 
-/// Refuse spheres that stick out of the container by more than the tolerance.
-void check_inside(const ParticleFile& file, const std::string& name, double rt, double tolerance) {
+/// Refuse spheres that stick out of the container by more than the tolerance. `shifted` says
+/// that the centres are relative to --axis and --floor.
+void check_inside(const ParticleFile& file, const std::string& name, double rt, double tolerance,
+                  bool shifted) {
     for (std::size_t i = 0; i < file.packing.size(); ++i) {
         const Vec3& c = file.packing.centers[i];
         const double r = file.packing.radii[i];
@@ -45,11 +51,25 @@ void check_inside(const ParticleFile& file, const std::string& name, double rt, 
         const double below = -(c.z - r);
         if (out_wall > tolerance || below > tolerance)
             throw InvalidInput(fmt::format(
-                "{}:{}: the sphere at ({}, {}, {}) sticks out of the container (radius {}, floor "
-                "z = 0) by {:.4g}; allowed: up to {:.4g} (--outside-tolerance, in Dp)",
-                printable(name), file.lines[i], c.x, c.y, c.z, rt, std::max(out_wall, below),
+                "{}:{}: the sphere at ({}, {}, {}){} sticks out of the container (radius {}, "
+                "floor z = 0) by {:.4g}; allowed: up to {:.4g} (--outside-tolerance, in Dp)",
+                printable(name), file.lines[i], c.x, c.y, c.z,
+                shifted ? " (from --axis and --floor)" : "", rt, std::max(out_wall, below),
                 tolerance));
     }
+}
+
+/// The void fraction of one frame for the time series; nothing when the frame has no spheres
+/// or is not taller than twice the band clearance (a bed still being filled).
+std::optional<double> frame_void_fraction(const ParticleFile& frame, const Cylinder& container,
+                                          const AnalyzeOptions& o, const std::string& name) {
+    if (frame.packing.size() == 0)
+        return std::nullopt;
+    const double dp = o.diameter > 0.0 ? o.diameter : frame.packing.mean_diameter();
+    check_inside(frame, name, container.radius(), o.outside_tolerance * dp, o.placement.shifted());
+    if (!band_clear_of_ends(frame.packing, o.analysis.band_clearance * dp))
+        return std::nullopt;
+    return analyze_bed(frame.packing, container, o.analysis).void_fraction;
 }
 
 int run_analyze(AnalyzeOptions& o) {
@@ -60,7 +80,12 @@ int run_analyze(AnalyzeOptions& o) {
     for (const auto& [name, value] : particle_formats())
         if (name == o.format)
             read_options.format = value;
-    const ParticleFile file = read_particles(path, read_options);
+    o.placement.apply(read_options);
+    const bool shifted = o.placement.shifted();
+    const bool series = o.frames == "all";
+    std::optional<ParticleFile> read;
+    if (!series)
+        read = read_particles(path, read_options);
     const double rt =
         o.container_radius > 0.0 ? o.container_radius : container_radius_beside(path).value_or(0.0);
     if (!(rt > 0.0))
@@ -70,18 +95,60 @@ int run_analyze(AnalyzeOptions& o) {
     if (o.diameter > 0.0)
         o.analysis.diameter = o.diameter;
     const Cylinder container(rt);
-    const double dp = o.diameter > 0.0 ? o.diameter : file.packing.mean_diameter();
-    check_inside(file, path.string(), rt, o.outside_tolerance * dp);
+    if (read) {
+        const double dp = o.diameter > 0.0 ? o.diameter : read->packing.mean_diameter();
+        check_inside(*read, path.string(), rt, o.outside_tolerance * dp, shifted);
+    }
 
     const fs::path out_dir = o.out.empty() ? path.parent_path() / "analysis" : fs::path(o.out);
     OutputDirectory out(out_dir, "--out", OutputKind::directory, o.force);
     out.keep("the particles file", path);
     use_threads(o.threads);
+    std::size_t frames = 0;
+    if (series) {
+        // Every frame: its void fraction in the series; the last frame with spheres is the one
+        // analysed in full below.
+        std::string table = "frame,timestep,void_fraction,particles\n";
+        for_each_particle_frame(path, read_options, [&](ParticleFile&& frame) {
+            ++frames;
+            std::optional<double> e;
+            try {
+                e = frame_void_fraction(frame, container, o, path.string());
+            } catch (const InvalidInput& error) {
+                throw InvalidInput(fmt::format(
+                    "frame {}{}: {}", frame.frame,
+                    frame.timestep ? fmt::format(" (timestep {})", *frame.timestep) : std::string(),
+                    error.what()));
+            }
+            table += fmt::format("{},{},{},{}\n", frame.frame,
+                                 frame.timestep ? std::to_string(*frame.timestep) : "",
+                                 e ? fmt::format("{}", *e) : "", frame.packing.size());
+            if (frame.packing.size() > 0)
+                read = std::move(frame);
+        });
+        if (!read)
+            throw InvalidInput(fmt::format("{}: no frame has spheres; allowed: a file with "
+                                           "spheres in at least one frame",
+                                           printable(path.native())));
+        const double dp = o.diameter > 0.0 ? o.diameter : read->packing.mean_diameter();
+        check_inside(*read, path.string(), rt, o.outside_tolerance * dp, shifted);
+        out.stage("void_fraction_series.csv", table);
+    }
+    const ParticleFile& file = *read;
     const BedAnalysis analysis = analyze_bed(file.packing, container, o.analysis);
 
     auto summary = analysis_summary(analysis, o.analysis);
     summary["particles_file"] = path.string();
     summary["particles"] = file.packing.size();
+    summary["frame"] = file.frame;
+    if (file.timestep)
+        summary["timestep"] = *file.timestep;
+    if (series) {
+        summary["frames"] = frames;
+        summary["void_fraction_series"] = "void_fraction_series.csv";
+    }
+    summary["axis"] = {read_options.axis[0], read_options.axis[1]};
+    summary["floor"] = read_options.floor;
     summary["container"] = {{"shape", "cylinder"}, {"radius", rt}};
     for (const auto& [name, text] : analysis_tables(analysis, rt))
         out.stage(name, text);
@@ -93,8 +160,12 @@ int run_analyze(AnalyzeOptions& o) {
     out.stage("summary.json", summary.dump(2) + "\n");
     out.commit();
     if (!o.quiet) {
-        fmt::print("packbed analyze: {} spheres in a cylinder of radius {}\n", file.packing.size(),
-                   rt);
+        fmt::print("packbed analyze: {} spheres in a cylinder of radius {}{}\n",
+                   file.packing.size(), rt,
+                   series ? fmt::format(" (frame {} of {}; the void fraction of every frame in "
+                                        "void_fraction_series.csv)",
+                                        file.frame, frames)
+                          : "");
         fmt::print("void fraction: {:.4f} (between z = {:.4g} and z = {:.4g})\n",
                    analysis.void_fraction, analysis.band.z_low, analysis.band.z_high);
         fmt::print("coordination: {:.3f} ({:.3f} without {} rattlers); {} spheres touch the "
@@ -119,7 +190,8 @@ Command register_analyze(CLI::App& parent) {
     app->fallthrough();
     const double inf = std::numeric_limits<double>::infinity();
     app->add_option("particles", o.particles,
-                    "the bed: CSV (x,y,z,r or d, optional id), XYZ, or LAMMPS/LIGGGHTS dump")
+                    "the bed: a table (CSV x,y,z,r or d; ParaView CSV; ;/tab/space separated), "
+                    "XYZ, a LAMMPS/LIGGGHTS dump or data file; also .gz")
         ->required()
         ->check(path_text());
     std::vector<std::string> formats{"auto"};
@@ -132,8 +204,8 @@ Command register_analyze(CLI::App& parent) {
         ->check(real_in(0.0, limits::max_length, true, false));
     add_output_directory(*app, o.out, o.force, "analysis/ next to the file");
     app->add_option("-d,--diameter", o.diameter,
-                    "reference diameter Dp, and the sphere size of XYZ files without radius; "
-                    "default: the mean sphere diameter")
+                    "reference diameter Dp, and the sphere size of files without a radius or "
+                    "diameter column; default: the mean sphere diameter")
         ->check(real_in(limits::min_diameter, limits::max_diameter, false, false));
     app->add_option("--band-clearance", a.band_clearance,
                     "properties refer to the band this far from floor and top, Dp")
@@ -150,6 +222,12 @@ Command register_analyze(CLI::App& parent) {
         ->check(real_in(0.1, 20.0, false, false));
     app->add_option("--rdf-bin", a.rdf_bin, "bin width of g(r), Dp")
         ->check(real_in(1e-4, 1.0, false, false));
+    CLI::Option* frame = add_input_placement(*app, o.placement);
+    app->add_option("--frames", o.frames,
+                    "all: the void fraction of every frame in void_fraction_series.csv (frame, "
+                    "timestep, void_fraction, particles), the last frame analysed in full")
+        ->check(one_of({"all"}))
+        ->excludes(frame);
     app->add_option("--outside-tolerance", o.outside_tolerance,
                     "how far a sphere may stick out of the wall or floor, Dp")
         ->check(real_in(0.0, 1.0, false, false));

@@ -10,6 +10,8 @@
 
 #include <CLI/CLI.hpp>
 
+#include "packbed/read.hpp"
+
 namespace packbed::cli {
 
 /// A subcommand: its CLI11 app (filled at registration) and what to run once it is parsed.
@@ -49,6 +51,23 @@ std::optional<std::vector<double>> comma_numbers(std::string_view text);
 /// into minutes, and the results do not depend on the number of threads anyway. Setting
 /// OMP_DYNAMIC (e.g. false, for benchmarks) leaves the choice to OpenMP.
 void use_threads(unsigned long long threads);
+
+/// Which frame of a bed file to read and where its container is: --frame, --axis and --floor,
+/// the same for every subcommand that reads a bed (analyze, export).
+struct InputPlacement {
+    long long frame = -1; ///< 1 the first, -1 the last (ReadOptions::frame)
+    std::string axis;     ///< "X,Y": the container's axis; "" for x = y = 0
+    double floor = 0.0;   ///< the container's floor
+
+    /// true when --axis or --floor moved the centres (messages say so)
+    bool shifted() const { return !axis.empty() || floor != 0.0; }
+    /// Set the frame, axis and floor of `read`.
+    void apply(ReadOptions& read) const;
+};
+
+/// Add --frame, --axis and --floor to `app`, bound to `placement`.
+/// \return the --frame option (for excludes)
+CLI::Option* add_input_placement(CLI::App& app, InputPlacement& placement);
 
 /// The container radius recorded in `summary.json` beside a particle file (written by
 /// `packbed generate`, `lattice`, `analyze`). \return nothing when there is no such file or it

@@ -1,5 +1,6 @@
 // `packbed export`: any bed (generated, lattice, read from elsewhere) as a DEM data file or as
 // a surface for meshers (STL, OBJ) with the contacts treated.
+#include <charconv>
 #include <filesystem>
 #include <memory>
 #include <string>
@@ -48,7 +49,8 @@ struct ExportOptions {
     double density = 2500.0;
     std::string box;            // empty: the bounding box of the spheres
     double fluid_velocity = -1; // < 0: none
-    double diameter = 0.0;      // XYZ files without radii
+    double diameter = 0.0;      // files without radii
+    InputPlacement placement;   // --frame, --axis, --floor
     // Surfaces
     std::string contacts = "none";
     int refine = 3;
@@ -235,6 +237,7 @@ int run_export(const ExportOptions& o) {
     ReadOptions read;
     if (o.diameter > 0.0)
         read.radius = 0.5 * o.diameter;
+    o.placement.apply(read);
     const ParticleFile file = read_particles(o.particles, read);
     if (format == ExportFormat::stl || format == ExportFormat::stl_ascii ||
         format == ExportFormat::obj || format == ExportFormat::openfoam)
@@ -279,7 +282,9 @@ Command register_export(CLI::App& parent) {
                   "LAMMPS or LIGGGHTS data file, or as a surface (STL, OBJ) for meshers");
     app->option_defaults()->always_capture_default();
     const double inf = std::numeric_limits<double>::infinity();
-    app->add_option("particles", o.particles, "particles.csv, .xyz or a LAMMPS/LIGGGHTS dump")
+    app->add_option("particles", o.particles,
+                    "the bed: a table (CSV, ParaView CSV, ;/tab/space separated), XYZ, a "
+                    "LAMMPS/LIGGGHTS dump or data file; also .gz")
         ->required()
         ->check(path_text());
     std::vector<std::string> names;
@@ -335,8 +340,11 @@ Command register_export(CLI::App& parent) {
                     "record this fluid velocity (e.g. from packbed hydraulics) in the header and "
                     "in FILE.fluid.in as a LAMMPS variable")
         ->check(real_in(0.0, inf, false, true));
-    app->add_option("-d,--diameter", o.diameter, "sphere diameter, for XYZ files without radii")
+    app->add_option("-d,--diameter", o.diameter,
+                    "sphere diameter, for files without a radius or diameter column (XYZ, "
+                    "dumps, tables, data files of atom_style atomic)")
         ->check(real_in(0.0, inf, true, true));
+    add_input_placement(*app, o.placement);
     app->add_flag("-q,--quiet", o.quiet, "no report on the terminal");
     app->fallthrough();
     app->footer("Exit status: 0 success, 2 bad input (a corrupt file, a sphere outside --box or "

@@ -11,6 +11,7 @@
 #include "command.hpp"
 #include "packbed/error.hpp"
 #include "packbed/files.hpp"
+#include "packbed/limits.hpp"
 #include "packbed/read.hpp"
 
 namespace packbed::cli {
@@ -117,6 +118,66 @@ std::optional<double> container_radius_beside(const std::filesystem::path& parti
     if (!std::filesystem::exists(std::filesystem::symlink_status(summary, ec)))
         return std::nullopt;
     return read_bed_summary(summary).container_radius; // none for a box lattice
+}
+
+namespace {
+
+/// --frame: a whole number other than 0 (1 the first frame, -1 the last).
+CLI::Validator frame_number() {
+    const std::string allowed =
+        "a whole number other than 0: 1 the first frame, 2 the second, ..., -1 the last, -2 the "
+        "one before";
+    return CLI::Validator(
+        [allowed](std::string& text) -> std::string {
+            long long value = 0;
+            const char* end = text.data() + text.size();
+            const auto [ptr, ec] = std::from_chars(text.data(), end, value);
+            if (ec != std::errc() || ptr != end || value == 0)
+                return fmt::format("'{}' is not allowed; allowed: {}",
+                                   printable(text.substr(0, 80)), allowed);
+            return {};
+        },
+        "N");
+}
+
+/// --axis: X,Y, two numbers within limits::max_length.
+CLI::Validator axis_position() {
+    const std::string allowed = fmt::format("X,Y: two numbers from {:g} to {:g} (file units)",
+                                            -limits::max_length, limits::max_length);
+    return CLI::Validator(
+        [allowed](std::string& text) -> std::string {
+            const auto v = comma_numbers(text);
+            if (!v || v->size() != 2 || !(std::abs((*v)[0]) <= limits::max_length) ||
+                !(std::abs((*v)[1]) <= limits::max_length))
+                return fmt::format("'{}' is not allowed; allowed: {}",
+                                   printable(text.substr(0, 80)), allowed);
+            return {};
+        },
+        "X,Y");
+}
+
+} // namespace
+
+void InputPlacement::apply(ReadOptions& read) const {
+    read.frame = frame;
+    if (const auto xy = comma_numbers(axis); xy && xy->size() == 2)
+        read.axis = {(*xy)[0], (*xy)[1]};
+    read.floor = floor;
+}
+
+CLI::Option* add_input_placement(CLI::App& app, InputPlacement& p) {
+    CLI::Option* frame = app.add_option("--frame", p.frame,
+                                        "which frame of a file of several (XYZ, dumps): 1 the "
+                                        "first, -1 the last, -2 the one before")
+                             ->check(frame_number());
+    app.add_option("--axis", p.axis,
+                   "X,Y: the container's axis, subtracted from every centre (file units); "
+                   "default 0,0")
+        ->check(axis_position());
+    app.add_option("--floor", p.floor,
+                   "the container's floor z, subtracted from every centre (file units)")
+        ->check(real_in(-limits::max_length, limits::max_length, false, false));
+    return frame;
 }
 
 } // namespace packbed::cli

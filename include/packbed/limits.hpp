@@ -86,4 +86,13 @@ inline constexpr std::size_t max_line_length = 1 << 20;
 /// The largest small text file read whole (summary.json, --config TOML), bytes.
 inline constexpr std::size_t max_small_file = 64u << 20;
 
+/// The most frames read_particle_frames and for_each_particle_frame read from one file (the
+/// frames of a time series: `packbed analyze --frames all`).
+inline constexpr std::size_t max_frames = 100'000;
+
+/// The most bytes a gzip-compressed file may hold once decompressed (ReadOptions::max_bytes'
+/// default): 16 GiB, above the largest bed allowed (limits::max_spheres lines of about 100
+/// bytes), far below what a small "zip bomb" (compressed 1000 to 1) unpacks to.
+inline constexpr std::uint64_t max_decompressed_bytes = std::uint64_t{16} << 30;
+
 } // namespace packbed::limits
