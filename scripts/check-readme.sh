@@ -1,0 +1,157 @@
+#!/usr/bin/env bash
+# Run the README's commands as written, in order, and check what they produce (issue 15).
+# Usage: scripts/check-readme.sh [--fresh]
+#   (default)  in this checkout, which must have no results/ folder yet (CI's checkout is a
+#              fresh clone). The first command's build then finds build/ already built by the
+#              test command, so only its install and run take time.
+#   --fresh    in a fresh clone of HEAD in a temporary folder: the first command builds from
+#              nothing (about 5 more minutes on 2 cores).
+# Every ```sh block of README.md runs, except the test command (the one that runs this script).
+# HOME is a temporary folder, so the install of the first command (~/.local) and everything
+# else stays out of the user's files; results/ is removed at the end.
+set -euo pipefail
+root=$(cd "$(dirname "$0")/.." && pwd)
+work=$(mktemp -d "${TMPDIR:-/tmp}/packbed-readme.XXXXXX")
+repo=$root
+cleanup() {
+  rm -rf "$work"
+  if [[ $repo == "$root" && ${created_results:-0} == 1 ]]; then rm -rf "$root/results"; fi
+}
+trap cleanup EXIT
+if [[ ${1:-} == --fresh ]]; then
+  git clone --quiet "$root" "$work/packbed"
+  repo=$work/packbed
+elif [[ -n ${1:-} ]]; then
+  echo "check-readme: unknown option '$1'; allowed: --fresh" >&2
+  exit 2
+fi
+if [[ -e $repo/results ]]; then
+  echo "check-readme: $repo/results exists; the README's commands write there. Move it away," \
+    "or run scripts/check-readme.sh --fresh" >&2
+  exit 2
+fi
+created_results=1
+
+# The blocks, one script each, the test command left out.
+mkdir -p "$work/home" "$work/blocks"
+python3 - "$repo/README.md" "$work/blocks" <<'EOF'
+import re, sys
+text = open(sys.argv[1]).read()
+blocks = re.findall(r"^```sh\n(.*?)^```", text, flags=re.S | re.M)
+kept = [b for b in blocks if "install-deps.sh --test" not in b]
+if len(kept) != len(blocks) - 1:
+    sys.exit(f"check-readme: expected one test command in README.md, found {len(blocks) - len(kept)}")
+for k, b in enumerate(kept, 1):
+    open(f"{sys.argv[2]}/block-{k:02d}.sh", "w").write(b)
+print(f"check-readme: {len(kept)} blocks of README.md to run")
+EOF
+
+export HOME=$work/home CI=1
+# One shell for all blocks, as a reader typing them in one terminal (`export` and `cd` carry
+# over), stopping at the first command that fails; each block's output in its own log.
+{
+  echo "set -euo pipefail"
+  for block in "$work"/blocks/block-*.sh; do
+    name=$(basename "$block" .sh)
+    echo "cd '$repo'"
+    echo "echo $name >'$work/current'; exec >'$work/$name.log' 2>&1"
+    cat "$block"
+  done
+} >"$work/all.sh"
+for block in "$work"/blocks/block-*.sh; do
+  echo "check-readme: $(basename "$block" .sh)"
+  sed 's/^/    /' "$block"
+done
+if ! (cd "$repo" && bash "$work/all.sh"); then
+  failed=$(cat "$work/current")
+  echo "check-readme: $failed failed; its output:" >&2
+  cat "$work/$failed.log" >&2
+  exit 1
+fi
+
+# What the commands produced, checked against numbers from geometry and the papers.
+python3 - "$repo" "$work" <<'EOF'
+import glob, json, os, subprocess, sys
+repo, work = sys.argv[1], sys.argv[2]
+home = os.path.join(work, "home")
+failures = []
+def check(ok, what):
+    print(("  ok    " if ok else "  FAIL  ") + what)
+    if not ok:
+        failures.append(what)
+def summary(path):
+    with open(os.path.join(repo, path, "summary.json")) as f:
+        return json.load(f)
+def log_of(text):
+    """The log of the block whose commands contain `text`."""
+    for block in sorted(glob.glob(os.path.join(work, "blocks", "block-*.sh"))):
+        if text in open(block).read():
+            return open(block.replace("blocks/", "").replace(".sh", ".log")).read()
+    return ""
+
+# 1. The first command: installed, and the paper's case packed (a = 5, 500 spheres).
+check(os.access(os.path.join(home, ".local/bin/packbed"), os.X_OK), "packbed installed in ~/.local/bin")
+s = summary("results/a5-n500")
+check(s["particles"] == 500 and s["aspect_ratio"] == 5, "results/a5-n500: 500 spheres at a = 5")
+check(0.40 < s["void_fraction"] < 0.46, f"a = 5 void fraction {s['void_fraction']:.4f} in (0.40, 0.46) "
+      "(Dixon 1988 gives 0.4265 at a = 5)")
+check(max(s["max_overlap_pair"], s["max_overlap_wall"]) <= 1e-4, "overlaps within the 1e-4 Dp tolerance")
+check(s["parameters"]["solver"] == "fire", "the default solver is fire")
+
+# The installed CMake package: examples/generate_bed.cpp built against it.
+consumer = os.path.join(work, "consumer")
+os.makedirs(consumer)
+with open(os.path.join(consumer, "CMakeLists.txt"), "w") as f:
+    f.write("cmake_minimum_required(VERSION 3.20)\nproject(consumer CXX)\n"
+            "find_package(packbed 0.1 REQUIRED)\nadd_executable(generate_bed "
+            f"{repo}/examples/generate_bed.cpp)\n"
+            "target_link_libraries(generate_bed PRIVATE packbed::packbed)\n")
+built = subprocess.run(f"cmake -S {consumer} -B {consumer}/b -DCMAKE_BUILD_TYPE=Release "
+                       f"-DCMAKE_PREFIX_PATH={home}/.local >/dev/null && "
+                       f"cmake --build {consumer}/b >/dev/null && {consumer}/b/generate_bed",
+                       shell=True, capture_output=True, text=True)
+check(built.returncode == 0 and built.stdout.startswith("150 spheres"),
+      f"find_package(packbed) builds examples/generate_bed.cpp: {built.stdout.strip()}")
+
+# 2. The CFD tour: examples/bed.toml's bed, its hydraulics, its OpenFOAM case.
+s = summary("results/bed-a7.99")
+check(s["particles"] == 1800 and s["diameter"] == 0.003 and s["aspect_ratio"] == 7.99,
+      "results/bed-a7.99: 1 800 spheres of 3 mm at a = 7.99, as examples/bed.toml says")
+check(abs(s["container"]["radius"] - 7.99 * 0.003 / 2) < 1e-12, "its tube: Rt = 7.99 x 3 mm / 2")
+check(0.38 < s["void_fraction"] < 0.43, f"a = 7.99 void fraction {s['void_fraction']:.4f} in (0.38, 0.43) "
+      "(Dixon 1988 gives 0.4127)")
+hydraulics = log_of("packbed hydraulics --bed results/bed-a7.99")
+check("particle diameter d = 0.003 m (the diameter of results/bed-a7.99/summary.json" in hydraulics,
+      "hydraulics takes the bed's 3 mm as its particle diameter")
+check("Eisfeld & Schnitzlein (a = 7.99)" in hydraulics, "and the tube's aspect ratio 7.99")
+case = os.path.join(repo, "results/bed-a7.99/case")
+check(all(os.path.exists(os.path.join(case, p)) for p in
+          ("system/blockMeshDict", "system/snappyHexMeshDict", "constant/triSurface")),
+      "the OpenFOAM case has its dictionaries and surfaces")
+
+# 3. The DEM tour.
+s = summary("results/diamond-box")
+check(abs(s["lattice"]["porosity"] - (1 - 3.141592653589793 * 3 ** 0.5 / 16)) < 1e-12,
+      "diamond lattice porosity 1 - pi sqrt(3)/16 = 0.6599 (Tsayger 2013)")
+
+import re
+air = re.search(r"superficial velocity w = ([0-9.e+-]+) m/s", log_of("packbed hydraulics --bed results/diamond-box"))
+check(air is not None and abs(float(air.group(1)) - 2.48) < 0.01,
+      "air through the 2 mm diamond lattice: critical velocity 2.48 m/s (Tsayger eq. 1), the "
+      "value the README passes to export")
+data = open(os.path.join(repo, "results/diamond-box/bed.data")).read()
+check(f"{s['balls']} atoms" in data, f"the data file holds the lattice's {s['balls']} balls")
+
+# 4. The analysis tour: analyze gives the void fraction generate measured.
+a = summary("results/a5-n500-analysis")
+check(abs(a["void_fraction"] - summary("results/a5-n500")["void_fraction"]) < 1e-12,
+      "analyze measures the void fraction generate reported")
+check(all(os.path.getsize(os.path.join(repo, "results/a5-n500-analysis", f)) > 0 for f in
+          ("radial_void_fraction.png", "axial_void_fraction.svg", "pair_correlation.csv")),
+      "with its tables and plots")
+check("Dixon (1988)" in log_of("packbed correlations --aspect-ratio 5"),
+      "correlations names them as cited")
+if failures:
+    sys.exit(f"check-readme: {len(failures)} check(s) failed")
+print("check-readme: every README command ran and its outputs hold")
+EOF
