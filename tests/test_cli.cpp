@@ -332,6 +332,43 @@ TEST(Cli, AnalyzeFramesAllWritesTheVoidFractionSeries) {
     EXPECT_NEAR(e[2], a["void_fraction"].get<double>(), 1e-12);
 }
 
+TEST(Cli, TheContainerIsGivenTheSameWayToEverySubcommand) {
+    // --container cylinder:D in length units: D / Dp = 0.024 / 0.003 = 8, the same bed as -a 8.
+    const fs::path d = scratch("container");
+    const std::string bed = "generate -n 200 --seed 4 --diameter 0.003 --quiet ";
+    ASSERT_EQ(packbed(bed + "--container cylinder:0.024 --out " + (d / "c").string()).status, 0);
+    ASSERT_EQ(packbed(bed + "-a 8 --out " + (d / "a").string()).status, 0);
+    EXPECT_EQ(nlohmann::json::parse(slurp(d / "c" / "summary.json"))["aspect_ratio"], 8.0);
+    EXPECT_EQ(slurp(d / "c" / "particles.csv"), slurp(d / "a" / "particles.csv"));
+    // analyze: --container cylinder:0.024 is -R 0.012.
+    const std::string csv = (d / "a" / "particles.csv").string();
+    ASSERT_EQ(packbed("analyze --quiet " + csv + " --container cylinder:0.024 --out " +
+                      (d / "ac").string())
+                  .status,
+              0);
+    ASSERT_EQ(packbed("analyze --quiet " + csv + " -R 0.012 --out " + (d / "ar").string()).status,
+              0);
+    const auto ac = nlohmann::json::parse(slurp(d / "ac" / "summary.json"));
+    EXPECT_EQ(ac["container"]["radius"], 0.012);
+    EXPECT_EQ(ac["void_fraction"],
+              nlohmann::json::parse(slurp(d / "ar" / "summary.json"))["void_fraction"]);
+    // hydraulics, in metres: a = 0.024 / 0.003 for Eisfeld & Schnitzlein.
+    const Outcome h = packbed("hydraulics -e 0.4 -d 0.003 --container cylinder:0.024 --json");
+    ASSERT_EQ(h.status, 0) << h.err;
+    EXPECT_EQ(nlohmann::json::parse(h.out)["pressure_gradient"]["aspect_ratio"], 8.0);
+    // A tube narrower than a sphere, and a shape not (yet) known.
+    const Outcome narrow = packbed("generate --container cylinder:0.001 --diameter 0.003");
+    EXPECT_EQ(narrow.status, 2);
+    EXPECT_EQ(narrow.err, "packbed generate: --container cylinder:0.001: the tube's diameter over "
+                          "--diameter (0.003) is a = 0.333333; allowed: a from 1 to 10000 (D "
+                          "from 0.003 to 30)\n");
+    const Outcome box = packbed("analyze " + csv + " --container box:1,2");
+    EXPECT_EQ(box.status, 2);
+    EXPECT_EQ(box.err, "packbed: --container: 'box:1,2' is not allowed; allowed: cylinder:D, a "
+                       "tube of inner diameter D, a number in (0, 2e+15]\n");
+    EXPECT_EQ(packbed(bed + "-a 8 --container cylinder:0.024").status, 2); // one or the other
+}
+
 TEST(Cli, QuietPrintsNothing) {
     const fs::path d = scratch("quiet");
     const Outcome o = packbed(small + "--quiet --out " + d.string());
@@ -527,8 +564,8 @@ TEST(Cli, AnalyzeRefusesASphereOutsideTheContainer) {
     const Outcome m = packbed("analyze " + (d / "bed.csv").string());
     EXPECT_EQ(m.status, 2);
     EXPECT_EQ(m.err,
-              "packbed analyze: --container-radius is needed: no summary.json with a container "
-              "radius next to " +
+              "packbed analyze: --container (or --container-radius) is needed: no summary.json "
+              "with a container radius next to " +
                   (d / "bed.csv").string() + "\n");
 }
 

@@ -29,6 +29,7 @@ struct AnalyzeOptions {
     std::string particles;
     std::string format = "auto";
     double container_radius = 0.0; // 0: from summary.json next to the file
+    std::string container;         // --container cylinder:D, instead of --container-radius
     std::string out;               // default: analysis/ next to the file
     double diameter = 0.0;         // 0: the mean sphere diameter
     double outside_tolerance = 0.01;
@@ -86,11 +87,13 @@ int run_analyze(AnalyzeOptions& o) {
     std::optional<ParticleFile> read;
     if (!series)
         read = read_particles(path, read_options);
+    if (const auto tube = parse_container(o.container))
+        o.container_radius = 0.5 * tube->diameter;
     const double rt =
         o.container_radius > 0.0 ? o.container_radius : container_radius_beside(path).value_or(0.0);
     if (!(rt > 0.0))
-        throw InvalidInput(fmt::format("--container-radius is needed: no summary.json with a "
-                                       "container radius next to {}",
+        throw InvalidInput(fmt::format("--container (or --container-radius) is needed: no "
+                                       "summary.json with a container radius next to {}",
                                        printable(path.native())));
     if (o.diameter > 0.0)
         o.analysis.diameter = o.diameter;
@@ -199,9 +202,13 @@ Command register_analyze(CLI::App& parent) {
         formats.push_back(entry.first);
     app->add_option("--format", o.format, "file format; auto: from the extension or first line")
         ->check(one_of(formats));
-    app->add_option("-R,--container-radius", o.container_radius,
-                    "cylinder radius Rt (file units); default: summary.json next to the file")
-        ->check(real_in(0.0, limits::max_length, true, false));
+    CLI::Option* radius =
+        app->add_option("-R,--container-radius", o.container_radius,
+                        "cylinder radius Rt (file units), shorthand of --container "
+                        "cylinder:2Rt; default: summary.json next to the file")
+            ->check(real_in(0.0, limits::max_length, true, false));
+    add_container_option(*app, o.container, "file units; default: summary.json next to the file")
+        ->excludes(radius);
     add_output_directory(*app, o.out, o.force, "analysis/ next to the file");
     app->add_option("-d,--diameter", o.diameter,
                     "reference diameter Dp, and the sphere size of files without a radius or "

@@ -69,6 +69,21 @@ struct InputPlacement {
 /// \return the --frame option (for excludes)
 CLI::Option* add_input_placement(CLI::App& app, InputPlacement& placement);
 
+/// `--container SPEC`, the container in length units, the one form every subcommand takes:
+/// today `cylinder:D`, a tube of inner diameter D (the axis is the z axis, the floor z = 0).
+/// Annulus, box and periodic cells will extend it (issue 17).
+struct ContainerSpec {
+    std::string shape;     ///< "cylinder"
+    double diameter = 0.0; ///< D, > 0
+};
+
+/// \return the container of `text` ("cylinder:D"), or nothing when it is not one.
+std::optional<ContainerSpec> parse_container(std::string_view text);
+
+/// Add `--container SPEC` to `app`, bound to `text` ("" when not given), checked by
+/// parse_container. \param meaning what D is measured in and what it replaces, for --help
+CLI::Option* add_container_option(CLI::App& app, std::string& text, const std::string& meaning);
+
 /// The container radius recorded in `summary.json` beside a particle file (written by
 /// `packbed generate`, `lattice`, `analyze`). \return nothing when there is no such file or it
 /// names no container (a lattice in a box).

@@ -29,6 +29,7 @@ struct GenerateOptions {
     std::string solver = to_string(SoftSphereParameters{}.solver);
     std::string out = "packbed-out";
     std::string checkpoint; // empty: none
+    std::string container;  // --container cylinder:D, instead of --aspect-ratio
     double band_clearance = 1.0;
     unsigned long long threads = static_cast<unsigned long long>(omp_get_num_procs());
     bool quiet = false;
@@ -42,6 +43,16 @@ int run_generate(GenerateOptions& o) {
     for (const auto& [name, value] : solvers())
         if (name == o.solver)
             o.params.solver = value;
+    if (const auto tube = parse_container(o.container)) {
+        // a = D / Dp, both in the unit of --diameter.
+        const double a = tube->diameter / o.params.diameter;
+        if (!(a >= 1.0 && a <= 1e4))
+            throw InvalidInput(fmt::format(
+                "--container {}: the tube's diameter over --diameter ({}) is a = {:.6g}; "
+                "allowed: a from 1 to 10000 (D from {:.6g} to {:.6g})",
+                o.container, o.params.diameter, a, o.params.diameter, 1e4 * o.params.diameter));
+        o.params.aspect_ratio = a;
+    }
     o.params.validate();
     // Every check before the run: the output directory, the checkpoint.
     OutputDirectory out(o.out, "--out", OutputKind::directory, o.force);
@@ -118,8 +129,13 @@ Command register_generate(CLI::App& parent) {
     app->option_defaults()->always_capture_default();
     const double inf = std::numeric_limits<double>::infinity();
 
-    app->add_option("-a,--aspect-ratio", p.aspect_ratio, "a = 2 Rt / Dp, tube over sphere diameter")
-        ->check(real_in(1.0, 1e4, false, false));
+    CLI::Option* aspect =
+        app->add_option("-a,--aspect-ratio", p.aspect_ratio,
+                        "a = 2 Rt / Dp, tube over sphere diameter (shorthand of --container)")
+            ->check(real_in(1.0, 1e4, false, false));
+    add_container_option(*app, o.container,
+                         "in the unit of --diameter: a = D / Dp; instead of --aspect-ratio")
+        ->excludes(aspect);
     app->add_option("-n,--particles", p.particles, "Np, number of spheres")
         ->check(whole_in(1, limits::max_spheres));
     app->add_option("-s,--seed", p.seed, "seed of the random generation stage")

@@ -34,6 +34,7 @@ struct HydraulicsOptions {
     bool json = false;
     bool diameter_given = false;     // --diameter on the command line (or in --config)
     bool aspect_ratio_given = false; // --aspect-ratio likewise
+    std::string container;           // --container cylinder:D (metres), instead of -a
 };
 
 /// What hydraulics takes from a bed's summary.json.
@@ -96,6 +97,7 @@ int run_hydraulics(const HydraulicsOptions& o) {
     FluidAndParticles f = o.fluid;
     double aspect_ratio = o.aspect_ratio;
     std::string aspect_ratio_from = "given";
+    const auto tube = parse_container(o.container);
     double e = o.porosity;
     std::string origin = "given";
     std::string diameter_from = o.diameter_given ? "given" : "the default";
@@ -122,13 +124,23 @@ int run_hydraulics(const HydraulicsOptions& o) {
             diameter_from = fmt::format("the diameter of {}, read as metres", bed.shown);
         }
         // The tube of a cylindrical bed gives the wall-corrected pressure drop.
-        if (!o.aspect_ratio_given && bed.diameter && bed.container_radius) {
+        if (!o.aspect_ratio_given && !tube && bed.diameter && bed.container_radius) {
             const double a = 2.0 * *bed.container_radius / *bed.diameter;
             if (a > 1.0 && a <= limits::max_tube_aspect_ratio) {
                 aspect_ratio = a;
                 aspect_ratio_from = fmt::format("2 container.radius / diameter of {}", bed.shown);
             }
         }
+    }
+    if (tube) {
+        // a = D / d, both in metres, once d is known (given, the default, or the bed's).
+        aspect_ratio = tube->diameter / f.diameter;
+        if (!(aspect_ratio >= 1.0 && aspect_ratio <= limits::max_tube_aspect_ratio))
+            throw InvalidInput(fmt::format(
+                "--container {}: the tube's diameter over the particle diameter ({} m) is a = "
+                "{:.6g}; allowed: a from 1 to {:g}",
+                o.container, f.diameter, aspect_ratio, limits::max_tube_aspect_ratio));
+        aspect_ratio_from = fmt::format("--container {} over the particle diameter", o.container);
     }
     const double ar = archimedes_number(f);
     const auto coefficients = fluidization_coefficients(e);
@@ -259,10 +271,13 @@ Command register_hydraulics(CLI::App& parent) {
     app->add_option("-u,--velocity", o.velocity,
                     "superficial velocity for the pressure drops, m/s (default: the critical one)")
         ->check(real_in(0.0, limits::max_velocity_m_s, true, false));
-    app->add_option("-a,--aspect-ratio", o.aspect_ratio,
-                    "tube over particle diameter: adds Eisfeld & Schnitzlein's wall-corrected "
-                    "pressure drop")
-        ->check(real_in(1.0, limits::max_tube_aspect_ratio, false, false));
+    CLI::Option* aspect =
+        app->add_option("-a,--aspect-ratio", o.aspect_ratio,
+                        "tube over particle diameter: adds Eisfeld & Schnitzlein's wall-corrected "
+                        "pressure drop (shorthand of --container)")
+            ->check(real_in(1.0, limits::max_tube_aspect_ratio, false, false));
+    add_container_option(*app, o.container, "metres: a = D / d; instead of --aspect-ratio")
+        ->excludes(aspect);
     app->add_flag("--json", o.json, "print everything as JSON");
     app->fallthrough();
     app->footer("Exit status: 0 success, 2 bad input (e.g. a particle lighter than the fluid).");

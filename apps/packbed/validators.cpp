@@ -180,4 +180,30 @@ CLI::Option* add_input_placement(CLI::App& app, InputPlacement& p) {
     return frame;
 }
 
+std::optional<ContainerSpec> parse_container(std::string_view text) {
+    constexpr std::string_view cylinder = "cylinder:";
+    if (!text.starts_with(cylinder))
+        return std::nullopt;
+    const auto v = comma_numbers(text.substr(cylinder.size()));
+    if (!v || v->size() != 1 || !((*v)[0] > 0.0) || !((*v)[0] <= 2.0 * limits::max_length))
+        return std::nullopt;
+    return ContainerSpec{"cylinder", (*v)[0]};
+}
+
+CLI::Option* add_container_option(CLI::App& app, std::string& text, const std::string& meaning) {
+    const std::string allowed = fmt::format(
+        "cylinder:D, a tube of inner diameter D, a number in (0, {:g}]", 2.0 * limits::max_length);
+    return app
+        .add_option("--container", text,
+                    "the container: cylinder:D, a tube of inner diameter D (" + meaning + ")")
+        ->check(CLI::Validator(
+            [allowed](std::string& value) -> std::string {
+                if (parse_container(value))
+                    return {};
+                return fmt::format("'{}' is not allowed; allowed: {}",
+                                   printable(value.substr(0, 80)), allowed);
+            },
+            "SPEC"));
+}
+
 } // namespace packbed::cli
