@@ -517,7 +517,17 @@ BedAnalysis analyze_bed(const Packing& packing, const Cylinder& container,
             "--diameter = {} is not allowed; allowed: {:.6g} to {:.6g} ({:g} to {:g} "
             "times the spheres' mean diameter, {:.6g})",
             dp, mean_diameter / ratio, mean_diameter * ratio, 1.0 / ratio, ratio, mean_diameter));
-    const auto band = band_clear_of_ends(packing, options.band_clearance * dp);
+    if (options.band) {
+        const Band b = *options.band;
+        const double top = bed_top(packing);
+        if (!(b.z_low >= 0.0 && b.z_low < b.z_high && b.z_high <= top))
+            throw InvalidInput(fmt::format(
+                "--band {},{} is not allowed; allowed: ZLOW,ZHIGH with 0 <= ZLOW < ZHIGH <= {:.6g} "
+                "(the bed's top)",
+                b.z_low, b.z_high, top));
+    }
+    const auto band =
+        options.band ? options.band : band_clear_of_ends(packing, options.band_clearance * dp);
     if (!band)
         throw InvalidInput(fmt::format(
             "--band-clearance {} Dp is not allowed for this bed (top at {:.6g}, {:.6g} Dp); "

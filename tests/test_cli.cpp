@@ -11,6 +11,7 @@
 #include <sstream>
 #include <vector>
 
+#include <fmt/format.h>
 #include <gtest/gtest.h>
 #include <nlohmann/json.hpp>
 
@@ -367,6 +368,60 @@ TEST(Cli, TheContainerIsGivenTheSameWayToEverySubcommand) {
     EXPECT_EQ(box.err, "packbed: --container: 'box:1,2' is not allowed; allowed: cylinder:D, a "
                        "tube of inner diameter D, a number in (0, 2e+15]\n");
     EXPECT_EQ(packbed(bed + "-a 8 --container cylinder:0.024").status, 2); // one or the other
+}
+
+TEST(Cli, AnalyzeWarnsAboutAHalfPouredBedAndTakesABand) {
+    // A settled bed (a = 5, 500 spheres) gets no warning. The same bed with 40 more spheres
+    // scattered over the 16 Dp above it, as while pouring, gets two: its band (1 Dp clear of
+    // the highest sphere) is loose in its upper half, and looser than Dixon's correlation.
+    const fs::path d = scratch("poured");
+    ASSERT_EQ(packbed("generate -a 5 -n 500 --seed 1 --quiet --out " + (d / "bed").string()).status,
+              0);
+    const auto settled = nlohmann::json::parse(slurp(d / "bed" / "summary.json"));
+    const Outcome quiet_bed = packbed("analyze " + (d / "bed" / "particles.csv").string() +
+                                      " --out " + (d / "a").string());
+    ASSERT_EQ(quiet_bed.status, 0) << quiet_bed.err;
+    EXPECT_EQ(quiet_bed.err, "");
+    EXPECT_TRUE(nlohmann::json::parse(slurp(d / "a" / "summary.json"))["warnings"].empty());
+
+    fs::create_directory(d / "poured");
+    fs::copy_file(d / "bed" / "summary.json", d / "poured" / "summary.json"); // Rt = 2.5
+    std::string csv = slurp(d / "bed" / "particles.csv");
+    const double top = settled["container"]["height"].get<double>();
+    for (int k = 0; k < 40; ++k) // one sphere every 0.4 Dp of height, on a circle of radius 1
+        csv += fmt::format("{},{},{},0.5\n", std::cos(k * 2.4), std::sin(k * 2.4),
+                           top + 1.0 + 0.4 * k);
+    std::ofstream(d / "poured" / "particles.csv") << csv;
+    const Outcome poured = packbed("analyze " + (d / "poured" / "particles.csv").string() +
+                                   " --out " + (d / "b").string());
+    ASSERT_EQ(poured.status, 0) << poured.err;
+    const auto b = nlohmann::json::parse(slurp(d / "b" / "summary.json"));
+    ASSERT_EQ(b["warnings"].size(), 2u) << b["warnings"];
+    EXPECT_NE(b["warnings"][0].get<std::string>().find("the void fraction changes along the band"),
+              std::string::npos);
+    EXPECT_NE(b["warnings"][1].get<std::string>().find("(Dixon 1988: 0.4265)"), std::string::npos);
+    EXPECT_GT(b["void_fraction"].get<double>(), 0.4265 + 0.1);
+    // Each warning is one line on stderr.
+    EXPECT_EQ(std::count(poured.err.begin(), poured.err.end(), '\n'), 2);
+    EXPECT_EQ(poured.err.rfind("packbed analyze: warning: ", 0), 0u);
+    // --band over the settled part: the settled bed's void fraction, no warning.
+    const std::string band = fmt::format("{},{}", 1.0, top - 1.0);
+    const Outcome banded = packbed("analyze " + (d / "poured" / "particles.csv").string() +
+                                   " --band " + band + " --out " + (d / "c").string());
+    ASSERT_EQ(banded.status, 0) << banded.err;
+    const auto c = nlohmann::json::parse(slurp(d / "c" / "summary.json"));
+    EXPECT_NEAR(c["void_fraction"].get<double>(), settled["void_fraction"].get<double>(), 1e-12);
+    EXPECT_TRUE(c["warnings"].empty());
+    // A band outside the bed, or upside down.
+    const Outcome high = packbed("analyze " + (d / "bed" / "particles.csv").string() +
+                                 " --band 1,1000 --out " + (d / "e").string());
+    EXPECT_EQ(high.status, 2);
+    EXPECT_NE(high.err.find("--band 1,1000 is not allowed; allowed: ZLOW,ZHIGH with 0 <= ZLOW < "
+                            "ZHIGH <= "),
+              std::string::npos)
+        << high.err;
+    EXPECT_EQ(packbed("analyze " + (d / "bed" / "particles.csv").string() + " --band 3,1").status,
+              2);
 }
 
 TEST(Cli, QuietPrintsNothing) {

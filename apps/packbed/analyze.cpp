@@ -10,6 +10,7 @@
 
 #include "command.hpp"
 #include "packbed/analysis.hpp"
+#include "packbed/bed_checks.hpp"
 #include "packbed/error.hpp"
 #include "packbed/files.hpp"
 #include "packbed/io.hpp"
@@ -30,6 +31,7 @@ struct AnalyzeOptions {
     std::string format = "auto";
     double container_radius = 0.0; // 0: from summary.json next to the file
     std::string container;         // --container cylinder:D, instead of --container-radius
+    std::string band;              // --band ZLOW,ZHIGH, instead of --band-clearance
     std::string out;               // default: analysis/ next to the file
     double diameter = 0.0;         // 0: the mean sphere diameter
     double outside_tolerance = 0.01;
@@ -61,14 +63,16 @@ void check_inside(const ParticleFile& file, const std::string& name, double rt, 
 }
 
 /// The void fraction of one frame for the time series; nothing when the frame has no spheres
-/// or is not taller than twice the band clearance (a bed still being filled).
+/// or is not taller than twice the band clearance, or than --band's top (a bed still being
+/// filled).
 std::optional<double> frame_void_fraction(const ParticleFile& frame, const Cylinder& container,
                                           const AnalyzeOptions& o, const std::string& name) {
     if (frame.packing.size() == 0)
         return std::nullopt;
     const double dp = o.diameter > 0.0 ? o.diameter : frame.packing.mean_diameter();
     check_inside(frame, name, container.radius(), o.outside_tolerance * dp, o.placement.shifted());
-    if (!band_clear_of_ends(frame.packing, o.analysis.band_clearance * dp))
+    if (o.analysis.band ? o.analysis.band->z_high > bed_top(frame.packing)
+                        : !band_clear_of_ends(frame.packing, o.analysis.band_clearance * dp))
         return std::nullopt;
     return analyze_bed(frame.packing, container, o.analysis).void_fraction;
 }
@@ -87,6 +91,8 @@ int run_analyze(AnalyzeOptions& o) {
     std::optional<ParticleFile> read;
     if (!series)
         read = read_particles(path, read_options);
+    if (const auto b = comma_numbers(o.band); b && b->size() == 2)
+        o.analysis.band = Band{(*b)[0], (*b)[1]};
     if (const auto tube = parse_container(o.container))
         o.container_radius = 0.5 * tube->diameter;
     const double rt =
@@ -139,6 +145,7 @@ int run_analyze(AnalyzeOptions& o) {
     }
     const ParticleFile& file = *read;
     const BedAnalysis analysis = analyze_bed(file.packing, container, o.analysis);
+    const std::vector<std::string> warnings = analysis_warnings(file.packing, container, analysis);
 
     auto summary = analysis_summary(analysis, o.analysis);
     summary["particles_file"] = path.string();
@@ -153,6 +160,7 @@ int run_analyze(AnalyzeOptions& o) {
     summary["axis"] = {read_options.axis[0], read_options.axis[1]};
     summary["floor"] = read_options.floor;
     summary["container"] = {{"shape", "cylinder"}, {"radius", rt}};
+    summary["warnings"] = warnings;
     for (const auto& [name, text] : analysis_tables(analysis, rt))
         out.stage(name, text);
     if (const std::string why = stage_plots(out, analysis, rt); !why.empty()) {
@@ -162,6 +170,9 @@ int run_analyze(AnalyzeOptions& o) {
     }
     out.stage("summary.json", summary.dump(2) + "\n");
     out.commit();
+    if (!o.quiet)
+        for (const auto& warning : warnings)
+            fmt::print(stderr, "packbed analyze: warning: {}\n", warning);
     if (!o.quiet) {
         fmt::print("packbed analyze: {} spheres in a cylinder of radius {}{}\n",
                    file.packing.size(), rt,
@@ -214,9 +225,25 @@ Command register_analyze(CLI::App& parent) {
                     "reference diameter Dp, and the sphere size of files without a radius or "
                     "diameter column; default: the mean sphere diameter")
         ->check(real_in(limits::min_diameter, limits::max_diameter, false, false));
-    app->add_option("--band-clearance", a.band_clearance,
-                    "properties refer to the band this far from floor and top, Dp")
-        ->check(real_in(0.0, inf, false, true));
+    CLI::Option* clearance =
+        app->add_option("--band-clearance", a.band_clearance,
+                        "properties refer to the band this far from floor and top, Dp")
+            ->check(real_in(0.0, inf, false, true));
+    app->add_option("--band", o.band,
+                    "ZLOW,ZHIGH: the band the properties refer to (file units, 0 <= ZLOW < ZHIGH "
+                    "<= the bed's top), instead of --band-clearance")
+        ->check(CLI::Validator(
+            [](std::string& text) -> std::string {
+                const auto v = comma_numbers(text);
+                if (v && v->size() == 2 && (*v)[0] >= 0.0 && (*v)[0] < (*v)[1] &&
+                    (*v)[1] <= limits::max_length)
+                    return {};
+                return fmt::format("'{}' is not allowed; allowed: ZLOW,ZHIGH, two numbers with 0 "
+                                   "<= ZLOW < ZHIGH <= {:g}",
+                                   printable(text.substr(0, 80)), limits::max_length);
+            },
+            "ZLOW,ZHIGH"))
+        ->excludes(clearance);
     app->add_option("--shell-width", a.shell_width, "shell width of the radial profile, Dp")
         ->check(real_in(1e-4, 10.0, false, false));
     app->add_option("--slab-height", a.slab_height, "slab height of the axial profile, Dp")

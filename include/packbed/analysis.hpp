@@ -16,9 +16,12 @@ namespace packbed {
 /// What to measure and how finely. Lengths marked Dp are in units of the reference diameter
 /// (`diameter`, or the mean sphere diameter when not given). Plain value type.
 struct AnalysisOptions {
-    std::optional<double> diameter;  ///< reference diameter Dp (length), 0.1 to 10 times the
-                                     ///< mean diameter; default: the mean diameter
-    double band_clearance = 1.0;     ///< the axial band keeps this far from floor and top, Dp
+    std::optional<double> diameter; ///< reference diameter Dp (length), 0.1 to 10 times the
+                                    ///< mean diameter; default: the mean diameter
+    double band_clearance = 1.0;    ///< the axial band keeps this far from floor and top, Dp
+    /// The axial band itself (length), instead of band_clearance: z_low < z_high, within the
+    /// bed (0 to its top).
+    std::optional<Band> band;
     double shell_width = 0.02;       ///< width of the cylindrical shells of e(r), Dp
     double slab_height = 0.05;       ///< height of the slabs of e(z), Dp
     double centre_bin = 0.02;        ///< bin width of the centre distribution, Dp
