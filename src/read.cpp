@@ -3,6 +3,7 @@
 #include <zlib.h>
 
 #include <algorithm>
+#include <array>
 #include <cctype>
 #include <charconv>
 #include <cmath>
@@ -1072,6 +1073,24 @@ BedSummary read_bed_summary(std::istream& input, std::string_view name) {
         out.container_radius =
             number(json["container"], "radius", "container.radius", limits::max_length);
     out.diameter = number(json, "diameter", "diameter", limits::max_diameter);
+    // A lattice in a box records region {shape: box, size: [LX, LY, LZ]} and no container.
+    if (const auto region = json.find("region");
+        region != json.end() && region->is_object() &&
+        region->value("shape", nlohmann::json()) == "box") {
+        const auto size = region->find("size");
+        if (size != region->end() && size->is_array() && size->size() == 3) {
+            std::array<double, 3> box{};
+            for (std::size_t k = 0; k < 3; ++k) {
+                const auto& v = (*size)[k];
+                box[k] = v.is_number() ? v.get<double>() : std::nan("");
+                if (!(box[k] > 0.0 && box[k] <= limits::max_length))
+                    throw InvalidInput(fmt::format(
+                        "{}: region.size = {} is not allowed; allowed: three numbers in (0, {:g}]",
+                        shown, printable(size->dump().substr(0, 80)), limits::max_length));
+            }
+            out.box = box;
+        }
+    }
     if (json.contains("lattice")) {
         out.porosity = number(json["lattice"], "porosity", "lattice.porosity", 1.0);
         const auto type = json.find("type");

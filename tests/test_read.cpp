@@ -4,6 +4,7 @@
 #include <sys/stat.h>
 #include <zlib.h>
 
+#include <array>
 #include <filesystem>
 #include <fstream>
 #include <sstream>
@@ -246,6 +247,15 @@ TEST(ReadBedSummary, ContainerAndPorosityOrARefusalNamingTheKey) {
     EXPECT_EQ(bed.porosity, 0.41);
     EXPECT_EQ(bed.porosity_source, "the overall void fraction");
     EXPECT_FALSE(bed.diameter);
+    EXPECT_FALSE(bed.box);
+    // A lattice in a box: its region, no container.
+    const BedSummary boxed = read(R"({"region": {"shape": "box", "size": [4, 5, 6.5]}})");
+    ASSERT_TRUE(boxed.box);
+    EXPECT_EQ(*boxed.box, (std::array<double, 3>{4.0, 5.0, 6.5}));
+    EXPECT_FALSE(boxed.container_radius);
+    EXPECT_EQ(error(R"({"region": {"shape": "box", "size": [4, -5, 6]}})"),
+              "summary.json: region.size = [4,-5,6] is not allowed; allowed: three numbers in (0, "
+              "1e+15]");
     const BedSummary lattice =
         read(R"({"type": "diamond", "diameter": 0.002, "lattice": {"porosity": 0.66}})");
     EXPECT_EQ(lattice.diameter, 0.002);

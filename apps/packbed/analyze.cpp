@@ -97,10 +97,23 @@ int run_analyze(AnalyzeOptions& o) {
         o.container_radius = 0.5 * tube->diameter;
     const double rt =
         o.container_radius > 0.0 ? o.container_radius : container_radius_beside(path).value_or(0.0);
-    if (!(rt > 0.0))
+    if (!(rt > 0.0)) {
+        // A lattice in a box: say what there is and what is not yet measured.
+        const fs::path beside = path.parent_path() / "summary.json";
+        std::error_code ec;
+        if (fs::exists(fs::symlink_status(beside, ec)))
+            if (const auto box = read_bed_summary(beside).box)
+                throw InvalidInput(fmt::format(
+                    "{}: the bed fills a box ({} x {} x {}, {}): analyze measures beds in a "
+                    "cylinder, boxes come with the containers of issue 17; allowed: --container "
+                    "cylinder:D for a cylinder about the z axis (the porosity in the box is "
+                    "porosity_region of that summary.json)",
+                    printable(path.native()), (*box)[0], (*box)[1], (*box)[2],
+                    printable(beside.native())));
         throw InvalidInput(fmt::format("--container (or --container-radius) is needed: no "
                                        "summary.json with a container radius next to {}",
                                        printable(path.native())));
+    }
     if (o.diameter > 0.0)
         o.analysis.diameter = o.diameter;
     const Cylinder container(rt);

@@ -126,8 +126,10 @@ std::vector<ParticleFile> read_particle_frames(std::istream& input, std::string_
 /// later command about the bed.
 struct BedSummary {
     std::optional<double> container_radius; ///< container.radius (length), when present
-    std::optional<double> diameter;         ///< the spheres' diameter (length), when present
-    std::optional<double> porosity;         ///< a lattice's exact porosity or the void fraction
+    /// region.size of a lattice in a box, from 0 to L along each axis (length), when present
+    std::optional<std::array<double, 3>> box;
+    std::optional<double> diameter; ///< the spheres' diameter (length), when present
+    std::optional<double> porosity; ///< a lattice's exact porosity or the void fraction
     /// "the porosity of the TYPE lattice" or "the overall void fraction", when porosity is set
     std::string porosity_source;
 };
