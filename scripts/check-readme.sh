@@ -129,18 +129,27 @@ check(all(os.path.exists(os.path.join(case, p)) for p in
           ("system/blockMeshDict", "system/snappyHexMeshDict", "constant/triSurface")),
       "the OpenFOAM case has its dictionaries and surfaces")
 
-# 3. The DEM tour.
-s = summary("results/diamond-box")
+# 3. The DEM tour: a diamond lattice in a 30 mm tube, its DEM start, a LIGGGHTS settle.
+import re
+s = summary("results/diamond-tube")
 check(abs(s["lattice"]["porosity"] - (1 - 3.141592653589793 * 3 ** 0.5 / 16)) < 1e-12,
       "diamond lattice porosity 1 - pi sqrt(3)/16 = 0.6599 (Tsayger 2013)")
-
-import re
-air = re.search(r"superficial velocity w = ([0-9.e+-]+) m/s", log_of("packbed hydraulics --bed results/diamond-box"))
+air = re.search(r"superficial velocity w = ([0-9.e+-]+) m/s", log_of("packbed hydraulics --bed results/diamond-tube"))
 check(air is not None and abs(float(air.group(1)) - 2.48) < 0.01,
       "air through the 2 mm diamond lattice: critical velocity 2.48 m/s (Tsayger eq. 1), the "
       "value the README passes to export")
-data = open(os.path.join(repo, "results/diamond-box/bed.data")).read()
+data = open(os.path.join(repo, "results/diamond-tube/bed.data")).read()
 check(f"{s['balls']} atoms" in data, f"the data file holds the lattice's {s['balls']} balls")
+box = [float(v) for v in re.search(r"^(\S+) (\S+) xlo xhi", data, re.M).groups()]
+check(box[0] < -0.015 and box[1] > 0.015, f"its box x = {box} holds the 30 mm tube")
+settle = log_of("liggghts -in bed.data.liggghts.in")
+moved = re.search(r"packbed settle: (\d+) atoms after 2000 steps", settle)
+check(moved is not None and int(moved.group(1)) == s["balls"],
+      "LIGGGHTS settled every ball for 2 000 steps in the exported walls")
+check("lost" not in settle and "WARNING" not in settle, "no mesh element or atom lost")
+series = open(os.path.join(repo, "results/settled-analysis/void_fraction_series.csv")).read().split("\n")
+check(series[0] == "frame,timestep,void_fraction,particles" and len([l for l in series[1:] if l]) == 2,
+      "analyze measured both snapshots of the settle")
 
 # 4. The analysis tour: analyze gives the void fraction generate measured.
 a = summary("results/a5-n500-analysis")

@@ -4,6 +4,7 @@
 #include <cmath>
 #include <iterator>
 #include <limits>
+#include <numbers>
 
 #include <fmt/format.h>
 
@@ -39,10 +40,24 @@ AxisBox bounding_box(const Packing& packing) {
 }
 
 std::string lammps_data(const Packing& packing, double density, const AxisBox& box,
-                        std::string_view comment) {
+                        std::string_view comment, const std::vector<std::string>& notes) {
     if (!(std::isfinite(density) && density > 0.0))
         throw InvalidInput(
             fmt::format("density = {} is not allowed; allowed: a number > 0", density));
+    std::string header(comment);
+    for (const std::string& note : notes)
+        header += "\n# " + note;
+    for (std::size_t start = 0, end = 0; start <= header.size(); start = end + 1) {
+        end = std::min(header.find('\n', start), header.size());
+        if (end - start > max_data_header_line)
+            throw InvalidInput(fmt::format(
+                "the data file's header line '{}...' ({} characters) is not allowed; allowed: "
+                "up to {} characters (LAMMPS and LIGGGHTS read no more)",
+                header.substr(start, 40), end - start, max_data_header_line));
+    }
+    for (const std::string& note : notes)
+        if (note.find('\n') != std::string::npos)
+            throw InvalidInput("a data file note with a newline is not allowed; allowed: one line");
     for (std::size_t i = 0; i < packing.size(); ++i) {
         const Vec3 c = packing.centers[i];
         if (!(c.x >= box.lo.x && c.x <= box.hi.x && c.y >= box.lo.y && c.y <= box.hi.y &&
@@ -53,7 +68,7 @@ std::string lammps_data(const Packing& packing, double density, const AxisBox& b
                 i + 1, c.x, c.y, c.z, box.lo.x, box.hi.x, box.lo.y, box.hi.y, box.lo.z, box.hi.z));
     }
     fmt::memory_buffer out;
-    fmt::format_to(std::back_inserter(out), "{}\n\n{} atoms\n1 atom types\n\n", comment,
+    fmt::format_to(std::back_inserter(out), "{}\n\n{} atoms\n1 atom types\n\n", header,
                    packing.size());
     fmt::format_to(std::back_inserter(out), "{} {} xlo xhi\n{} {} ylo yhi\n{} {} zlo zhi\n\n",
                    box.lo.x, box.hi.x, box.lo.y, box.hi.y, box.lo.z, box.hi.z);
@@ -64,6 +79,211 @@ std::string lammps_data(const Packing& packing, double density, const AxisBox& b
                        2.0 * packing.radii[i], density, c.x, c.y, c.z);
     }
     return fmt::to_string(out);
+}
+
+double container_box_margin(double diameter, double container_radius) {
+    return std::max(0.5 * diameter, 0.01 * container_radius);
+}
+
+namespace {
+
+/// Throw InvalidInput unless `value` is finite and > 0.
+void require_positive(std::string_view name, double value) {
+    if (!(std::isfinite(value) && value > 0.0))
+        throw InvalidInput(
+            fmt::format("{} = {} is not allowed; allowed: a number > 0", name, value));
+}
+
+} // namespace
+
+AxisBox container_box(double container_radius, double height, double diameter) {
+    require_positive("container radius", container_radius);
+    require_positive("container height", height);
+    require_positive("diameter", diameter);
+    const double m = container_box_margin(diameter, container_radius);
+    const double half = container_radius + m;
+    return {{-half, -half, -m}, {half, half, height + m}};
+}
+
+double rayleigh_time(double radius, double density, double youngs_modulus, double poisson_ratio) {
+    require_positive("radius", radius);
+    require_positive("density", density);
+    require_positive("Young's modulus", youngs_modulus);
+    if (!(poisson_ratio >= 0.0 && poisson_ratio < 0.5))
+        throw InvalidInput(fmt::format(
+            "Poisson's ratio = {} is not allowed; allowed: a number in [0, 0.5)", poisson_ratio));
+    const double shear_modulus = youngs_modulus / (2.0 * (1.0 + poisson_ratio));
+    return std::numbers::pi * radius * std::sqrt(density / shear_modulus) /
+           (0.1631 * poisson_ratio + 0.8766);
+}
+
+namespace {
+
+/// A file name a LAMMPS or LIGGGHTS input can hold as one word: letters, digits, '.', '_',
+/// '-', '+' (no blanks, '#' comments, '$' variables, quotes).
+void require_input_word(std::string_view what, const std::string& name) {
+    const bool ok = !name.empty() && std::all_of(name.begin(), name.end(), [](char c) {
+        return (c >= 'a' && c <= 'z') || (c >= 'A' && c <= 'Z') || (c >= '0' && c <= '9') ||
+               c == '.' || c == '_' || c == '-' || c == '+';
+    });
+    if (!ok)
+        throw InvalidInput(fmt::format("{} '{}' is not allowed in a DEM input; allowed: a file "
+                                       "name of letters, digits, '.', '_', '-' and '+'",
+                                       what, name));
+}
+
+/// The checks and the numbers both inputs share.
+struct SettleNumbers {
+    double rayleigh = 0.0;  // s, smallest sphere
+    double time_step = 0.0; // s
+    double skin = 0.0;      // neighbour skin
+};
+
+SettleNumbers settle_numbers(const DemSettle& s) {
+    require_input_word("the data file", s.data_file);
+    require_input_word("the dump file", s.dump);
+    require_positive("container radius", s.container_radius);
+    require_positive("container height", s.container_height);
+    require_positive("diameter", s.diameter);
+    const DemMaterial& m = s.material;
+    if (!(m.restitution > 0.0 && m.restitution <= 1.0))
+        throw InvalidInput(fmt::format(
+            "restitution = {} is not allowed; allowed: a number in (0, 1]", m.restitution));
+    if (!(m.friction >= 0.0 && std::isfinite(m.friction)))
+        throw InvalidInput(
+            fmt::format("friction = {} is not allowed; allowed: a number >= 0", m.friction));
+    if (!(s.steps >= 1))
+        throw InvalidInput(fmt::format("steps = {} is not allowed; allowed: 1 or more", s.steps));
+    if (!(s.time_step_fraction > 0.0 && s.time_step_fraction <= 1.0))
+        throw InvalidInput(fmt::format("time step fraction = {} is not allowed; allowed: a "
+                                       "number in (0, 1]",
+                                       s.time_step_fraction));
+    SettleNumbers n;
+    n.rayleigh = rayleigh_time(s.smallest_radius, s.density, m.youngs_modulus, m.poisson_ratio);
+    n.time_step = s.time_step_fraction * n.rayleigh;
+    n.skin = 0.1 * s.diameter;
+    return n;
+}
+
+/// The comment block and the variables both inputs start with.
+std::string settle_head(const DemSettle& s, const SettleNumbers& n, std::string_view program,
+                        std::string_view run) {
+    const DemMaterial& m = s.material;
+    return fmt::format(
+        "# packbed export: a short DEM settle of the bed in {0} under gravity, in its container,\n"
+        "# for {1}. Run it in the folder of {0}:  {2}\n"
+        "# Lengths as in {0} with units si (metres); the container is the cylinder of radius\n"
+        "# {3:.9g} about the z axis from the floor z = 0 to z = {4:.9g}, and the data file's\n"
+        "# box holds it (docs/dem.md).\n"
+        "# Material: an example (a soft glass-like solid, E far below glass's 63 GPa as usual in\n"
+        "# DEM), not calibrated; edit the variables below, the time step follows them.\n"
+        "# Time step: {5} x the Rayleigh time of the smallest sphere (radius R),\n"
+        "#   t_R = pi R sqrt(rho / G) / (0.1631 nu + 0.8766), G = E / (2 (1 + nu))\n"
+        "#   (Li, Xu & Thornton 2005, Powder Technol. 160: 219-228; LIGGGHTS fix "
+        "check/timestep/gran)\n"
+        "#   here: R = {6:.9g}, rho = {7:.9g}, E = {8:.9g}, nu = {9:.9g}: t_R = {10:.6g} s,\n"
+        "#   dt = {11:.6g} s;"
+        " {12} steps = {13:.6g} s of settling.\n\n"
+        "variable        youngs equal {8}\n"
+        "variable        poisson equal {9}\n"
+        "variable        restitution equal {14}\n"
+        "variable        friction equal {15}\n"
+        "variable        density equal {7}\n"
+        "variable        radius equal {6}\n"
+        "variable        shear equal v_youngs/(2*(1+v_poisson))\n"
+        "variable        rayleigh equal "
+        "PI*v_radius*sqrt(v_density/v_shear)/(0.1631*v_poisson+0.8766)\n"
+        "variable        dt equal {5}*v_rayleigh\n\n",
+        s.data_file, program, run, s.container_radius, s.container_height, s.time_step_fraction,
+        s.smallest_radius, s.density, m.youngs_modulus, m.poisson_ratio, n.rayleigh, n.time_step,
+        s.steps, s.steps * n.time_step, m.restitution, m.friction);
+}
+
+/// The run and its report, the same in both programs.
+std::string settle_run(const DemSettle& s, const SettleNumbers& n) {
+    return fmt::format(
+        "fix             gravity all gravity 9.81 vector 0.0 0.0 -1.0\n"
+        "fix             integrate all nve/sphere\n"
+        "timestep        ${{dt}}\n\n"
+        "thermo          {0}\n"
+        "thermo_style    custom step atoms ke\n"
+        "# The spheres at the first and the last step (packbed analyze reads it: --frame -1).\n"
+        "dump            settle all custom {1} {2} id type x y z radius\n"
+        "variable        zc equal xcm(all,z)\n"
+        "variable        zc0 equal ${{zc}}\n"
+        "variable        atoms equal atoms\n"
+        "run             {1}\n"
+        "print           \"packbed settle: ${{atoms}} atoms after {1} steps of {3:.6g} s; mass "
+        "centre z ${{zc0}} -> ${{zc}}\"\n",
+        std::max(1, s.steps / 4), s.steps, s.dump, n.time_step);
+}
+
+} // namespace
+
+std::string lammps_settle_input(const DemSettle& s) {
+    const SettleNumbers n = settle_numbers(s);
+    const std::string contact = "hertz/material ${youngs} ${restitution} ${poisson} tangential "
+                                "mindlin NULL 1.0 ${friction} damping tsuji";
+    return settle_head(s, n, "LAMMPS (2022, GRANULAR package)",
+                       fmt::format("lmp -in {}.lammps.in", s.data_file)) +
+           fmt::format(
+               "units           si\n"
+               "atom_style      sphere\n"
+               "atom_modify     map array\n"
+               "boundary        f f f\n"
+               "comm_modify     vel yes\n"
+               "read_data       {0}\n\n"
+               "neighbor        {1} bin\n"
+               "neigh_modify    delay 0\n"
+               "# Hertz contacts with the material's E, nu, restitution (Tsuji damping) and "
+               "friction.\n"
+               "pair_style      granular\n"
+               "pair_coeff      * * {2}\n"
+               "# The container: its side as a cylinder region (LAMMPS 2022 has no STL walls for\n"
+               "# granular fixes; the LIGGGHTS input uses packbed's STL), its floor as the plane z "
+               "= 0.\n"
+               "region          container cylinder z 0 0 {3} 0 {4} side in open 1 open 2 units "
+               "box\n"
+               "fix             side all wall/gran/region granular {2} region container\n"
+               "fix             floor all wall/gran granular {2} zplane 0.0 NULL\n",
+               s.data_file, n.skin, contact, s.container_radius, s.container_height) +
+           settle_run(s, n);
+}
+
+std::string liggghts_settle_input(const DemSettle& s) {
+    const SettleNumbers n = settle_numbers(s);
+    require_input_word("the wall STL", s.wall_stl);
+    require_input_word("the bottom STL", s.bottom_stl);
+    return settle_head(s, n, "LIGGGHTS 3.8",
+                       fmt::format("liggghts -in {}.liggghts.in", s.data_file)) +
+           fmt::format(
+               "units           si\n"
+               "atom_style      granular\n"
+               "atom_modify     map array\n"
+               "boundary        f f f\n"
+               "newton          off\n"
+               "communicate     single vel yes\n"
+               "read_data       {0}\n\n"
+               "neighbor        {1} bin\n"
+               "neigh_modify    delay 0\n"
+               "fix             m1 all property/global youngsModulus peratomtype ${{youngs}}\n"
+               "fix             m2 all property/global poissonsRatio peratomtype ${{poisson}}\n"
+               "fix             m3 all property/global coefficientRestitution peratomtypepair 1 "
+               "${{restitution}}\n"
+               "fix             m4 all property/global coefficientFriction peratomtypepair 1 "
+               "${{friction}}\n"
+               "pair_style      gran model hertz tangential history\n"
+               "pair_coeff      * *\n"
+               "# The container from packbed's STL: its side (a prism about the cylinder) and "
+               "floor.\n"
+               "fix             side all mesh/surface file {2} type 1\n"
+               "fix             floor all mesh/surface file {3} type 1\n"
+               "fix             container all wall/gran model hertz tangential history mesh "
+               "n_meshes 2 meshes side floor\n"
+               "# Warns if dt exceeds a quarter of the Rayleigh or Hertz time.\n"
+               "fix             dt_check all check/timestep/gran {4} 0.25 0.25\n",
+               s.data_file, n.skin, s.wall_stl, s.bottom_stl, std::max(1, s.steps / 2)) +
+           settle_run(s, n);
 }
 
 std::string particles_vtu(const Packing& packing) {

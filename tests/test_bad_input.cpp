@@ -333,7 +333,8 @@ INSTANTIATE_TEST_SUITE_P(
         exact("generate --config @D/unknown.toml",
               "packbed: --config @D/unknown.toml: line 2: unknown key 'warp_speed'; allowed: "
               "aspect-ratio, "
-              "band-clearance, cg-step, checkpoint, ck, diameter, e0, force, layer-height, "
+              "band-clearance, cg-step, checkpoint, ck, container, diameter, e0, force, "
+              "layer-height, "
               "max-iterations, mc-period, mc-tolerance, mc-window, out, overlap-high, "
               "overlap-low, particles, quiet, seed, skin, solver, threads, tolerance, update"),
         exact("generate --config @D/broken.toml",
@@ -945,6 +946,25 @@ INSTANTIATE_TEST_SUITE_P(
         exact("export @D/one.csv --box 1,2,1,2,1,2",
               "packbed export: sphere 1 at (0, 0, 0) lies outside the box [1, 2] x [1, 2] x "
               "[1, 2]; allowed: a box holding every centre"),
+        // The data files in a known container: its height, a centre outside it, a name the
+        // example DEM input cannot hold, a summary.json that is no file.
+        exact("export two.csv -R 2 --container-height 1",
+              "packbed export: --container-height 1 is not allowed; allowed: above the bed's top, "
+              "1.5"),
+        exact("export two.csv --format liggghts-data -R 0.5 --out x.data",
+              "packbed export: two.csv:3: the sphere centre (0.99, 0, 1) is outside the container "
+              "(radius 0.5, floor z = 0); allowed: centres inside it"),
+        exact(std::vector<std::string>{"export", "two.csv", "-R", "2", "--out", "a b.data"},
+              "packbed export: --out a b.data: the file name 'a b.data' is not allowed with the "
+              "example DEM input, which names it; allowed: letters, digits, '.', '_', '-' and '+' "
+              "(or --no-container: no example)"),
+        exact(std::vector<std::string>{"export", "two.csv", "-R", "2", "--format", "liggghts-data",
+                                       "--out", "dir/$x.data"},
+              "packbed export: --out dir/$x.data: the file name '$x.data' is not allowed with the "
+              "example DEM input, which names it; allowed: letters, digits, '.', '_', '-' and '+' "
+              "(or --no-container: no example)"),
+        exact("export sumdir/bed.csv --format lammps-data",
+              "packbed export: sumdir/summary.json: a directory; " + regular),
         exact("export two.csv --fluid-velocity inf",
               "packbed: --fluid-velocity: 'inf' is not allowed; allowed: a number >= 0"),
         exact("export two.csv --fluid-velocity -1",

@@ -830,6 +830,291 @@ TEST(Cli, ExportedDataFileReadsBackInLiggghts) {
     EXPECT_NEAR(mass / (2600.0 * M_PI / 6.0 * 8e-9), 1.0, 1e-12);
 }
 
+namespace {
+
+/// The box of a LAMMPS data file: {xlo, xhi, ylo, yhi, zlo, zhi}.
+std::array<double, 6> data_box(const std::string& data) {
+    std::array<double, 6> box{};
+    for (const auto& [axis, at] : {std::pair{"xlo xhi", 0}, {"ylo yhi", 2}, {"zlo zhi", 4}}) {
+        const std::size_t end = data.find(axis);
+        const std::size_t start = data.rfind('\n', end) + 1;
+        std::istringstream(data.substr(start, end - start)) >> box[at] >> box[at + 1];
+    }
+    return box;
+}
+
+/// Every `vertex x y z` of an ASCII STL file.
+std::vector<std::array<double, 3>> stl_vertices(const std::string& stl) {
+    std::vector<std::array<double, 3>> out;
+    std::istringstream in(stl);
+    for (std::string word; in >> word;)
+        if (word == "vertex") {
+            std::array<double, 3> v{};
+            in >> v[0] >> v[1] >> v[2];
+            out.push_back(v);
+        }
+    return out;
+}
+
+/// One frame of a LAMMPS/LIGGGHTS `dump custom ... id type x y z radius`.
+struct DumpFrame {
+    long step = -1;
+    std::vector<std::array<double, 4>> spheres; // x, y, z, radius
+};
+
+std::vector<DumpFrame> dump_frames(const std::string& dump) {
+    std::vector<DumpFrame> frames;
+    std::istringstream in(dump);
+    std::size_t atoms = 0;
+    for (std::string line; std::getline(in, line);) {
+        if (line.rfind("ITEM: TIMESTEP", 0) == 0) {
+            frames.emplace_back();
+            in >> frames.back().step;
+        } else if (line.rfind("ITEM: NUMBER OF ATOMS", 0) == 0) {
+            in >> atoms;
+        } else if (line.rfind("ITEM: ATOMS id type x y z radius", 0) == 0 && !frames.empty()) {
+            for (std::size_t k = 0; k < atoms; ++k) {
+                double id = 0, type = 0;
+                std::array<double, 4> s{};
+                in >> id >> type >> s[0] >> s[1] >> s[2] >> s[3];
+                frames.back().spheres.push_back(s);
+            }
+        }
+    }
+    return frames;
+}
+
+/// The height of the mass centre of equal-density spheres.
+double mass_centre_z(const DumpFrame& f) {
+    double m = 0.0, mz = 0.0;
+    for (const auto& s : f.spheres) {
+        m += s[3] * s[3] * s[3];
+        mz += s[3] * s[3] * s[3] * s[2];
+    }
+    return mz / m;
+}
+
+/// A generated bed of 60 spheres of 3 mm in a tube of a = 4 (Rt = 6 mm), exported for
+/// `format`; the bed's folder (summary.json beside particles.csv gives the container).
+fs::path settle_bed(const std::string& name, const std::string& format) {
+    const fs::path d = scratch(name) / "bed";
+    EXPECT_EQ(
+        packbed("generate -a 4 -n 60 --diameter 0.003 --seed 1 --quiet --out " + d.string()).status,
+        0);
+    const Outcome e = packbed("export " + (d / "particles.csv").string() + " --format " + format +
+                              " --out " + (d / "bed.data").string() + " -q");
+    EXPECT_EQ(e.status, 0) << e.err;
+    return d;
+}
+
+/// The container of a settle bed from its summary: Rt, the bed's top, Dp.
+struct SettleGeometry {
+    double radius = 0.0, top = 0.0, diameter = 0.0;
+    double height() const { return top + diameter; } // export's default container height
+    double margin() const { return std::max(0.5 * diameter, 0.01 * radius); }
+};
+
+SettleGeometry settle_geometry(const fs::path& d) {
+    const auto s = nlohmann::json::parse(slurp(d / "summary.json"));
+    SettleGeometry g;
+    g.radius = s["container"]["radius"].get<double>();
+    g.diameter = s["diameter"].get<double>();
+    std::istringstream csv(slurp(d / "particles.csv"));
+    std::string row;
+    std::getline(csv, row);
+    while (std::getline(csv, row)) {
+        double x = 0, y = 0, z = 0, r = 0;
+        char comma = 0;
+        std::istringstream(row) >> x >> comma >> y >> comma >> z >> comma >> r;
+        g.top = std::max(g.top, z + r);
+    }
+    return g;
+}
+
+/// What every settle test asserts of the dump: 60 spheres at the first and the last step,
+/// each inside the container (wall at radius `wall_radius`, floor z = 0) within 0.01 Dp at
+/// the end, and a mass centre that fell (a settle cannot lift it) by less than 0.1 Dp.
+void expect_settled(const fs::path& dump, const SettleGeometry& g, double wall_radius) {
+    const std::vector<DumpFrame> frames = dump_frames(slurp(dump));
+    ASSERT_EQ(frames.size(), 2u) << dump;
+    EXPECT_EQ(frames[0].step, 0);
+    EXPECT_EQ(frames[1].step, 2000);
+    ASSERT_EQ(frames[0].spheres.size(), 60u);
+    ASSERT_EQ(frames[1].spheres.size(), 60u); // no sphere lost
+    const double tolerance = 0.01 * g.diameter;
+    for (const auto& s : frames[1].spheres) {
+        EXPECT_LE(std::hypot(s[0], s[1]) + s[3], wall_radius + tolerance);
+        EXPECT_GE(s[2] - s[3], -tolerance);
+        EXPECT_LE(s[2] + s[3], g.height());
+    }
+    const double before = mass_centre_z(frames[0]), after = mass_centre_z(frames[1]);
+    EXPECT_LE(after, before + 1e-6 * g.diameter); // dump precision: 6 digits
+    EXPECT_GT(after, before - 0.1 * g.diameter);
+}
+
+} // namespace
+
+TEST(Cli, ExportedDataBoxHoldsTheContainerAndItsStl) {
+    // Runs without LAMMPS or LIGGGHTS: the box rule and the files, from the files.
+    const fs::path d = settle_bed("box", "liggghts-data");
+    const SettleGeometry g = settle_geometry(d);
+    const std::string data = slurp(d / "bed.data");
+    const std::array<double, 6> box = data_box(data);
+    const double half = g.radius + g.margin();
+    EXPECT_DOUBLE_EQ(g.margin(), 0.0015); // Dp / 2 = 1.5 mm > Rt / 100 = 0.06 mm
+    EXPECT_DOUBLE_EQ(box[0], -half);
+    EXPECT_DOUBLE_EQ(box[1], half);
+    EXPECT_DOUBLE_EQ(box[2], -half);
+    EXPECT_DOUBLE_EQ(box[3], half);
+    EXPECT_DOUBLE_EQ(box[4], -g.margin());
+    EXPECT_DOUBLE_EQ(box[5], g.height() + g.margin());
+    // The title as before, the box on a comment line of its own (LAMMPS and LIGGGHTS read
+    // header lines of up to 255 characters).
+    EXPECT_EQ(data.substr(0, data.find('\n')),
+              "60 spheres from " + (d / "particles.csv").string() +
+                  " (packbed export, LIGGGHTS atom_style granular)");
+    EXPECT_NE(data.find("\n# box: the container (radius 0.006, height "), std::string::npos)
+        << data.substr(0, 300);
+    auto inside = [&](const std::array<double, 3>& v) {
+        return v[0] >= box[0] && v[0] <= box[1] && v[1] >= box[2] && v[1] <= box[3] &&
+               v[2] >= box[4] && v[2] <= box[5];
+    };
+    // The walls the example uses, and the container that --format stl writes about the same
+    // bed, lie wholly in the box; the side lies outside the cylinder (it circumscribes it).
+    std::size_t vertices = 0;
+    for (const std::string stl : {"bed.data.wall.stl", "bed.data.bottom.stl"})
+        for (const auto& v : stl_vertices(slurp(d / stl))) {
+            ++vertices;
+            EXPECT_TRUE(inside(v)) << stl << ": " << v[0] << " " << v[1] << " " << v[2];
+            if (stl == "bed.data.wall.stl") {
+                EXPECT_GE(std::hypot(v[0], v[1]), g.radius * (1.0 - 1e-6));
+            }
+        }
+    EXPECT_GT(vertices, 1000u);
+    ASSERT_EQ(packbed("export " + (d / "particles.csv").string() + " --format stl-ascii --out " +
+                      (d / "surface.stl").string() + " -q")
+                  .status,
+              0);
+    std::size_t surface = 0;
+    for (const auto& v : stl_vertices(slurp(d / "surface.stl")))
+        if (std::hypot(v[0], v[1]) >= g.radius * (1.0 - 1e-6) || v[2] <= 0.0 ||
+            v[2] >= g.height()) { // the container's parts (the spheres' lie inside them)
+            ++surface;
+            EXPECT_TRUE(inside(v)) << "surface.stl: " << v[0] << " " << v[1] << " " << v[2];
+        }
+    EXPECT_GT(surface, 1000u);
+
+    // Without the container (--no-container), today's box and file: the spheres' bounding box,
+    // no example; --box wins and the header says so.
+    const Outcome plain = packbed("export " + (d / "particles.csv").string() +
+                                  " --no-container --out " + (d / "plain.data").string() + " -q");
+    ASSERT_EQ(plain.status, 0) << plain.err;
+    const std::string p = slurp(d / "plain.data");
+    EXPECT_EQ(p.substr(0, p.find('\n')), "60 spheres from " + (d / "particles.csv").string() +
+                                             " (packbed export, LAMMPS atom_style sphere)");
+    const std::array<double, 6> tight = data_box(p);
+    EXPECT_NEAR(tight[4], 0.0, 0.01 * g.diameter);      // the lowest sphere touches the floor
+    EXPECT_DOUBLE_EQ(tight[5], g.top);                  // the bed's top
+    EXPECT_LT(tight[1], g.radius + 0.001 * g.diameter); // within the wall's overlap
+    EXPECT_FALSE(fs::exists(d / "plain.data.lammps.in"));
+    const Outcome given = packbed("export " + (d / "particles.csv").string() +
+                                  " --box -1,1,-1,1,-1,1 --out " + (d / "given.data").string());
+    ASSERT_EQ(given.status, 0) << given.err;
+    const std::string gd = slurp(d / "given.data");
+    EXPECT_EQ(data_box(gd), (std::array<double, 6>{-1, 1, -1, 1, -1, 1}));
+    EXPECT_NE(gd.find("\n# box from --box\n"), std::string::npos) << gd.substr(0, 300);
+    EXPECT_NE(given.out.find("example settle: lmp -in given.data.lammps.in"), std::string::npos)
+        << given.out;
+    // A path too long for a title line: the file's name alone.
+    const fs::path deep = d / std::string(120, 'a') / std::string(120, 'b');
+    fs::create_directories(deep);
+    fs::copy_file(d / "particles.csv", deep / "particles.csv");
+    ASSERT_EQ(packbed("export " + (deep / "particles.csv").string() + " -q").status, 0);
+    const std::string long_title = slurp(deep / "particles.data");
+    EXPECT_EQ(long_title.substr(0, long_title.find('\n')),
+              "60 spheres from particles.csv (packbed export, LAMMPS atom_style sphere)");
+    // A --box that cuts the container is kept, with a note.
+    const Outcome cut = packbed("export " + (d / "particles.csv").string() +
+                                " --format liggghts-data --box -0.005,0.005,-0.005,0.005,0,0.02"
+                                " --out " +
+                                (d / "cut.data").string());
+    ASSERT_EQ(cut.status, 0) << cut.err;
+    EXPECT_NE(cut.out.find("reaches outside --box"), std::string::npos) << cut.out;
+}
+
+TEST(Cli, ExportedLiggghtsSettleRunsInItsContainer) {
+    if (std::system("command -v liggghts >/dev/null 2>&1") != 0)
+        GTEST_SKIP() << "liggghts (Debian package liggghts) is not installed";
+    const fs::path d = settle_bed("liggghts", "liggghts-data");
+    const SettleGeometry g = settle_geometry(d);
+    // Line-buffered: LIGGGHTS ends an error with MPI_Abort, which loses a buffered message.
+    const std::string cmd = "cd " + d.string() +
+                            " && stdbuf -oL liggghts -in bed.data.liggghts.in -log none > "
+                            "liggghts.out 2>&1";
+    ASSERT_EQ(std::system(cmd.c_str()), 0) << slurp(d / "liggghts.out");
+    const std::string log = slurp(d / "liggghts.out");
+    // Every triangle of both meshes imported: none outside the box (LIGGGHTS would stop with
+    // "N mesh elements have been lost / left the domain"), no warning (time step included).
+    auto triangles = [&](const std::string& stl) {
+        const std::string text = slurp(d / stl);
+        std::size_t n = 0;
+        for (std::size_t at = 0; (at = text.find("outer loop", at)) != std::string::npos; ++at)
+            ++n;
+        return n;
+    };
+    const std::size_t side = triangles("bed.data.wall.stl"),
+                      floor = triangles("bed.data.bottom.stl");
+    EXPECT_GT(side, 1000u);
+    EXPECT_NE(log.find("Import and parallelization of mesh side containing " +
+                       std::to_string(side) + " triangle(s) successful"),
+              std::string::npos)
+        << log;
+    EXPECT_NE(log.find("Import and parallelization of mesh floor containing " +
+                       std::to_string(floor) + " triangle(s) successful"),
+              std::string::npos)
+        << log;
+    EXPECT_EQ(log.find("lost"), std::string::npos) << log;
+    EXPECT_EQ(log.find("WARNING"), std::string::npos) << log;
+    EXPECT_NE(log.find("packbed settle: 60 atoms after 2000 steps"), std::string::npos) << log;
+    // The side wall is a prism about the cylinder: its corners are the farthest wall.
+    double corner = 0.0;
+    for (const auto& v : stl_vertices(slurp(d / "bed.data.wall.stl")))
+        corner = std::max(corner, std::hypot(v[0], v[1]));
+    EXPECT_LT(corner, g.radius * 1.003);
+    expect_settled(d / "bed.data.liggghts.dump", g, corner);
+}
+
+TEST(Cli, ExportedLammpsSettleRunsInItsContainer) {
+    if (std::system("command -v lmp >/dev/null 2>&1") != 0)
+        GTEST_SKIP() << "lmp (Debian package lammps) is not installed";
+    const fs::path d = settle_bed("lammps", "lammps-data");
+    const SettleGeometry g = settle_geometry(d);
+    // The input's wall is the container, and the data file's box holds it.
+    const std::string input = slurp(d / "bed.data.lammps.in");
+    const std::size_t at = input.find("region          container cylinder z 0 0 ");
+    ASSERT_NE(at, std::string::npos) << input;
+    double radius = 0, low = 0, high = 0;
+    std::istringstream(input.substr(at + 42)) >> radius >> low >> high;
+    EXPECT_DOUBLE_EQ(radius, g.radius);
+    EXPECT_EQ(low, 0.0);
+    EXPECT_DOUBLE_EQ(high, g.height());
+    const std::array<double, 6> box = data_box(slurp(d / "bed.data"));
+    EXPECT_LT(box[0], -radius);
+    EXPECT_GT(box[1], radius);
+    EXPECT_LT(box[2], -radius);
+    EXPECT_GT(box[3], radius);
+    EXPECT_LT(box[4], 0.0);
+    EXPECT_GT(box[5], high);
+    const std::string cmd =
+        "cd " + d.string() + " && lmp -in bed.data.lammps.in -log none > lmp.out 2>&1";
+    ASSERT_EQ(std::system(cmd.c_str()), 0) << slurp(d / "lmp.out");
+    const std::string log = slurp(d / "lmp.out");
+    EXPECT_EQ(log.find("Lost"), std::string::npos) << log;
+    EXPECT_EQ(log.find("WARNING"), std::string::npos) << log;
+    EXPECT_NE(log.find("packbed settle: 60 atoms after 2000 steps"), std::string::npos) << log;
+    expect_settled(d / "bed.data.lammps.dump", g, g.radius);
+}
+
 TEST(Cli, UnwritableOutputIsRefusedBeforeTheRun) {
     const fs::path d = scratch("unwritable");
     std::ofstream(d / "plain") << "x";

@@ -1,8 +1,12 @@
 // `packbed export`: any bed (generated, lattice, read from elsewhere) as a DEM data file or as
 // a surface for meshers (STL, OBJ) with the contacts treated.
+#include <algorithm>
+#include <cctype>
 #include <charconv>
 #include <filesystem>
 #include <memory>
+#include <optional>
+#include <stdexcept>
 #include <string>
 #include <vector>
 
@@ -56,6 +60,7 @@ struct ExportOptions {
     int refine = 3;
     double edge = 0.0;             // > 0: overrides refine
     double container_radius = 0.0; // 0: from summary.json beside the file, if any
+    std::string container;         // --container cylinder:D, instead of --container-radius
     double container_height = 0.0; // 0: the bed's top + 1 Dp
     bool no_container = false;
     OpenFoamMeshOptions mesh;
@@ -91,6 +96,35 @@ std::unique_ptr<OutputDirectory> file_output(const ExportOptions& o, const fs::p
     return out;
 }
 
+/// The bed's container: the radius from --container-radius or summary.json beside the file,
+/// the height from --container-height or the bed's top + 1 Dp. \return nothing when neither
+/// gives a radius. \throws InvalidInput when the height is not above the bed or a centre lies
+/// outside the container
+std::optional<SurfaceContainer> bed_container(const ExportOptions& o, const ParticleFile& file) {
+    const auto tube = parse_container(o.container);
+    const double rt = tube ? 0.5 * tube->diameter
+                      : o.container_radius > 0.0
+                          ? o.container_radius
+                          : container_radius_beside(o.particles).value_or(0.0);
+    if (!(rt > 0.0))
+        return std::nullopt;
+    const double top = bed_top(file.packing);
+    const double height =
+        o.container_height > 0.0 ? o.container_height : top + file.packing.mean_diameter();
+    if (!(height > top))
+        throw InvalidInput(fmt::format(
+            "--container-height {} is not allowed; allowed: above the bed's top, {}", height, top));
+    for (std::size_t i = 0; i < file.packing.size(); ++i) {
+        const Vec3& c = file.packing.centers[i];
+        if (std::hypot(c.x, c.y) >= rt || c.z <= 0.0)
+            throw InvalidInput(fmt::format(
+                "{}:{}: the sphere centre ({}, {}, {}) is outside the container (radius {}, "
+                "floor z = 0); allowed: centres inside it",
+                printable(o.particles), file.lines[i], c.x, c.y, c.z, rt));
+    }
+    return SurfaceContainer{Cylinder(rt), height};
+}
+
 /// STL, OBJ or an OpenFOAM case: treat the contacts, tessellate, write the surfaces and the
 /// volumes.
 int run_surface_export(const ExportOptions& o, ExportFormat format, const ParticleFile& file) {
@@ -110,26 +144,8 @@ int run_surface_export(const ExportOptions& o, ExportFormat format, const Partic
     }
     const Contacts contacts = parse_contacts(o.contacts);
     const double dp = file.packing.mean_diameter();
-    std::optional<SurfaceContainer> container;
-    const double rt = o.container_radius > 0.0 ? o.container_radius
-                                               : container_radius_beside(o.particles).value_or(0.0);
-    if (rt > 0.0) {
-        const double top = bed_top(file.packing);
-        const double height = o.container_height > 0.0 ? o.container_height : top + dp;
-        if (!(height > top))
-            throw InvalidInput(fmt::format(
-                "--container-height {} is not allowed; allowed: above the bed's top, {}", height,
-                top));
-        container = SurfaceContainer{Cylinder(rt), height};
-        for (std::size_t i = 0; i < file.packing.size(); ++i) {
-            const Vec3& c = file.packing.centers[i];
-            if (std::hypot(c.x, c.y) >= rt || c.z <= 0.0)
-                throw InvalidInput(fmt::format(
-                    "{}:{}: the sphere centre ({}, {}, {}) is outside the container (radius {}, "
-                    "floor z = 0); allowed: centres inside it",
-                    printable(o.particles), file.lines[i], c.x, c.y, c.z, rt));
-        }
-    }
+    const std::optional<SurfaceContainer> container = bed_container(o, file);
+    const double rt = container ? container->cylinder.radius() : 0.0;
     SurfaceOptions options;
     double largest = 0.0;
     for (const double r : file.packing.radii)
@@ -229,6 +245,145 @@ int run_surface_export(const ExportOptions& o, ExportFormat format, const Partic
     return 0;
 }
 
+/// The names of the example DEM run written beside a data file `name` when the container is
+/// known (docs/dem.md).
+struct DemFiles {
+    std::string input, dump, wall, bottom; // wall, bottom: LIGGGHTS only
+};
+
+DemFiles dem_files(const std::string& name, ExportFormat format) {
+    if (format == ExportFormat::lammps_data)
+        return {name + ".lammps.in", name + ".lammps.dump", "", ""};
+    return {name + ".liggghts.in", name + ".liggghts.dump", name + ".wall.stl",
+            name + ".bottom.stl"};
+}
+
+/// A LAMMPS or LIGGGHTS data file; where the container is known, its box holds the container
+/// and an example settle (input, and for LIGGGHTS the wall STL files) is written beside it.
+int run_data_export(const ExportOptions& o, ExportFormat format, const ParticleFile& file) {
+    const bool lammps = format == ExportFormat::lammps_data;
+    const std::optional<AxisBox> given_box =
+        o.box.empty() ? std::nullopt : std::optional<AxisBox>(parse_box(o.box));
+    const fs::path out_path =
+        o.out.empty() ? fs::path(o.particles).replace_extension(".data") : fs::path(o.out);
+    const std::string name = out_path.filename().string();
+    const std::optional<SurfaceContainer> container =
+        o.no_container ? std::nullopt : bed_container(o, file);
+    const double dp = file.packing.mean_diameter();
+    std::vector<std::string> sidecars;
+    if (o.fluid_velocity >= 0.0)
+        sidecars.push_back(".fluid.in");
+    const DemFiles dem = dem_files(name, format);
+    if (container) {
+        // The inputs name the files as single words.
+        const bool word = !name.empty() && std::all_of(name.begin(), name.end(), [](char c) {
+            return std::isalnum(static_cast<unsigned char>(c)) || c == '.' || c == '_' ||
+                   c == '-' || c == '+';
+        });
+        if (!word)
+            throw InvalidInput(fmt::format(
+                "--out {}: the file name '{}' is not allowed with the example DEM input, which "
+                "names it; allowed: letters, digits, '.', '_', '-' and '+' (or --no-container: "
+                "no example)",
+                printable(out_path.native()), printable(name)));
+        for (const std::string& f : {dem.input, dem.wall, dem.bottom})
+            if (!f.empty())
+                sidecars.push_back(f.substr(name.size()));
+    }
+    const auto out = file_output(o, out_path, sidecars);
+    const std::string program = lammps ? "LAMMPS" : "LIGGGHTS";
+    // The title: where the spheres came from, shortened to the file's name (then cut) where
+    // the path would make it longer than LAMMPS and LIGGGHTS read.
+    const auto title = [&](std::string_view source) {
+        std::string t =
+            fmt::format("{} spheres from {} (packbed export, {} atom_style {})",
+                        file.packing.size(), source, program, lammps ? "sphere" : "granular");
+        if (o.fluid_velocity >= 0.0)
+            t += fmt::format("; fluid superficial velocity {} (packbed hydraulics)",
+                             o.fluid_velocity);
+        return t;
+    };
+    std::string comment = title(o.particles);
+    if (comment.size() > max_data_header_line) {
+        const std::string base = fs::path(o.particles).filename().string();
+        const std::size_t room = max_data_header_line - (title("").size() + 3);
+        comment = title(base.size() <= room ? base : "..." + base.substr(base.size() - room));
+    }
+    // The box: --box, else the container and a margin where it is known, else the spheres'
+    // bounding box (the header says which where the container is known).
+    AxisBox box = bounding_box(file.packing);
+    std::string box_note;
+    if (given_box) {
+        box = *given_box;
+        if (container)
+            box_note = "box from --box";
+    } else if (container) {
+        box = container_box(container->cylinder.radius(), container->height, dp);
+        box_note = fmt::format("box: the container (radius {:.9g}, height {:.9g}) and a margin "
+                               "of {:.9g} "
+                               "(the larger of Dp/2 and Rt/100) on every side",
+                               container->cylinder.radius(), container->height,
+                               container_box_margin(dp, container->cylinder.radius()));
+    }
+    out->stage(name, lammps_data(file.packing, o.density, box, comment,
+                                 box_note.empty() ? std::vector<std::string>{}
+                                                  : std::vector<std::string>{box_note}));
+    if (o.fluid_velocity >= 0.0)
+        out->stage(name + ".fluid.in",
+                   fmt::format("# for the coupling: include this file in the {} input\n"
+                               "variable fluid_velocity equal {}\n",
+                               program, o.fluid_velocity));
+    std::string note;
+    if (container) {
+        DemSettle settle;
+        settle.data_file = name;
+        settle.wall_stl = dem.wall;
+        settle.bottom_stl = dem.bottom;
+        settle.dump = dem.dump;
+        settle.container_radius = container->cylinder.radius();
+        settle.container_height = container->height;
+        settle.smallest_radius =
+            file.packing.radii.empty()
+                ? 0.5 * dp
+                : *std::min_element(file.packing.radii.begin(), file.packing.radii.end());
+        settle.diameter = dp;
+        settle.density = o.density;
+        // The container's side and floor as LIGGGHTS walls, triangles about 1 Dp wide.
+        const std::vector<Solid> solids =
+            container_solids(container->cylinder, 0.0, container->height, dp);
+        bool inside = true;
+        for (std::size_t k = 0; k < 2; ++k)
+            for (const Vec3& v : solids[k].mesh.vertices) {
+                // As the STL stores it: single precision.
+                const auto f = [](double x) { return static_cast<double>(static_cast<float>(x)); };
+                inside = inside && f(v.x) >= box.lo.x && f(v.x) <= box.hi.x && f(v.y) >= box.lo.y &&
+                         f(v.y) <= box.hi.y && f(v.z) >= box.lo.z && f(v.z) <= box.hi.z;
+            }
+        if (lammps) {
+            out->stage(dem.input, lammps_settle_input(settle));
+        } else {
+            out->stage(dem.input, liggghts_settle_input(settle));
+            write_surface({solids[0]}, SurfaceFormat::stl_ascii, out->reserve(dem.wall));
+            write_surface({solids[1]}, SurfaceFormat::stl_ascii, out->reserve(dem.bottom));
+        }
+        if (!given_box && !inside)
+            throw std::logic_error("the container's STL lies outside the default box");
+        note = fmt::format("; {}; example settle: {} -in {}{}", box_note,
+                           lammps ? "lmp" : "liggghts", dem.input,
+                           inside   ? ""
+                           : lammps ? " (note: the container reaches outside --box: spheres "
+                                      "that leave the box are lost)"
+                                    : " (note: the container's STL reaches outside --box: "
+                                      "LIGGGHTS refuses mesh elements outside the box)");
+    }
+    out->commit();
+    if (!o.quiet)
+        fmt::print("packbed export: {} spheres to {} ({}: read_data {}{}{})\n", file.packing.size(),
+                   out_path.string(), program, name,
+                   o.fluid_velocity >= 0.0 ? fmt::format("; include {}.fluid.in", name) : "", note);
+    return 0;
+}
+
 int run_export(const ExportOptions& o) {
     ExportFormat format = ExportFormat::lammps_data;
     for (const auto& [name, value] : export_formats())
@@ -242,34 +397,7 @@ int run_export(const ExportOptions& o) {
     if (format == ExportFormat::stl || format == ExportFormat::stl_ascii ||
         format == ExportFormat::obj || format == ExportFormat::openfoam)
         return run_surface_export(o, format, file);
-    const AxisBox box = o.box.empty() ? bounding_box(file.packing) : parse_box(o.box);
-    const fs::path out_path =
-        o.out.empty() ? fs::path(o.particles).replace_extension(".data") : fs::path(o.out);
-    const std::string name = out_path.filename().string();
-    const auto out = file_output(o, out_path,
-                                 o.fluid_velocity >= 0.0 ? std::vector<std::string>{".fluid.in"}
-                                                         : std::vector<std::string>{});
-    const std::string program = format == ExportFormat::lammps_data ? "LAMMPS" : "LIGGGHTS";
-    std::string comment = fmt::format("{} spheres from {} (packbed export, {} atom_style {})",
-                                      file.packing.size(), o.particles, program,
-                                      format == ExportFormat::lammps_data ? "sphere" : "granular");
-    if (o.fluid_velocity >= 0.0)
-        comment +=
-            fmt::format("; fluid superficial velocity {} (packbed hydraulics)", o.fluid_velocity);
-    out->stage(name, lammps_data(file.packing, o.density, box, comment));
-    if (o.fluid_velocity >= 0.0)
-        out->stage(name + ".fluid.in",
-                   fmt::format("# for the coupling: include this file in the {} input\n"
-                               "variable fluid_velocity equal {}\n",
-                               program, o.fluid_velocity));
-    out->commit();
-    if (!o.quiet)
-        fmt::print("packbed export: {} spheres to {} ({}: read_data {}{})\n", file.packing.size(),
-                   out_path.string(), program, out_path.filename().string(),
-                   o.fluid_velocity >= 0.0
-                       ? fmt::format("; include {}.fluid.in", out_path.filename().string())
-                       : "");
-    return 0;
+    return run_data_export(o, format, file);
 }
 
 } // namespace
@@ -304,25 +432,31 @@ Command register_export(CLI::App& parent) {
                   "openfoam: replace a non-empty case directory whole (its old files are "
                   "deleted); files are replaced without it");
     app->add_option("--contacts", o.contacts,
-                    "surfaces: none, shrink:F (radii times 1 - F) or caps:H (flat faces H Dp "
-                    "apart at every contact closer than H Dp, and H Dp from the walls); F, H "
-                    "fractions of Dp (docs/surfaces.md)");
+                    "surfaces: none; shrink:F (radii times 1 - F, gaps); enlarge:F (radii times "
+                    "1 + F, united); caps:H (flat faces H Dp apart at every contact closer than "
+                    "H Dp, and H Dp from the walls); bridges:D (a cylinder of diameter D Dp "
+                    "along each contact, united); F, H, D in (0, 0.5) (docs/surfaces.md)");
     app->add_option("--refine", o.refine,
                     "surfaces: icosphere level of each sphere (20 x 4^level triangles)")
         ->check(whole_in(0, 7));
     app->add_option("--edge", o.edge,
                     "surfaces: largest mean triangle edge instead of --refine (file units)")
         ->check(real_in(0.0, inf, true, true));
-    app->add_option("-R,--container-radius", o.container_radius,
-                    "surfaces: cylinder radius (default: summary.json beside the file; none if "
-                    "absent: no wall treatment, no container solids)")
-        ->check(real_in(0.0, inf, true, true));
+    CLI::Option* radius =
+        app->add_option("-R,--container-radius", o.container_radius,
+                        "cylinder radius, shorthand of --container cylinder:2R (default: "
+                        "summary.json beside the file; none if absent: surfaces without wall "
+                        "treatment or container solids, data files in the spheres' bounding box "
+                        "without an example DEM input)")
+            ->check(real_in(0.0, inf, true, true));
+    add_container_option(*app, o.container, "file units; default: summary.json beside the file")
+        ->excludes(radius);
     app->add_option("--container-height", o.container_height,
-                    "surfaces: cylinder height from the floor z = 0 (default: the bed's top + 1 "
-                    "Dp)")
+                    "cylinder height from the floor z = 0 (default: the bed's top + 1 Dp)")
         ->check(real_in(0.0, inf, true, true));
     app->add_flag("--no-container", o.no_container,
-                  "surfaces: cut against the container but do not write its solids");
+                  "surfaces: cut against the container but do not write its solids; data "
+                  "files: ignore it (the spheres' bounding box, no example DEM input)");
     app->add_option("--cells-per-diameter", o.mesh.cells_per_diameter,
                     "openfoam: background (blockMesh) cells per particle diameter")
         ->check(whole_in(1, 100));
@@ -335,7 +469,9 @@ Command register_export(CLI::App& parent) {
     app->add_option("--density", o.density, "particle density written for every atom")
         ->check(real_in(0.0, inf, true, true));
     app->add_option("--box", o.box,
-                    "xlo,xhi,ylo,yhi,zlo,zhi (default: the smallest box holding every sphere)");
+                    "xlo,xhi,ylo,yhi,zlo,zhi (default: the container and a margin of "
+                    "max(Dp/2, Rt/100) where the container is known, else the smallest box "
+                    "holding every sphere)");
     app->add_option("--fluid-velocity", o.fluid_velocity,
                     "record this fluid velocity (e.g. from packbed hydraulics) in the header and "
                     "in FILE.fluid.in as a LAMMPS variable")

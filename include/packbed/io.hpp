@@ -39,9 +39,79 @@ AxisBox bounding_box(const Packing& packing);
 /// \param density particle density (mass per volume, in the units the DEM run uses; > 0)
 /// \param box must hold every centre (LAMMPS drops atoms outside a fixed box)
 /// \param comment first line of the file (no newline)
-/// \throws InvalidInput when the density is not > 0 or a centre is outside the box
+/// \param notes header comments written after it, each as a line `# NOTE`
+/// \throws InvalidInput when the density is not > 0, a centre is outside the box, or a header
+/// line (the comment, a note) is longer than max_data_header_line (or holds a newline)
 std::string lammps_data(const Packing& packing, double density, const AxisBox& box,
-                        std::string_view comment);
+                        std::string_view comment, const std::vector<std::string>& notes = {});
+
+/// The longest header line LAMMPS (2022) and LIGGGHTS (3.8) read whole: both read the data
+/// file's lines into 256-byte buffers, and go on reading the rest of a longer title as a header
+/// line, which they refuse ("Unknown identifier in data file").
+constexpr std::size_t max_data_header_line = 250;
+
+/// The margin the default DEM box leaves around a known container: max(Dp / 2, Rt / 100).
+/// Rt / 100 is more than the prism packbed writes about the cylinder reaches beyond it (its
+/// corners lie at Rt / cos(pi / sides) with at least 48 sides: Rt times 1.0022 at most), so
+/// its STL lies wholly inside the box. \param diameter Dp, \param container_radius Rt (> 0)
+double container_box_margin(double diameter, double container_radius);
+
+/// The default box of a DEM data file for a bed in a known container (a cylinder of radius Rt
+/// about the z axis, floor z = 0, top at `height`): x, y in [-Rt - m, Rt + m], z in
+/// [-m, height + m] with m = container_box_margin(diameter, Rt). It holds the container, its
+/// STL (container_solids) and the fluid region above the bed up to `height`.
+/// \throws InvalidInput when a value is not finite and > 0
+AxisBox container_box(double container_radius, double height, double diameter);
+
+/// The Rayleigh time of a sphere, the time a Rayleigh surface wave takes to cross it (Li, Xu
+/// & Thornton 2005, Powder Technol. 160: 219-228; LIGGGHTS' fix check/timestep/gran):
+/// \f$t_R = \pi R \sqrt{\rho / G} / (0.1631 \nu + 0.8766)\f$, \f$G = E / (2 (1 + \nu))\f$.
+/// DEM time steps are taken as a fraction of it for the smallest sphere.
+/// \throws InvalidInput when a value is out of range (R, rho, E > 0; nu in [0, 0.5))
+double rayleigh_time(double radius, double density, double youngs_modulus, double poisson_ratio);
+
+/// Contact properties of the example DEM settle: a soft glass-like material (E far below
+/// glass's 63 GPa, as usual in DEM, so that the time step is not tiny), Hertz contacts with
+/// damping from the restitution coefficient and Coulomb friction. docs/dem.md.
+struct DemMaterial {
+    double youngs_modulus = 1e7; ///< E (Pa with SI lengths)
+    double poisson_ratio = 0.25; ///< nu
+    double restitution = 0.5;    ///< coefficient of restitution
+    double friction = 0.5;       ///< sliding friction coefficient, sphere-sphere and wall
+};
+
+/// What the example DEM inputs (LAMMPS, LIGGGHTS) need: a short settle of the bed under
+/// gravity in its container. File names are relative to the folder of the data file (the
+/// inputs are run there).
+struct DemSettle {
+    std::string data_file;         ///< the data file's name (lammps_data)
+    std::string wall_stl;          ///< LIGGGHTS: the container's side, STL (container_solids)
+    std::string bottom_stl;        ///< LIGGGHTS: the container's floor, STL
+    std::string dump;              ///< the dump the run writes (first and last step)
+    double container_radius = 0.0; ///< Rt (LAMMPS: the region cylinder)
+    double container_height = 0.0; ///< H (LAMMPS: the region cylinder's top)
+    double smallest_radius = 0.0;  ///< sets the time step
+    double diameter = 0.0;         ///< mean Dp: the neighbour skin (0.1 Dp)
+    double density = 0.0;          ///< as in the data file
+    DemMaterial material;
+    int steps = 2000;                ///< the settle's length
+    double time_step_fraction = 0.2; ///< dt = fraction x Rayleigh time of the smallest sphere
+};
+
+/// A LAMMPS (2022, GRANULAR package) input that reads the data file and settles the bed:
+/// `units si`, `atom_style sphere`, `pair_style granular` (hertz/material, Mindlin tangential,
+/// Tsuji damping), the side wall as `fix wall/gran/region` on a cylinder region (LAMMPS 2022
+/// has no STL walls for granular fixes), the floor as `fix wall/gran ... zplane`, gravity,
+/// `fix nve/sphere`, the time step from rayleigh_time computed in the script from its
+/// variables (and written as a number in a comment), a dump at the first and last step.
+/// \throws InvalidInput when a value is out of range
+std::string lammps_settle_input(const DemSettle& settle);
+
+/// The same settle for LIGGGHTS 3.8: `atom_style granular`, `pair_style gran model hertz
+/// tangential history`, the material as `fix property/global`, the container's side and
+/// floor from packbed's STL files (`fix mesh/surface`, `fix wall/gran ... mesh`).
+/// \throws InvalidInput when a value is out of range
+std::string liggghts_settle_input(const DemSettle& settle);
 
 /// The tables of a bed analysis as CSV texts, by file name:
 /// - `radial_void_fraction.csv`: `radial_position,x_from_wall_d,void_fraction`, the shell's
