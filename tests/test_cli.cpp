@@ -353,6 +353,22 @@ TEST(Cli, TheContainerIsGivenTheSameWayToEverySubcommand) {
     EXPECT_EQ(ac["container"]["radius"], 0.012);
     EXPECT_EQ(ac["void_fraction"],
               nlohmann::json::parse(slurp(d / "ar" / "summary.json"))["void_fraction"]);
+    // export: the same data file (its box holds a 30 mm tube, not the 24 mm one of
+    // summary.json) either way.
+    ASSERT_EQ(packbed("export --quiet " + csv +
+                      " --format lammps-data --container cylinder:0.03 "
+                      "--out " +
+                      (d / "c.data").string())
+                  .status,
+              0);
+    ASSERT_EQ(packbed("export --quiet " + csv + " --format lammps-data -R 0.015 --out " +
+                      (d / "r.data").string())
+                  .status,
+              0);
+    EXPECT_EQ(slurp(d / "c.data").substr(slurp(d / "c.data").find('\n')),
+              slurp(d / "r.data").substr(slurp(d / "r.data").find('\n'))); // but the title
+    EXPECT_NE(slurp(d / "c.data").find("-0.0165 0.0165 xlo xhi"), std::string::npos)
+        << slurp(d / "c.data"); // Rt + max(Dp/2, Rt/100) = 0.015 + 0.0015
     // hydraulics, in metres: a = 0.024 / 0.003 for Eisfeld & Schnitzlein.
     const Outcome h = packbed("hydraulics -e 0.4 -d 0.003 --container cylinder:0.024 --json");
     ASSERT_EQ(h.status, 0) << h.err;
