@@ -1,6 +1,7 @@
 #include "packbed/analysis.hpp"
 
 #include <algorithm>
+#include <array>
 #include <cmath>
 #include <cstdint>
 #include <exception>
@@ -10,6 +11,7 @@
 #include <string>
 #include <utility>
 
+#include <boost/math/quadrature/gauss.hpp>
 #include <fmt/format.h>
 #include <omp.h>
 
@@ -340,11 +342,91 @@ Coordination coordination(const Packing& packing, const Cylinder& container,
     return out;
 }
 
+/// The 20-point Gauss-Legendre rule on [0, pi] after the map q = m - h cos u, which turns the
+/// square-root end points of the integrands of ball_in_cylinder (a circle that starts to
+/// cross the wall, a ball's chord that closes) into smooth functions of u: nodes -cos u_k and
+/// weights w_k sin u_k, so that the integral of f over [m - h, m + h] is
+/// h sum_k weight_k f(m + h node_k). Computed once.
+struct MappedRule {
+    static constexpr std::size_t points = 20;
+    std::array<double, points> node{};
+    std::array<double, points> weight{};
+};
+
+const MappedRule& mapped_rule() {
+    static const MappedRule rule = [] {
+        using Gauss = boost::math::quadrature::gauss<double, MappedRule::points>;
+        MappedRule r;
+        std::size_t k = 0;
+        // Gauss holds the non-negative abscissae of the rule on [-1, 1] and their weights.
+        for (std::size_t i = 0; i < Gauss::abscissa().size(); ++i)
+            for (const double sign : {-1.0, 1.0}) {
+                const double x = sign * Gauss::abscissa()[i];
+                if (x == 0.0 && sign > 0.0)
+                    continue; // the middle node of an odd rule once
+                const double u = 0.5 * pi * (1.0 + x);
+                r.node[k] = -std::cos(u);
+                r.weight[k] = 0.5 * pi * Gauss::weights()[i] * std::sin(u);
+                ++k;
+            }
+        return r;
+    }();
+    return rule;
+}
+
+/// Angle of the circle of radius q > 0 around a point at distance rho > 0 from the axis that
+/// lies inside the disk of radius ra: 2 acos(x), x = (rho^2 - ra^2 + q^2) / (2 rho q), with
+/// rho^2 - ra^2 formed as (rho - ra)(rho + ra) so that a centre at the wall keeps its digits.
+/// (4 atan(sqrt((1 - x) / (1 + x))) with 1 - x and 1 + x factored gave the same volumes to
+/// 3e-14 in 1.7 times the time.)
+double angle_inside(double q, double rho, double ra) {
+    const double x = ((rho - ra) * (rho + ra) + q * q) / (2.0 * rho * q);
+    return 2.0 * std::acos(std::clamp(x, -1.0, 1.0));
+}
+
+/// Volume of the ball of radius r whose centre is at distance rho from the axis inside the
+/// infinite cylinder of radius ra > 0, by cylindrical shells of radius q about the ball's
+/// vertical axis, each of height 2 sqrt(r^2 - q^2): the shells wholly inside the cylinder
+/// (q <= ra - rho) in closed form, 4 pi / 3 (r^3 - (r^2 - q^2)^(3/2)), those the wall cuts
+/// (|ra - rho| < q < ra + rho) by the mapped rule over angle_inside(q) q 2 sqrt(r^2 - q^2).
+double ball_in_cylinder(double rho, double r, double ra) {
+    const double q1 = std::abs(ra - rho); // the first shell the wall cuts
+    double volume = 0.0;
+    if (rho < ra) {
+        const double q = std::min(q1, r);
+        const double rest = std::sqrt((r - q) * (r + q));
+        volume = 4.0 / 3.0 * pi * (r * r * r - rest * rest * rest);
+    }
+    const double q2 = std::min(r, ra + rho); // the last shell in the ball the wall cuts
+    if (q1 < q2) {
+        const MappedRule& rule = mapped_rule();
+        const double mid = 0.5 * (q1 + q2), half = 0.5 * (q2 - q1);
+        double sum = 0.0;
+        for (std::size_t k = 0; k < MappedRule::points; ++k) {
+            const double q = mid + half * rule.node[k];
+            sum += rule.weight[k] * angle_inside(q, rho, ra) * q * 2.0 *
+                   std::sqrt(std::max((r - q) * (r + q), 0.0));
+        }
+        volume += half * sum;
+    }
+    return volume;
+}
+
+/// ball_volume_in_pair_region with the centre's distance from the axis, rho, given.
+double ball_in_region(const Vec3& c, double rho, double r, const PairRegion& region) {
+    if (!(r > 0.0 && region.radius > 0.0))
+        return 0.0;
+    const Band& band = region.band;
+    if (r <= c.z - band.z_low && r <= band.z_high - c.z)
+        return ball_in_cylinder(rho, r, region.radius);
+    return sphere_volume_in_cylinder_slab(c, r, region.radius, band.z_low, band.z_high);
+}
+
 /// g(r) over `bins` bins of `width` up to `range`, from the pairs `grid` (cells of edge >=
-/// range) finds.
-std::vector<ProfileBin> pair_correlation(const Packing& packing, double rt, double range,
-                                         double width, const Band& band, std::size_t bins,
-                                         const CellGrid& grid) {
+/// range) finds with both centres in `band`, normalised in `region` (analysis.hpp).
+std::vector<ProfileBin> pair_correlation(const Packing& packing, const Band& band,
+                                         const PairRegion& region, double range, double width,
+                                         std::size_t bins, const CellGrid& grid) {
     const std::size_t n = packing.size();
     const Vec3* const x = packing.centers.data();
     // Whole-number counts, so their sum is the same in any order: one histogram per thread,
@@ -365,7 +447,7 @@ std::vector<ProfileBin> pair_correlation(const Packing& packing, double rt, doub
             grid.for_each_near(i, 1, [&](std::uint32_t j) {
                 const double d = norm(x[j] - x[i]);
                 // d/width may round up to `bins` when d is just below the range: last bin.
-                if (j != i && d < range)
+                if (j != i && d < range && in_band(x[j], band))
                     ++count[std::min(static_cast<std::size_t>(d / width), bins - 1)];
             });
         }
@@ -377,12 +459,34 @@ std::vector<ProfileBin> pair_correlation(const Packing& packing, double rt, doub
     double in = 0.0;
     for (std::size_t i = 0; i < n; ++i)
         in += in_band(x[i], band) ? 1.0 : 0.0;
-    const double density = in / (pi * rt * rt * (band.z_high - band.z_low));
+
+    // sum_i V_i of each bin, V_i the shell's volume inside the region around centre i: the
+    // differences of the ball volumes at successive bin edges (the last edge is the range,
+    // where the counting stops), summed in fixed chunks (the same bits for any threads).
+    auto edge = [&](std::size_t k) { return k < bins ? static_cast<double>(k) * width : range; };
+    const std::vector<double> volume =
+        histogram_over_spheres(n, bins, [&](std::size_t i, double* row) {
+            if (!in_band(x[i], band))
+                return;
+            const double rho = std::hypot(x[i].x, x[i].y);
+            double inner = 0.0;
+            for (std::size_t k = 0; k < bins; ++k) {
+                const double outer = ball_in_region(x[i], rho, edge(k + 1), region);
+                row[k] += outer - inner;
+                inner = outer;
+            }
+        });
+    // The density of the other centres in the region: an ideal gas of `in` points in it puts
+    // (in - 1) V_i / |region| of them in the shell around each.
+    const double height = region.band.z_high - region.band.z_low;
+    const double density = region.radius > 0.0 && height > 0.0
+                               ? (in - 1.0) / (pi * region.radius * region.radius * height)
+                               : 0.0;
     std::vector<ProfileBin> out(bins);
     for (std::size_t k = 0; k < bins; ++k) {
         const double lo = static_cast<double>(k) * width, hi = lo + width;
-        const double shell = 4.0 / 3.0 * pi * (hi * hi * hi - lo * lo * lo);
-        out[k] = {lo, hi, in > 0.0 ? count[k] / (in * density * shell) : 0.0};
+        const double expected = density * volume[k];
+        out[k] = {lo, hi, expected > 0.0 ? count[k] / expected : 0.0};
     }
     return out;
 }
@@ -499,6 +603,24 @@ double pair_budget(std::size_t n, double distance, double mean_diameter) {
 
 } // namespace
 
+PairRegion pair_region(const Packing& packing, const Cylinder& container, const Band& band) {
+    double radii = 0.0, counted = 0.0;
+    for (std::size_t i = 0; i < packing.size(); ++i)
+        if (in_band(packing.centers[i], band)) {
+            radii += packing.radii[i];
+            counted += 1.0;
+        }
+    const double mean_radius = counted > 0.0 ? radii / counted : 0.0;
+    // A band given by the user may reach the floor or the top, where no centre can be.
+    const Band heights{std::max(band.z_low, mean_radius),
+                       std::min(band.z_high, bed_top(packing) - mean_radius)};
+    return {container.radius() - mean_radius, heights};
+}
+
+double ball_volume_in_pair_region(const Vec3& centre, double radius, const PairRegion& region) {
+    return ball_in_region(centre, std::hypot(centre.x, centre.y), radius, region);
+}
+
 BedAnalysis analyze_bed(const Packing& packing, const Cylinder& container,
                         const AnalysisOptions& options) {
     if (packing.size() == 0)
@@ -582,7 +704,8 @@ BedAnalysis analyze_bed(const Packing& packing, const Cylinder& container,
     out.centre_distribution =
         centre_distribution(packing, rt, options.centre_bin * dp, *band, centre_bins);
     out.coordination = coordination(packing, container, contacts, *band);
-    out.pair_correlation = pair_correlation(packing, rt, rdf_range, rdf_bin, *band,
+    out.pair_region = pair_region(packing, container, *band);
+    out.pair_correlation = pair_correlation(packing, *band, out.pair_region, rdf_range, rdf_bin,
                                             static_cast<std::size_t>(rdf_bins), rdf_grid);
     return out;
 }
