@@ -40,6 +40,9 @@ cmake --build "$build" -j"$jobs"
 #   SoftSphere.OptimisationsLeaveEveryBitOfTheResult (the same solver, 22 s) and the rest.
 # - stl_passes_admesh_and_surfacecheck, openfoam_case_meshes (33-39 s): they check our files
 #   in other programs; our writers run sanitized in Surface.* and Cli.*.
+# - Cli.ProgressLineFitsAnEightyColumnTerminal (104 s sanitized: the paper's solver on
+#   200 spheres, about 1 s in the release build, so that a terminal sees several redraws);
+#   kept: Progress.StatusLineFitsByDroppingTheLeastImportantFields (the fitting itself).
 # The release suite (ctest in build/) runs every one of them. Run all of them sanitized:
 #   PACKBED_SANITIZE_ALL=1 scripts/test-sanitize.sh
 # (A parameterised test's ctest name ends in "  # GetParam() = ...": hence "( |$)".)
@@ -51,6 +54,7 @@ skip=(
   'SoftSphere\.SmallBedConvergesInsideTheContainer$'
   '^stl_passes_admesh_and_surfacecheck$'
   '^openfoam_case_meshes$'
+  'Cli\.ProgressLineFitsAnEightyColumnTerminal$'
 )
 exclude=()
 if [[ -z ${PACKBED_SANITIZE_ALL:-} ]]; then
