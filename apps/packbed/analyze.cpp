@@ -71,10 +71,14 @@ std::optional<double> frame_void_fraction(const ParticleFile& frame, const Cylin
         return std::nullopt;
     const double dp = o.diameter > 0.0 ? o.diameter : frame.packing.mean_diameter();
     check_inside(frame, name, container.radius(), o.outside_tolerance * dp, o.placement.shifted());
-    if (o.analysis.band ? o.analysis.band->z_high > bed_top(frame.packing)
-                        : !band_clear_of_ends(frame.packing, o.analysis.band_clearance * dp))
+    // Only the void fraction: the rest of analyze_bed (contacts, g(r)) is for the last frame.
+    const std::optional<Band> band =
+        o.analysis.band
+            ? (o.analysis.band->z_high > bed_top(frame.packing) ? std::nullopt : o.analysis.band)
+            : band_clear_of_ends(frame.packing, o.analysis.band_clearance * dp);
+    if (!band)
         return std::nullopt;
-    return analyze_bed(frame.packing, container, o.analysis).void_fraction;
+    return void_fraction(frame.packing, container, band->z_low, band->z_high);
 }
 
 int run_analyze(AnalyzeOptions& o) {

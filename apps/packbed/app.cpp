@@ -3,7 +3,6 @@
 #include "app.hpp"
 
 #include <algorithm>
-
 #include <cstdio>
 #include <string_view>
 #include <vector>
