@@ -87,44 +87,44 @@ std::vector<double> histogram_over_spheres(std::size_t n, std::size_t bins, F&& 
     return total;
 }
 
-/// e(r) over `shells` shells [b_{k+1}, b_k], b_k = Rt - k w (wall first); exact volumes.
-std::vector<ProfileBin> radial_void_fraction(const Packing& packing, double rt, double width,
-                                             const Band& band, std::size_t shells) {
-    auto boundary = [&](std::size_t k) {
-        return std::max(rt - static_cast<double>(k) * width, 0.0);
-    };
+/// e(d) over `shells` shells of the distance d from the wall, [k w, (k+1) w] (wall first; the
+/// last ends at the container's depth); exact volumes: each sphere's part in a shell is the
+/// difference of its volumes inside the container shrunk by the shell's two distances.
+std::vector<ProfileBin> wall_void_fraction(const Packing& packing, const Container& container,
+                                           double width, const Band& band, std::size_t shells) {
+    auto distance = [&](std::size_t k) { return static_cast<double>(k) * width; };
     const double last_shell = static_cast<double>(shells - 1);
     const auto solid =
         histogram_over_spheres(packing.size(), shells, [&](std::size_t i, double* row) {
             const Vec3& c = packing.centers[i];
             const double radius = packing.radii[i];
-            const double rho = std::hypot(c.x, c.y);
-            // Shells that can hold part of the sphere: boundaries between rho - R and rho + R
-            // (clamped in double, before the casts).
-            const double outer = rho + radius, inner = rho - radius;
-            const double first = std::max(std::floor((rt - outer) / width), 0.0);
+            // Shells that can hold part of the sphere: from its nearest to its farthest
+            // distance from the wall (clamped in double, before the casts).
+            const auto [nearest, farthest] = container.wall_distances(c, radius);
+            const double first = std::max(std::floor(nearest / width), 0.0);
             if (first > last_shell)
                 return;
             const auto k_first = static_cast<std::size_t>(first);
             const auto k_last = static_cast<std::size_t>(
-                std::min(last_shell, std::max(std::ceil((rt - inner) / width), 0.0)));
-            auto inside = [&](double cylinder) {
-                return cylinder <= 0.0 ? 0.0
-                                       : sphere_volume_in_cylinder_slab(c, radius, cylinder,
-                                                                        band.z_low, band.z_high);
+                std::min(last_shell, std::max(std::ceil(farthest / width), 0.0)));
+            auto inside = [&](std::size_t k) {
+                return container.shrunk(distance(k))
+                    .sphere_volume(c, radius, band.z_low, band.z_high);
             };
-            double outer_volume = inside(boundary(k_first));
+            double outer_volume = inside(k_first);
             for (std::size_t k = k_first; k <= k_last; ++k) {
-                const double inner_volume = inside(boundary(k + 1));
+                const double inner_volume = inside(k + 1);
                 row[k] += outer_volume - inner_volume;
                 outer_volume = inner_volume;
             }
         });
     const double height = band.z_high - band.z_low;
+    const double depth = container.depth();
     std::vector<ProfileBin> out(shells);
     for (std::size_t k = 0; k < shells; ++k) {
-        const double hi = boundary(k), lo = boundary(k + 1);
-        out[k] = {lo, hi, 1.0 - solid[k] / (pi * (hi * hi - lo * lo) * height)};
+        const double lo = distance(k), hi = distance(k + 1);
+        out[k] = {lo, std::min(hi, depth),
+                  1.0 - solid[k] / (container.shell_area(lo, hi) * height)};
     }
     return out;
 }
@@ -132,8 +132,8 @@ std::vector<ProfileBin> radial_void_fraction(const Packing& packing, double rt, 
 /// e(z) over `slabs` slabs [k h, (k+1) h] from the floor to the top of the bed; exact volumes.
 /// The spheres are taken in order of height, so each chunk touches a short run of slabs and
 /// keeps a partial row for that run only: memory O(N) however tall the bed.
-std::vector<ProfileBin> axial_void_fraction(const Packing& packing, double rt, double height,
-                                            std::size_t slabs) {
+std::vector<ProfileBin> axial_void_fraction(const Packing& packing, const Container& container,
+                                            double height, std::size_t slabs) {
     const std::size_t n = packing.size();
     std::vector<std::uint32_t> order(n);
     for (std::size_t i = 0; i < n; ++i)
@@ -188,9 +188,9 @@ std::vector<ProfileBin> axial_void_fraction(const Packing& packing, double rt, d
                     const std::size_t i = order[s];
                     const auto [k_first, k_last] = slab_range(i);
                     for (std::size_t k = k_first; k <= k_last; ++k)
-                        row[k - row_start[c]] += sphere_volume_in_cylinder_slab(
-                            packing.centers[i], packing.radii[i], rt,
-                            static_cast<double>(k) * height, static_cast<double>(k + 1) * height);
+                        row[k - row_start[c]] += container.sphere_volume(
+                            packing.centers[i], packing.radii[i], static_cast<double>(k) * height,
+                            static_cast<double>(k + 1) * height);
                 }
             });
         errors.rethrow();
@@ -202,7 +202,7 @@ std::vector<ProfileBin> axial_void_fraction(const Packing& packing, double rt, d
     std::vector<ProfileBin> out(slabs);
     for (std::size_t k = 0; k < slabs; ++k) {
         const double lo = static_cast<double>(k) * height, hi = lo + height;
-        out[k] = {lo, hi, 1.0 - solid[k] / (pi * rt * rt * height)};
+        out[k] = {lo, hi, 1.0 - solid[k] / (container.cross_section_area() * height)};
     }
     return out;
 }
@@ -211,27 +211,28 @@ bool in_band(const Vec3& c, const Band& band) {
     return c.z >= band.z_low && c.z <= band.z_high;
 }
 
-/// Relative number density of centres in `bins` annuli [b_{k+1}, b_k], b_k = Rt - k w.
-std::vector<ProfileBin> centre_distribution(const Packing& packing, double rt, double width,
-                                            const Band& band, std::size_t bins) {
+/// Relative number density of centres in `bins` shells of the distance from the wall,
+/// [k w, (k+1) w], over the mean density across the cross-section.
+std::vector<ProfileBin> centre_distribution(const Packing& packing, const Container& container,
+                                            double width, const Band& band, std::size_t bins) {
     std::vector<double> count(bins, 0.0);
     double total = 0.0;
     for (const Vec3& c : packing.centers) {
         if (!in_band(c, band))
             continue;
-        const double from_wall = rt - std::hypot(c.x, c.y);
+        const double from_wall = container.wall_distance(c);
         const auto k = static_cast<std::size_t>(
             std::clamp(std::floor(from_wall / width), 0.0, static_cast<double>(bins - 1)));
         count[k] += 1.0;
         total += 1.0;
     }
-    const double mean_density = total / (pi * rt * rt);
+    const double mean_density = total / container.cross_section_area();
+    const double depth = container.depth();
     std::vector<ProfileBin> out(bins);
     for (std::size_t k = 0; k < bins; ++k) {
-        const double hi = std::max(rt - static_cast<double>(k) * width, 0.0);
-        const double lo = std::max(rt - static_cast<double>(k + 1) * width, 0.0);
-        const double density = count[k] / (pi * (hi * hi - lo * lo));
-        out[k] = {lo, hi, total > 0.0 ? density / mean_density : 0.0};
+        const double lo = static_cast<double>(k) * width, hi = static_cast<double>(k + 1) * width;
+        const double density = count[k] / container.shell_area(lo, hi);
+        out[k] = {lo, std::min(hi, depth), total > 0.0 ? density / mean_density : 0.0};
     }
     return out;
 }
@@ -281,7 +282,7 @@ struct ContactSearch {
     }
 };
 
-Coordination coordination(const Packing& packing, const Cylinder& container,
+Coordination coordination(const Packing& packing, const Container& container,
                           const ContactSearch& search, const Band& band) {
     const std::size_t n = packing.size();
     const double tolerance = search.tolerance, small = search.small_radius;
@@ -316,7 +317,7 @@ Coordination coordination(const Packing& packing, const Cylinder& container,
     std::size_t contacts_total = 0, contacts_stable = 0;
     for (std::size_t i = 0; i < n; ++i) {
         const Vec3& c = x[i];
-        const double gap_wall = container.radius() - (std::hypot(c.x, c.y) + radius[i]);
+        const double gap_wall = container.wall_distances(c, radius[i]).first;
         const bool wall = gap_wall <= tolerance;
         out.wall_contacts += wall ? 1 : 0;
         if (!in_band(c, band))
@@ -340,86 +341,6 @@ Coordination coordination(const Packing& packing, const Cylinder& container,
         out.mean_without_rattlers =
             static_cast<double>(contacts_stable) / static_cast<double>(out.spheres - out.rattlers);
     return out;
-}
-
-/// The 20-point Gauss-Legendre rule on [0, pi] after the map q = m - h cos u, which turns the
-/// square-root end points of the integrands of ball_in_cylinder (a circle that starts to
-/// cross the wall, a ball's chord that closes) into smooth functions of u: nodes -cos u_k and
-/// weights w_k sin u_k, so that the integral of f over [m - h, m + h] is
-/// h sum_k weight_k f(m + h node_k). Computed once.
-struct MappedRule {
-    static constexpr std::size_t points = 20;
-    std::array<double, points> node{};
-    std::array<double, points> weight{};
-};
-
-const MappedRule& mapped_rule() {
-    static const MappedRule rule = [] {
-        using Gauss = boost::math::quadrature::gauss<double, MappedRule::points>;
-        MappedRule r;
-        std::size_t k = 0;
-        // Gauss holds the non-negative abscissae of the rule on [-1, 1] and their weights.
-        for (std::size_t i = 0; i < Gauss::abscissa().size(); ++i)
-            for (const double sign : {-1.0, 1.0}) {
-                const double x = sign * Gauss::abscissa()[i];
-                if (x == 0.0 && sign > 0.0)
-                    continue; // the middle node of an odd rule once
-                const double u = 0.5 * pi * (1.0 + x);
-                r.node[k] = -std::cos(u);
-                r.weight[k] = 0.5 * pi * Gauss::weights()[i] * std::sin(u);
-                ++k;
-            }
-        return r;
-    }();
-    return rule;
-}
-
-/// Angle of the circle of radius q > 0 around a point at distance rho > 0 from the axis that
-/// lies inside the disk of radius ra: 2 acos(x), x = (rho^2 - ra^2 + q^2) / (2 rho q), with
-/// rho^2 - ra^2 formed as (rho - ra)(rho + ra) so that a centre at the wall keeps its digits.
-/// (4 atan(sqrt((1 - x) / (1 + x))) with 1 - x and 1 + x factored gave the same volumes to
-/// 3e-14 in 1.7 times the time.)
-double angle_inside(double q, double rho, double ra) {
-    const double x = ((rho - ra) * (rho + ra) + q * q) / (2.0 * rho * q);
-    return 2.0 * std::acos(std::clamp(x, -1.0, 1.0));
-}
-
-/// Volume of the ball of radius r whose centre is at distance rho from the axis inside the
-/// infinite cylinder of radius ra > 0, by cylindrical shells of radius q about the ball's
-/// vertical axis, each of height 2 sqrt(r^2 - q^2): the shells wholly inside the cylinder
-/// (q <= ra - rho) in closed form, 4 pi / 3 (r^3 - (r^2 - q^2)^(3/2)), those the wall cuts
-/// (|ra - rho| < q < ra + rho) by the mapped rule over angle_inside(q) q 2 sqrt(r^2 - q^2).
-double ball_in_cylinder(double rho, double r, double ra) {
-    const double q1 = std::abs(ra - rho); // the first shell the wall cuts
-    double volume = 0.0;
-    if (rho < ra) {
-        const double q = std::min(q1, r);
-        const double rest = std::sqrt((r - q) * (r + q));
-        volume = 4.0 / 3.0 * pi * (r * r * r - rest * rest * rest);
-    }
-    const double q2 = std::min(r, ra + rho); // the last shell in the ball the wall cuts
-    if (q1 < q2) {
-        const MappedRule& rule = mapped_rule();
-        const double mid = 0.5 * (q1 + q2), half = 0.5 * (q2 - q1);
-        double sum = 0.0;
-        for (std::size_t k = 0; k < MappedRule::points; ++k) {
-            const double q = mid + half * rule.node[k];
-            sum += rule.weight[k] * angle_inside(q, rho, ra) * q * 2.0 *
-                   std::sqrt(std::max((r - q) * (r + q), 0.0));
-        }
-        volume += half * sum;
-    }
-    return volume;
-}
-
-/// ball_volume_in_pair_region with the centre's distance from the axis, rho, given.
-double ball_in_region(const Vec3& c, double rho, double r, const PairRegion& region) {
-    if (!(r > 0.0 && region.radius > 0.0))
-        return 0.0;
-    const Band& band = region.band;
-    if (r <= c.z - band.z_low && r <= band.z_high - c.z)
-        return ball_in_cylinder(rho, r, region.radius);
-    return sphere_volume_in_cylinder_slab(c, r, region.radius, band.z_low, band.z_high);
 }
 
 /// g(r) over `bins` bins of `width` up to `range`, from the pairs `grid` (cells of edge >=
@@ -468,10 +389,9 @@ std::vector<ProfileBin> pair_correlation(const Packing& packing, const Band& ban
         histogram_over_spheres(n, bins, [&](std::size_t i, double* row) {
             if (!in_band(x[i], band))
                 return;
-            const double rho = std::hypot(x[i].x, x[i].y);
             double inner = 0.0;
             for (std::size_t k = 0; k < bins; ++k) {
-                const double outer = ball_in_region(x[i], rho, edge(k + 1), region);
+                const double outer = ball_volume_in_pair_region(x[i], edge(k + 1), region);
                 row[k] += outer - inner;
                 inner = outer;
             }
@@ -479,9 +399,8 @@ std::vector<ProfileBin> pair_correlation(const Packing& packing, const Band& ban
     // The density of the other centres in the region: an ideal gas of `in` points in it puts
     // (in - 1) V_i / |region| of them in the shell around each.
     const double height = region.band.z_high - region.band.z_low;
-    const double density = region.radius > 0.0 && height > 0.0
-                               ? (in - 1.0) / (pi * region.radius * region.radius * height)
-                               : 0.0;
+    const double area = region.container.cross_section_area();
+    const double density = area > 0.0 && height > 0.0 ? (in - 1.0) / (area * height) : 0.0;
     std::vector<ProfileBin> out(bins);
     for (std::size_t k = 0; k < bins; ++k) {
         const double lo = static_cast<double>(k) * width, hi = lo + width;
@@ -492,7 +411,7 @@ std::vector<ProfileBin> pair_correlation(const Packing& packing, const Band& ban
 }
 
 /// Refuse a sphere or an option that no measurement can use.
-void check_input(const Packing& packing, double rt, const AnalysisOptions& o) {
+void check_input(const Packing& packing, const Container& container, const AnalysisOptions& o) {
     if (packing.size() > limits::max_spheres)
         throw InvalidInput(fmt::format("the bed has {} spheres; allowed: at most {}",
                                        packing.size(), limits::max_spheres));
@@ -507,10 +426,20 @@ void check_input(const Packing& packing, double rt, const AnalysisOptions& o) {
                             "coordinates within {:g} of the origin and a radius > 0 up to {:g}",
                             i + 1, c.x, c.y, c.z, r, far, far));
     }
-    if (!(rt > 0.0 && rt <= far))
-        throw InvalidInput(fmt::format("--container-radius = {} is not allowed; "
-                                       "allowed: > 0 and at most {:g}",
-                                       rt, far));
+    if (const Cylinder* cylinder = container.cylinder()) {
+        const double rt = cylinder->radius();
+        if (!(rt > 0.0 && rt <= far))
+            throw InvalidInput(fmt::format("--container-radius = {} is not allowed; "
+                                           "allowed: > 0 and at most {:g}",
+                                           rt, far));
+    } else {
+        const Rectangle b = container.bounds();
+        if (!(container.depth() > 0.0 && std::abs(b.x_low) <= far && std::abs(b.x_high) <= far &&
+              std::abs(b.y_low) <= far && std::abs(b.y_high) <= far))
+            throw InvalidInput(fmt::format("--container {} is not allowed; allowed: widths > 0, "
+                                           "sides within {:g} of the origin",
+                                           container.spec(), far));
+    }
     auto positive = [](double v, std::string_view name) {
         if (!(std::isfinite(v) && v > 0.0))
             throw InvalidInput(fmt::format("{} = {} is not allowed; allowed: > 0 (Dp)", name, v));
@@ -575,13 +504,20 @@ std::size_t axial_slabs(const Packing& packing, double height, double slab, doub
         height, slabs, slab, dp, budget, budget_reason(packing.size()), outlier));
 }
 
-/// The number of bins of `width` Dp across the container radius, checked.
-std::size_t radial_bins(const Packing& packing, double rt, double width, double dp,
+/// The number of bins of `width` Dp from the wall to the container's depth, checked.
+std::size_t radial_bins(const Packing& packing, const Container& container, double width, double dp,
                         std::string_view option, std::string_view noun, std::string_view profile) {
-    const double bins = bins_over(rt, width * dp);
+    const double bins = bins_over(container.depth(), width * dp);
     const double budget = bin_budget(packing.size());
     if (bins <= budget)
         return static_cast<std::size_t>(bins);
+    if (!container.cylinder())
+        throw InvalidInput(fmt::format(
+            "--container {} needs {:.3g} {} of {} {} Dp (Dp = {:.6g}) from the wall to the "
+            "middle for the {}; allowed: at most {:.3g} ({}); a smaller container or a larger {}",
+            container.spec(), bins, noun, option, width, dp, profile, budget,
+            budget_reason(packing.size()), option));
+    const double rt = container.depth();
     double reach = 0.0; // how far the spheres reach from the axis
     for (std::size_t i = 0; i < packing.size(); ++i)
         reach = std::max(reach,
@@ -603,7 +539,7 @@ double pair_budget(std::size_t n, double distance, double mean_diameter) {
 
 } // namespace
 
-PairRegion pair_region(const Packing& packing, const Cylinder& container, const Band& band) {
+PairRegion pair_region(const Packing& packing, const Container& container, const Band& band) {
     double radii = 0.0, counted = 0.0;
     for (std::size_t i = 0; i < packing.size(); ++i)
         if (in_band(packing.centers[i], band)) {
@@ -614,19 +550,20 @@ PairRegion pair_region(const Packing& packing, const Cylinder& container, const 
     // A band given by the user may reach the floor or the top, where no centre can be.
     const Band heights{std::max(band.z_low, mean_radius),
                        std::min(band.z_high, bed_top(packing) - mean_radius)};
-    return {container.radius() - mean_radius, heights};
+    return {container.shrunk(mean_radius), heights};
 }
 
 double ball_volume_in_pair_region(const Vec3& centre, double radius, const PairRegion& region) {
-    return ball_in_region(centre, std::hypot(centre.x, centre.y), radius, region);
+    if (!(region.band.z_high > region.band.z_low))
+        return 0.0;
+    return region.container.ball_volume(centre, radius, region.band.z_low, region.band.z_high);
 }
 
-BedAnalysis analyze_bed(const Packing& packing, const Cylinder& container,
+BedAnalysis analyze_bed(const Packing& packing, const Container& container,
                         const AnalysisOptions& options) {
     if (packing.size() == 0)
         throw InvalidInput("the bed has no spheres");
-    const double rt = container.radius();
-    check_input(packing, rt, options);
+    check_input(packing, container, options);
     BedAnalysis out;
     const double mean_diameter = packing.mean_diameter();
     out.diameter = options.diameter.value_or(mean_diameter);
@@ -658,10 +595,10 @@ BedAnalysis analyze_bed(const Packing& packing, const Cylinder& container,
     out.band = *band;
 
     // Every bin count and the work of the pair searches, checked before any of it is done.
-    const std::size_t shells = radial_bins(packing, rt, options.shell_width, dp, "--shell-width",
-                                           "shells", "radial profile");
-    const std::size_t centre_bins = radial_bins(packing, rt, options.centre_bin, dp, "--centre-bin",
-                                                "bins", "centre distribution");
+    const std::size_t shells = radial_bins(packing, container, options.shell_width, dp,
+                                           "--shell-width", "shells", "radial profile");
+    const std::size_t centre_bins = radial_bins(packing, container, options.centre_bin, dp,
+                                                "--centre-bin", "bins", "centre distribution");
     const std::size_t slabs = axial_slabs(packing, bed_top(packing), options.slab_height, dp);
     const double rdf_range = options.rdf_range * dp, rdf_bin = options.rdf_bin * dp;
     const double rdf_bins = bins_over(rdf_range, rdf_bin);
@@ -699,10 +636,11 @@ BedAnalysis analyze_bed(const Packing& packing, const Cylinder& container,
 
     out.void_fraction = void_fraction(packing, container, band->z_low, band->z_high);
     out.radial_void_fraction =
-        radial_void_fraction(packing, rt, options.shell_width * dp, *band, shells);
-    out.axial_void_fraction = axial_void_fraction(packing, rt, options.slab_height * dp, slabs);
+        wall_void_fraction(packing, container, options.shell_width * dp, *band, shells);
+    out.axial_void_fraction =
+        axial_void_fraction(packing, container, options.slab_height * dp, slabs);
     out.centre_distribution =
-        centre_distribution(packing, rt, options.centre_bin * dp, *band, centre_bins);
+        centre_distribution(packing, container, options.centre_bin * dp, *band, centre_bins);
     out.coordination = coordination(packing, container, contacts, *band);
     out.pair_region = pair_region(packing, container, *band);
     out.pair_correlation = pair_correlation(packing, *band, out.pair_region, rdf_range, rdf_bin,

@@ -9,7 +9,7 @@
 
 namespace packbed {
 
-std::vector<std::string> analysis_warnings(const Packing& packing, const Cylinder& container,
+std::vector<std::string> analysis_warnings(const Packing& packing, const Container& container,
                                            const BedAnalysis& a, const BedCheckLimits& limits) {
     std::vector<std::string> out;
     const Band band = a.band;
@@ -31,9 +31,11 @@ std::vector<std::string> analysis_warnings(const Packing& packing, const Cylinde
             "{:.6g}), {:.4f} in its upper half (to {:.6g}); a ragged top or a bed still being "
             "poured? See axial_void_fraction.csv, and set the band with --band ZLOW,ZHIGH",
             lower, band.z_low, middle, upper, band.z_high));
-    const double aspect_ratio = 2.0 * container.radius() / a.diameter;
+    // Dixon's correlation is for cylinders: a box or a lattice has no such reference.
+    const Cylinder* cylinder = container.cylinder();
+    const double aspect_ratio = cylinder ? 2.0 * cylinder->radius() / a.diameter : 0.0;
     for (const auto& c : mean_void_fraction_correlations())
-        if (c.name == "dixon-1988") {
+        if (cylinder && c.name == "dixon-1988") {
             const double dixon = c(aspect_ratio).value;
             if (a.void_fraction > dixon + limits.max_above_dixon)
                 out.push_back(fmt::format(

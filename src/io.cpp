@@ -353,21 +353,30 @@ std::string profile_csv(std::string_view header, const std::vector<ProfileBin>& 
 } // namespace
 
 std::vector<std::pair<std::string, std::string>> analysis_tables(const BedAnalysis& a,
-                                                                 double container_radius) {
+                                                                 const Container& container) {
     const double dp = a.diameter;
-    auto from_wall = [&](double r) { return (container_radius - r) / dp; };
+    // The wall profiles: the container's position (a cylinder's radial position), then the
+    // distance from the wall in Dp.
+    const std::string position(container.profile_position_name());
+    auto wall_profile = [&](std::string_view value, const std::vector<ProfileBin>& bins) {
+        fmt::memory_buffer out;
+        fmt::format_to(std::back_inserter(out), "{},x_from_wall_d,{}\n", position, value);
+        for (const auto& b : bins) {
+            const double mid = 0.5 * (b.low + b.high);
+            fmt::format_to(std::back_inserter(out), "{:.12g},{:.12g},{}\n",
+                           container.profile_position(mid), mid / dp, b.value);
+        }
+        return fmt::to_string(out);
+    };
     auto in_dp = [&](double length) { return length / dp; };
     std::string coordination = "contacts,spheres\n";
     for (std::size_t k = 0; k < a.coordination.histogram.size(); ++k)
         coordination += fmt::format("{},{}\n", k, a.coordination.histogram[k]);
     return {
-        {"radial_void_fraction.csv", profile_csv("radial_position,x_from_wall_d,void_fraction",
-                                                 a.radial_void_fraction, from_wall)},
+        {"radial_void_fraction.csv", wall_profile("void_fraction", a.radial_void_fraction)},
         {"axial_void_fraction.csv",
          profile_csv("z,z_d,void_fraction", a.axial_void_fraction, in_dp)},
-        {"radial_centre_distribution.csv",
-         profile_csv("radial_position,x_from_wall_d,relative_density", a.centre_distribution,
-                     from_wall)},
+        {"radial_centre_distribution.csv", wall_profile("relative_density", a.centre_distribution)},
         {"coordination.csv", coordination},
         {"pair_correlation.csv", profile_csv("distance,distance_d,g", a.pair_correlation, in_dp)},
     };

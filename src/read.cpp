@@ -1089,7 +1089,26 @@ BedSummary read_bed_summary(std::istream& input, std::string_view name) {
                         shown, printable(size->dump().substr(0, 80)), limits::max_length));
             }
             out.box = box;
+            out.container = Box(box[0], box[1]);
         }
+    }
+    if (out.container_radius)
+        out.container = Cylinder(*out.container_radius);
+    // A box: container {shape: box, size: [LX, LY]} (from 0 to LX and LY).
+    if (const auto c = json.find("container");
+        c != json.end() && c->is_object() && c->value("shape", nlohmann::json()) == "box") {
+        const auto size = c->find("size");
+        std::array<double, 2> widths{std::nan(""), std::nan("")};
+        if (size != c->end() && size->is_array() && size->size() == 2)
+            for (std::size_t k = 0; k < 2; ++k)
+                widths[k] = (*size)[k].is_number() ? (*size)[k].get<double>() : std::nan("");
+        if (!(widths[0] > 0.0 && widths[0] <= limits::max_length && widths[1] > 0.0 &&
+              widths[1] <= limits::max_length))
+            throw InvalidInput(fmt::format(
+                "{}: container.size = {} is not allowed; allowed: two numbers in (0, {:g}]", shown,
+                printable(size != c->end() ? size->dump().substr(0, 80) : "missing"),
+                limits::max_length));
+        out.container = Box(widths[0], widths[1]);
     }
     if (json.contains("lattice")) {
         out.porosity = number(json["lattice"], "porosity", "lattice.porosity", 1.0);

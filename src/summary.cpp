@@ -124,6 +124,15 @@ nlohmann::json analysis_summary(const BedAnalysis& a, const AnalysisOptions& o) 
               "radial_centre_distribution.csv", "coordination.csv", "pair_correlation.csv"}}};
 }
 
+nlohmann::json container_summary(const Container& container) {
+    if (const Cylinder* c = container.cylinder())
+        return {{"shape", "cylinder"}, {"radius", c->radius()}};
+    const Rectangle b = container.bounds();
+    return {{"shape", container.name()},
+            {"size", {b.x_high - b.x_low, b.y_high - b.y_low}},
+            {"spec", container.spec()}};
+}
+
 nlohmann::json lattice_summary(const LatticeParameters& p, const Packing& packing) {
     using nlohmann::json;
     const UnitCell cell = unit_cell(p.type);
@@ -139,6 +148,7 @@ nlohmann::json lattice_summary(const LatticeParameters& p, const Packing& packin
     double solid = 0.0;
     if (const auto* box = std::get_if<BoxRegion>(&p.region)) {
         summary["region"] = {{"shape", "box"}, {"size", {box->size.x, box->size.y, box->size.z}}};
+        summary["container"] = container_summary(Box(box->size.x, box->size.y));
         double sum = 0.0;
         for (const Vec3& centre : packing.centers)
             sum += sphere_volume_in_box(centre, r, Vec3{}, box->size);

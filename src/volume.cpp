@@ -152,7 +152,81 @@ double sphere_volume_in_cylinder_slab(const Vec3& center, double radius, double 
     return volume;
 }
 
-double void_fraction(const Packing& packing, const Cylinder& container, double z_low,
+namespace {
+
+/// The 20-point Gauss-Legendre rule on [0, pi] after the map q = m - h cos u, which turns the
+/// square-root end points of the integrands of ball_volume_in_cylinder (a circle that starts to
+/// cross the wall, a ball's chord that closes) into smooth functions of u: nodes -cos u_k and
+/// weights w_k sin u_k, so that the integral of f over [m - h, m + h] is
+/// h sum_k weight_k f(m + h node_k). Computed once.
+struct MappedRule {
+    static constexpr std::size_t points = 20;
+    std::array<double, points> node{};
+    std::array<double, points> weight{};
+};
+
+const MappedRule& mapped_rule() {
+    static const MappedRule rule = [] {
+        using Gauss = boost::math::quadrature::gauss<double, MappedRule::points>;
+        MappedRule r;
+        std::size_t k = 0;
+        // Gauss holds the non-negative abscissae of the rule on [-1, 1] and their weights.
+        for (std::size_t i = 0; i < Gauss::abscissa().size(); ++i)
+            for (const double sign : {-1.0, 1.0}) {
+                const double x = sign * Gauss::abscissa()[i];
+                if (x == 0.0 && sign > 0.0)
+                    continue; // the middle node of an odd rule once
+                const double u = 0.5 * pi * (1.0 + x);
+                r.node[k] = -std::cos(u);
+                r.weight[k] = 0.5 * pi * Gauss::weights()[i] * std::sin(u);
+                ++k;
+            }
+        return r;
+    }();
+    return rule;
+}
+
+/// Angle of the circle of radius q > 0 around a point at distance rho > 0 from the axis that
+/// lies inside the disk of radius ra: 2 acos(x), x = (rho^2 - ra^2 + q^2) / (2 rho q), with
+/// rho^2 - ra^2 formed as (rho - ra)(rho + ra) so that a centre at the wall keeps its digits.
+/// (4 atan(sqrt((1 - x) / (1 + x))) with 1 - x and 1 + x factored gave the same volumes to
+/// 3e-14 in 1.7 times the time.)
+double angle_inside(double q, double rho, double ra) {
+    const double x = ((rho - ra) * (rho + ra) + q * q) / (2.0 * rho * q);
+    return 2.0 * std::acos(std::clamp(x, -1.0, 1.0));
+}
+
+/// Volume of the ball of radius r whose centre is at distance rho from the axis inside the
+/// infinite cylinder of radius ra > 0, by cylindrical shells of radius q about the ball's
+/// vertical axis, each of height 2 sqrt(r^2 - q^2): the shells wholly inside the cylinder
+/// (q <= ra - rho) in closed form, 4 pi / 3 (r^3 - (r^2 - q^2)^(3/2)), those the wall cuts
+/// (|ra - rho| < q < ra + rho) by the mapped rule over angle_inside(q) q 2 sqrt(r^2 - q^2).
+} // namespace
+
+double ball_volume_in_cylinder(double rho, double r, double ra) {
+    const double q1 = std::abs(ra - rho); // the first shell the wall cuts
+    double volume = 0.0;
+    if (rho < ra) {
+        const double q = std::min(q1, r);
+        const double rest = std::sqrt((r - q) * (r + q));
+        volume = 4.0 / 3.0 * pi * (r * r * r - rest * rest * rest);
+    }
+    const double q2 = std::min(r, ra + rho); // the last shell in the ball the wall cuts
+    if (q1 < q2) {
+        const MappedRule& rule = mapped_rule();
+        const double mid = 0.5 * (q1 + q2), half = 0.5 * (q2 - q1);
+        double sum = 0.0;
+        for (std::size_t k = 0; k < MappedRule::points; ++k) {
+            const double q = mid + half * rule.node[k];
+            sum += rule.weight[k] * angle_inside(q, rho, ra) * q * 2.0 *
+                   std::sqrt(std::max((r - q) * (r + q), 0.0));
+        }
+        volume += half * sum;
+    }
+    return volume;
+}
+
+double void_fraction(const Packing& packing, const Container& container, double z_low,
                      double z_high) {
     if (!(z_high > z_low))
         throw InvalidInput(fmt::format(
@@ -160,10 +234,8 @@ double void_fraction(const Packing& packing, const Cylinder& container, double z
             z_high));
     double solid = 0.0;
     for (std::size_t i = 0; i < packing.size(); ++i)
-        solid += sphere_volume_in_cylinder_slab(packing.centers[i], packing.radii[i],
-                                                container.radius(), z_low, z_high);
-    const double rc = container.radius();
-    return 1.0 - solid / (pi * rc * rc * (z_high - z_low));
+        solid += container.sphere_volume(packing.centers[i], packing.radii[i], z_low, z_high);
+    return 1.0 - solid / (container.cross_section_area() * (z_high - z_low));
 }
 
 double bed_top(const Packing& packing) {
@@ -229,11 +301,40 @@ double disk_rectangle_area(double radius, double x_low, double x_high, double y_
            disk_lower_left(radius, x_high, y_low) + disk_lower_left(radius, x_low, y_low);
 }
 
+namespace {
+
+/// Volume of the ball of radius r on the inner side of a plane at signed distance t from its
+/// centre (t > 0: the centre is inside): the whole ball less the cap of height r - t, or the cap
+/// of height r + t, each pi h^2 (3r - h) / 3, whichever keeps the digits.
+double ball_inside_plane(double r, double t) {
+    auto cap = [&](double h) { return pi * h * h * (3.0 * r - h) / 3.0; };
+    if (t >= r)
+        return 4.0 / 3.0 * pi * r * r * r;
+    if (t <= -r)
+        return 0.0;
+    return t >= 0.0 ? 4.0 / 3.0 * pi * r * r * r - cap(r - t) : cap(r + t);
+}
+
+/// The ball between the planes at signed distances t_low and t_high (t_low + t_high > 0, the
+/// slab not empty): inside both half-spaces, whose union is all of space.
+double ball_in_plane_slab(double r, double t_low, double t_high) {
+    return ball_inside_plane(r, t_low) + ball_inside_plane(r, t_high) - 4.0 / 3.0 * pi * r * r * r;
+}
+
+} // namespace
+
 double sphere_volume_in_box(const Vec3& c, double r, const Vec3& low, const Vec3& high) {
     const bool x_inside = c.x - r >= low.x && c.x + r <= high.x;
     const bool y_inside = c.y - r >= low.y && c.y + r <= high.y;
     if (x_inside && y_inside)
         return segment_volume(r, c.z, low.z, high.z);
+    // Cut by the faces of one axis only: spherical caps in closed form.
+    if (c.z - r >= low.z && c.z + r <= high.z && (x_inside || y_inside)) {
+        if (!(high.x > low.x && high.y > low.y))
+            return 0.0;
+        return x_inside ? ball_in_plane_slab(r, c.y - low.y, high.y - c.y)
+                        : ball_in_plane_slab(r, c.x - low.x, high.x - c.x);
+    }
     const double z_low = std::max(low.z, c.z - r), z_high = std::min(high.z, c.z + r);
     if (!(z_high > z_low))
         return 0.0;
@@ -242,16 +343,21 @@ double sphere_volume_in_box(const Vec3& c, double r, const Vec3& low, const Vec3
         return disk_rectangle_area(rho, low.x - c.x, high.x - c.x, low.y - c.y, high.y - c.y);
     };
     // The slice area has kinks where the slice's circle is tangent to an edge line of the box
-    // or passes through a corner: split there, and let tanh-sinh quadrature (exact to the
-    // tolerance at endpoint singularities) integrate each smooth piece.
-    std::vector<double> cuts{z_low, z_high};
+    // or passes through a corner: split there, and integrate each piece by the mapped
+    // Gauss-Legendre rule of the cylinder's lens (lens_integral), which makes the kinks' square
+    // roots (the circle just past an edge line or a corner) smooth at a piece's ends. At most
+    // 2 + 16 cuts: no allocation.
+    std::array<double, 18> cuts{};
+    std::size_t count = 0;
+    cuts[count++] = z_low;
+    cuts[count++] = z_high;
     const double dx[2] = {low.x - c.x, high.x - c.x}, dy[2] = {low.y - c.y, high.y - c.y};
     auto add_cut = [&](double distance) { // slices whose radius equals `distance`
         if (distance < r)
             for (const double z : {c.z - std::sqrt(r * r - distance * distance),
                                    c.z + std::sqrt(r * r - distance * distance)})
                 if (z > z_low && z < z_high)
-                    cuts.push_back(z);
+                    cuts[count++] = z;
     };
     for (int i = 0; i < 2; ++i) {
         add_cut(std::abs(dx[i]));
@@ -259,12 +365,11 @@ double sphere_volume_in_box(const Vec3& c, double r, const Vec3& low, const Vec3
         for (int j = 0; j < 2; ++j)
             add_cut(std::hypot(dx[i], dy[j]));
     }
-    std::sort(cuts.begin(), cuts.end());
-    static thread_local boost::math::quadrature::tanh_sinh<double> integrator;
+    std::sort(cuts.begin(), cuts.begin() + static_cast<std::ptrdiff_t>(count));
     double volume = 0.0;
-    for (std::size_t k = 0; k + 1 < cuts.size(); ++k)
+    for (std::size_t k = 0; k + 1 < count; ++k)
         if (cuts[k + 1] > cuts[k])
-            volume += integrator.integrate(slice, cuts[k], cuts[k + 1], 1e-12);
+            volume += lens_integral(slice, cuts[k], cuts[k + 1]);
     return volume;
 }
 

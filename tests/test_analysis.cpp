@@ -26,9 +26,16 @@ double ball(double r) {
     return 4.0 / 3.0 * pi * r * r * r;
 }
 
-/// Solid volume in each bin of a void-fraction profile: (1 - e) x bin volume.
-double solid_in(const ProfileBin& b, double band_height) {
-    return (1.0 - b.value) * pi * (b.high * b.high - b.low * b.low) * band_height;
+/// The radii [inner, outer] of a shell of the wall profile in a cylinder of radius rt (its
+/// bins are distances from the wall, wall first).
+std::pair<double, double> radii_of(const ProfileBin& b, double rt) {
+    return {rt - b.high, rt - b.low};
+}
+
+/// Solid volume in a bin of the wall profile in a cylinder of radius rt: (1 - e) x bin volume.
+double solid_in(const ProfileBin& b, double band_height, double rt) {
+    const auto [inner, outer] = radii_of(b, rt);
+    return (1.0 - b.value) * pi * (outer * outer - inner * inner) * band_height;
 }
 
 /// Spheres of diameter 1 on a lattice (basis in units of the cell edge `a`), kept when wholly
@@ -51,8 +58,10 @@ const std::vector<Vec3> simple_cubic{{0, 0, 0}};
 const std::vector<Vec3> face_centred{{0, 0, 0}, {0.5, 0.5, 0}, {0.5, 0, 0.5}, {0, 0.5, 0.5}};
 
 /// FNV-1a over the bits of every number of an analysis (all but g(r) when `with_g` is false):
-/// equal only if every bit is.
-inline std::uint64_t fingerprint(const BedAnalysis& a, bool with_g = true) {
+/// equal only if every bit is. The wall profiles' bins, distances d from the wall since the
+/// containers came, are hashed as the radii rt - d they were before (the same bits: the old
+/// bounds were computed as rt - k w), so the fingerprints taken then still hold.
+inline std::uint64_t fingerprint(const BedAnalysis& a, bool with_g = true, double rt = 5.0) {
     std::uint64_t h = 14695981039346656037ull;
     auto add = [&](std::uint64_t v) {
         for (int b = 0; b < 8; ++b) {
@@ -70,9 +79,10 @@ inline std::uint64_t fingerprint(const BedAnalysis& a, bool with_g = true) {
         if (!with_g && profile == &a.pair_correlation)
             continue;
         add(profile->size());
+        const bool wall = profile == &a.radial_void_fraction || profile == &a.centre_distribution;
         for (const ProfileBin& b : *profile) {
-            real(b.low);
-            real(b.high);
+            real(wall ? rt - b.high : b.low);
+            real(wall ? rt - b.low : b.high);
             real(b.value);
         }
     }
@@ -117,15 +127,18 @@ Packing forty() {
     return lattice(simple_cubic, 1.0, 1.5, 8);
 }
 
-/// Void fraction of the shells inside radius `within`, from the radial profile.
-double inner_void_fraction(const BedAnalysis& a, double within) {
+/// Void fraction of the shells inside radius `within`, from the radial profile in a cylinder
+/// of radius rt.
+double inner_void_fraction(const BedAnalysis& a, double within, double rt) {
     double solid = 0.0, volume = 0.0;
     const double h = a.band.z_high - a.band.z_low;
-    for (const auto& b : a.radial_void_fraction)
-        if (b.high <= within + 1e-9) {
-            solid += solid_in(b, h);
-            volume += pi * (b.high * b.high - b.low * b.low) * h;
+    for (const auto& b : a.radial_void_fraction) {
+        const auto [inner, outer] = radii_of(b, rt);
+        if (outer <= within + 1e-9) {
+            solid += solid_in(b, h, rt);
+            volume += pi * (outer * outer - inner * inner) * h;
         }
+    }
     return 1.0 - solid / volume;
 }
 
@@ -148,12 +161,14 @@ TEST(RadialProfile, SphereOnTheAxisGivesNapkinRingShells) {
         return 4.0 * pi / 3.0 * (0.125 - std::pow(0.25 - c * c, 1.5));
     };
     ASSERT_EQ(a.radial_void_fraction.size(), 10u);
-    for (const auto& b : a.radial_void_fraction)
-        EXPECT_NEAR(solid_in(b, 2.0), v(b.high) - v(b.low), 1e-12) << b.low << " " << b.high;
+    for (const auto& b : a.radial_void_fraction) {
+        const auto [inner, outer] = radii_of(b, 1.0);
+        EXPECT_NEAR(solid_in(b, 2.0, 1.0), v(outer) - v(inner), 1e-12) << b.low << " " << b.high;
+    }
     // The shell-sum identity: the shells hold the whole sphere.
     double sum = 0.0;
     for (const auto& b : a.radial_void_fraction)
-        sum += solid_in(b, 2.0);
+        sum += solid_in(b, 2.0, 1.0);
     EXPECT_NEAR(sum, ball(0.5), 1e-12);
 }
 
@@ -170,10 +185,10 @@ TEST(RadialProfile, SphereTouchingTheWallFillsTheOuterShellLikeACap) {
     o.rdf_range = 1.0;
     const BedAnalysis a = analyze_bed(p, Cylinder(rt), o);
     const double cap = pi * w * w * (1.5 - w) / 3.0;
-    EXPECT_NEAR(solid_in(a.radial_void_fraction[0], 2.0) / cap, 1.0, 1e-3);
+    EXPECT_NEAR(solid_in(a.radial_void_fraction[0], 2.0, rt) / cap, 1.0, 1e-3);
     double sum = 0.0;
     for (const auto& b : a.radial_void_fraction)
-        sum += solid_in(b, 2.0);
+        sum += solid_in(b, 2.0, rt);
     EXPECT_NEAR(sum, ball(0.5), 1e-9); // shell-sum identity at the wall
     EXPECT_EQ(a.coordination.wall_contacts, 1u);
 }
@@ -214,7 +229,7 @@ TEST(Lattices, PorosityAndCoordinationOfSimpleCubicAndFcc) {
         o.rdf_range = 1.5;
         // Band over whole cells: from a lattice plane below the spheres' tops to one above.
         const BedAnalysis a = analyze_bed(p, Cylinder(12.0), o);
-        EXPECT_NEAR(inner_void_fraction(a, 8.0), c.porosity, 3e-3) << c.coordination;
+        EXPECT_NEAR(inner_void_fraction(a, 8.0, 12.0), c.porosity, 3e-3) << c.coordination;
         // No sphere has more contacts than the lattice gives, and most have exactly that many.
         ASSERT_EQ(a.coordination.histogram.size(), c.coordination + 1);
         EXPECT_GT(a.coordination.histogram[c.coordination], a.coordination.spheres / 2);
@@ -278,7 +293,7 @@ TEST(PairRegion, BallVolumesAgreeWithTheExactVolumeRoutine) {
         const double theta = 2.0 * pi * u(rng);
         const double r = 0.01 + 3.5 * u(rng);
         const Vec3 c{rho * std::cos(theta), rho * std::sin(theta), 10.0};
-        const PairRegion region{ra, {0.0, 20.0}}; // planes beyond every ball
+        const PairRegion region{Cylinder(ra), {0.0, 20.0}}; // planes beyond every ball
         const double v = ball_volume_in_pair_region(c, r, region);
         const double exact = sphere_volume_in_cylinder_slab(c, r, ra, 0.0, 20.0);
         if (exact > 0.0)
@@ -289,7 +304,7 @@ TEST(PairRegion, BallVolumesAgreeWithTheExactVolumeRoutine) {
     EXPECT_LT(worst, 2e-8); // measured 2.6e-9
     // Closed forms: a ball inside, and a ball on the axis wider than the cylinder (the
     // cylinder's part of the ball, 4 pi / 3 (r^3 - (r^2 - Ra^2)^(3/2))).
-    const PairRegion region{2.0, {0.0, 20.0}};
+    const PairRegion region{Cylinder(2.0), {0.0, 20.0}};
     EXPECT_DOUBLE_EQ(ball_volume_in_pair_region({1.0, 0.5, 10.0}, 0.7, region), ball(0.7));
     EXPECT_NEAR(ball_volume_in_pair_region({0.0, 0.0, 10.0}, 3.0, region),
                 ball(3.0) - 4.0 / 3.0 * pi * std::pow(9.0 - 4.0, 1.5), 1e-12);
@@ -307,7 +322,7 @@ TEST(PairRegion, ABandFromFloorToTopIsClippedToWhereCentresCanBe) {
     const BedAnalysis a = analyze_bed(p, Cylinder(1.5), o);
     EXPECT_EQ(a.band.z_low, 0.0);
     EXPECT_EQ(a.band.z_high, 8.0);
-    EXPECT_DOUBLE_EQ(a.pair_region.radius, 1.0);
+    EXPECT_DOUBLE_EQ(a.pair_region.container.cylinder()->radius(), 1.0);
     EXPECT_DOUBLE_EQ(a.pair_region.band.z_low, 0.5);
     EXPECT_DOUBLE_EQ(a.pair_region.band.z_high, 7.5);
     // The nearest pairs are at contact (distance 1: the bin [1, 1.02)), none closer.
@@ -389,7 +404,7 @@ TEST(PairCorrelation, IdealGasInANarrowCylinderGivesOneAtEveryDistance) {
     o.slab_height = 1.0;
     o.centre_bin = 0.5;
     const BedAnalysis a = analyze_bed(p, Cylinder(rt), o);
-    EXPECT_DOUBLE_EQ(a.pair_region.radius, 2.0);
+    EXPECT_DOUBLE_EQ(a.pair_region.container.cylinder()->radius(), 2.0);
     EXPECT_EQ(a.pair_region.band.z_low, a.band.z_low);
     EXPECT_EQ(a.pair_region.band.z_high, a.band.z_high);
     ASSERT_EQ(a.pair_correlation.size(), 30u);
@@ -421,7 +436,7 @@ TEST(PairCorrelation, GeneratedBedAtAspectRatio5TendsToOne) {
     AnalysisOptions o;
     o.rdf_bin = 0.1;
     const BedAnalysis a = analyze_bed(bed.packing, bed.container, o);
-    EXPECT_NEAR(a.pair_region.radius, 2.0, 1e-12);
+    EXPECT_NEAR(a.pair_region.container.cylinder()->radius(), 2.0, 1e-12);
     const PairCounts counts = count_pairs(bed.packing, a.band.z_low, a.band.z_high, 3.0, 0.1);
     const std::vector<double> old = uncorrected_g(bed.packing, a, rt, counts);
     double sum = 0.0, sum_old = 0.0;
@@ -462,12 +477,14 @@ TEST(CentreDistribution, IntegratesToTheCrossSection) {
     const Packing p = lattice(simple_cubic, 1.0, 4.0, 6);
     const BedAnalysis a = analyze_bed(p, Cylinder(4.0));
     double sum = 0.0;
-    for (const auto& b : a.centre_distribution)
-        sum += b.value * pi * (b.high * b.high - b.low * b.low);
+    for (const auto& b : a.centre_distribution) {
+        const auto [inner, outer] = radii_of(b, 4.0);
+        sum += b.value * pi * (outer * outer - inner * inner);
+    }
     EXPECT_NEAR(sum, pi * 16.0, 1e-9);
     // No centre within Dp/2 of the wall.
     for (const auto& b : a.centre_distribution) {
-        if (b.low >= 3.5 + 1e-9) {
+        if (b.high <= 0.5 - 1e-9) {
             EXPECT_EQ(b.value, 0.0);
         }
     }

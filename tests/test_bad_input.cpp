@@ -702,7 +702,7 @@ INSTANTIATE_TEST_SUITE_P(
               "packbed analyze: sumfifo/summary.json: a FIFO (named pipe); " + regular),
         exact("analyze one.csv",
               "packbed analyze: --container (or --container-radius) is needed: no summary.json "
-              "with a container radius next to one.csv"),
+              "with a container next to one.csv"),
         // Issue 14 item 3: one sphere far above the rest (the bin limits are being reworded).
         naming("analyze far.csv -R 1.5", {"--slab-height"}),
         naming("analyze far.csv -R 1.5 --out new", {"--slab-height"}),

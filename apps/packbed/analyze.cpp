@@ -45,32 +45,32 @@ struct AnalyzeOptions {
 
 /// Refuse spheres that stick out of the container by more than the tolerance. `shifted` says
 /// that the centres are relative to --axis and --floor.
-void check_inside(const ParticleFile& file, const std::string& name, double rt, double tolerance,
-                  bool shifted) {
+void check_inside(const ParticleFile& file, const std::string& name, const Container& container,
+                  double tolerance, bool shifted) {
     for (std::size_t i = 0; i < file.packing.size(); ++i) {
         const Vec3& c = file.packing.centers[i];
         const double r = file.packing.radii[i];
-        const double out_wall = std::hypot(c.x, c.y) + r - rt;
+        const double out_wall = -container.wall_distances(c, r).first;
         const double below = -(c.z - r);
         if (out_wall > tolerance || below > tolerance)
             throw InvalidInput(fmt::format(
-                "{}:{}: the sphere at ({}, {}, {}){} sticks out of the container (radius {}, "
+                "{}:{}: the sphere at ({}, {}, {}){} sticks out of the container ({}, "
                 "floor z = 0) by {:.4g}; allowed: up to {:.4g} (--outside-tolerance, in Dp)",
                 printable(name), file.lines[i], c.x, c.y, c.z,
-                shifted ? " (from --axis and --floor)" : "", rt, std::max(out_wall, below),
-                tolerance));
+                shifted ? " (from --axis and --floor)" : "", describe(container),
+                std::max(out_wall, below), tolerance));
     }
 }
 
 /// The void fraction of one frame for the time series; nothing when the frame has no spheres
 /// or is not taller than twice the band clearance, or than --band's top (a bed still being
 /// filled).
-std::optional<double> frame_void_fraction(const ParticleFile& frame, const Cylinder& container,
+std::optional<double> frame_void_fraction(const ParticleFile& frame, const Container& container,
                                           const AnalyzeOptions& o, const std::string& name) {
     if (frame.packing.size() == 0)
         return std::nullopt;
     const double dp = o.diameter > 0.0 ? o.diameter : frame.packing.mean_diameter();
-    check_inside(frame, name, container.radius(), o.outside_tolerance * dp, o.placement.shifted());
+    check_inside(frame, name, container, o.outside_tolerance * dp, o.placement.shifted());
     // Only the void fraction: the rest of analyze_bed (contacts, g(r)) is for the last frame.
     const std::optional<Band> band =
         o.analysis.band
@@ -97,33 +97,24 @@ int run_analyze(AnalyzeOptions& o) {
         read = read_particles(path, read_options);
     if (const auto b = comma_numbers(o.band); b && b->size() == 2)
         o.analysis.band = Band{(*b)[0], (*b)[1]};
-    if (const auto tube = parse_container(o.container))
-        o.container_radius = 0.5 * tube->diameter;
-    const double rt =
-        o.container_radius > 0.0 ? o.container_radius : container_radius_beside(path).value_or(0.0);
-    if (!(rt > 0.0)) {
-        // A lattice in a box: say what there is and what is not yet measured.
-        const fs::path beside = path.parent_path() / "summary.json";
-        std::error_code ec;
-        if (fs::exists(fs::symlink_status(beside, ec)))
-            if (const auto box = read_bed_summary(beside).box)
-                throw InvalidInput(fmt::format(
-                    "{}: the bed fills a box ({} x {} x {}, {}): analyze measures beds in a "
-                    "cylinder, boxes come with the containers of issue 17; allowed: --container "
-                    "cylinder:D for a cylinder about the z axis (the porosity in the box is "
-                    "porosity_region of that summary.json)",
-                    printable(path.native()), (*box)[0], (*box)[1], (*box)[2],
-                    printable(beside.native())));
+    // --container, then --container-radius, then the container summary.json records.
+    std::optional<Container> given;
+    if (const auto spec = parse_container(o.container))
+        given = spec->container();
+    else if (o.container_radius > 0.0)
+        given = Cylinder(o.container_radius);
+    else
+        given = container_beside(path);
+    if (!given)
         throw InvalidInput(fmt::format("--container (or --container-radius) is needed: no "
-                                       "summary.json with a container radius next to {}",
+                                       "summary.json with a container next to {}",
                                        printable(path.native())));
-    }
+    const Container container = *given;
     if (o.diameter > 0.0)
         o.analysis.diameter = o.diameter;
-    const Cylinder container(rt);
     if (read) {
         const double dp = o.diameter > 0.0 ? o.diameter : read->packing.mean_diameter();
-        check_inside(*read, path.string(), rt, o.outside_tolerance * dp, shifted);
+        check_inside(*read, path.string(), container, o.outside_tolerance * dp, shifted);
     }
 
     const fs::path out_dir = o.out.empty() ? path.parent_path() / "analysis" : fs::path(o.out);
@@ -157,7 +148,7 @@ int run_analyze(AnalyzeOptions& o) {
                                            "spheres in at least one frame",
                                            printable(path.native())));
         const double dp = o.diameter > 0.0 ? o.diameter : read->packing.mean_diameter();
-        check_inside(*read, path.string(), rt, o.outside_tolerance * dp, shifted);
+        check_inside(*read, path.string(), container, o.outside_tolerance * dp, shifted);
         out.stage("void_fraction_series.csv", table);
     }
     const ParticleFile& file = *read;
@@ -176,11 +167,11 @@ int run_analyze(AnalyzeOptions& o) {
     }
     summary["axis"] = {read_options.axis[0], read_options.axis[1]};
     summary["floor"] = read_options.floor;
-    summary["container"] = {{"shape", "cylinder"}, {"radius", rt}};
+    summary["container"] = container_summary(container);
     summary["warnings"] = warnings;
-    for (const auto& [name, text] : analysis_tables(analysis, rt))
+    for (const auto& [name, text] : analysis_tables(analysis, container))
         out.stage(name, text);
-    if (const std::string why = stage_plots(out, analysis, rt); !why.empty()) {
+    if (const std::string why = stage_plots(out, analysis, container); !why.empty()) {
         summary["plots"] = why;
         if (!o.quiet)
             fmt::print(stderr, "packbed analyze: {}\n", why);
@@ -191,8 +182,10 @@ int run_analyze(AnalyzeOptions& o) {
         for (const auto& warning : warnings)
             fmt::print(stderr, "packbed analyze: warning: {}\n", warning);
     if (!o.quiet) {
-        fmt::print("packbed analyze: {} spheres in a cylinder of radius {}{}\n",
-                   file.packing.size(), rt,
+        fmt::print("packbed analyze: {} spheres in {}{}\n", file.packing.size(),
+                   container.cylinder()
+                       ? fmt::format("a cylinder of radius {}", container.cylinder()->radius())
+                       : fmt::format("a box ({})", container.spec()),
                    series ? fmt::format(" (frame {} of {}; the void fraction of every frame in "
                                         "void_fraction_series.csv)",
                                         file.frame, frames)
@@ -215,7 +208,7 @@ Command register_analyze(CLI::App& parent) {
     auto& o = *options;
     auto& a = o.analysis;
     CLI::App* app = parent.add_subcommand(
-        "analyze", "Measure a bed of spheres in a cylinder: overall, radial and axial void "
+        "analyze", "Measure a bed of spheres in a cylinder or a box: overall, wall and axial void "
                    "fraction, centre distribution, coordination, wall contacts, g(r)");
     app->option_defaults()->always_capture_default();
     app->fallthrough();
@@ -235,7 +228,8 @@ Command register_analyze(CLI::App& parent) {
                         "cylinder radius Rt (file units), shorthand of --container "
                         "cylinder:2Rt; default: summary.json next to the file")
             ->check(real_in(0.0, limits::max_length, true, false));
-    add_container_option(*app, o.container, "file units; default: summary.json next to the file")
+    add_container_option(*app, o.container, "file units; default: summary.json next to the file",
+                         true)
         ->excludes(radius);
     add_output_directory(*app, o.out, o.force, "analysis/ next to the file");
     app->add_option("-d,--diameter", o.diameter,

@@ -10,6 +10,7 @@
 
 #include <CLI/CLI.hpp>
 
+#include "packbed/container.hpp"
 #include "packbed/read.hpp"
 
 namespace packbed::cli {
@@ -70,25 +71,35 @@ struct InputPlacement {
 CLI::Option* add_input_placement(CLI::App& app, InputPlacement& placement);
 
 /// `--container SPEC`, the container in length units, the one form every subcommand takes:
-/// today `cylinder:D`, a tube of inner diameter D (the axis is the z axis, the floor z = 0).
-/// Annulus, box and periodic cells will extend it (issue 17).
+/// `cylinder:D`, a tube of inner diameter D (the axis is the z axis, the floor z = 0), and
+/// `box:LX,LY`, four flat walls at x = 0, LX and y = 0, LY (where a subcommand measures or
+/// exports boxes). Annulus and periodic cells will extend it (issue 17).
 struct ContainerSpec {
-    std::string shape;     ///< "cylinder"
-    double diameter = 0.0; ///< D, > 0
+    std::string shape;     ///< "cylinder" or "box"
+    double diameter = 0.0; ///< a cylinder's D, > 0
+    double lx = 0.0;       ///< a box's widths, > 0
+    double ly = 0.0;
+    /// \return the library's container.
+    Container container() const;
 };
 
-/// \return the container of `text` ("cylinder:D"), or nothing when it is not one.
+/// \return the container of `text` ("cylinder:D", "box:LX,LY"), or nothing when it is not one.
 std::optional<ContainerSpec> parse_container(std::string_view text);
 
 /// Add `--container SPEC` to `app`, bound to `text` ("" when not given), checked by
-/// parse_container. \param meaning what D is measured in and what it replaces, for --help
-CLI::Option* add_container_option(CLI::App& app, std::string& text, const std::string& meaning);
+/// parse_container. \param meaning what lengths are measured in and what it replaces, for
+/// --help \param boxes whether the subcommand takes a box (generate and hydraulics do not yet)
+CLI::Option* add_container_option(CLI::App& app, std::string& text, const std::string& meaning,
+                                  bool boxes = false);
 
-/// The container radius recorded in `summary.json` beside a particle file (written by
-/// `packbed generate`, `lattice`, `analyze`). \return nothing when there is no such file or it
-/// names no container (a lattice in a box).
+/// The container recorded in `summary.json` beside a particle file (written by
+/// `packbed generate`, `lattice`, `analyze`): a cylinder, or the box of a lattice in a box.
+/// \return nothing when there is no such file or it names no container.
 /// \throws InvalidInput naming the file when it exists but is not a regular file, not a
-/// summary, or has a container.radius outside (0, limits::max_length]
-std::optional<double> container_radius_beside(const std::filesystem::path& particles);
+/// summary, or has a container outside the limits
+std::optional<Container> container_beside(const std::filesystem::path& particles);
+
+/// "radius R" for a cylinder, "box:LX,LY" for a box: the container in messages.
+std::string describe(const Container& container);
 
 } // namespace packbed::cli

@@ -101,13 +101,14 @@ std::unique_ptr<OutputDirectory> file_output(const ExportOptions& o, const fs::p
 /// gives a radius. \throws InvalidInput when the height is not above the bed or a centre lies
 /// outside the container
 std::optional<SurfaceContainer> bed_container(const ExportOptions& o, const ParticleFile& file) {
-    const auto tube = parse_container(o.container);
-    const double rt = tube ? 0.5 * tube->diameter
-                      : o.container_radius > 0.0
-                          ? o.container_radius
-                          : container_radius_beside(o.particles).value_or(0.0);
-    if (!(rt > 0.0))
+    const auto spec = parse_container(o.container);
+    const std::optional<Container> given =
+        spec                       ? std::optional<Container>(spec->container())
+        : o.container_radius > 0.0 ? std::optional<Container>(Cylinder(o.container_radius))
+                                   : container_beside(o.particles);
+    if (!given || !given->cylinder())
         return std::nullopt;
+    const double rt = given->cylinder()->radius();
     const double top = bed_top(file.packing);
     const double height =
         o.container_height > 0.0 ? o.container_height : top + file.packing.mean_diameter();

@@ -88,10 +88,16 @@ int run_lattice(LatticeOptions& o) {
     auto summary = lattice_summary(o.params, packing);
     out.stage("particles.csv", particles_csv(packing));
     out.stage("particles.vtu", particles_vtu(packing));
-    // A lattice in a cylinder is a bed: the same analysis as `generate`, when tall enough.
-    if (const auto* c = std::get_if<CylinderRegion>(&o.params.region);
-        c && !packing.centers.empty() && c->height > 2.0 * o.band_clearance * o.params.diameter)
-        stage_analysis(out, packing, Cylinder(0.5 * c->diameter), o.band_clearance, summary);
+    // A lattice in a cylinder or a box is a bed: the same analysis as `generate`, when tall
+    // enough.
+    const auto* box = std::get_if<BoxRegion>(&o.params.region);
+    const auto* cylinder = std::get_if<CylinderRegion>(&o.params.region);
+    const double height = box ? box->size.z : cylinder->height;
+    if (!packing.centers.empty() && height > 2.0 * o.band_clearance * o.params.diameter)
+        stage_analysis(out, packing,
+                       box ? Container(Box(box->size.x, box->size.y))
+                           : Container(Cylinder(0.5 * cylinder->diameter)),
+                       o.band_clearance, summary);
     out.stage("summary.json", summary.dump(2) + "\n");
     out.commit();
     if (!o.quiet) {

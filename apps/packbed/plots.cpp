@@ -20,12 +20,11 @@ namespace packbed::cli {
 
 namespace {
 
-/// A gnuplot datablock named `name` with columns x_from_wall_d and one value per bin.
-std::string datablock(std::string_view name, const std::vector<ProfileBin>& bins, double rt,
-                      double dp) {
+/// A gnuplot datablock named `name` with the bins' middles over Dp and their values.
+std::string datablock(std::string_view name, const std::vector<ProfileBin>& bins, double dp) {
     std::string out = fmt::format("${} << EOD\n", name);
     for (const auto& b : bins)
-        out += fmt::format("{} {}\n", (rt - 0.5 * (b.low + b.high)) / dp, b.value);
+        out += fmt::format("{} {}\n", 0.5 * (b.low + b.high) / dp, b.value);
     return out + "EOD\n";
 }
 
@@ -73,23 +72,25 @@ int run_gnuplot(const std::filesystem::path& folder, const std::string& script) 
 
 } // namespace
 
-std::string stage_plots(OutputDirectory& out, const BedAnalysis& a, double rt) {
+std::string stage_plots(OutputDirectory& out, const BedAnalysis& a, const Container& container) {
     const double dp = a.diameter;
-    const double aspect_ratio = 2.0 * rt / dp;
-    const double x_max = rt / dp;
-    std::string script = datablock("bed", a.radial_void_fraction, rt, dp) +
-                         datablock("centres", a.centre_distribution, rt, dp);
-    // The axial profile and g(r) against z/Dp and r/Dp.
-    auto scaled_block = [&](std::string_view name, const std::vector<ProfileBin>& bins) {
-        std::string block = fmt::format("${} << EOD\n", name);
-        for (const auto& b : bins)
-            block += fmt::format("{} {}\n", 0.5 * (b.low + b.high) / dp, b.value);
-        return block + "EOD\n";
-    };
-    script +=
-        scaled_block("axial", a.axial_void_fraction) + scaled_block("rdf", a.pair_correlation);
+    // The correlations of the radial profile are for cylinders, at their aspect ratio.
+    const Cylinder* cylinder = container.cylinder();
+    const double aspect_ratio = cylinder ? 2.0 * cylinder->radius() / dp : 0.0;
+    const double x_max = container.depth() / dp;
+    // Profiles against the distance from the wall, z and the centre distance, all over Dp.
+    std::string script = datablock("bed", a.radial_void_fraction, dp) +
+                         datablock("centres", a.centre_distribution, dp) +
+                         datablock("axial", a.axial_void_fraction, dp) +
+                         datablock("rdf", a.pair_correlation, dp);
+    const std::string where = cylinder ? fmt::format("a = {:.4g}", aspect_ratio)
+                                       : fmt::format("{} (Dp = {:.4g})", container.spec(), dp);
+    const std::string x_label =
+        cylinder ? "distance from the wall (Rt - r)/Dp" : "distance from the nearest wall d/Dp";
     std::string curves;
     for (const auto& c : radial_void_fraction_correlations()) {
+        if (!cylinder)
+            break;
         script += fmt::format("${} << EOD\n", c.name.substr(0, c.name.find('-')));
         for (double z = 0.0; z <= x_max + 1e-12; z += 0.01)
             script += fmt::format("{} {}\n", z, c(z, aspect_ratio).value);
@@ -110,7 +111,7 @@ std::string stage_plots(OutputDirectory& out, const BedAnalysis& a, double rt) {
     for (const auto& b : a.centre_distribution)
         if (b.value > peak) {
             peak = b.value;
-            peak_at = (rt - 0.5 * (b.low + b.high)) / dp;
+            peak_at = 0.5 * (b.low + b.high) / dp;
         }
     const double centre_top = 4.0;
     const std::string centre_range =
@@ -135,12 +136,12 @@ std::string stage_plots(OutputDirectory& out, const BedAnalysis& a, double rt) {
     for (const auto& [extension, terminal] : terminals)
         script += fmt::format(
             "{terminal}\nunset label 1\nset key top right\nset autoscale y\n"
-            "set xlabel 'distance from the wall (Rt - r)/Dp'\nset xrange [0:{x_max}]\n"
+            "set xlabel '{x_label}'\nset xrange [0:{x_max}]\n"
             "set output 'radial_void_fraction.{ext}'\nset ylabel 'radial void fraction'\n"
-            "set title 'Radial void fraction, a = {a:.4g}, band z = {low:.4g} to {high:.4g}'\n"
+            "set title 'Radial void fraction, {where}, band z = {low:.4g} to {high:.4g}'\n"
             "plot $bed using 1:2 with lines lw 2 lc rgb 'black' title 'this bed'{curves}\n"
             "set output 'radial_centre_distribution.{ext}'\nset ylabel 'centre density / mean'\n"
-            "set title 'Radial distribution of sphere centres, a = {a:.4g}'\n{centre_range}"
+            "set title 'Radial distribution of sphere centres, {where}'\n{centre_range}"
             "plot $centres using 1:2 with steps lw 2 lc rgb 'black' title 'this bed'\n"
             "unset label 1\nset autoscale y\n"
             "set output 'axial_void_fraction.{ext}'\nset xlabel 'height above the floor z/Dp'\n"
@@ -156,7 +157,7 @@ std::string stage_plots(OutputDirectory& out, const BedAnalysis& a, double rt) {
             "plot $rdf using 1:2 with steps lw 1 lc rgb 'black' title 'this bed', 1 with lines "
             "dt 2 lc rgb 'grey' notitle\nset autoscale y\n",
             fmt::arg("terminal", terminal), fmt::arg("ext", extension), fmt::arg("x_max", x_max),
-            fmt::arg("a", aspect_ratio), fmt::arg("low", a.band.z_low),
+            fmt::arg("where", where), fmt::arg("x_label", x_label), fmt::arg("low", a.band.z_low),
             fmt::arg("high", a.band.z_high), fmt::arg("low_d", a.band.z_low / dp),
             fmt::arg("high_d", a.band.z_high / dp), fmt::arg("curves", curves),
             fmt::arg("centre_range", centre_range));
@@ -175,15 +176,15 @@ std::string stage_plots(OutputDirectory& out, const BedAnalysis& a, double rt) {
                          : fmt::format("gnuplot failed (exit status {}): no plots", status);
 }
 
-void stage_analysis(OutputDirectory& out, const Packing& packing, const Cylinder& container,
+void stage_analysis(OutputDirectory& out, const Packing& packing, const Container& container,
                     double band_clearance, nlohmann::json& summary) {
     AnalysisOptions options;
     options.band_clearance = band_clearance;
     const BedAnalysis analysis = analyze_bed(packing, container, options);
     summary["analysis"] = analysis_summary(analysis, options);
-    for (const auto& [name, text] : analysis_tables(analysis, container.radius()))
+    for (const auto& [name, text] : analysis_tables(analysis, container))
         out.stage(name, text);
-    if (const std::string why = stage_plots(out, analysis, container.radius()); !why.empty())
+    if (const std::string why = stage_plots(out, analysis, container); !why.empty())
         summary["analysis"]["plots"] = why;
 }
 

@@ -11,16 +11,17 @@
 
 namespace packbed::cli {
 
-/// Stage radial_void_fraction.svg (with the de Klerk and Mueller correlations) and
-/// radial_centre_distribution.svg in `out`.
+/// Stage the plots of the wall profile (in a cylinder with the de Klerk and Mueller
+/// correlations), the centre distribution, the axial profile and g(r), SVG and PNG, in `out`.
 /// \return "" when drawn, or why not (gnuplot missing or failing): the run goes on without.
-std::string stage_plots(OutputDirectory& out, const BedAnalysis& analysis, double container_radius);
+std::string stage_plots(OutputDirectory& out, const BedAnalysis& analysis,
+                        const Container& container);
 
 /// The analysis `packbed generate` and `packbed lattice` run on what they made: analyze_bed
 /// over the band `band_clearance` (Dp) clear of the ends, its tables and plots staged in
 /// `out`, its numbers in summary["analysis"]. Does nothing when the bed is too short for the
 /// band (the caller's summary says so).
-void stage_analysis(OutputDirectory& out, const Packing& packing, const Cylinder& container,
+void stage_analysis(OutputDirectory& out, const Packing& packing, const Container& container,
                     double band_clearance, nlohmann::json& summary);
 
 } // namespace packbed::cli

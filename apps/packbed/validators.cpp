@@ -112,12 +112,18 @@ void use_threads(unsigned long long threads) {
         omp_set_dynamic(1);
 }
 
-std::optional<double> container_radius_beside(const std::filesystem::path& particles) {
+std::optional<Container> container_beside(const std::filesystem::path& particles) {
     const std::filesystem::path summary = particles.parent_path() / "summary.json";
     std::error_code ec;
     if (!std::filesystem::exists(std::filesystem::symlink_status(summary, ec)))
         return std::nullopt;
-    return read_bed_summary(summary).container_radius; // none for a box lattice
+    return read_bed_summary(summary).container;
+}
+
+std::string describe(const Container& container) {
+    if (const Cylinder* c = container.cylinder())
+        return fmt::format("radius {}", c->radius());
+    return container.spec();
 }
 
 namespace {
@@ -180,25 +186,49 @@ CLI::Option* add_input_placement(CLI::App& app, InputPlacement& p) {
     return frame;
 }
 
-std::optional<ContainerSpec> parse_container(std::string_view text) {
-    constexpr std::string_view cylinder = "cylinder:";
-    if (!text.starts_with(cylinder))
-        return std::nullopt;
-    const auto v = comma_numbers(text.substr(cylinder.size()));
-    if (!v || v->size() != 1 || !((*v)[0] > 0.0) || !((*v)[0] <= 2.0 * limits::max_length))
-        return std::nullopt;
-    return ContainerSpec{"cylinder", (*v)[0]};
+Container ContainerSpec::container() const {
+    if (shape == "box")
+        return Box(lx, ly);
+    return Cylinder(0.5 * diameter);
 }
 
-CLI::Option* add_container_option(CLI::App& app, std::string& text, const std::string& meaning) {
-    const std::string allowed = fmt::format(
+std::optional<ContainerSpec> parse_container(std::string_view text) {
+    constexpr std::string_view cylinder = "cylinder:", box = "box:";
+    const bool is_box = text.starts_with(box);
+    if (!text.starts_with(cylinder) && !is_box)
+        return std::nullopt;
+    const auto v = comma_numbers(text.substr(is_box ? box.size() : cylinder.size()));
+    if (!v || v->size() != (is_box ? 2u : 1u))
+        return std::nullopt;
+    // Every side within max_length of the origin, as the analysis allows.
+    const double largest = is_box ? limits::max_length : 2.0 * limits::max_length;
+    for (const double x : *v)
+        if (!(x > 0.0 && x <= largest))
+            return std::nullopt;
+    if (is_box)
+        return ContainerSpec{"box", 0.0, (*v)[0], (*v)[1]};
+    return ContainerSpec{"cylinder", (*v)[0], 0.0, 0.0};
+}
+
+CLI::Option* add_container_option(CLI::App& app, std::string& text, const std::string& meaning,
+                                  bool boxes) {
+    std::string allowed = fmt::format(
         "cylinder:D, a tube of inner diameter D, a number in (0, {:g}]", 2.0 * limits::max_length);
-    return app
-        .add_option("--container", text,
-                    "the container: cylinder:D, a tube of inner diameter D (" + meaning + ")")
+    if (boxes)
+        allowed += fmt::format(", or box:LX,LY, walls at x = 0, LX and y = 0, LY, each in "
+                               "(0, {:g}]",
+                               limits::max_length);
+    else
+        allowed += " (boxes come to this subcommand with issue 17)";
+    const std::string help =
+        boxes ? "the container: cylinder:D, a tube of inner diameter D, or box:LX,LY (" + meaning +
+                    ")"
+              : "the container: cylinder:D, a tube of inner diameter D (" + meaning + ")";
+    return app.add_option("--container", text, help)
         ->check(CLI::Validator(
-            [allowed](std::string& value) -> std::string {
-                if (parse_container(value))
+            [allowed, boxes](std::string& value) -> std::string {
+                if (const auto spec = parse_container(value);
+                    spec && (boxes || spec->shape != "box"))
                     return {};
                 return fmt::format("'{}' is not allowed; allowed: {}",
                                    printable(value.substr(0, 80)), allowed);

@@ -1,5 +1,6 @@
-// Structure of a bed of spheres in a cylinder: overall, radial and axial void fraction, the
-// radial distribution of centres, contacts and coordination numbers, pair correlation.
+// Structure of a bed of spheres in a container: overall, wall (radial) and axial void
+// fraction, the distribution of centres from the wall, contacts and coordination numbers, pair
+// correlation.
 // Salvat et al. (2005), sections 1 and 5: every one follows from the sphere positions.
 #pragma once
 
@@ -22,7 +23,7 @@ struct AnalysisOptions {
     /// The axial band itself (length), instead of band_clearance: z_low < z_high, within the
     /// bed (0 to its top).
     std::optional<Band> band;
-    double shell_width = 0.02;       ///< width of the cylindrical shells of e(r), Dp
+    double shell_width = 0.02;       ///< width of the shells of e(d) (d from the wall), Dp
     double slab_height = 0.05;       ///< height of the slabs of e(z), Dp
     double centre_bin = 0.02;        ///< bin width of the centre distribution, Dp
     double contact_tolerance = 1e-3; ///< a gap below this counts as a contact, Dp
@@ -30,7 +31,8 @@ struct AnalysisOptions {
     double rdf_bin = 0.02;           ///< bin width of g(r), Dp
 };
 
-/// One bin of a profile: the interval [low, high] (radius or height, length) and its value.
+/// One bin of a profile: the interval [low, high] (length: the distance from the wall for the
+/// wall profiles, the height for the axial one, the centre distance for g(r)) and its value.
 struct ProfileBin {
     double low = 0.0;
     double high = 0.0;
@@ -48,39 +50,32 @@ struct Coordination {
     std::size_t wall_contacts_in_band = 0; ///< of which with their centre in the band
 };
 
-/// The region where the centres of the pairs that g(r) counts lie: the cylinder of radius
-/// `radius` about the z axis between the heights of `band`. g(r) counts the pairs whose two
-/// centres lie in the band and normalises by the volume of each shell inside this region
-/// (analyze_bed; docs/analysis.md, "Pair correlation g(r)").
+/// The region where the centres of the pairs that g(r) counts lie: the container shrunk by the
+/// mean radius R (for a cylinder, the cylinder of radius Rt - R) between the heights of `band`.
+/// g(r) counts the pairs whose two centres lie in the band and normalises by the volume of each
+/// shell inside this region (analyze_bed; docs/analysis.md, "Pair correlation g(r)").
 struct PairRegion {
-    double radius = 0.0; ///< Rt - the mean radius of the spheres counted (length)
-    Band band;           ///< the heights: the analysis band, within R and top - R (length)
+    Container container = Cylinder(0.0); ///< the container shrunk by the mean radius R
+    Band band; ///< the heights: the analysis band, within R and top - R (length)
 };
 
 /// The region of g(r) for a bed: where the centres of spheres of radius R can be without
-/// crossing the wall, the floor or the bed's top (the cylinder of radius Rt - R, heights from
+/// crossing the wall, the floor or the bed's top (the container shrunk by R, heights from
 /// R to top - R), within the analysis band; R is the mean radius of the spheres whose centre
 /// lies in the band. For a bed of one size that is where every centre lies (up to the overlap a
 /// soft-sphere bed allows, 1e-4 Dp); for mixed sizes the mean radius is an approximation
 /// (centres of smaller spheres lie up to R - r_min beyond it, those of larger ones cannot reach
 /// it). The one place this choice is made.
-/// \param packing the spheres \param container the cylinder \param band the analysis band
-/// \return the region; it is empty (radius <= 0, or z_high <= z_low) when no centre of that
+/// \param packing the spheres \param container the container \param band the analysis band
+/// \return the region; it is empty (depth 0, or z_high <= z_low) when no centre of that
 /// radius fits in the container or in the band without crossing the wall, floor or top.
-PairRegion pair_region(const Packing& packing, const Cylinder& container, const Band& band);
+PairRegion pair_region(const Packing& packing, const Container& container, const Band& band);
 
 /// Volume of the part of the ball of radius `radius` around `centre` that lies inside
-/// `region` (its cylinder, radius > 0, and between its band's heights): what g(r) normalises
-/// by. A ball the band's planes do not cut is integrated over cylindrical shells about its own
-/// vertical axis, V = \int theta(q) q 2 sqrt(r^2 - q^2) dq, with theta(q) the angle of the
-/// circle of radius q around the centre that lies in the region's disk (closed form) and the
-/// shells wholly inside in closed form; the part where the wall cuts them is one 20-point
-/// Gauss-Legendre rule after a cosine map, which makes the square-root ends (a shell that starts
-/// to cross the wall, the ball's closing chord) smooth. It agrees with
-/// sphere_volume_in_cylinder_slab (horizontal slices) to 2.6e-9 relative over 4 000 random
-/// balls, half of them within 1e-8 to 1 of the wall (test_analysis), and the shell differences
-/// V(r + 0.02) - V(r) with a 720-point reference to 2e-8 relative. A ball the planes cut goes
-/// to sphere_volume_in_cylinder_slab; for one the wall cuts this is 5 times faster than it.
+/// `region` (its container and between its band's heights): what g(r) normalises by.
+/// Container::ball_volume: in a cylinder, a ball the band's planes do not cut goes to
+/// ball_volume_in_cylinder (cylindrical shells about the ball's own axis, 5 times faster), one
+/// they cut to sphere_volume_in_cylinder_slab; in a box, sphere_volume_in_box.
 /// \return the volume (length^3), 0 <= V <= 4/3 pi radius^3.
 double ball_volume_in_pair_region(const Vec3& centre, double radius, const PairRegion& region);
 
@@ -89,32 +84,36 @@ struct BedAnalysis {
     double diameter = 0.0;      ///< the reference diameter Dp used (length)
     Band band;                  ///< the axial band the properties refer to (length)
     double void_fraction = 0.0; ///< overall, exact, in the band
-    std::vector<ProfileBin> radial_void_fraction; ///< e(r) over cylindrical shells, wall first
-    std::vector<ProfileBin> axial_void_fraction;  ///< e(z) over slabs from the floor to the top
-    std::vector<ProfileBin> centre_distribution;  ///< relative centre density against r
+    /// e(d) over shells of the distance d from the wall (cylindrical shells in a cylinder,
+    /// rectangular frames in a box), wall first
+    std::vector<ProfileBin> radial_void_fraction;
+    std::vector<ProfileBin> axial_void_fraction; ///< e(z) over slabs from the floor to the top
+    std::vector<ProfileBin> centre_distribution; ///< relative centre density against d
     Coordination coordination;
     std::vector<ProfileBin> pair_correlation; ///< g(r) against centre distance
     PairRegion pair_region;                   ///< the region g(r) was normalised in (pair_region)
 };
 
-/// Measure a bed in a cylinder.
+/// Measure a bed in a container (a Cylinder or a Box converts to one).
 ///
-/// - Void fractions are exact: sphere volumes cut by the band planes and by cylinders come from
-///   sphere_volume_in_cylinder_slab (closed forms and converged quadrature, no sampling). The
-///   radial profile uses shells of `shell_width` starting at the wall (the innermost one may be
-///   narrower); each sphere's shell volumes are differences of its volume inside successive
-///   cylinders, so they add up to its volume in the band to rounding.
-/// - The centre distribution is the number density of centres (in the band) in each annulus,
-///   divided by the mean number density of centres over the whole cross-section: 1 for a
-///   uniform distribution, 0 where no centre can be (r > Rt - Dp/2).
+/// - Void fractions are exact: sphere volumes cut by the band planes and by the container come
+///   from Container::sphere_volume (closed forms and converged quadrature, no sampling). The
+///   wall profile is against the distance d from the nearest wall, in shells of `shell_width`
+///   starting at the wall (the innermost one may be narrower): cylindrical shells in a
+///   cylinder, rectangular frames in a box (a corner's points count with the face they are
+///   nearer to). Each sphere's shell volumes are differences of its volume inside the container
+///   shrunk by successive distances, so they add up to its volume in the band to rounding.
+/// - The centre distribution is the number density of centres (in the band) in each shell of
+///   d, divided by the mean number density of centres over the whole cross-section: 1 for a
+///   uniform distribution, 0 where no centre can be (d < Dp/2).
 /// - A contact is a pair with gap |x_i - x_j| - r_i - r_j <= contact_tolerance; a wall contact
-///   is Rt - (rho_i + r_i) <= contact_tolerance. A rattler has fewer than 4 contacts, counting
-///   the wall as one.
+///   is d_i - r_i <= contact_tolerance (in a cylinder Rt - (rho_i + r_i)). A rattler has fewer than
+///   4 contacts, counting the wall as one.
 /// - g(r), corrected for the container: g(r) = sum_i n_i(r) / (rho_c sum_i V_i(r)), over the
 ///   N centres i in the band; n_i counts the other centres in the band at a distance in the
 ///   bin [r, r + dr), V_i is the volume of the shell [r, r + dr) around centre i that lies
-///   inside the region where centres can be (pair_region: the band, and the cylinder Rt - R
-///   for the mean radius R), rho_c = (N - 1) / |region| the density of the other centres.
+///   inside the region where centres can be (pair_region: the band, and the container shrunk
+///   by the mean radius R), rho_c = (N - 1) / |region| the density of the other centres.
 ///   An ideal gas of points in the region gives 1 in expectation at every r, however narrow the
 ///   container. V_i(r) = V(r + dr) - V(r) from ball_volume_in_pair_region. The cost is one
 ///   volume per bin and counted sphere where the shell crosses the wall or a band plane
@@ -132,11 +131,11 @@ struct BedAnalysis {
 ///   --shell-width, --centre-bin, --rdf-bin, --rdf-range, --container-radius, --diameter) or
 ///   the sphere that makes the bed too tall.
 /// \param packing the spheres (any order; coordinates and radii within limits::max_length)
-/// \param container the cylinder (radius > 0, at most limits::max_length)
+/// \param container the container (radius or widths > 0, within limits::max_length)
 /// \param options see AnalysisOptions (widths and the range > 0, tolerances >= 0)
 /// \return the measurements. \throws InvalidInput for an empty bed, a band that is empty, a
 /// value outside the ranges above, or a bed beyond the limits.
-BedAnalysis analyze_bed(const Packing& packing, const Cylinder& container,
+BedAnalysis analyze_bed(const Packing& packing, const Container& container,
                         const AnalysisOptions& options = {});
 
 } // namespace packbed

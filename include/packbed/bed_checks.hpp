@@ -24,7 +24,7 @@ struct BedCheckLimits {
 
 /// Warnings about a measured bed, each one line naming the numbers and what to do; empty when
 /// nothing looks wrong. The halves' void fractions are exact (void_fraction).
-std::vector<std::string> analysis_warnings(const Packing& packing, const Cylinder& container,
+std::vector<std::string> analysis_warnings(const Packing& packing, const Container& container,
                                            const BedAnalysis& analysis,
                                            const BedCheckLimits& limits = {});
 

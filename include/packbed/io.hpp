@@ -116,7 +116,8 @@ std::string liggghts_settle_input(const DemSettle& settle);
 /// The tables of a bed analysis as CSV texts, by file name:
 /// - `radial_void_fraction.csv`: `radial_position,x_from_wall_d,void_fraction`, the shell's
 ///   mid-radius (length), x_from_wall_d = (Rt - radial_position) / Dp as in Salvat et al.
-///   (2005), wall first;
+///   (2005), wall first; in a box the first column is `wall_distance`, the shell's middle
+///   distance from the nearest face (Container::profile_position);
 /// - `axial_void_fraction.csv`: `z,z_d,void_fraction`, z the slab's mid-height;
 /// - `radial_centre_distribution.csv`: `radial_position,x_from_wall_d,relative_density` (see
 ///   analyze_bed);
@@ -125,9 +126,9 @@ std::string liggghts_settle_input(const DemSettle& settle);
 /// Positions are written to 12 significant digits (bin centres without floating-point noise),
 /// values as computed (shortest round trip). `r` is never a column name here: in particles.csv
 /// it is the sphere's radius.
-/// \param analysis what analyze_bed returned \param container_radius Rt (length)
+/// \param analysis what analyze_bed returned \param container the bed's container
 /// \return (file name, contents) pairs.
 std::vector<std::pair<std::string, std::string>> analysis_tables(const BedAnalysis& analysis,
-                                                                 double container_radius);
+                                                                 const Container& container);
 
 } // namespace packbed

@@ -15,6 +15,7 @@
 #include <utility>
 #include <vector>
 
+#include "packbed/container.hpp"
 #include "packbed/limits.hpp"
 #include "packbed/packing.hpp"
 
@@ -126,6 +127,9 @@ std::vector<ParticleFile> read_particle_frames(std::istream& input, std::string_
 /// later command about the bed.
 struct BedSummary {
     std::optional<double> container_radius; ///< container.radius (length), when present
+    /// the container: a cylinder of container.radius, or the box x in [0, LX], y in [0, LY]
+    /// of a lattice in a box (region.size), when either is present
+    std::optional<Container> container;
     /// region.size of a lattice in a box, from 0 to L along each axis (length), when present
     std::optional<std::array<double, 3>> box;
     std::optional<double> diameter; ///< the spheres' diameter (length), when present

@@ -31,6 +31,10 @@ nlohmann::json soft_sphere_summary(const SoftSphereParameters& parameters,
 /// the reference diameter, and the options used.
 nlohmann::json analysis_summary(const BedAnalysis& analysis, const AnalysisOptions& options);
 
+/// The container as summary.json records it: {shape: cylinder, radius} or {shape: box, size:
+/// [LX, LY], spec}; read_bed_summary reads both back.
+nlohmann::json container_summary(const Container& container);
+
 /// The record of a lattice (`packbed lattice`): its parameters, the number of balls, the
 /// lattice's exact porosity and coordination, the porosity measured in the region (the balls'
 /// volume inside it over its volume, balls cut by the walls included: sphere_volume_in_box,

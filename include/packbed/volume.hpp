@@ -33,6 +33,17 @@ double disk_intersection_area(double r1, double r2, double distance);
 double sphere_volume_in_cylinder_slab(const Vec3& center, double radius, double cylinder_radius,
                                       double z_low, double z_high);
 
+/// Volume of the ball of radius r, its centre at distance rho from the z axis, inside the
+/// infinite cylinder of radius cylinder_radius > 0 about that axis (no planes). By cylindrical
+/// shells of radius q about the ball's vertical axis, each of height 2 sqrt(r^2 - q^2): the
+/// shells wholly inside (q <= Rc - rho) in closed form, 4 pi / 3 (r^3 - (r^2 - q^2)^(3/2)), the
+/// shells the wall cuts (|Rc - rho| < q < Rc + rho) by a 20-point Gauss-Legendre rule after
+/// the map q = m - h cos u, over theta(q) q 2 sqrt(r^2 - q^2), theta(q) = 2 acos((rho^2 - Rc^2 +
+/// q^2) / (2 rho q)) the angle of the circle of radius q inside the wall. It agrees with
+/// sphere_volume_in_cylinder_slab to 2.6e-9 relative over 4 000 random balls, half within 1e-8
+/// to 1 of the wall (test_analysis), and is 5 times faster than it for one the wall cuts.
+double ball_volume_in_cylinder(double rho, double r, double cylinder_radius);
+
 /// Area of the disk of radius `radius` centred at the origin inside the rectangle
 /// [x_low, x_high] x [y_low, y_high], in closed form: inclusion-exclusion over the four
 /// "lower-left" regions {x <= a, y <= b}, each an integral of the chord
@@ -48,15 +59,16 @@ double disk_rectangle_area(double radius, double x_low, double x_high, double y_
 /// \param center,radius the sphere (radius > 0) \param low,high the box corners (low <= high)
 double sphere_volume_in_box(const Vec3& center, double radius, const Vec3& low, const Vec3& high);
 
-/// Overall void fraction of a bed in a cylinder between two heights:
-/// \f$\varepsilon = 1 - \sum_i V_i / (\pi R_t^2 (z_{high} - z_{low}))\f$, with V_i the volume of
-/// sphere i inside the cylinder and the slab (sphere_volume_in_cylinder_slab).
+/// Overall void fraction of a bed in a container between two heights:
+/// \f$\varepsilon = 1 - \sum_i V_i / (A (z_{high} - z_{low}))\f$, with A the container's
+/// cross-section and V_i the exact volume of sphere i inside it and the slab
+/// (Container::sphere_volume).
 /// Overlaps between spheres are counted twice; at the generator's 1e-4 Dp tolerance that is
 /// below 1e-8 per contact in units of a sphere volume.
-/// \param packing the spheres \param container the cylinder
+/// \param packing the spheres \param container the container
 /// \param z_low,z_high the band (z_low < z_high, else InvalidInput)
 /// \return the void fraction in [0, 1] (it can go below 0 only for heavily overlapping input).
-double void_fraction(const Packing& packing, const Cylinder& container, double z_low,
+double void_fraction(const Packing& packing, const Container& container, double z_low,
                      double z_high);
 
 /// A horizontal band [z_low, z_high] of a bed.

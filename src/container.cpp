@@ -1,0 +1,128 @@
+#include "packbed/container.hpp"
+
+#include <algorithm>
+#include <numbers>
+
+#include <fmt/format.h>
+
+#include "packbed/volume.hpp"
+
+namespace packbed {
+
+double Cylinder::cross_section_area() const {
+    return std::numbers::pi * m_radius * m_radius;
+}
+
+double Cylinder::shell_area(double d_low, double d_high) const {
+    const double a = std::max(m_radius - d_low, 0.0), b = std::max(m_radius - d_high, 0.0);
+    return std::numbers::pi * (a * a - b * b);
+}
+
+double Cylinder::sphere_volume(const Vec3& c, double r, double z_low, double z_high) const {
+    return m_radius > 0.0 ? sphere_volume_in_cylinder_slab(c, r, m_radius, z_low, z_high) : 0.0;
+}
+
+double Cylinder::ball_volume(const Vec3& c, double r, double z_low, double z_high) const {
+    if (!(r > 0.0 && m_radius > 0.0))
+        return 0.0;
+    if (r <= c.z - z_low && r <= z_high - c.z)
+        return ball_volume_in_cylinder(std::hypot(c.x, c.y), r, m_radius);
+    return sphere_volume_in_cylinder_slab(c, r, m_radius, z_low, z_high);
+}
+
+std::string Cylinder::spec() const {
+    return fmt::format("cylinder:{:.9g}", 2.0 * m_radius);
+}
+
+double Box::cross_section_area() const {
+    return (m_x_high - m_x_low) * (m_y_high - m_y_low);
+}
+
+double Box::shell_area(double d_low, double d_high) const {
+    const Box outer = shrunk(d_low), inner = shrunk(d_high);
+    return outer.cross_section_area() - inner.cross_section_area();
+}
+
+Box Box::shrunk(double d) const {
+    const double x_mid = 0.5 * (m_x_low + m_x_high), y_mid = 0.5 * (m_y_low + m_y_high);
+    return Box(std::min(m_x_low + d, x_mid), std::max(m_x_high - d, x_mid),
+               std::min(m_y_low + d, y_mid), std::max(m_y_high - d, y_mid));
+}
+
+double Box::sphere_volume(const Vec3& c, double r, double z_low, double z_high) const {
+    if (!(m_x_high > m_x_low && m_y_high > m_y_low && z_high > z_low))
+        return 0.0;
+    return sphere_volume_in_box(c, r, {m_x_low, m_y_low, z_low}, {m_x_high, m_y_high, z_high});
+}
+
+std::string Box::spec() const {
+    std::string out = fmt::format("box:{:.9g},{:.9g}", m_x_high - m_x_low, m_y_high - m_y_low);
+    if (m_x_low != 0.0 || m_y_low != 0.0)
+        out += fmt::format("@{:.9g},{:.9g}", m_x_low, m_y_low);
+    return out;
+}
+
+// Every question to the shape: the one place a container's kind is looked at.
+namespace {
+template <class F> decltype(auto) ask(const Container::Shape& shape, F&& f) {
+    return std::visit(std::forward<F>(f), shape);
+}
+} // namespace
+
+std::string_view Container::name() const {
+    return ask(m_shape, [](const auto& s) { return s.name(); });
+}
+
+std::string Container::spec() const {
+    return ask(m_shape, [](const auto& s) { return s.spec(); });
+}
+
+bool Container::contains(const Vec3& p) const {
+    return ask(m_shape, [&](const auto& s) { return s.contains(p); });
+}
+
+double Container::wall_distance(const Vec3& p) const {
+    return ask(m_shape, [&](const auto& s) { return s.wall_distance(p); });
+}
+
+std::pair<double, double> Container::wall_distances(const Vec3& c, double r) const {
+    return ask(m_shape, [&](const auto& s) { return s.wall_distances(c, r); });
+}
+
+double Container::depth() const {
+    return ask(m_shape, [](const auto& s) { return s.depth(); });
+}
+
+double Container::cross_section_area() const {
+    return ask(m_shape, [](const auto& s) { return s.cross_section_area(); });
+}
+
+double Container::shell_area(double d_low, double d_high) const {
+    return ask(m_shape, [&](const auto& s) { return s.shell_area(d_low, d_high); });
+}
+
+Container Container::shrunk(double d) const {
+    return ask(m_shape, [&](const auto& s) { return Container(s.shrunk(d)); });
+}
+
+double Container::sphere_volume(const Vec3& c, double r, double z_low, double z_high) const {
+    return ask(m_shape, [&](const auto& s) { return s.sphere_volume(c, r, z_low, z_high); });
+}
+
+double Container::ball_volume(const Vec3& c, double r, double z_low, double z_high) const {
+    return ask(m_shape, [&](const auto& s) { return s.ball_volume(c, r, z_low, z_high); });
+}
+
+Rectangle Container::bounds() const {
+    return ask(m_shape, [](const auto& s) { return s.bounds(); });
+}
+
+std::string_view Container::profile_position_name() const {
+    return ask(m_shape, [](const auto& s) { return s.profile_position_name(); });
+}
+
+double Container::profile_position(double d) const {
+    return ask(m_shape, [&](const auto& s) { return s.profile_position(d); });
+}
+
+} // namespace packbed
