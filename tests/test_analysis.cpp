@@ -647,3 +647,73 @@ TEST(AnalysisLimits, OneHugeSphereCountsItsContactsWithoutSearchingEveryPair) {
     EXPECT_EQ(a.coordination.histogram, expected);
     EXPECT_GT(huge_contacts, 4u);
 }
+
+TEST(BoxAnalysis, SimpleCubicLatticeInABoxHasTheLatticePorosityAndFramesThatAddUp) {
+    // Spheres of diameter 1 at (0.5 + i, 0.5 + j, 0.5 + k) in the box [0, 4] x [0, 4], six
+    // layers: the band [1, 5] holds four whole layers, 64 spheres, in a volume of 64.
+    Packing p;
+    for (int k = 0; k < 6; ++k)
+        for (int j = 0; j < 4; ++j)
+            for (int i = 0; i < 4; ++i)
+                p.add({0.5 + i, 0.5 + j, 0.5 + k}, 0.5);
+    AnalysisOptions o;
+    o.shell_width = 0.1;
+    o.centre_bin = 0.1;
+    o.rdf_range = 1.5;
+    const Container box = Box(4.0, 4.0);
+    const BedAnalysis a = analyze_bed(p, box, o);
+    ASSERT_DOUBLE_EQ(a.band.z_low, 1.0);
+    ASSERT_DOUBLE_EQ(a.band.z_high, 5.0);
+    EXPECT_NEAR(a.void_fraction, 1.0 - pi / 6.0, 1e-12);
+    // Shells of the distance from the nearest face, from the wall to the middle (depth 2).
+    ASSERT_EQ(a.radial_void_fraction.size(), 20u);
+    EXPECT_DOUBLE_EQ(a.radial_void_fraction.back().high, 2.0);
+    // The frames' solid adds up to the band's: 64 spheres.
+    double solid = 0.0;
+    for (const auto& b : a.radial_void_fraction)
+        solid += (1.0 - b.value) * box.shell_area(b.low, b.high) * 4.0;
+    EXPECT_NEAR(solid, 64.0 * ball(0.5), 1e-8);
+    // The frame [0, 0.1] touches the 12 spheres of each layer next to a face: a cap of height
+    // 0.1 from each of the 8 not in a corner, two from each of the 4 in a corner (their parts
+    // within 0.1 of both faces would lie beyond (0.1, 0.1), 0.4 sqrt 2 > 0.5 from the centre:
+    // none). Per layer (unit height) 16 caps, exactly.
+    const double cap = pi * 0.01 * (1.5 - 0.1) / 3.0;
+    const double layer = (1.0 - a.radial_void_fraction[0].value) * box.shell_area(0.0, 0.1);
+    EXPECT_NEAR(layer, 16.0 * cap, 1e-13);
+    // Centres at 0.5 (12 of 16 per layer) and 1.5 (4) from the nearest face, nowhere else;
+    // the relative density times the frame areas adds up to the cross-section.
+    double area = 0.0;
+    for (const auto& b : a.centre_distribution) {
+        area += b.value * box.shell_area(b.low, b.high);
+        const bool holds = (b.low <= 0.5 && 0.5 < b.high) || (b.low <= 1.5 && 1.5 < b.high);
+        if (!holds) {
+            EXPECT_EQ(b.value, 0.0) << b.low;
+        }
+    }
+    EXPECT_NEAR(area, 16.0, 1e-12);
+    // Every sphere of the outer ring touches a face: 12 a layer, 6 layers.
+    EXPECT_EQ(a.coordination.wall_contacts, 72u);
+    // g(r): the nearest pairs at contact.
+    EXPECT_EQ(a.pair_correlation[49].value, 0.0);
+    EXPECT_GT(a.pair_correlation[50].value, 0.0);
+    EXPECT_EQ(a.pair_region.container.spec(), "box:3,3@0.5,0.5");
+}
+
+TEST(BoxAnalysis, SphereTouchingAFlatWallFillsTheFirstFrameWithACap) {
+    // Unlike the cylinder's (exact only to order R / Rt), a flat face cuts the frame [0, w]
+    // from a tangent sphere as exactly a cap of height w, away from the corners.
+    const double w = 0.1;
+    Packing p;
+    p.add({0.5, 5.0, 2.0}, 0.5);
+    p.add({5.0, 5.0, 0.5}, 0.5);
+    p.add({5.0, 5.0, 3.5}, 0.5);
+    AnalysisOptions o;
+    o.shell_width = w;
+    o.rdf_range = 1.0;
+    const Container box = Box(10.0, 10.0);
+    const BedAnalysis a = analyze_bed(p, box, o);
+    const double cap = pi * w * w * (1.5 - w) / 3.0;
+    const double first = (1.0 - a.radial_void_fraction[0].value) * box.shell_area(0.0, w) * 2.0;
+    EXPECT_NEAR(first, cap, 1e-14);
+    EXPECT_EQ(a.coordination.wall_contacts, 1u);
+}

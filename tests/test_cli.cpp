@@ -673,6 +673,32 @@ TEST(Cli, LatticeWritesTheBallsAndTheirNumbers) {
     const std::string csv = slurp(d / "particles.csv");
     EXPECT_EQ(std::count(csv.begin(), csv.end(), '\n'), 513); // header + one row per ball
     EXPECT_TRUE(fs::exists(d / "particles.vtu"));
+    // A lattice in a box is a bed in a box (issues 15, 17): its container is recorded, it is
+    // analysed against the distance from the nearest face, and `analyze` finds the box again.
+    EXPECT_EQ(s["container"]["shape"], "box");
+    EXPECT_EQ(s["container"]["size"], nlohmann::json::parse("[10.0, 10.0]"));
+    const std::string wall = slurp(d / "radial_void_fraction.csv");
+    EXPECT_EQ(wall.substr(0, wall.find('\n')), "wall_distance,x_from_wall_d,void_fraction");
+    // Shells of 0.02 from the wall to the middle, 5 from it: 250 and the header.
+    EXPECT_EQ(std::count(wall.begin(), wall.end(), '\n'), 251);
+    const fs::path again = scratch("lattice-analysed");
+    const Outcome analysed =
+        packbed("analyze -q " + (d / "particles.csv").string() + " --out " + again.string());
+    ASSERT_EQ(analysed.status, 0) << analysed.err;
+    const auto sa = nlohmann::json::parse(slurp(again / "summary.json"));
+    EXPECT_EQ(sa["container"]["shape"], "box");
+    EXPECT_EQ(sa["void_fraction"], s["analysis"]["void_fraction"]);
+    EXPECT_EQ(slurp(again / "radial_void_fraction.csv"), wall);
+    // The band's void fraction: whole diamond cells fill the box from d/2 = 0.5 on.
+    const double e = sa["void_fraction"].get<double>();
+    EXPECT_GT(e, 1.0 - M_PI * std::sqrt(3.0) / 16.0); // looser than the lattice: the walls
+    // Given again on the command line, the box gives the same bits.
+    const fs::path given = scratch("lattice-given");
+    ASSERT_EQ(packbed("analyze -q " + (d / "particles.csv").string() +
+                      " --container box:10,10 --out " + given.string())
+                  .status,
+              0);
+    EXPECT_EQ(slurp(given / "radial_void_fraction.csv"), wall);
 
     // A cylinder is a bed: the analysis runs as for `generate`.
     const fs::path c = scratch("cylinder");

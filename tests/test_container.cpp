@@ -1,9 +1,11 @@
-// Contact and wall geometry of the cylinder (Salvat et al. 2005, nomenclature: delta_iw).
+// Contact and wall geometry of the containers (cylinder: Salvat et al. 2005, nomenclature
+// delta_iw; box), and what Container answers for each.
 #include <cmath>
 
 #include <gtest/gtest.h>
 
 #include "packbed/container.hpp"
+#include "packbed/volume.hpp"
 
 using packbed::Cylinder;
 using packbed::Vec3;
@@ -38,4 +40,70 @@ TEST(Vec3, Arithmetic) {
     EXPECT_DOUBLE_EQ(dot(a, b), -2 + 1 + 12);
     EXPECT_DOUBLE_EQ(norm(Vec3{3, 4, 12}), 13.0);
     EXPECT_FALSE(is_finite(Vec3{0, NAN, 0}));
+}
+
+using packbed::Box;
+using packbed::Container;
+
+TEST(Box, WallDistanceIsToTheNearestFace) {
+    const Box b(3.0, 2.0);                                   // x in [0, 3], y in [0, 2]
+    EXPECT_DOUBLE_EQ(b.wall_distance({1.5, 1.0, 4.0}), 1.0); // the middle: half the narrower
+    EXPECT_DOUBLE_EQ(b.wall_distance({0.2, 1.0, 4.0}), 0.2);
+    EXPECT_NEAR(b.wall_distance({2.9, 0.5, 4.0}), 0.1, 1e-15); // x = 3 is 0.1 away
+    EXPECT_DOUBLE_EQ(b.wall_distance({-0.5, 1.0, 4.0}), -0.5); // outside
+    EXPECT_DOUBLE_EQ(b.depth(), 1.0);
+    EXPECT_TRUE(b.contains({0.0, 2.0, 0.0}));
+    EXPECT_FALSE(b.contains({3.01, 1.0, 1.0}));
+    EXPECT_FALSE(b.contains({1.0, 1.0, -0.01}));
+    // A sphere of radius 0.3 at (0.5, 1, z): nearest point 0.2 from x = 0, farthest 0.8.
+    const auto [nearest, farthest] = b.wall_distances({0.5, 1.0, 1.0}, 0.3);
+    EXPECT_DOUBLE_EQ(nearest, 0.2);
+    EXPECT_DOUBLE_EQ(farthest, 0.8);
+}
+
+TEST(Box, ShrunkBoxesAndTheirFramesAddUpToTheCrossSection) {
+    const Box b(3.0, 2.0);
+    EXPECT_DOUBLE_EQ(b.cross_section_area(), 6.0);
+    // Shrunk by 0.25: 2.5 x 1.5; the frame between 0 and 0.25 is 6 - 3.75.
+    EXPECT_DOUBLE_EQ(b.shrunk(0.25).cross_section_area(), 3.75);
+    EXPECT_DOUBLE_EQ(b.shell_area(0.0, 0.25), 2.25);
+    EXPECT_DOUBLE_EQ(b.shrunk(0.25).x_low(), 0.25);
+    EXPECT_DOUBLE_EQ(b.shrunk(0.25).y_high(), 1.75);
+    // Beyond the depth the box is a segment at the middle: no area.
+    EXPECT_DOUBLE_EQ(b.shrunk(1.5).cross_section_area(), 0.0);
+    double sum = 0.0;
+    for (int k = 0; k < 10; ++k)
+        sum += b.shell_area(0.1 * k, 0.1 * (k + 1));
+    EXPECT_NEAR(sum, 6.0, 1e-12);
+}
+
+TEST(Container, CylinderAndBoxAnswerTheSameQuestions) {
+    const double pi = 3.14159265358979323846;
+    const Container c = packbed::Cylinder(2.0), b = Box(4.0, 4.0);
+    EXPECT_EQ(c.name(), "cylinder");
+    EXPECT_EQ(b.name(), "box");
+    EXPECT_EQ(c.spec(), "cylinder:4");
+    EXPECT_EQ(b.spec(), "box:4,4");
+    EXPECT_EQ(b.shrunk(0.5).spec(), "box:3,3@0.5,0.5");
+    EXPECT_DOUBLE_EQ(c.cross_section_area(), 4.0 * pi);
+    EXPECT_DOUBLE_EQ(c.shell_area(0.0, 1.0), pi * (4.0 - 1.0));
+    EXPECT_DOUBLE_EQ(c.shrunk(0.5).depth(), 1.5);
+    EXPECT_DOUBLE_EQ(c.wall_distance({0.6, 0.8, 1.0}), 1.0);
+    EXPECT_DOUBLE_EQ(b.wall_distance({0.6, 0.8, 1.0}), 0.6);
+    // A sphere of radius 0.5 wholly inside, then the half of one centred on a face.
+    const double ball = 4.0 / 3.0 * pi * 0.125;
+    EXPECT_DOUBLE_EQ(b.sphere_volume({2.0, 2.0, 2.0}, 0.5, 0.0, 10.0), ball);
+    EXPECT_NEAR(b.sphere_volume({0.0, 2.0, 2.0}, 0.5, 0.0, 10.0), 0.5 * ball, 1e-15);
+    // On the cylinder's wall: less than half (the wall curves inwards), as the volume routine.
+    EXPECT_EQ(c.sphere_volume({2.0, 0.0, 2.0}, 0.5, 0.0, 10.0),
+              packbed::sphere_volume_in_cylinder_slab({2.0, 0.0, 2.0}, 0.5, 2.0, 0.0, 10.0));
+    EXPECT_LT(c.sphere_volume({2.0, 0.0, 2.0}, 0.5, 0.0, 10.0), 0.5 * ball);
+    // ...and a quarter of one on a vertical edge of the box, cut by the plane z = 2 too.
+    EXPECT_NEAR(b.sphere_volume({0.0, 0.0, 2.0}, 0.5, 0.0, 2.0), 0.125 * ball, 1e-12);
+    EXPECT_EQ(b.bounds().x_high, 4.0);
+    EXPECT_EQ(c.bounds().x_low, -2.0);
+    EXPECT_EQ(c.profile_position_name(), "radial_position");
+    EXPECT_DOUBLE_EQ(c.profile_position(0.5), 1.5);
+    EXPECT_EQ(b.profile_position_name(), "wall_distance");
+    EXPECT_DOUBLE_EQ(b.profile_position(0.5), 0.5);
 }
