@@ -28,6 +28,7 @@ struct LatticeOptions {
     std::string rotate;
     std::string out = "packbed-lattice";
     double band_clearance = 1.0;
+    bool no_analysis = false;
     bool quiet = false;
     bool force = false;
 };
@@ -93,7 +94,8 @@ int run_lattice(LatticeOptions& o) {
     const auto* box = std::get_if<BoxRegion>(&o.params.region);
     const auto* cylinder = std::get_if<CylinderRegion>(&o.params.region);
     const double height = box ? box->size.z : cylinder->height;
-    if (!packing.centers.empty() && height > 2.0 * o.band_clearance * o.params.diameter)
+    if (!o.no_analysis && !packing.centers.empty() &&
+        height > 2.0 * o.band_clearance * o.params.diameter)
         stage_analysis(out, packing,
                        box ? Container(Box(box->size.x, box->size.y))
                            : Container(Cylinder(0.5 * cylinder->diameter)),
@@ -148,8 +150,11 @@ Command register_lattice(CLI::App& parent) {
         ->check(one_of({"whole", "centres"}));
     add_output_directory(*app, o.out, o.force);
     app->add_option("--band-clearance", o.band_clearance,
-                    "cylinder: the analysis band starts and ends this far from floor and top, d")
+                    "the analysis band starts and ends this far from floor and top, d")
         ->check(real_in(0.0, 1e6, false, true));
+    app->add_flag("--no-analysis", o.no_analysis,
+                  "only the balls and their summary: no profiles, plots or analysis (a million "
+                  "balls in 2 s instead of about a minute)");
     app->add_flag("-q,--quiet", o.quiet, "no report on the terminal");
     app->fallthrough();
     app->footer("Exit status: 0 success, 2 bad input.");
