@@ -122,7 +122,7 @@ class Fire {
 public:
     Fire(const SoftSphereParameters& p, detail::SoftBed& bed, std::uint32_t fixed, double datum,
          std::uint64_t steps, std::uint32_t layer = 0, std::uint32_t layers = 1)
-        : m_params(p)
+        : m_params(detail::in_dp(p))
         , m_bed(bed)
         , m_window(p.mc_window, p.mc_tolerance)
         , m_fixed(fixed)
@@ -231,8 +231,9 @@ private:
                 f[k] = Vec3{};
                 return;
             }
-            Vec3 force = bed.contact_move_from_factors(k, law, t.wall);
-            force.z -= g;
+            // Each sphere's step length and weight (SoftBed::mobility, weight; 1 when mono-sized).
+            Vec3 force = bed.contact_move_from_factors(k, law, t.wall) * bed.mobility(radius[k]);
+            force.z -= g * bed.weight(radius[k]);
             if (x[k].z <= radius[k] && force.z < 0.0)
                 force.z = 0.0; // resting on the rigid floor
             f[k] = force;
@@ -388,7 +389,7 @@ private:
 } // namespace
 
 std::uint32_t fire_layers(const SoftSphereParameters& p) {
-    const double height = initial_bed_height(p.particles, p.aspect_ratio, p.e0);
+    const double height = initial_bed_height(p);
     if (p.layer_height <= 0.0 || height <= 2.0 * p.layer_height)
         return 1;
     return static_cast<std::uint32_t>(std::min(height / p.layer_height, 1e6));
@@ -456,6 +457,12 @@ SoftSphereResult relax_with_fire(const SoftSphereParameters& parameters,
         bool on_floor =
             std::all_of(members.begin(), members.begin() + first,
                         [](const auto& slice_members) { return slice_members.empty(); });
+        // Lengths of a Dp above, for spheres of many sizes the largest diameter's (1 when
+        // mono-sized): the shell must hold every sphere a free one can touch.
+        const double largest =
+            p.sizes.empty() ? 1.0
+                            : std::max(1.0, *std::max_element(p.sizes.begin(), p.sizes.end()));
+        const double shell = layer_shell * largest;
         detail::SoftBed part(p.aspect_ratio);
         for (std::uint32_t l = first; l < layers; ++l) {
             if (members[l].empty())
@@ -467,12 +474,12 @@ SoftSphereResult relax_with_fire(const SoftSphereParameters& parameters,
                 for (const std::uint32_t i : members[below]) {
                     if (position[i].z > datum)
                         band.push_back(i);
-                    else if (position[i].z > datum - layer_shell)
+                    else if (position[i].z > datum - shell)
                         ids.push_back(i);
                 }
             const auto fixed = static_cast<std::uint32_t>(ids.size());
             ids.insert(ids.end(), band.begin(), band.end());
-            const double base = on_floor ? 0.0 : top + 1.0; // where the slice's bottom goes
+            const double base = on_floor ? 0.0 : top + largest; // where the slice's bottom goes
             const double lift = base - l * slice;
             for (const std::uint32_t i : members[l]) {
                 position[i].z += lift;
@@ -483,7 +490,7 @@ SoftSphereResult relax_with_fire(const SoftSphereParameters& parameters,
             spheres.radii.reserve(ids.size());
             for (const std::uint32_t i : ids)
                 spheres.add(position[i], start.radii[i]);
-            part.assign(std::move(spheres), base + slice);
+            part.assign(std::move(spheres), base + slice, bed.smallest_radius);
             Fire fire(p, part, fixed, datum, steps, l, layers);
             std::vector<StageRecord> stages = fire.relax(control);
             steps = fire.steps();
@@ -513,7 +520,7 @@ SoftSphereResult relax_with_fire(const SoftSphereParameters& parameters,
         Packing all;
         all.centers = std::move(position);
         all.radii = start.radii;
-        bed.assign(std::move(all), bed.initial_height);
+        bed.assign(std::move(all), bed.initial_height, bed.smallest_radius);
         if (!result.stages.empty())
             result.stages.back().mass_centre_z = bed.mass_centre_z();
     }

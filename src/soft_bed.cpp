@@ -5,22 +5,28 @@
 namespace packbed::detail {
 
 void SoftBed::generate(const SoftSphereParameters& params) {
-    initial_height = initial_bed_height(params.particles, params.aspect_ratio, params.e0);
+    initial_height = initial_bed_height(params);
     ceiling = 4.0 * initial_height + 10.0 * params.aspect_ratio + 10.0;
+    smallest_radius = 0.5 * params.smallest_size();
     std::mt19937_64 rng(params.seed);
-    const double reach = container.radius() - 0.5;
     packing.centers.reserve(params.particles);
     packing.radii.reserve(params.particles);
+    // Section 3.1 with each sphere's own radius r_i: r = (Rt - r_i) Rnd^(1/2), theta = 2 pi
+    // Rnd, z = L0 Rnd + r_i (the paper's Dp/2 is the radius). The same random numbers whatever
+    // the sizes.
     for (std::uint64_t i = 0; i < params.particles; ++i) {
+        const double radius = params.sizes.empty() ? 0.5 : 0.5 * params.sizes[i];
+        const double reach = container.radius() - radius;
         const double r = reach * std::sqrt(uniform01(rng));
         const double theta = 2.0 * std::numbers::pi * uniform01(rng);
-        const double z = initial_height * uniform01(rng) + 0.5;
-        packing.add({r * std::cos(theta), r * std::sin(theta), z}, 0.5);
+        const double z = initial_height * uniform01(rng) + radius;
+        packing.add({r * std::cos(theta), r * std::sin(theta), z}, radius);
     }
     reset_order();
 }
 
-void SoftBed::assign(Packing spheres, double height) {
+void SoftBed::assign(Packing spheres, double height, double smallest) {
+    smallest_radius = smallest;
     packing = std::move(spheres);
     initial_height = height;
     ceiling = 4.0 * height + 10.0 * 2.0 * container.radius() + 10.0;

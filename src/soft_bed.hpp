@@ -29,6 +29,18 @@ inline double uniform01(std::mt19937_64& rng) {
     return static_cast<double>(rng() >> 11) * 0x1.0p-53;
 }
 
+/// The parameters a solver runs with: the tolerance and the control band of eq. (7), given in
+/// units of the smallest diameter (SoftSphereParameters::sizes), turned into Dp. The same values
+/// for a mono-sized bed (times 1).
+inline SoftSphereParameters in_dp(const SoftSphereParameters& p) {
+    SoftSphereParameters out = p;
+    const double smallest = p.smallest_size();
+    out.tolerance *= smallest;
+    out.overlap_low *= smallest;
+    out.overlap_high *= smallest;
+    return out;
+}
+
 /// The contact law of eq. (2b) multiplied by the step length, as it enters eq. (4): sphere i
 /// moves by \f$-C_k R(\delta_{ij}) \hat r_{ij}\f$. Linear in the overlap, no friction. With
 /// ck = 1 it gives the force of the energy \f$\frac12 \sum \delta_{ij}^2\f$ (unit stiffness).
@@ -99,9 +111,10 @@ struct SoftBed {
     std::vector<double> factor; // per listed pair, see pair_factors()
     static constexpr std::size_t pair_chunk = 512; // pairs per work item of pair_factors()
     NeighborList list;
-    double drift2 = 0.0;         // largest squared move since the last list build
-    double initial_height = 0.0; // L0, Dp
-    double ceiling = 0.0;        // a centre above this has been thrown out of the bed
+    double drift2 = 0.0;          // largest squared move since the last list build
+    double initial_height = 0.0;  // L0, Dp
+    double ceiling = 0.0;         // a centre above this has been thrown out of the bed
+    double smallest_radius = 0.5; // of the whole bed, Dp (sets each sphere's step length)
 
     explicit SoftBed(double aspect_ratio)
         : container(0.5 * aspect_ratio) {}
@@ -110,8 +123,23 @@ struct SoftBed {
     void generate(const SoftSphereParameters& params);
 
     /// Take `spheres` (units of Dp) as the bed, in their order as the generation order, with
-    /// L0 = `height` (sets the ceiling); no list, no velocities.
-    void assign(Packing spheres, double height);
+    /// L0 = `height` (sets the ceiling); no list, no velocities. `smallest` is the smallest
+    /// radius of the whole bed the spheres belong to (the step lengths follow it).
+    void assign(Packing spheres, double height, double smallest);
+
+    /// Spheres of many sizes (issue 16; docs/sizes.md, "Both solvers"): each sphere moves
+    /// with its own step length U_i = U (r_min / r_i)^2, the step of the paper's eq. (4) for
+    /// the smallest sphere and less for larger ones, whose contacts grow as their surface
+    /// (r_i / r_min)^2: the sum of a sphere's contact steps stays within what keeps the
+    /// mono-sized iteration stable. \return U_i / U; exactly 1 in a mono-sized bed.
+    double mobility(double r) const {
+        const double q = smallest_radius / r;
+        return q * q;
+    }
+    /// The gravity step of a sphere of radius r in units of the reference sphere's Cg Dp:
+    /// its weight (r / 0.5)^3 (eq. 2c, mass as volume) times its step length. Exactly 1 in a
+    /// mono-sized bed.
+    double weight(double r) const { return mobility(r) * (8.0 * r * r * r); }
 
     /// \return true when the Verlet list must be rebuilt before the next evaluation: none
     /// yet, or a sphere moved more than skin/2 (the caller keeps drift2 up to date).

@@ -60,10 +60,42 @@ void SoftSphereParameters::validate() const {
     require(layer_height == 0.0 || (layer_height >= 10.0 && layer_height <= 1e6), "layer-height",
             layer_height, "0 (one piece) or 10 to 1000000 (Dp)");
     require(max_iterations >= 1, "max-iterations", static_cast<double>(max_iterations), ">= 1");
+    if (sizes.empty())
+        return;
+    if (sizes.size() != particles)
+        throw InvalidInput(fmt::format("--sizes gives {} diameters for {} particles; allowed: one "
+                                       "per particle",
+                                       sizes.size(), particles));
+    const auto [smallest, largest] = std::minmax_element(sizes.begin(), sizes.end());
+    // Written to fail on NaN: every comparison with NaN is false.
+    for (const double d : sizes)
+        if (!(d > 0.0 && d < aspect_ratio))
+            throw InvalidInput(fmt::format(
+                "--sizes: a diameter of {:.6g} Dp is not allowed in a tube of a = {:.6g}; allowed: "
+                "diameters > 0 and below the tube's (a Dp, Dp = {:.6g} the reference diameter)",
+                d, aspect_ratio, diameter));
+    if (!(*largest / *smallest <= max_size_ratio))
+        throw InvalidInput(fmt::format(
+            "--sizes: the largest diameter is {:.6g} times the smallest; allowed: at most {:g} "
+            "(the size ratio the solvers are tested for)",
+            *largest / *smallest, max_size_ratio));
 }
 
 double initial_bed_height(std::uint64_t particles, double aspect_ratio, double e0) {
     return 2.0 / 3.0 * static_cast<double>(particles) / (aspect_ratio * aspect_ratio * (1.0 - e0));
+}
+
+double initial_bed_height(const SoftSphereParameters& p) {
+    if (p.sizes.empty())
+        return initial_bed_height(p.particles, p.aspect_ratio, p.e0);
+    double solid = 0.0; // sum of (d_i / Dp)^3, in generation order
+    for (const double d : p.sizes)
+        solid += d * d * d;
+    return 2.0 / 3.0 * solid / (p.aspect_ratio * p.aspect_ratio * (1.0 - p.e0));
+}
+
+double SoftSphereParameters::smallest_size() const {
+    return sizes.empty() ? 1.0 : *std::min_element(sizes.begin(), sizes.end());
 }
 
 Overlaps measure_overlaps(const Packing& packing, const Cylinder& container) {
@@ -89,7 +121,7 @@ struct SoftSphereGenerator::State : detail::SoftBed {
 
     explicit State(const SoftSphereParameters& p)
         : SoftBed(p.aspect_ratio)
-        , params(p) {}
+        , params(detail::in_dp(p)) {}
 
     void generate() { SoftBed::generate(params); }
 
@@ -105,9 +137,10 @@ struct SoftSphereGenerator::State : detail::SoftBed {
         const Vec3* const reference = list.reference().data();
         double pair = 0.0, wall = 0.0, top = 0.0, drift = 0.0;
         bool finite = true;
+        // Each sphere's step length and weight (SoftBed::mobility, weight; 1 when mono-sized).
         auto move_of = [&](std::size_t k, double& pair_k, double& wall_k) {
-            Vec3 move = contact_move(k, law, pair_k, wall_k);
-            move.z -= gravity;
+            Vec3 move = contact_move(k, law, pair_k, wall_k) * mobility(radius[k]);
+            move.z -= gravity * weight(radius[k]);
             Vec3 moved = x[k] + move;
             moved.z = std::max(moved.z, radius[k]);
             return moved;
@@ -124,8 +157,8 @@ struct SoftSphereGenerator::State : detail::SoftBed {
                                                        std::min(pairs, (c + 1) * pair_chunk), law));
 #pragma omp for schedule(static) reduction(max : wall, top, drift) reduction(&& : finite)
                 for (std::size_t k = 0; k < n; ++k) {
-                    Vec3 move = contact_move_from_factors(k, law, wall);
-                    move.z -= gravity;
+                    Vec3 move = contact_move_from_factors(k, law, wall) * mobility(radius[k]);
+                    move.z -= gravity * weight(radius[k]);
                     Vec3 moved = x[k] + move;
                     moved.z = std::max(moved.z, radius[k]);
                     finite = finite && is_finite(moved);

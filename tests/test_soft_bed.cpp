@@ -62,3 +62,40 @@ TEST(SoftBedKernels, PairFactorsGiveContactMovesBitForBit) {
 
 } // namespace
 } // namespace packbed::detail
+
+namespace packbed::detail {
+namespace {
+
+TEST(SoftBedKernels, UnequalSpheresPressEachOtherAndTheWallByTheirOwnRadii) {
+    // Eq. (2b) with r_i + r_j: spheres of radius 0.25 and 1 (Dp units) 1.15 apart overlap by
+    // 0.1; with Ck = 0.3 each moves 0.03 along the line of centres. Eq. (2a) with r_i: the
+    // large one, 2.1 from the axis in a tube of radius 3, presses the wall by 0.1.
+    const LinearOverlapLaw law{0.3};
+    Vec3 move{};
+    double largest = 0.0;
+    law.apply({0.0, 0.0, 1.0}, {1.15, 0.0, 1.0}, 0.25 + 1.0, true, move, largest);
+    EXPECT_NEAR(largest, 0.1, 1e-15);
+    EXPECT_NEAR(move.x, -0.03, 1e-15);
+    EXPECT_EQ(move.y, 0.0);
+    SoftBed bed(6.0); // Rt = 3
+    Vec3 wall_move{};
+    double wall = 0.0;
+    bed.add_wall_term({0.0, 2.1, 1.0}, 1.0, law, wall_move, wall);
+    EXPECT_NEAR(wall, 0.1, 1e-15);
+    EXPECT_NEAR(wall_move.y, -0.03, 1e-15);
+    // Step lengths (r_min / r)^2 and gravity steps (r_min / r)^2 (r / 0.5)^3 with r_min = 0.25:
+    // the smallest sphere moves by the paper's step and weighs 1/8 of a Dp sphere; a sphere of
+    // radius 1 moves 1/16 as far per unit force and falls 8 x 1/16 = 1/2 as far per Cg.
+    bed.smallest_radius = 0.25;
+    EXPECT_EQ(bed.mobility(0.25), 1.0);
+    EXPECT_EQ(bed.weight(0.25), 0.125);
+    EXPECT_EQ(bed.mobility(1.0), 0.0625);
+    EXPECT_EQ(bed.weight(1.0), 0.5);
+    // A mono-sized bed: exactly 1, so its bits are those of the paper's eq. (4).
+    bed.smallest_radius = 0.5;
+    EXPECT_EQ(bed.mobility(0.5), 1.0);
+    EXPECT_EQ(bed.weight(0.5), 1.0);
+}
+
+} // namespace
+} // namespace packbed::detail

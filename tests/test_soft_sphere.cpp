@@ -292,6 +292,91 @@ TEST(SoftSphere, OptimisationsLeaveEveryBitOfTheResult) {
     EXPECT_EQ(fingerprint(bed.packing_dp()), 0x0a3255b1e53054ddull);
 }
 
+/// Every pair's overlap over the smaller diameter, every sphere's wall overlap over its own
+/// diameter, and the floor (brute force, in output units).
+struct SizeChecks {
+    double pair = 0.0, wall = 0.0, below_floor = 0.0;
+};
+SizeChecks relative_overlaps(const SoftSphereResult& r) {
+    SizeChecks out;
+    const Packing& p = r.packing;
+    for (std::size_t i = 0; i < p.size(); ++i) {
+        for (std::size_t j = i + 1; j < p.size(); ++j) {
+            const double overlap = p.radii[i] + p.radii[j] - norm(p.centers[j] - p.centers[i]);
+            out.pair = std::max(out.pair, overlap / (2.0 * std::min(p.radii[i], p.radii[j])));
+        }
+        out.wall = std::max(out.wall, r.container.wall_contact(p.centers[i], p.radii[i]).overlap /
+                                          (2.0 * p.radii[i]));
+        out.below_floor = std::max(out.below_floor, p.radii[i] - p.centers[i].z);
+    }
+    return out;
+}
+
+TEST(SoftSphere, BinaryBedEndsBelowTheToleranceOfEachPairsSmallerSphere) {
+    // Issue 16: 220 spheres of diameter 1 and 30 of 2 (equal volumes: 220 x 1 against 30 x 8 =
+    // 240), in units of the Sauter mean d32 = (220 + 240) / (220 + 120) = 1.353; a = 7 d32.
+    // Both solvers: every pair's overlap below 1e-4 of its smaller sphere's diameter, every
+    // sphere inside and on or above the floor, the sizes as given.
+    const double d32 = 460.0 / 340.0;
+    SoftSphereParameters p;
+    p.aspect_ratio = 7.0;
+    p.particles = 250;
+    p.seed = 3;
+    p.diameter = d32; // output units: the small sphere's diameter is 1
+    for (std::size_t i = 0; i < 250; ++i)
+        p.sizes.push_back((i % 25 < 22 ? 1.0 : 2.0) / d32);
+    for (const Solver solver : {Solver::fire, Solver::paper}) {
+        p.solver = solver;
+        const SoftSphereResult r = generate_soft_sphere(p);
+        const SizeChecks c = relative_overlaps(r);
+        EXPECT_LT(c.pair, 1e-4) << to_string(solver);
+        EXPECT_LT(c.wall, 1e-4) << to_string(solver);
+        EXPECT_LE(c.below_floor, 0.0) << to_string(solver);
+        std::size_t large = 0;
+        for (std::size_t i = 0; i < 250; ++i) {
+            EXPECT_DOUBLE_EQ(2.0 * r.packing.radii[i], i % 25 < 22 ? 1.0 : 2.0);
+            large += r.packing.radii[i] > 0.75 ? 1 : 0;
+        }
+        EXPECT_EQ(large, 30u);
+        // A dense bed: the large spheres lie low (they weigh 8 times as much), and the void
+        // fraction of the middle of the bed is that of a packed bed, not of the loose start.
+        const auto band = band_clear_of_ends(r.packing, 1.0 * d32);
+        ASSERT_TRUE(band);
+        const double e = void_fraction(r.packing, r.container, band->z_low, band->z_high);
+        EXPECT_GT(e, 0.3) << to_string(solver);
+        EXPECT_LT(e, 0.45) << to_string(solver);
+    }
+}
+
+TEST(SoftSphere, SizesAreCheckedWithTheirMessages) {
+    SoftSphereParameters p;
+    p.particles = 3;
+    p.sizes = {1.0, 1.0};
+    EXPECT_THROW(p.validate(), InvalidInput);
+    p.sizes = {1.0, 0.05, 1.0};
+    try {
+        p.validate();
+        FAIL();
+    } catch (const InvalidInput& e) {
+        EXPECT_STREQ(e.what(), "--sizes: the largest diameter is 20 times the smallest; allowed: "
+                               "at most 10 (the size ratio the solvers are tested for)");
+    }
+    p.sizes = {1.0, 5.5, 1.0};
+    p.aspect_ratio = 5.0;
+    try {
+        p.validate();
+        FAIL();
+    } catch (const InvalidInput& e) {
+        EXPECT_STREQ(e.what(), "--sizes: a diameter of 5.5 Dp is not allowed in a tube of a = 5; "
+                               "allowed: diameters > 0 and below the tube's (a Dp, Dp = 1 the "
+                               "reference diameter)");
+    }
+    p.sizes = {1.0, -1.0, 1.0};
+    EXPECT_THROW(p.validate(), InvalidInput);
+    p.sizes = {1.0, std::nan(""), 1.0};
+    EXPECT_THROW(p.validate(), InvalidInput);
+}
+
 TEST(SoftSphere, DivergenceStopsWithStageIterationAndParameter) {
     SoftSphereParameters p = small_bed();
     p.aspect_ratio = 4.0;

@@ -69,8 +69,7 @@ int run_generate(GenerateOptions& o) {
                 "allowed: --solver fire with an initial height L0 = {:.4g} Dp above twice "
                 "--layer-height (now {})",
                 o.checkpoint, o.params.solver == Solver::fire ? "in one piece" : "paper mode",
-                initial_bed_height(o.params.particles, o.params.aspect_ratio, o.params.e0),
-                o.params.layer_height));
+                initial_bed_height(o.params), o.params.layer_height));
         check_writable_file("--checkpoint", o.checkpoint); // now, not after the first layer
         out.keep("--checkpoint", o.checkpoint);
         if (std::filesystem::exists(o.checkpoint)) {

@@ -66,6 +66,19 @@ struct SoftSphereParameters {
     /// this height, bottom first (relax_with_fire); 0: in one piece. Dp; 0 or [10, 1e6].
     double layer_height = 30.0;
     std::uint64_t max_iterations = 200'000'000; ///< give up (ConvergenceError) beyond this
+    /// Spheres of many sizes (issue 16): each sphere's diameter in units of `diameter`, the
+    /// reference diameter Dp that a and every length marked Dp refer to (packbed generate
+    /// --sizes makes it the Sauter mean d32), in generation order; `particles` of them, each
+    /// in (0, 2a) and at most max_size_ratio times the smallest. Empty: every sphere Dp, the
+    /// paper's mono-sized bed, with the same bits as before sizes existed. With sizes, the
+    /// tolerance and the control band of eq. (7) are in units of the smallest diameter (so
+    /// every pair's overlap ends below tolerance x the smaller diameter of the pair) and each
+    /// sphere moves with its own step length (docs/sizes.md, "Both solvers").
+    std::vector<double> sizes;
+    static constexpr double max_size_ratio = 10.0; ///< largest over smallest diameter
+
+    /// \return the smallest diameter over Dp: 1 for a mono-sized bed.
+    double smallest_size() const;
 
     /// Check every value and their combinations.
     /// \throws InvalidInput naming the parameter, its value and the allowed range.
@@ -147,6 +160,13 @@ Overlaps measure_overlaps(const Packing& packing, const Cylinder& container);
 /// \param particles Np \param aspect_ratio a \param e0 initial void fraction in (0, 1)
 /// \return L0 in units of Dp.
 double initial_bed_height(std::uint64_t particles, double aspect_ratio, double e0);
+
+/// Eq. (6) for spheres of many sizes: the height the solid volume fills at void fraction e0,
+/// \f$L_0 = \sum_i \frac{\pi}{6} d_i^3 / (\frac{\pi}{4} a^2 D_p^2 (1 - \varepsilon_0)) =
+/// \frac{2}{3} \frac{\sum_i (d_i/D_p)^3}{a^2 (1 - \varepsilon_0)} D_p\f$: with every d_i = Dp,
+/// the paper's eq. (6) (the same bits: the sum of Np ones is Np exactly).
+/// \return L0 in units of Dp.
+double initial_bed_height(const SoftSphereParameters& parameters);
 
 /// The paper's algorithm (Solver::paper), stage by stage; `parameters.solver` is not looked
 /// at here (generate_soft_sphere dispatches on it). The constructor runs the generation stage
