@@ -30,6 +30,13 @@ double Cylinder::ball_volume(const Vec3& c, double r, double z_low, double z_hig
     return sphere_volume_in_cylinder_slab(c, r, m_radius, z_low, z_high);
 }
 
+std::vector<WallPlane> Cylinder::walls_within(const Vec3& c, double r, double gap) const {
+    const double rho = std::hypot(c.x, c.y);
+    if (m_radius - rho - r < gap && rho > 0.0)
+        return {WallPlane{{c.x / rho, c.y / rho, 0.0}, m_radius}};
+    return {};
+}
+
 std::string Cylinder::spec() const {
     return fmt::format("cylinder:{:.9g}", 2.0 * m_radius);
 }
@@ -53,6 +60,19 @@ double Box::sphere_volume(const Vec3& c, double r, double z_low, double z_high) 
     if (!(m_x_high > m_x_low && m_y_high > m_y_low && z_high > z_low))
         return 0.0;
     return sphere_volume_in_box(c, r, {m_x_low, m_y_low, z_low}, {m_x_high, m_y_high, z_high});
+}
+
+std::vector<WallPlane> Box::walls_within(const Vec3& c, double r, double gap) const {
+    std::vector<WallPlane> planes;
+    if (c.x - m_x_low - r < gap)
+        planes.push_back({{-1.0, 0.0, 0.0}, -m_x_low});
+    if (m_x_high - c.x - r < gap)
+        planes.push_back({{1.0, 0.0, 0.0}, m_x_high});
+    if (c.y - m_y_low - r < gap)
+        planes.push_back({{0.0, -1.0, 0.0}, -m_y_low});
+    if (m_y_high - c.y - r < gap)
+        planes.push_back({{0.0, 1.0, 0.0}, m_y_high});
+    return planes;
 }
 
 std::string Box::spec() const {
@@ -91,6 +111,10 @@ std::pair<double, double> Container::wall_distances(const Vec3& c, double r) con
 
 double Container::depth() const {
     return ask(m_shape, [](const auto& s) { return s.depth(); });
+}
+
+std::vector<WallPlane> Container::walls_within(const Vec3& c, double r, double gap) const {
+    return ask(m_shape, [&](const auto& s) { return s.walls_within(c, r, gap); });
 }
 
 double Container::cross_section_area() const {

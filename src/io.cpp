@@ -105,6 +105,29 @@ AxisBox container_box(double container_radius, double height, double diameter) {
     return {{-half, -half, -m}, {half, half, height + m}};
 }
 
+namespace {
+
+/// Throw InvalidInput unless the container has finite bounds and a depth > 0.
+void require_container(const Container& container) {
+    const Rectangle b = container.bounds();
+    if (!(std::isfinite(b.x_low) && std::isfinite(b.x_high) && std::isfinite(b.y_low) &&
+          std::isfinite(b.y_high) && container.depth() > 0.0))
+        throw InvalidInput(fmt::format("the container {} is not allowed; allowed: a cylinder or a "
+                                       "box of finite size > 0",
+                                       container.spec()));
+}
+
+} // namespace
+
+AxisBox container_box(const Container& container, double height, double diameter) {
+    require_container(container);
+    require_positive("container height", height);
+    require_positive("diameter", diameter);
+    const double m = container_box_margin(diameter, container.depth());
+    const Rectangle b = container.bounds();
+    return {{b.x_low - m, b.y_low - m, -m}, {b.x_high + m, b.y_high + m, height + m}};
+}
+
 double rayleigh_time(double radius, double density, double youngs_modulus, double poisson_ratio) {
     require_positive("radius", radius);
     require_positive("density", density);
@@ -142,7 +165,7 @@ struct SettleNumbers {
 SettleNumbers settle_numbers(const DemSettle& s) {
     require_input_word("the data file", s.data_file);
     require_input_word("the dump file", s.dump);
-    require_positive("container radius", s.container_radius);
+    require_container(s.container);
     require_positive("container height", s.container_height);
     require_positive("diameter", s.diameter);
     const DemMaterial& m = s.material;
@@ -165,6 +188,46 @@ SettleNumbers settle_numbers(const DemSettle& s) {
     return n;
 }
 
+/// What the settle inputs say of the container's side, by shape.
+struct SettleWall {
+    std::string words;        // the head's "the container is the ..., and the data file's box
+                              // holds it" (two comment lines)
+    std::string lammps;       // LAMMPS: the comment and the region of the side
+    std::string liggghts_stl; // LIGGGHTS: what the side's STL is
+};
+
+SettleWall settle_wall(const Cylinder& c, double height) {
+    return {fmt::format("cylinder of radius\n# {:.9g} about the z axis from the floor z = 0 to "
+                        "z = {:.9g}, and the data file's\n# box holds it",
+                        c.radius(), height),
+            fmt::format("# The container: its side as a cylinder region (LAMMPS 2022 has no STL "
+                        "walls for\n# granular fixes; the LIGGGHTS input uses packbed's STL), its "
+                        "floor as the plane z = 0.\n"
+                        "region          container cylinder z 0 0 {} 0 {} side in open 1 open 2 "
+                        "units box\n",
+                        c.radius(), height),
+            "a prism about the cylinder"};
+}
+
+SettleWall settle_wall(const Box& b, double height) {
+    // Block faces 1 to 6 are xlo, xhi, ylo, yhi, zlo, zhi: the floor and the top open.
+    return {fmt::format("box x in [{:.9g}, {:.9g}], y in\n# [{:.9g}, {:.9g}] from the floor z = 0 "
+                        "to z = {:.9g}, and the data file's box\n# holds it",
+                        b.x_low(), b.x_high(), b.y_low(), b.y_high(), height),
+            fmt::format("# The container: its four sides as a block region open at the floor and "
+                        "the top\n# (LAMMPS 2022 has no STL walls for granular fixes; the "
+                        "LIGGGHTS input uses packbed's\n# STL), its floor as the plane z = 0.\n"
+                        "region          container block {} {} {} {} 0 {} side in open 5 open 6 "
+                        "units box\n",
+                        b.x_low(), b.x_high(), b.y_low(), b.y_high(), height),
+            "the box's four faces"};
+}
+
+SettleWall settle_wall(const DemSettle& s) {
+    return std::visit([&](const auto& shape) { return settle_wall(shape, s.container_height); },
+                      s.container.shape());
+}
+
 /// The comment block and the variables both inputs start with.
 std::string settle_head(const DemSettle& s, const SettleNumbers& n, std::string_view program,
                         std::string_view run) {
@@ -172,31 +235,29 @@ std::string settle_head(const DemSettle& s, const SettleNumbers& n, std::string_
     return fmt::format(
         "# packbed export: a short DEM settle of the bed in {0} under gravity, in its container,\n"
         "# for {1}. Run it in the folder of {0}:  {2}\n"
-        "# Lengths as in {0} with units si (metres); the container is the cylinder of radius\n"
-        "# {3:.9g} about the z axis from the floor z = 0 to z = {4:.9g}, and the data file's\n"
-        "# box holds it (docs/dem.md).\n"
+        "# Lengths as in {0} with units si (metres); the container is the {3} (docs/dem.md).\n"
         "# Material: an example (a soft glass-like solid, E far below glass's 63 GPa as usual in\n"
         "# DEM), not calibrated; edit the variables below, the time step follows them.\n"
-        "# Time step: {5} x the Rayleigh time of the smallest sphere (radius R),\n"
+        "# Time step: {4} x the Rayleigh time of the smallest sphere (radius R),\n"
         "#   t_R = pi R sqrt(rho / G) / (0.1631 nu + 0.8766), G = E / (2 (1 + nu))\n"
         "#   (Li, Xu & Thornton 2005, Powder Technol. 160: 219-228; LIGGGHTS fix "
         "check/timestep/gran)\n"
-        "#   here: R = {6:.9g}, rho = {7:.9g}, E = {8:.9g}, nu = {9:.9g}: t_R = {10:.6g} s,\n"
-        "#   dt = {11:.6g} s;"
-        " {12} steps = {13:.6g} s of settling.\n\n"
-        "variable        youngs equal {8}\n"
-        "variable        poisson equal {9}\n"
-        "variable        restitution equal {14}\n"
-        "variable        friction equal {15}\n"
-        "variable        density equal {7}\n"
-        "variable        radius equal {6}\n"
+        "#   here: R = {5:.9g}, rho = {6:.9g}, E = {7:.9g}, nu = {8:.9g}: t_R = {9:.6g} s,\n"
+        "#   dt = {10:.6g} s;"
+        " {11} steps = {12:.6g} s of settling.\n\n"
+        "variable        youngs equal {7}\n"
+        "variable        poisson equal {8}\n"
+        "variable        restitution equal {13}\n"
+        "variable        friction equal {14}\n"
+        "variable        density equal {6}\n"
+        "variable        radius equal {5}\n"
         "variable        shear equal v_youngs/(2*(1+v_poisson))\n"
         "variable        rayleigh equal "
         "PI*v_radius*sqrt(v_density/v_shear)/(0.1631*v_poisson+0.8766)\n"
-        "variable        dt equal {5}*v_rayleigh\n\n",
-        s.data_file, program, run, s.container_radius, s.container_height, s.time_step_fraction,
-        s.smallest_radius, s.density, m.youngs_modulus, m.poisson_ratio, n.rayleigh, n.time_step,
-        s.steps, s.steps * n.time_step, m.restitution, m.friction);
+        "variable        dt equal {4}*v_rayleigh\n\n",
+        s.data_file, program, run, settle_wall(s).words, s.time_step_fraction, s.smallest_radius,
+        s.density, m.youngs_modulus, m.poisson_ratio, n.rayleigh, n.time_step, s.steps,
+        s.steps * n.time_step, m.restitution, m.friction);
 }
 
 /// The run and its report, the same in both programs.
@@ -239,14 +300,10 @@ std::string lammps_settle_input(const DemSettle& s) {
                "friction.\n"
                "pair_style      granular\n"
                "pair_coeff      * * {2}\n"
-               "# The container: its side as a cylinder region (LAMMPS 2022 has no STL walls for\n"
-               "# granular fixes; the LIGGGHTS input uses packbed's STL), its floor as the plane z "
-               "= 0.\n"
-               "region          container cylinder z 0 0 {3} 0 {4} side in open 1 open 2 units "
-               "box\n"
+               "{3}"
                "fix             side all wall/gran/region granular {2} region container\n"
                "fix             floor all wall/gran granular {2} zplane 0.0 NULL\n",
-               s.data_file, n.skin, contact, s.container_radius, s.container_height) +
+               s.data_file, n.skin, contact, settle_wall(s).lammps) +
            settle_run(s, n);
 }
 
@@ -274,15 +331,15 @@ std::string liggghts_settle_input(const DemSettle& s) {
                "${{friction}}\n"
                "pair_style      gran model hertz tangential history\n"
                "pair_coeff      * *\n"
-               "# The container from packbed's STL: its side (a prism about the cylinder) and "
-               "floor.\n"
+               "# The container from packbed's STL: its side ({5}) and floor.\n"
                "fix             side all mesh/surface file {2} type 1\n"
                "fix             floor all mesh/surface file {3} type 1\n"
                "fix             container all wall/gran model hertz tangential history mesh "
                "n_meshes 2 meshes side floor\n"
                "# Warns if dt exceeds a quarter of the Rayleigh or Hertz time.\n"
                "fix             dt_check all check/timestep/gran {4} 0.25 0.25\n",
-               s.data_file, n.skin, s.wall_stl, s.bottom_stl, std::max(1, s.steps / 2)) +
+               s.data_file, n.skin, s.wall_stl, s.bottom_stl, std::max(1, s.steps / 2),
+               settle_wall(s).liggghts_stl) +
            settle_run(s, n);
 }
 

@@ -21,9 +21,10 @@ std::string header(const std::string& object, const std::string& location) {
 }
 
 /// The fluid point farthest from every surface among candidates on eight vertical lines
-/// (irrational fractions of the radius, so that no candidate lies on a cell face), every
-/// 0.05 Dp in height. Distances to a body are taken to its sphere (bodies lie inside their
-/// spheres, so the clearance is never overstated).
+/// (irrational fractions of the half-widths of the container's bounds from their middle, so
+/// that no candidate lies on a cell face), every 0.05 Dp in height. Distances to a body are
+/// taken to its sphere (bodies lie inside their spheres, so the clearance is never
+/// overstated), to the wall by Container::wall_distance.
 std::pair<Vec3, double> farthest_fluid_point(const std::vector<TreatedBody>& bodies,
                                              const SurfaceContainer& container, double dp) {
     std::vector<std::size_t> by_z(bodies.size());
@@ -35,7 +36,11 @@ std::pair<Vec3, double> farthest_fluid_point(const std::vector<TreatedBody>& bod
     double largest = 0.0;
     for (const TreatedBody& b : bodies)
         largest = std::max(largest, b.radius);
-    const double rt = container.cylinder.radius();
+    const Rectangle bounds = container.container.bounds();
+    const double x_mid = 0.5 * (bounds.x_low + bounds.x_high);
+    const double y_mid = 0.5 * (bounds.y_low + bounds.y_high);
+    const double x_half = 0.5 * (bounds.x_high - bounds.x_low);
+    const double y_half = 0.5 * (bounds.y_high - bounds.y_low);
     Vec3 best{};
     double best_clearance = -1.0;
     constexpr double fractions[8][2] = {{0.0123, 0.0371},  {0.3137, 0.1291},   {-0.2719, 0.2213},
@@ -44,8 +49,9 @@ std::pair<Vec3, double> farthest_fluid_point(const std::vector<TreatedBody>& bod
     const double step = 0.05 * dp;
     for (double z = 0.01237 * dp; z < container.height; z += step)
         for (const auto& f : fractions) {
-            const Vec3 p{f[0] * rt, f[1] * rt, z};
-            double clearance = std::min({rt - std::hypot(p.x, p.y), p.z, container.height - p.z});
+            const Vec3 p{x_mid + f[0] * x_half, y_mid + f[1] * y_half, z};
+            double clearance =
+                std::min({container.container.wall_distance(p), p.z, container.height - p.z});
             if (clearance <= best_clearance)
                 continue;
             // Bodies whose centre is within clearance + largest radius in height.
@@ -67,6 +73,97 @@ std::pair<Vec3, double> farthest_fluid_point(const std::vector<TreatedBody>& bod
     return {best, best_clearance};
 }
 
+/// The background mesh of one shape and what the README says of it.
+struct Background {
+    std::string block_mesh;    // blockMeshDict after its header
+    bool wall_surface = false; // the wall is cut out of the background by snappyHexMesh
+    std::string where;         // README: "a cylinder of radius R"
+    std::string surfaces;      // README: the wall's surface, after particles.stl's line
+    std::string patches;       // README: after the patches' list
+    std::string cells;         // README: the background cells and the levels
+};
+
+/// The cell size of level `level` of cells of `cell`.
+double refined(double cell, int level) {
+    return cell / std::ldexp(1.0, level);
+}
+
+/// A cylinder: a box one cell beyond it sideways, exactly 0 to height in z; snappyHexMesh
+/// cuts the wall (wall.stl) out of it, and the box's sides (`outside`) keep no faces.
+Background background(const Cylinder& cylinder, double height, double cell,
+                      const OpenFoamMeshOptions& options) {
+    const double rt = cylinder.radius();
+    Background b;
+    const int n_side = static_cast<int>(std::ceil(2.0 * rt / cell)) + 2;
+    const double half = 0.5 * n_side * cell;
+    const int n_z = std::max(1, static_cast<int>(std::ceil(height / cell)));
+    b.block_mesh = fmt::format(
+        "// Box around the cylinder (radius {rt}, height {h}); cells of {cell} (Dp / {cpd}).\n"
+        "scale 1;\n\nvertices\n(\n"
+        "    ({lo} {lo} 0) ({hi} {lo} 0) ({hi} {hi} 0) ({lo} {hi} 0)\n"
+        "    ({lo} {lo} {h}) ({hi} {lo} {h}) ({hi} {hi} {h}) ({lo} {hi} {h})\n);\n\n"
+        "blocks\n(\n    hex (0 1 2 3 4 5 6 7) ({n} {n} {nz}) simpleGrading (1 1 1)\n);\n\n"
+        "edges\n(\n);\n\nboundary\n(\n"
+        "    inlet\n    {{\n        type patch;\n        faces ((0 3 2 1));\n    }}\n"
+        "    outlet\n    {{\n        type patch;\n        faces ((4 5 6 7));\n    }}\n"
+        "    outside // outside the wall: no cells remain on it after snappyHexMesh\n"
+        "    {{\n        type patch;\n"
+        "        faces ((0 1 5 4) (1 2 6 5) (2 3 7 6) (3 0 4 7));\n    }}\n);\n",
+        fmt::arg("rt", rt), fmt::arg("h", height), fmt::arg("cell", cell),
+        fmt::arg("cpd", options.cells_per_diameter), fmt::arg("lo", -half), fmt::arg("hi", half),
+        fmt::arg("n", n_side), fmt::arg("nz", n_z));
+    b.wall_surface = true;
+    b.where = fmt::format("a cylinder of radius {}", rt);
+    b.surfaces = "; `wall.stl`: the cylinder wall, open, reaching half a cell beyond both ends "
+                 "(patch `wall`)";
+    b.patches = "; `outside` keeps no faces";
+    b.cells = fmt::format("Background cells of {} (Dp / {}); refinement level {} at the "
+                          "particles (cells of {}), {} at the wall (cells of {})",
+                          cell, options.cells_per_diameter, options.particle_level,
+                          refined(cell, options.particle_level), options.wall_level,
+                          refined(cell, options.wall_level));
+    return b;
+}
+
+/// A box: the background is the box itself, [x_low, x_high] x [y_low, y_high] x [0, height],
+/// ceil(length / cell) cells along each axis (the quotient's last bits forgiven), so that no
+/// cell is longer than `cell`; its four sides are the patch `wall` (type wall). No wall
+/// surface, and so no wall refinement.
+Background background(const Box& box, double height, double cell,
+                      const OpenFoamMeshOptions& options) {
+    const auto cells = [cell](double length) {
+        return std::max(1, static_cast<int>(std::ceil(length / cell * (1.0 - 1e-12))));
+    };
+    const double x0 = box.x_low(), x1 = box.x_high(), y0 = box.y_low(), y1 = box.y_high();
+    const int nx = cells(x1 - x0), ny = cells(y1 - y0), nz = cells(height);
+    Background b;
+    b.block_mesh = fmt::format(
+        "// The box x {x0} to {x1}, y {y0} to {y1}, z 0 to {h}: its sides are the wall.\n"
+        "// Cells of at most {cell} (Dp / {cpd}) along each axis.\n"
+        "scale 1;\n\nvertices\n(\n"
+        "    ({x0} {y0} 0) ({x1} {y0} 0) ({x1} {y1} 0) ({x0} {y1} 0)\n"
+        "    ({x0} {y0} {h}) ({x1} {y0} {h}) ({x1} {y1} {h}) ({x0} {y1} {h})\n);\n\n"
+        "blocks\n(\n    hex (0 1 2 3 4 5 6 7) ({nx} {ny} {nz}) simpleGrading (1 1 1)\n);\n\n"
+        "edges\n(\n);\n\nboundary\n(\n"
+        "    inlet\n    {{\n        type patch;\n        faces ((0 3 2 1));\n    }}\n"
+        "    outlet\n    {{\n        type patch;\n        faces ((4 5 6 7));\n    }}\n"
+        "    wall\n    {{\n        type wall;\n"
+        "        faces ((0 1 5 4) (1 2 6 5) (2 3 7 6) (3 0 4 7));\n    }}\n);\n",
+        fmt::arg("x0", x0), fmt::arg("x1", x1), fmt::arg("y0", y0), fmt::arg("y1", y1),
+        fmt::arg("h", height), fmt::arg("cell", cell), fmt::arg("cpd", options.cells_per_diameter),
+        fmt::arg("nx", nx), fmt::arg("ny", ny), fmt::arg("nz", nz));
+    b.where = fmt::format("the box x {} to {}, y {} to {}", x0, x1, y0, y1);
+    b.surfaces = ". No `wall.stl`: the box's four sides are the background mesh's own faces "
+                 "(patch `wall`, type wall)";
+    b.cells = fmt::format(
+        "Background cells of {} x {} x {} ({} x {} x {} cells: at most Dp / {} = {}); "
+        "refinement level {} at the particles (cells of {}); the wall keeps the background "
+        "cells (--wall-level is for a cylinder's wall)",
+        (x1 - x0) / nx, (y1 - y0) / ny, height / nz, nx, ny, nz, options.cells_per_diameter, cell,
+        options.particle_level, refined(cell, options.particle_level));
+    return b;
+}
+
 } // namespace
 
 OpenFoamCase openfoam_case(const TreatedBed& bed, const SurfaceContainer& container,
@@ -79,12 +176,15 @@ OpenFoamCase openfoam_case(const TreatedBed& bed, const SurfaceContainer& contai
     detail::require(options.wall_level >= 0 && options.wall_level <= 8, "--wall-level",
                     options.wall_level, "0 to 8");
     OpenFoamCase c;
-    const double rt = container.cylinder.radius();
     const double height = container.height;
     c.cell_size = diameter / options.cells_per_diameter;
     c.fluid_volume = volumes.container_volume - volumes.treated_solid;
-    const double finest =
-        c.cell_size / std::ldexp(1.0, std::max(options.particle_level, options.wall_level));
+    const Background back = std::visit(
+        [&](const auto& shape) { return background(shape, height, c.cell_size, options); },
+        container.container.shape());
+    const double finest = refined(
+        c.cell_size, back.wall_surface ? std::max(options.particle_level, options.wall_level)
+                                       : options.particle_level);
     const std::vector<TreatedBody>& bodies = bed.bodies;
     std::tie(c.location_in_mesh, c.clearance) = farthest_fluid_point(bodies, container, diameter);
     // A bridge's part outside its spheres lies within about its radius of their contact
@@ -108,40 +208,22 @@ OpenFoamCase openfoam_case(const TreatedBed& bed, const SurfaceContainer& contai
     double largest = 0.0;
     for (const TreatedBody& b : bodies)
         largest = std::max(largest, b.radius);
-    // The wall, open, half a background cell beyond both ends of the box.
-    std::vector<Solid> walls =
-        container_solids(container.cylinder, -0.5 * c.cell_size, height + 0.5 * c.cell_size,
-                         std::min(largest * icosphere_edge(level), 0.5 * c.cell_size));
-    c.wall.push_back(std::move(walls[0]));
-
-    // Background box: one cell beyond the cylinder sideways, exactly 0 to height in z.
-    const int n_side = static_cast<int>(std::ceil(2.0 * rt / c.cell_size)) + 2;
-    const double half = 0.5 * n_side * c.cell_size;
-    const int n_z = std::max(1, static_cast<int>(std::ceil(height / c.cell_size)));
-    std::string block = header("blockMeshDict", "system");
-    block += fmt::format(
-        "// Box around the cylinder (radius {rt}, height {h}); cells of {cell} (Dp / {cpd}).\n"
-        "scale 1;\n\nvertices\n(\n"
-        "    ({lo} {lo} 0) ({hi} {lo} 0) ({hi} {hi} 0) ({lo} {hi} 0)\n"
-        "    ({lo} {lo} {h}) ({hi} {lo} {h}) ({hi} {hi} {h}) ({lo} {hi} {h})\n);\n\n"
-        "blocks\n(\n    hex (0 1 2 3 4 5 6 7) ({n} {n} {nz}) simpleGrading (1 1 1)\n);\n\n"
-        "edges\n(\n);\n\nboundary\n(\n"
-        "    inlet\n    {{\n        type patch;\n        faces ((0 3 2 1));\n    }}\n"
-        "    outlet\n    {{\n        type patch;\n        faces ((4 5 6 7));\n    }}\n"
-        "    outside // outside the wall: no cells remain on it after snappyHexMesh\n"
-        "    {{\n        type patch;\n"
-        "        faces ((0 1 5 4) (1 2 6 5) (2 3 7 6) (3 0 4 7));\n    }}\n);\n",
-        fmt::arg("rt", rt), fmt::arg("h", height), fmt::arg("cell", c.cell_size),
-        fmt::arg("cpd", options.cells_per_diameter), fmt::arg("lo", -half), fmt::arg("hi", half),
-        fmt::arg("n", n_side), fmt::arg("nz", n_z));
-    c.files.emplace_back("system/blockMeshDict", block);
+    if (back.wall_surface) {
+        // The wall, open, half a background cell beyond both ends of the box.
+        std::vector<Solid> walls =
+            container_solids(container.container, -0.5 * c.cell_size, height + 0.5 * c.cell_size,
+                             std::min(largest * icosphere_edge(level), 0.5 * c.cell_size));
+        c.wall.push_back(std::move(walls[0]));
+    }
+    c.files.emplace_back("system/blockMeshDict",
+                         header("blockMeshDict", "system") + back.block_mesh);
 
     std::string snappy = header("snappyHexMeshDict", "system");
     snappy += fmt::format(
         "castellatedMesh true;\nsnap true;\naddLayers false;\n\n"
         "geometry\n{{\n"
         "    particles.stl {{ type triSurfaceMesh; name particles; }}\n"
-        "    wall.stl {{ type triSurfaceMesh; name wall; }}\n}}\n\n"
+        "{wall_geometry}}}\n\n"
         "castellatedMeshControls\n{{\n"
         "    maxLocalCells 10000000;\n    maxGlobalCells 50000000;\n"
         "    minRefinementCells 0;\n    maxLoadUnbalance 0.10;\n    nCellsBetweenLevels 2;\n"
@@ -149,7 +231,7 @@ OpenFoamCase openfoam_case(const TreatedBed& bed, const SurfaceContainer& contai
         "    // Levels tied to Dp: a cell of level L at a surface is Dp / ({cpd} 2^L).\n"
         "    refinementSurfaces\n    {{\n"
         "        particles {{ level ({lp} {lp}); patchInfo {{ type wall; }} }}\n"
-        "        wall {{ level ({lw} {lw}); patchInfo {{ type wall; }} }}\n    }}\n"
+        "{wall_refinement}    }}\n"
         "    resolveFeatureAngle 30;\n    refinementRegions {{}}\n"
         "    // In the fluid, {clear} from the nearest surface.\n"
         "    locationInMesh ({x} {y} {z});\n"
@@ -170,10 +252,16 @@ OpenFoamCase openfoam_case(const TreatedBed& bed, const SurfaceContainer& contai
         "    minTriangleTwist -1;\n    nSmoothScale 4;\n    errorReduction 0.75;\n"
         "    relaxed {{ maxNonOrtho 75; }}\n}}\n\n"
         "mergeTolerance 1e-6;\n",
+        fmt::arg("wall_geometry",
+                 back.wall_surface ? "    wall.stl { type triSurfaceMesh; name wall; }\n" : ""),
+        fmt::arg("wall_refinement",
+                 back.wall_surface ? fmt::format("        wall {{ level ({0} {0}); patchInfo {{ "
+                                                 "type wall; }} }}\n",
+                                                 options.wall_level)
+                                   : std::string()),
         fmt::arg("cpd", options.cells_per_diameter), fmt::arg("lp", options.particle_level),
-        fmt::arg("lw", options.wall_level), fmt::arg("clear", c.clearance),
-        fmt::arg("x", c.location_in_mesh.x), fmt::arg("y", c.location_in_mesh.y),
-        fmt::arg("z", c.location_in_mesh.z));
+        fmt::arg("clear", c.clearance), fmt::arg("x", c.location_in_mesh.x),
+        fmt::arg("y", c.location_in_mesh.y), fmt::arg("z", c.location_in_mesh.z));
     c.files.emplace_back("system/snappyHexMeshDict", snappy);
 
     c.files.emplace_back(
@@ -199,36 +287,31 @@ OpenFoamCase openfoam_case(const TreatedBed& bed, const SurfaceContainer& contai
         "README.md",
         fmt::format(
             "# Packed bed for snappyHexMesh (written by packbed export)\n\n"
-            "{n} particles of diameter {dp} in a cylinder of radius {rt}, from z = 0 to {h} "
+            "{n} particles of diameter {dp} in {where}, from z = 0 to {h} "
             "(lengths in the bed's unit; `scale 1`). Contacts: `{contacts}`.\n\n"
             "```sh\nblockMesh\nsnappyHexMesh -overwrite\ncheckMesh\n```\n\n"
             "(Debian's OpenFOAM needs `export WM_PROJECT_DIR=/usr/share/openfoam` first, "
             "where its `etc/` is; elsewhere source OpenFOAM's `etc/bashrc`.) Open `case.foam` "
             "in ParaView to see the mesh.\n\n"
             "- `constant/triSurface/particles.stl`: every particle, closed and separate (patch "
-            "`particles`); `wall.stl`: the cylinder wall, open, reaching half a cell beyond "
-            "both ends (patch `wall`).\n"
-            "- Patches after meshing: `inlet` (z = 0), `outlet` (z = {h}), `particles`, `wall`; "
-            "`outside` keeps no faces.\n"
-            "- Background cells of {cell} (Dp / {cpd}); refinement level {lp} at the particles "
-            "(cells of {pcell}), {lw} at the wall (cells of {wcell}).\n"
+            "`particles`){surfaces}.\n"
+            "- Patches after meshing: `inlet` (z = 0), `outlet` (z = {h}), `particles`, "
+            "`wall`{patches}.\n"
+            "- {cells}.\n"
             "- `locationInMesh` ({x}, {y}, {z}): {clear} from the nearest surface.\n\n"
             "Exact volumes (geometry, not the mesh): container {vc}; solid {vs} after the "
             "treatment; fluid {vf}. Void fraction {e0:.6f} untouched, {e1:.6f} treated. "
             "`checkMesh` prints the mesh's `Total volume`, to compare with the fluid volume: "
             "gaps narrower than the finest cells are lost by the mesh, so refine where that "
             "matters.\n",
-            fmt::arg("n", bodies.size()), fmt::arg("dp", diameter), fmt::arg("rt", rt),
-            fmt::arg("h", height), fmt::arg("contacts", contacts), fmt::arg("cell", c.cell_size),
-            fmt::arg("cpd", options.cells_per_diameter), fmt::arg("lp", options.particle_level),
-            fmt::arg("pcell", c.cell_size / std::ldexp(1.0, options.particle_level)),
-            fmt::arg("lw", options.wall_level),
-            fmt::arg("wcell", c.cell_size / std::ldexp(1.0, options.wall_level)),
-            fmt::arg("x", c.location_in_mesh.x), fmt::arg("y", c.location_in_mesh.y),
-            fmt::arg("z", c.location_in_mesh.z), fmt::arg("clear", c.clearance),
-            fmt::arg("vc", volumes.container_volume), fmt::arg("vs", volumes.treated_solid),
-            fmt::arg("vf", c.fluid_volume), fmt::arg("e0", bed_void),
-            fmt::arg("e1", volumes.treated_void_fraction)));
+            fmt::arg("n", bodies.size()), fmt::arg("dp", diameter), fmt::arg("where", back.where),
+            fmt::arg("h", height), fmt::arg("contacts", contacts),
+            fmt::arg("surfaces", back.surfaces), fmt::arg("patches", back.patches),
+            fmt::arg("cells", back.cells), fmt::arg("x", c.location_in_mesh.x),
+            fmt::arg("y", c.location_in_mesh.y), fmt::arg("z", c.location_in_mesh.z),
+            fmt::arg("clear", c.clearance), fmt::arg("vc", volumes.container_volume),
+            fmt::arg("vs", volumes.treated_solid), fmt::arg("vf", c.fluid_volume),
+            fmt::arg("e0", bed_void), fmt::arg("e1", volumes.treated_void_fraction)));
     return c;
 }
 

@@ -272,16 +272,14 @@ void refuse_meeting_footprints(const std::vector<Footprint>& f, std::size_t sphe
 }
 
 /// Cut body b by a plane `gap` from the floor and from the wall where it comes closer than
-/// that.
+/// that: the plane tangent to the wall moved `gap` inwards (a cylinder's at the nearest
+/// point; each box face that near, two in a corner).
 void cut_at_walls(TreatedBody& b, double gap, const std::optional<SurfaceContainer>& container) {
     if (b.center.z - b.radius < gap)
         b.cuts.push_back({{0.0, 0.0, -1.0}, -gap});
-    if (container) {
-        const double rt = container->cylinder.radius();
-        const double rho = std::hypot(b.center.x, b.center.y);
-        if (rt - rho - b.radius < gap && rho > 0.0)
-            b.cuts.push_back({{b.center.x / rho, b.center.y / rho, 0.0}, rt - gap});
-    }
+    if (container)
+        for (const WallPlane& wall : container->container.walls_within(b.center, b.radius, gap))
+            b.cuts.push_back({wall.normal, wall.offset - gap});
 }
 
 /// The footprint of a cut (its cap) on body b. \throws InvalidInput when the cut reaches past
@@ -319,7 +317,6 @@ TreatedBed treat_contacts(const Packing& packing, const Contacts& contacts,
                 name_of(contacts.treatment)));
     const double dp = packing.mean_diameter();
     const double length = contacts.parameter * dp;
-    const double rt = container ? container->cylinder.radius() : 0.0;
 
     if (contacts.treatment == ContactTreatment::shrink) {
         for (TreatedBody& b : bodies)
@@ -341,7 +338,8 @@ TreatedBed treat_contacts(const Packing& packing, const Contacts& contacts,
                         contacts.parameter, i + 1, j + 1, d, radii[i], radii[j]));
             }
             const Vec3& x = packing.centers[i];
-            if ((container && std::hypot(x.x, x.y) + radii[i] >= rt) || x.z - radii[i] <= 0.0)
+            if ((container && container->container.wall_distances(x, radii[i]).first <= 0.0) ||
+                x.z - radii[i] <= 0.0)
                 throw InvalidInput(fmt::format(
                     "--contacts shrink:{} leaves sphere {} at ({:.6g}, {:.6g}, {:.6g}) touching "
                     "the container; allowed: F above its overlap with the wall or floor",
@@ -423,8 +421,7 @@ TreatedBed treat_contacts(const Packing& packing, const Contacts& contacts,
 TreatmentVolumes treatment_volumes(const Packing& packing, const TreatedBed& bed,
                                    const SurfaceContainer& container) {
     TreatmentVolumes v;
-    const double rt = container.cylinder.radius();
-    v.container_volume = std::numbers::pi * rt * rt * container.height;
+    v.container_volume = container.container.cross_section_area() * container.height;
     const std::size_t n = packing.size();
     const auto lenses = [&](const std::vector<double>& radii) {
         double sum = 0.0;
@@ -439,8 +436,8 @@ TreatmentVolumes treatment_volumes(const Packing& packing, const TreatedBed& bed
         return sum;
     };
     for (std::size_t i = 0; i < n; ++i)
-        v.untouched_solid += sphere_volume_in_cylinder_slab(packing.centers[i], packing.radii[i],
-                                                            rt, 0.0, container.height);
+        v.untouched_solid += container.container.sphere_volume(packing.centers[i], packing.radii[i],
+                                                               0.0, container.height);
     v.untouched_solid -= lenses(packing.radii);
     bool untreated = bed.bridges.empty();
     for (std::size_t i = 0; i < n; ++i)
@@ -525,6 +522,74 @@ std::vector<Solid> container_solids(const Cylinder& cylinder, double z_low, doub
     solids.push_back(std::move(bottom));
     solids.push_back(std::move(top));
     return solids;
+}
+
+std::vector<Solid> container_solids(const Box& box, double z_low, double z_high, double edge) {
+    // Cells per side: ceil(length / edge), the quotient's last bits forgiven, so that a side
+    // of exactly k edges gets k cells.
+    const auto cells = [edge](double length) {
+        return std::clamp(static_cast<int>(std::ceil(length / edge * (1.0 - 1e-12))), 1, 4096);
+    };
+    const double x0 = box.x_low(), x1 = box.x_high(), y0 = box.y_low(), y1 = box.y_high();
+    const int nx = cells(x1 - x0), ny = cells(y1 - y0), nz = cells(z_high - z_low);
+    // Grid coordinates, the last one the end itself: every face computes a shared rim
+    // vertex by the same expression, so its coordinates are the same bits.
+    const auto at = [](double low, double high, int k, int n) {
+        return k == 0 ? low : k == n ? high : low + (high - low) * k / n;
+    };
+    // The rim, counter-clockwise seen from above: along y = y0, x = x1, y = y1, x = x0.
+    std::vector<std::pair<double, double>> rim;
+    for (int i = 0; i < nx; ++i)
+        rim.emplace_back(at(x0, x1, i, nx), y0);
+    for (int j = 0; j < ny; ++j)
+        rim.emplace_back(x1, at(y0, y1, j, ny));
+    for (int i = nx; i > 0; --i)
+        rim.emplace_back(at(x0, x1, i, nx), y1);
+    for (int j = ny; j > 0; --j)
+        rim.emplace_back(x0, at(y0, y1, j, ny));
+    const auto s = static_cast<std::uint32_t>(rim.size());
+    Solid wall{"wall", {}}, bottom{"bottom", {}}, top{"top", {}};
+    for (int row = 0; row <= nz; ++row)
+        for (const auto& [x, y] : rim)
+            wall.mesh.vertices.push_back({x, y, at(z_low, z_high, row, nz)});
+    for (std::uint32_t row = 0; row < static_cast<std::uint32_t>(nz); ++row)
+        for (std::uint32_t k = 0; k < s; ++k) {
+            // Going round counter-clockwise with z up, the outward normal is on the right.
+            const std::uint32_t a = row * s + k, b = row * s + (k + 1) % s;
+            wall.mesh.triangles.push_back({a, b, b + s});
+            wall.mesh.triangles.push_back({a, b + s, a + s});
+        }
+    // Bottom and top: the (nx + 1) x (ny + 1) grid of the rectangle at z_low and z_high.
+    const auto ux = static_cast<std::uint32_t>(nx + 1);
+    for (Solid* face : {&bottom, &top}) {
+        const double z = face == &bottom ? z_low : z_high;
+        for (int j = 0; j <= ny; ++j)
+            for (int i = 0; i <= nx; ++i)
+                face->mesh.vertices.push_back({at(x0, x1, i, nx), at(y0, y1, j, ny), z});
+        for (std::uint32_t j = 0; j < static_cast<std::uint32_t>(ny); ++j)
+            for (std::uint32_t i = 0; i < static_cast<std::uint32_t>(nx); ++i) {
+                const std::uint32_t a = j * ux + i, b = a + 1, c = a + ux + 1, d = a + ux;
+                if (face == &top) { // normal +z: counter-clockwise seen from above
+                    face->mesh.triangles.push_back({a, b, c});
+                    face->mesh.triangles.push_back({a, c, d});
+                } else {
+                    face->mesh.triangles.push_back({a, c, b});
+                    face->mesh.triangles.push_back({a, d, c});
+                }
+            }
+    }
+    std::vector<Solid> solids;
+    solids.push_back(std::move(wall));
+    solids.push_back(std::move(bottom));
+    solids.push_back(std::move(top));
+    return solids;
+}
+
+std::vector<Solid> container_solids(const Container& container, double z_low, double z_high,
+                                    double edge) {
+    return std::visit(
+        [&](const auto& shape) { return container_solids(shape, z_low, z_high, edge); },
+        container.shape());
 }
 
 namespace {
@@ -654,10 +719,10 @@ std::vector<Solid> bed_surface(const TreatedBed& bed, const SurfaceOptions& opti
     }
 
     if (options.container && options.write_container) {
-        const double rt = options.container->cylinder.radius();
-        for (Solid& s :
-             container_solids(options.container->cylinder, 0.0, options.container->height,
-                              largest > 0.0 ? edge : rt * icosphere_edge(options.level)))
+        const Container& container = options.container->container;
+        for (Solid& s : container_solids(
+                 container, 0.0, options.container->height,
+                 largest > 0.0 ? edge : container.depth() * icosphere_edge(options.level)))
             solids.push_back(std::move(s));
     }
     return solids;

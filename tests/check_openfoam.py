@@ -1,13 +1,27 @@
 #!/usr/bin/env python3
-"""`packbed export --format openfoam` meshed by Debian's OpenFOAM: a tiny bed (a = 3, 30 spheres)
-with caps, blockMesh, snappyHexMesh, checkMesh. Asserts checkMesh's "Mesh OK.", the patches
-inlet, outlet, wall and particles with faces, no face left on `outside`, and the mesh's total
-volume within 5 % of the bed's exact fluid volume (packbed.json). At the default levels
-(cells of Dp/16 at the particles) the mesh loses about 3 % of the fluid: the 0.02 Dp gaps
-of the caps and the thin wedges near contacts are narrower than a cell.
+"""`packbed export --format openfoam` meshed by Debian's OpenFOAM: blockMesh, snappyHexMesh,
+checkMesh on two tiny beds.
+
+1. A generated bed in a cylinder (a = 3, 30 spheres) with caps:0.02. Asserts checkMesh's
+   "Mesh OK.", the patches inlet, outlet, wall and particles with faces, no face left on
+   `outside`, and the mesh's total volume within 5 % of the bed's exact fluid volume
+   (packbed.json). At the default levels (cells of Dp/16 at the particles) the mesh loses
+   about 3 % of the fluid: the 0.02 Dp gaps of the caps and the thin wedges near contacts are
+   narrower than a cell.
+2. A simple cubic lattice in a box (issue 17): 3 x 3 x 2 balls of Dp = 1 in [0, 3] x [0, 3],
+   each touching its neighbours, two or three faces and the floor, with caps:0.05; the
+   container from z = 0 to the bed's top + 1 Dp = 3. The exact fluid volume is computed here by
+   hand and must be the one packbed.json and the case's README state: 27 - (18 pi / 6 - 66
+   caps of height 0.025 - 33 caps of height 0.05). The background mesh is the box (12 x 12 x 12
+   cells, bounding box (0 0 0) (3 3 3) to 1e-4), its sides the patch `wall`: no wall.stl. Asserts
+   "Mesh OK.", the patches inlet, outlet, wall and particles (and no other), and the mesh's
+   total volume within 1 % of the exact fluid volume (-0.07 % measured: 17.7514 against
+   17.7642; snappyHexMesh about 12 s).
+
 Usage: check_openfoam.py PACKBED. Exit 77 (skipped) when OpenFOAM is missing
 (scripts/install-deps.sh --test installs it)."""
 import json
+import math
 import os
 import re
 import shutil
@@ -23,7 +37,6 @@ if not all(shutil.which(p) for p in ("blockMesh", "snappyHexMesh", "checkMesh"))
     sys.exit(77)
 env = openfoam_env()
 work = tempfile.mkdtemp(prefix="packbed-foam-")
-case = os.path.join(work, "case")
 
 
 def run(*args, cwd=work):
@@ -32,22 +45,72 @@ def run(*args, cwd=work):
     return r.stdout
 
 
+def mesh(case):
+    """blockMesh, snappyHexMesh, checkMesh in `case`: checkMesh's output, its patches (name ->
+    faces) and the mesh's total volume."""
+    run("blockMesh", cwd=case)
+    run("snappyHexMesh", "-overwrite", cwd=case)
+    out = run("checkMesh", cwd=case)
+    assert "Mesh OK." in out, out[-3000:]
+    patches = dict(re.findall(r"^\s+(\w+)\s+(\d+)\s+\d+\s+(?:ok|multiply)", out, re.M))
+    volume = float(re.search(r"Total volume = ([0-9.eE+-]+?)\.?\s", out).group(1))
+    return out, {k: int(v) for k, v in patches.items()}, volume
+
+
+# 1. The cylinder.
+case = os.path.join(work, "case")
 run(exe, "generate", "--solver", "fire", "--aspect-ratio", "3", "--particles", "30", "--seed",
     "1", "--quiet", "--out", "bed")
 run(exe, "export", "bed/particles.csv", "--format", "openfoam", "--contacts", "caps:0.02",
     "--out", case, "--quiet")
 fluid = json.load(open(os.path.join(case, "packbed.json")))["volumes"]["fluid"]
-run("blockMesh", cwd=case)
-run("snappyHexMesh", "-overwrite", cwd=case)
-out = run("checkMesh", cwd=case)
-assert "Mesh OK." in out, out[-3000:]
-patches = dict(re.findall(r"^\s+(\w+)\s+(\d+)\s+\d+\s+(?:ok|multiply)", out, re.M))
+out, patches, volume = mesh(case)
 for name in ("inlet", "outlet", "wall", "particles"):
-    assert int(patches.get(name, 0)) > 0, (name, patches)
-assert int(patches.get("outside", 0)) == 0, patches
-volume = float(re.search(r"Total volume = ([0-9.eE+-]+?)\.?\s", out).group(1))
+    assert patches.get(name, 0) > 0, (name, patches)
+assert patches.get("outside", 0) == 0, patches
 error = volume / fluid - 1.0
-print(f"mesh volume {volume:.6g} against the exact fluid volume {fluid:.6g}: {error:+.2%}; "
-      f"patches {patches}")
+print(f"cylinder: mesh volume {volume:.6g} against the exact fluid volume {fluid:.6g}: "
+      f"{error:+.2%}; patches {patches}")
 assert abs(error) < 0.05, error
+
+# 2. The box.
+box_case = os.path.join(work, "box_case")
+run(exe, "lattice", "--type", "sc", "--region", "box:3,3,2", "--diameter", "1", "--quiet",
+    "--out", "boxed")
+run(exe, "export", "boxed/particles.csv", "--format", "openfoam", "--contacts", "caps:0.05",
+    "--out", box_case, "--quiet")
+
+
+def cap(r, s):  # a ball's cap beyond a plane s from its centre
+    c = r - s
+    return math.pi * c * c * (3 * r - c) / 3
+
+
+# 33 contacts (12 along x, 12 along y, 9 along z) capped on both sides, 24 face and 9 floor
+# contacts capped 0.05 from the face.
+exact = 27.0 - (18 * math.pi / 6 - 66 * cap(0.5, 0.475) - 33 * cap(0.5, 0.45))
+report = json.load(open(os.path.join(box_case, "packbed.json")))
+assert report["container"] == {"shape": "box", "size": [3.0, 3.0], "corner": [0.0, 0.0],
+                               "height": 3.0}, report["container"]
+assert abs(report["volumes"]["container"] - 27.0) < 1e-12, report["volumes"]
+assert abs(report["volumes"]["fluid"] / exact - 1) < 1e-12, (report["volumes"], exact)
+readme = open(os.path.join(box_case, "README.md")).read()
+stated = float(re.search(r"; fluid ([0-9.eE+-]+?)\. ", readme).group(1))
+assert abs(stated / exact - 1) < 1e-12, (stated, exact)
+assert "No `wall.stl`" in readme, readme
+assert not os.path.exists(os.path.join(box_case, "constant", "triSurface", "wall.stl"))
+block = open(os.path.join(box_case, "system", "blockMeshDict")).read()
+assert "(12 12 12) simpleGrading" in block, block
+out, patches, volume = mesh(box_case)
+for name in ("inlet", "outlet", "wall", "particles"):
+    assert patches.get(name, 0) > 0, (name, patches)
+assert set(patches) == {"inlet", "outlet", "wall", "particles"}, patches
+# The box, to the snapping's small moves of the wall's points (3e-5 measured).
+low_high = re.search(r"Overall domain bounding box \(([^)]*)\) \(([^)]*)\)", out)
+bounds = [float(x) for x in low_high.group(1).split() + low_high.group(2).split()]
+assert all(abs(b - e) < 1e-4 for b, e in zip(bounds, (0, 0, 0, 3, 3, 3))), bounds
+error = volume / exact - 1.0
+print(f"box: mesh volume {volume:.6g} against the exact fluid volume {exact:.6g}: "
+      f"{error:+.2%}; patches {patches}")
+assert abs(error) < 0.01, error
 shutil.rmtree(work)

@@ -1,8 +1,9 @@
 #!/usr/bin/env python3
 """The STL files of `packbed export` checked by real checkers from Debian: admesh (closed, every
 edge shared by two facets, consistent orientation, no degenerate facet, one part per body) and
-OpenFOAM's surfaceCheck (closed, not self-intersecting), for a generated bed and a lattice, with
-every treatment. For caps and shrink admesh must also leave every stored normal as it is; the
+OpenFOAM's surfaceCheck (closed, not self-intersecting), for a generated bed, a lattice in a
+cylinder and a simple cubic lattice in a box (issue 17: 18 balls, each touching two or three
+faces of the box or the floor), with every treatment. For caps and shrink admesh must also leave every stored normal as it is; the
 unions of enlarge and bridges (CGAL's corefinement) keep small triangles whose single-precision
 normal admesh recomputes differently, so there only orientation is checked.
 Two untreated spheres overlapping by 0.045 Dp must be reported as self-intersecting: the
@@ -54,7 +55,10 @@ run(exe, "generate", "--solver", "fire", "--aspect-ratio", "3", "--particles", "
     "1", "--quiet", "--out", "bed")
 run(exe, "lattice", "--type", "fcc", "--region", "cylinder:3,3", "--quiet", "--out", "lattice")
 n_lattice = sum(1 for _ in open(os.path.join(work, "lattice", "particles.csv"))) - 1
-for bed, spheres in (("bed", 30), ("lattice", n_lattice)):
+run(exe, "lattice", "--type", "sc", "--region", "box:3,3,2", "--quiet", "--out", "boxed")
+n_boxed = sum(1 for _ in open(os.path.join(work, "boxed", "particles.csv"))) - 1
+assert n_boxed == 18, n_boxed  # 3 x 3 x 2 balls of diameter 1
+for bed, spheres in (("bed", 30), ("lattice", n_lattice), ("boxed", n_boxed)):
     for contacts in ("caps:0.02", "shrink:0.01", "enlarge:0.01", "bridges:0.2"):
         stl = f"{bed}-{contacts.split(':')[0]}.stl"
         run(exe, "export", f"{bed}/particles.csv", "--format", "stl", "--contacts", contacts,

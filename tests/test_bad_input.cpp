@@ -909,8 +909,8 @@ INSTANTIATE_TEST_SUITE_P(
               "packbed export: --out dangling: a symbolic link to nothing; allowed: a directory or "
               "a new name"),
         exact("export @D/two.csv --format openfoam",
-              "packbed export: --format openfoam needs the container: give "
-              "--container-radius (no summary.json with a container radius next to @D/two.csv)"),
+              "packbed export: --format openfoam needs the container: give --container (no "
+              "summary.json with a container next to @D/two.csv)"),
         exact("export two.csv --format openfoam -R 2 --cells-per-diameter 0",
               "packbed: --cells-per-diameter: '0' is not allowed; allowed: a whole number from 1 "
               "to 100"),
@@ -954,6 +954,17 @@ INSTANTIATE_TEST_SUITE_P(
         exact("export two.csv --format liggghts-data -R 0.5 --out x.data",
               "packbed export: two.csv:3: the sphere centre (0.99, 0, 1) is outside the container "
               "(radius 0.5, floor z = 0); allowed: centres inside it"),
+        // A box (issue 17): (0, 0, 1) lies on its faces x = 0 and y = 0.
+        exact("export two.csv --format stl --container box:2,2 --out x.stl",
+              "packbed export: two.csv:2: the sphere centre (0, 0, 1) is outside the container "
+              "(box:2,2, floor z = 0); allowed: centres inside it"),
+        exact("export two.csv --format lammps-data --container box:3,0.5 --out x.data",
+              "packbed export: two.csv:2: the sphere centre (0, 0, 1) is outside the container "
+              "(box:3,0.5, floor z = 0); allowed: centres inside it"),
+        exact("export two.csv --format openfoam --container box:0,2 --out c",
+              "packbed: --container: 'box:0,2' is not allowed; allowed: cylinder:D, a tube of "
+              "inner diameter D, a number in (0, 2e+15], or box:LX,LY, walls at x = 0, LX and y = "
+              "0, LY, each in (0, 1e+15]"),
         exact(std::vector<std::string>{"export", "two.csv", "-R", "2", "--out", "a b.data"},
               "packbed export: --out a b.data: the file name 'a b.data' is not allowed with the "
               "example DEM input, which names it; allowed: letters, digits, '.', '_', '-' and '+' "

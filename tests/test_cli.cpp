@@ -1173,3 +1173,212 @@ TEST(Cli, UnwritableOutputIsRefusedBeforeTheRun) {
                          (d / "plain").string() + " is a file; allowed: a directory\n");
     EXPECT_EQ(o.out, ""); // refused before the run: no report
 }
+
+// Issue 17: a bed in a box is exported with its box, never without it.
+TEST(Cli, ExportOfABoxLatticeKeepsItsBox) {
+    const fs::path d = scratch("box-lattice");
+    ASSERT_EQ(
+        packbed("lattice --type sc --region box:4,4,3 --diameter 1 -q --out " + d.string()).status,
+        0);
+    const std::string csv = (d / "particles.csv").string();
+    // The surface: the spheres capped 0.05 from each other, the faces and the floor, then the
+    // box's faces. 4 x 4 x 3 balls: 104 contacts (36 along x, 36 along y, 32 along z), 48
+    // face and 16 floor contacts.
+    const Outcome s = packbed("export " + csv + " --format stl-ascii --contacts caps:0.05 --out " +
+                              (d / "bed.stl").string());
+    ASSERT_EQ(s.status, 0) << s.err;
+    const auto report = nlohmann::json::parse(slurp(d / "bed.stl.json"));
+    EXPECT_EQ(report["container"],
+              nlohmann::json::parse(
+                  R"({"shape": "box", "size": [4.0, 4.0], "corner": [0.0, 0.0], "height": 4.0})"));
+    const auto cap = [](double c) { return M_PI * c * c * (1.5 - c) / 3.0; }; // r = 0.5
+    const double ball = M_PI / 6.0;
+    EXPECT_DOUBLE_EQ(report["volumes"]["container"].get<double>(), 64.0);
+    EXPECT_NEAR(report["volumes"]["untouched_solid"].get<double>(), 48.0 * ball, 1e-13);
+    EXPECT_NEAR(report["volumes"]["treated_solid"].get<double>(),
+                48.0 * ball - 208.0 * cap(0.025) - 64.0 * cap(0.05), 1e-13);
+    const std::string stl = slurp(d / "bed.stl");
+    std::string names;
+    for (std::size_t at = 0; (at = stl.find("\nsolid ", at)) != std::string::npos; ++at)
+        names += stl.substr(at + 7, stl.find('\n', at + 1) - at - 7) + ",";
+    EXPECT_EQ(stl.substr(0, stl.find('\n')), "solid particles");
+    EXPECT_EQ(names, "wall,bottom,top,");
+    // The particles 0.05 clear of every face (single precision); the container on the faces.
+    const std::string particles = stl.substr(0, stl.find("endsolid particles"));
+    std::size_t on_faces = 0;
+    for (const auto& v : stl_vertices(particles))
+        EXPECT_GE(std::min({v[0], v[1], v[2], 4.0 - v[0], 4.0 - v[1]}), 0.05 - 1e-6);
+    for (const auto& v : stl_vertices(stl.substr(particles.size()))) {
+        const bool face =
+            v[0] == 0.0 || v[0] == 4.0 || v[1] == 0.0 || v[1] == 4.0 || v[2] == 0.0 || v[2] == 4.0;
+        on_faces += face ? 1 : 0;
+        EXPECT_TRUE(face) << v[0] << " " << v[1] << " " << v[2];
+    }
+    EXPECT_GT(on_faces, 10000u);
+    // The same box given on the command line, for a file without summary.json: the same file.
+    fs::create_directories(d / "bare");
+    fs::copy_file(d / "particles.csv", d / "bare" / "particles.csv");
+    ASSERT_EQ(packbed("export " + (d / "bare" / "particles.csv").string() +
+                      " --container box:4,4 --format stl-ascii --contacts caps:0.05 -q --out " +
+                      (d / "bare" / "bed.stl").string())
+                  .status,
+              0);
+    EXPECT_EQ(slurp(d / "bare" / "bed.stl"), stl);
+
+    // The OpenFOAM case: the background is the box, its sides the wall; no wall.stl.
+    const Outcome f =
+        packbed("export " + csv + " --format openfoam --contacts caps:0.05 -q --out " +
+                (d / "case").string());
+    ASSERT_EQ(f.status, 0) << f.err;
+    const std::string block = slurp(d / "case" / "system" / "blockMeshDict");
+    EXPECT_NE(
+        block.find("    (0 0 0) (4 0 0) (4 4 0) (0 4 0)\n    (0 0 4) (4 0 4) (4 4 4) (0 4 4)\n"),
+        std::string::npos)
+        << block;
+    EXPECT_NE(block.find("(16 16 16) simpleGrading"), std::string::npos);
+    EXPECT_NE(block.find("    wall\n    {\n        type wall;\n        faces ((0 1 5 4) (1 2 6 5) "
+                         "(2 3 7 6) (3 0 4 7));"),
+              std::string::npos);
+    EXPECT_EQ(block.find("outside"), std::string::npos);
+    EXPECT_FALSE(fs::exists(d / "case" / "constant" / "triSurface" / "wall.stl"));
+    EXPECT_TRUE(fs::exists(d / "case" / "constant" / "triSurface" / "particles.stl"));
+    const std::string snappy = slurp(d / "case" / "system" / "snappyHexMeshDict");
+    EXPECT_EQ(snappy.find("wall.stl"), std::string::npos) << snappy;
+    EXPECT_EQ(snappy.find("wall {"), std::string::npos) << snappy; // no wall refinement
+    const auto foam = nlohmann::json::parse(slurp(d / "case" / "packbed.json"));
+    const auto& at = foam["openfoam"]["location_in_mesh"];
+    EXPECT_GT(at[0].get<double>(), 0.0);
+    EXPECT_LT(at[0].get<double>(), 4.0);
+    EXPECT_GT(at[1].get<double>(), 0.0);
+    EXPECT_LT(at[1].get<double>(), 4.0);
+    EXPECT_EQ(foam["volumes"]["fluid"], report["volumes"]["fluid"]);
+
+    // The data files: the box holds the container with a margin of max(Dp/2, 2/100) = 0.5, the
+    // LAMMPS settle walls it in with a block region, the LIGGGHTS one with the box's faces.
+    const Outcome l = packbed("export " + csv + " --out " + (d / "bed.data").string());
+    ASSERT_EQ(l.status, 0) << l.err;
+    EXPECT_NE(l.out.find("example settle: lmp -in bed.data.lammps.in"), std::string::npos) << l.out;
+    const std::string data = slurp(d / "bed.data");
+    EXPECT_EQ(data_box(data), (std::array<double, 6>{-0.5, 4.5, -0.5, 4.5, -0.5, 4.5}));
+    EXPECT_NE(data.find("\n# box: the container (box:4,4, height 4) and a margin of 0.5 (the "
+                        "larger of Dp/2 and a hundredth of half the narrower width) on every "
+                        "side\n"),
+              std::string::npos)
+        << data.substr(0, 300);
+    EXPECT_NE(slurp(d / "bed.data.lammps.in")
+                  .find("region          container block 0 4 0 4 0 4 side in open 5 open 6 "
+                        "units box\n"),
+              std::string::npos);
+    ASSERT_EQ(
+        packbed("export " + csv + " --format liggghts-data -q --out " + (d / "lig.data").string())
+            .status,
+        0);
+    std::size_t wall = 0;
+    for (const auto& v : stl_vertices(slurp(d / "lig.data.wall.stl"))) {
+        ++wall;
+        EXPECT_TRUE(v[0] == 0.0 || v[0] == 4.0 || v[1] == 0.0 || v[1] == 4.0);
+    }
+    // 4 cells of 1 Dp along each side and up: 2 (4 + 4) x 4 cells, 2 triangles of 3 vertices.
+    EXPECT_EQ(wall, 3u * 2u * (2u * (4u + 4u)) * 4u);
+    for (const auto& v : stl_vertices(slurp(d / "lig.data.bottom.stl")))
+        EXPECT_EQ(v[2], 0.0);
+}
+
+namespace {
+
+/// A diamond lattice of 3 mm balls in the box [0, 12 mm]^2, 12 mm tall (28 balls), exported
+/// for `format`. Under gravity it collapses against the faces: without the side walls
+/// spheres leave the box (measured with LAMMPS: 2.8 mm beyond a face, one lost).
+fs::path box_settle_bed(const std::string& name, const std::string& format) {
+    const fs::path d = scratch(name) / "bed";
+    EXPECT_EQ(packbed("lattice --type diamond --region box:0.012,0.012,0.012 --diameter 0.003 -q "
+                      "--out " +
+                      d.string())
+                  .status,
+              0);
+    const Outcome e = packbed("export " + (d / "particles.csv").string() + " --format " + format +
+                              " --out " + (d / "bed.data").string() + " -q");
+    EXPECT_EQ(e.status, 0) << e.err;
+    return d;
+}
+
+/// The box settle's dump: 28 spheres at the first and the last step, every one inside the
+/// faces and above the floor within 0.01 Dp at the end, some pressed against a face, and a
+/// mass centre that fell by more than 0.1 Dp (the lattice collapsed, held by the walls).
+void expect_settled_in_box(const fs::path& dump) {
+    const std::vector<DumpFrame> frames = dump_frames(slurp(dump));
+    ASSERT_EQ(frames.size(), 2u) << dump;
+    ASSERT_EQ(frames[0].spheres.size(), 28u);
+    ASSERT_EQ(frames[1].spheres.size(), 28u);
+    const double dp = 0.003, tolerance = 0.01 * dp;
+    std::size_t pressed = 0;
+    for (const auto& s : frames[1].spheres) {
+        const double gap =
+            std::min({s[0] - s[3], s[1] - s[3], 0.012 - s[0] - s[3], 0.012 - s[1] - s[3]});
+        EXPECT_GE(gap, -tolerance);
+        EXPECT_GE(s[2] - s[3], -tolerance);
+        pressed += gap < 0.01 * dp ? 1 : 0;
+    }
+    EXPECT_GT(pressed, 8u); // more than the 8 balls that touched a face at the start
+    EXPECT_LT(mass_centre_z(frames[1]), mass_centre_z(frames[0]) - 0.1 * dp);
+}
+
+} // namespace
+
+TEST(Cli, ExportedSettlesRunInABox) {
+    if (std::system("command -v lmp >/dev/null 2>&1") == 0) {
+        const fs::path d = box_settle_bed("lammps", "lammps-data");
+        // The block is the box from the floor to the container's top, the bed's + 1 Dp.
+        const std::string input = slurp(d / "bed.data.lammps.in");
+        const std::string block = "region          container block 0 0.012 0 0.012 0 ";
+        const std::size_t at = input.find(block);
+        ASSERT_NE(at, std::string::npos) << input;
+        double top = 0.0;
+        std::string rest;
+        std::istringstream line(input.substr(at + block.size()));
+        line >> top;
+        std::getline(line, rest);
+        double bed_top = 0.0;
+        std::istringstream csv(slurp(d / "particles.csv"));
+        std::string row;
+        std::getline(csv, row);
+        while (std::getline(csv, row)) {
+            double x = 0, y = 0, z = 0, r = 0;
+            char comma = 0;
+            std::istringstream(row) >> x >> comma >> y >> comma >> z >> comma >> r;
+            bed_top = std::max(bed_top, z + r);
+        }
+        EXPECT_NEAR(top, bed_top + 0.003, 1e-15);
+        EXPECT_EQ(rest, " side in open 5 open 6 units box");
+        const std::string cmd =
+            "cd " + d.string() + " && lmp -in bed.data.lammps.in -log none > lmp.out 2>&1";
+        ASSERT_EQ(std::system(cmd.c_str()), 0) << slurp(d / "lmp.out");
+        const std::string log = slurp(d / "lmp.out");
+        EXPECT_EQ(log.find("Lost"), std::string::npos) << log;
+        EXPECT_EQ(log.find("WARNING"), std::string::npos) << log;
+        EXPECT_NE(log.find("packbed settle: 28 atoms after 2000 steps"), std::string::npos) << log;
+        expect_settled_in_box(d / "bed.data.lammps.dump");
+    }
+    if (std::system("command -v liggghts >/dev/null 2>&1") == 0) {
+        const fs::path d = box_settle_bed("liggghts", "liggghts-data");
+        const std::string cmd = "cd " + d.string() +
+                                " && stdbuf -oL liggghts -in bed.data.liggghts.in -log none > "
+                                "liggghts.out 2>&1";
+        ASSERT_EQ(std::system(cmd.c_str()), 0) << slurp(d / "liggghts.out");
+        const std::string log = slurp(d / "liggghts.out");
+        // The four faces: 4 x 5 cells of at most 3 mm (14.7 mm tall), two triangles a cell;
+        // the floor 4 x 4.
+        EXPECT_NE(log.find("Import and parallelization of mesh side containing 160 triangle(s) "
+                           "successful"),
+                  std::string::npos)
+            << log;
+        EXPECT_NE(log.find("Import and parallelization of mesh floor containing 32 triangle(s) "
+                           "successful"),
+                  std::string::npos)
+            << log;
+        EXPECT_EQ(log.find("lost"), std::string::npos) << log;
+        EXPECT_EQ(log.find("WARNING"), std::string::npos) << log;
+        EXPECT_NE(log.find("packbed settle: 28 atoms after 2000 steps"), std::string::npos) << log;
+        expect_settled_in_box(d / "bed.data.liggghts.dump");
+    }
+}

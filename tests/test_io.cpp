@@ -96,7 +96,7 @@ DemSettle settle() {
     s.wall_stl = "bed.data.wall.stl";
     s.bottom_stl = "bed.data.bottom.stl";
     s.dump = "bed.data.liggghts.dump";
-    s.container_radius = 0.006;
+    s.container = Cylinder(0.006);
     s.container_height = 0.0186;
     s.smallest_radius = 0.0015;
     s.diameter = 0.003;
@@ -165,4 +165,67 @@ TEST(LammpsData, NotesAreCommentLinesAndHeaderLinesFitTheReaders) {
     EXPECT_THROW(lammps_data(p, 2500, box, "t", {std::string(max_data_header_line, 'x')}),
                  InvalidInput); // "# " + 250
     EXPECT_THROW(lammps_data(p, 2500, box, "t", {"two\nlines"}), InvalidInput);
+}
+
+// Issue 17: a bed in a box. The data file's box holds the box with the same margin rule (its
+// depth, half the narrower width, for Rt), and the settle inputs name its four faces.
+TEST(ContainerBox, HoldsABoxWithTheStatedMargin) {
+    // Box [0, 4] x [0, 3], Dp = 1: m = max(0.5, 1.5 / 100) = 0.5.
+    const AxisBox b = container_box(Container(Box(4.0, 3.0)), 5.0, 1.0);
+    EXPECT_EQ(b.lo.x, -0.5);
+    EXPECT_EQ(b.hi.x, 4.5);
+    EXPECT_EQ(b.lo.y, -0.5);
+    EXPECT_EQ(b.hi.y, 3.5);
+    EXPECT_EQ(b.lo.z, -0.5);
+    EXPECT_EQ(b.hi.z, 5.5);
+    // A wide box off the origin, [-100, 300] x [0, 500]: depth 200, m = 2 > Dp / 2.
+    const AxisBox wide = container_box(Container(Box(-100.0, 300.0, 0.0, 500.0)), 10.0, 1.0);
+    EXPECT_EQ(wide.lo.x, -102.0);
+    EXPECT_EQ(wide.hi.x, 302.0);
+    EXPECT_EQ(wide.lo.y, -2.0);
+    EXPECT_EQ(wide.hi.y, 502.0);
+    EXPECT_EQ(wide.lo.z, -2.0);
+    EXPECT_EQ(wide.hi.z, 12.0);
+    // A cylinder through Container: the same bits as before.
+    const AxisBox old = container_box(0.006, 0.02, 0.003);
+    const AxisBox now = container_box(Container(Cylinder(0.006)), 0.02, 0.003);
+    EXPECT_EQ(now.lo, old.lo);
+    EXPECT_EQ(now.hi, old.hi);
+    EXPECT_THROW(container_box(Container(Box(0.0, 1.0)), 1.0, 1.0), InvalidInput);
+    EXPECT_THROW(container_box(Container(Box(1.0, 1.0)), 0.0, 1.0), InvalidInput);
+}
+
+TEST(SettleInput, ABoxIsABlockRegionForLammpsAndItsFacesForLiggghts) {
+    DemSettle s = settle();
+    s.container = Box(0.012, 0.009);
+    const std::string lmp = lammps_settle_input(s);
+    EXPECT_NE(lmp.find("region          container block 0 0.012 0 0.009 0 0.0186 side in open 5 "
+                       "open 6 units box\n"
+                       "fix             side all wall/gran/region granular "),
+              std::string::npos)
+        << lmp;
+    EXPECT_NE(lmp.find("its four sides as a block region open at the floor and the top"),
+              std::string::npos);
+    EXPECT_EQ(lmp.find("cylinder"), std::string::npos);
+    EXPECT_NE(lmp.find("the container is the box x in [0, 0.012], y in\n# [0, 0.009] from the "
+                       "floor z = 0 to z = 0.0186, and the data file's box\n# holds it "
+                       "(docs/dem.md).\n"),
+              std::string::npos)
+        << lmp;
+    const std::string lig = liggghts_settle_input(s);
+    EXPECT_NE(lig.find("# The container from packbed's STL: its side (the box's four faces) and "
+                       "floor.\n"
+                       "fix             side all mesh/surface file bed.data.wall.stl type 1\n"),
+              std::string::npos)
+        << lig;
+    EXPECT_EQ(lig.find("cylinder"), std::string::npos);
+    // The cylinder's head, word for word as before issue 17.
+    EXPECT_NE(lammps_settle_input(settle()).find(
+                  "# Lengths as in bed.data with units si (metres); the container is the "
+                  "cylinder of radius\n# 0.006 about the z axis from the floor z = 0 to z = "
+                  "0.0186, and the data file's\n# box holds it (docs/dem.md).\n"
+                  "# Material:"),
+              std::string::npos);
+    s.container = Cylinder(0.0);
+    EXPECT_THROW(lammps_settle_input(s), InvalidInput);
 }

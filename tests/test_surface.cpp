@@ -490,3 +490,193 @@ TEST(Surface, TheSameUnionWhateverTheThreads) {
     EXPECT_EQ(one[0].mesh.triangles, two[0].mesh.triangles);
     EXPECT_TRUE(closed_and_oriented({&one[0].mesh}));
 }
+
+// Issue 17: a bed in a box. The wall cuts are one per face closer than the gap (two in a
+// corner), the container's volume is LX LY H, and the solids are the box's faces.
+namespace {
+
+SurfaceContainer box(double lx, double ly, double height) {
+    return {Box(lx, ly), height};
+}
+
+/// The volume of the cap a plane s from the centre cuts from a ball of radius r, by hand.
+double cap(double r, double s) {
+    const double c = r - s;
+    return pi * c * c * (3.0 * r - c) / 3.0;
+}
+
+Vec3 cross(const Vec3& a, const Vec3& b) {
+    return {a.y * b.z - a.z * b.y, a.z * b.x - a.x * b.z, a.x * b.y - a.y * b.x};
+}
+
+} // namespace
+
+TEST(SurfaceBox, WallCutsAreOnePerNearFaceTwoInACorner) {
+    const Container b = Box(4.0, 3.0);
+    // In the corner (x_low, y_low), touching both faces: two planes, normals -x and -y.
+    const std::vector<WallPlane> corner = b.walls_within({0.5, 0.5, 1.0}, 0.5, 0.05);
+    ASSERT_EQ(corner.size(), 2u);
+    EXPECT_EQ(corner[0].normal, (Vec3{-1.0, 0.0, 0.0}));
+    EXPECT_EQ(corner[0].offset, 0.0);
+    EXPECT_EQ(corner[1].normal, (Vec3{0.0, -1.0, 0.0}));
+    // At the middle of the face x = 4, 0.04 from it: one plane; 0.06 from it: none.
+    const std::vector<WallPlane> face = b.walls_within({3.46, 1.5, 1.0}, 0.5, 0.05);
+    ASSERT_EQ(face.size(), 1u);
+    EXPECT_EQ(face[0].normal, (Vec3{1.0, 0.0, 0.0}));
+    EXPECT_EQ(face[0].offset, 4.0);
+    EXPECT_TRUE(b.walls_within({3.44, 1.5, 1.0}, 0.5, 0.05).empty());
+    // The far corner (x_high, y_high), and a box off the origin.
+    const std::vector<WallPlane> far = b.walls_within({3.5, 2.5, 1.0}, 0.5, 0.01);
+    ASSERT_EQ(far.size(), 2u);
+    EXPECT_EQ(far[1].normal, (Vec3{0.0, 1.0, 0.0}));
+    EXPECT_EQ(far[1].offset, 3.0);
+    // Tangent to x = -2, 0.1 beyond y = 9.
+    const std::vector<WallPlane> off =
+        Container(Box(-2.0, 1.0, 5.0, 9.0)).walls_within({-1.5, 8.6, 1.0}, 0.5, 0.01);
+    ASSERT_EQ(off.size(), 2u);
+    EXPECT_EQ(off[0].offset, 2.0); // -x <= 2: x >= -2
+    EXPECT_EQ(off[1].offset, 9.0);
+    // The cylinder's, as the treatments always cut it: the tangent plane at the nearest point.
+    const std::vector<WallPlane> tube =
+        Container(Cylinder(2.0)).walls_within({0.0, 1.5, 1.0}, 0.5, 0.02);
+    ASSERT_EQ(tube.size(), 1u);
+    EXPECT_EQ(tube[0].normal, (Vec3{0.0, 1.0, 0.0}));
+    EXPECT_EQ(tube[0].offset, 2.0);
+    EXPECT_TRUE(Container(Cylinder(2.0)).walls_within({0.0, 0.0, 1.0}, 0.5, 2.0).empty());
+}
+
+TEST(SurfaceBox, CapsOnASphereInACornerOfTheFloor) {
+    Packing p;
+    p.add({0.5, 0.5, 0.5}, 0.5); // touches the floor and the faces x = 0 and y = 0
+    const SurfaceContainer c = box(4.0, 3.0, 2.0);
+    const TreatedBed bed = treat_contacts(p, parse_contacts("caps:0.05"), c);
+    ASSERT_EQ(bed.bodies[0].cuts.size(), 3u); // floor, x = 0, y = 0
+    const TreatmentVolumes v = treatment_volumes(p, bed, c);
+    EXPECT_DOUBLE_EQ(v.container_volume, 24.0);
+    EXPECT_NEAR(v.untouched_solid, sphere_volume(0.5), 1e-15); // whole, tangent to three faces
+    // Three caps of height 0.05: pi 0.05^2 (1.5 - 0.05) / 3 = 3.7961e-3 each.
+    EXPECT_NEAR(cap(0.5, 0.45), 3.79609e-3, 1e-8);
+    EXPECT_NEAR(v.treated_solid, sphere_volume(0.5) - 3.0 * cap(0.5, 0.45), 1e-15);
+    EXPECT_NEAR(v.treated_void_fraction, 1.0 - v.treated_solid / 24.0, 1e-15);
+    SurfaceOptions o;
+    o.level = 5;
+    o.container = c;
+    const auto solids = bed_surface(bed, o);
+    ASSERT_EQ(solids.size(), 4u);
+    EXPECT_TRUE(closed_and_oriented({&solids[0].mesh}));
+    // H Dp from every face it touched, flat there.
+    for (const Vec3& x : solids[0].mesh.vertices) {
+        EXPECT_GE(x.x, 0.05 - 1e-15);
+        EXPECT_GE(x.y, 0.05 - 1e-15);
+        EXPECT_GE(x.z, 0.05 - 1e-15);
+    }
+    EXPECT_NEAR(solids[0].mesh.volume() / v.treated_solid, 1.0, 1.5e-3);
+    EXPECT_LT(solids[0].mesh.volume(), v.treated_solid);
+}
+
+TEST(SurfaceBox, CapsOnASimpleCubicBlockCountEveryContactAndFace) {
+    // 2 x 2 x 1 touching balls of diameter 1 filling the box [0, 2] x [0, 2]: each ball
+    // touches two neighbours, two faces and the floor.
+    Packing p;
+    for (const double x : {0.5, 1.5})
+        for (const double y : {0.5, 1.5})
+            p.add({x, y, 0.5}, 0.5);
+    const SurfaceContainer c = box(2.0, 2.0, 2.0);
+    const TreatedBed bed = treat_contacts(p, parse_contacts("caps:0.05"), c);
+    for (const TreatedBody& b : bed.bodies)
+        EXPECT_EQ(b.cuts.size(), 5u);
+    const TreatmentVolumes v = treatment_volumes(p, bed, c);
+    EXPECT_DOUBLE_EQ(v.container_volume, 8.0);
+    EXPECT_NEAR(v.untouched_solid, 4.0 * sphere_volume(0.5), 1e-14);
+    EXPECT_NEAR(v.untouched_void_fraction, 1.0 - pi / 12.0, 1e-15); // 4 pi / 6 in 8
+    // Pair caps of height H / 2 = 0.025 on each side; wall and floor caps of height H.
+    EXPECT_NEAR(v.treated_solid,
+                4.0 * (sphere_volume(0.5) - 2.0 * cap(0.5, 0.475) - 3.0 * cap(0.5, 0.45)), 1e-14);
+    SurfaceOptions o;
+    o.level = 3;
+    o.container = c;
+    const auto solids = bed_surface(bed, o);
+    ASSERT_EQ(solids.size(), 4u);
+    EXPECT_EQ(solids[1].name, "wall");
+    EXPECT_TRUE(closed_and_oriented({&solids[1].mesh, &solids[2].mesh, &solids[3].mesh}));
+    for (const Vec3& x : solids[0].mesh.vertices) { // inside, 0.05 clear of every face
+        EXPECT_GE(std::min({x.x, x.y, 2.0 - x.x, 2.0 - x.y, x.z}), 0.05 - 1e-14);
+    }
+}
+
+TEST(SurfaceBox, ShrinkEnlargeAndBridgesAtTheFaces) {
+    // Tangent to the face x = 0: shrink separates it; a sphere poking 0.01 through the face
+    // needs F above 0.02.
+    Packing tangent;
+    tangent.add({0.5, 1.0, 1.0}, 0.5);
+    const SurfaceContainer c = box(2.0, 2.0, 2.0);
+    EXPECT_NO_THROW(treat_contacts(tangent, parse_contacts("shrink:0.01"), c));
+    Packing poking;
+    poking.add({0.49, 1.0, 1.0}, 0.5);
+    EXPECT_THROW(treat_contacts(poking, parse_contacts("shrink:0.02"), c), InvalidInput);
+    EXPECT_NO_THROW(treat_contacts(poking, parse_contacts("shrink:0.03"), c));
+    // Enlarge in the corner of the floor: radius 0.51 pressing 0.01 into three faces, cut
+    // 0.02 from each: three caps of height 0.03.
+    Packing corner;
+    corner.add({0.5, 0.5, 0.5}, 0.5);
+    const TreatedBed big = treat_contacts(corner, parse_contacts("enlarge:0.02"), c);
+    ASSERT_EQ(big.bodies[0].cuts.size(), 3u);
+    EXPECT_NEAR(treatment_volumes(corner, big, c).treated_solid,
+                4.0 / 3.0 * pi * 0.51 * 0.51 * 0.51 - 3.0 * cap(0.51, 0.48), 1e-14);
+    // Bridges: the face contact capped bridge_gap = 0.01 Dp from the face.
+    const TreatedBed bridged = treat_contacts(tangent, parse_contacts("bridges:0.2"), c);
+    ASSERT_EQ(bridged.bodies[0].cuts.size(), 1u);
+    EXPECT_EQ(bridged.bodies[0].cuts[0].offset, -0.01); // -x <= -0.01
+    EXPECT_NEAR(treatment_volumes(tangent, bridged, c).treated_solid,
+                sphere_volume(0.5) - cap(0.5, 0.49), 1e-15);
+}
+
+TEST(SurfaceBox, ContainerSolidsAreTheBoxClosedOutwardAndWatertight) {
+    // The box [1, 2] x [-1, 0.5] from z = 0 to 3, triangles about 0.3 wide: 4, 5 and 10 cells
+    // along x, y, z (1.5 / 0.3 is 5 to the last bits).
+    const Box b(1.0, 2.0, -1.0, 0.5);
+    const auto solids = container_solids(b, 0.0, 3.0, 0.3);
+    ASSERT_EQ(solids.size(), 3u);
+    EXPECT_EQ(solids[0].name, "wall");
+    EXPECT_EQ(solids[1].name, "bottom");
+    EXPECT_EQ(solids[2].name, "top");
+    EXPECT_EQ(solids[0].mesh.triangles.size(), 2u * 2u * (4u + 5u) * 10u);
+    EXPECT_EQ(solids[1].mesh.triangles.size(), 2u * 4u * 5u);
+    EXPECT_EQ(solids[2].mesh.triangles.size(), 2u * 4u * 5u);
+    // Closed and outward together (shared rims at the same bits), not alone.
+    EXPECT_TRUE(closed_and_oriented({&solids[0].mesh, &solids[1].mesh, &solids[2].mesh}));
+    EXPECT_FALSE(closed_and_oriented({&solids[0].mesh, &solids[1].mesh}));
+    TriangleMesh all = solids[0].mesh;
+    all.append(solids[1].mesh);
+    all.append(solids[2].mesh);
+    EXPECT_NEAR(all.volume(), 1.0 * 1.5 * 3.0, 1e-13);
+    // Every vertex on the box's faces, every triangle in one face, no edge longer than a
+    // cell's diagonal (0.25 x 0.3 x 0.3).
+    double area = 0.0;
+    for (const auto& t : solids[0].mesh.triangles) {
+        const Vec3 a = solids[0].mesh.vertices[t[0]], p = solids[0].mesh.vertices[t[1]],
+                   q = solids[0].mesh.vertices[t[2]];
+        area += 0.5 * norm(cross(p - a, q - a));
+        for (const Vec3& v : {a, p, q}) {
+            EXPECT_TRUE(v.x == 1.0 || v.x == 2.0 || v.y == -1.0 || v.y == 0.5);
+            EXPECT_GE(v.x, 1.0);
+            EXPECT_LE(v.x, 2.0);
+            EXPECT_GE(v.y, -1.0);
+            EXPECT_LE(v.y, 0.5);
+        }
+        EXPECT_LE(std::max({norm(p - a), norm(q - p), norm(a - q)}), std::hypot(0.3, 0.3) + 1e-12);
+    }
+    EXPECT_NEAR(area, 2.0 * (1.0 + 1.5) * 3.0, 1e-12);
+    for (const Vec3& v : solids[1].mesh.vertices)
+        EXPECT_EQ(v.z, 0.0);
+    for (const Vec3& v : solids[2].mesh.vertices)
+        EXPECT_EQ(v.z, 3.0);
+    // Through Container, the same solids; a cylinder's through Container are its own.
+    const auto again = container_solids(Container(b), 0.0, 3.0, 0.3);
+    EXPECT_EQ(again[0].mesh.vertices, solids[0].mesh.vertices);
+    const auto tube = container_solids(Container(Cylinder(2.0)), 0.0, 3.0, 0.3);
+    EXPECT_EQ(tube[0].mesh.vertices,
+              container_solids(Cylinder(2.0), 0.0, 3.0, 0.3)[0].mesh.vertices);
+    // A side shorter than the edge is one cell.
+    EXPECT_EQ(container_solids(Box(0.1, 0.1), 0.0, 0.1, 1.0)[1].mesh.triangles.size(), 2u);
+}

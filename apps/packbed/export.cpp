@@ -60,7 +60,7 @@ struct ExportOptions {
     int refine = 3;
     double edge = 0.0;             // > 0: overrides refine
     double container_radius = 0.0; // 0: from summary.json beside the file, if any
-    std::string container;         // --container cylinder:D, instead of --container-radius
+    std::string container;         // --container cylinder:D or box:LX,LY, instead of -R
     double container_height = 0.0; // 0: the bed's top + 1 Dp
     bool no_container = false;
     OpenFoamMeshOptions mesh;
@@ -96,19 +96,18 @@ std::unique_ptr<OutputDirectory> file_output(const ExportOptions& o, const fs::p
     return out;
 }
 
-/// The bed's container: the radius from --container-radius or summary.json beside the file,
-/// the height from --container-height or the bed's top + 1 Dp. \return nothing when neither
-/// gives a radius. \throws InvalidInput when the height is not above the bed or a centre lies
-/// outside the container
+/// The bed's container: --container, --container-radius or summary.json beside the file (a
+/// cylinder or a box), the height from --container-height or the bed's top + 1 Dp.
+/// \return nothing when none gives a container. \throws InvalidInput when the height is not
+/// above the bed or a centre lies outside the container
 std::optional<SurfaceContainer> bed_container(const ExportOptions& o, const ParticleFile& file) {
     const auto spec = parse_container(o.container);
     const std::optional<Container> given =
         spec                       ? std::optional<Container>(spec->container())
         : o.container_radius > 0.0 ? std::optional<Container>(Cylinder(o.container_radius))
                                    : container_beside(o.particles);
-    if (!given || !given->cylinder())
+    if (!given)
         return std::nullopt;
-    const double rt = given->cylinder()->radius();
     const double top = bed_top(file.packing);
     const double height =
         o.container_height > 0.0 ? o.container_height : top + file.packing.mean_diameter();
@@ -117,13 +116,24 @@ std::optional<SurfaceContainer> bed_container(const ExportOptions& o, const Part
             "--container-height {} is not allowed; allowed: above the bed's top, {}", height, top));
     for (std::size_t i = 0; i < file.packing.size(); ++i) {
         const Vec3& c = file.packing.centers[i];
-        if (std::hypot(c.x, c.y) >= rt || c.z <= 0.0)
+        if (!(given->wall_distance(c) > 0.0) || c.z <= 0.0)
             throw InvalidInput(fmt::format(
-                "{}:{}: the sphere centre ({}, {}, {}) is outside the container (radius {}, "
+                "{}:{}: the sphere centre ({}, {}, {}) is outside the container ({}, "
                 "floor z = 0); allowed: centres inside it",
-                printable(o.particles), file.lines[i], c.x, c.y, c.z, rt));
+                printable(o.particles), file.lines[i], c.x, c.y, c.z, describe(*given)));
     }
-    return SurfaceContainer{Cylinder(rt), height};
+    return SurfaceContainer{*given, height};
+}
+
+/// The container in packbed.json: its shape, size and height.
+nlohmann::ordered_json container_json(const SurfaceContainer& container) {
+    if (const Cylinder* c = container.container.cylinder())
+        return {{"shape", "cylinder"}, {"radius", c->radius()}, {"height", container.height}};
+    const Rectangle b = container.container.bounds();
+    return {{"shape", container.container.name()},
+            {"size", {b.x_high - b.x_low, b.y_high - b.y_low}},
+            {"corner", {b.x_low, b.y_low}},
+            {"height", container.height}};
 }
 
 /// STL, OBJ or an OpenFOAM case: treat the contacts, tessellate, write the surfaces and the
@@ -146,7 +156,6 @@ int run_surface_export(const ExportOptions& o, ExportFormat format, const Partic
     const Contacts contacts = parse_contacts(o.contacts);
     const double dp = file.packing.mean_diameter();
     const std::optional<SurfaceContainer> container = bed_container(o, file);
-    const double rt = container ? container->cylinder.radius() : 0.0;
     SurfaceOptions options;
     double largest = 0.0;
     for (const double r : file.packing.radii)
@@ -166,8 +175,8 @@ int run_surface_export(const ExportOptions& o, ExportFormat format, const Partic
         }
     if (format == ExportFormat::openfoam && !container)
         throw InvalidInput(
-            fmt::format("--format openfoam needs the container: give "
-                        "--container-radius (no summary.json with a container radius next to {})",
+            fmt::format("--format openfoam needs the container: give --container (no "
+                        "summary.json with a container next to {})",
                         printable(o.particles)));
 
     // What every surface export reports (printed, and written as JSON beside the output).
@@ -182,8 +191,7 @@ int run_surface_export(const ExportOptions& o, ExportFormat format, const Partic
     if (container) {
         const TreatmentVolumes& v =
             volumes.emplace(treatment_volumes(file.packing, bed, *container));
-        report["container"] = {
-            {"shape", "cylinder"}, {"radius", rt}, {"height", container->height}};
+        report["container"] = container_json(*container);
         report["volumes"] = {
             {"container", v.container_volume},
             {"untouched_solid", v.untouched_solid},
@@ -212,8 +220,9 @@ int run_surface_export(const ExportOptions& o, ExportFormat format, const Partic
             out->stage(path, text);
         write_surface(foam.particles, SurfaceFormat::stl_binary,
                       out->reserve("constant/triSurface/particles.stl"));
-        write_surface(foam.wall, SurfaceFormat::stl_binary,
-                      out->reserve("constant/triSurface/wall.stl"));
+        if (!foam.wall.empty()) // a cylinder's wall; a box's is the background's faces
+            write_surface(foam.wall, SurfaceFormat::stl_binary,
+                          out->reserve("constant/triSurface/wall.stl"));
         out->stage("packbed.json", report.dump(2) + "\n");
         out->commit();
         if (!o.quiet)
@@ -319,12 +328,16 @@ int run_data_export(const ExportOptions& o, ExportFormat format, const ParticleF
         if (container)
             box_note = "box from --box";
     } else if (container) {
-        box = container_box(container->cylinder.radius(), container->height, dp);
-        box_note = fmt::format("box: the container (radius {:.9g}, height {:.9g}) and a margin "
-                               "of {:.9g} "
-                               "(the larger of Dp/2 and Rt/100) on every side",
-                               container->cylinder.radius(), container->height,
-                               container_box_margin(dp, container->cylinder.radius()));
+        const Container& c = container->container;
+        box = container_box(c, container->height, dp);
+        // The cylinder's margin rule in Rt; a box's in its depth, half the narrower width.
+        const Cylinder* cylinder = c.cylinder();
+        box_note =
+            fmt::format("box: the container ({}, height {:.9g}) and a margin of {:.9g} "
+                        "(the larger of Dp/2 and {}) on every side",
+                        cylinder ? fmt::format("radius {:.9g}", cylinder->radius()) : c.spec(),
+                        container->height, container_box_margin(dp, c.depth()),
+                        cylinder ? "Rt/100" : "a hundredth of half the narrower width");
     }
     out->stage(name, lammps_data(file.packing, o.density, box, comment,
                                  box_note.empty() ? std::vector<std::string>{}
@@ -341,7 +354,7 @@ int run_data_export(const ExportOptions& o, ExportFormat format, const ParticleF
         settle.wall_stl = dem.wall;
         settle.bottom_stl = dem.bottom;
         settle.dump = dem.dump;
-        settle.container_radius = container->cylinder.radius();
+        settle.container = container->container;
         settle.container_height = container->height;
         settle.smallest_radius =
             file.packing.radii.empty()
@@ -351,7 +364,7 @@ int run_data_export(const ExportOptions& o, ExportFormat format, const ParticleF
         settle.density = o.density;
         // The container's side and floor as LIGGGHTS walls, triangles about 1 Dp wide.
         const std::vector<Solid> solids =
-            container_solids(container->cylinder, 0.0, container->height, dp);
+            container_solids(container->container, 0.0, container->height, dp);
         bool inside = true;
         for (std::size_t k = 0; k < 2; ++k)
             for (const Vec3& v : solids[k].mesh.vertices) {
@@ -450,10 +463,11 @@ Command register_export(CLI::App& parent) {
                         "treatment or container solids, data files in the spheres' bounding box "
                         "without an example DEM input)")
             ->check(real_in(0.0, inf, true, true));
-    add_container_option(*app, o.container, "file units; default: summary.json beside the file")
+    add_container_option(*app, o.container, "file units; default: summary.json beside the file",
+                         /*boxes=*/true)
         ->excludes(radius);
     app->add_option("--container-height", o.container_height,
-                    "cylinder height from the floor z = 0 (default: the bed's top + 1 Dp)")
+                    "container height from the floor z = 0 (default: the bed's top + 1 Dp)")
         ->check(real_in(0.0, inf, true, true));
     app->add_flag("--no-container", o.no_container,
                   "surfaces: cut against the container but do not write its solids; data "
@@ -471,8 +485,8 @@ Command register_export(CLI::App& parent) {
         ->check(real_in(0.0, inf, true, true));
     app->add_option("--box", o.box,
                     "xlo,xhi,ylo,yhi,zlo,zhi (default: the container and a margin of "
-                    "max(Dp/2, Rt/100) where the container is known, else the smallest box "
-                    "holding every sphere)");
+                    "max(Dp/2, Rt/100), a box's half narrower width for Rt, where the container "
+                    "is known, else the smallest box holding every sphere)");
     app->add_option("--fluid-velocity", o.fluid_velocity,
                     "record this fluid velocity (e.g. from packbed hydraulics) in the header and "
                     "in FILE.fluid.in as a LAMMPS variable")

@@ -12,6 +12,7 @@
 #include <string_view>
 #include <utility>
 #include <variant>
+#include <vector>
 
 #include "packbed/vec3.hpp"
 
@@ -29,6 +30,14 @@ struct Rectangle {
     double x_high = 0.0;
     double y_low = 0.0;
     double y_high = 0.0;
+};
+
+/// A plane tangent to a container's lateral wall from inside: the points x with
+/// dot(normal, x) <= offset are on the container's side of it (normal of unit length, pointing
+/// out of the container, horizontal).
+struct WallPlane {
+    Vec3 normal;
+    double offset = 0.0;
 };
 
 /// What the soft-sphere loops need from a container. The loops are templated on it, so the
@@ -79,6 +88,12 @@ public:
 
     /// \return the largest distance from the wall inside, Rt (on the axis).
     double depth() const { return m_radius; }
+
+    /// The wall where it comes within `gap` of the sphere (c, r), as planes: the one tangent
+    /// to the cylinder at the wall's point nearest the centre, normal (x, y, 0) / rho, offset
+    /// Rt, when Rt - rho - r < gap; none for a centre on the axis (rho = 0).
+    /// \param gap length (may be 0 or negative: walls the sphere reaches into)
+    std::vector<WallPlane> walls_within(const Vec3& c, double r, double gap) const;
 
     /// \return the cross-section, pi Rt^2.
     double cross_section_area() const;
@@ -157,6 +172,12 @@ public:
     /// \return the largest distance from the wall inside: half the narrower width.
     double depth() const { return 0.5 * std::min(m_x_high - m_x_low, m_y_high - m_y_low); }
 
+    /// The faces that come within `gap` of the sphere (c, r) (the centre's distance from the
+    /// face less r below gap), in the order x_low, x_high, y_low, y_high: a sphere in a corner
+    /// gets two. Normals -x, +x, -y, +y; offsets -x_low, x_high, -y_low, y_high.
+    /// \param gap length (may be 0 or negative)
+    std::vector<WallPlane> walls_within(const Vec3& c, double r, double gap) const;
+
     /// \return the cross-section, LX LY.
     double cross_section_area() const;
 
@@ -221,6 +242,9 @@ public:
     std::pair<double, double> wall_distances(const Vec3& c, double r) const;
     /// The largest distance from the wall inside.
     double depth() const;
+    /// The wall within `gap` of the sphere (c, r) as tangent planes (the cylinder's at the
+    /// nearest point, each box face that near): where the contact treatments cut.
+    std::vector<WallPlane> walls_within(const Vec3& c, double r, double gap) const;
     double cross_section_area() const;
     /// Area of the cross-section between two distances from the wall.
     double shell_area(double d_low, double d_high) const;

@@ -9,6 +9,7 @@
 #include <vector>
 
 #include "packbed/analysis.hpp"
+#include "packbed/container.hpp"
 #include "packbed/packing.hpp"
 
 namespace packbed {
@@ -53,7 +54,8 @@ constexpr std::size_t max_data_header_line = 250;
 /// The margin the default DEM box leaves around a known container: max(Dp / 2, Rt / 100).
 /// Rt / 100 is more than the prism packbed writes about the cylinder reaches beyond it (its
 /// corners lie at Rt / cos(pi / sides) with at least 48 sides: Rt times 1.0022 at most), so
-/// its STL lies wholly inside the box. \param diameter Dp, \param container_radius Rt (> 0)
+/// its STL lies wholly inside the box. For a box, Rt is its depth (half the narrower width):
+/// its STL lies on its faces. \param diameter Dp, \param container_radius Rt (> 0)
 double container_box_margin(double diameter, double container_radius);
 
 /// The default box of a DEM data file for a bed in a known container (a cylinder of radius Rt
@@ -62,6 +64,13 @@ double container_box_margin(double diameter, double container_radius);
 /// STL (container_solids) and the fluid region above the bed up to `height`.
 /// \throws InvalidInput when a value is not finite and > 0
 AxisBox container_box(double container_radius, double height, double diameter);
+
+/// The same for any container: its bounds (Container::bounds) and [0, height], widened by
+/// m = container_box_margin(diameter, container.depth()) on every side (for a box: x in
+/// [x_low - m, x_high + m], y in [y_low - m, y_high + m], z in [-m, height + m]; for a cylinder
+/// the box above, to the bit). \throws InvalidInput when a bound is not finite, the depth,
+/// the height or the diameter not > 0
+AxisBox container_box(const Container& container, double height, double diameter);
 
 /// The Rayleigh time of a sphere, the time a Rayleigh surface wave takes to cross it (Li, Xu
 /// & Thornton 2005, Powder Technol. 160: 219-228; LIGGGHTS' fix check/timestep/gran):
@@ -84,12 +93,14 @@ struct DemMaterial {
 /// gravity in its container. File names are relative to the folder of the data file (the
 /// inputs are run there).
 struct DemSettle {
-    std::string data_file;         ///< the data file's name (lammps_data)
-    std::string wall_stl;          ///< LIGGGHTS: the container's side, STL (container_solids)
-    std::string bottom_stl;        ///< LIGGGHTS: the container's floor, STL
-    std::string dump;              ///< the dump the run writes (first and last step)
-    double container_radius = 0.0; ///< Rt (LAMMPS: the region cylinder)
-    double container_height = 0.0; ///< H (LAMMPS: the region cylinder's top)
+    std::string data_file;  ///< the data file's name (lammps_data)
+    std::string wall_stl;   ///< LIGGGHTS: the container's side, STL (container_solids)
+    std::string bottom_stl; ///< LIGGGHTS: the container's floor, STL
+    std::string dump;       ///< the dump the run writes (first and last step)
+    /// The container (LAMMPS: the region, a cylinder or a block); a cylinder of radius 0, the
+    /// default, is refused.
+    Container container = Cylinder(0.0);
+    double container_height = 0.0; ///< H (LAMMPS: the region's top)
     double smallest_radius = 0.0;  ///< sets the time step
     double diameter = 0.0;         ///< mean Dp: the neighbour skin (0.1 Dp)
     double density = 0.0;          ///< as in the data file
@@ -100,8 +111,9 @@ struct DemSettle {
 
 /// A LAMMPS (2022, GRANULAR package) input that reads the data file and settles the bed:
 /// `units si`, `atom_style sphere`, `pair_style granular` (hertz/material, Mindlin tangential,
-/// Tsuji damping), the side wall as `fix wall/gran/region` on a cylinder region (LAMMPS 2022
-/// has no STL walls for granular fixes), the floor as `fix wall/gran ... zplane`, gravity,
+/// Tsuji damping), the side wall as `fix wall/gran/region` on a region (LAMMPS 2022 has no
+/// STL walls for granular fixes): a cylinder, or for a box a block whose floor and top are
+/// open (its four sides the wall), the floor as `fix wall/gran ... zplane`, gravity,
 /// `fix nve/sphere`, the time step from rayleigh_time computed in the script from its
 /// variables (and written as a number in a comment), a dump at the first and last step.
 /// \throws InvalidInput when a value is out of range
@@ -109,7 +121,8 @@ std::string lammps_settle_input(const DemSettle& settle);
 
 /// The same settle for LIGGGHTS 3.8: `atom_style granular`, `pair_style gran model hertz
 /// tangential history`, the material as `fix property/global`, the container's side and
-/// floor from packbed's STL files (`fix mesh/surface`, `fix wall/gran ... mesh`).
+/// floor from packbed's STL files (`fix mesh/surface`, `fix wall/gran ... mesh`): a prism
+/// about a cylinder, a box's four faces.
 /// \throws InvalidInput when a value is out of range
 std::string liggghts_settle_input(const DemSettle& settle);
 

@@ -16,7 +16,7 @@ namespace packbed {
 struct OpenFoamMeshOptions {
     int cells_per_diameter = 4; ///< background (blockMesh) cells per Dp, >= 1
     int particle_level = 2;     ///< snappyHexMesh refinement level at the particles, 0 to 8
-    int wall_level = 1;         ///< ... at the container wall, 0 to 8
+    int wall_level = 1;         ///< ... at a cylinder's wall, 0 to 8 (a box's is not refined)
 };
 
 /// What openfoam_case builds: the text files by path inside the case directory, the two
@@ -24,19 +24,24 @@ struct OpenFoamMeshOptions {
 struct OpenFoamCase {
     std::vector<std::pair<std::string, std::string>> files; ///< (relative path, contents)
     std::vector<Solid> particles;                           ///< constant/triSurface/particles.stl
-    std::vector<Solid> wall;                                ///< constant/triSurface/wall.stl
+    std::vector<Solid> wall; ///< constant/triSurface/wall.stl (a cylinder's; empty for a box)
     Vec3 location_in_mesh;   ///< a point of the fluid, farthest from every surface we tried
     double clearance = 0.0;  ///< its distance to the nearest surface (length)
     double fluid_volume = 0; ///< exact void volume of the container with the treated bodies
-    double cell_size = 0.0;  ///< background cell edge (length)
+    double cell_size = 0.0;  ///< background cell edge, Dp / cells_per_diameter (length; a
+                             ///< box's cells are at most that long)
 };
 
 /// The case for `bed` (from treat_contacts) in `container`, surfaces tessellated with
-/// `level`. The box of blockMesh spans the cylinder with a margin of one background cell
-/// sideways and exactly the container's height, so its bottom and top faces become the
-/// patches "inlet" (z = 0) and "outlet" (z = height); snappyHexMesh cuts the particles (patch
-/// "particles") and the wall (patch "wall", a surface open at both ends reaching half a cell
-/// beyond them) out of it. `volumes` gives the exact fluid volume written in the README.
+/// `level`. The box of blockMesh spans exactly the container's height, so its bottom and top
+/// faces become the patches "inlet" (z = 0) and "outlet" (z = height). For a cylinder it spans
+/// the cylinder with a margin of one background cell sideways, and snappyHexMesh cuts the wall
+/// (patch "wall", wall.stl: a surface open at both ends reaching half a cell beyond them) out
+/// of it; for a box it is the box itself, ceil(length / cell) cells along each axis, and its
+/// four sides are the patch "wall" (type wall): no wall surface. snappyHexMesh cuts the
+/// particles (patch "particles") out of either. The location in the mesh is searched inside
+/// the container's bounds, its clearance from the wall by Container::wall_distance. `volumes`
+/// gives the exact fluid volume written in the README.
 /// \throws InvalidInput when the options are out of range or no point of the fluid clears
 /// every surface by two cells of the finest level
 OpenFoamCase openfoam_case(const TreatedBed& bed, const SurfaceContainer& container,

@@ -93,9 +93,10 @@ const std::vector<std::pair<std::string, ContactTreatment>>& contact_treatments(
 /// \throws InvalidInput naming the text and what is allowed
 Contacts parse_contacts(std::string_view text);
 
-/// The container a surface is cut against: a cylinder from the floor z = 0 to `height`.
+/// The container a surface is cut against: a cylinder or a box from the floor z = 0 to
+/// `height`.
 struct SurfaceContainer {
-    Cylinder cylinder{1.0};
+    Container container = Cylinder(1.0);
     double height = 1.0;
 };
 
@@ -144,14 +145,16 @@ TreatedBed treat_contacts(const Packing& packing, const Contacts& contacts,
                           const std::optional<SurfaceContainer>& container);
 
 /// Exact solid volumes and void fractions of a bed inside its container, before and after a
-/// treatment. Untouched: sum of the spheres' volumes inside the container minus the lenses of
+/// treatment. Untouched: sum of the spheres' volumes inside the container
+/// (Container::sphere_volume: closed forms for a cylinder, converged quadrature where a box's
+/// edge cuts a sphere) minus the lenses of
 /// overlapping pairs; treated: the bodies (inside by construction) minus their caps,
 /// \f$V_{cap} = \pi c^2 (3 r - c) / 3\f$, minus the lenses of overlapping bodies (enlarge,
 /// bridges), plus each bridge's part outside its two spheres,
 /// \f$\pi \rho^2 d - H(r_i) - H(r_j) + V_{lens}\f$ with H the part of a sphere within \f$\rho\f$
 /// of the axis on the bridge's side of its centre (half_ball_in_cylinder). All closed forms.
 struct TreatmentVolumes {
-    double container_volume = 0.0; ///< pi Rt^2 height
+    double container_volume = 0.0; ///< cross-section x height (pi Rt^2 height, LX LY height)
     double untouched_solid = 0.0;  ///< solid volume of the bed as it is
     double treated_solid = 0.0;    ///< solid volume of the treated bodies
     double untouched_void_fraction = 0.0;
@@ -181,13 +184,25 @@ double lens_volume(double r1, double r2, double distance);
 /// bridge a prism inscribed in its cylinder; for a bed to unite, the union of all of them by
 /// CGAL's corefinement), and
 /// where the options ask for it the container as "wall" (a prism circumscribed about the
-/// cylinder, so that no sphere inside the cylinder meets it), "bottom" and "top".
+/// cylinder, so that no sphere inside the cylinder meets it; a box's four faces), "bottom" and
+/// "top" (container_solids).
 std::vector<Solid> bed_surface(const TreatedBed& bed, const SurfaceOptions& options);
 
 /// The container as solids "wall" (a prism circumscribed about the cylinder, sides about
 /// `edge` long, between z_low and z_high), "bottom" and "top" (fans from the axis); the three
 /// together are closed and outward. \param edge > 0
 std::vector<Solid> container_solids(const Cylinder& cylinder, double z_low, double z_high,
+                                    double edge);
+
+/// A box as solids "wall" (its four faces), "bottom" and "top", each face a grid of
+/// ceil(length / edge) cells a side (at least one, at most 4096) split into two triangles:
+/// triangles about `edge` wide, every vertex of a face's rim shared with the face next to it
+/// (at the same coordinates, so the STL is watertight too); the three together are closed and
+/// outward, and lie on the box's faces. \param edge > 0
+std::vector<Solid> container_solids(const Box& box, double z_low, double z_high, double edge);
+
+/// The solids of either shape (the overloads above).
+std::vector<Solid> container_solids(const Container& container, double z_low, double z_high,
                                     double edge);
 
 /// The three formats.
