@@ -9,11 +9,12 @@ checkMesh on two tiny beds.
    about 3 % of the fluid: the 0.02 Dp gaps of the caps and the thin wedges near contacts are
    narrower than a cell.
 2. A simple cubic lattice in a box (issue 17): 3 x 3 x 2 balls of Dp = 1 in [0, 3] x [0, 3],
-   each touching its neighbours, two or three faces and the floor, with caps:0.05; the
-   container from z = 0 to the bed's top + 1 Dp = 3. The exact fluid volume is computed here by
-   hand and must be the one packbed.json and the case's README state: 27 - (18 pi / 6 - 66
-   caps of height 0.025 - 33 caps of height 0.05). The background mesh is the box (12 x 12 x 12
-   cells, bounding box (0 0 0) (3 3 3) to 1e-4), its sides the patch `wall`: no wall.stl. Asserts
+   touching their neighbours, 16 of them one or two faces, the lower 9 the floor, with
+   caps:0.05; the container from z = 0 to the bed's top + 1 Dp = 3. The exact fluid volume is
+   computed here by hand and must be the one packbed.json and the case's README state: 27 -
+   (18 pi / 6 - 66 caps of height 0.025 - 33 caps of height 0.05). The background mesh is the
+   box (12 x 12 x 12 cells, bounding box (0 0 0) (3 3 3) to 1e-4), its sides the patch `wall`:
+   no wall.stl. Asserts
    "Mesh OK.", the patches inlet, outlet, wall and particles (and no other), and the mesh's
    total volume within 1 % of the exact fluid volume (-0.07 % measured: 17.7514 against
    17.7642; snappyHexMesh about 12 s).

@@ -2,8 +2,8 @@
 """The STL files of `packbed export` checked by real checkers from Debian: admesh (closed, every
 edge shared by two facets, consistent orientation, no degenerate facet, one part per body) and
 OpenFOAM's surfaceCheck (closed, not self-intersecting), for a generated bed, a lattice in a
-cylinder and a simple cubic lattice in a box (issue 17: 18 balls, each touching two or three
-faces of the box or the floor), with every treatment. For caps and shrink admesh must also leave every stored normal as it is; the
+cylinder and a simple cubic lattice in a box (issue 17: 3 x 3 x 2 balls, 16 of them touching
+one or two faces of the box, the lower 9 the floor), with every treatment. For caps and shrink admesh must also leave every stored normal as it is; the
 unions of enlarge and bridges (CGAL's corefinement) keep small triangles whose single-precision
 normal admesh recomputes differently, so there only orientation is checked.
 Two untreated spheres overlapping by 0.045 Dp must be reported as self-intersecting: the
