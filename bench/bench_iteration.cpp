@@ -5,6 +5,7 @@
 // the spheres, then the list with a skin of 0.1 Dp) on the same beds.
 #include <map>
 #include <memory>
+#include <vector>
 
 #include <benchmark/benchmark.h>
 #include <omp.h>
@@ -74,7 +75,51 @@ void BM_ListBuild(benchmark::State& state) {
                            benchmark::Counter::kIsRate | benchmark::Counter::kInvert);
 }
 
+/// The size mixes of BM_IterationSizes (issue 16): the cost per sphere-step of a bed of many
+/// sizes against a mono-sized one of the same Np.
+enum class Mix { mono = 0, binary4 = 1 };
+
+/// Diameters in units of the Sauter mean d32 (the reference Dp), generation order.
+std::vector<double> sizes_of(Mix mix, std::size_t n) {
+    std::vector<double> d;
+    if (mix == Mix::binary4) {
+        // Diameters 1 and 4 in equal volumes: 64 small spheres for each large one; d32 =
+        // (64 + 64) / (64 + 16) = 1.6.
+        for (std::size_t i = 0; i < n; ++i)
+            d.push_back((i % 65 == 64 ? 4.0 : 1.0) / 1.6);
+    }
+    return d;
+}
+
+void BM_IterationSizes(benchmark::State& state) {
+    const auto particles = state.range(0);
+    const auto mix = static_cast<Mix>(state.range(1));
+    omp_set_num_threads(static_cast<int>(state.range(2)));
+    static std::map<std::pair<std::int64_t, int>, std::unique_ptr<SoftSphereGenerator>> beds;
+    auto& bed = beds[{particles, static_cast<int>(mix)}];
+    if (!bed) {
+        SoftSphereParameters p;
+        p.particles = static_cast<std::uint64_t>(particles);
+        p.aspect_ratio = 20.0;
+        p.sizes = sizes_of(mix, p.particles);
+        bed = std::make_unique<SoftSphereGenerator>(p);
+        bed->run_initial_stage();
+    }
+    for (auto _ : state)
+        benchmark::DoNotOptimize(bed->iterate(2e-5));
+    state.counters["ns_per_sphere"] =
+        benchmark::Counter(static_cast<double>(state.iterations() * particles),
+                           benchmark::Counter::kIsRate | benchmark::Counter::kInvert);
+    state.SetLabel(mix == Mix::mono ? "mono" : "binary 1:4 equal volumes");
+}
+
 } // namespace
+
+BENCHMARK(BM_IterationSizes)
+    ->ArgNames({"Np", "mix", "threads"})
+    ->Args({20000, static_cast<int>(Mix::mono), 2})
+    ->Args({20000, static_cast<int>(Mix::binary4), 2})
+    ->UseRealTime();
 
 BENCHMARK(BM_ListBuild)
     ->ArgNames({"Np", "threads"})
