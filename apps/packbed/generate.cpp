@@ -5,6 +5,7 @@
 #include <optional>
 
 #include <fmt/format.h>
+#include <fmt/ranges.h>
 #include <omp.h>
 
 #include "command.hpp"
@@ -14,6 +15,7 @@
 #include "packbed/io.hpp"
 #include "packbed/limits.hpp"
 #include "packbed/output.hpp"
+#include "packbed/sizes.hpp"
 #include "packbed/soft_sphere.hpp"
 #include "packbed/summary.hpp"
 #include "plots.hpp"
@@ -30,11 +32,20 @@ struct GenerateOptions {
     std::string out = "packbed-out";
     std::string checkpoint; // empty: none
     std::string container;  // --container cylinder:D, instead of --aspect-ratio
+    std::string sizes = "mono";
+    std::string fractions = to_string(FractionBasis::volume);
     double band_clearance = 1.0;
     unsigned long long threads = static_cast<unsigned long long>(omp_get_num_procs());
     bool quiet = false;
     bool force = false;
 };
+
+/// The seed of the sizes' random numbers: --seed XOR the golden-ratio constant 0x9E3779B97F4A7C15,
+/// a stream of its own, so that the centres of the generation stage are drawn from the same
+/// numbers whatever the sizes.
+std::uint64_t sizes_seed(std::uint64_t seed) {
+    return seed ^ 0x9E3779B97F4A7C15ull;
+}
 
 int run_generate(GenerateOptions& o) {
     for (const auto& [name, value] : update_orders())
@@ -43,14 +54,38 @@ int run_generate(GenerateOptions& o) {
     for (const auto& [name, value] : solvers())
         if (name == o.solver)
             o.params.solver = value;
+    // Spheres of many sizes (docs/sizes.md): the diameters drawn from --sizes, the reference
+    // diameter Dp their Sauter mean d32, each sphere's size in units of it. `mono` draws
+    // nothing and changes nothing: the bed of --diameter, bit for bit.
+    std::optional<SizeStatistics> drawn;
+    if (o.sizes != "mono") {
+        FractionBasis basis = FractionBasis::volume;
+        for (const auto& [name, value] : fraction_bases())
+            if (name == o.fractions)
+                basis = value;
+        const SizeDistribution distribution = parse_sizes(o.sizes, o.params.diameter);
+        const std::vector<double> diameters =
+            draw_diameters(distribution, o.params.particles, basis, sizes_seed(o.params.seed));
+        drawn = size_statistics(diameters);
+        o.params.diameter = drawn->sauter_mean;
+        o.params.sizes.clear();
+        for (const double d : diameters)
+            o.params.sizes.push_back(d / drawn->sauter_mean);
+        if (!o.checkpoint.empty())
+            throw InvalidInput(fmt::format("--checkpoint {} is not allowed with --sizes {}; "
+                                           "allowed: --checkpoint with mono-sized beds (a "
+                                           "checkpoint does not record the sizes yet)",
+                                           o.checkpoint, o.sizes));
+    }
     if (const auto tube = parse_container(o.container)) {
-        // a = D / Dp, both in the unit of --diameter.
+        // a = D / Dp, both in the unit of --diameter (with --sizes, Dp is d32).
         const double a = tube->diameter / o.params.diameter;
+        const std::string_view dp = drawn ? "the sizes' Sauter mean d32" : "--diameter";
         if (!(a >= 1.0 && a <= 1e4))
             throw InvalidInput(fmt::format(
-                "--container {}: the tube's diameter over --diameter ({}) is a = {:.6g}; "
+                "--container {}: the tube's diameter over {} ({}) is a = {:.6g}; "
                 "allowed: a from 1 to 10000 (D from {:.6g} to {:.6g})",
-                o.container, o.params.diameter, a, o.params.diameter, 1e4 * o.params.diameter));
+                o.container, dp, o.params.diameter, a, o.params.diameter, 1e4 * o.params.diameter));
         o.params.aspect_ratio = a;
     }
     o.params.validate();
@@ -88,6 +123,12 @@ int run_generate(GenerateOptions& o) {
 
     auto summary =
         soft_sphere_summary(o.params, result, o.band_clearance, static_cast<int>(o.threads));
+    if (drawn)
+        summary["sizes"] = {{"spec", o.sizes},
+                            {"fractions", o.fractions},
+                            {"reference_diameter", "the Sauter mean d32: a = D / d32, and "
+                                                   "lengths in Dp are in units of it"},
+                            {"statistics", size_statistics_summary(*drawn)}};
     out.stage("particles.csv", particles_csv(result.packing));
     out.stage("particles.vtu", particles_vtu(result.packing));
     // The same analysis as `packbed analyze`, when the bed is tall enough for the band.
@@ -143,6 +184,20 @@ Command register_generate(CLI::App& parent) {
                     "sphere diameter Dp; the unit of every length "
                     "in the outputs")
         ->check(real_in(limits::min_diameter, limits::max_diameter, false, false));
+    std::vector<std::string> kinds;
+    for (const auto& entry : size_kinds())
+        kinds.push_back(std::string(size_syntax(entry.second)));
+    app->add_option("--sizes", o.sizes,
+                    fmt::format("the spheres' diameters (length units): {}; docs/sizes.md. "
+                                "With sizes, Dp is their Sauter mean d32",
+                                fmt::join(kinds, ", ")));
+    std::vector<std::string> bases;
+    for (const auto& entry : fraction_bases())
+        bases.push_back(entry.first);
+    app->add_option("--fractions", o.fractions,
+                    "what the fractions and densities of --sizes count: volume (mass, as sieve "
+                    "analyses) or number")
+        ->check(one_of(bases));
     add_output_directory(*app, o.out, o.force);
     app->add_option("--e0", p.e0, "initial overall void fraction for L0, eq. (6)")
         ->check(real_in(0.0, 1.0, true, true));

@@ -5,6 +5,7 @@
 
 #include "packbed/analysis.hpp"
 #include "packbed/lattice.hpp"
+#include "packbed/sizes.hpp"
 #include "packbed/soft_sphere.hpp"
 
 namespace packbed {
@@ -30,6 +31,12 @@ nlohmann::json soft_sphere_summary(const SoftSphereParameters& parameters,
 /// overall void fraction, coordination (mean with and without rattlers, rattlers, wall contacts),
 /// the reference diameter, and the options used.
 nlohmann::json analysis_summary(const BedAnalysis& analysis, const AnalysisOptions& options);
+
+/// The statistics of a bed's sizes as summary.json records them: count, d10, d50, d90 (by
+/// volume), the Sauter mean d32, d43, the number mean and standard deviation, the smallest
+/// and largest diameter and their ratio, and each class's range, count and number and volume
+/// fractions.
+nlohmann::json size_statistics_summary(const SizeStatistics& statistics);
 
 /// The container as summary.json records it: {shape: cylinder, radius} or {shape: box, size:
 /// [LX, LY], spec}; read_bed_summary reads both back.
