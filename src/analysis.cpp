@@ -18,6 +18,7 @@
 #include "cell_grid.hpp"
 #include "packbed/error.hpp"
 #include "packbed/limits.hpp"
+#include "packbed/sizes.hpp"
 #include "parallel.hpp"
 
 namespace packbed {
@@ -212,13 +213,17 @@ bool in_band(const Vec3& c, const Band& band) {
 }
 
 /// Relative number density of centres in `bins` shells of the distance from the wall,
-/// [k w, (k+1) w], over the mean density across the cross-section.
+/// [k w, (k+1) w], over the mean density across the cross-section; only the spheres i with
+/// member(i) (a size class), each over the class's own mean density.
+template <class Member>
 std::vector<ProfileBin> centre_distribution(const Packing& packing, const Container& container,
-                                            double width, const Band& band, std::size_t bins) {
+                                            double width, const Band& band, std::size_t bins,
+                                            Member member) {
     std::vector<double> count(bins, 0.0);
     double total = 0.0;
-    for (const Vec3& c : packing.centers) {
-        if (!in_band(c, band))
+    for (std::size_t i = 0; i < packing.size(); ++i) {
+        const Vec3& c = packing.centers[i];
+        if (!in_band(c, band) || !member(i))
             continue;
         const double from_wall = container.wall_distance(c);
         const auto k = static_cast<std::size_t>(
@@ -282,8 +287,11 @@ struct ContactSearch {
     }
 };
 
+/// The contacts of the spheres in the band; `per_sphere` gets each sphere's count of
+/// sphere-sphere contacts (0 outside the band).
 Coordination coordination(const Packing& packing, const Container& container,
-                          const ContactSearch& search, const Band& band) {
+                          const ContactSearch& search, const Band& band,
+                          std::vector<std::uint32_t>& per_sphere) {
     const std::size_t n = packing.size();
     const double tolerance = search.tolerance, small = search.small_radius;
     const Vec3* const x = packing.centers.data();
@@ -340,6 +348,46 @@ Coordination coordination(const Packing& packing, const Container& container,
     if (out.spheres > out.rattlers)
         out.mean_without_rattlers =
             static_cast<double>(contacts_stable) / static_cast<double>(out.spheres - out.rattlers);
+    per_sphere = std::move(contacts);
+    return out;
+}
+
+/// The size classes of a bed of more than one size (size_classes: one per distinct diameter
+/// up to max_discrete_classes, else bins even in ln d), each with its spheres' share, their
+/// mean coordination in the band and their centre distribution; empty for one size.
+std::vector<SizeClassAnalysis> by_size(const Packing& packing, const Container& container,
+                                       double width, const Band& band, std::size_t bins,
+                                       const std::vector<std::uint32_t>& contacts) {
+    std::vector<double> diameters(packing.size());
+    for (std::size_t i = 0; i < packing.size(); ++i)
+        diameters[i] = 2.0 * packing.radii[i];
+    const SizeStatistics statistics = size_statistics(diameters);
+    if (statistics.classes.size() < 2)
+        return {};
+    std::vector<std::size_t> class_of(packing.size());
+    for (std::size_t i = 0; i < packing.size(); ++i)
+        class_of[i] = size_class_of(statistics.classes, diameters[i]);
+    std::vector<SizeClassAnalysis> out;
+    for (std::size_t c = 0; c < statistics.classes.size(); ++c) {
+        const SizeClass& k = statistics.classes[c];
+        SizeClassAnalysis a;
+        a.low = k.low;
+        a.high = k.high;
+        a.spheres = k.count;
+        a.number_fraction = k.number_fraction;
+        a.volume_fraction = k.volume_fraction;
+        std::uint64_t touching = 0;
+        for (std::size_t i = 0; i < packing.size(); ++i)
+            if (class_of[i] == c && in_band(packing.centers[i], band)) {
+                ++a.in_band;
+                touching += contacts[i];
+            }
+        a.mean_coordination =
+            a.in_band > 0 ? static_cast<double>(touching) / static_cast<double>(a.in_band) : 0.0;
+        a.centre_distribution = centre_distribution(
+            packing, container, width, band, bins, [&](std::size_t i) { return class_of[i] == c; });
+        out.push_back(std::move(a));
+    }
     return out;
 }
 
@@ -640,8 +688,12 @@ BedAnalysis analyze_bed(const Packing& packing, const Container& container,
     out.axial_void_fraction =
         axial_void_fraction(packing, container, options.slab_height * dp, slabs);
     out.centre_distribution =
-        centre_distribution(packing, container, options.centre_bin * dp, *band, centre_bins);
-    out.coordination = coordination(packing, container, contacts, *band);
+        centre_distribution(packing, container, options.centre_bin * dp, *band, centre_bins,
+                            [](std::size_t) { return true; });
+    std::vector<std::uint32_t> per_sphere;
+    out.coordination = coordination(packing, container, contacts, *band, per_sphere);
+    out.by_size =
+        by_size(packing, container, options.centre_bin * dp, *band, centre_bins, per_sphere);
     out.pair_region = pair_region(packing, container, *band);
     out.pair_correlation = pair_correlation(packing, *band, out.pair_region, rdf_range, rdf_bin,
                                             static_cast<std::size_t>(rdf_bins), rdf_grid);

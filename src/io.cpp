@@ -429,7 +429,31 @@ std::vector<std::pair<std::string, std::string>> analysis_tables(const BedAnalys
     std::string coordination = "contacts,spheres\n";
     for (std::size_t k = 0; k < a.coordination.histogram.size(); ++k)
         coordination += fmt::format("{},{}\n", k, a.coordination.histogram[k]);
-    return {
+    std::vector<std::pair<std::string, std::string>> by_size;
+    if (!a.by_size.empty()) {
+        // One row per class; then the centre distribution of each class, a column each.
+        std::string classes = "low,high,spheres,number_fraction,volume_fraction,spheres_in_band,"
+                              "mean_coordination\n";
+        std::string header = fmt::format("{},x_from_wall_d", position);
+        for (const SizeClassAnalysis& c : a.by_size) {
+            classes +=
+                fmt::format("{:.12g},{:.12g},{},{},{},{},{}\n", c.low, c.high, c.spheres,
+                            c.number_fraction, c.volume_fraction, c.in_band, c.mean_coordination);
+            header += c.low == c.high ? fmt::format(",d_{:.6g}", c.low)
+                                      : fmt::format(",d_{:.6g}_{:.6g}", c.low, c.high);
+        }
+        std::string centres = header + "\n";
+        const auto& bins = a.by_size.front().centre_distribution;
+        for (std::size_t k = 0; k < bins.size(); ++k) {
+            const double mid = 0.5 * (bins[k].low + bins[k].high);
+            centres += fmt::format("{:.12g},{:.12g}", container.profile_position(mid), mid / dp);
+            for (const SizeClassAnalysis& c : a.by_size)
+                centres += fmt::format(",{}", c.centre_distribution[k].value);
+            centres += "\n";
+        }
+        by_size = {{"size_classes.csv", classes}, {"centre_distribution_by_size.csv", centres}};
+    }
+    std::vector<std::pair<std::string, std::string>> tables{
         {"radial_void_fraction.csv", wall_profile("void_fraction", a.radial_void_fraction)},
         {"axial_void_fraction.csv",
          profile_csv("z,z_d,void_fraction", a.axial_void_fraction, in_dp)},
@@ -437,6 +461,8 @@ std::vector<std::pair<std::string, std::string>> analysis_tables(const BedAnalys
         {"coordination.csv", coordination},
         {"pair_correlation.csv", profile_csv("distance,distance_d,g", a.pair_correlation, in_dp)},
     };
+    tables.insert(tables.end(), by_size.begin(), by_size.end());
+    return tables;
 }
 
 } // namespace packbed

@@ -98,30 +98,46 @@ nlohmann::json soft_sphere_summary(const SoftSphereParameters& p, const SoftSphe
 
 nlohmann::json analysis_summary(const BedAnalysis& a, const AnalysisOptions& o) {
     const auto& c = a.coordination;
-    return {{"diameter", a.diameter},
-            {"void_fraction", a.void_fraction},
-            {"void_fraction_band", {a.band.z_low, a.band.z_high}},
-            {"coordination",
-             {{"mean", c.mean},
-              {"mean_without_rattlers", c.mean_without_rattlers},
-              {"rattlers", c.rattlers},
-              {"spheres", c.spheres},
-              {"contact_tolerance", o.contact_tolerance},
-              {"histogram", c.histogram}}},
-            {"wall_contacts", c.wall_contacts},
-            {"wall_contacts_in_band", c.wall_contacts_in_band},
-            {"options",
-             {{"band_clearance", o.band_clearance},
-              {"shell_width", o.shell_width},
-              {"slab_height", o.slab_height},
-              {"centre_bin", o.centre_bin},
-              {"contact_tolerance", o.contact_tolerance},
-              {"rdf_range", o.rdf_range},
-              {"rdf_bin", o.rdf_bin},
-              {"units", "Dp"}}},
-            {"files",
-             {"radial_void_fraction.csv", "axial_void_fraction.csv",
-              "radial_centre_distribution.csv", "coordination.csv", "pair_correlation.csv"}}};
+    nlohmann::json summary = {
+        {"diameter", a.diameter},
+        {"void_fraction", a.void_fraction},
+        {"void_fraction_band", {a.band.z_low, a.band.z_high}},
+        {"coordination",
+         {{"mean", c.mean},
+          {"mean_without_rattlers", c.mean_without_rattlers},
+          {"rattlers", c.rattlers},
+          {"spheres", c.spheres},
+          {"contact_tolerance", o.contact_tolerance},
+          {"histogram", c.histogram}}},
+        {"wall_contacts", c.wall_contacts},
+        {"wall_contacts_in_band", c.wall_contacts_in_band},
+        {"options",
+         {{"band_clearance", o.band_clearance},
+          {"shell_width", o.shell_width},
+          {"slab_height", o.slab_height},
+          {"centre_bin", o.centre_bin},
+          {"contact_tolerance", o.contact_tolerance},
+          {"rdf_range", o.rdf_range},
+          {"rdf_bin", o.rdf_bin},
+          {"units", "Dp"}}},
+        {"files",
+         {"radial_void_fraction.csv", "axial_void_fraction.csv", "radial_centre_distribution.csv",
+          "coordination.csv", "pair_correlation.csv"}}};
+    if (!a.by_size.empty()) {
+        nlohmann::json classes = nlohmann::json::array();
+        for (const SizeClassAnalysis& k : a.by_size)
+            classes.push_back({{"low", k.low},
+                               {"high", k.high},
+                               {"spheres", k.spheres},
+                               {"number_fraction", k.number_fraction},
+                               {"volume_fraction", k.volume_fraction},
+                               {"spheres_in_band", k.in_band},
+                               {"mean_coordination", k.mean_coordination}});
+        summary["by_size"] = classes;
+        summary["files"].push_back("size_classes.csv");
+        summary["files"].push_back("centre_distribution_by_size.csv");
+    }
+    return summary;
 }
 
 nlohmann::json size_statistics_summary(const SizeStatistics& s) {

@@ -717,3 +717,50 @@ TEST(BoxAnalysis, SphereTouchingAFlatWallFillsTheFirstFrameWithACap) {
     EXPECT_NEAR(first, cap, 1e-14);
     EXPECT_EQ(a.coordination.wall_contacts, 1u);
 }
+
+TEST(SizeClasses, BinaryBedIsMeasuredPerSize) {
+    // Issue 16. In the box [0, 6] x [0, 6]: a column of 8 spheres of diameter 1 at (4, 3),
+    // touching each other, and a column of 4 of diameter 2 at (1, 3), touching each other and
+    // the face x = 0. The reference diameter is the mean, (8 + 8) / 12 = 4/3.
+    Packing p;
+    for (int k = 0; k < 8; ++k)
+        p.add({4.0, 3.0, 0.5 + k}, 0.5);
+    for (int k = 0; k < 4; ++k)
+        p.add({1.0, 3.0, 1.0 + 2.0 * k}, 1.0);
+    AnalysisOptions o;
+    o.rdf_range = 1.5;
+    const Container box = Box(6.0, 6.0);
+    const BedAnalysis a = analyze_bed(p, box, o);
+    EXPECT_DOUBLE_EQ(a.diameter, 4.0 / 3.0);
+    ASSERT_EQ(a.by_size.size(), 2u);
+    const SizeClassAnalysis& small = a.by_size[0];
+    const SizeClassAnalysis& large = a.by_size[1];
+    EXPECT_EQ(small.low, 1.0);
+    EXPECT_EQ(large.high, 2.0);
+    EXPECT_EQ(small.spheres, 8u);
+    EXPECT_EQ(large.spheres, 4u);
+    EXPECT_DOUBLE_EQ(small.number_fraction, 8.0 / 12.0);
+    EXPECT_DOUBLE_EQ(large.volume_fraction, 32.0 / 40.0);
+    // The band [4/3, 8 - 4/3] holds the small centres 1.5 to 6.5 and the large ones 3 and 5,
+    // each with two contacts in its column.
+    EXPECT_EQ(small.in_band, 6u);
+    EXPECT_EQ(large.in_band, 2u);
+    EXPECT_DOUBLE_EQ(small.mean_coordination, 2.0);
+    EXPECT_DOUBLE_EQ(large.mean_coordination, 2.0);
+    // Each class's centres lie at one distance from the nearest face, 2 (small) and 1
+    // (large); each class's density, over its own mean, integrates to the cross-section.
+    for (const auto& [c, at] : {std::pair{&small, 2.0}, std::pair{&large, 1.0}}) {
+        double area = 0.0;
+        for (const ProfileBin& b : c->centre_distribution) {
+            area += b.value * box.shell_area(b.low, b.high);
+            if (!(b.low <= at && at < b.high)) {
+                EXPECT_EQ(b.value, 0.0) << b.low;
+            }
+        }
+        EXPECT_NEAR(area, 36.0, 1e-9);
+    }
+    // One size: no classes.
+    const BedAnalysis mono = analyze_bed(forty(), Cylinder(1.5));
+    EXPECT_TRUE(mono.by_size.empty());
+    EXPECT_EQ(mono.diameter, 1.0);
+}

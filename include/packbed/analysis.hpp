@@ -5,6 +5,7 @@
 #pragma once
 
 #include <cstddef>
+#include <cstdint>
 #include <optional>
 #include <vector>
 
@@ -18,7 +19,9 @@ namespace packbed {
 /// (`diameter`, or the mean sphere diameter when not given). Plain value type.
 struct AnalysisOptions {
     std::optional<double> diameter; ///< reference diameter Dp (length), 0.1 to 10 times the
-                                    ///< mean diameter; default: the mean diameter
+                                    ///< mean diameter; default: the mean diameter (by
+                                    ///< number: bins stay fine for the smaller spheres of a
+                                    ///< mixture, which d32 would not keep)
     double band_clearance = 1.0;    ///< the axial band keeps this far from floor and top, Dp
     /// The axial band itself (length), instead of band_clearance: z_low < z_high, within the
     /// bed (0 to its top).
@@ -79,6 +82,21 @@ PairRegion pair_region(const Packing& packing, const Container& container, const
 /// \return the volume (length^3), 0 <= V <= 4/3 pi radius^3.
 double ball_volume_in_pair_region(const Vec3& centre, double radius, const PairRegion& region);
 
+/// One size class of a bed of many sizes (issue 16): what segregation and the mixture's
+/// structure are read from.
+struct SizeClassAnalysis {
+    double low = 0.0;               ///< smallest diameter of the class (length)
+    double high = 0.0;              ///< largest (a discrete size: low == high)
+    std::uint64_t spheres = 0;      ///< spheres of the bed in the class
+    double number_fraction = 0.0;   ///< their share of the spheres
+    double volume_fraction = 0.0;   ///< their share of the solid volume
+    std::size_t in_band = 0;        ///< of them, with their centre in the band
+    double mean_coordination = 0.0; ///< mean sphere-sphere contacts of those, any partner's size
+    /// the density of the class's centres against the distance from the wall over their own
+    /// mean density across the cross-section (bins of centre_bin, as the bed's)
+    std::vector<ProfileBin> centre_distribution;
+};
+
 /// Everything analyze_bed measures.
 struct BedAnalysis {
     double diameter = 0.0;      ///< the reference diameter Dp used (length)
@@ -92,6 +110,9 @@ struct BedAnalysis {
     Coordination coordination;
     std::vector<ProfileBin> pair_correlation; ///< g(r) against centre distance
     PairRegion pair_region;                   ///< the region g(r) was normalised in (pair_region)
+    /// the size classes (sizes.hpp's size_classes: one per distinct diameter up to 32, else
+    /// bins even in ln d); empty for a bed of one size
+    std::vector<SizeClassAnalysis> by_size;
 };
 
 /// Measure a bed in a container (a Cylinder or a Box converts to one).

@@ -135,7 +135,11 @@ std::string liggghts_settle_input(const DemSettle& settle);
 /// - `radial_centre_distribution.csv`: `radial_position,x_from_wall_d,relative_density` (see
 ///   analyze_bed);
 /// - `coordination.csv`: `contacts,spheres`, the histogram of sphere-sphere contacts;
-/// - `pair_correlation.csv`: `distance,distance_d,g`.
+/// - `pair_correlation.csv`: `distance,distance_d,g`;
+/// - for a bed of more than one size (BedAnalysis::by_size), `size_classes.csv`:
+///   `low,high,spheres,number_fraction,volume_fraction,spheres_in_band,mean_coordination`, and
+///   `centre_distribution_by_size.csv`: the wall profiles' position columns, then one column
+///   `d_D` (a discrete size) or `d_LOW_HIGH` (a bin) per class.
 /// Positions are written to 12 significant digits (bin centres without floating-point noise),
 /// values as computed (shortest round trip). `r` is never a column name here: in particles.csv
 /// it is the sphere's radius.
