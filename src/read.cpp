@@ -1073,6 +1073,7 @@ BedSummary read_bed_summary(std::istream& input, std::string_view name) {
         out.container_radius =
             number(json["container"], "radius", "container.radius", limits::max_length);
     out.diameter = number(json, "diameter", "diameter", limits::max_diameter);
+    out.sauter_mean = json.contains("sizes") && json["sizes"].is_object();
     // A lattice in a box records region {shape: box, size: [LX, LY, LZ]} and no container.
     if (const auto region = json.find("region");
         region != json.end() && region->is_object() &&

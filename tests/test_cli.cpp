@@ -665,14 +665,15 @@ TEST(Cli, VersionAndHelp) {
 TEST(Cli, GenerateBinaryBedWithTheAskedFractions) {
     const fs::path d = scratch("binary");
     const std::string args =
-        "generate -q --sizes discrete:1:0.5,2:0.5 --container cylinder:6 --particles 200 "
+        "generate -q --sizes discrete:0.001:0.5,0.002:0.5 --container cylinder:0.006 "
+        "--particles 200 "
         "--seed 2 --force --out ";
     const Outcome o = packbed(args + (d / "one").string() + " --threads 1");
     ASSERT_EQ(o.status, 0) << o.err;
     const auto s = nlohmann::json::parse(slurp(d / "one" / "summary.json"));
-    const double d32 = 354.0 / 266.0;
-    EXPECT_NEAR(s["diameter"].get<double>(), d32, 1e-15);
-    EXPECT_NEAR(s["aspect_ratio"].get<double>(), 6.0 / d32, 1e-14);
+    const double d32 = 354.0 / 266.0 * 1e-3; // metres
+    EXPECT_NEAR(s["diameter"].get<double>(), d32, 1e-18);
+    EXPECT_NEAR(s["aspect_ratio"].get<double>(), 0.006 / d32, 1e-12);
     const auto& classes = s["sizes"]["statistics"]["classes"];
     ASSERT_EQ(classes.size(), 2u);
     EXPECT_EQ(classes[0]["count"], 178);
@@ -693,8 +694,8 @@ TEST(Cli, GenerateBinaryBedWithTheAskedFractions) {
     double worst = 0.0, wall = 0.0;
     for (std::size_t i = 0; i < spheres.size(); ++i) {
         const auto& a = spheres[i];
-        large += a[3] > 0.75 ? 1 : 0;
-        wall = std::max(wall, (std::hypot(a[0], a[1]) + a[3] - 3.0) / (2.0 * a[3]));
+        large += a[3] > 0.00075 ? 1 : 0;
+        wall = std::max(wall, (std::hypot(a[0], a[1]) + a[3] - 0.003) / (2.0 * a[3]));
         for (std::size_t j = i + 1; j < spheres.size(); ++j) {
             const auto& b = spheres[j];
             const double gap = std::hypot(a[0] - b[0], a[1] - b[1], a[2] - b[2]);
@@ -704,6 +705,13 @@ TEST(Cli, GenerateBinaryBedWithTheAskedFractions) {
     EXPECT_EQ(large, 22u);
     EXPECT_LT(worst, 1e-4);
     EXPECT_LT(wall, 1e-4);
+    // hydraulics takes the bed's d32 as its particle diameter, and says so.
+    const Outcome h = packbed("hydraulics --json --bed " + (d / "one").string());
+    ASSERT_EQ(h.status, 0) << h.err;
+    const auto hj = nlohmann::json::parse(h.out);
+    EXPECT_NEAR(hj["fluid_and_particles"]["diameter_m"].get<double>(), d32, 1e-18);
+    EXPECT_NE(hj["fluid_and_particles"]["diameter_from"].get<std::string>().find("Sauter mean"),
+              std::string::npos);
     // The same bytes with two threads.
     ASSERT_EQ(packbed(args + (d / "two").string() + " --threads 2").status, 0);
     EXPECT_EQ(slurp(d / "two" / "particles.csv"), slurp(d / "one" / "particles.csv"));
@@ -712,7 +720,7 @@ TEST(Cli, GenerateBinaryBedWithTheAskedFractions) {
         packbed(args + (d / "three").string() + " --checkpoint " + (d / "c.bin").string());
     EXPECT_EQ(c.status, 2);
     EXPECT_EQ(c.err, "packbed generate: --checkpoint " + (d / "c.bin").string() +
-                         " is not allowed with --sizes discrete:1:0.5,2:0.5; allowed: "
+                         " is not allowed with --sizes discrete:0.001:0.5,0.002:0.5; allowed: "
                          "--checkpoint with mono-sized beds (a checkpoint does not record the "
                          "sizes yet)\n");
     EXPECT_FALSE(fs::exists(d / "three"));

@@ -42,6 +42,7 @@ struct BedFacts {
     double porosity = 0.0;
     std::string porosity_from;
     std::optional<double> diameter;         ///< the spheres' diameter, in the bed's length unit
+    bool sauter_mean = false;               ///< the diameter is the sizes' Sauter mean d32
     std::optional<double> container_radius; ///< likewise
     std::string shown;                      ///< the summary's path, printable
 };
@@ -65,8 +66,9 @@ BedFacts bed_facts(const std::string& bed) {
         throw InvalidInput(fmt::format("--bed {}: no lattice.porosity or void_fraction; give "
                                        "--porosity",
                                        shown));
-    return {*summary.porosity, fmt::format("{} of {}", summary.porosity_source, shown),
-            summary.diameter, summary.container_radius, shown};
+    return {*summary.porosity,        fmt::format("{} of {}", summary.porosity_source, shown),
+            summary.diameter,         summary.sauter_mean,
+            summary.container_radius, shown};
 }
 
 /// \return the path of the first number of `value` that is not finite (nlohmann::json prints
@@ -121,7 +123,14 @@ int run_hydraulics(const HydraulicsOptions& o) {
                     bed.shown, *bed.diameter, limits::min_particle_diameter_m,
                     limits::max_particle_diameter_m));
             f.diameter = *bed.diameter;
-            diameter_from = fmt::format("the diameter of {}, read as metres", bed.shown);
+            // Spheres of several sizes: their Sauter mean d32, the diameter of Ergun's equation
+            // and of the correlations for mixtures (docs/sizes.md).
+            diameter_from =
+                bed.sauter_mean
+                    ? fmt::format("the Sauter mean diameter d32 of the sizes of {}, read as "
+                                  "metres (the diameter of Ergun's equation for mixtures)",
+                                  bed.shown)
+                    : fmt::format("the diameter of {}, read as metres", bed.shown);
         }
         // The tube of a cylindrical bed gives the wall-corrected pressure drop.
         if (!o.aspect_ratio_given && !tube && bed.diameter && bed.container_radius) {

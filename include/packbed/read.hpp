@@ -133,6 +133,9 @@ struct BedSummary {
     /// region.size of a lattice in a box, from 0 to L along each axis (length), when present
     std::optional<std::array<double, 3>> box;
     std::optional<double> diameter; ///< the spheres' diameter (length), when present
+    /// the bed has spheres of several sizes (a `sizes` record, packbed generate --sizes):
+    /// `diameter` is their Sauter mean d32
+    bool sauter_mean = false;
     std::optional<double> porosity; ///< a lattice's exact porosity or the void fraction
     /// "the porosity of the TYPE lattice" or "the overall void fraction", when porosity is set
     std::string porosity_source;
