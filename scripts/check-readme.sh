@@ -160,6 +160,36 @@ check(all(os.path.getsize(os.path.join(repo, "results/a5-n500-analysis", f)) > 0
       "with its tables and plots")
 check("Dixon (1988)" in log_of("packbed correlations --aspect-ratio 5"),
       "correlations names them as cited")
+# 5. Mixtures and boxes: the sizes asked, each pair within the tolerance of its smaller sphere.
+b = summary("results/binary")
+classes = b["sizes"]["statistics"]["classes"]
+check([c["count"] for c in classes] == [711, 89],
+      "the binary bed holds 711 spheres of 1 mm and 89 of 2 mm (equal volumes, 800 spheres)")
+check(abs(classes[1]["volume_fraction"] - 0.5) < 1e-3, "half its volume in the large spheres")
+d32 = (711 * 1 + 89 * 8) / (711 * 1 + 89 * 4) * 1e-3
+check(abs(b["diameter"] - d32) < 1e-15 and abs(b["aspect_ratio"] - 0.01 / d32) < 1e-9,
+      "its reference diameter is d32 and a = D / d32")
+rows = [[float(v) for v in line.split(",")] for line in
+        open(os.path.join(repo, "results/binary/particles.csv")).read().split("\n")[1:] if line]
+worst = 0.0
+for i, p in enumerate(rows):
+    for q in rows[i + 1:]:
+        gap = ((p[0] - q[0]) ** 2 + (p[1] - q[1]) ** 2 + (p[2] - q[2]) ** 2) ** 0.5
+        worst = max(worst, (p[3] + q[3] - gap) / (2 * min(p[3], q[3])))
+check(worst < 1e-4, f"every pair overlaps by less than 1e-4 of its smaller diameter ({worst:.2e})")
+check(os.path.getsize(os.path.join(repo, "results/binary/centre_distribution_by_size.svg")) > 0,
+      "with the centre distribution of each size drawn")
+ln = summary("results/lognormal")["sizes"]["statistics"]
+check(ln["count"] == 2000 and ln["size_ratio"] <= 10 and 0.9e-3 < ln["d50"] < 1.1e-3,
+      f"the lognormal bed: 2000 spheres, mass median d50 {ln['d50']:.4g} near 1 mm")
+box = summary("results/sc-box-analysis")
+check(box["container"]["shape"] == "box" and
+      open(os.path.join(repo, "results/sc-box-analysis/radial_void_fraction.csv")).readline().strip()
+      == "wall_distance,x_from_wall_d,void_fraction",
+      "the lattice in a box is analysed against the distance from its nearest wall")
+# Whole simple cubic layers from d/2 to 10 balls a side: the band's solid is pi/6 of it.
+check(abs(box["void_fraction"] - (1 - 3.141592653589793 / 6)) < 1e-9,
+      f"its void fraction is the lattice's, 1 - pi/6 ({box['void_fraction']:.10f})")
 if failures:
     sys.exit(f"check-readme: {len(failures)} check(s) failed")
 print("check-readme: every README command ran and its outputs hold")

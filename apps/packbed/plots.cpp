@@ -75,7 +75,8 @@ int run_gnuplot(const std::filesystem::path& folder, const std::string& script) 
 std::string stage_plots(OutputDirectory& out, const BedAnalysis& a, const Container& container) {
     const double dp = a.diameter;
     // The correlations of the radial profile are for cylinders, at their aspect ratio.
-    const Cylinder* cylinder = container.cylinder();
+    // (for one size: a mixture's profile is not what they describe).
+    const Cylinder* cylinder = a.by_size.empty() ? container.cylinder() : nullptr;
     const double aspect_ratio = cylinder ? 2.0 * cylinder->radius() / dp : 0.0;
     const double x_max = container.depth() / dp;
     // Profiles against the distance from the wall, z and the centre distance, all over Dp.
@@ -121,8 +122,51 @@ std::string stage_plots(OutputDirectory& out, const BedAnalysis& a, const Contai
                           centre_top, peak, peak_at, peak_at, 0.93 * centre_top)
             : "set yrange [0:*]\n";
     // Every name gnuplot sees is one of ours, relative to the staging folder it runs in.
-    const std::vector<std::string> names{"radial_void_fraction", "radial_centre_distribution",
-                                         "axial_void_fraction", "pair_correlation"};
+    std::vector<std::string> names{"radial_void_fraction", "radial_centre_distribution",
+                                   "axial_void_fraction", "pair_correlation"};
+    // A bed of several sizes: each size class's centre distribution, one curve each.
+    std::string by_size;
+    if (!a.by_size.empty()) {
+        names.push_back("centre_distribution_by_size");
+        // Drawn over shells of about 0.1 Dp (groups of the table's bins, each group's density
+        // its centres over its area): a class has far fewer centres than the bed.
+        const auto& bins = a.by_size.front().centre_distribution;
+        const double bin_d = (bins.front().high - bins.front().low) / dp;
+        const auto group = static_cast<std::size_t>(std::max(1.0, std::round(0.1 / bin_d)));
+        script += "$sizes << EOD\n";
+        for (std::size_t k = 0; k < bins.size(); k += group) {
+            const std::size_t end = std::min(bins.size(), k + group);
+            script += fmt::format("{}", 0.5 * (bins[k].low + bins[end - 1].high) / dp);
+            for (const SizeClassAnalysis& c : a.by_size) {
+                double centres = 0.0, area = 0.0;
+                for (std::size_t j = k; j < end; ++j) {
+                    const double shell = container.shell_area(bins[j].low, bins[j].high);
+                    centres += c.centre_distribution[j].value * shell;
+                    area += shell;
+                }
+                script += fmt::format(" {}", area > 0.0 ? centres / area : 0.0);
+            }
+            script += "\n";
+        }
+        script += "EOD\n";
+        std::string curves_by_size;
+        for (std::size_t c = 0; c < a.by_size.size(); ++c) {
+            const SizeClassAnalysis& k = a.by_size[c];
+            const std::string title = k.low == k.high
+                                          ? fmt::format("d = {:.4g}", k.low)
+                                          : fmt::format("d = {:.4g} to {:.4g}", k.low, k.high);
+            curves_by_size +=
+                fmt::format("{}$sizes using 1:{} with steps lw 1 title '{} ({:.3g} of "
+                            "the volume)'",
+                            c == 0 ? "" : ", ", c + 2, title, k.volume_fraction);
+        }
+        by_size = fmt::format("set output 'centre_distribution_by_size.{{ext}}'\nset xlabel "
+                              "'{{x_label}}'\nset xrange [0:{{x_max}}]\nset ylabel 'centre "
+                              "density / the size class mean'\nset yrange [0:{{centre_top}}]\n"
+                              "set title 'Distribution of centres from the wall by size, "
+                              "{{where}}'\nplot {}\nset autoscale y\n",
+                              curves_by_size);
+    }
     std::vector<std::filesystem::path> files;
     for (const auto& name : names)
         for (const char* extension : {".svg", ".png"})
@@ -155,12 +199,19 @@ std::string stage_plots(OutputDirectory& out, const BedAnalysis& a, const Contai
             "set xrange [0:*]\nset ylabel 'g(r)'\nset yrange [0:*]\n"
             "set title 'Pair correlation of centres in the band'\n"
             "plot $rdf using 1:2 with steps lw 1 lc rgb 'black' title 'this bed', 1 with lines "
-            "dt 2 lc rgb 'grey' notitle\nset autoscale y\n",
+            "dt 2 lc rgb 'grey' notitle\nset autoscale y\n{by_size}",
             fmt::arg("terminal", terminal), fmt::arg("ext", extension), fmt::arg("x_max", x_max),
             fmt::arg("where", where), fmt::arg("x_label", x_label), fmt::arg("low", a.band.z_low),
             fmt::arg("high", a.band.z_high), fmt::arg("low_d", a.band.z_low / dp),
             fmt::arg("high_d", a.band.z_high / dp), fmt::arg("curves", curves),
-            fmt::arg("centre_range", centre_range));
+            fmt::arg("centre_range", centre_range),
+            fmt::arg("by_size",
+                     by_size.empty()
+                         ? std::string()
+                         : fmt::format(fmt::runtime(by_size), fmt::arg("ext", extension),
+                                       fmt::arg("x_label", x_label), fmt::arg("x_max", x_max),
+                                       fmt::arg("centre_top", centre_top),
+                                       fmt::arg("where", where))));
     std::ofstream(script_path) << script;
     const int status = run_gnuplot(folder, script_path.filename().string());
     out.discard("plots.gp");
