@@ -11,6 +11,7 @@
 #include <omp.h>
 
 #include "packbed/neighbor_list.hpp"
+#include "packbed/sizes.hpp"
 #include "packbed/soft_sphere.hpp"
 
 namespace {
@@ -77,7 +78,7 @@ void BM_ListBuild(benchmark::State& state) {
 
 /// The size mixes of BM_IterationSizes (issue 16): the cost per sphere-step of a bed of many
 /// sizes against a mono-sized one of the same Np.
-enum class Mix { mono = 0, binary4 = 1 };
+enum class Mix { mono = 0, binary4 = 1, lognormal = 2 };
 
 /// Diameters in units of the Sauter mean d32 (the reference Dp), generation order.
 std::vector<double> sizes_of(Mix mix, std::size_t n) {
@@ -87,6 +88,14 @@ std::vector<double> sizes_of(Mix mix, std::size_t n) {
         // (64 + 64) / (64 + 16) = 1.6.
         for (std::size_t i = 0; i < n; ++i)
             d.push_back((i % 65 == 64 ? 4.0 : 1.0) / 1.6);
+    } else if (mix == Mix::lognormal) {
+        // GSD 1.5 by volume (the default bounds: a size ratio of 10), as `--sizes
+        // lognormal:1,1.5` draws it, in units of its d32.
+        d = packbed::draw_diameters(packbed::parse_sizes("lognormal:1,1.5", 1.0), n,
+                                    packbed::FractionBasis::volume, 1);
+        const double d32 = packbed::size_statistics(d).sauter_mean;
+        for (double& x : d)
+            x /= d32;
     }
     return d;
 }
@@ -110,7 +119,9 @@ void BM_IterationSizes(benchmark::State& state) {
     state.counters["ns_per_sphere"] =
         benchmark::Counter(static_cast<double>(state.iterations() * particles),
                            benchmark::Counter::kIsRate | benchmark::Counter::kInvert);
-    state.SetLabel(mix == Mix::mono ? "mono" : "binary 1:4 equal volumes");
+    state.SetLabel(mix == Mix::mono      ? "mono"
+                   : mix == Mix::binary4 ? "binary 1:4 equal volumes"
+                                         : "lognormal GSD 1.5");
 }
 
 } // namespace
@@ -119,6 +130,7 @@ BENCHMARK(BM_IterationSizes)
     ->ArgNames({"Np", "mix", "threads"})
     ->Args({20000, static_cast<int>(Mix::mono), 2})
     ->Args({20000, static_cast<int>(Mix::binary4), 2})
+    ->Args({20000, static_cast<int>(Mix::lognormal), 2})
     ->UseRealTime();
 
 BENCHMARK(BM_ListBuild)

@@ -334,9 +334,10 @@ INSTANTIATE_TEST_SUITE_P(
               "packbed: --config @D/unknown.toml: line 2: unknown key 'warp_speed'; allowed: "
               "aspect-ratio, "
               "band-clearance, cg-step, checkpoint, ck, container, diameter, e0, force, "
-              "layer-height, "
+              "fractions, layer-height, "
               "max-iterations, mc-period, mc-tolerance, mc-window, out, overlap-high, "
-              "overlap-low, particles, quiet, seed, skin, solver, threads, tolerance, update"),
+              "overlap-low, particles, quiet, seed, sizes, skin, solver, threads, tolerance, "
+              "update"),
         exact("generate --config @D/broken.toml",
               "packbed: --config @D/broken.toml: line 1, column 16: Error while parsing value: "
               "could not "
@@ -349,6 +350,23 @@ INSTANTIATE_TEST_SUITE_P(
 INSTANTIATE_TEST_SUITE_P(
     Generate, CliBadInput,
     ::testing::Values(
+        // Issue 16: sizes that do not add up, an unknown distribution, a ratio beyond the
+        // solvers', a sphere wider than the tube.
+        exact("generate --sizes discrete:1:0.5,2:0.4",
+              "packbed generate: --sizes 'discrete:1:0.5,2:0.4' is not allowed: the fractions add "
+              "up to 0.9; allowed: discrete:D1:F1,D2:F2,... with each diameter once, from 1e-12 "
+              "to 1e+12, the largest at most 10 times the smallest, at most 100000 sizes, and "
+              "fractions >= 0 adding up to 1 (within 1e-06)"),
+        exact("generate --sizes gamma:1",
+              "packbed generate: --sizes 'gamma:1' is not allowed: unknown distribution 'gamma'; "
+              "allowed: mono, discrete:D1:F1,D2:F2,..., uniform:MIN,MAX, normal:MEAN,SD[,MIN,MAX], "
+              "lognormal:MEDIAN,GSD[,MIN,MAX] or file:PATH"),
+        naming("generate --sizes discrete:1:0.5,20:0.5", {"--sizes", "20", "10"}),
+        naming("generate --sizes lognormal:1,0.9", {"--sizes", "GSD = 0.9"}),
+        exact("generate --sizes discrete:1:0.5,2:0.5 --container cylinder:1.5",
+              "packbed generate: --sizes: a diameter of 1.49776 Dp is not allowed in a tube of a = "
+              "1.12332; allowed: diameters > 0 and below the tube's (a Dp, Dp = 1.33533 the "
+              "reference diameter)"),
         // Non-numbers.
         exact("generate --aspect-ratio five",
               "packbed: --aspect-ratio: 'five' is not allowed; allowed: a number in [1, 10000]"),
