@@ -32,6 +32,21 @@ std::string slurp(const fs::path& path) {
     return s.str();
 }
 
+/// The spheres of a particles.csv (x, y, z, r per row, after the header).
+std::vector<std::array<double, 4>> spheres_of(const fs::path& csv_path) {
+    std::istringstream csv(slurp(csv_path));
+    std::string row;
+    std::getline(csv, row);
+    std::vector<std::array<double, 4>> out;
+    while (std::getline(csv, row)) {
+        std::array<double, 4> v{};
+        char comma = 0;
+        std::istringstream(row) >> v[0] >> comma >> v[1] >> comma >> v[2] >> comma >> v[3];
+        out.push_back(v);
+    }
+    return out;
+}
+
 /// A fresh directory private to the running test (ctest runs tests in parallel).
 fs::path scratch(const std::string& name) {
     const auto* info = ::testing::UnitTest::GetInstance()->current_test_info();
@@ -680,15 +695,7 @@ TEST(Cli, GenerateBinaryBedWithTheAskedFractions) {
     EXPECT_EQ(classes[1]["count"], 22);
     EXPECT_NEAR(classes[1]["volume_fraction"].get<double>(), 176.0 / 354.0, 1e-15);
     // Every pair's overlap below 1e-4 of its smaller diameter, every sphere in the tube.
-    std::istringstream csv(slurp(d / "one" / "particles.csv"));
-    std::string line;
-    std::getline(csv, line);
-    std::vector<std::array<double, 4>> spheres;
-    while (std::getline(csv, line)) {
-        std::array<double, 4> v{};
-        ASSERT_EQ(std::sscanf(line.c_str(), "%lf,%lf,%lf,%lf", &v[0], &v[1], &v[2], &v[3]), 4);
-        spheres.push_back(v);
-    }
+    const auto spheres = spheres_of(d / "one" / "particles.csv");
     ASSERT_EQ(spheres.size(), 200u);
     std::size_t large = 0;
     double worst = 0.0, wall = 0.0;
@@ -1041,15 +1048,8 @@ SettleGeometry settle_geometry(const fs::path& d) {
     SettleGeometry g;
     g.radius = s["container"]["radius"].get<double>();
     g.diameter = s["diameter"].get<double>();
-    std::istringstream csv(slurp(d / "particles.csv"));
-    std::string row;
-    std::getline(csv, row);
-    while (std::getline(csv, row)) {
-        double x = 0, y = 0, z = 0, r = 0;
-        char comma = 0;
-        std::istringstream(row) >> x >> comma >> y >> comma >> z >> comma >> r;
-        g.top = std::max(g.top, z + r);
-    }
+    for (const auto& v : spheres_of(d / "particles.csv"))
+        g.top = std::max(g.top, v[2] + v[3]);
     return g;
 }
 
@@ -1413,15 +1413,8 @@ TEST(Cli, ExportedSettlesRunInABox) {
         line >> top;
         std::getline(line, rest);
         double bed_top = 0.0;
-        std::istringstream csv(slurp(d / "particles.csv"));
-        std::string row;
-        std::getline(csv, row);
-        while (std::getline(csv, row)) {
-            double x = 0, y = 0, z = 0, r = 0;
-            char comma = 0;
-            std::istringstream(row) >> x >> comma >> y >> comma >> z >> comma >> r;
-            bed_top = std::max(bed_top, z + r);
-        }
+        for (const auto& v : spheres_of(d / "particles.csv"))
+            bed_top = std::max(bed_top, v[2] + v[3]);
         EXPECT_NEAR(top, bed_top + 0.003, 1e-15);
         EXPECT_EQ(rest, " side in open 5 open 6 units box");
         const std::string cmd =
