@@ -172,6 +172,32 @@ TEST(RadialProfile, SphereOnTheAxisGivesNapkinRingShells) {
     EXPECT_NEAR(sum, ball(0.5), 1e-12);
 }
 
+TEST(RadialProfile, UnequalSpheresFillTheirShellsWithTheirOwnVolumes) {
+    // Issue 16: spheres of radius 0.25 and 0.75 in a tube of radius 2, cut by the shells of
+    // the profile and by the band's planes: the shells hold the parts of both inside the band,
+    // which slab volumes give exactly (the band [1, 3] cuts the large one at z = 2.8 + 0.75).
+    Packing p;
+    p.add({0.3, -0.2, 2.0}, 0.25);
+    p.add({-0.9, 0.6, 2.8}, 0.75);
+    p.add({0.0, 0.0, 0.5}, 0.5);
+    p.add({1.0, 0.0, 3.5}, 0.5); // top of the bed at 4: the band is [1, 3]
+    AnalysisOptions o;
+    o.shell_width = 0.05;
+    o.rdf_range = 1.0;
+    const BedAnalysis a = analyze_bed(p, Cylinder(2.0), o);
+    ASSERT_DOUBLE_EQ(a.band.z_low, 1.0);
+    ASSERT_DOUBLE_EQ(a.band.z_high, 3.0);
+    double sum = 0.0;
+    for (const auto& b : a.radial_void_fraction)
+        sum += solid_in(b, 2.0, 2.0);
+    // Inside the band: the small sphere whole, the large one below z = 3 (a sphere of radius
+    // 0.75 less its cap above 3, of height 2.8 + 0.75 - 3 = 0.55), the others' parts.
+    const double large_below = ball(0.75) - pi * 0.55 * 0.55 * (3.0 * 0.75 - 0.55) / 3.0;
+    const double others = sphere_volume_in_cylinder_slab({0, 0, 0.5}, 0.5, 2.0, 1.0, 3.0) +
+                          sphere_volume_in_cylinder_slab({1, 0, 3.5}, 0.5, 2.0, 1.0, 3.0);
+    EXPECT_NEAR(sum, ball(0.25) + large_below + others, 1e-10);
+}
+
 TEST(RadialProfile, SphereTouchingTheWallFillsTheOuterShellLikeACap) {
     // Against a wall of radius 1e4 a shell of width w next to the wall holds the cap of height
     // w of a tangent sphere, pi w^2 (3R - w) / 3, to relative order R / Rt.

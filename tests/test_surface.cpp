@@ -381,6 +381,40 @@ TEST(Surface, BridgesOnTwoTouchingSpheres) {
     EXPECT_NEAR(solids[0].mesh.volume() / v.treated_solid, 1.0, 1.5e-3);
 }
 
+TEST(Surface, CapsAndBridgesBetweenUnequalSpheres) {
+    // Issue 16: radii 0.5 and 1 touching at x = 0 (centres at -0.5 and 1, z = 1.5); the mean
+    // diameter Dp = 1.5 sets the treatments' lengths.
+    Packing p;
+    p.add({-0.5, 0.0, 1.5}, 0.5);
+    p.add({1.0, 0.0, 1.5}, 1.0);
+    const SurfaceContainer tube = cylinder(3.0, 3.0);
+    // caps:0.02: faces 0.03 apart about the contact point, a cap of height 0.015 off each
+    // sphere, each with its own radius: pi h^2 (3 r - h) / 3.
+    const TreatedBed capped = treat_contacts(p, parse_contacts("caps:0.02"), tube);
+    ASSERT_EQ(capped.bodies[0].cuts.size(), 1u);
+    ASSERT_EQ(capped.bodies[1].cuts.size(), 1u);
+    EXPECT_NEAR(capped.bodies[0].cuts[0].offset, -0.015, 1e-15); // x <= -0.015
+    EXPECT_NEAR(capped.bodies[1].cuts[0].offset, -0.015, 1e-15); // -x <= -0.015
+    const double h = 0.015;
+    const double small_cap = pi * h * h * (1.5 - h) / 3.0, large_cap = pi * h * h * (3.0 - h) / 3.0;
+    const TreatmentVolumes v = treatment_volumes(p, capped, tube);
+    EXPECT_NEAR(v.untouched_solid, sphere_volume(0.5) + sphere_volume(1.0), 1e-14);
+    EXPECT_NEAR(v.treated_solid, sphere_volume(0.5) + sphere_volume(1.0) - small_cap - large_cap,
+                1e-14);
+    // bridges:0.2: a cylinder of radius 0.15 about the line of centres adds, at distance s from
+    // it, the gap (1 - sqrt(1 - s^2)) + (0.5 - sqrt(0.25 - s^2)); integrated,
+    // pi rho^2 1.5 - 2 pi / 3 ((1 - (1 - rho^2)^1.5) + (0.125 - (0.25 - rho^2)^1.5)).
+    const TreatedBed bridged = treat_contacts(p, parse_contacts("bridges:0.2"), tube);
+    ASSERT_EQ(bridged.bridges.size(), 1u);
+    const double rho = 0.15;
+    EXPECT_DOUBLE_EQ(bridged.bridges[0].radius, rho);
+    const double added = pi * rho * rho * 1.5 - 2.0 * pi / 3.0 *
+                                                    ((1.0 - std::pow(1.0 - rho * rho, 1.5)) +
+                                                     (0.125 - std::pow(0.25 - rho * rho, 1.5)));
+    EXPECT_NEAR(treatment_volumes(p, bridged, tube).treated_solid,
+                sphere_volume(0.5) + sphere_volume(1.0) + added, 1e-14);
+}
+
 TEST(Surface, BridgesOnASphereTouchingTheWall) {
     Packing p;
     p.add({1.5, 0.0, 1.0}, 0.5); // touches the wall of radius 2 only
