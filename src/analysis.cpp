@@ -357,13 +357,16 @@ Coordination coordination(const Packing& packing, const Container& container,
 /// mean coordination in the band and their centre distribution; empty for one size.
 std::vector<SizeClassAnalysis> by_size(const Packing& packing, const Container& container,
                                        double width, const Band& band, std::size_t bins,
-                                       const std::vector<std::uint32_t>& contacts) {
+                                       const std::vector<std::uint32_t>& contacts,
+                                       SizeStatistics& statistics) {
     std::vector<double> diameters(packing.size());
     for (std::size_t i = 0; i < packing.size(); ++i)
         diameters[i] = 2.0 * packing.radii[i];
-    const SizeStatistics statistics = size_statistics(diameters);
-    if (statistics.classes.size() < 2)
+    statistics = size_statistics(diameters);
+    if (statistics.classes.size() < 2) {
+        statistics = {};
         return {};
+    }
     std::vector<std::size_t> class_of(packing.size());
     for (std::size_t i = 0; i < packing.size(); ++i)
         class_of[i] = size_class_of(statistics.classes, diameters[i]);
@@ -692,8 +695,8 @@ BedAnalysis analyze_bed(const Packing& packing, const Container& container,
                             [](std::size_t) { return true; });
     std::vector<std::uint32_t> per_sphere;
     out.coordination = coordination(packing, container, contacts, *band, per_sphere);
-    out.by_size =
-        by_size(packing, container, options.centre_bin * dp, *band, centre_bins, per_sphere);
+    out.by_size = by_size(packing, container, options.centre_bin * dp, *band, centre_bins,
+                          per_sphere, out.sizes);
     out.pair_region = pair_region(packing, container, *band);
     out.pair_correlation = pair_correlation(packing, *band, out.pair_region, rdf_range, rdf_bin,
                                             static_cast<std::size_t>(rdf_bins), rdf_grid);

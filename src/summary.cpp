@@ -134,6 +134,7 @@ nlohmann::json analysis_summary(const BedAnalysis& a, const AnalysisOptions& o) 
                                {"spheres_in_band", k.in_band},
                                {"mean_coordination", k.mean_coordination}});
         summary["by_size"] = classes;
+        summary["sizes"] = size_statistics_summary(a.sizes);
         summary["files"].push_back("size_classes.csv");
         summary["files"].push_back("centre_distribution_by_size.csv");
     }

@@ -767,6 +767,11 @@ TEST(SizeClasses, BinaryBedIsMeasuredPerSize) {
     EXPECT_EQ(large.spheres, 4u);
     EXPECT_DOUBLE_EQ(small.number_fraction, 8.0 / 12.0);
     EXPECT_DOUBLE_EQ(large.volume_fraction, 32.0 / 40.0);
+    // The bed's sizes: d32 = (8 + 32) / (8 + 16) = 5/3; d50 by volume: Q3 is 8/40 = 0.2 at
+    // d = 1 and 1 at d = 2, linear between, so 0.5 at 1 + 0.3 / 0.8 = 1.375.
+    EXPECT_DOUBLE_EQ(a.sizes.sauter_mean, 5.0 / 3.0);
+    EXPECT_DOUBLE_EQ(a.sizes.d50, 1.375);
+    EXPECT_EQ(a.sizes.count, 12u);
     // The band [4/3, 8 - 4/3] holds the small centres 1.5 to 6.5 and the large ones 3 and 5,
     // each with two contacts in its column.
     EXPECT_EQ(small.in_band, 6u);
@@ -788,5 +793,6 @@ TEST(SizeClasses, BinaryBedIsMeasuredPerSize) {
     // One size: no classes.
     const BedAnalysis mono = analyze_bed(forty(), Cylinder(1.5));
     EXPECT_TRUE(mono.by_size.empty());
+    EXPECT_EQ(mono.sizes.count, 0u);
     EXPECT_EQ(mono.diameter, 1.0);
 }

@@ -11,6 +11,7 @@
 
 #include "packbed/container.hpp"
 #include "packbed/packing.hpp"
+#include "packbed/sizes.hpp"
 #include "packbed/volume.hpp"
 
 namespace packbed {
@@ -113,6 +114,9 @@ struct BedAnalysis {
     /// the size classes (sizes.hpp's size_classes: one per distinct diameter up to 32, else
     /// bins even in ln d); empty for a bed of one size
     std::vector<SizeClassAnalysis> by_size;
+    /// the statistics of the bed's diameters (d10, d50, d90 by volume, d32, ...) when it has
+    /// more than one size; count 0 otherwise
+    SizeStatistics sizes;
 };
 
 /// Measure a bed in a container (a Cylinder or a Box converts to one).
