@@ -359,6 +359,11 @@ std::vector<SizeClassAnalysis> by_size(const Packing& packing, const Container& 
                                        double width, const Band& band, std::size_t bins,
                                        const std::vector<std::uint32_t>& contacts,
                                        SizeStatistics& statistics) {
+    statistics = {};
+    const auto [smallest, largest] =
+        std::minmax_element(packing.radii.begin(), packing.radii.end());
+    if (*smallest == *largest) // one size: nothing to sort or classify
+        return {};
     std::vector<double> diameters(packing.size());
     for (std::size_t i = 0; i < packing.size(); ++i)
         diameters[i] = 2.0 * packing.radii[i];

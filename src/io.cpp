@@ -392,17 +392,19 @@ std::string particles_vtu(const Packing& packing) {
 
 namespace {
 
-/// A CSV of profile bins: `header`, then per bin the mid-point, the mid-point measured as
-/// `scaled(mid)`, and the value.
-template <class F>
-std::string profile_csv(std::string_view header, const std::vector<ProfileBin>& bins, F scaled) {
+/// A CSV of profile bins: `header`, then per bin two positions of its mid-point,
+/// `first(mid)` and `second(mid)`, and the value.
+template <class F, class G>
+std::string profile_csv(std::string_view header, const std::vector<ProfileBin>& bins, F first,
+                        G second) {
     fmt::memory_buffer out;
     fmt::format_to(std::back_inserter(out), "{}\n", header);
     for (const auto& b : bins) {
         const double mid = 0.5 * (b.low + b.high);
         // Positions to 12 significant digits: the bin centre of shell 123 of 0.02 Dp is 2.47,
         // not the 2.4699999999999998 its floating-point sum gives; values as computed.
-        fmt::format_to(std::back_inserter(out), "{:.12g},{:.12g},{}\n", mid, scaled(mid), b.value);
+        fmt::format_to(std::back_inserter(out), "{:.12g},{:.12g},{}\n", first(mid), second(mid),
+                       b.value);
     }
     return fmt::to_string(out);
 }
@@ -415,17 +417,13 @@ std::vector<std::pair<std::string, std::string>> analysis_tables(const BedAnalys
     // The wall profiles: the container's position (a cylinder's radial position), then the
     // distance from the wall in Dp.
     const std::string position(container.profile_position_name());
-    auto wall_profile = [&](std::string_view value, const std::vector<ProfileBin>& bins) {
-        fmt::memory_buffer out;
-        fmt::format_to(std::back_inserter(out), "{},x_from_wall_d,{}\n", position, value);
-        for (const auto& b : bins) {
-            const double mid = 0.5 * (b.low + b.high);
-            fmt::format_to(std::back_inserter(out), "{:.12g},{:.12g},{}\n",
-                           container.profile_position(mid), mid / dp, b.value);
-        }
-        return fmt::to_string(out);
-    };
     auto in_dp = [&](double length) { return length / dp; };
+    auto as_is = [](double length) { return length; };
+    auto wall_profile = [&](std::string_view value, const std::vector<ProfileBin>& bins) {
+        return profile_csv(
+            fmt::format("{},x_from_wall_d,{}", position, value), bins,
+            [&](double d) { return container.profile_position(d); }, in_dp);
+    };
     std::string coordination = "contacts,spheres\n";
     for (std::size_t k = 0; k < a.coordination.histogram.size(); ++k)
         coordination += fmt::format("{},{}\n", k, a.coordination.histogram[k]);
@@ -456,10 +454,11 @@ std::vector<std::pair<std::string, std::string>> analysis_tables(const BedAnalys
     std::vector<std::pair<std::string, std::string>> tables{
         {"radial_void_fraction.csv", wall_profile("void_fraction", a.radial_void_fraction)},
         {"axial_void_fraction.csv",
-         profile_csv("z,z_d,void_fraction", a.axial_void_fraction, in_dp)},
+         profile_csv("z,z_d,void_fraction", a.axial_void_fraction, as_is, in_dp)},
         {"radial_centre_distribution.csv", wall_profile("relative_density", a.centre_distribution)},
         {"coordination.csv", coordination},
-        {"pair_correlation.csv", profile_csv("distance,distance_d,g", a.pair_correlation, in_dp)},
+        {"pair_correlation.csv",
+         profile_csv("distance,distance_d,g", a.pair_correlation, as_is, in_dp)},
     };
     tables.insert(tables.end(), by_size.begin(), by_size.end());
     return tables;

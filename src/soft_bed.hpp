@@ -20,14 +20,13 @@
 #include "packbed/neighbor_list.hpp"
 #include "packbed/packing.hpp"
 #include "packbed/soft_sphere.hpp"
+#include "random.hpp"
 
 namespace packbed::detail {
 
 /// A uniform double in [0, 1) from 53 random bits: the same numbers on every platform
-/// (std::uniform_real_distribution is implementation-defined).
-inline double uniform01(std::mt19937_64& rng) {
-    return static_cast<double>(rng() >> 11) * 0x1.0p-53;
-}
+/// (std::uniform_real_distribution is implementation-defined); random.hpp holds it.
+using portable_random::uniform01;
 
 /// The parameters a solver runs with: the tolerance and the control band of eq. (7), given in
 /// units of the smallest diameter (SoftSphereParameters::sizes), turned into Dp. The same values

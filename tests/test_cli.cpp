@@ -1043,6 +1043,20 @@ struct SettleGeometry {
     double margin() const { return std::max(0.5 * diameter, 0.01 * radius); }
 };
 
+/// Run the LAMMPS settle exported into `d`: it ends, loses no atom, warns of nothing and
+/// reports `atoms` atoms after its 2000 steps.
+void expect_lammps_settles(const fs::path& d, int atoms) {
+    const std::string cmd =
+        "cd " + d.string() + " && lmp -in bed.data.lammps.in -log none > lmp.out 2>&1";
+    ASSERT_EQ(std::system(cmd.c_str()), 0) << slurp(d / "lmp.out");
+    const std::string log = slurp(d / "lmp.out");
+    EXPECT_EQ(log.find("Lost"), std::string::npos) << log;
+    EXPECT_EQ(log.find("WARNING"), std::string::npos) << log;
+    EXPECT_NE(log.find(fmt::format("packbed settle: {} atoms after 2000 steps", atoms)),
+              std::string::npos)
+        << log;
+}
+
 SettleGeometry settle_geometry(const fs::path& d) {
     const auto s = nlohmann::json::parse(slurp(d / "summary.json"));
     SettleGeometry g;
@@ -1227,13 +1241,7 @@ TEST(Cli, ExportedLammpsSettleRunsInItsContainer) {
     EXPECT_GT(box[3], radius);
     EXPECT_LT(box[4], 0.0);
     EXPECT_GT(box[5], high);
-    const std::string cmd =
-        "cd " + d.string() + " && lmp -in bed.data.lammps.in -log none > lmp.out 2>&1";
-    ASSERT_EQ(std::system(cmd.c_str()), 0) << slurp(d / "lmp.out");
-    const std::string log = slurp(d / "lmp.out");
-    EXPECT_EQ(log.find("Lost"), std::string::npos) << log;
-    EXPECT_EQ(log.find("WARNING"), std::string::npos) << log;
-    EXPECT_NE(log.find("packbed settle: 60 atoms after 2000 steps"), std::string::npos) << log;
+    expect_lammps_settles(d, 60);
     expect_settled(d / "bed.data.lammps.dump", g, g.radius);
 }
 
@@ -1417,13 +1425,7 @@ TEST(Cli, ExportedSettlesRunInABox) {
             bed_top = std::max(bed_top, v[2] + v[3]);
         EXPECT_NEAR(top, bed_top + 0.003, 1e-15);
         EXPECT_EQ(rest, " side in open 5 open 6 units box");
-        const std::string cmd =
-            "cd " + d.string() + " && lmp -in bed.data.lammps.in -log none > lmp.out 2>&1";
-        ASSERT_EQ(std::system(cmd.c_str()), 0) << slurp(d / "lmp.out");
-        const std::string log = slurp(d / "lmp.out");
-        EXPECT_EQ(log.find("Lost"), std::string::npos) << log;
-        EXPECT_EQ(log.find("WARNING"), std::string::npos) << log;
-        EXPECT_NE(log.find("packbed settle: 28 atoms after 2000 steps"), std::string::npos) << log;
+        expect_lammps_settles(d, 28);
         expect_settled_in_box(d / "bed.data.lammps.dump");
     }
     if (std::system("command -v liggghts >/dev/null 2>&1") == 0) {
