@@ -242,7 +242,7 @@ TEST(BoxVolume, AgreesWithTanhSinhOverRandomBallsAtEdgesAndCorners) {
         else
             EXPECT_NEAR(v, exact, 1e-11 * ball(r));
     }
-    EXPECT_LT(worst, 1e-8); // measured 2.5e-9
+    EXPECT_LT(worst, 1e-8); // measured 2.5e-9 over the first 2 000 balls of this seed
 }
 
 } // namespace
