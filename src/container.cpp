@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <numbers>
+#include <type_traits>
 
 #include <fmt/format.h>
 
@@ -82,6 +83,62 @@ std::string Box::spec() const {
     return out;
 }
 
+double Annulus::cross_section_area() const {
+    return std::numbers::pi * (m_outer * m_outer - m_inner * m_inner);
+}
+
+Annulus Annulus::shrunk(double d) const {
+    const double mid = 0.5 * (m_outer + m_inner);
+    return Annulus(std::max(m_outer - d, mid), std::min(m_inner + d, mid));
+}
+
+double Annulus::shell_area(double d_low, double d_high) const {
+    return shrunk(d_low).cross_section_area() - shrunk(d_high).cross_section_area();
+}
+
+double Annulus::sphere_volume(const Vec3& c, double r, double z_low, double z_high) const {
+    if (!(m_outer > m_inner))
+        return 0.0;
+    const double rod =
+        m_inner > 0.0 ? sphere_volume_in_cylinder_slab(c, r, m_inner, z_low, z_high) : 0.0;
+    return sphere_volume_in_cylinder_slab(c, r, m_outer, z_low, z_high) - rod;
+}
+
+double Annulus::ball_volume(const Vec3& c, double r, double z_low, double z_high) const {
+    if (!(r > 0.0 && m_outer > m_inner))
+        return 0.0;
+    if (!(r <= c.z - z_low && r <= z_high - c.z))
+        return sphere_volume(c, r, z_low, z_high);
+    const double rho = std::hypot(c.x, c.y);
+    const double rod = m_inner > 0.0 ? ball_volume_in_cylinder(rho, r, m_inner) : 0.0;
+    return ball_volume_in_cylinder(rho, r, m_outer) - rod;
+}
+
+std::vector<WallPlane> Annulus::walls_within(const Vec3& c, double r, double gap) const {
+    const double rho = std::hypot(c.x, c.y);
+    std::vector<WallPlane> planes;
+    if (!(rho > 0.0))
+        return planes;
+    const Vec3 out{c.x / rho, c.y / rho, 0.0};
+    if (m_outer - rho - r < gap)
+        planes.push_back({out, m_outer});
+    if (rho - r - m_inner < gap)
+        planes.push_back({out * -1.0, -m_inner});
+    return planes;
+}
+
+std::string Annulus::spec() const {
+    return fmt::format("annulus:{:.9g},{:.9g}", 2.0 * m_outer, 2.0 * m_inner);
+}
+
+double Periodic::sphere_volume(const Vec3& c, double r, double z_low, double z_high) const {
+    return sphere_slab_volume(c.z, r, z_low, z_high);
+}
+
+std::string Periodic::spec() const {
+    return fmt::format("periodic:{:.9g},{:.9g}", m_lx, m_ly);
+}
+
 // Every question to the shape: the one place a container's kind is looked at.
 namespace {
 template <class F> decltype(auto) ask(const Container::Shape& shape, F&& f) {
@@ -95,6 +152,21 @@ std::string_view Container::name() const {
 
 std::string Container::spec() const {
     return ask(m_shape, [](const auto& s) { return s.spec(); });
+}
+
+Container Container::scaled(double factor) const {
+    return ask(m_shape, [&](const auto& s) -> Container {
+        using S = std::decay_t<decltype(s)>;
+        if constexpr (std::is_same_v<S, Cylinder>)
+            return Cylinder(s.radius() * factor);
+        else if constexpr (std::is_same_v<S, Box>)
+            return Box(s.x_low() * factor, s.x_high() * factor, s.y_low() * factor,
+                       s.y_high() * factor);
+        else if constexpr (std::is_same_v<S, Annulus>)
+            return Annulus(s.outer_radius() * factor, s.inner_radius() * factor);
+        else
+            return Periodic(s.lx() * factor, s.ly() * factor);
+    });
 }
 
 bool Container::contains(const Vec3& p) const {

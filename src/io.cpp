@@ -6,6 +6,8 @@
 #include <limits>
 #include <numbers>
 
+#include <type_traits>
+
 #include <fmt/format.h>
 
 #include "packbed/error.hpp"
@@ -221,6 +223,15 @@ SettleWall settle_wall(const Box& b, double height) {
                         "units box\n",
                         b.x_low(), b.x_high(), b.y_low(), b.y_high(), height),
             "the box's four faces"};
+}
+
+/// Annulus and periodic cell: no settle input yet (issue 17, export step).
+template <class Shape>
+requires std::is_same_v<Shape, Annulus> || std::is_same_v<Shape, Periodic>
+    SettleWall settle_wall(const Shape& shape, double) {
+    throw InvalidInput(fmt::format("--container {} is not allowed for a DEM settle input yet; "
+                                   "allowed: cylinder:D or box:LX,LY",
+                                   shape.spec()));
 }
 
 SettleWall settle_wall(const DemSettle& s) {

@@ -28,12 +28,21 @@ void NeighborList::build(std::span<const Vec3> centers, std::span<const double> 
     assert(key.empty() || key.size() == centers.size());
     const std::size_t n = centers.size();
     const double max_radius = n ? *std::max_element(radii.begin(), radii.end()) : 0.0;
+    // A periodic cell: the search runs on the centres moved into the cell, followed by the
+    // copies ("ghosts") of those within the longest cut of a side, each numbered after the
+    // n centres and standing for its sphere (owner).
+    std::vector<Vec3> cell_centres;
+    std::vector<std::uint32_t> owner;
+    if (m_cell)
+        add_ghosts(centers, 2.0 * max_radius + skin, cell_centres, owner);
+    const std::span<const Vec3> points = m_cell ? std::span<const Vec3>(cell_centres) : centers;
     CellGrid grid;
-    grid.build(centers, 2.0 * max_radius + skin);
+    grid.build(points, 2.0 * max_radius + skin);
 
     auto within = [&](std::size_t i, std::uint32_t j) {
-        const double cut = radii[i] + radii[j] + skin;
-        return j != i && norm2(centers[j] - centers[i]) < cut * cut;
+        const std::uint32_t s = j < n ? j : owner[j - n];
+        const double cut = radii[i] + radii[s] + skin;
+        return s != i && norm2(points[j] - points[i]) < cut * cut;
     };
     // One search per sphere: each thread fills the rows of one contiguous range of spheres
     // into its own buffer, then copies them to their place; the rows and their order are the
@@ -68,11 +77,16 @@ void NeighborList::build(std::span<const Vec3> centers, std::span<const double> 
                 });
                 rows.resize(count);
                 const auto row = rows.begin() + static_cast<std::ptrdiff_t>(first);
+                if (m_cell) // ghosts stand for their spheres, each sphere once
+                    for (auto e = row; e != rows.end(); ++e)
+                        *e = *e < n ? *e : owner[*e - n];
                 if (key.empty())
                     std::sort(row, rows.end());
                 else
                     std::sort(row, rows.end(),
                               [&](std::uint32_t a, std::uint32_t b) { return key[a] < key[b]; });
+                if (m_cell)
+                    rows.erase(std::unique(row, rows.end()), rows.end());
                 m_offsets[i + 1] = static_cast<std::uint32_t>(rows.size() - first);
             }
         } catch (...) {
@@ -111,6 +125,29 @@ void NeighborList::build(std::span<const Vec3> centers, std::span<const double> 
     m_reference.assign(centers.begin(), centers.end());
     m_skin = skin;
     ++m_builds;
+}
+
+void NeighborList::add_ghosts(std::span<const Vec3> centers, double cut, std::vector<Vec3>& points,
+                              std::vector<std::uint32_t>& owner) const {
+    const Periodic& cell = *m_cell;
+    const std::size_t n = centers.size();
+    points.resize(n);
+    for (std::size_t i = 0; i < n; ++i)
+        points[i] = cell.wrapped(centers[i]);
+    // Every copy within `cut` of the cell, [-cut, L + cut) each way: a pair's nearest copies
+    // are then found from the first sphere's own place in the cell.
+    for (std::size_t i = 0; i < n; ++i)
+        for (int sx = -1; sx <= 1; ++sx)
+            for (int sy = -1; sy <= 1; ++sy) {
+                if (sx == 0 && sy == 0)
+                    continue;
+                const Vec3 p{points[i].x + sx * cell.lx(), points[i].y + sy * cell.ly(),
+                             points[i].z};
+                if (p.x >= -cut && p.x < cell.lx() + cut && p.y >= -cut && p.y < cell.ly() + cut) {
+                    points.push_back(p);
+                    owner.push_back(static_cast<std::uint32_t>(i));
+                }
+            }
 }
 
 void NeighborList::number_pairs() {

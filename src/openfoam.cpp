@@ -4,6 +4,8 @@
 #include <cmath>
 #include <numbers>
 
+#include <type_traits>
+
 #include <fmt/format.h>
 
 #include "packbed/error.hpp"
@@ -123,6 +125,15 @@ Background background(const Cylinder& cylinder, double height, double cell,
                           refined(cell, options.particle_level), options.wall_level,
                           refined(cell, options.wall_level));
     return b;
+}
+
+/// Annulus and periodic cell: not exported to OpenFOAM yet (issue 17, export step).
+template <class Shape>
+requires std::is_same_v<Shape, Annulus> || std::is_same_v<Shape, Periodic>
+    Background background(const Shape& shape, double, double, const OpenFoamMeshOptions&) {
+    throw InvalidInput(fmt::format("--container {} is not allowed for an OpenFOAM case yet; "
+                                   "allowed: cylinder:D or box:LX,LY",
+                                   shape.spec()));
 }
 
 /// A box: the background is the box itself, [x_low, x_high] x [y_low, y_high] x [0, height],

@@ -1,26 +1,66 @@
 #include "soft_bed.hpp"
 
 #include <numbers>
+#include <type_traits>
 
 namespace packbed::detail {
 
+namespace {
+
+/// The widest extent of the container's cross-section (a cylinder's: 2 Rt = a).
+double width(const Container& container) {
+    const Rectangle b = container.bounds();
+    return std::max(b.x_high - b.x_low, b.y_high - b.y_low);
+}
+
+/// A point uniform over the part of the cross-section a centre of radius `radius` reaches,
+/// from two uniform numbers u, v in [0, 1) (section 3.1 for the cylinder: r = (Rt - r_i)
+/// u^(1/2), theta = 2 pi v). An annulus: rho^2 uniform between (Ri + r_i)^2 and (R - r_i)^2;
+/// a box: each coordinate uniform between the faces less r_i; a periodic cell: anywhere.
+Vec3 uniform_point(const Container& container, double radius, double u, double v) {
+    return std::visit(
+        [&](const auto& shape) -> Vec3 {
+            using S = std::decay_t<decltype(shape)>;
+            if constexpr (std::is_same_v<S, Cylinder>) {
+                const double r = (shape.radius() - radius) * std::sqrt(u);
+                const double theta = 2.0 * std::numbers::pi * v;
+                return {r * std::cos(theta), r * std::sin(theta), 0.0};
+            } else if constexpr (std::is_same_v<S, Annulus>) {
+                const double a = shape.inner_radius() + radius, b = shape.outer_radius() - radius;
+                const double r = std::sqrt(a * a + (b * b - a * a) * u);
+                const double theta = 2.0 * std::numbers::pi * v;
+                return {r * std::cos(theta), r * std::sin(theta), 0.0};
+            } else if constexpr (std::is_same_v<S, Box>) {
+                return {
+                    shape.x_low() + radius + (shape.x_high() - shape.x_low() - 2.0 * radius) * u,
+                    shape.y_low() + radius + (shape.y_high() - shape.y_low() - 2.0 * radius) * v,
+                    0.0};
+            } else {
+                return {shape.lx() * u, shape.ly() * v, 0.0};
+            }
+        },
+        container.shape());
+}
+
+} // namespace
+
 void SoftBed::generate(const SoftSphereParameters& params) {
     initial_height = initial_bed_height(params);
-    ceiling = 4.0 * initial_height + 10.0 * params.aspect_ratio + 10.0;
+    ceiling = 4.0 * initial_height + 10.0 * width(container) + 10.0;
     smallest_radius = 0.5 * params.smallest_size();
     std::mt19937_64 rng(params.seed);
     packing.centers.reserve(params.particles);
     packing.radii.reserve(params.particles);
     // Section 3.1 with each sphere's own radius r_i: r = (Rt - r_i) Rnd^(1/2), theta = 2 pi
-    // Rnd, z = L0 Rnd + r_i (the paper's Dp/2 is the radius). The same random numbers whatever
-    // the sizes.
+    // Rnd, z = L0 Rnd + r_i (the paper's Dp/2 is the radius), and the same over the other
+    // containers' cross-sections (uniform_point). The same random numbers whatever the sizes.
     for (std::uint64_t i = 0; i < params.particles; ++i) {
         const double radius = params.sizes.empty() ? 0.5 : 0.5 * params.sizes[i];
-        const double reach = container.radius() - radius;
-        const double r = reach * std::sqrt(uniform01(rng));
-        const double theta = 2.0 * std::numbers::pi * uniform01(rng);
-        const double z = initial_height * uniform01(rng) + radius;
-        packing.add({r * std::cos(theta), r * std::sin(theta), z}, radius);
+        const double u = uniform01(rng);
+        const double v = uniform01(rng);
+        Vec3 p = uniform_point(container, radius, u, v);
+        p.z = initial_height * uniform01(rng) + radius;
+        packing.add(p, radius);
     }
     reset_order();
 }
@@ -29,7 +69,7 @@ void SoftBed::assign(Packing spheres, double height, double smallest) {
     smallest_radius = smallest;
     packing = std::move(spheres);
     initial_height = height;
-    ceiling = 4.0 * height + 10.0 * 2.0 * container.radius() + 10.0;
+    ceiling = 4.0 * height + 10.0 * width(container) + 10.0;
     list = NeighborList{};
     velocity.clear();
     drift2 = 0.0;
@@ -45,6 +85,9 @@ void SoftBed::reset_order() {
 }
 
 void SoftBed::rebuild_list(double skin) {
+    if (cell) // the centres back into the cell: the list's reference, and the spatial order
+        for (Vec3& c : packing.centers)
+            c = cell->wrapped(c);
     const double max_radius = *std::max_element(packing.radii.begin(), packing.radii.end());
     const std::vector<std::uint32_t> perm = spatial_order(packing.centers, 2.0 * max_radius + skin);
     for (std::size_t k = 0; k < perm.size(); ++k) {
@@ -83,8 +126,11 @@ void SoftBed::fill_result(SoftSphereResult& result, double diameter) const {
     result.max_overlap_pair = final_overlaps.pair;
     result.max_overlap_wall = final_overlaps.wall;
     result.packing = packing_in_generation_order();
+    if (cell)
+        for (Vec3& c : result.packing.centers)
+            c = cell->wrapped(c);
     result.packing.scale(diameter);
-    result.container = Cylinder(container.radius() * diameter);
+    result.container = container.scaled(diameter);
     result.initial_height = initial_height * diameter;
     result.neighbor_builds = list.builds();
 }

@@ -8,6 +8,7 @@
 #include <cstdint>
 #include <deque>
 #include <limits>
+#include <optional>
 #include <random>
 #include <span>
 #include <vector>
@@ -49,7 +50,11 @@ struct LinearOverlapLaw {
     /// Add the displacement of sphere i caused by sphere j to `move`; track the overlap.
     void apply(const Vec3& xi, const Vec3& xj, double sum_radii, bool i_below, Vec3& move,
                double& max_overlap) const {
-        const Vec3 rij = xj - xi;
+        apply(xj - xi, sum_radii, i_below, move, max_overlap);
+    }
+    /// The same from the separation rij = x_j - x_i (the minimum image in a periodic cell).
+    void apply(const Vec3& rij, double sum_radii, bool i_below, Vec3& move,
+               double& max_overlap) const {
         const double dist2 = norm2(rij);
         if (dist2 >= sum_radii * sum_radii)
             return;
@@ -95,13 +100,17 @@ private:
     std::deque<double> m_values;
 };
 
-/// Spheres of one soft-sphere bed in units of Dp, in a cylinder, stored in a spatial order
+/// Spheres of one soft-sphere bed in units of Dp, in a container, stored in a spatial order
 /// (renewed at each Verlet-list build) so that neighbours in space are neighbours in memory.
 /// Sphere k of `packing` is sphere order[k] of the generation stage; slot[i] is where sphere
 /// i is stored. Neighbours are summed in generation order, so the stored order never changes
 /// a bit of a result.
 struct SoftBed {
-    Cylinder container;
+    Container container;
+    /// The container's shape where the hot loops look at it: the cylinder's wall law inlines
+    /// with its fast path; a periodic cell measures pairs by the minimum image.
+    std::optional<Cylinder> cylinder;
+    std::optional<Periodic> cell;
     Packing packing;
     std::vector<std::uint32_t> order;
     std::vector<std::uint32_t> slot;
@@ -115,10 +124,27 @@ struct SoftBed {
     double ceiling = 0.0;         // a centre above this has been thrown out of the bed
     double smallest_radius = 0.5; // of the whole bed, Dp (sets each sphere's step length)
 
-    explicit SoftBed(double aspect_ratio)
-        : container(0.5 * aspect_ratio) {}
+    explicit SoftBed(const Container& c)
+        : container(c) {
+        if (const Cylinder* cyl = c.cylinder())
+            cylinder = *cyl;
+        if (const Periodic* p = c.periodic())
+            cell = *p;
+        if (cell)
+            list.wrap(*cell);
+    }
 
-    /// Section 3.1: L0 from eq. (6), centres uniform over the accessible cross-section.
+    /// \return the separation x_j - x_i of two stored spheres: the minimum image in a
+    /// periodic cell (Wrap), the plain difference otherwise.
+    template <bool Wrap> Vec3 separation(const Vec3& xi, const Vec3& xj) const {
+        if constexpr (Wrap)
+            return cell->separation(xi, xj);
+        else
+            return xj - xi;
+    }
+
+    /// Section 3.1: L0 from eq. (6), centres uniform over the accessible cross-section (the
+    /// part of the container a centre of the sphere's radius may reach).
     void generate(const SoftSphereParameters& params);
 
     /// Take `spheres` (units of Dp) as the bed, in their order as the generation order, with
@@ -152,20 +178,35 @@ struct SoftBed {
     /// largest wall overlap. Spheres clearly inside (centre closer to the axis than
     /// Rt - r - 1e-9 (Rt + 1)) skip the square root: the margin exceeds the rounding of
     /// Cylinder::wall_contact by far, so the result is the same bits.
+    /// Another container: each wall the sphere presses adds its own term (Container::
+    /// wall_contacts).
     void add_wall_term(const Vec3& xk, double r, const LinearOverlapLaw& law, Vec3& move,
                        double& wall) const {
-        const double inner = container.radius() - r - 1e-9 * (container.radius() + 1.0);
-        if (inner > 0.0 && xk.x * xk.x + xk.y * xk.y < inner * inner)
+        if (cylinder) [[likely]] {
+            const double inner = cylinder->radius() - r - 1e-9 * (cylinder->radius() + 1.0);
+            if (inner > 0.0 && xk.x * xk.x + xk.y * xk.y < inner * inner)
+                return;
+            const WallContact w = cylinder->wall_contact(xk, r);
+            if (w.overlap > 0.0) {
+                wall = std::max(wall, w.overlap);
+                move += w.push * (law.ck * w.overlap);
+            }
             return;
-        const WallContact w = container.wall_contact(xk, r);
-        if (w.overlap > 0.0) {
-            wall = std::max(wall, w.overlap);
-            move += w.push * (law.ck * w.overlap);
         }
+        container.wall_contacts(xk, r, [&](double overlap, const Vec3& push) {
+            wall = std::max(wall, overlap);
+            move += push * (law.ck * overlap);
+        });
     }
 
     /// \return law-weighted sum of the pair and wall terms of sphere k (the move of eq. (4)
     /// without gravity and floor); `pair` and `wall` track the largest overlaps seen.
+    Vec3 contact_move(std::size_t k, const LinearOverlapLaw& law, double& pair,
+                      double& wall) const {
+        return cell ? contact_move<true>(k, law, pair, wall)
+                    : contact_move<false>(k, law, pair, wall);
+    }
+    template <bool Wrap>
     Vec3 contact_move(std::size_t k, const LinearOverlapLaw& law, double& pair,
                       double& wall) const {
         const Vec3* const x = packing.centers.data();
@@ -173,7 +214,8 @@ struct SoftBed {
         const Vec3 xk = x[k];
         Vec3 move{};
         for (const auto j : list.neighbors_of(k))
-            law.apply(xk, x[j], radius[k] + radius[j], order[k] < order[j], move, pair);
+            law.apply(separation<Wrap>(xk, x[j]), radius[k] + radius[j], order[k] < order[j], move,
+                      pair);
         add_wall_term(xk, radius[k], law, move, wall);
         return move;
     }
@@ -184,6 +226,10 @@ struct SoftBed {
     /// when their centres coincide). \f$\delta\f$, \f$|r|\f$ and so the factor are the same
     /// bits from either side (r_ji = -r_ij exactly). Two pairs share one SSE2 square root and
     /// division where there is SSE2 (IEEE-exact either way). \return the largest overlap.
+    double pair_factors(std::size_t begin, std::size_t end, const LinearOverlapLaw& law) {
+        return cell ? pair_factors<true>(begin, end, law) : pair_factors<false>(begin, end, law);
+    }
+    template <bool Wrap>
     double pair_factors(std::size_t begin, std::size_t end, const LinearOverlapLaw& law) {
         const Vec3* const x = packing.centers.data();
         const double* const radius = packing.radii.data();
@@ -198,7 +244,8 @@ struct SoftBed {
         for (; p + 1 < end; p += 2) {
             const std::uint32_t i0 = first[p], j0 = second[p], i1 = first[p + 1],
                                 j1 = second[p + 1];
-            const __m128d dist2 = _mm_set_pd(norm2(x[j1] - x[i1]), norm2(x[j0] - x[i0]));
+            const __m128d dist2 = _mm_set_pd(norm2(separation<Wrap>(x[i1], x[j1])),
+                                             norm2(separation<Wrap>(x[i0], x[j0])));
             const __m128d sum = _mm_set_pd(radius[i1] + radius[j1], radius[i0] + radius[j0]);
             const __m128d dist = _mm_sqrt_pd(dist2);
             const __m128d overlap = _mm_sub_pd(sum, dist);
@@ -214,7 +261,7 @@ struct SoftBed {
         for (; p < end; ++p) {
             const std::uint32_t i = first[p], j = second[p];
             const double sum = radius[i] + radius[j];
-            const double dist2 = norm2(x[j] - x[i]);
+            const double dist2 = norm2(separation<Wrap>(x[i], x[j]));
             const double dist = std::sqrt(dist2);
             const double overlap = sum - dist;
             const double value = law.ck * overlap / dist; // +inf for coincident centres
@@ -231,6 +278,11 @@ struct SoftBed {
     /// bits (a factor of 0 leaves the sum unchanged: it never holds -0). `wall` tracks the
     /// largest wall overlap.
     Vec3 contact_move_from_factors(std::size_t k, const LinearOverlapLaw& law, double& wall) const {
+        return cell ? contact_move_from_factors<true>(k, law, wall)
+                    : contact_move_from_factors<false>(k, law, wall);
+    }
+    template <bool Wrap>
+    Vec3 contact_move_from_factors(std::size_t k, const LinearOverlapLaw& law, double& wall) const {
         const Vec3* const x = packing.centers.data();
         const double* const radius = packing.radii.data();
         const Vec3 xk = x[k];
@@ -245,7 +297,7 @@ struct SoftBed {
                 const double overlap = radius[k] + radius[j];
                 move.z += order[k] < order[j] ? -law.ck * overlap : law.ck * overlap;
             } else {
-                move -= (x[j] - xk) * f;
+                move -= separation<Wrap>(xk, x[j]) * f;
             }
         }
         add_wall_term(xk, radius[k], law, move, wall);

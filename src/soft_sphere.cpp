@@ -3,7 +3,9 @@
 #include <algorithm>
 #include <chrono>
 #include <cmath>
+#include <numbers>
 #include <optional>
+#include <type_traits>
 
 #include <fmt/format.h>
 
@@ -30,9 +32,52 @@ struct SweepStats {
 
 } // namespace
 
+std::string container_fit_problem(const Container& container, double largest) {
+    constexpr double widest = 1e4; // as the cylinder's aspect ratio
+    return std::visit(
+        [&](const auto& shape) -> std::string {
+            using S = std::decay_t<decltype(shape)>;
+            if constexpr (std::is_same_v<S, Cylinder>) {
+                const double a = 2.0 * shape.radius();
+                if (!(a >= largest && a <= widest))
+                    return fmt::format("a tube diameter from {:.6g} (the largest sphere) to {:g}",
+                                       largest, widest);
+            } else if constexpr (std::is_same_v<S, Annulus>) {
+                const double outer = 2.0 * shape.outer_radius(), inner = 2.0 * shape.inner_radius();
+                if (!(outer <= widest && inner >= 0.0 && outer - inner >= 2.0 * largest))
+                    return fmt::format(
+                        "D up to {:g} and a rod DI <= D - {:.6g} (the gap between rod and tube, "
+                        "(D - DI) / 2, at least the largest sphere, {:.6g})",
+                        widest, 2.0 * largest, largest);
+            } else {
+                // A box holds a sphere across; a periodic cell twice across, so that two
+                // spheres in contact have one nearest image.
+                const double least = (std::is_same_v<S, Periodic> ? 2.0 : 1.0) * largest;
+                const Rectangle b = shape.bounds();
+                const double lx = b.x_high - b.x_low, ly = b.y_high - b.y_low;
+                if (!(lx >= least && ly >= least && lx <= widest && ly <= widest))
+                    return fmt::format("widths from {:.6g} ({} the largest sphere{}) to {:g}",
+                                       least, std::is_same_v<S, Periodic> ? "twice" : "",
+                                       std::is_same_v<S, Periodic> ? ", for the minimum image" : "",
+                                       widest);
+            }
+            return {};
+        },
+        container.shape());
+}
+
 void SoftSphereParameters::validate() const {
-    require(std::isfinite(aspect_ratio) && aspect_ratio >= 1.0 && aspect_ratio <= 1e4,
-            "aspect-ratio", aspect_ratio, "1 <= a <= 10000 (a < 1: one sphere does not fit)");
+    if (container && !container->cylinder()) {
+        const std::string problem = container_fit_problem(*container, largest_size());
+        if (!problem.empty())
+            throw InvalidInput(fmt::format("--container {} (in units of Dp) is not allowed; "
+                                           "allowed: {} (Dp)",
+                                           container->spec(), problem));
+    } else {
+        const double a = container ? 2.0 * container->cylinder()->radius() : aspect_ratio;
+        require(std::isfinite(a) && a >= 1.0 && a <= 1e4, "aspect-ratio", a,
+                "1 <= a <= 10000 (a < 1: one sphere does not fit)");
+    }
     require(particles >= 1 && particles <= 100'000'000, "particles", static_cast<double>(particles),
             "1 to 100000000");
     // Bounded so that lengths, and volumes (diameter^3), stay finite doubles in every unit.
@@ -67,9 +112,17 @@ void SoftSphereParameters::validate() const {
                                        "per particle",
                                        sizes.size(), particles));
     const auto [smallest, largest] = std::minmax_element(sizes.begin(), sizes.end());
+    if (container && !container->cylinder()) { // the fit checked above: only NaN and <= 0 left
+        for (const double d : sizes)
+            if (!(d > 0.0))
+                throw InvalidInput(fmt::format("--sizes: a diameter of {:.6g} Dp is not "
+                                               "allowed; allowed: diameters > 0",
+                                               d));
+    }
+    const double a = container_dp().cylinder() ? 2.0 * container_dp().cylinder()->radius() : 1e300;
     // Written to fail on NaN: every comparison with NaN is false.
     for (const double d : sizes)
-        if (!(d > 0.0 && d < aspect_ratio))
+        if (!(d > 0.0 && d < a))
             throw InvalidInput(fmt::format(
                 "--sizes: a diameter of {:.6g} Dp is not allowed in a tube of a = {:.6g}; allowed: "
                 "diameters > 0 and below the tube's (a Dp, Dp = {:.6g} the reference diameter)",
@@ -86,29 +139,52 @@ double initial_bed_height(std::uint64_t particles, double aspect_ratio, double e
 }
 
 double initial_bed_height(const SoftSphereParameters& p) {
+    const Container container = p.container_dp();
+    if (const Cylinder* c = container.cylinder()) {
+        // The paper's eq. (6) with a = 2 Rt / Dp.
+        const double a = p.container ? 2.0 * c->radius() : p.aspect_ratio;
+        if (p.sizes.empty())
+            return initial_bed_height(p.particles, a, p.e0);
+        double solid = 0.0; // sum of (d_i / Dp)^3, in generation order
+        for (const double d : p.sizes)
+            solid += d * d * d;
+        return 2.0 / 3.0 * solid / (a * a * (1.0 - p.e0));
+    }
+    double solid = 0.0;
     if (p.sizes.empty())
-        return initial_bed_height(p.particles, p.aspect_ratio, p.e0);
-    double solid = 0.0; // sum of (d_i / Dp)^3, in generation order
+        solid = static_cast<double>(p.particles);
     for (const double d : p.sizes)
         solid += d * d * d;
-    return 2.0 / 3.0 * solid / (p.aspect_ratio * p.aspect_ratio * (1.0 - p.e0));
+    return std::numbers::pi / 6.0 * solid / (container.cross_section_area() * (1.0 - p.e0));
 }
 
 double SoftSphereParameters::smallest_size() const {
     return sizes.empty() ? 1.0 : *std::min_element(sizes.begin(), sizes.end());
 }
 
-Overlaps measure_overlaps(const Packing& packing, const Cylinder& container) {
+double SoftSphereParameters::largest_size() const {
+    return sizes.empty() ? 1.0 : *std::max_element(sizes.begin(), sizes.end());
+}
+
+Container SoftSphereParameters::container_dp() const {
+    return container ? *container : Container(Cylinder(0.5 * aspect_ratio));
+}
+
+Overlaps measure_overlaps(const Packing& packing, const Container& container) {
     Overlaps out;
     NeighborList list;
+    const Periodic* const cell = container.periodic();
+    if (cell)
+        list.wrap(*cell);
     list.build(packing.centers, packing.radii, 0.0);
     for (std::size_t i = 0; i < packing.size(); ++i) {
         for (const auto j : list.neighbors_of(i)) {
             const double sum = packing.radii[i] + packing.radii[j];
-            out.pair = std::max(out.pair, sum - norm(packing.centers[j] - packing.centers[i]));
+            const Vec3 rij = cell ? cell->separation(packing.centers[i], packing.centers[j])
+                                  : packing.centers[j] - packing.centers[i];
+            out.pair = std::max(out.pair, sum - norm(rij));
         }
-        out.wall = std::max(out.wall,
-                            container.wall_contact(packing.centers[i], packing.radii[i]).overlap);
+        out.wall = std::max(out.wall, container.wall_overlap(packing.centers[i], packing.radii[i]));
     }
     return out;
 }
@@ -120,7 +196,7 @@ struct SoftSphereGenerator::State : detail::SoftBed {
     std::vector<StageRecord> stages;
 
     explicit State(const SoftSphereParameters& p)
-        : SoftBed(p.aspect_ratio)
+        : SoftBed(p.container_dp())
         , params(detail::in_dp(p)) {}
 
     void generate() { SoftBed::generate(params); }

@@ -37,15 +37,16 @@ nlohmann::json soft_sphere_summary(const SoftSphereParameters& p, const SoftSphe
     json summary;
     summary["version"] = std::string(version);
     summary["generator"] = "soft-sphere (Salvat et al. 2005)";
-    summary["aspect_ratio"] = p.aspect_ratio;
+    if (result.container.cylinder())
+        summary["aspect_ratio"] = p.aspect_ratio; // another container has none: its spec
     summary["particles"] = p.particles;
     summary["seed"] = p.seed;
     summary["diameter"] = d;
-    summary["container"] = {{"shape", "cylinder"},
-                            {"radius", result.container.radius()},
-                            {"height", bed_top(result.packing)},
-                            {"axis", "z through x = y = 0"},
-                            {"bottom", 0.0}};
+    summary["container"] = container_summary(result.container);
+    summary["container"]["height"] = bed_top(result.packing);
+    summary["container"]["bottom"] = 0.0;
+    if (!result.container.box() && !result.container.periodic())
+        summary["container"]["axis"] = "z through x = y = 0";
 
     const auto band = band_clear_of_ends(result.packing, band_clearance * d);
     if (band) {
@@ -166,6 +167,11 @@ nlohmann::json size_statistics_summary(const SizeStatistics& s) {
 nlohmann::json container_summary(const Container& container) {
     if (const Cylinder* c = container.cylinder())
         return {{"shape", "cylinder"}, {"radius", c->radius()}};
+    if (const Annulus* a = container.annulus())
+        return {{"shape", "annulus"},
+                {"radius", a->outer_radius()},
+                {"inner_radius", a->inner_radius()},
+                {"spec", container.spec()}};
     const Rectangle b = container.bounds();
     return {{"shape", container.name()},
             {"size", {b.x_high - b.x_low, b.y_high - b.y_low}},

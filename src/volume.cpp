@@ -293,6 +293,10 @@ double segment_volume(double r, double c, double z_low, double z_high) {
 
 } // namespace
 
+double sphere_slab_volume(double z_center, double radius, double z_low, double z_high) {
+    return segment_volume(radius, z_center, z_low, z_high);
+}
+
 double disk_rectangle_area(double radius, double x_low, double x_high, double y_low,
                            double y_high) {
     if (!(x_high > x_low && y_high > y_low) || !(radius > 0.0))

@@ -458,7 +458,7 @@ TEST(PairCorrelation, GeneratedBedAtAspectRatio5TendsToOne) {
     parameters.particles = 300;
     parameters.seed = 1;
     const SoftSphereResult bed = generate_soft_sphere(parameters);
-    const double rt = bed.container.radius();
+    const double rt = bed.container.cylinder()->radius();
     AnalysisOptions o;
     o.rdf_bin = 0.1;
     const BedAnalysis a = analyze_bed(bed.packing, bed.container, o);

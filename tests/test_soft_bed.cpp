@@ -15,7 +15,7 @@ bool same_bits(const Vec3& a, const Vec3& b) {
 }
 
 TEST(SoftBedKernels, PairFactorsGiveContactMovesBitForBit) {
-    SoftBed bed(4.0); // Rt = 2 Dp
+    SoftBed bed(Cylinder(2.0)); // Rt = 2 Dp
     const std::vector<Vec3> centres = {
         {0.0, 0.0, 1.0},   {0.0, 0.0, 1.0},    // coincident centres
         {0.9, 0.0, 1.0},                       // overlaps both of them by 0.1 Dp
@@ -77,7 +77,7 @@ TEST(SoftBedKernels, UnequalSpheresPressEachOtherAndTheWallByTheirOwnRadii) {
     EXPECT_NEAR(largest, 0.1, 1e-15);
     EXPECT_NEAR(move.x, -0.03, 1e-15);
     EXPECT_EQ(move.y, 0.0);
-    SoftBed bed(6.0); // Rt = 3
+    SoftBed bed(Cylinder(3.0)); // Rt = 3
     Vec3 wall_move{};
     double wall = 0.0;
     bed.add_wall_term({0.0, 2.1, 1.0}, 1.0, law, wall_move, wall);

@@ -163,7 +163,7 @@ TEST(SoftSphere, SmallBedConvergesInsideTheContainer) {
     const SoftSphereResult res = generate_soft_sphere(p);
     EXPECT_LT(res.max_overlap_pair, 1e-4);
     EXPECT_LT(res.max_overlap_wall, 1e-4);
-    EXPECT_DOUBLE_EQ(res.container.radius(), 4.0);
+    EXPECT_DOUBLE_EQ(res.container.cylinder()->radius(), 4.0);
     ASSERT_EQ(res.stages.size(), 3u);
     EXPECT_EQ(res.stages[0].iterations + res.stages[1].iterations + res.stages[2].iterations,
               res.iterations);
@@ -305,7 +305,7 @@ SizeChecks relative_overlaps(const SoftSphereResult& r) {
             const double overlap = p.radii[i] + p.radii[j] - norm(p.centers[j] - p.centers[i]);
             out.pair = std::max(out.pair, overlap / (2.0 * std::min(p.radii[i], p.radii[j])));
         }
-        out.wall = std::max(out.wall, r.container.wall_contact(p.centers[i], p.radii[i]).overlap /
+        out.wall = std::max(out.wall, r.container.wall_overlap(p.centers[i], p.radii[i]) /
                                           (2.0 * p.radii[i]));
         out.below_floor = std::max(out.below_floor, p.radii[i] - p.centers[i].z);
     }

@@ -229,7 +229,7 @@ Command register_analyze(CLI::App& parent) {
                         "cylinder:2Rt; default: summary.json next to the file")
             ->check(real_in(0.0, limits::max_length, true, false));
     add_container_option(*app, o.container, "file units; default: summary.json next to the file",
-                         true)
+                         {"cylinder", "box"})
         ->excludes(radius);
     add_output_directory(*app, o.out, o.force, "analysis/ next to the file");
     app->add_option("-d,--diameter", o.diameter,

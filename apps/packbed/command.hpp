@@ -71,26 +71,32 @@ struct InputPlacement {
 CLI::Option* add_input_placement(CLI::App& app, InputPlacement& placement);
 
 /// `--container SPEC`, the container in length units, the one form every subcommand takes:
-/// `cylinder:D`, a tube of inner diameter D (the axis is the z axis, the floor z = 0), and
-/// `box:LX,LY`, four flat walls at x = 0, LX and y = 0, LY (where a subcommand measures or
-/// exports boxes). Annulus and periodic cells will extend it (issue 17).
+/// `cylinder:D`, a tube of inner diameter D (the axis is the z axis, the floor z = 0);
+/// `box:LX,LY`, four flat walls at x = 0, LX and y = 0, LY; `annulus:D,DI`, the space between
+/// the tube of diameter D and a coaxial rod of diameter DI < D; `periodic:LX,LY`, a cell
+/// periodic in x and y, [0, LX) x [0, LY), with no side walls.
 struct ContainerSpec {
-    std::string shape;     ///< "cylinder" or "box"
-    double diameter = 0.0; ///< a cylinder's D, > 0
-    double lx = 0.0;       ///< a box's widths, > 0
+    std::string shape;     ///< "cylinder", "box", "annulus" or "periodic"
+    double diameter = 0.0; ///< a cylinder's or annulus's D, > 0
+    double inner = 0.0;    ///< an annulus's DI, 0 < DI < D
+    double lx = 0.0;       ///< a box's or cell's widths, > 0
     double ly = 0.0;
     /// \return the library's container.
     Container container() const;
 };
 
-/// \return the container of `text` ("cylinder:D", "box:LX,LY"), or nothing when it is not one.
+/// \return the container of `text` ("cylinder:D", "box:LX,LY", "annulus:D,DI",
+/// "periodic:LX,LY"), or nothing when it is not one.
 std::optional<ContainerSpec> parse_container(std::string_view text);
+
+/// The shapes every subcommand takes.
+inline const std::vector<std::string_view> all_shapes{"cylinder", "box", "annulus", "periodic"};
 
 /// Add `--container SPEC` to `app`, bound to `text` ("" when not given), checked by
 /// parse_container. \param meaning what lengths are measured in and what it replaces, for
-/// --help \param boxes whether the subcommand takes a box (generate and hydraulics do not yet)
+/// --help \param shapes the shapes the subcommand takes
 CLI::Option* add_container_option(CLI::App& app, std::string& text, const std::string& meaning,
-                                  bool boxes = false);
+                                  const std::vector<std::string_view>& shapes = all_shapes);
 
 /// The container recorded in `summary.json` beside a particle file (written by
 /// `packbed generate`, `lattice`, `analyze`): a cylinder, or the box of a lattice in a box.

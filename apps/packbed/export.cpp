@@ -464,7 +464,7 @@ Command register_export(CLI::App& parent) {
                         "without an example DEM input)")
             ->check(real_in(0.0, inf, true, true));
     add_container_option(*app, o.container, "file units; default: summary.json beside the file",
-                         /*boxes=*/true)
+                         {"cylinder", "box"})
         ->excludes(radius);
     app->add_option("--container-height", o.container_height,
                     "container height from the floor z = 0 (default: the bed's top + 1 Dp)")

@@ -77,7 +77,22 @@ int run_generate(GenerateOptions& o) {
                                            "checkpoint does not record the sizes yet)",
                                            o.checkpoint, o.sizes));
     }
-    if (const auto tube = parse_container(o.container)) {
+    if (const auto spec = parse_container(o.container); spec && spec->shape != "cylinder") {
+        // Another container, in units of Dp (with --sizes, d32), checked in the user's units.
+        const Container in_dp = spec->container().scaled(1.0 / o.params.diameter);
+        const std::string problem = container_fit_problem(in_dp, o.params.largest_size());
+        if (!problem.empty())
+            throw InvalidInput(fmt::format(
+                "--container {} is not allowed with Dp = {:.6g}{}; allowed: {} (in units of Dp)",
+                o.container, o.params.diameter, drawn ? " (the sizes' Sauter mean d32)" : "",
+                problem));
+        o.params.container = in_dp;
+        if (!o.checkpoint.empty())
+            throw InvalidInput(fmt::format("--checkpoint {} is not allowed with --container {}; "
+                                           "allowed: --checkpoint with a cylinder (a checkpoint "
+                                           "does not record the container yet)",
+                                           o.checkpoint, o.container));
+    } else if (const auto tube = parse_container(o.container)) {
         // a = D / Dp, both in the unit of --diameter (with --sizes, Dp is d32).
         const double a = tube->diameter / o.params.diameter;
         const std::string_view dp = drawn ? "the sizes' Sauter mean d32" : "--diameter";
@@ -137,9 +152,11 @@ int run_generate(GenerateOptions& o) {
     out.stage("summary.json", summary.dump(2) + "\n");
     out.commit();
     if (!o.quiet) {
-        fmt::print("packbed generate: {} spheres, a = {}, seed {}: {} iterations, {:.2f} s\n",
-                   o.params.particles, o.params.aspect_ratio, o.params.seed, result.iterations,
-                   result.seconds);
+        fmt::print("packbed generate: {} spheres, {}, seed {}: {} iterations, {:.2f} s\n",
+                   o.params.particles,
+                   o.params.container ? result.container.spec()
+                                      : fmt::format("a = {}", o.params.aspect_ratio),
+                   o.params.seed, result.iterations, result.seconds);
         fmt::print("largest overlaps: sphere-sphere {:.3e} Dp, sphere-wall {:.3e} Dp\n",
                    result.max_overlap_pair, result.max_overlap_wall);
         if (summary["void_fraction"].is_number())
@@ -164,7 +181,7 @@ Command register_generate(CLI::App& parent) {
     auto& o = *options;
     auto& p = o.params;
     CLI::App* app = parent.add_subcommand(
-        "generate", "Pack spheres in a cylinder with the soft-sphere algorithm of Salvat et al. "
+        "generate", "Pack spheres in a container with the soft-sphere algorithm of Salvat et al. "
                     "(2005) and write particles.csv, particles.vtu and summary.json");
     app->option_defaults()->always_capture_default();
     const double inf = std::numeric_limits<double>::infinity();
@@ -174,7 +191,8 @@ Command register_generate(CLI::App& parent) {
                         "a = 2 Rt / Dp, tube over sphere diameter (shorthand of --container)")
             ->check(real_in(1.0, 1e4, false, false));
     add_container_option(*app, o.container,
-                         "in the unit of --diameter: a = D / Dp; instead of --aspect-ratio")
+                         "lengths in the unit of --diameter; a tube: a = D / Dp; instead of "
+                         "--aspect-ratio")
         ->excludes(aspect);
     app->add_option("-n,--particles", p.particles, "Np, number of spheres")
         ->check(whole_in(1, limits::max_spheres));

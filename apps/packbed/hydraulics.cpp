@@ -285,7 +285,8 @@ Command register_hydraulics(CLI::App& parent) {
                         "tube over particle diameter: adds Eisfeld & Schnitzlein's wall-corrected "
                         "pressure drop (shorthand of --container)")
             ->check(real_in(1.0, limits::max_tube_aspect_ratio, false, false));
-    add_container_option(*app, o.container, "metres: a = D / d; instead of --aspect-ratio")
+    add_container_option(*app, o.container, "metres: a = D / d; instead of --aspect-ratio",
+                         {"cylinder"})
         ->excludes(aspect);
     app->add_flag("--json", o.json, "print everything as JSON");
     app->fallthrough();

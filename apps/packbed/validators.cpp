@@ -189,46 +189,71 @@ CLI::Option* add_input_placement(CLI::App& app, InputPlacement& p) {
 Container ContainerSpec::container() const {
     if (shape == "box")
         return Box(lx, ly);
+    if (shape == "annulus")
+        return Annulus(0.5 * diameter, 0.5 * inner);
+    if (shape == "periodic")
+        return Periodic(lx, ly);
     return Cylinder(0.5 * diameter);
 }
 
 std::optional<ContainerSpec> parse_container(std::string_view text) {
-    constexpr std::string_view cylinder = "cylinder:", box = "box:";
-    const bool is_box = text.starts_with(box);
-    if (!text.starts_with(cylinder) && !is_box)
+    const std::size_t colon = text.find(':');
+    if (colon == std::string_view::npos)
         return std::nullopt;
-    const auto v = comma_numbers(text.substr(is_box ? box.size() : cylinder.size()));
-    if (!v || v->size() != (is_box ? 2u : 1u))
+    const std::string_view shape = text.substr(0, colon);
+    const auto known = std::find(all_shapes.begin(), all_shapes.end(), shape);
+    const auto v = comma_numbers(text.substr(colon + 1));
+    if (known == all_shapes.end() || !v || v->size() != (shape == "cylinder" ? 1u : 2u))
         return std::nullopt;
     // Every side within max_length of the origin, as the analysis allows.
-    const double largest = is_box ? limits::max_length : 2.0 * limits::max_length;
+    const bool round = shape == "cylinder" || shape == "annulus";
+    const double largest = round ? 2.0 * limits::max_length : limits::max_length;
     for (const double x : *v)
         if (!(x > 0.0 && x <= largest))
             return std::nullopt;
-    if (is_box)
-        return ContainerSpec{"box", 0.0, (*v)[0], (*v)[1]};
-    return ContainerSpec{"cylinder", (*v)[0], 0.0, 0.0};
+    ContainerSpec spec{std::string(shape)};
+    if (shape == "annulus" && !((*v)[1] < (*v)[0]))
+        return std::nullopt;
+    if (round) {
+        spec.diameter = (*v)[0];
+        spec.inner = v->size() > 1 ? (*v)[1] : 0.0;
+    } else {
+        spec.lx = (*v)[0];
+        spec.ly = (*v)[1];
+    }
+    return spec;
 }
 
 CLI::Option* add_container_option(CLI::App& app, std::string& text, const std::string& meaning,
-                                  bool boxes) {
-    std::string allowed = fmt::format(
-        "cylinder:D, a tube of inner diameter D, a number in (0, {:g}]", 2.0 * limits::max_length);
-    if (boxes)
-        allowed += fmt::format(", or box:LX,LY, walls at x = 0, LX and y = 0, LY, each in "
-                               "(0, {:g}]",
-                               limits::max_length);
-    else
-        allowed += " (boxes come to this subcommand with issue 17)";
-    const std::string help =
-        boxes ? "the container: cylinder:D, a tube of inner diameter D, or box:LX,LY (" + meaning +
-                    ")"
-              : "the container: cylinder:D, a tube of inner diameter D (" + meaning + ")";
+                                  const std::vector<std::string_view>& shapes) {
+    const auto takes = [&](std::string_view s) {
+        return std::find(shapes.begin(), shapes.end(), s) != shapes.end();
+    };
+    std::vector<std::string> forms;
+    const double round = 2.0 * limits::max_length, flat = limits::max_length;
+    if (takes("cylinder"))
+        forms.push_back(
+            fmt::format("cylinder:D, a tube of inner diameter D, a number in (0, {:g}]", round));
+    if (takes("box"))
+        forms.push_back(
+            fmt::format("box:LX,LY, walls at x = 0, LX and y = 0, LY, each in (0, {:g}]", flat));
+    if (takes("annulus"))
+        forms.push_back(fmt::format("annulus:D,DI, between a tube of diameter D and a coaxial "
+                                    "rod of diameter DI, 0 < DI < D <= {:g}",
+                                    round));
+    if (takes("periodic"))
+        forms.push_back(
+            fmt::format("periodic:LX,LY, a cell periodic in x and y, each in (0, {:g}]", flat));
+    const std::string allowed = fmt::format("{}", fmt::join(forms, "; or "));
+    std::vector<std::string_view> names;
+    for (const auto s : shapes)
+        names.push_back(s);
+    const std::string help = fmt::format("the container: {} ({})", fmt::join(names, ", "), meaning);
     return app.add_option("--container", text, help)
         ->check(CLI::Validator(
-            [allowed, boxes](std::string& value) -> std::string {
+            [allowed, shapes](std::string& value) -> std::string {
                 if (const auto spec = parse_container(value);
-                    spec && (boxes || spec->shape != "box"))
+                    spec && std::find(shapes.begin(), shapes.end(), spec->shape) != shapes.end())
                     return {};
                 return fmt::format("'{}' is not allowed; allowed: {}",
                                    printable(value.substr(0, 80)), allowed);

@@ -8,6 +8,7 @@
 #include <algorithm>
 #include <cmath>
 #include <concepts>
+#include <limits>
 #include <string>
 #include <string_view>
 #include <utility>
@@ -76,6 +77,13 @@ public:
         return {overlap, {-p.x / r, -p.y / r, 0.0}};
     }
 
+    /// The wall law as Box::wall_contacts has it: f(overlap, push) when the sphere presses
+    /// into the wall (wall_contact's overlap > 0).
+    template <class F> void wall_contacts(const Vec3& p, double radius, F&& f) const {
+        if (const WallContact w = wall_contact(p, radius); w.overlap > 0.0)
+            f(w.overlap, w.push);
+    }
+
     /// \return the distance of p from the wall, Rt - sqrt(x^2 + y^2) (negative outside).
     double wall_distance(const Vec3& p) const { return m_radius - std::hypot(p.x, p.y); }
 
@@ -125,15 +133,12 @@ private:
     double m_radius;
 };
 
-static_assert(LateralWall<Cylinder>);
-
 /// A rectangular box with four flat walls, x in [x_low, x_high], y in [y_low, y_high]; the
 /// floor is z = 0 and it is open at the top. `--container box:LX,LY` is the box from (0, 0) to
 /// (LX, LY). The distance from the wall is the distance from the nearest of the four faces, so
 /// the set of points at least d from the wall is the box shrunk by d on every side, and a
 /// profile against it counts a corner region with the face nearer to it (docs/analysis.md).
-/// Not yet a LateralWall: a sphere in a corner presses two walls at once, and the generators
-/// come with issue 17. Immutable after construction.
+/// Immutable after construction.
 class Box {
 public:
     /// The box from (0, 0) to (lx, ly). \param lx,ly widths (length, >= 0)
@@ -154,6 +159,21 @@ public:
     /// \return true if the point lies inside the box above the floor.
     bool contains(const Vec3& p) const {
         return p.z >= 0.0 && p.x >= m_x_low && p.x <= m_x_high && p.y >= m_y_low && p.y <= m_y_high;
+    }
+
+    /// The wall law, face by face: call f(overlap, push) for each face the sphere (p, r)
+    /// presses into, overlap = r - (distance of p from the face) > 0, push the face's inward
+    /// normal. A sphere in a corner presses two faces; each pushes on its own, as each wall of
+    /// the paper's eq. (4) would.
+    template <class F> void wall_contacts(const Vec3& p, double radius, F&& f) const {
+        if (const double o = radius - (p.x - m_x_low); o > 0.0)
+            f(o, Vec3{1.0, 0.0, 0.0});
+        if (const double o = radius - (m_x_high - p.x); o > 0.0)
+            f(o, Vec3{-1.0, 0.0, 0.0});
+        if (const double o = radius - (p.y - m_y_low); o > 0.0)
+            f(o, Vec3{0.0, 1.0, 0.0});
+        if (const double o = radius - (m_y_high - p.y); o > 0.0)
+            f(o, Vec3{0.0, -1.0, 0.0});
     }
 
     /// \return the distance of p from the nearest face (negative outside).
@@ -210,29 +230,208 @@ private:
     double m_x_low, m_x_high, m_y_low, m_y_high;
 };
 
+/// The space between a vertical tube of radius `outer_radius` and a coaxial rod (a
+/// thermowell) of radius `inner_radius` < outer_radius, about the z axis; the floor is z = 0
+/// and it is open at the top. Both walls are deformable as the paper's lateral wall.
+/// `--container annulus:D,DI` is the annulus of D = 2 outer_radius, DI = 2 inner_radius. The
+/// distance from the wall is the distance from the nearer of the two walls; the analysis also
+/// measures each wall's own profile (docs/analysis.md). Immutable after construction.
+class Annulus {
+public:
+    /// \param outer_radius the tube's inner radius R (length, > 0)
+    /// \param inner_radius the rod's radius Ri (length, 0 <= Ri < R)
+    Annulus(double outer_radius, double inner_radius)
+        : m_outer(outer_radius)
+        , m_inner(inner_radius) {}
+
+    double outer_radius() const { return m_outer; }
+    double inner_radius() const { return m_inner; }
+
+    /// \return true if p lies between the rod and the tube above the floor.
+    bool contains(const Vec3& p) const {
+        const double rho2 = p.x * p.x + p.y * p.y;
+        return p.z >= 0.0 && rho2 <= m_outer * m_outer && rho2 >= m_inner * m_inner;
+    }
+
+    /// The wall law of both walls, as Cylinder's for each: the tube, overlap rho + r - R,
+    /// pushes towards the axis; the rod, overlap Ri + r - rho, pushes away from it (rho the
+    /// centre's distance from the axis; no push on the axis itself).
+    template <class F> void wall_contacts(const Vec3& p, double radius, F&& f) const {
+        const double rho = std::sqrt(p.x * p.x + p.y * p.y);
+        const Vec3 out = rho > 0.0 ? Vec3{p.x / rho, p.y / rho, 0.0} : Vec3{};
+        if (const double o = rho + radius - m_outer; o > 0.0)
+            f(o, out * -1.0);
+        if (const double o = m_inner + radius - rho; o > 0.0)
+            f(o, out);
+    }
+
+    /// \return the distance of p from the nearer wall, min(R - rho, rho - Ri).
+    double wall_distance(const Vec3& p) const {
+        const double rho = std::hypot(p.x, p.y);
+        return std::min(m_outer - rho, rho - m_inner);
+    }
+
+    /// \return the nearest and farthest distance from the nearer wall of the points of the
+    /// sphere (c, r): min(R - (rho + r), (rho - r) - Ri) and min(d + r, depth).
+    std::pair<double, double> wall_distances(const Vec3& c, double r) const {
+        const double rho = std::hypot(c.x, c.y);
+        const double d = std::min(m_outer - rho, rho - m_inner);
+        return {std::min(m_outer - (rho + r), (rho - r) - m_inner), std::min(d + r, depth())};
+    }
+
+    /// \return the largest distance from the walls inside: half the gap, (R - Ri) / 2.
+    double depth() const { return 0.5 * (m_outer - m_inner); }
+
+    /// The walls within `gap` of the sphere (c, r) as tangent planes at their points nearest
+    /// the centre: the tube's (normal (x, y, 0) / rho, offset R) when R - rho - r < gap, the
+    /// rod's (normal -(x, y, 0) / rho, offset -Ri) when rho - r - Ri < gap.
+    std::vector<WallPlane> walls_within(const Vec3& c, double r, double gap) const;
+
+    /// \return the cross-section, pi (R^2 - Ri^2).
+    double cross_section_area() const;
+    /// \return the area between the distances d_low <= d_high from the nearer wall.
+    double shell_area(double d_low, double d_high) const;
+    /// \return the points at least d >= 0 from both walls: the annulus of radii
+    /// max(R - d, mid) and min(Ri + d, mid), mid = (R + Ri) / 2.
+    Annulus shrunk(double d) const;
+
+    /// Exact volume of the sphere (c, r) in the annulus between z_low and z_high: its volume
+    /// inside the tube less its volume inside the rod (sphere_volume_in_cylinder_slab twice).
+    double sphere_volume(const Vec3& c, double r, double z_low, double z_high) const;
+    /// The same, by ball_volume_in_cylinder where the planes do not cut the ball.
+    double ball_volume(const Vec3& c, double r, double z_low, double z_high) const;
+
+    /// "annulus:D,DI" (9 significant digits).
+    std::string spec() const;
+    std::string_view name() const { return "annulus"; }
+    Rectangle bounds() const { return {-m_outer, m_outer, -m_outer, m_outer}; }
+    std::string_view profile_position_name() const { return "wall_distance"; }
+    double profile_position(double d) const { return d; }
+
+private:
+    double m_outer, m_inner;
+};
+
+/// A cell periodic in x and y, [0, LX) x [0, LY), with no side walls: a sphere leaving one
+/// side comes back through the opposite one, and two spheres touch through the sides by the
+/// minimum image (their nearest copies). The floor is z = 0 and it is open at the top. For
+/// bulk statistics: the analysis measures it along z only. Every question about walls gets
+/// "none": wall_distance is +infinity, depth 0 (no wall profile), no wall contacts. A sphere
+/// cut by a side of the cell has its missing part inside through the opposite side, so its
+/// volume in the cell is its whole volume between the heights. Immutable after construction.
+class Periodic {
+public:
+    /// \param lx,ly the cell's periods (length, > 0)
+    Periodic(double lx, double ly)
+        : m_lx(lx)
+        , m_ly(ly) {}
+
+    double lx() const { return m_lx; }
+    double ly() const { return m_ly; }
+
+    /// \return true for every point above the floor: each is a copy of one in the cell.
+    bool contains(const Vec3& p) const { return p.z >= 0.0; }
+    /// No wall: f is never called.
+    template <class F> void wall_contacts(const Vec3&, double, F&&) const {}
+
+    /// \return p moved by whole periods into [0, LX) x [0, LY) (z unchanged).
+    Vec3 wrapped(const Vec3& p) const {
+        return {p.x - m_lx * std::floor(p.x / m_lx), p.y - m_ly * std::floor(p.y / m_ly), p.z};
+    }
+    /// \return the separation b - a between the nearest copies of a and b (minimum image),
+    /// for |b - a| within one period and a half on each side: whole periods are taken off
+    /// each of x and y while it exceeds half a period. -separation(a, b) == separation(b, a)
+    /// to the bit.
+    Vec3 separation(const Vec3& a, const Vec3& b) const {
+        Vec3 d = b - a;
+        const double hx = 0.5 * m_lx, hy = 0.5 * m_ly;
+        if (d.x > hx)
+            d.x -= m_lx;
+        else if (d.x < -hx)
+            d.x += m_lx;
+        if (d.y > hy)
+            d.y -= m_ly;
+        else if (d.y < -hy)
+            d.y += m_ly;
+        return d;
+    }
+
+    double wall_distance(const Vec3&) const { return std::numeric_limits<double>::infinity(); }
+    std::pair<double, double> wall_distances(const Vec3&, double) const {
+        return {std::numeric_limits<double>::infinity(), std::numeric_limits<double>::infinity()};
+    }
+    /// 0: there is no wall to measure a profile from.
+    double depth() const { return 0.0; }
+    std::vector<WallPlane> walls_within(const Vec3&, double, double) const { return {}; }
+    /// \return the cross-section, LX LY.
+    double cross_section_area() const { return m_lx * m_ly; }
+    double shell_area(double, double) const { return 0.0; }
+    Periodic shrunk(double) const { return *this; }
+    /// The whole sphere between z_low and z_high (spherical segments): the parts beyond a
+    /// side are inside through the opposite one. Exact for spheres narrower than the cell.
+    double sphere_volume(const Vec3& c, double r, double z_low, double z_high) const;
+    double ball_volume(const Vec3& c, double r, double z_low, double z_high) const {
+        return sphere_volume(c, r, z_low, z_high);
+    }
+
+    /// "periodic:LX,LY" (9 significant digits).
+    std::string spec() const;
+    std::string_view name() const { return "periodic"; }
+    Rectangle bounds() const { return {0.0, m_lx, 0.0, m_ly}; }
+    std::string_view profile_position_name() const { return "wall_distance"; }
+    double profile_position(double d) const { return d; }
+
+private:
+    double m_lx, m_ly;
+};
+
+static_assert(LateralWall<Cylinder>);
+
 /// A container of any shape: what generation, analysis and export ask. A Cylinder or a Box
 /// converts to it implicitly. Every question goes to the shape (one std::visit each, in
 /// container.cpp); code that only handles one shape so far asks `cylinder()` or `box()` and
 /// refuses the others with a message naming the container. Plain value type.
 class Container {
 public:
-    using Shape = std::variant<Cylinder, Box>;
+    using Shape = std::variant<Cylinder, Box, Annulus, Periodic>;
 
     Container(const Cylinder& cylinder) // NOLINT(google-explicit-constructor): a cylinder is one
         : m_shape(cylinder) {}
     Container(const Box& box) // NOLINT(google-explicit-constructor)
         : m_shape(box) {}
+    Container(const Annulus& annulus) // NOLINT(google-explicit-constructor)
+        : m_shape(annulus) {}
+    Container(const Periodic& periodic) // NOLINT(google-explicit-constructor)
+        : m_shape(periodic) {}
 
     const Shape& shape() const { return m_shape; }
     /// \return the cylinder, or nullptr for another shape.
     const Cylinder* cylinder() const { return std::get_if<Cylinder>(&m_shape); }
     /// \return the box, or nullptr for another shape.
     const Box* box() const { return std::get_if<Box>(&m_shape); }
+    /// \return the annulus, or nullptr for another shape.
+    const Annulus* annulus() const { return std::get_if<Annulus>(&m_shape); }
+    /// \return the periodic cell, or nullptr for another shape.
+    const Periodic* periodic() const { return std::get_if<Periodic>(&m_shape); }
 
-    /// "cylinder" or "box".
+    /// "cylinder", "box", "annulus" or "periodic".
     std::string_view name() const;
-    /// The --container form: "cylinder:D", "box:LX,LY".
+    /// The --container form: "cylinder:D", "box:LX,LY", "annulus:D,DI", "periodic:LX,LY".
     std::string spec() const;
+
+    /// The wall law of every wall: f(overlap, push) for each wall the sphere (p, radius)
+    /// presses into (none in a periodic cell).
+    template <class F> void wall_contacts(const Vec3& p, double radius, F&& f) const {
+        std::visit([&](const auto& s) { s.wall_contacts(p, radius, f); }, m_shape);
+    }
+    /// \return the largest overlap of the sphere (p, radius) with a wall, 0 when it touches none.
+    double wall_overlap(const Vec3& p, double radius) const {
+        double largest = 0.0;
+        wall_contacts(p, radius, [&](double o, const Vec3&) { largest = std::max(largest, o); });
+        return largest;
+    }
+    /// \return the same container with every length times `factor` (> 0).
+    Container scaled(double factor) const;
 
     bool contains(const Vec3& p) const;
     /// Distance of p from the nearest lateral wall (negative outside): the coordinate of the

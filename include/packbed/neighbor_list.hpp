@@ -3,10 +3,12 @@
 #pragma once
 
 #include <cstdint>
+#include <optional>
 #include <span>
 #include <utility>
 #include <vector>
 
+#include "packbed/container.hpp"
 #include "packbed/vec3.hpp"
 
 namespace packbed {
@@ -32,6 +34,14 @@ public:
     /// (twice that of the rows) for callers that only walk the rows.
     void build(std::span<const Vec3> centers, std::span<const double> radii, double skin,
                std::span<const std::uint32_t> key = {}, bool with_pair_numbers = true);
+
+    /// Make the next builds periodic in x and y with the cell's periods: a pair is listed
+    /// when the distance between their nearest copies (the minimum image,
+    /// Periodic::separation) is below the cut, whatever side of the cell either centre lies on
+    /// (the search sees the centres moved into the cell; a pair is listed once even where two
+    /// of its copies are within the cut). For forces by the minimum image, the cell must be at
+    /// least twice the largest r_i + r_j wide, so that a touching pair has one nearest copy.
+    void wrap(const Periodic& cell) { m_cell = cell; }
 
     /// \return true when some sphere has moved more than skin/2 since the last build (or
     /// there was no build yet, or the number of spheres changed).
@@ -75,6 +85,10 @@ public:
 
 private:
     void number_pairs();
+    /// The centres moved into the cell, then their copies within `cut` of its sides (owner:
+    /// the sphere of each copy).
+    void add_ghosts(std::span<const Vec3> centers, double cut, std::vector<Vec3>& points,
+                    std::vector<std::uint32_t>& owner) const;
 
     std::vector<std::uint32_t> m_offsets;
     std::vector<std::uint32_t> m_neighbors;
@@ -83,6 +97,7 @@ private:
     std::vector<std::uint32_t> m_owner;   // first sphere of each pair
     std::vector<std::uint32_t> m_pair_of; // pair number of each entry of m_neighbors
     std::vector<Vec3> m_reference;        // positions at the last build
+    std::optional<Periodic> m_cell;       // periodic in x and y (wrap())
     double m_skin = 0.0;
     std::size_t m_builds = 0;
 };

@@ -6,6 +6,7 @@
 #include <cstdint>
 #include <functional>
 #include <memory>
+#include <optional>
 #include <string>
 #include <string_view>
 #include <utility>
@@ -76,14 +77,31 @@ struct SoftSphereParameters {
     /// sphere moves with its own step length (docs/sizes.md, "Both solvers").
     std::vector<double> sizes;
     static constexpr double max_size_ratio = 10.0; ///< largest over smallest diameter
+    /// The container in units of Dp (issue 17): a box, an annulus or a periodic cell (a
+    /// cylinder is taken as well, as its aspect ratio). Empty: the paper's cylinder of
+    /// diameter aspect_ratio, which is then the one length of the container; when set,
+    /// aspect_ratio is not read.
+    std::optional<Container> container;
 
     /// \return the smallest diameter over Dp: 1 for a mono-sized bed.
     double smallest_size() const;
+    /// \return the largest diameter over Dp: 1 for a mono-sized bed.
+    double largest_size() const;
+    /// \return the container in units of Dp: `container`, or the cylinder of diameter
+    /// aspect_ratio.
+    Container container_dp() const;
 
     /// Check every value and their combinations.
     /// \throws InvalidInput naming the parameter, its value and the allowed range.
     void validate() const;
 };
+
+/// Whether spheres up to `largest` across fit the container for generation: a box at least
+/// one sphere wide each way, a periodic cell two (the minimum image), an annulus whose gap
+/// (D - DI) / 2 holds one sphere, a tube one sphere wide; no width above 10^4.
+/// \param container in units of Dp \param largest the largest diameter, Dp
+/// \return "" when they fit, else what is allowed (for a message naming the container).
+std::string container_fit_problem(const Container& container, double largest);
 
 /// The state at the end of one stage (section 3).
 struct StageRecord {
@@ -135,16 +153,17 @@ struct RunControl {
 
 /// The outcome of a run. Lengths of `packing` and `container` are in output units (diameter).
 struct SoftSphereResult {
-    Packing packing;                   ///< final sphere positions and radii
-    Cylinder container{1.0};           ///< the cylinder, radius Rt = a Dp / 2
-    double initial_height = 0.0;       ///< L0 of eq. (6), output units
-    std::uint64_t iterations = 0;      ///< all stages together
-    double max_overlap_pair = 0.0;     ///< largest sphere-sphere overlap of the result, Dp
-    double max_overlap_wall = 0.0;     ///< largest sphere-wall overlap of the result, Dp
-    std::vector<StageRecord> stages;   ///< initial, intermediate, final
-    std::uint64_t neighbor_builds = 0; ///< Verlet-list rebuilds
-    std::uint32_t layers = 1;          ///< layers the fire solver built the bed in
-    double seconds = 0.0;              ///< wall time of run()
+    Packing packing;                    ///< final sphere positions and radii (in a periodic
+                                        ///< cell, their copies in [0, LX) x [0, LY))
+    Container container{Cylinder(1.0)}; ///< the container (a cylinder: radius Rt = a Dp / 2)
+    double initial_height = 0.0;        ///< L0 of eq. (6), output units
+    std::uint64_t iterations = 0;       ///< all stages together
+    double max_overlap_pair = 0.0;      ///< largest sphere-sphere overlap of the result, Dp
+    double max_overlap_wall = 0.0;      ///< largest sphere-wall overlap of the result, Dp
+    std::vector<StageRecord> stages;    ///< initial, intermediate, final
+    std::uint64_t neighbor_builds = 0;  ///< Verlet-list rebuilds
+    std::uint32_t layers = 1;           ///< layers the fire solver built the bed in
+    double seconds = 0.0;               ///< wall time of run()
 };
 
 /// Largest overlaps of a configuration, computed exactly (O(N) with a cell grid).
@@ -153,18 +172,21 @@ struct Overlaps {
     double wall = 0.0; ///< largest sphere-wall overlap (0 if none)
 };
 
-/// \return the largest overlaps of `packing` in `container` (lengths in the packing's units).
-Overlaps measure_overlaps(const Packing& packing, const Cylinder& container);
+/// \return the largest overlaps of `packing` in `container` (lengths in the packing's units):
+/// pairs by the minimum image in a periodic cell, each wall of the container.
+Overlaps measure_overlaps(const Packing& packing, const Container& container);
 
 /// Initial bed height, eq. (6): \f$L_0 = \frac{2}{3}\frac{D_p N_p}{a^2 (1 - \varepsilon_0)}\f$.
 /// \param particles Np \param aspect_ratio a \param e0 initial void fraction in (0, 1)
 /// \return L0 in units of Dp.
 double initial_bed_height(std::uint64_t particles, double aspect_ratio, double e0);
 
-/// Eq. (6) for spheres of many sizes: the height the solid volume fills at void fraction e0,
-/// \f$L_0 = \sum_i \frac{\pi}{6} d_i^3 / (\frac{\pi}{4} a^2 D_p^2 (1 - \varepsilon_0)) =
-/// \frac{2}{3} \frac{\sum_i (d_i/D_p)^3}{a^2 (1 - \varepsilon_0)} D_p\f$: with every d_i = Dp,
-/// the paper's eq. (6) (the same bits: the sum of Np ones is Np exactly).
+/// Eq. (6) for spheres of many sizes, in any container: the height the solid volume fills at void
+/// fraction e0, \f$L_0 = \sum_i \frac{\pi}{6} d_i^3 / (\frac{\pi}{4} a^2 D_p^2 (1 - \varepsilon_0))
+/// = \frac{2}{3} \frac{\sum_i (d_i/D_p)^3}{a^2 (1 - \varepsilon_0)} D_p\f$: with every d_i = Dp,
+/// the paper's eq. (6) (the same bits: the sum of Np ones is Np exactly). In another
+/// container, \f$\frac{\pi}{4} a^2\f$ is its cross-section A in Dp^2:
+/// \f$L_0 = \frac{\pi}{6} \sum_i (d_i/D_p)^3 / (A (1 - \varepsilon_0))\f$.
 /// \return L0 in units of Dp.
 double initial_bed_height(const SoftSphereParameters& parameters);
 

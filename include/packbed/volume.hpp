@@ -33,6 +33,11 @@ double disk_intersection_area(double r1, double r2, double distance);
 double sphere_volume_in_cylinder_slab(const Vec3& center, double radius, double cylinder_radius,
                                       double z_low, double z_high);
 
+/// Volume of the sphere of radius `radius` centred at height z_center between the planes
+/// z = z_low and z = z_high, with no lateral cut (spherical segments):
+/// \f$\int \pi (r^2 - t^2)\,dt\f$ over the heights t from the centre inside both.
+double sphere_slab_volume(double z_center, double radius, double z_low, double z_high);
+
 /// Volume of the ball of radius r, its centre at distance rho from the z axis, inside the
 /// infinite cylinder of radius cylinder_radius > 0 about that axis (no planes). By cylindrical
 /// shells of radius q about the ball's vertical axis, each of height 2 sqrt(r^2 - q^2): the
