@@ -40,25 +40,27 @@ std::string container_fit_problem(const Container& container, double largest) {
             if constexpr (std::is_same_v<S, Cylinder>) {
                 const double a = 2.0 * shape.radius();
                 if (!(a >= largest && a <= widest))
-                    return fmt::format("a tube diameter from {:.6g} (the largest sphere) to {:g}",
+                    return fmt::format("a tube diameter from {:.6g} Dp (the largest sphere) to "
+                                       "{:g} Dp",
                                        largest, widest);
             } else if constexpr (std::is_same_v<S, Annulus>) {
                 const double outer = 2.0 * shape.outer_radius(), inner = 2.0 * shape.inner_radius();
                 if (!(outer <= widest && inner >= 0.0 && outer - inner >= 2.0 * largest))
-                    return fmt::format(
-                        "D up to {:g} and a rod DI <= D - {:.6g} (the gap between rod and tube, "
-                        "(D - DI) / 2, at least the largest sphere, {:.6g})",
-                        widest, 2.0 * largest, largest);
+                    return fmt::format("D up to {:g} Dp and DI <= D - {:.6g} Dp: the gap between "
+                                       "rod and tube, (D - DI) / 2, at least the largest sphere "
+                                       "({:.6g} Dp)",
+                                       widest, 2.0 * largest, largest);
             } else {
-                // A box holds a sphere across; a periodic cell twice across, so that two
-                // spheres in contact have one nearest image.
-                const double least = (std::is_same_v<S, Periodic> ? 2.0 : 1.0) * largest;
+                // A box holds a sphere across; a periodic cell two, so that two spheres in
+                // contact have one nearest copy (the minimum image).
+                constexpr bool periodic = std::is_same_v<S, Periodic>;
+                const double least = (periodic ? 2.0 : 1.0) * largest;
                 const Rectangle b = shape.bounds();
                 const double lx = b.x_high - b.x_low, ly = b.y_high - b.y_low;
                 if (!(lx >= least && ly >= least && lx <= widest && ly <= widest))
-                    return fmt::format("widths from {:.6g} ({} the largest sphere{}) to {:g}",
-                                       least, std::is_same_v<S, Periodic> ? "twice" : "",
-                                       std::is_same_v<S, Periodic> ? ", for the minimum image" : "",
+                    return fmt::format("widths from {:.6g} Dp ({}) to {:g} Dp", least,
+                                       periodic ? "twice the largest sphere, for the minimum image"
+                                                : "the largest sphere",
                                        widest);
             }
             return {};
@@ -71,7 +73,7 @@ void SoftSphereParameters::validate() const {
         const std::string problem = container_fit_problem(*container, largest_size());
         if (!problem.empty())
             throw InvalidInput(fmt::format("--container {} (in units of Dp) is not allowed; "
-                                           "allowed: {} (Dp)",
+                                           "allowed: {}",
                                            container->spec(), problem));
     } else {
         const double a = container ? 2.0 * container->cylinder()->radius() : aspect_ratio;

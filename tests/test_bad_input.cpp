@@ -367,6 +367,25 @@ INSTANTIATE_TEST_SUITE_P(
               "packbed generate: --sizes: a diameter of 1.49776 Dp is not allowed in a tube of a = "
               "1.12332; allowed: diameters > 0 and below the tube's (a Dp, Dp = 1.33533 the "
               "reference diameter)"),
+        // Containers that do not fit the spheres (issue 17); an unknown one; two of them.
+        exact("generate --container annulus:10,9.5",
+              "packbed generate: --container annulus:10,9.5 is not allowed with Dp = 1; allowed: "
+              "D up to 10000 Dp and DI <= D - 2 Dp: the gap between rod and tube, (D - DI) / 2, "
+              "at least the largest sphere (1 Dp)"),
+        exact("generate --container box:0.5,6 --diameter 1",
+              "packbed generate: --container box:0.5,6 is not allowed with Dp = 1; allowed: "
+              "widths from 1 Dp (the largest sphere) to 10000 Dp"),
+        exact("generate --container periodic:3,8 --diameter 2",
+              "packbed generate: --container periodic:3,8 is not allowed with Dp = 2; allowed: "
+              "widths from 2 Dp (twice the largest sphere, for the minimum image) to 10000 Dp"),
+        naming("generate --container sphere:3", {"--container", "sphere:3", "periodic:LX,LY"}),
+        naming("generate --container annulus:10", {"--container", "annulus:10", "annulus:D,DI"}),
+        naming("generate --container annulus:4,6", {"--container", "annulus:4,6", "DI < D"}),
+        naming("generate --container box:6,6 --aspect-ratio 5", {"--aspect-ratio", "--container"}),
+        exact("generate --container periodic:8,8 --checkpoint c.json",
+              "packbed generate: --checkpoint c.json is not allowed with --container "
+              "periodic:8,8; allowed: --checkpoint with a cylinder (a checkpoint does not record "
+              "the container yet)"),
         // Non-numbers.
         exact("generate --aspect-ratio five",
               "packbed: --aspect-ratio: 'five' is not allowed; allowed: a number in [1, 10000]"),
@@ -981,7 +1000,7 @@ INSTANTIATE_TEST_SUITE_P(
               "(box:3,0.5, floor z = 0); allowed: centres inside it"),
         exact("export two.csv --format openfoam --container box:0,2 --out c",
               "packbed: --container: 'box:0,2' is not allowed; allowed: cylinder:D, a tube of "
-              "inner diameter D, a number in (0, 2e+15], or box:LX,LY, walls at x = 0, LX and y = "
+              "inner diameter D, a number in (0, 2e+15]; or box:LX,LY, walls at x = 0, LX and y = "
               "0, LY, each in (0, 1e+15]"),
         exact(std::vector<std::string>{"export", "two.csv", "-R", "2", "--out", "a b.data"},
               "packbed export: --out a b.data: the file name 'a b.data' is not allowed with the "

@@ -230,3 +230,77 @@ TEST(SpatialOrder, IsAPermutationThatWalksTheCellsInOrder) {
         last = layer;
     }
 }
+
+namespace {
+
+/// All pairs (i < j) whose nearest copies in the periodic cell are closer than r_i + r_j +
+/// margin, by brute force over the nine copies of j: the reference for the wrapped list.
+std::set<std::pair<std::uint32_t, std::uint32_t>>
+periodic_brute_force(const Cloud& c, const Periodic& cell, double margin) {
+    std::set<std::pair<std::uint32_t, std::uint32_t>> pairs;
+    for (std::uint32_t i = 0; i < c.centers.size(); ++i)
+        for (std::uint32_t j = i + 1; j < c.centers.size(); ++j) {
+            const double cut = c.radii[i] + c.radii[j] + margin;
+            for (int sx = -1; sx <= 1; ++sx)
+                for (int sy = -1; sy <= 1; ++sy) {
+                    const Vec3 copy = c.centers[j] + Vec3{sx * cell.lx(), sy * cell.ly(), 0.0};
+                    if (norm2(copy - c.centers[i]) < cut * cut)
+                        pairs.emplace(i, j);
+                }
+        }
+    return pairs;
+}
+
+} // namespace
+
+TEST(PeriodicNeighborList, SamePairsAsBruteForceOverTheCopies) {
+    // Centres in the cell, a third of them within one diameter of a side; the search finds
+    // the pairs that touch through a side and through a corner, each once.
+    for (const double skin : {0.0, 0.1, 0.4}) {
+        const Periodic cell(6.0, 5.0);
+        Cloud c = random_cloud(900, 1.0, true, 21);
+        for (auto& p : c.centers)
+            p = {p.x * cell.lx(), p.y * cell.ly(), p.z * 5.0};
+        NeighborList list;
+        list.wrap(cell);
+        list.build(c.centers, c.radii, skin);
+        const auto slow = periodic_brute_force(c, cell, skin);
+        std::size_t through_a_side = 0;
+        for (const auto& [i, j] : slow)
+            through_a_side +=
+                norm(c.centers[j] - c.centers[i]) > c.radii[i] + c.radii[j] + skin ? 1 : 0;
+        ASSERT_GT(through_a_side, 50u) << "skin " << skin; // the wrap is exercised
+        EXPECT_EQ(pairs_of(list, c.centers.size()), slow) << "skin " << skin;
+        std::size_t entries = 0;
+        for (std::size_t i = 0; i < c.centers.size(); ++i) {
+            const auto row = list.neighbors_of(i);
+            entries += row.size();
+            EXPECT_TRUE(std::adjacent_find(row.begin(), row.end()) == row.end()); // each once
+        }
+        EXPECT_EQ(entries, 2 * slow.size());
+    }
+}
+
+TEST(PeriodicNeighborList, CentresOutsideTheCellAreFoundByTheirCopies) {
+    // A sphere at x = -0.2 (moved out since the last wrap) touches one at x = 3.6 in a cell of
+    // 4: the separation is 0.2 through the side; and the narrowest cell allowed, two
+    // diameters, lists a pair that is near both directly and through the side once.
+    const Periodic cell(4.0, 4.0);
+    const std::vector<Vec3> centers{{-0.2, 1.0, 1.0}, {3.6, 1.0, 1.0}, {1.5, 1.0, 1.0}};
+    const std::vector<double> radii{0.5, 0.5, 0.5};
+    NeighborList list;
+    list.wrap(cell);
+    list.build(centers, radii, 0.0);
+    ASSERT_EQ(list.neighbors_of(0).size(), 1u);
+    EXPECT_EQ(list.neighbors_of(0)[0], 1u);
+    EXPECT_NEAR(norm(cell.separation(centers[0], centers[1])), 0.2, 1e-15);
+    const Periodic narrow(2.0, 2.0);
+    const std::vector<Vec3> two{{0.5, 1.0, 1.0}, {1.45, 1.0, 1.0}};
+    NeighborList both;
+    both.wrap(narrow);
+    both.build(two, {radii.data(), 2}, 0.1); // 0.95 apart directly, 1.05 through the side
+    ASSERT_EQ(both.neighbors_of(0).size(), 1u);
+    EXPECT_EQ(both.pairs(), 1u);
+    EXPECT_DOUBLE_EQ(narrow.separation(two[0], two[1]).x, 0.95);
+    EXPECT_DOUBLE_EQ(narrow.separation(two[1], two[0]).x, -0.95);
+}

@@ -83,9 +83,8 @@ int run_generate(GenerateOptions& o) {
         const std::string problem = container_fit_problem(in_dp, o.params.largest_size());
         if (!problem.empty())
             throw InvalidInput(fmt::format(
-                "--container {} is not allowed with Dp = {:.6g}{}; allowed: {} (in units of Dp)",
-                o.container, o.params.diameter, drawn ? " (the sizes' Sauter mean d32)" : "",
-                problem));
+                "--container {} is not allowed with Dp = {:.6g}{}; allowed: {}", o.container,
+                o.params.diameter, drawn ? " (the sizes' Sauter mean d32)" : "", problem));
         o.params.container = in_dp;
         if (!o.checkpoint.empty())
             throw InvalidInput(fmt::format("--checkpoint {} is not allowed with --container {}; "
