@@ -124,7 +124,49 @@ void BM_IterationSizes(benchmark::State& state) {
                                          : "lognormal GSD 1.5");
 }
 
+/// The containers of BM_IterationContainers (issue 17): the cost per sphere-step of the same
+/// number of spheres in each, of about the same cross-section (a = 20: 314 Dp^2).
+enum class Shape { cylinder = 0, annulus = 1, box = 2, periodic = 3 };
+
+void BM_IterationContainers(benchmark::State& state) {
+    const auto particles = state.range(0);
+    const auto shape = static_cast<Shape>(state.range(1));
+    omp_set_num_threads(static_cast<int>(state.range(2)));
+    static std::map<std::pair<std::int64_t, int>, std::unique_ptr<SoftSphereGenerator>> beds;
+    auto& bed = beds[{particles, static_cast<int>(shape)}];
+    if (!bed) {
+        SoftSphereParameters p;
+        p.particles = static_cast<std::uint64_t>(particles);
+        p.aspect_ratio = 20.0;
+        if (shape == Shape::annulus) // pi (10.6^2 - 3^2) = 324.7 Dp^2
+            p.container = packbed::Annulus(10.6, 3.0);
+        else if (shape == Shape::box)
+            p.container = packbed::Box(17.7, 17.7);
+        else if (shape == Shape::periodic)
+            p.container = packbed::Periodic(17.7, 17.7);
+        bed = std::make_unique<SoftSphereGenerator>(p);
+        bed->run_initial_stage();
+    }
+    for (auto _ : state)
+        benchmark::DoNotOptimize(bed->iterate(2e-5));
+    state.counters["ns_per_sphere"] =
+        benchmark::Counter(static_cast<double>(state.iterations() * particles),
+                           benchmark::Counter::kIsRate | benchmark::Counter::kInvert);
+    state.SetLabel(shape == Shape::cylinder  ? "cylinder a = 20"
+                   : shape == Shape::annulus ? "annulus 21.2, 6"
+                   : shape == Shape::box     ? "box 17.7 x 17.7"
+                                             : "periodic 17.7 x 17.7");
+}
+
 } // namespace
+
+BENCHMARK(BM_IterationContainers)
+    ->ArgNames({"Np", "shape", "threads"})
+    ->Args({20000, static_cast<int>(Shape::cylinder), 2})
+    ->Args({20000, static_cast<int>(Shape::annulus), 2})
+    ->Args({20000, static_cast<int>(Shape::box), 2})
+    ->Args({20000, static_cast<int>(Shape::periodic), 2})
+    ->UseRealTime();
 
 BENCHMARK(BM_IterationSizes)
     ->ArgNames({"Np", "mix", "threads"})
