@@ -402,8 +402,11 @@ TEST(Cli, TheContainerIsGivenTheSameWayToEverySubcommand) {
     const Outcome ring = packbed("analyze " + csv + " --container annulus:1,2");
     EXPECT_EQ(ring.status, 2);
     EXPECT_EQ(ring.err, "packbed: --container: 'annulus:1,2' is not allowed; allowed: cylinder:D, "
-                        "a tube of inner diameter D, a number in (0, 2e+15], or box:LX,LY, walls "
-                        "at x = 0, LX and y = 0, LY, each in (0, 1e+15]\n");
+                        "a tube of inner diameter D, a number in (0, 2e+15]; or box:LX,LY, walls "
+                        "at x = 0, LX and y = 0, LY, each in (0, 1e+15]; or annulus:D,DI, "
+                        "between a tube of diameter D and a coaxial rod of diameter DI, 0 < DI < "
+                        "D <= 2e+15; or periodic:LX,LY, a cell periodic in x and y, each in (0, "
+                        "1e+15]\n");
     EXPECT_EQ(packbed(bed + "-a 8 --container cylinder:0.024").status, 2); // one or the other
 }
 
