@@ -88,11 +88,13 @@ std::vector<double> histogram_over_spheres(std::size_t n, std::size_t bins, F&& 
     return total;
 }
 
-/// e(d) over `shells` shells of the distance d from the wall, [k w, (k+1) w] (wall first; the
-/// last ends at the container's depth); exact volumes: each sphere's part in a shell is the
-/// difference of its volumes inside the container shrunk by the shell's two distances.
+/// e(d) over `shells` shells of the distance d from wall `wall` (Container::profile_walls),
+/// [k w, (k+1) w] (wall first; the last ends at the container's depth); exact volumes: each
+/// sphere's part in a shell is the difference of its volumes inside the container shrunk from
+/// that wall by the shell's two distances (Container::shrunk_from).
 std::vector<ProfileBin> wall_void_fraction(const Packing& packing, const Container& container,
-                                           double width, const Band& band, std::size_t shells) {
+                                           std::size_t wall, double width, const Band& band,
+                                           std::size_t shells) {
     auto distance = [&](std::size_t k) { return static_cast<double>(k) * width; };
     const double last_shell = static_cast<double>(shells - 1);
     const auto solid =
@@ -101,7 +103,7 @@ std::vector<ProfileBin> wall_void_fraction(const Packing& packing, const Contain
             const double radius = packing.radii[i];
             // Shells that can hold part of the sphere: from its nearest to its farthest
             // distance from the wall (clamped in double, before the casts).
-            const auto [nearest, farthest] = container.wall_distances(c, radius);
+            const auto [nearest, farthest] = container.wall_distances_from(wall, c, radius);
             const double first = std::max(std::floor(nearest / width), 0.0);
             if (first > last_shell)
                 return;
@@ -109,7 +111,7 @@ std::vector<ProfileBin> wall_void_fraction(const Packing& packing, const Contain
             const auto k_last = static_cast<std::size_t>(
                 std::min(last_shell, std::max(std::ceil(farthest / width), 0.0)));
             auto inside = [&](std::size_t k) {
-                return container.shrunk(distance(k))
+                return container.shrunk_from(wall, distance(k))
                     .sphere_volume(c, radius, band.z_low, band.z_high);
             };
             double outer_volume = inside(k_first);
@@ -125,7 +127,7 @@ std::vector<ProfileBin> wall_void_fraction(const Packing& packing, const Contain
     for (std::size_t k = 0; k < shells; ++k) {
         const double lo = distance(k), hi = distance(k + 1);
         out[k] = {lo, std::min(hi, depth),
-                  1.0 - solid[k] / (container.shell_area(lo, hi) * height)};
+                  1.0 - solid[k] / (container.shell_area_from(wall, lo, hi) * height)};
     }
     return out;
 }
@@ -212,31 +214,34 @@ bool in_band(const Vec3& c, const Band& band) {
     return c.z >= band.z_low && c.z <= band.z_high;
 }
 
-/// Relative number density of centres in `bins` shells of the distance from the wall,
-/// [k w, (k+1) w], over the mean density across the cross-section; only the spheres i with
-/// member(i) (a size class), each over the class's own mean density.
+/// Relative number density of centres in `bins` shells of the distance from wall `wall`,
+/// [k w, (k+1) w], over the mean density across the whole cross-section; a shell counts the
+/// centres of that wall's part of the cross-section (Container::nearest_wall); only the
+/// spheres i with member(i) (a size class), each over the class's own mean density.
 template <class Member>
 std::vector<ProfileBin> centre_distribution(const Packing& packing, const Container& container,
-                                            double width, const Band& band, std::size_t bins,
-                                            Member member) {
+                                            std::size_t wall, double width, const Band& band,
+                                            std::size_t bins, Member member) {
     std::vector<double> count(bins, 0.0);
     double total = 0.0;
     for (std::size_t i = 0; i < packing.size(); ++i) {
         const Vec3& c = packing.centers[i];
         if (!in_band(c, band) || !member(i))
             continue;
-        const double from_wall = container.wall_distance(c);
+        total += 1.0;
+        if (container.nearest_wall(c) != wall)
+            continue;
+        const double from_wall = container.wall_distance_from(wall, c);
         const auto k = static_cast<std::size_t>(
             std::clamp(std::floor(from_wall / width), 0.0, static_cast<double>(bins - 1)));
         count[k] += 1.0;
-        total += 1.0;
     }
     const double mean_density = total / container.cross_section_area();
     const double depth = container.depth();
     std::vector<ProfileBin> out(bins);
     for (std::size_t k = 0; k < bins; ++k) {
         const double lo = static_cast<double>(k) * width, hi = static_cast<double>(k + 1) * width;
-        const double density = count[k] / container.shell_area(lo, hi);
+        const double density = count[k] / container.shell_area_from(wall, lo, hi);
         out[k] = {lo, std::min(hi, depth), total > 0.0 ? density / mean_density : 0.0};
     }
     return out;
@@ -252,6 +257,32 @@ using detail::CellGrid;
 /// having at most 8 N + 64 cells along an axis).
 constexpr double cell_margin = 1.0 + 1e-6;
 
+/// The points a pair search runs on: the centres themselves, or in a periodic cell the
+/// centres moved into the cell and their copies within `cut` of its sides
+/// (detail::periodic_images), each copy standing for its sphere. Points 0 to n - 1 are the
+/// spheres. Not copyable (it may point at its own copies).
+struct SearchPoints {
+    std::size_t n = 0;
+    std::vector<Vec3> images;         // periodic: the spheres in the cell, then the copies
+    std::vector<std::uint32_t> owner; // periodic: the sphere of copy n + k
+    const Vec3* points = nullptr;     // the points searched
+
+    SearchPoints(const Packing& packing, const Container& container, double cut)
+        : n(packing.size())
+        , points(packing.centers.data()) {
+        if (const Periodic* cell = container.periodic()) {
+            detail::periodic_images(*cell, packing.centers, cut, images, owner);
+            points = images.data();
+        }
+    }
+    SearchPoints(const SearchPoints&) = delete;
+    SearchPoints& operator=(const SearchPoints&) = delete;
+
+    std::span<const Vec3> all() const { return {points, n + owner.size()}; }
+    /// \return the sphere point j stands for.
+    std::uint32_t sphere(std::uint32_t j) const { return j < n ? j : owner[j - n]; }
+};
+
 /// The contact search. Spheres up to `small_radius` (the largest radius, or the mean diameter
 /// if some sphere is larger) find their contacts among themselves in the 27 cells around their
 /// own, of edge 2 small_radius + tolerance; a larger sphere searches as many cells as its own
@@ -261,16 +292,19 @@ struct ContactSearch {
     double tolerance = 0.0;
     double small_radius = 0.0;
     double largest_radius = 0.0;
+    SearchPoints points; // the centres, or their copies in a periodic cell
     CellGrid grid;
     std::vector<std::uint32_t> large; // spheres above small_radius
     std::uint64_t work = 0;           // distance checks (and cells) the search takes
 
-    ContactSearch(const Packing& packing, double tol, const Band& band, double mean_diameter)
+    ContactSearch(const Packing& packing, const Container& container, double tol, const Band& band,
+                  double mean_diameter)
         : tolerance(tol)
         , small_radius(std::min(*std::max_element(packing.radii.begin(), packing.radii.end()),
                                 mean_diameter))
         , largest_radius(*std::max_element(packing.radii.begin(), packing.radii.end()))
-        , grid(packing.centers, (2.0 * small_radius + tol) * cell_margin) {
+        , points(packing, container, 2.0 * largest_radius + tol)
+        , grid(points.all(), (2.0 * small_radius + tol) * cell_margin) {
         for (std::size_t i = 0; i < packing.size(); ++i) {
             if (packing.radii[i] > small_radius) {
                 large.push_back(static_cast<std::uint32_t>(i));
@@ -288,18 +322,22 @@ struct ContactSearch {
 };
 
 /// The contacts of the spheres in the band; `per_sphere` gets each sphere's count of
-/// sphere-sphere contacts (0 outside the band).
+/// sphere-sphere contacts (0 outside the band), `walls` one entry per profile wall with its
+/// name and wall contacts.
 Coordination coordination(const Packing& packing, const Container& container,
                           const ContactSearch& search, const Band& band,
-                          std::vector<std::uint32_t>& per_sphere) {
+                          std::vector<std::uint32_t>& per_sphere,
+                          std::vector<WallAnalysis>& walls) {
     const std::size_t n = packing.size();
     const double tolerance = search.tolerance, small = search.small_radius;
-    const Vec3* const x = packing.centers.data();
+    const Vec3* const x = search.points.points;
     const double* const radius = packing.radii.data();
+    auto sphere = [&](std::uint32_t j) { return search.points.sphere(j); };
     // A contact is gap <= tolerance, gap = |x_j - x_i| - r_i - r_j, subtracted in this order
-    // for sphere i (whichever sphere finds the pair).
-    auto touching = [&](std::size_t i, std::size_t j) {
-        return norm(x[j] - x[i]) - radius[i] - radius[j] <= tolerance;
+    // for sphere i (whichever sphere finds the pair); i and j are points (a copy in a periodic
+    // cell: every copy within the distance is a contact).
+    auto touching = [&](std::uint32_t i, std::uint32_t j) {
+        return norm(x[j] - x[i]) - radius[sphere(i)] - radius[sphere(j)] <= tolerance;
     };
     std::vector<std::uint32_t> contacts(n, 0);
 #pragma omp parallel for schedule(dynamic, 256) if (n >= detail::parallel_min_spheres)
@@ -308,7 +346,10 @@ Coordination coordination(const Packing& packing, const Container& container,
             continue;
         std::uint32_t count = 0;
         search.grid.for_each_near(i, 1, [&](std::uint32_t j) {
-            count += j != i && radius[j] <= small && touching(i, j) ? 1 : 0;
+            count +=
+                j != i && radius[sphere(j)] <= small && touching(static_cast<std::uint32_t>(i), j)
+                    ? 1
+                    : 0;
         });
         contacts[i] = count;
     }
@@ -317,16 +358,28 @@ Coordination coordination(const Packing& packing, const Container& container,
             if (j == i)
                 return;
             contacts[i] += touching(i, j) ? 1 : 0;
-            if (radius[j] <= small)
-                contacts[j] += touching(j, i) ? 1 : 0;
+            if (radius[sphere(j)] <= small)
+                contacts[sphere(j)] += touching(j, i) ? 1 : 0;
         });
 
     Coordination out;
+    const std::size_t wall_count = container.profile_walls().size();
+    walls.assign(wall_count, WallAnalysis{});
+    for (std::size_t w = 0; w < wall_count; ++w)
+        walls[w].name = container.profile_walls()[w];
     std::size_t contacts_total = 0, contacts_stable = 0;
     for (std::size_t i = 0; i < n; ++i) {
-        const Vec3& c = x[i];
-        const double gap_wall = container.wall_distances(c, radius[i]).first;
-        const bool wall = gap_wall <= tolerance;
+        const Vec3& c = packing.centers[i];
+        // Each wall the sphere touches is one contact for the rattler rule; `wall` says it
+        // touches one.
+        std::size_t touched = 0;
+        for (std::size_t w = 0; w < wall_count; ++w)
+            if (container.wall_distances_from(w, c, radius[i]).first <= tolerance) {
+                ++touched;
+                ++walls[w].wall_contacts;
+                walls[w].wall_contacts_in_band += in_band(c, band) ? 1 : 0;
+            }
+        const bool wall = touched > 0;
         out.wall_contacts += wall ? 1 : 0;
         if (!in_band(c, band))
             continue;
@@ -337,7 +390,7 @@ Coordination coordination(const Packing& packing, const Container& container,
         ++out.histogram[k];
         ++out.spheres;
         contacts_total += k;
-        if (k + (wall ? 1 : 0) < 4) {
+        if (k + touched < 4) {
             ++out.rattlers;
         } else {
             contacts_stable += k;
@@ -392,20 +445,25 @@ std::vector<SizeClassAnalysis> by_size(const Packing& packing, const Container& 
             }
         a.mean_coordination =
             a.in_band > 0 ? static_cast<double>(touching) / static_cast<double>(a.in_band) : 0.0;
-        a.centre_distribution = centre_distribution(
-            packing, container, width, band, bins, [&](std::size_t i) { return class_of[i] == c; });
+        if (container.profile_walls().size() == 1)
+            a.centre_distribution =
+                centre_distribution(packing, container, 0, width, band, bins,
+                                    [&](std::size_t i) { return class_of[i] == c; });
         out.push_back(std::move(a));
     }
     return out;
 }
 
 /// g(r) over `bins` bins of `width` up to `range`, from the pairs `grid` (cells of edge >=
-/// range) finds with both centres in `band`, normalised in `region` (analysis.hpp).
+/// range, over `points`) finds with both centres in `band`, normalised in `region`
+/// (analysis.hpp). In a periodic cell every copy within the range counts, and the region's
+/// volume is the whole ball's (Periodic::ball_volume).
 std::vector<ProfileBin> pair_correlation(const Packing& packing, const Band& band,
                                          const PairRegion& region, double range, double width,
-                                         std::size_t bins, const CellGrid& grid) {
+                                         std::size_t bins, const SearchPoints& points,
+                                         const CellGrid& grid) {
     const std::size_t n = packing.size();
-    const Vec3* const x = packing.centers.data();
+    const Vec3* const x = points.points; // the centres, or their copies in a periodic cell
     // Whole-number counts, so their sum is the same in any order: one histogram per thread,
     // as many threads as 128 MB of histograms allow.
     const bool parallel = n >= detail::parallel_min_spheres;
@@ -490,8 +548,8 @@ void check_input(const Packing& packing, const Container& container, const Analy
                                            rt, far));
     } else {
         const Rectangle b = container.bounds();
-        if (!(container.depth() > 0.0 && std::abs(b.x_low) <= far && std::abs(b.x_high) <= far &&
-              std::abs(b.y_low) <= far && std::abs(b.y_high) <= far))
+        if (!(container.cross_section_area() > 0.0 && std::abs(b.x_low) <= far &&
+              std::abs(b.x_high) <= far && std::abs(b.y_low) <= far && std::abs(b.y_high) <= far))
             throw InvalidInput(fmt::format("--container {} is not allowed; allowed: widths > 0, "
                                            "sides within {:g} of the origin",
                                            container.spec(), far));
@@ -651,10 +709,15 @@ BedAnalysis analyze_bed(const Packing& packing, const Container& container,
     out.band = *band;
 
     // Every bin count and the work of the pair searches, checked before any of it is done.
-    const std::size_t shells = radial_bins(packing, container, options.shell_width, dp,
-                                           "--shell-width", "shells", "radial profile");
-    const std::size_t centre_bins = radial_bins(packing, container, options.centre_bin, dp,
-                                                "--centre-bin", "bins", "centre distribution");
+    // A periodic cell has no wall to measure profiles from.
+    const bool walled = !container.profile_walls().empty();
+    const std::size_t shells = walled ? radial_bins(packing, container, options.shell_width, dp,
+                                                    "--shell-width", "shells", "radial profile")
+                                      : 0;
+    const std::size_t centre_bins = walled
+                                        ? radial_bins(packing, container, options.centre_bin, dp,
+                                                      "--centre-bin", "bins", "centre distribution")
+                                        : 0;
     const std::size_t slabs = axial_slabs(packing, bed_top(packing), options.slab_height, dp);
     const double rdf_range = options.rdf_range * dp, rdf_bin = options.rdf_bin * dp;
     const double rdf_bins = bins_over(rdf_range, rdf_bin);
@@ -664,7 +727,26 @@ BedAnalysis analyze_bed(const Packing& packing, const Container& container,
                                        "{} Dp for g(r); allowed: at most {:.3g} ({})",
                                        options.rdf_range, rdf_bins, options.rdf_bin, budget,
                                        budget_reason(packing.size())));
-    const ContactSearch contacts(packing, options.contact_tolerance * dp, *band, mean_diameter);
+    if (const Periodic* cell = container.periodic()) {
+        // The searches find every copy within their distance among the copies one period
+        // away (detail::periodic_images): the distance must not exceed a period.
+        const double period = std::min(cell->lx(), cell->ly());
+        const double largest = *std::max_element(packing.radii.begin(), packing.radii.end());
+        const double contact = 2.0 * largest + options.contact_tolerance * dp;
+        if (!(contact <= period))
+            throw InvalidInput(fmt::format(
+                "--container {} is not allowed for this bed: its largest spheres (diameter "
+                "{:.6g}) touch across more than a period; allowed: periods of at least {:.6g} "
+                "(the largest diameter plus --contact-tolerance)",
+                container.spec(), 2.0 * largest, contact));
+        if (!(rdf_range <= period))
+            throw InvalidInput(fmt::format(
+                "--rdf-range {} Dp ({:.6g}) is not allowed in --container {}; allowed: at most "
+                "the smaller period, {:.6g} ({:.6g} Dp)",
+                options.rdf_range, rdf_range, container.spec(), period, period / dp));
+    }
+    const ContactSearch contacts(packing, container, options.contact_tolerance * dp, *band,
+                                 mean_diameter);
     const double contact_budget = pair_budget(packing.size(), contacts.grid.edge, mean_diameter);
     if (!(static_cast<double>(contacts.work) <= contact_budget))
         throw InvalidInput(fmt::format(
@@ -675,7 +757,8 @@ BedAnalysis analyze_bed(const Packing& packing, const Container& container,
             static_cast<double>(contacts.work), contact_budget, packing.size(),
             limits::pair_checks_per_sphere, contacts.grid.edge, mean_diameter,
             contacts.grid.largest_cell, contacts.grid.edge, 2.0 * contacts.largest_radius));
-    const CellGrid rdf_grid(packing.centers, rdf_range * cell_margin);
+    const SearchPoints rdf_points(packing, container, rdf_range);
+    const CellGrid rdf_grid(rdf_points.all(), rdf_range * cell_margin);
     std::uint64_t rdf_work = 0;
     for (std::size_t i = 0; i < packing.size(); ++i)
         rdf_work += in_band(packing.centers[i], *band) ? rdf_grid.work(i, 1) : 0;
@@ -691,20 +774,27 @@ BedAnalysis analyze_bed(const Packing& packing, const Container& container,
             rdf_grid.edge));
 
     out.void_fraction = void_fraction(packing, container, band->z_low, band->z_high);
-    out.radial_void_fraction =
-        wall_void_fraction(packing, container, options.shell_width * dp, *band, shells);
     out.axial_void_fraction =
         axial_void_fraction(packing, container, options.slab_height * dp, slabs);
-    out.centre_distribution =
-        centre_distribution(packing, container, options.centre_bin * dp, *band, centre_bins,
-                            [](std::size_t) { return true; });
     std::vector<std::uint32_t> per_sphere;
-    out.coordination = coordination(packing, container, contacts, *band, per_sphere);
+    out.coordination = coordination(packing, container, contacts, *band, per_sphere, out.walls);
+    for (std::size_t w = 0; w < out.walls.size(); ++w) {
+        out.walls[w].void_fraction =
+            wall_void_fraction(packing, container, w, options.shell_width * dp, *band, shells);
+        out.walls[w].centre_distribution =
+            centre_distribution(packing, container, w, options.centre_bin * dp, *band, centre_bins,
+                                [](std::size_t) { return true; });
+    }
+    if (out.walls.size() == 1) { // the profiles against the one wall, where they always were
+        out.radial_void_fraction = out.walls.front().void_fraction;
+        out.centre_distribution = out.walls.front().centre_distribution;
+    }
     out.by_size = by_size(packing, container, options.centre_bin * dp, *band, centre_bins,
                           per_sphere, out.sizes);
     out.pair_region = pair_region(packing, container, *band);
-    out.pair_correlation = pair_correlation(packing, *band, out.pair_region, rdf_range, rdf_bin,
-                                            static_cast<std::size_t>(rdf_bins), rdf_grid);
+    out.pair_correlation =
+        pair_correlation(packing, *band, out.pair_region, rdf_range, rdf_bin,
+                         static_cast<std::size_t>(rdf_bins), rdf_points, rdf_grid);
     return out;
 }
 

@@ -10,6 +10,7 @@
 #include <span>
 #include <vector>
 
+#include "packbed/container.hpp"
 #include "packbed/vec3.hpp"
 
 namespace packbed::detail {
@@ -127,5 +128,32 @@ struct CellGrid {
         return w;
     }
 };
+
+/// The points a search in a periodic cell runs on: the centres moved into the cell
+/// (`points[i]` = cell.wrapped(centers[i]) for i < n), followed by their copies shifted by one
+/// period in x, y or both that lie within `cut` of the cell, [-cut, L + cut) each way, each
+/// standing for its sphere (`owner[k]` is the sphere of point n + k). A search from a sphere's
+/// own point then finds every copy of every sphere within `cut` of it, for cut up to the
+/// smaller period (NeighborList::wrap, the analysis' contacts and g(r) in a periodic cell).
+inline void periodic_images(const Periodic& cell, std::span<const Vec3> centers, double cut,
+                            std::vector<Vec3>& points, std::vector<std::uint32_t>& owner) {
+    const std::size_t n = centers.size();
+    points.resize(n);
+    owner.clear();
+    for (std::size_t i = 0; i < n; ++i)
+        points[i] = cell.wrapped(centers[i]);
+    for (std::size_t i = 0; i < n; ++i)
+        for (int sx = -1; sx <= 1; ++sx)
+            for (int sy = -1; sy <= 1; ++sy) {
+                if (sx == 0 && sy == 0)
+                    continue;
+                const Vec3 p{points[i].x + sx * cell.lx(), points[i].y + sy * cell.ly(),
+                             points[i].z};
+                if (p.x >= -cut && p.x < cell.lx() + cut && p.y >= -cut && p.y < cell.ly() + cut) {
+                    points.push_back(p);
+                    owner.push_back(static_cast<std::uint32_t>(i));
+                }
+            }
+}
 
 } // namespace packbed::detail

@@ -127,6 +127,18 @@ std::vector<WallPlane> Annulus::walls_within(const Vec3& c, double r, double gap
     return planes;
 }
 
+Annulus Annulus::shrunk_from(std::size_t wall, double d) const {
+    const double mid = 0.5 * (m_outer + m_inner);
+    if (wall == 0)
+        return Annulus(std::max(m_outer - d, mid), m_inner);
+    return Annulus(m_outer, std::min(m_inner + d, mid));
+}
+
+double Annulus::shell_area_from(std::size_t wall, double d_low, double d_high) const {
+    return shrunk_from(wall, d_low).cross_section_area() -
+           shrunk_from(wall, d_high).cross_section_area();
+}
+
 std::string Annulus::spec() const {
     return fmt::format("annulus:{:.9g},{:.9g}", 2.0 * m_outer, 2.0 * m_inner);
 }
@@ -219,6 +231,43 @@ std::string_view Container::profile_position_name() const {
 
 double Container::profile_position(double d) const {
     return ask(m_shape, [&](const auto& s) { return s.profile_position(d); });
+}
+
+std::span<const std::string_view> Container::profile_walls() const {
+    return ask(m_shape, [](const auto& s) { return s.profile_walls(); });
+}
+
+double Container::wall_distance_from(std::size_t wall, const Vec3& p) const {
+    return ask(m_shape, [&](const auto& s) { return s.wall_distance_from(wall, p); });
+}
+
+std::pair<double, double> Container::wall_distances_from(std::size_t wall, const Vec3& c,
+                                                         double r) const {
+    return ask(m_shape, [&](const auto& s) { return s.wall_distances_from(wall, c, r); });
+}
+
+Container Container::shrunk_from(std::size_t wall, double d) const {
+    return ask(m_shape, [&](const auto& s) { return Container(s.shrunk_from(wall, d)); });
+}
+
+double Container::shell_area_from(std::size_t wall, double d_low, double d_high) const {
+    return ask(m_shape, [&](const auto& s) { return s.shell_area_from(wall, d_low, d_high); });
+}
+
+std::size_t Container::nearest_wall(const Vec3& p) const {
+    return ask(m_shape, [&](const auto& s) { return s.nearest_wall(p); });
+}
+
+std::string_view Container::profile_position_name_from(std::size_t wall) const {
+    return ask(m_shape, [&](const auto& s) { return s.profile_position_name_from(wall); });
+}
+
+double Container::profile_position_from(std::size_t wall, double d) const {
+    return ask(m_shape, [&](const auto& s) { return s.profile_position_from(wall, d); });
+}
+
+double Container::sticks_out(const Vec3& c, double r) const {
+    return ask(m_shape, [&](const auto& s) { return s.sticks_out(c, r); });
 }
 
 } // namespace packbed

@@ -129,25 +129,9 @@ void NeighborList::build(std::span<const Vec3> centers, std::span<const double> 
 
 void NeighborList::add_ghosts(std::span<const Vec3> centers, double cut, std::vector<Vec3>& points,
                               std::vector<std::uint32_t>& owner) const {
-    const Periodic& cell = *m_cell;
-    const std::size_t n = centers.size();
-    points.resize(n);
-    for (std::size_t i = 0; i < n; ++i)
-        points[i] = cell.wrapped(centers[i]);
-    // Every copy within `cut` of the cell, [-cut, L + cut) each way: a pair's nearest copies
-    // are then found from the first sphere's own place in the cell.
-    for (std::size_t i = 0; i < n; ++i)
-        for (int sx = -1; sx <= 1; ++sx)
-            for (int sy = -1; sy <= 1; ++sy) {
-                if (sx == 0 && sy == 0)
-                    continue;
-                const Vec3 p{points[i].x + sx * cell.lx(), points[i].y + sy * cell.ly(),
-                             points[i].z};
-                if (p.x >= -cut && p.x < cell.lx() + cut && p.y >= -cut && p.y < cell.ly() + cut) {
-                    points.push_back(p);
-                    owner.push_back(static_cast<std::uint32_t>(i));
-                }
-            }
+    // Every copy within `cut` of the cell: a pair's nearest copies are then found from the
+    // first sphere's own place in the cell.
+    detail::periodic_images(*m_cell, centers, cut, points, owner);
 }
 
 void NeighborList::number_pairs() {

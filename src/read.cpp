@@ -1093,11 +1093,25 @@ BedSummary read_bed_summary(std::istream& input, std::string_view name) {
             out.container = Box(box[0], box[1]);
         }
     }
+    const auto c = json.find("container");
+    const nlohmann::json shape =
+        c != json.end() && c->is_object() ? c->value("shape", nlohmann::json()) : nlohmann::json();
     if (out.container_radius)
         out.container = Cylinder(*out.container_radius);
-    // A box: container {shape: box, size: [LX, LY]} (from 0 to LX and LY).
-    if (const auto c = json.find("container");
-        c != json.end() && c->is_object() && c->value("shape", nlohmann::json()) == "box") {
+    // An annulus: container {shape: annulus, radius: R, inner_radius: Ri}, 0 < Ri < R.
+    if (shape == "annulus") {
+        const auto inner = number(*c, "inner_radius", "container.inner_radius", limits::max_length);
+        if (!out.container_radius || !inner || !(*inner < *out.container_radius))
+            throw InvalidInput(fmt::format(
+                "{}: container {{shape: annulus}} with radius = {} and inner_radius = {} is not "
+                "allowed; allowed: two numbers with 0 < inner_radius < radius",
+                shown, printable(c->value("radius", nlohmann::json()).dump().substr(0, 40)),
+                printable(c->value("inner_radius", nlohmann::json()).dump().substr(0, 40))));
+        out.container = Annulus(*out.container_radius, *inner);
+    }
+    // A box or a periodic cell: container {shape: box or periodic, size: [LX, LY]} (from 0 to
+    // LX and LY).
+    if (shape == "box" || shape == "periodic") {
         const auto size = c->find("size");
         std::array<double, 2> widths{std::nan(""), std::nan("")};
         if (size != c->end() && size->is_array() && size->size() == 2)
@@ -1109,7 +1123,10 @@ BedSummary read_bed_summary(std::istream& input, std::string_view name) {
                 "{}: container.size = {} is not allowed; allowed: two numbers in (0, {:g}]", shown,
                 printable(size != c->end() ? size->dump().substr(0, 80) : "missing"),
                 limits::max_length));
-        out.container = Box(widths[0], widths[1]);
+        if (shape == "box")
+            out.container = Box(widths[0], widths[1]);
+        else
+            out.container = Periodic(widths[0], widths[1]);
     }
     if (json.contains("lattice")) {
         out.porosity = number(json["lattice"], "porosity", "lattice.porosity", 1.0);

@@ -4,6 +4,7 @@
 #include <numbers>
 #include <optional>
 
+#include "packbed/analysis_files.hpp"
 #include "packbed/version.hpp"
 #include "packbed/volume.hpp"
 
@@ -137,7 +138,35 @@ nlohmann::json analysis_summary(const BedAnalysis& a, const AnalysisOptions& o) 
         summary["by_size"] = classes;
         summary["sizes"] = size_statistics_summary(a.sizes);
         summary["files"].push_back("size_classes.csv");
-        summary["files"].push_back("centre_distribution_by_size.csv");
+        if (a.walls.size() == 1)
+            summary["files"].push_back("centre_distribution_by_size.csv");
+    }
+    if (a.walls.size() == 1) // a cylinder or a box: the wall profiles are the files above
+        return summary;
+    // Several walls (an annulus): each wall's contacts and tables; none (a periodic cell):
+    // said so, with no wall contacts and no table against a wall.
+    nlohmann::json files = nlohmann::json::array();
+    nlohmann::json walls = nlohmann::json::array();
+    for (const WallAnalysis& wall : a.walls) {
+        const auto [void_name, centre_name] = wall_table_names(wall.name);
+        walls.push_back({{"name", wall.name},
+                         {"wall_contacts", wall.wall_contacts},
+                         {"wall_contacts_in_band", wall.wall_contacts_in_band},
+                         {"files", {void_name, centre_name}}});
+        files.push_back(void_name);
+        files.push_back(centre_name);
+    }
+    for (const auto& name : summary["files"])
+        if (name != "radial_void_fraction.csv" && name != "radial_centre_distribution.csv")
+            files.push_back(name);
+    summary["files"] = files;
+    summary["walls"] = walls;
+    if (a.walls.empty()) {
+        summary.erase("wall_contacts");
+        summary.erase("wall_contacts_in_band");
+        summary["no_walls"] = "a periodic cell has no side walls: no wall profile, centre "
+                              "distribution or wall contacts; the axial profile, the contacts "
+                              "and g(r) count every copy of a sphere (minimum image)";
     }
     return summary;
 }
@@ -171,6 +200,11 @@ nlohmann::json container_summary(const Container& container) {
         return {{"shape", "annulus"},
                 {"radius", a->outer_radius()},
                 {"inner_radius", a->inner_radius()},
+                {"spec", container.spec()}};
+    if (const Periodic* p = container.periodic())
+        return {{"shape", "periodic"},
+                {"size", {p->lx(), p->ly()}},
+                {"periodic", "x and y"},
                 {"spec", container.spec()}};
     const Rectangle b = container.bounds();
     return {{"shape", container.name()},

@@ -10,6 +10,7 @@
 
 #include "command.hpp"
 #include "packbed/analysis.hpp"
+#include "packbed/analysis_files.hpp"
 #include "packbed/bed_checks.hpp"
 #include "packbed/error.hpp"
 #include "packbed/files.hpp"
@@ -30,10 +31,10 @@ struct AnalyzeOptions {
     std::string particles;
     std::string format = "auto";
     double container_radius = 0.0; // 0: from summary.json next to the file
-    std::string container;         // --container cylinder:D, instead of --container-radius
-    std::string band;              // --band ZLOW,ZHIGH, instead of --band-clearance
-    std::string out;               // default: analysis/ next to the file
-    double diameter = 0.0;         // 0: the mean sphere diameter
+    std::string container; // --container cylinder:D, box, annulus, periodic, or --container-radius
+    std::string band;      // --band ZLOW,ZHIGH, instead of --band-clearance
+    std::string out;       // default: analysis/ next to the file
+    double diameter = 0.0; // 0: the mean sphere diameter
     double outside_tolerance = 0.01;
     InputPlacement placement; // --frame, --axis, --floor
     std::string frames;       // "all": every frame, and void_fraction_series.csv
@@ -43,14 +44,15 @@ struct AnalyzeOptions {
     bool force = false;
 };
 
-/// Refuse spheres that stick out of the container by more than the tolerance. `shifted` says
-/// that the centres are relative to --axis and --floor.
+/// Refuse spheres that stick out of the container by more than the tolerance
+/// (Container::sticks_out: beyond a wall; in a periodic cell, a centre outside the cell).
+/// `shifted` says that the centres are relative to --axis and --floor.
 void check_inside(const ParticleFile& file, const std::string& name, const Container& container,
                   double tolerance, bool shifted) {
     for (std::size_t i = 0; i < file.packing.size(); ++i) {
         const Vec3& c = file.packing.centers[i];
         const double r = file.packing.radii[i];
-        const double out_wall = -container.wall_distances(c, r).first;
+        const double out_wall = container.sticks_out(c, r);
         const double below = -(c.z - r);
         if (out_wall > tolerance || below > tolerance)
             throw InvalidInput(fmt::format(
@@ -79,6 +81,21 @@ std::optional<double> frame_void_fraction(const ParticleFile& frame, const Conta
     if (!band)
         return std::nullopt;
     return void_fraction(frame.packing, container, band->z_low, band->z_high);
+}
+
+/// "N spheres touch the wall"; for an annulus each wall's count; in a periodic cell, that it
+/// has no wall (nor wall profiles).
+std::string wall_contacts_line(const BedAnalysis& a) {
+    if (a.walls.size() == 1)
+        return fmt::format("{} spheres touch the wall", a.coordination.wall_contacts);
+    if (a.walls.empty())
+        return "no side walls (periodic cell): no wall profile, centre distribution or wall "
+               "contacts";
+    std::string line;
+    for (const WallAnalysis& wall : a.walls)
+        line += fmt::format("{}{} spheres touch the {} wall", line.empty() ? "" : ", ",
+                            wall.wall_contacts, wall.name);
+    return line;
 }
 
 int run_analyze(AnalyzeOptions& o) {
@@ -169,7 +186,7 @@ int run_analyze(AnalyzeOptions& o) {
     summary["floor"] = read_options.floor;
     summary["container"] = container_summary(container);
     summary["warnings"] = warnings;
-    for (const auto& [name, text] : analysis_tables(analysis, container))
+    for (const auto& [name, text] : analysis_files(analysis, container))
         out.stage(name, text);
     if (const std::string why = stage_plots(out, analysis, container); !why.empty()) {
         summary["plots"] = why;
@@ -185,17 +202,17 @@ int run_analyze(AnalyzeOptions& o) {
         fmt::print("packbed analyze: {} spheres in {}{}\n", file.packing.size(),
                    container.cylinder()
                        ? fmt::format("a cylinder of radius {}", container.cylinder()->radius())
-                       : fmt::format("a box ({})", container.spec()),
+                   : container.box() ? fmt::format("a box ({})", container.spec())
+                                     : container.spec(),
                    series ? fmt::format(" (frame {} of {}; the void fraction of every frame in "
                                         "void_fraction_series.csv)",
                                         file.frame, frames)
                           : "");
         fmt::print("void fraction: {:.4f} (between z = {:.4g} and z = {:.4g})\n",
                    analysis.void_fraction, analysis.band.z_low, analysis.band.z_high);
-        fmt::print("coordination: {:.3f} ({:.3f} without {} rattlers); {} spheres touch the "
-                   "wall\n",
+        fmt::print("coordination: {:.3f} ({:.3f} without {} rattlers); {}\n",
                    analysis.coordination.mean, analysis.coordination.mean_without_rattlers,
-                   analysis.coordination.rattlers, analysis.coordination.wall_contacts);
+                   analysis.coordination.rattlers, wall_contacts_line(analysis));
         fmt::print("results in {}/\n", out_dir.string());
     }
     return 0;
@@ -208,8 +225,9 @@ Command register_analyze(CLI::App& parent) {
     auto& o = *options;
     auto& a = o.analysis;
     CLI::App* app = parent.add_subcommand(
-        "analyze", "Measure a bed of spheres in a cylinder or a box: overall, wall and axial void "
-                   "fraction, centre distribution, coordination, wall contacts, g(r)");
+        "analyze", "Measure a bed of spheres in a cylinder, a box, an annulus or a periodic cell: "
+                   "overall, wall and axial void fraction, centre distribution, coordination, "
+                   "wall contacts, g(r)");
     app->option_defaults()->always_capture_default();
     app->fallthrough();
     const double inf = std::numeric_limits<double>::infinity();
@@ -229,7 +247,7 @@ Command register_analyze(CLI::App& parent) {
                         "cylinder:2Rt; default: summary.json next to the file")
             ->check(real_in(0.0, limits::max_length, true, false));
     add_container_option(*app, o.container, "file units; default: summary.json next to the file",
-                         {"cylinder", "box"})
+                         all_shapes)
         ->excludes(radius);
     add_output_directory(*app, o.out, o.force, "analysis/ next to the file");
     app->add_option("-d,--diameter", o.diameter,

@@ -12,6 +12,7 @@
 #include <unistd.h>
 
 #include "interrupt.hpp"
+#include "packbed/analysis_files.hpp"
 #include "packbed/correlations.hpp"
 #include "packbed/io.hpp"
 #include "packbed/summary.hpp"
@@ -80,14 +81,34 @@ std::string stage_plots(OutputDirectory& out, const BedAnalysis& a, const Contai
     const double aspect_ratio = cylinder ? 2.0 * cylinder->radius() / dp : 0.0;
     const double x_max = container.depth() / dp;
     // Profiles against the distance from the wall, z and the centre distance, all over Dp.
-    std::string script = datablock("bed", a.radial_void_fraction, dp) +
-                         datablock("centres", a.centre_distribution, dp) +
-                         datablock("axial", a.axial_void_fraction, dp) +
-                         datablock("rdf", a.pair_correlation, dp);
+    // A container of one wall draws "this bed"; an annulus a curve per wall; a periodic cell
+    // has no wall plots.
+    std::string script, bed_curves, centre_curves;
+    if (a.walls.size() == 1) {
+        script = datablock("bed", a.radial_void_fraction, dp) +
+                 datablock("centres", a.centre_distribution, dp);
+        bed_curves = "$bed using 1:2 with lines lw 2 lc rgb 'black' title 'this bed'";
+        centre_curves = "$centres using 1:2 with steps lw 2 lc rgb 'black' title 'this bed'";
+    } else {
+        for (const WallAnalysis& wall : a.walls) {
+            script += datablock("bed_" + wall.name, wall.void_fraction, dp) +
+                      datablock("centres_" + wall.name, wall.centre_distribution, dp);
+            const std::string separator = bed_curves.empty() ? "" : ", ";
+            bed_curves += fmt::format("{}$bed_{} using 1:2 with lines lw 2 title 'from the {} "
+                                      "wall'",
+                                      separator, wall.name, wall.name);
+            centre_curves += fmt::format("{}$centres_{} using 1:2 with steps lw 2 title 'from "
+                                         "the {} wall'",
+                                         separator, wall.name, wall.name);
+        }
+    }
+    script +=
+        datablock("axial", a.axial_void_fraction, dp) + datablock("rdf", a.pair_correlation, dp);
     const std::string where = cylinder ? fmt::format("a = {:.4g}", aspect_ratio)
                                        : fmt::format("{} (Dp = {:.4g})", container.spec(), dp);
-    const std::string x_label =
-        cylinder ? "distance from the wall (Rt - r)/Dp" : "distance from the nearest wall d/Dp";
+    const std::string x_label = cylinder             ? "distance from the wall (Rt - r)/Dp"
+                                : a.walls.size() > 1 ? "distance from each wall d/Dp"
+                                                     : "distance from the nearest wall d/Dp";
     std::string curves;
     for (const auto& c : radial_void_fraction_correlations()) {
         if (!cylinder)
@@ -109,11 +130,12 @@ std::string stage_plots(OutputDirectory& out, const BedAnalysis& a, const Contai
     // fine bins: drawn to scale it flattens the rest. Above 4 the axis is cut and the peak's
     // height written beside it.
     double peak = 0.0, peak_at = 0.0;
-    for (const auto& b : a.centre_distribution)
-        if (b.value > peak) {
-            peak = b.value;
-            peak_at = 0.5 * (b.low + b.high) / dp;
-        }
+    for (const WallAnalysis& wall : a.walls)
+        for (const auto& b : wall.centre_distribution)
+            if (b.value > peak) {
+                peak = b.value;
+                peak_at = 0.5 * (b.low + b.high) / dp;
+            }
     const double centre_top = 4.0;
     const std::string centre_range =
         peak > centre_top
@@ -124,9 +146,12 @@ std::string stage_plots(OutputDirectory& out, const BedAnalysis& a, const Contai
     // Every name gnuplot sees is one of ours, relative to the staging folder it runs in.
     std::vector<std::string> names{"radial_void_fraction", "radial_centre_distribution",
                                    "axial_void_fraction", "pair_correlation"};
-    // A bed of several sizes: each size class's centre distribution, one curve each.
+    if (a.walls.empty())
+        names.erase(names.begin(), names.begin() + 2);
+    // A bed of several sizes: each size class's centre distribution, one curve each (for a
+    // container of one wall: by_size has no distributions otherwise).
     std::string by_size;
-    if (!a.by_size.empty()) {
+    if (!a.by_size.empty() && !a.by_size.front().centre_distribution.empty()) {
         names.push_back("centre_distribution_by_size");
         // Drawn over shells of about 0.1 Dp (groups of the table's bins, each group's density
         // its centres over its area): a class has far fewer centres than the bed.
@@ -177,34 +202,44 @@ std::string stage_plots(OutputDirectory& out, const BedAnalysis& a, const Contai
     const std::pair<const char*, const char*> terminals[] = {
         {"svg", "set terminal svg size 800,450 background '#ffffff'"},
         {"png", "set terminal pngcairo size 1000,560 background '#ffffff'"}};
+    // The wall plots (none in a periodic cell), then the axial profile and g(r).
+    const std::string wall_plots =
+        a.walls.empty()
+            ? std::string()
+            : std::string("set output 'radial_void_fraction.{ext}'\nset ylabel 'radial void "
+                          "fraction'\n"
+                          "set title 'Radial void fraction, {where}, band z = {low:.4g} to "
+                          "{high:.4g}'\n"
+                          "plot {bed_curves}{curves}\n"
+                          "set output 'radial_centre_distribution.{ext}'\nset ylabel 'centre "
+                          "density / mean'\n"
+                          "set title 'Radial distribution of sphere centres, {where}'\n"
+                          "{centre_range}plot {centre_curves}\n"
+                          "unset label 1\nset autoscale y\n");
     for (const auto& [extension, terminal] : terminals)
         script += fmt::format(
-            "{terminal}\nunset label 1\nset key top right\nset autoscale y\n"
-            "set xlabel '{x_label}'\nset xrange [0:{x_max}]\n"
-            "set output 'radial_void_fraction.{ext}'\nset ylabel 'radial void fraction'\n"
-            "set title 'Radial void fraction, {where}, band z = {low:.4g} to {high:.4g}'\n"
-            "plot $bed using 1:2 with lines lw 2 lc rgb 'black' title 'this bed'{curves}\n"
-            "set output 'radial_centre_distribution.{ext}'\nset ylabel 'centre density / mean'\n"
-            "set title 'Radial distribution of sphere centres, {where}'\n{centre_range}"
-            "plot $centres using 1:2 with steps lw 2 lc rgb 'black' title 'this bed'\n"
-            "unset label 1\nset autoscale y\n"
-            "set output 'axial_void_fraction.{ext}'\nset xlabel 'height above the floor z/Dp'\n"
-            "set xrange [0:*]\nset ylabel 'axial void fraction'\nset yrange [0:1]\n"
-            "set title 'Axial void fraction; the band measured lies between the dashed lines'\n"
-            "set arrow 1 from {low_d:.6g},0 to {low_d:.6g},1 nohead dt 2\n"
-            "set arrow 2 from {high_d:.6g},0 to {high_d:.6g},1 nohead dt 2\n"
-            "plot $axial using 1:2 with steps lw 1 lc rgb 'black' title 'this bed'\n"
-            "unset arrow 1\nunset arrow 2\nset autoscale y\n"
-            "set output 'pair_correlation.{ext}'\nset xlabel 'centre distance r/Dp'\n"
-            "set xrange [0:*]\nset ylabel 'g(r)'\nset yrange [0:*]\n"
-            "set title 'Pair correlation of centres in the band'\n"
-            "plot $rdf using 1:2 with steps lw 1 lc rgb 'black' title 'this bed', 1 with lines "
-            "dt 2 lc rgb 'grey' notitle\nset autoscale y\n{by_size}",
+            fmt::runtime(
+                "{terminal}\nunset label 1\nset key top right\nset autoscale y\n"
+                "set xlabel '{x_label}'\nset xrange [0:{x_max}]\n" +
+                wall_plots +
+                "set output 'axial_void_fraction.{ext}'\nset xlabel 'height above the floor z/Dp'\n"
+                "set xrange [0:*]\nset ylabel 'axial void fraction'\nset yrange [0:1]\n"
+                "set title 'Axial void fraction; the band measured lies between the dashed lines'\n"
+                "set arrow 1 from {low_d:.6g},0 to {low_d:.6g},1 nohead dt 2\n"
+                "set arrow 2 from {high_d:.6g},0 to {high_d:.6g},1 nohead dt 2\n"
+                "plot $axial using 1:2 with steps lw 1 lc rgb 'black' title 'this bed'\n"
+                "unset arrow 1\nunset arrow 2\nset autoscale y\n"
+                "set output 'pair_correlation.{ext}'\nset xlabel 'centre distance r/Dp'\n"
+                "set xrange [0:*]\nset ylabel 'g(r)'\nset yrange [0:*]\n"
+                "set title 'Pair correlation of centres in the band'\n"
+                "plot $rdf using 1:2 with steps lw 1 lc rgb 'black' title 'this bed', 1 with lines "
+                "dt 2 lc rgb 'grey' notitle\nset autoscale y\n{by_size}"),
             fmt::arg("terminal", terminal), fmt::arg("ext", extension), fmt::arg("x_max", x_max),
             fmt::arg("where", where), fmt::arg("x_label", x_label), fmt::arg("low", a.band.z_low),
             fmt::arg("high", a.band.z_high), fmt::arg("low_d", a.band.z_low / dp),
             fmt::arg("high_d", a.band.z_high / dp), fmt::arg("curves", curves),
-            fmt::arg("centre_range", centre_range),
+            fmt::arg("centre_range", centre_range), fmt::arg("bed_curves", bed_curves),
+            fmt::arg("centre_curves", centre_curves),
             fmt::arg("by_size",
                      by_size.empty()
                          ? std::string()
@@ -233,7 +268,7 @@ void stage_analysis(OutputDirectory& out, const Packing& packing, const Containe
     options.band_clearance = band_clearance;
     const BedAnalysis analysis = analyze_bed(packing, container, options);
     summary["analysis"] = analysis_summary(analysis, options);
-    for (const auto& [name, text] : analysis_tables(analysis, container))
+    for (const auto& [name, text] : analysis_files(analysis, container))
         out.stage(name, text);
     if (const std::string why = stage_plots(out, analysis, container); !why.empty())
         summary["analysis"]["plots"] = why;

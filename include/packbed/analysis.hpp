@@ -7,6 +7,7 @@
 #include <cstddef>
 #include <cstdint>
 #include <optional>
+#include <string>
 #include <vector>
 
 #include "packbed/container.hpp"
@@ -54,6 +55,20 @@ struct Coordination {
     std::size_t wall_contacts_in_band = 0; ///< of which with their centre in the band
 };
 
+/// The profiles and contacts measured from one wall of the container (Container::profile_walls):
+/// the cylinder's or the box's one wall, each wall of an annulus.
+struct WallAnalysis {
+    std::string name; ///< "wall", or "outer" / "inner" for an annulus
+    /// e(d) over shells of the distance d from this wall, from the wall to the container's
+    /// depth (an annulus: to the middle of the gap, each wall its own half)
+    std::vector<ProfileBin> void_fraction;
+    /// the density of the centres (in the band) in this wall's part of the cross-section
+    /// against d, over the mean density across the whole cross-section
+    std::vector<ProfileBin> centre_distribution;
+    std::size_t wall_contacts = 0;         ///< spheres of the whole bed touching this wall
+    std::size_t wall_contacts_in_band = 0; ///< of which with their centre in the band
+};
+
 /// The region where the centres of the pairs that g(r) counts lie: the container shrunk by the
 /// mean radius R (for a cylinder, the cylinder of radius Rt - R) between the heights of `band`.
 /// g(r) counts the pairs whose two centres lie in the band and normalises by the volume of each
@@ -94,7 +109,8 @@ struct SizeClassAnalysis {
     std::size_t in_band = 0;        ///< of them, with their centre in the band
     double mean_coordination = 0.0; ///< mean sphere-sphere contacts of those, any partner's size
     /// the density of the class's centres against the distance from the wall over their own
-    /// mean density across the cross-section (bins of centre_bin, as the bed's)
+    /// mean density across the cross-section (bins of centre_bin, as the bed's); for a
+    /// container of one wall only (empty for an annulus and a periodic cell)
     std::vector<ProfileBin> centre_distribution;
 };
 
@@ -104,10 +120,16 @@ struct BedAnalysis {
     Band band;                  ///< the axial band the properties refer to (length)
     double void_fraction = 0.0; ///< overall, exact, in the band
     /// e(d) over shells of the distance d from the wall (cylindrical shells in a cylinder,
-    /// rectangular frames in a box), wall first
+    /// rectangular frames in a box), wall first: walls[0].void_fraction for a container of
+    /// one wall; empty for an annulus (see walls) and a periodic cell
     std::vector<ProfileBin> radial_void_fraction;
     std::vector<ProfileBin> axial_void_fraction; ///< e(z) over slabs from the floor to the top
-    std::vector<ProfileBin> centre_distribution; ///< relative centre density against d
+    /// relative centre density against d: walls[0].centre_distribution for a container of one
+    /// wall; empty otherwise
+    std::vector<ProfileBin> centre_distribution;
+    /// every wall's profiles and contacts, in the order of Container::profile_walls (none in
+    /// a periodic cell)
+    std::vector<WallAnalysis> walls;
     Coordination coordination;
     std::vector<ProfileBin> pair_correlation; ///< g(r) against centre distance
     PairRegion pair_region;                   ///< the region g(r) was normalised in (pair_region)
@@ -119,7 +141,17 @@ struct BedAnalysis {
     SizeStatistics sizes;
 };
 
-/// Measure a bed in a container (a Cylinder or a Box converts to one).
+/// Measure a bed in a container (any shape converts to one).
+///
+/// - The wall profiles, centre distributions and wall contacts are measured from each wall of
+///   Container::profile_walls: the one wall of a cylinder or a box (BedAnalysis's
+///   radial_void_fraction and centre_distribution are then that wall's), the tube and the rod
+///   of an annulus separately (each from its wall to the middle of the gap), none in a
+///   periodic cell, which has the overall and axial void fraction, contacts and g(r) only.
+/// - In a periodic cell the contacts and g(r) count every copy of a sphere within the
+///   distance (the minimum image for distances below half a period; Periodic::separation):
+///   the contact distance 2 r_max + tolerance and --rdf-range must not exceed the smaller
+///   period.
 ///
 /// - Void fractions are exact: sphere volumes cut by the band planes and by the container come
 ///   from Container::sphere_volume (closed forms and converged quadrature, no sampling). The
@@ -159,7 +191,8 @@ struct BedAnalysis {
 /// \param container the container (radius or widths > 0, within limits::max_length)
 /// \param options see AnalysisOptions (widths and the range > 0, tolerances >= 0)
 /// \return the measurements. \throws InvalidInput for an empty bed, a band that is empty, a
-/// value outside the ranges above, or a bed beyond the limits.
+/// value outside the ranges above, a bed beyond the limits, or a periodic cell narrower than
+/// the contact distance or the range of g(r).
 BedAnalysis analyze_bed(const Packing& packing, const Container& container,
                         const AnalysisOptions& options = {});
 

@@ -6,9 +6,12 @@
 #pragma once
 
 #include <algorithm>
+#include <array>
 #include <cmath>
 #include <concepts>
+#include <cstddef>
 #include <limits>
+#include <span>
 #include <string>
 #include <string_view>
 #include <utility>
@@ -129,7 +132,27 @@ public:
     std::string_view profile_position_name() const { return "radial_position"; }
     double profile_position(double d) const { return m_radius - d; }
 
+    /// The walls the profiles are measured from: one, "wall" (Container::profile_walls).
+    std::span<const std::string_view> profile_walls() const { return one_wall; }
+    /// Wall `wall` (0) of profile_walls: the nearest wall's questions, as they are.
+    double wall_distance_from(std::size_t, const Vec3& p) const { return wall_distance(p); }
+    std::pair<double, double> wall_distances_from(std::size_t, const Vec3& c, double r) const {
+        return wall_distances(c, r);
+    }
+    Cylinder shrunk_from(std::size_t, double d) const { return shrunk(d); }
+    double shell_area_from(std::size_t, double d_low, double d_high) const {
+        return shell_area(d_low, d_high);
+    }
+    std::size_t nearest_wall(const Vec3&) const { return 0; }
+    std::string_view profile_position_name_from(std::size_t) const {
+        return profile_position_name();
+    }
+    double profile_position_from(std::size_t, double d) const { return profile_position(d); }
+    /// \return how far the sphere (c, r) reaches beyond the wall, rho + r - Rt (<= 0 inside).
+    double sticks_out(const Vec3& c, double r) const { return -wall_distances(c, r).first; }
+
 private:
+    static constexpr std::array<std::string_view, 1> one_wall{"wall"};
     double m_radius;
 };
 
@@ -226,7 +249,28 @@ public:
     std::string_view profile_position_name() const { return "wall_distance"; }
     double profile_position(double d) const { return d; }
 
+    /// The walls the profiles are measured from: one, "wall", the four faces together (the
+    /// distance from the nearest face; a corner counts with the nearer face).
+    std::span<const std::string_view> profile_walls() const { return one_wall; }
+    /// Wall `wall` (0) of profile_walls: the nearest face's questions, as they are.
+    double wall_distance_from(std::size_t, const Vec3& p) const { return wall_distance(p); }
+    std::pair<double, double> wall_distances_from(std::size_t, const Vec3& c, double r) const {
+        return wall_distances(c, r);
+    }
+    Box shrunk_from(std::size_t, double d) const { return shrunk(d); }
+    double shell_area_from(std::size_t, double d_low, double d_high) const {
+        return shell_area(d_low, d_high);
+    }
+    std::size_t nearest_wall(const Vec3&) const { return 0; }
+    std::string_view profile_position_name_from(std::size_t) const {
+        return profile_position_name();
+    }
+    double profile_position_from(std::size_t, double d) const { return profile_position(d); }
+    /// \return how far the sphere (c, r) reaches beyond the nearest face, r - d (<= 0 inside).
+    double sticks_out(const Vec3& c, double r) const { return -wall_distances(c, r).first; }
+
 private:
+    static constexpr std::array<std::string_view, 1> one_wall{"wall"};
     double m_x_low, m_x_high, m_y_low, m_y_high;
 };
 
@@ -308,7 +352,47 @@ public:
     std::string_view profile_position_name() const { return "wall_distance"; }
     double profile_position(double d) const { return d; }
 
+    /// The walls the profiles are measured from: "outer" (the tube, wall 0) and "inner" (the
+    /// rod, wall 1), each profile from its wall to the middle of the gap, (R + Ri) / 2.
+    std::span<const std::string_view> profile_walls() const { return two_walls; }
+    /// \return the distance of p from wall `wall`: R - rho (outer), rho - Ri (inner).
+    double wall_distance_from(std::size_t wall, const Vec3& p) const {
+        const double rho = std::hypot(p.x, p.y);
+        return wall == 0 ? m_outer - rho : rho - m_inner;
+    }
+    /// \return the nearest and farthest distance from wall `wall` of the points of the sphere
+    /// (c, r): R - (rho + r) and R - (rho - r) (outer); (rho - r) - Ri and (rho + r) - Ri
+    /// (inner).
+    std::pair<double, double> wall_distances_from(std::size_t wall, const Vec3& c, double r) const {
+        const double rho = std::hypot(c.x, c.y);
+        if (wall == 0)
+            return {m_outer - (rho + r), m_outer - (rho - r)};
+        return {(rho - r) - m_inner, (rho + r) - m_inner};
+    }
+    /// \return the points at least d >= 0 from wall `wall`, up to the middle of the gap:
+    /// the annulus of radii max(R - d, mid) and Ri (outer), R and min(Ri + d, mid) (inner).
+    /// Differences of volumes in these give the shells of that wall's profile only: the two
+    /// profiles together cover the annulus once.
+    Annulus shrunk_from(std::size_t wall, double d) const;
+    /// \return the area between the distances d_low <= d_high from wall `wall` (up to the
+    /// middle): shrunk_from(wall, d_low) less shrunk_from(wall, d_high).
+    double shell_area_from(std::size_t wall, double d_low, double d_high) const;
+    /// \return the wall nearer to p: 1 (inner) when rho - Ri < R - rho, else 0 (outer).
+    std::size_t nearest_wall(const Vec3& p) const {
+        const double rho = std::hypot(p.x, p.y);
+        return rho - m_inner < m_outer - rho ? 1 : 0;
+    }
+    /// The first column of each wall's profiles: the distance from the axis.
+    std::string_view profile_position_name_from(std::size_t) const { return "radial_position"; }
+    /// \return the distance from the axis at d from wall `wall`: R - d or Ri + d.
+    double profile_position_from(std::size_t wall, double d) const {
+        return wall == 0 ? m_outer - d : m_inner + d;
+    }
+    /// \return how far the sphere (c, r) reaches beyond the nearer wall (<= 0 inside).
+    double sticks_out(const Vec3& c, double r) const { return -wall_distances(c, r).first; }
+
 private:
+    static constexpr std::array<std::string_view, 2> two_walls{"outer", "inner"};
     double m_outer, m_inner;
 };
 
@@ -380,6 +464,24 @@ public:
     Rectangle bounds() const { return {0.0, m_lx, 0.0, m_ly}; }
     std::string_view profile_position_name() const { return "wall_distance"; }
     double profile_position(double d) const { return d; }
+
+    /// No wall to measure a profile from: profile_walls is empty, and the questions about
+    /// one wall (never asked) answer as for no wall.
+    std::span<const std::string_view> profile_walls() const { return {}; }
+    double wall_distance_from(std::size_t, const Vec3& p) const { return wall_distance(p); }
+    std::pair<double, double> wall_distances_from(std::size_t, const Vec3& c, double r) const {
+        return wall_distances(c, r);
+    }
+    Periodic shrunk_from(std::size_t, double) const { return *this; }
+    double shell_area_from(std::size_t, double, double) const { return 0.0; }
+    std::size_t nearest_wall(const Vec3&) const { return 0; }
+    std::string_view profile_position_name_from(std::size_t) const { return "wall_distance"; }
+    double profile_position_from(std::size_t, double d) const { return d; }
+    /// \return how far the centre of the sphere lies outside the cell [0, LX] x [0, LY] (0
+    /// inside; the radius does not count: a sphere across a side is inside through the other).
+    double sticks_out(const Vec3& c, double) const {
+        return std::max({0.0, -c.x, c.x - m_lx, -c.y, c.y - m_ly});
+    }
 
 private:
     double m_lx, m_ly;
@@ -461,6 +563,35 @@ public:
     std::string_view profile_position_name() const;
     /// The position written in that column for the distance d from the wall.
     double profile_position(double d) const;
+
+    /// The walls the wall profiles, centre distributions and wall contacts are measured from,
+    /// each by name: {"wall"} for a cylinder and for a box (its four faces together: the
+    /// distance from the nearest face), {"outer", "inner"} for an annulus (the tube and the
+    /// rod, each to the middle of the gap), none for a periodic cell. A wall is named below by
+    /// its index in this list.
+    std::span<const std::string_view> profile_walls() const;
+    /// \return the distance of p from wall `wall` (negative beyond it); for a container of
+    /// one wall, wall_distance(p).
+    double wall_distance_from(std::size_t wall, const Vec3& p) const;
+    /// \return the nearest and farthest distance from wall `wall` of the points of the sphere
+    /// (c, r); for a container of one wall, wall_distances(c, r).
+    std::pair<double, double> wall_distances_from(std::size_t wall, const Vec3& c, double r) const;
+    /// \return the points at least d from wall `wall` within that wall's part of the
+    /// cross-section (up to the depth); for a container of one wall, shrunk(d).
+    Container shrunk_from(std::size_t wall, double d) const;
+    /// \return the area between the distances d_low <= d_high from wall `wall`; for a
+    /// container of one wall, shell_area(d_low, d_high).
+    double shell_area_from(std::size_t wall, double d_low, double d_high) const;
+    /// \return the wall whose part of the cross-section holds p (the nearer wall; the first
+    /// on a tie).
+    std::size_t nearest_wall(const Vec3& p) const;
+    /// The first column of wall `wall`'s profile tables and its value at d from that wall.
+    std::string_view profile_position_name_from(std::size_t wall) const;
+    double profile_position_from(std::size_t wall, double d) const;
+    /// \return how far the sphere (c, r) sticks out of the container sideways (<= 0: not at
+    /// all): beyond the nearest wall (the cylinder, a box face, the tube or the rod), or, in a
+    /// periodic cell, how far its centre lies outside [0, LX] x [0, LY].
+    double sticks_out(const Vec3& c, double r) const;
 
 private:
     Shape m_shape;

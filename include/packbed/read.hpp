@@ -126,9 +126,12 @@ std::vector<ParticleFile> read_particle_frames(std::istream& input, std::string_
 /// What a bed's summary.json (written by `packbed generate`, `lattice` or `analyze`) tells a
 /// later command about the bed.
 struct BedSummary {
-    std::optional<double> container_radius; ///< container.radius (length), when present
-    /// the container: a cylinder of container.radius, or the box x in [0, LX], y in [0, LY]
-    /// of a lattice in a box (region.size), when either is present
+    /// container.radius (length), when present (an annulus's: its outer radius)
+    std::optional<double> container_radius;
+    /// the container: a cylinder of container.radius; an annulus (container {shape: annulus,
+    /// radius, inner_radius}); a box or a periodic cell (container {shape: box or periodic,
+    /// size: [LX, LY]}, x in [0, LX], y in [0, LY]); or the box of a lattice in a box
+    /// (region.size), when one is present
     std::optional<Container> container;
     /// region.size of a lattice in a box, from 0 to L along each axis (length), when present
     std::optional<std::array<double, 3>> box;

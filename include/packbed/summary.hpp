@@ -27,9 +27,11 @@ nlohmann::json soft_sphere_summary(const SoftSphereParameters& parameters,
                                    const SoftSphereResult& result, double band_clearance,
                                    int threads);
 
-/// The numbers of a bed analysis (the tables go to CSV files, see analysis_tables): band,
+/// The numbers of a bed analysis (the tables go to CSV files, see analysis_files): band,
 /// overall void fraction, coordination (mean with and without rattlers, rattlers, wall contacts),
-/// the reference diameter, and the options used.
+/// the reference diameter, the options used and the files. An annulus adds `walls`, each wall's
+/// name, wall contacts and tables (wall_contacts counts the spheres touching either); a
+/// periodic cell has `walls` empty, no wall_contacts, and `no_walls` saying why.
 nlohmann::json analysis_summary(const BedAnalysis& analysis, const AnalysisOptions& options);
 
 /// The statistics of a bed's sizes as summary.json records them: count, d10, d50, d90 (by
@@ -38,8 +40,9 @@ nlohmann::json analysis_summary(const BedAnalysis& analysis, const AnalysisOptio
 /// fractions.
 nlohmann::json size_statistics_summary(const SizeStatistics& statistics);
 
-/// The container as summary.json records it: {shape: cylinder, radius} or {shape: box, size:
-/// [LX, LY], spec}; read_bed_summary reads both back.
+/// The container as summary.json records it: {shape: cylinder, radius}, {shape: box, size:
+/// [LX, LY], spec}, {shape: annulus, radius, inner_radius, spec} or {shape: periodic, size:
+/// [LX, LY], periodic: "x and y", spec}; read_bed_summary reads each back.
 nlohmann::json container_summary(const Container& container);
 
 /// The record of a lattice (`packbed lattice`): its parameters, the number of balls, the
