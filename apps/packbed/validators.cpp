@@ -6,6 +6,7 @@
 
 #include <fmt/format.h>
 #include <fmt/ranges.h>
+#include <nlohmann/json.hpp>
 #include <omp.h>
 
 #include "command.hpp"
@@ -117,7 +118,43 @@ std::optional<Container> container_beside(const std::filesystem::path& particles
     std::error_code ec;
     if (!std::filesystem::exists(std::filesystem::symlink_status(summary, ec)))
         return std::nullopt;
-    return read_bed_summary(summary).container;
+    return summary_container(summary);
+}
+
+std::optional<Container> summary_container(const std::filesystem::path& summary) {
+    std::optional<Container> container = read_bed_summary(summary).container;
+    // An annulus or a periodic cell (issue 17): its `container.spec`, the --container form
+    // (read_bed_summary, checked above, reads a cylinder's and a box's fields).
+    const auto json =
+        nlohmann::json::parse(read_small_file("", summary, limits::max_small_file), nullptr, false);
+    if (json.is_object() && json.contains("container") && json["container"].is_object()) {
+        const auto spec = json["container"].find("spec");
+        if (spec != json["container"].end() && spec->is_string())
+            if (const auto parsed = parse_container(spec->get<std::string>());
+                parsed && (parsed->shape == "annulus" || parsed->shape == "periodic")) {
+                container = parsed->container();
+                // The lengths to the bit where the summary has them (the spec has 9 digits):
+                // an annulus' radius and inner_radius, a cell's size.
+                const auto& c = json["container"];
+                const auto number = [&](const nlohmann::json& v, double& out) {
+                    if (!v.is_number())
+                        return false;
+                    out = v.get<double>();
+                    return out > 0.0 && out <= limits::max_length;
+                };
+                double a = 0.0, b = 0.0;
+                if (parsed->shape == "annulus" && c.contains("radius") &&
+                    c.contains("inner_radius") && number(c["radius"], a) &&
+                    number(c["inner_radius"], b) && b < a &&
+                    std::abs(2.0 * a / parsed->diameter - 1.0) < 1e-8)
+                    container = Annulus(a, b);
+                if (parsed->shape == "periodic" && c.contains("size") && c["size"].is_array() &&
+                    c["size"].size() == 2 && number(c["size"][0], a) && number(c["size"][1], b) &&
+                    std::abs(a / parsed->lx - 1.0) < 1e-8 && std::abs(b / parsed->ly - 1.0) < 1e-8)
+                    container = Periodic(a, b);
+            }
+    }
+    return container;
 }
 
 std::string describe(const Container& container) {
