@@ -545,6 +545,23 @@ TEST(ContainerExportCli, HydraulicsOfAnAnnulusABoxAndAPeriodicCell) {
                             "hydraulic diameter 4 A / P = D - DI = 0.016 m"),
               std::string::npos)
         << text.out;
+    // From a bed's summary.json: a = D_h / d in the bed's unit, whatever --diameter says.
+    const fs::path bed = scratch("bed");
+    ASSERT_EQ(run_packbed("lattice --type sc --diameter 0.002 --region annulus:0.024,0.008,0.01 "
+                          "-q --out " +
+                          bed.string())
+                  .status,
+              0);
+    for (const auto& [given, metres] : {std::pair{"", 0.016}, {" --diameter 0.004", 0.032}}) {
+        const Outcome h = run_packbed("hydraulics --json -u 0.01 --bed " + bed.string() + given);
+        ASSERT_EQ(h.status, 0) << h.err;
+        const auto j = nlohmann::json::parse(h.out)["pressure_gradient"];
+        EXPECT_DOUBLE_EQ(j["aspect_ratio"].get<double>(), 8.0) << given;
+        EXPECT_DOUBLE_EQ(j["hydraulic_diameter_m"].get<double>(), metres) << given;
+        EXPECT_EQ(j["aspect_ratio_from"].get<std::string>().rfind("the annulus:0.024,0.008 of ", 0),
+                  0u)
+            << j;
+    }
     // A gap narrower than a particle.
     const Outcome narrow =
         run_packbed("hydraulics -e 0.4 -d 0.002 --container annulus:0.024,0.023");

@@ -110,6 +110,8 @@ int run_hydraulics(const HydraulicsOptions& o) {
     const auto spec = parse_container(o.container);
     std::optional<Container> container;
     std::string container_from = fmt::format("--container {}", o.container);
+    // A container from --bed is in the bed's length unit: a = D_h / the bed's diameter.
+    std::optional<double> bed_diameter;
     if (spec)
         container = spec->container();
     double e = o.porosity;
@@ -146,8 +148,9 @@ int run_hydraulics(const HydraulicsOptions& o) {
         }
         // The tube of a cylindrical bed gives the wall-corrected pressure drop.
         // An annulus or a periodic cell: its hydraulic diameter, or no wall.
-        if (!o.aspect_ratio_given && !spec && bed.container) {
+        if (!o.aspect_ratio_given && !spec && bed.container && bed.diameter) {
             container = bed.container;
+            bed_diameter = bed.diameter;
             container_from = fmt::format("the {} of {}", bed.container->spec(), bed.shown);
         } else if (!o.aspect_ratio_given && !spec && bed.diameter && bed.container_radius) {
             const double a = 2.0 * *bed.container_radius / *bed.diameter;
@@ -176,7 +179,9 @@ int run_hydraulics(const HydraulicsOptions& o) {
     } else if (container) {
         // An annulus or a box: a = D_h / d with the hydraulic diameter 4 A / P.
         hydraulic = hydraulic_diameter(*container);
-        aspect_ratio = *hydraulic / f.diameter;
+        aspect_ratio = *hydraulic / bed_diameter.value_or(f.diameter);
+        if (bed_diameter) // in metres, at the particle diameter used
+            hydraulic = aspect_ratio * f.diameter;
         const std::string formula = container->annulus() ? "D - DI" : "2 LX LY / (LX + LY)";
         if (!(aspect_ratio >= 1.0 && aspect_ratio <= limits::max_tube_aspect_ratio))
             throw InvalidInput(fmt::format(
