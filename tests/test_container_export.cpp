@@ -612,6 +612,66 @@ TEST(ContainerExportCli, LammpsSettlesAnAnnulusBedBetweenRodAndTube) {
     EXPECT_GT(at_tube, 0u);
 }
 
+TEST(ContainerExportCli, LatticeRegionsRefusedWithOneLine) {
+    const fs::path d = scratch("bad");
+    const std::string allowed = "allowed: box:LX,LY,LZ, cylinder:D,H, annulus:D,DI,H (DI < D) or "
+                                "periodic:LX,LY,H with lengths > 0 and at most 1e+15\n";
+    for (const std::string region : {"annulus:2,6,1", "annulus:6,2", "periodic:4,4"}) {
+        const Outcome o = run_packbed("lattice --region " + region + " --out " + d.string());
+        EXPECT_EQ(o.status, 2);
+        EXPECT_EQ(o.err, "packbed lattice: --region '" + region + "' is not allowed; " + allowed);
+    }
+    const Outcome turned = run_packbed("lattice --type sc --region periodic:4,4,2 --rotate z:30 "
+                                       "--out " +
+                                       d.string());
+    EXPECT_EQ(turned.status, 2);
+    EXPECT_EQ(turned.err, "packbed lattice: --rotate is not allowed with --region periodic:4,4,2; "
+                          "allowed: no rotation (the lattice must repeat across the periodic "
+                          "cell)\n");
+    // hcp repeats every d along x and sqrt(3) d along y.
+    const Outcome hcp =
+        run_packbed("lattice --type hcp --region periodic:4,4,2 --out " + d.string());
+    EXPECT_EQ(hcp.status, 2);
+    EXPECT_NE(hcp.err.find("its periods 1 (x) and 1.7320508075688772 (y), each at least 2 d, e.g. "
+                           "periodic:4,3.4641016151377544,2\n"),
+              std::string::npos)
+        << hcp.err;
+    EXPECT_TRUE(fs::is_empty(d));
+}
+
+TEST(ContainerExportCli, LiggghtsSettlesAnAnnulusAndAPeriodicBed) {
+    if (std::system("command -v liggghts >/dev/null 2>&1") != 0)
+        GTEST_SKIP() << "liggghts (Debian package liggghts) is not installed";
+    for (const std::string region : {"annulus:0.024,0.006,0.012", "periodic:0.012,0.012,0.009"}) {
+        const fs::path d = scratch(region.substr(0, 7)) / "bed";
+        ASSERT_EQ(run_packbed("lattice --type " + std::string(region[0] == 'a' ? "diamond" : "sc") +
+                              " --region " + region + " --diameter 0.003 -q --out " + d.string())
+                      .status,
+                  0);
+        const std::size_t balls = spheres_of(d / "particles.csv").size();
+        ASSERT_EQ(run_packbed("export " + (d / "particles.csv").string() +
+                              " --format liggghts-data -q --out " + (d / "bed.data").string())
+                      .status,
+                  0);
+        EXPECT_EQ(fs::exists(d / "bed.data.wall.stl"), region[0] == 'a');
+        const std::string cmd =
+            "cd " + d.string() + " && liggghts -in bed.data.liggghts.in -log none > lig.out 2>&1";
+        ASSERT_EQ(std::system(cmd.c_str()), 0) << slurp(d / "lig.out");
+        EXPECT_NE(slurp(d / "lig.out")
+                      .find(fmt::format("packbed settle: {} atoms after 2000 steps", balls)),
+                  std::string::npos)
+            << slurp(d / "lig.out");
+        if (region[0] != 'a')
+            continue;
+        // Between the rod and the tube's prism (corners at R / cos(pi / 48) at most).
+        for (const auto& s : last_dump_frame(slurp(d / "bed.data.liggghts.dump"))) {
+            const double rho = std::hypot(s[0], s[1]);
+            EXPECT_GE(rho - s[3], 0.003 - 0.01 * 0.003);
+            EXPECT_LE(rho + s[3], 0.012 / std::cos(pi / 48.0) + 0.01 * 0.003);
+        }
+    }
+}
+
 TEST(ContainerExportCli, LammpsSettlesAPeriodicBed) {
     if (!has_lmp())
         GTEST_SKIP() << "lmp (Debian package lammps) is not installed";
