@@ -478,6 +478,13 @@ TEST(ContainerExportCli, LatticeInAPeriodicCell) {
               std::string::npos)
         << data.substr(0, 400);
     EXPECT_NE(slurp(d / "bed.data.lammps.in").find("boundary        p p f\n"), std::string::npos);
+    const Outcome boxed =
+        run_packbed("export " + csv + " --box 0,3,0,3,0,4 -q --out " + (d / "boxed.data").string());
+    EXPECT_EQ(boxed.status, 2);
+    EXPECT_EQ(boxed.err, "packbed export: --box 0,3,0,3,0,4 is not allowed with the periodic cell "
+                         "periodic:2.82842712,2.82842712; allowed: no --box (the data file's box "
+                         "is the cell, its periods), or --no-container\n");
+    EXPECT_FALSE(fs::exists(d / "boxed.data"));
     const Outcome stl =
         run_packbed("export " + csv + " --format stl -q --out " + (d / "cell.stl").string());
     EXPECT_EQ(stl.status, 2);

@@ -300,6 +300,11 @@ int run_data_export(const ExportOptions& o, ExportFormat format, const ParticleF
     std::vector<std::string> sidecars;
     if (o.fluid_velocity >= 0.0)
         sidecars.push_back(".fluid.in");
+    if (given_box && container && container->container.periodic())
+        throw InvalidInput(fmt::format("--box {} is not allowed with the periodic cell {}; "
+                                       "allowed: no --box (the data file's box is the cell, its "
+                                       "periods), or --no-container",
+                                       printable(o.box), container->container.spec()));
     const DemFiles dem = dem_files(name, format, container && container->container.periodic());
     if (container) {
         // The inputs name the files as single words.
