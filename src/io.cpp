@@ -6,8 +6,6 @@
 #include <limits>
 #include <numbers>
 
-#include <type_traits>
-
 #include <fmt/format.h>
 
 #include "packbed/error.hpp"
@@ -109,24 +107,37 @@ AxisBox container_box(double container_radius, double height, double diameter) {
 
 namespace {
 
-/// Throw InvalidInput unless the container has finite bounds and a depth > 0.
+/// Throw InvalidInput unless the container has finite bounds and a depth > 0 (a periodic
+/// cell, which has no wall and so no depth: an area > 0).
 void require_container(const Container& container) {
     const Rectangle b = container.bounds();
+    const bool sized =
+        container.periodic() ? container.cross_section_area() > 0.0 : container.depth() > 0.0;
     if (!(std::isfinite(b.x_low) && std::isfinite(b.x_high) && std::isfinite(b.y_low) &&
-          std::isfinite(b.y_high) && container.depth() > 0.0))
-        throw InvalidInput(fmt::format("the container {} is not allowed; allowed: a cylinder or a "
-                                       "box of finite size > 0",
+          std::isfinite(b.y_high) && sized))
+        throw InvalidInput(fmt::format("the container {} is not allowed; allowed: a cylinder, a "
+                                       "box, an annulus or a periodic cell of finite size > 0",
                                        container.spec()));
 }
 
 } // namespace
 
+double container_box_margin(const Container& container, double diameter) {
+    if (const Annulus* a = container.annulus())
+        return container_box_margin(diameter, a->outer_radius());
+    if (container.periodic())
+        return 0.5 * diameter;
+    return container_box_margin(diameter, container.depth());
+}
+
 AxisBox container_box(const Container& container, double height, double diameter) {
     require_container(container);
     require_positive("container height", height);
     require_positive("diameter", diameter);
-    const double m = container_box_margin(diameter, container.depth());
+    const double m = container_box_margin(container, diameter);
     const Rectangle b = container.bounds();
+    if (container.periodic()) // x and y: the cell itself, its periods
+        return {{b.x_low, b.y_low, -m}, {b.x_high, b.y_high, height + m}};
     return {{b.x_low - m, b.y_low - m, -m}, {b.x_high + m, b.y_high + m, height + m}};
 }
 
@@ -194,11 +205,18 @@ SettleNumbers settle_numbers(const DemSettle& s) {
 struct SettleWall {
     std::string words;        // the head's "the container is the ..., and the data file's box
                               // holds it" (two comment lines)
-    std::string lammps;       // LAMMPS: the comment and the region of the side
-    std::string liggghts_stl; // LIGGGHTS: what the side's STL is
+    std::string lammps;       // LAMMPS: the comment, the region(s) and the fix(es) of the side
+    std::string liggghts_stl; // LIGGGHTS: what the side's STL is ("": none, periodic)
+    std::string boundary = "f f f";
 };
 
-SettleWall settle_wall(const Cylinder& c, double height) {
+/// The LAMMPS wall fix on region `region`, with the contact model's words.
+std::string region_wall(std::string_view fix, std::string_view contact, std::string_view region) {
+    return fmt::format("fix             {} all wall/gran/region granular {} region {}\n", fix,
+                       contact, region);
+}
+
+SettleWall settle_wall(const Cylinder& c, double height, std::string_view contact) {
     return {fmt::format("cylinder of radius\n# {:.9g} about the z axis from the floor z = 0 to "
                         "z = {:.9g}, and the data file's\n# box holds it",
                         c.radius(), height),
@@ -207,11 +225,12 @@ SettleWall settle_wall(const Cylinder& c, double height) {
                         "floor as the plane z = 0.\n"
                         "region          container cylinder z 0 0 {} 0 {} side in open 1 open 2 "
                         "units box\n",
-                        c.radius(), height),
+                        c.radius(), height) +
+                region_wall("side", contact, "container"),
             "a prism about the cylinder"};
 }
 
-SettleWall settle_wall(const Box& b, double height) {
+SettleWall settle_wall(const Box& b, double height, std::string_view contact) {
     // Block faces 1 to 6 are xlo, xhi, ylo, yhi, zlo, zhi: the floor and the top open.
     return {fmt::format("box x in [{:.9g}, {:.9g}], y in\n# [{:.9g}, {:.9g}] from the floor z = 0 "
                         "to z = {:.9g}, and the data file's box\n# holds it",
@@ -221,22 +240,45 @@ SettleWall settle_wall(const Box& b, double height) {
                         "LIGGGHTS input uses packbed's\n# STL), its floor as the plane z = 0.\n"
                         "region          container block {} {} {} {} 0 {} side in open 5 open 6 "
                         "units box\n",
-                        b.x_low(), b.x_high(), b.y_low(), b.y_high(), height),
+                        b.x_low(), b.x_high(), b.y_low(), b.y_high(), height) +
+                region_wall("side", contact, "container"),
             "the box's four faces"};
 }
 
-/// Annulus and periodic cell: no settle input yet (issue 17, export step).
-template <class Shape>
-requires std::is_same_v<Shape, Annulus> || std::is_same_v<Shape, Periodic>
-    SettleWall settle_wall(const Shape& shape, double) {
-    throw InvalidInput(fmt::format("--container {} is not allowed for a DEM settle input yet; "
-                                   "allowed: cylinder:D or box:LX,LY",
-                                   shape.spec()));
+SettleWall settle_wall(const Annulus& a, double height, std::string_view contact) {
+    // Two regions, two wall fixes: the tube's inside and the rod's outside (side out), each
+    // open at the floor and the top (cylinder faces 1 and 2).
+    return {fmt::format("annulus between a tube\n# of radius {:.9g} and a coaxial rod of radius "
+                        "{:.9g} about the z axis, from the floor z = 0 to\n# z = {:.9g}, and the "
+                        "data file's box holds it",
+                        a.outer_radius(), a.inner_radius(), height),
+            fmt::format("# The container: the tube as a cylinder region (side in) and the rod as "
+                        "another\n# (side out), each its own wall (LAMMPS 2022 has no STL walls "
+                        "for granular fixes;\n# the LIGGGHTS input uses packbed's STL), the floor "
+                        "as the plane z = 0.\n"
+                        "region          tube cylinder z 0 0 {} 0 {} side in open 1 open 2 "
+                        "units box\n"
+                        "region          rod cylinder z 0 0 {} 0 {} side out open 1 open 2 "
+                        "units box\n",
+                        a.outer_radius(), height, a.inner_radius(), height) +
+                region_wall("side", contact, "tube") + region_wall("side_rod", contact, "rod"),
+            "the tube's prism and the rod's"};
 }
 
-SettleWall settle_wall(const DemSettle& s) {
-    return std::visit([&](const auto& shape) { return settle_wall(shape, s.container_height); },
-                      s.container.shape());
+SettleWall settle_wall(const Periodic& p, double height, std::string_view) {
+    return {fmt::format("cell periodic in x in\n# [0, {:.9g}) and y in [0, {:.9g}) (boundary p p "
+                        "f, no side wall), from the floor z = 0 to\n# z = {:.9g}; the data "
+                        "file's box is the cell in x and y",
+                        p.lx(), p.ly(), height),
+            "# The container: a cell periodic in x and y (boundary p p f): no side wall; the "
+            "floor as\n# the plane z = 0.\n",
+            "", "p p f"};
+}
+
+SettleWall settle_wall(const DemSettle& s, std::string_view contact = "") {
+    return std::visit(
+        [&](const auto& shape) { return settle_wall(shape, s.container_height, contact); },
+        s.container.shape());
 }
 
 /// The comment block and the variables both inputs start with.
@@ -296,13 +338,14 @@ std::string lammps_settle_input(const DemSettle& s) {
     const SettleNumbers n = settle_numbers(s);
     const std::string contact = "hertz/material ${youngs} ${restitution} ${poisson} tangential "
                                 "mindlin NULL 1.0 ${friction} damping tsuji";
+    const SettleWall wall = settle_wall(s, contact);
     return settle_head(s, n, "LAMMPS (2022, GRANULAR package)",
                        fmt::format("lmp -in {}.lammps.in", s.data_file)) +
            fmt::format(
                "units           si\n"
                "atom_style      sphere\n"
                "atom_modify     map array\n"
-               "boundary        f f f\n"
+               "boundary        {4}\n"
                "comm_modify     vel yes\n"
                "read_data       {0}\n\n"
                "neighbor        {1} bin\n"
@@ -312,23 +355,38 @@ std::string lammps_settle_input(const DemSettle& s) {
                "pair_style      granular\n"
                "pair_coeff      * * {2}\n"
                "{3}"
-               "fix             side all wall/gran/region granular {2} region container\n"
                "fix             floor all wall/gran granular {2} zplane 0.0 NULL\n",
-               s.data_file, n.skin, contact, settle_wall(s).lammps) +
+               s.data_file, n.skin, contact, wall.lammps, wall.boundary) +
            settle_run(s, n);
 }
 
 std::string liggghts_settle_input(const DemSettle& s) {
     const SettleNumbers n = settle_numbers(s);
-    require_input_word("the wall STL", s.wall_stl);
-    require_input_word("the bottom STL", s.bottom_stl);
+    const SettleWall wall = settle_wall(s);
+    const bool stl = !wall.liggghts_stl.empty(); // a periodic cell: no STL, a plane floor
+    if (stl) {
+        require_input_word("the wall STL", s.wall_stl);
+        require_input_word("the bottom STL", s.bottom_stl);
+    }
+    const std::string container =
+        stl ? fmt::format(
+                  "# The container from packbed's STL: its side ({2}) and floor.\n"
+                  "fix             side all mesh/surface file {0} type 1\n"
+                  "fix             floor all mesh/surface file {1} type 1\n"
+                  "fix             container all wall/gran model hertz tangential history mesh "
+                  "n_meshes 2 meshes side floor\n",
+                  s.wall_stl, s.bottom_stl, wall.liggghts_stl)
+            : std::string("# The container: periodic in x and y (boundary p p f), no side wall; "
+                          "the floor as the plane z = 0.\n"
+                          "fix             floor all wall/gran model hertz tangential history "
+                          "primitive type 1 zplane 0.0\n");
     return settle_head(s, n, "LIGGGHTS 3.8",
                        fmt::format("liggghts -in {}.liggghts.in", s.data_file)) +
            fmt::format(
                "units           si\n"
                "atom_style      granular\n"
                "atom_modify     map array\n"
-               "boundary        f f f\n"
+               "boundary        {5}\n"
                "newton          off\n"
                "communicate     single vel yes\n"
                "read_data       {0}\n\n"
@@ -342,15 +400,10 @@ std::string liggghts_settle_input(const DemSettle& s) {
                "${{friction}}\n"
                "pair_style      gran model hertz tangential history\n"
                "pair_coeff      * *\n"
-               "# The container from packbed's STL: its side ({5}) and floor.\n"
-               "fix             side all mesh/surface file {2} type 1\n"
-               "fix             floor all mesh/surface file {3} type 1\n"
-               "fix             container all wall/gran model hertz tangential history mesh "
-               "n_meshes 2 meshes side floor\n"
+               "{2}"
                "# Warns if dt exceeds a quarter of the Rayleigh or Hertz time.\n"
                "fix             dt_check all check/timestep/gran {4} 0.25 0.25\n",
-               s.data_file, n.skin, s.wall_stl, s.bottom_stl, std::max(1, s.steps / 2),
-               settle_wall(s).liggghts_stl) +
+               s.data_file, n.skin, container, "", std::max(1, s.steps / 2), wall.boundary) +
            settle_run(s, n);
 }
 

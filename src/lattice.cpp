@@ -5,6 +5,8 @@
 #include <cstdint>
 #include <limits>
 #include <numbers>
+#include <optional>
+#include <type_traits>
 
 #include <fmt/format.h>
 
@@ -135,8 +137,34 @@ UnitCell unit_cell(LatticeType type) {
 double region_volume(const LatticeRegion& region) {
     if (const auto* box = std::get_if<BoxRegion>(&region))
         return box->size.x * box->size.y * box->size.z;
+    if (const auto* a = std::get_if<AnnulusRegion>(&region))
+        return pi / 4.0 * (a->diameter * a->diameter - a->inner_diameter * a->inner_diameter) *
+               a->height;
+    if (const auto* cell = std::get_if<PeriodicRegion>(&region))
+        return cell->lx * cell->ly * cell->height;
     const auto& c = std::get<CylinderRegion>(region);
     return pi / 4.0 * c.diameter * c.diameter * c.height;
+}
+
+Container region_container(const LatticeRegion& region) {
+    if (const auto* box = std::get_if<BoxRegion>(&region))
+        return Box(box->size.x, box->size.y);
+    if (const auto* a = std::get_if<AnnulusRegion>(&region))
+        return Annulus(0.5 * a->diameter, 0.5 * a->inner_diameter);
+    if (const auto* cell = std::get_if<PeriodicRegion>(&region))
+        return Periodic(cell->lx, cell->ly);
+    return Cylinder(0.5 * std::get<CylinderRegion>(region).diameter);
+}
+
+double region_height(const LatticeRegion& region) {
+    return std::visit(
+        [](const auto& r) {
+            if constexpr (std::is_same_v<std::decay_t<decltype(r)>, BoxRegion>)
+                return r.size.z;
+            else
+                return r.height;
+        },
+        region);
 }
 
 namespace {
@@ -155,6 +183,39 @@ void check_values(const LatticeParameters& p) {
                 fmt::format("--region box:{},{},{} is not allowed; allowed: three lengths > 0 and "
                             "at most {:g}",
                             box->size.x, box->size.y, box->size.z, limits::max_length));
+    } else if (const auto* a = std::get_if<AnnulusRegion>(&p.region)) {
+        require(length_ok(a->diameter) && length_ok(a->inner_diameter) && length_ok(a->height) &&
+                    a->inner_diameter < a->diameter,
+                fmt::format("--region annulus:{},{},{} is not allowed; allowed: diameters "
+                            "0 < DI < D and a height > 0, each at most {:g}",
+                            a->diameter, a->inner_diameter, a->height, limits::max_length));
+    } else if (const auto* cell = std::get_if<PeriodicRegion>(&p.region)) {
+        require(length_ok(cell->lx) && length_ok(cell->ly) && length_ok(cell->height),
+                fmt::format("--region periodic:{},{},{} is not allowed; allowed: three lengths "
+                            "> 0 and at most {:g}",
+                            cell->lx, cell->ly, cell->height, limits::max_length));
+        require(p.rotations.empty(),
+                fmt::format("--rotate is not allowed with --region periodic:{},{},{}; allowed: no "
+                            "rotation (the lattice must repeat across the periodic cell)",
+                            cell->lx, cell->ly, cell->height));
+        // The lattice repeats across the cell: whole periods along x and y, at least 2 d.
+        const Vec3 edges = unit_cell(p.type).edges * p.diameter;
+        const auto periods = [](double length, double edge) {
+            const double q = length / edge;
+            return std::abs(q - std::round(q)) <= 1e-9 * std::max(1.0, q) ? std::round(q) : 0.0;
+        };
+        const double nx = periods(cell->lx, edges.x), ny = periods(cell->ly, edges.y);
+        const auto suggest = [](double length, double edge, double least) {
+            return std::max(std::ceil(least / edge - 1e-9), std::round(length / edge)) * edge;
+        };
+        require(nx >= 1.0 && ny >= 1.0 && cell->lx >= 2.0 * p.diameter &&
+                    cell->ly >= 2.0 * p.diameter,
+                fmt::format("--region periodic:{},{},{} is not allowed with the {} lattice of "
+                            "--diameter {}; allowed: LX and LY whole multiples of its periods "
+                            "{} (x) and {} (y), each at least 2 d, e.g. periodic:{},{},{}",
+                            cell->lx, cell->ly, cell->height, to_string(p.type), p.diameter,
+                            edges.x, edges.y, suggest(cell->lx, edges.x, 2.0 * p.diameter),
+                            suggest(cell->ly, edges.y, 2.0 * p.diameter), cell->height));
     } else {
         const auto& c = std::get<CylinderRegion>(p.region);
         require(length_ok(c.diameter) && length_ok(c.height),
@@ -176,6 +237,10 @@ void check_values(const LatticeParameters& p) {
 std::string region_text(const LatticeRegion& region) {
     if (const auto* box = std::get_if<BoxRegion>(&region))
         return fmt::format("box:{},{},{}", box->size.x, box->size.y, box->size.z);
+    if (const auto* a = std::get_if<AnnulusRegion>(&region))
+        return fmt::format("annulus:{},{},{}", a->diameter, a->inner_diameter, a->height);
+    if (const auto* cell = std::get_if<PeriodicRegion>(&region))
+        return fmt::format("periodic:{},{},{}", cell->lx, cell->ly, cell->height);
     const auto& c = std::get<CylinderRegion>(region);
     return fmt::format("cylinder:{},{}", c.diameter, c.height);
 }
@@ -185,6 +250,8 @@ std::string region_text(const LatticeRegion& region) {
 struct FillPlan {
     Vec3 lo, hi, origin;
     double reach2 = 0.0;
+    double inner2 = -1.0;           // an annulus: the smallest squared distance from the axis
+    std::optional<Periodic> period; // a periodic cell: one period of cells, moved into it
     bool is_box = true;
     bool empty = false; // the region is thinner than a ball: nothing to keep
     Rotation rotation;
@@ -200,13 +267,29 @@ FillPlan plan_fill(const LatticeParameters& p, const UnitCell& cell) {
     const Vec3 edges = cell.edges * d;
     const bool whole = p.keep == LatticeKeep::whole;
     const double slack = 1e-9 * d; // balls touching a wall exactly stay in
-    f.is_box = std::holds_alternative<BoxRegion>(p.region);
+    f.is_box = std::holds_alternative<BoxRegion>(p.region) ||
+               std::holds_alternative<PeriodicRegion>(p.region);
     const double margin = whole ? r - slack : -slack;
-    if (f.is_box) {
+    if (const auto* periodic = std::get_if<PeriodicRegion>(&p.region)) {
+        f.lo = {0.0, 0.0, margin};
+        f.hi = {periodic->lx, periodic->ly, periodic->height - margin};
+        f.origin = p.origin.value_or(Vec3{r, r, r});
+        f.period = Periodic(periodic->lx, periodic->ly);
+    } else if (f.is_box) {
         const Vec3 size = std::get<BoxRegion>(p.region).size;
         f.lo = {margin, margin, margin};
         f.hi = size - f.lo;
         f.origin = p.origin.value_or(Vec3{r, r, r});
+    } else if (const auto* a = std::get_if<AnnulusRegion>(&p.region)) {
+        const double reach = 0.5 * a->diameter - margin;
+        const double inner = 0.5 * a->inner_diameter + margin;
+        f.reach2 = reach * reach;
+        f.inner2 = inner * inner;
+        f.lo = {-reach, -reach, margin};
+        f.hi = {reach, reach, a->height - margin};
+        f.origin = p.origin.value_or(Vec3{0.0, 0.0, r});
+        if (!(inner <= reach))
+            f.hi.x = f.lo.x - 1.0; // thinner than a ball: empty below
     } else {
         const auto& c = std::get<CylinderRegion>(p.region);
         const double reach = 0.5 * c.diameter - margin;
@@ -269,6 +352,11 @@ FillPlan plan_fill(const LatticeParameters& p, const UnitCell& cell) {
     f.i1 = static_cast<std::int64_t>(i1);
     f.j0 = static_cast<std::int64_t>(j0);
     f.j1 = static_cast<std::int64_t>(j1);
+    if (f.period) { // exactly one period along x and y (check_values: whole periods)
+        f.i0 = f.j0 = 0;
+        f.i1 = static_cast<std::int64_t>(std::round(f.period->lx() / edges.x)) - 1;
+        f.j1 = static_cast<std::int64_t>(std::round(f.period->ly() / edges.y)) - 1;
+    }
     f.k0 = static_cast<std::int64_t>(k0);
     f.k1 = static_cast<std::int64_t>(k1);
     return f;
@@ -293,14 +381,22 @@ Packing fill_lattice(const LatticeParameters& p) {
         for (std::int64_t j = f.j0; j <= f.j1; ++j)
             for (std::int64_t i = f.i0; i <= f.i1; ++i)
                 for (const Vec3& b : cell.balls) {
-                    const Vec3 c =
+                    Vec3 c =
                         f.origin + f.rotation.apply({static_cast<double>(i) * edges.x + b.x * d,
                                                      static_cast<double>(j) * edges.y + b.y * d,
                                                      static_cast<double>(k) * edges.z + b.z * d});
+                    if (f.period) {
+                        c = f.period->wrapped(c);
+                        if (c.z < f.lo.z || c.z > f.hi.z)
+                            continue;
+                        packing.add(c, r);
+                        continue;
+                    }
                     if (c.x < f.lo.x || c.x > f.hi.x || c.y < f.lo.y || c.y > f.hi.y ||
                         c.z < f.lo.z || c.z > f.hi.z)
                         continue;
-                    if (!f.is_box && c.x * c.x + c.y * c.y > f.reach2)
+                    if (!f.is_box &&
+                        (c.x * c.x + c.y * c.y > f.reach2 || c.x * c.x + c.y * c.y < f.inner2))
                         continue;
                     packing.add(c, r);
                 }
@@ -317,6 +413,11 @@ Packing fill_lattice(const LatticeParameters& p) {
 }
 
 LatticeContacts lattice_contacts(const Packing& packing, double tolerance) {
+    return lattice_contacts(packing, Periodic(0.0, 0.0), tolerance);
+}
+
+LatticeContacts lattice_contacts(const Packing& packing, const Periodic& cell, double tolerance) {
+    const bool periodic = cell.lx() > 0.0; // Periodic(0, 0): not periodic
     LatticeContacts out;
     out.contacts.assign(packing.size(), 0);
     out.closest = std::numeric_limits<double>::infinity();
@@ -324,10 +425,14 @@ LatticeContacts lattice_contacts(const Packing& packing, double tolerance) {
         return out;
     const double d = packing.mean_diameter();
     NeighborList list;
+    if (periodic)
+        list.wrap(cell);
     list.build(packing.centers, packing.radii, 0.5 * d);
     for (std::size_t i = 0; i < packing.size(); ++i)
         for (const std::uint32_t j : list.neighbors_of(i)) {
-            const double dist = norm(packing.centers[j] - packing.centers[i]) / d;
+            const Vec3 between = periodic ? cell.separation(packing.centers[i], packing.centers[j])
+                                          : packing.centers[j] - packing.centers[i];
+            const double dist = norm(between) / d;
             out.closest = std::min(out.closest, dist);
             if (std::abs(dist - 1.0) <= tolerance)
                 ++out.contacts[i];

@@ -48,10 +48,26 @@ std::pair<Vec3, double> farthest_fluid_point(const std::vector<TreatedBody>& bod
     constexpr double fractions[8][2] = {{0.0123, 0.0371},  {0.3137, 0.1291},   {-0.2719, 0.2213},
                                         {0.1409, -0.4129}, {-0.5231, -0.0917}, {0.6143, 0.2753},
                                         {-0.1733, 0.6571}, {0.4421, -0.5309}};
+    std::vector<std::pair<double, double>> lines;
+    if (const Annulus* a = container.container.annulus()) {
+        // The middle of the bounds is in the rod: lines across the gap instead, at fractions
+        // of it from the rod and generic angles (radians).
+        constexpr double across[8][2] = {{0.5123, 0.1371}, {0.3137, 1.2291}, {0.6719, 2.0213},
+                                         {0.4409, 2.9129}, {0.5731, 3.7917}, {0.3843, 4.4753},
+                                         {0.6233, 5.2571}, {0.4621, 5.9309}};
+        const double gap = a->outer_radius() - a->inner_radius();
+        for (const auto& f : across) {
+            const double rho = a->inner_radius() + f[0] * gap;
+            lines.emplace_back(rho * std::cos(f[1]), rho * std::sin(f[1]));
+        }
+    } else {
+        for (const auto& f : fractions)
+            lines.emplace_back(x_mid + f[0] * x_half, y_mid + f[1] * y_half);
+    }
     const double step = 0.05 * dp;
     for (double z = 0.01237 * dp; z < container.height; z += step)
-        for (const auto& f : fractions) {
-            const Vec3 p{x_mid + f[0] * x_half, y_mid + f[1] * y_half, z};
+        for (const auto& [x, y] : lines) {
+            const Vec3 p{x, y, z};
             double clearance =
                 std::min({container.container.wall_distance(p), p.z, container.height - p.z});
             if (clearance <= best_clearance)
@@ -79,6 +95,7 @@ std::pair<Vec3, double> farthest_fluid_point(const std::vector<TreatedBody>& bod
 struct Background {
     std::string block_mesh;    // blockMeshDict after its header
     bool wall_surface = false; // the wall is cut out of the background by snappyHexMesh
+    bool rod_surface = false;  // an annulus' rod too (rod.stl, patch rod)
     std::string where;         // README: "a cylinder of radius R"
     std::string surfaces;      // README: the wall's surface, after particles.stl's line
     std::string patches;       // README: after the patches' list
@@ -127,13 +144,38 @@ Background background(const Cylinder& cylinder, double height, double cell,
     return b;
 }
 
-/// Annulus and periodic cell: not exported to OpenFOAM yet (issue 17, export step).
-template <class Shape>
-requires std::is_same_v<Shape, Annulus> || std::is_same_v<Shape, Periodic>
-    Background background(const Shape& shape, double, double, const OpenFoamMeshOptions&) {
-    throw InvalidInput(fmt::format("--container {} is not allowed for an OpenFOAM case yet; "
-                                   "allowed: cylinder:D or box:LX,LY",
-                                   shape.spec()));
+/// An annulus: the cylinder's background about its tube (a box one cell beyond the tube
+/// sideways, 0 to height in z); snappyHexMesh cuts the tube (wall.stl) and the rod (rod.stl,
+/// patch `rod`) out of it, both refined to the wall level.
+Background background(const Annulus& annulus, double height, double cell,
+                      const OpenFoamMeshOptions& options) {
+    Background b = background(Cylinder(annulus.outer_radius()), height, cell, options);
+    const std::string about =
+        fmt::format("// Box around the cylinder (radius {}", annulus.outer_radius());
+    b.block_mesh.replace(0, about.size(),
+                         fmt::format("// Box around the annulus (tube radius {}, rod radius {}",
+                                     annulus.outer_radius(), annulus.inner_radius()));
+    b.rod_surface = true;
+    b.where = fmt::format("the annulus between a tube of radius {} and a coaxial rod of radius {}",
+                          annulus.outer_radius(), annulus.inner_radius());
+    b.surfaces = "; `wall.stl`: the tube, open, reaching half a cell beyond both ends (patch "
+                 "`wall`); `rod.stl`: the rod, likewise (patch `rod`)";
+    b.patches = ", `rod`; `outside` keeps no faces";
+    b.cells = fmt::format("Background cells of {} (Dp / {}); refinement level {} at the "
+                          "particles (cells of {}), {} at the tube and the rod (cells of {})",
+                          cell, options.cells_per_diameter, options.particle_level,
+                          refined(cell, options.particle_level), options.wall_level,
+                          refined(cell, options.wall_level));
+    return b;
+}
+
+/// A periodic cell: refused. A case would need cyclic side patches and every sphere cut by a
+/// side copied onto the other side, which this export does not write (docs/surfaces.md).
+Background background(const Periodic& cell, double, double, const OpenFoamMeshOptions&) {
+    throw InvalidInput(fmt::format(
+        "--container {} is not allowed with --format openfoam; allowed: cylinder:D, box:LX,LY "
+        "or annulus:D,DI (a periodic cell needs cyclic patches, which are not written)",
+        cell.spec()));
 }
 
 /// A box: the background is the box itself, [x_low, x_high] x [y_low, y_high] x [0, height],
@@ -225,6 +267,8 @@ OpenFoamCase openfoam_case(const TreatedBed& bed, const SurfaceContainer& contai
             container_solids(container.container, -0.5 * c.cell_size, height + 0.5 * c.cell_size,
                              std::min(largest * icosphere_edge(level), 0.5 * c.cell_size));
         c.wall.push_back(std::move(walls[0]));
+        if (back.rod_surface) // an annulus: solids wall, rod, bottom, top
+            c.rod.push_back(std::move(walls[1]));
     }
     c.files.emplace_back("system/blockMeshDict",
                          header("blockMeshDict", "system") + back.block_mesh);
@@ -264,12 +308,19 @@ OpenFoamCase openfoam_case(const TreatedBed& bed, const SurfaceContainer& contai
         "    relaxed {{ maxNonOrtho 75; }}\n}}\n\n"
         "mergeTolerance 1e-6;\n",
         fmt::arg("wall_geometry",
-                 back.wall_surface ? "    wall.stl { type triSurfaceMesh; name wall; }\n" : ""),
+                 std::string(back.wall_surface
+                                 ? "    wall.stl { type triSurfaceMesh; name wall; }\n"
+                                 : "") +
+                     (back.rod_surface ? "    rod.stl { type triSurfaceMesh; name rod; }\n" : "")),
         fmt::arg("wall_refinement",
-                 back.wall_surface ? fmt::format("        wall {{ level ({0} {0}); patchInfo {{ "
-                                                 "type wall; }} }}\n",
-                                                 options.wall_level)
-                                   : std::string()),
+                 (back.wall_surface ? fmt::format("        wall {{ level ({0} {0}); patchInfo {{ "
+                                                  "type wall; }} }}\n",
+                                                  options.wall_level)
+                                    : std::string()) +
+                     (back.rod_surface ? fmt::format("        rod {{ level ({0} {0}); patchInfo "
+                                                     "{{ type wall; }} }}\n",
+                                                     options.wall_level)
+                                       : std::string())),
         fmt::arg("cpd", options.cells_per_diameter), fmt::arg("lp", options.particle_level),
         fmt::arg("clear", c.clearance), fmt::arg("x", c.location_in_mesh.x),
         fmt::arg("y", c.location_in_mesh.y), fmt::arg("z", c.location_in_mesh.z));

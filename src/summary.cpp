@@ -232,6 +232,31 @@ nlohmann::json lattice_summary(const LatticeParameters& p, const Packing& packin
         for (const Vec3& centre : packing.centers)
             sum += sphere_volume_in_box(centre, r, Vec3{}, box->size);
         solid = sum;
+    } else if (const auto* a = std::get_if<AnnulusRegion>(&p.region)) {
+        summary["region"] = {{"shape", "annulus"},
+                             {"diameter", a->diameter},
+                             {"inner_diameter", a->inner_diameter},
+                             {"height", a->height}};
+        const Container container = region_container(p.region);
+        summary["container"] = container_summary(container);
+        double sum = 0.0;
+        for (const Vec3& centre : packing.centers)
+            sum += container.sphere_volume(centre, r, 0.0, a->height);
+        solid = sum;
+    } else if (const auto* periodic = std::get_if<PeriodicRegion>(&p.region)) {
+        // The cell is the container (analyze reads it): no side wall, so each ball counts
+        // whole between the floor and the top (Periodic::sphere_volume).
+        summary["region"] = {{"shape", "periodic"},
+                             {"size", {periodic->lx, periodic->ly, periodic->height}}};
+        const Container container = region_container(p.region);
+        summary["container"] = container_summary(container);
+        const Vec3 edges = unit_cell(p.type).edges * d;
+        summary["periods"] = {std::round(periodic->lx / edges.x),
+                              std::round(periodic->ly / edges.y)};
+        double sum = 0.0;
+        for (const Vec3& centre : packing.centers)
+            sum += container.sphere_volume(centre, r, 0.0, periodic->height);
+        solid = sum;
     } else {
         const auto& c = std::get<CylinderRegion>(p.region);
         summary["region"] = {{"shape", "cylinder"}, {"diameter", c.diameter}, {"height", c.height}};
@@ -241,8 +266,10 @@ nlohmann::json lattice_summary(const LatticeParameters& p, const Packing& packin
             sum += sphere_volume_in_cylinder_slab(centre, r, 0.5 * c.diameter, 0.0, c.height);
         solid = sum;
     }
-    const Vec3 origin = p.origin.value_or(
-        std::holds_alternative<BoxRegion>(p.region) ? Vec3{r, r, r} : Vec3{0.0, 0.0, r});
+    const Vec3 origin = p.origin.value_or(std::holds_alternative<BoxRegion>(p.region) ||
+                                                  std::holds_alternative<PeriodicRegion>(p.region)
+                                              ? Vec3{r, r, r}
+                                              : Vec3{0.0, 0.0, r});
     summary["origin"] = {origin.x, origin.y, origin.z};
     summary["rotations"] = json::array();
     for (const auto& [axis, degrees] : p.rotations)
@@ -253,7 +280,10 @@ nlohmann::json lattice_summary(const LatticeParameters& p, const Packing& packin
                           {"cell_edges", {cell.edges.x * d, cell.edges.y * d, cell.edges.z * d}},
                           {"balls_per_cell", cell.balls.size()}};
     summary["porosity_region"] = 1.0 - solid / volume;
-    const LatticeContacts contacts = lattice_contacts(packing);
+    const auto* period = std::get_if<PeriodicRegion>(&p.region);
+    const LatticeContacts contacts =
+        period ? lattice_contacts(packing, Periodic(period->lx, period->ly))
+               : lattice_contacts(packing);
     std::vector<std::uint64_t> histogram;
     double total = 0.0;
     for (const std::uint32_t k : contacts.contacts) {

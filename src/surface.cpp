@@ -585,6 +585,78 @@ std::vector<Solid> container_solids(const Box& box, double z_low, double z_high,
     return solids;
 }
 
+std::vector<Solid> container_solids(const Annulus& annulus, double z_low, double z_high,
+                                    double edge) {
+    // The tube as a cylinder's wall (a prism circumscribed about it, outside it), the rod as
+    // a prism inscribed in it (its corners on the rod, its faces inside it: no sphere outside
+    // the rod meets it), with the tube's sides and rows, so that the rings of the two share
+    // their angles and the bottom and the top are strips of quads between them.
+    const double rt = annulus.outer_radius(), ri = annulus.inner_radius();
+    const double h = z_high - z_low;
+    const int sides =
+        std::clamp(static_cast<int>(std::ceil(2.0 * std::numbers::pi * rt / edge)), 48, 100000);
+    const double corner = rt / std::cos(std::numbers::pi / sides);
+    const int rows = std::clamp(
+        static_cast<int>(std::ceil(h / (2.0 * corner * std::sin(std::numbers::pi / sides)))), 1,
+        4096);
+    const auto s = static_cast<std::uint32_t>(sides);
+    auto ring_point = [&](double radius, int row, std::uint32_t k) {
+        const double angle = 2.0 * std::numbers::pi * (k + 0.5 * (row % 2)) / sides;
+        return Vec3{radius * std::cos(angle), radius * std::sin(angle),
+                    row == rows ? z_high : z_low + h * row / rows};
+    };
+    Solid wall{"wall", {}}, rod{"rod", {}}, bottom{"bottom", {}}, top{"top", {}};
+    for (int row = 0; row <= rows; ++row)
+        for (std::uint32_t k = 0; k < s; ++k) {
+            wall.mesh.vertices.push_back(ring_point(corner, row, k));
+            rod.mesh.vertices.push_back(ring_point(ri, row, k));
+        }
+    for (std::uint32_t row = 0; row < static_cast<std::uint32_t>(rows); ++row)
+        for (std::uint32_t k = 0; k < s; ++k) {
+            const std::uint32_t j = (k + row % 2) % s, j1 = (j + 1) % s;
+            const std::uint32_t a = row * s + k, b = row * s + (k + 1) % s;
+            // The tube's normals point away from the axis, the rod's towards it: out of the
+            // fluid, as the bottom's (-z) and the top's (+z).
+            wall.mesh.triangles.push_back({a, b, (row + 1) * s + j});
+            wall.mesh.triangles.push_back({(row + 1) * s + j, b, (row + 1) * s + j1});
+            rod.mesh.triangles.push_back({a, (row + 1) * s + j, b});
+            rod.mesh.triangles.push_back({(row + 1) * s + j, (row + 1) * s + j1, b});
+        }
+    // Bottom and top: vertices 0..s-1 on the tube's ring, s..2s-1 on the rod's.
+    for (Solid* face : {&bottom, &top}) {
+        const int row = face == &bottom ? 0 : rows;
+        for (std::uint32_t k = 0; k < s; ++k)
+            face->mesh.vertices.push_back(ring_point(corner, row, k));
+        for (std::uint32_t k = 0; k < s; ++k)
+            face->mesh.vertices.push_back(ring_point(ri, row, k));
+        for (std::uint32_t k = 0; k < s; ++k) {
+            const std::uint32_t k1 = (k + 1) % s;
+            if (face == &top) { // counter-clockwise seen from above: normal +z
+                face->mesh.triangles.push_back({k, k1, s + k1});
+                face->mesh.triangles.push_back({k, s + k1, s + k});
+            } else {
+                face->mesh.triangles.push_back({k, s + k1, k1});
+                face->mesh.triangles.push_back({k, s + k, s + k1});
+            }
+        }
+    }
+    std::vector<Solid> solids;
+    solids.push_back(std::move(wall));
+    solids.push_back(std::move(rod));
+    solids.push_back(std::move(bottom));
+    solids.push_back(std::move(top));
+    return solids;
+}
+
+std::vector<Solid> container_solids(const Periodic& cell, double z_low, double z_high,
+                                    double edge) {
+    // No side wall: the floor and the top of the cell, as a box's.
+    std::vector<Solid> box =
+        container_solids(Box(0.0, cell.lx(), 0.0, cell.ly()), z_low, z_high, edge);
+    box.erase(box.begin());
+    return box;
+}
+
 std::vector<Solid> container_solids(const Container& container, double z_low, double z_high,
                                     double edge) {
     return std::visit(

@@ -105,6 +105,10 @@ CLI::Option* add_container_option(CLI::App& app, std::string& text, const std::s
 /// summary, or has a container outside the limits
 std::optional<Container> container_beside(const std::filesystem::path& particles);
 
+/// The container of a `summary.json` (read_bed_summary's cylinder or box, or an annulus or a
+/// periodic cell from its `container.spec`). \return nothing when it names none.
+/// \throws InvalidInput as read_bed_summary
+
 /// "radius R" for a cylinder, "box:LX,LY" for a box: the container in messages.
 std::string describe(const Container& container);
 

@@ -60,7 +60,7 @@ struct ExportOptions {
     int refine = 3;
     double edge = 0.0;             // > 0: overrides refine
     double container_radius = 0.0; // 0: from summary.json beside the file, if any
-    std::string container;         // --container cylinder:D or box:LX,LY, instead of -R
+    std::string container;         // --container SPEC (any shape), instead of -R
     double container_height = 0.0; // 0: the bed's top + 1 Dp
     bool no_container = false;
     OpenFoamMeshOptions mesh;
@@ -129,6 +129,11 @@ std::optional<SurfaceContainer> bed_container(const ExportOptions& o, const Part
 nlohmann::ordered_json container_json(const SurfaceContainer& container) {
     if (const Cylinder* c = container.container.cylinder())
         return {{"shape", "cylinder"}, {"radius", c->radius()}, {"height", container.height}};
+    if (const Annulus* a = container.container.annulus())
+        return {{"shape", "annulus"},
+                {"radius", a->outer_radius()},
+                {"inner_radius", a->inner_radius()},
+                {"height", container.height}};
     const Rectangle b = container.container.bounds();
     return {{"shape", container.container.name()},
             {"size", {b.x_high - b.x_low, b.y_high - b.y_low}},
@@ -156,6 +161,13 @@ int run_surface_export(const ExportOptions& o, ExportFormat format, const Partic
     const Contacts contacts = parse_contacts(o.contacts);
     const double dp = file.packing.mean_diameter();
     const std::optional<SurfaceContainer> container = bed_container(o, file);
+    if (container && container->container.periodic())
+        throw InvalidInput(fmt::format(
+            "--container {} is not allowed with --format {}; allowed: cylinder:D, box:LX,LY or "
+            "annulus:D,DI (a periodic cell's surfaces need every sphere cut by a side copied onto "
+            "the other side and, for openfoam, cyclic patches: not written; lammps-data and "
+            "liggghts-data take it)",
+            container->container.spec(), o.format));
     SurfaceOptions options;
     double largest = 0.0;
     for (const double r : file.packing.radii)
@@ -223,6 +235,9 @@ int run_surface_export(const ExportOptions& o, ExportFormat format, const Partic
         if (!foam.wall.empty()) // a cylinder's wall; a box's is the background's faces
             write_surface(foam.wall, SurfaceFormat::stl_binary,
                           out->reserve("constant/triSurface/wall.stl"));
+        if (!foam.rod.empty()) // an annulus' rod
+            write_surface(foam.rod, SurfaceFormat::stl_binary,
+                          out->reserve("constant/triSurface/rod.stl"));
         out->stage("packbed.json", report.dump(2) + "\n");
         out->commit();
         if (!o.quiet)
@@ -261,9 +276,11 @@ struct DemFiles {
     std::string input, dump, wall, bottom; // wall, bottom: LIGGGHTS only
 };
 
-DemFiles dem_files(const std::string& name, ExportFormat format) {
+DemFiles dem_files(const std::string& name, ExportFormat format, bool periodic) {
     if (format == ExportFormat::lammps_data)
         return {name + ".lammps.in", name + ".lammps.dump", "", ""};
+    if (periodic) // no side wall, the floor a plane: no STL
+        return {name + ".liggghts.in", name + ".liggghts.dump", "", ""};
     return {name + ".liggghts.in", name + ".liggghts.dump", name + ".wall.stl",
             name + ".bottom.stl"};
 }
@@ -283,7 +300,12 @@ int run_data_export(const ExportOptions& o, ExportFormat format, const ParticleF
     std::vector<std::string> sidecars;
     if (o.fluid_velocity >= 0.0)
         sidecars.push_back(".fluid.in");
-    const DemFiles dem = dem_files(name, format);
+    if (given_box && container && container->container.periodic())
+        throw InvalidInput(fmt::format("--box {} is not allowed with the periodic cell {}; "
+                                       "allowed: no --box (the data file's box is the cell, its "
+                                       "periods), or --no-container",
+                                       printable(o.box), container->container.spec()));
+    const DemFiles dem = dem_files(name, format, container && container->container.periodic());
     if (container) {
         // The inputs name the files as single words.
         const bool word = !name.empty() && std::all_of(name.begin(), name.end(), [](char c) {
@@ -321,7 +343,13 @@ int run_data_export(const ExportOptions& o, ExportFormat format, const ParticleF
     }
     // The box: --box, else the container and a margin where it is known, else the spheres'
     // bounding box (the header says which where the container is known).
-    AxisBox box = bounding_box(file.packing);
+    // A periodic cell: every centre moved by whole periods into the cell (the data file's box).
+    Packing packing = file.packing;
+    if (container)
+        if (const Periodic* cell = container->container.periodic())
+            for (Vec3& c : packing.centers)
+                c = cell->wrapped(c);
+    AxisBox box = bounding_box(packing);
     std::string box_note;
     if (given_box) {
         box = *given_box;
@@ -330,16 +358,24 @@ int run_data_export(const ExportOptions& o, ExportFormat format, const ParticleF
     } else if (container) {
         const Container& c = container->container;
         box = container_box(c, container->height, dp);
-        // The cylinder's margin rule in Rt; a box's in its depth, half the narrower width.
+        // The cylinder's margin rule in Rt; a box's in its depth, half the narrower width; an
+        // annulus' in its tube's radius; a periodic cell's box is the cell in x and y.
         const Cylinder* cylinder = c.cylinder();
-        box_note =
-            fmt::format("box: the container ({}, height {:.9g}) and a margin of {:.9g} "
-                        "(the larger of Dp/2 and {}) on every side",
-                        cylinder ? fmt::format("radius {:.9g}", cylinder->radius()) : c.spec(),
-                        container->height, container_box_margin(dp, c.depth()),
-                        cylinder ? "Rt/100" : "a hundredth of half the narrower width");
+        if (c.periodic())
+            box_note = fmt::format("box: the periodic cell {0} (boundary p p f), z from -{2:.9g} "
+                                   "to the height {1:.9g} + {2:.9g} (Dp/2)",
+                                   c.spec(), container->height, container_box_margin(c, dp));
+        else
+            box_note =
+                fmt::format("box: the container ({}, height {:.9g}) and a margin of {:.9g} "
+                            "(the larger of Dp/2 and {}) on every side",
+                            cylinder ? fmt::format("radius {:.9g}", cylinder->radius()) : c.spec(),
+                            container->height, container_box_margin(c, dp),
+                            cylinder      ? "Rt/100"
+                            : c.annulus() ? "the tube's radius/100"
+                                          : "a hundredth of half the narrower width");
     }
-    out->stage(name, lammps_data(file.packing, o.density, box, comment,
+    out->stage(name, lammps_data(packing, o.density, box, comment,
                                  box_note.empty() ? std::vector<std::string>{}
                                                   : std::vector<std::string>{box_note}));
     if (o.fluid_velocity >= 0.0)
@@ -362,12 +398,22 @@ int run_data_export(const ExportOptions& o, ExportFormat format, const ParticleF
                 : *std::min_element(file.packing.radii.begin(), file.packing.radii.end());
         settle.diameter = dp;
         settle.density = o.density;
-        // The container's side and floor as LIGGGHTS walls, triangles about 1 Dp wide.
+        // The container's side (every solid but the floor and the top: an annulus' tube and
+        // rod in one) and floor as LIGGGHTS walls, triangles about 1 Dp wide.
         const std::vector<Solid> solids =
             container_solids(container->container, 0.0, container->height, dp);
+        Solid side{"wall", {}}, bottom{"bottom", {}};
+        for (const Solid& solid : solids)
+            if (solid.name == "bottom")
+                bottom.mesh.append(solid.mesh);
+            else if (solid.name != "top")
+                side.mesh.append(solid.mesh);
         bool inside = true;
-        for (std::size_t k = 0; k < 2; ++k)
-            for (const Vec3& v : solids[k].mesh.vertices) {
+        // (A periodic cell writes no STL: its box is the cell, the floor a plane.)
+        if (container->container.periodic())
+            side.mesh = bottom.mesh = {};
+        for (const Solid* k : {&side, &bottom})
+            for (const Vec3& v : k->mesh.vertices) {
                 // As the STL stores it: single precision.
                 const auto f = [](double x) { return static_cast<double>(static_cast<float>(x)); };
                 inside = inside && f(v.x) >= box.lo.x && f(v.x) <= box.hi.x && f(v.y) >= box.lo.y &&
@@ -377,8 +423,10 @@ int run_data_export(const ExportOptions& o, ExportFormat format, const ParticleF
             out->stage(dem.input, lammps_settle_input(settle));
         } else {
             out->stage(dem.input, liggghts_settle_input(settle));
-            write_surface({solids[0]}, SurfaceFormat::stl_ascii, out->reserve(dem.wall));
-            write_surface({solids[1]}, SurfaceFormat::stl_ascii, out->reserve(dem.bottom));
+            if (!dem.wall.empty()) {
+                write_surface({side}, SurfaceFormat::stl_ascii, out->reserve(dem.wall));
+                write_surface({bottom}, SurfaceFormat::stl_ascii, out->reserve(dem.bottom));
+            }
         }
         if (!given_box && !inside)
             throw std::logic_error("the container's STL lies outside the default box");
@@ -463,8 +511,7 @@ Command register_export(CLI::App& parent) {
                         "treatment or container solids, data files in the spheres' bounding box "
                         "without an example DEM input)")
             ->check(real_in(0.0, inf, true, true));
-    add_container_option(*app, o.container, "file units; default: summary.json beside the file",
-                         {"cylinder", "box"})
+    add_container_option(*app, o.container, "file units; default: summary.json beside the file")
         ->excludes(radius);
     app->add_option("--container-height", o.container_height,
                     "container height from the floor z = 0 (default: the bed's top + 1 Dp)")

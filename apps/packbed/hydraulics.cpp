@@ -34,7 +34,7 @@ struct HydraulicsOptions {
     bool json = false;
     bool diameter_given = false;     // --diameter on the command line (or in --config)
     bool aspect_ratio_given = false; // --aspect-ratio likewise
-    std::string container;           // --container cylinder:D (metres), instead of -a
+    std::string container;           // --container SPEC (metres), instead of -a
 };
 
 /// What hydraulics takes from a bed's summary.json.
@@ -44,6 +44,7 @@ struct BedFacts {
     std::optional<double> diameter;         ///< the spheres' diameter, in the bed's length unit
     bool sauter_mean = false;               ///< the diameter is the sizes' Sauter mean d32
     std::optional<double> container_radius; ///< likewise
+    std::optional<Container> container;     ///< an annulus or a periodic cell (issue 17)
     std::string shown;                      ///< the summary's path, printable
 };
 
@@ -62,13 +63,20 @@ BedFacts bed_facts(const std::string& bed) {
         throw InvalidInput(fmt::format("--bed {}", e.what()));
     }
     const std::string shown = printable(path.native());
+    std::optional<Container> container;
+    if (const auto& c = summary.container; c && (c->annulus() || c->periodic()))
+        container = c;
     if (!summary.porosity)
         throw InvalidInput(fmt::format("--bed {}: no lattice.porosity or void_fraction; give "
                                        "--porosity",
                                        shown));
-    return {*summary.porosity,        fmt::format("{} of {}", summary.porosity_source, shown),
-            summary.diameter,         summary.sauter_mean,
-            summary.container_radius, shown};
+    return {*summary.porosity,
+            fmt::format("{} of {}", summary.porosity_source, shown),
+            summary.diameter,
+            summary.sauter_mean,
+            summary.container_radius,
+            container,
+            shown};
 }
 
 /// \return the path of the first number of `value` that is not finite (nlohmann::json prints
@@ -99,7 +107,13 @@ int run_hydraulics(const HydraulicsOptions& o) {
     FluidAndParticles f = o.fluid;
     double aspect_ratio = o.aspect_ratio;
     std::string aspect_ratio_from = "given";
-    const auto tube = parse_container(o.container);
+    const auto spec = parse_container(o.container);
+    std::optional<Container> container;
+    std::string container_from = fmt::format("--container {}", o.container);
+    // A container from --bed is in the bed's length unit: a = D_h / the bed's diameter.
+    std::optional<double> bed_diameter;
+    if (spec)
+        container = spec->container();
     double e = o.porosity;
     std::string origin = "given";
     std::string diameter_from = o.diameter_given ? "given" : "the default";
@@ -133,7 +147,12 @@ int run_hydraulics(const HydraulicsOptions& o) {
                     : fmt::format("the diameter of {}, read as metres", bed.shown);
         }
         // The tube of a cylindrical bed gives the wall-corrected pressure drop.
-        if (!o.aspect_ratio_given && !tube && bed.diameter && bed.container_radius) {
+        // An annulus or a periodic cell: its hydraulic diameter, or no wall.
+        if (!o.aspect_ratio_given && !spec && bed.container && bed.diameter) {
+            container = bed.container;
+            bed_diameter = bed.diameter;
+            container_from = fmt::format("the {} of {}", bed.container->spec(), bed.shown);
+        } else if (!o.aspect_ratio_given && !spec && bed.diameter && bed.container_radius) {
             const double a = 2.0 * *bed.container_radius / *bed.diameter;
             if (a > 1.0 && a <= limits::max_tube_aspect_ratio) {
                 aspect_ratio = a;
@@ -141,15 +160,40 @@ int run_hydraulics(const HydraulicsOptions& o) {
             }
         }
     }
-    if (tube) {
+    std::optional<double> hydraulic; // an annulus' or a box's D_h = 4 A / P, metres
+    std::string wall_correction;     // a periodic cell: why there is none
+    if (spec && spec->shape == "cylinder") {
         // a = D / d, both in metres, once d is known (given, the default, or the bed's).
-        aspect_ratio = tube->diameter / f.diameter;
+        aspect_ratio = spec->diameter / f.diameter;
         if (!(aspect_ratio >= 1.0 && aspect_ratio <= limits::max_tube_aspect_ratio))
             throw InvalidInput(fmt::format(
                 "--container {}: the tube's diameter over the particle diameter ({} m) is a = "
                 "{:.6g}; allowed: a from 1 to {:g}",
                 o.container, f.diameter, aspect_ratio, limits::max_tube_aspect_ratio));
         aspect_ratio_from = fmt::format("--container {} over the particle diameter", o.container);
+    } else if (container && container->periodic()) {
+        aspect_ratio = 0.0;
+        wall_correction = fmt::format("none: {} is a periodic cell, it has no wall (Ergun, no "
+                                      "wall correction)",
+                                      container_from);
+    } else if (container) {
+        // An annulus or a box: a = D_h / d with the hydraulic diameter 4 A / P.
+        hydraulic = hydraulic_diameter(*container);
+        aspect_ratio = *hydraulic / bed_diameter.value_or(f.diameter);
+        if (bed_diameter) // in metres, at the particle diameter used
+            hydraulic = aspect_ratio * f.diameter;
+        const std::string formula = container->annulus() ? "D - DI" : "2 LX LY / (LX + LY)";
+        if (!(aspect_ratio >= 1.0 && aspect_ratio <= limits::max_tube_aspect_ratio))
+            throw InvalidInput(fmt::format(
+                "{}: the hydraulic diameter {} = {} m over the particle diameter ({} m) is a = "
+                "{:.6g}; allowed: a from 1 to {:g}",
+                container_from, formula, *hydraulic, f.diameter, aspect_ratio,
+                limits::max_tube_aspect_ratio));
+        aspect_ratio_from = fmt::format(
+            "{}: the hydraulic diameter 4 A / P = {} = {} m over the particle diameter (exact "
+            "for the wall term A_w, the wall-to-particle surface ratio; an assumption for B_w, "
+            "fitted to tubes)",
+            container_from, formula, *hydraulic);
     }
     const double ar = archimedes_number(f);
     const auto coefficients = fluidization_coefficients(e);
@@ -187,8 +231,12 @@ int run_hydraulics(const HydraulicsOptions& o) {
         out["pressure_gradient"]["aspect_ratio"] = aspect_ratio;
         out["pressure_gradient"]["aspect_ratio_from"] = aspect_ratio_from;
         out["pressure_gradient"]["eisfeld_schnitzlein_in_range"] = es.warning.empty();
+        if (hydraulic)
+            out["pressure_gradient"]["hydraulic_diameter_m"] = *hydraulic;
         warning = es.warning;
     }
+    if (!wall_correction.empty())
+        out["pressure_gradient"]["wall_correction"] = wall_correction;
     out["permeability_m2"] = {{"carman_kozeny", k_carman_kozeny}, {"ergun", k_ergun}};
     // Eqs. (2)-(4): eq. (1) at the exact porosities of the three regular packings.
     const double hexagonal = fluidization_coefficients(unit_cell(LatticeType::fcc).porosity).linear;
@@ -230,6 +278,10 @@ int run_hydraulics(const HydraulicsOptions& o) {
     if (aspect_ratio > 0.0)
         fmt::print(", Eisfeld & Schnitzlein (a = {:.6g}) {:.6g} Pa/m", aspect_ratio,
                    out["pressure_gradient"]["eisfeld_schnitzlein_Pa_m"].get<double>());
+    if (hydraulic)
+        fmt::print("\nwall correction: a = {}", aspect_ratio_from);
+    if (!wall_correction.empty())
+        fmt::print("\nwall correction: {}", wall_correction);
     fmt::print("\npermeability: Carman-Kozeny {:.6g} m^2, Ergun {:.6g} m^2\n", k_carman_kozeny,
                k_ergun);
     fmt::print("\nregular packings, eq. (1) at their exact porosities (Tsayger's eqs. 2-4):\n");
@@ -285,8 +337,10 @@ Command register_hydraulics(CLI::App& parent) {
                         "tube over particle diameter: adds Eisfeld & Schnitzlein's wall-corrected "
                         "pressure drop (shorthand of --container)")
             ->check(real_in(1.0, limits::max_tube_aspect_ratio, false, false));
-    add_container_option(*app, o.container, "metres: a = D / d; instead of --aspect-ratio",
-                         {"cylinder"})
+    add_container_option(*app, o.container,
+                         "metres: a = D_h / d with the hydraulic diameter D_h = 4 A / P (D, "
+                         "annulus D - DI, box 2 LX LY / (LX + LY)); a periodic cell has no wall; "
+                         "instead of --aspect-ratio")
         ->excludes(aspect);
     app->add_flag("--json", o.json, "print everything as JSON");
     app->fallthrough();

@@ -33,10 +33,12 @@ struct LatticeOptions {
     bool force = false;
 };
 
-/// `box:LX,LY,LZ` or `cylinder:D,H`, lengths in (0, limits::max_length].
+/// `box:LX,LY,LZ`, `cylinder:D,H`, `annulus:D,DI,H` (0 < DI < D) or `periodic:LX,LY,H`,
+/// lengths in (0, limits::max_length].
 LatticeRegion parse_region(const std::string& text) {
     const std::string allowed =
-        fmt::format("allowed: box:LX,LY,LZ or cylinder:D,H with lengths > 0 and at most {:g}",
+        fmt::format("allowed: box:LX,LY,LZ, cylinder:D,H, annulus:D,DI,H (DI < D) or "
+                    "periodic:LX,LY,H with lengths > 0 and at most {:g}",
                     limits::max_length);
     const std::size_t colon = text.find(':');
     const std::string shape = text.substr(0, colon);
@@ -52,6 +54,11 @@ LatticeRegion parse_region(const std::string& text) {
         return BoxRegion{{(*values)[0], (*values)[1], (*values)[2]}};
     if (values && shape == "cylinder" && values->size() == 2 && positive())
         return CylinderRegion{(*values)[0], (*values)[1]};
+    if (values && shape == "annulus" && values->size() == 3 && positive() &&
+        (*values)[1] < (*values)[0])
+        return AnnulusRegion{(*values)[0], (*values)[1], (*values)[2]};
+    if (values && shape == "periodic" && values->size() == 3 && positive())
+        return PeriodicRegion{(*values)[0], (*values)[1], (*values)[2]};
     throw InvalidInput(fmt::format("--region '{}' is not allowed; {}", text, allowed));
 }
 
@@ -90,16 +97,18 @@ int run_lattice(LatticeOptions& o) {
     out.stage("particles.csv", particles_csv(packing));
     out.stage("particles.vtu", particles_vtu(packing));
     // A lattice in a cylinder or a box is a bed: the same analysis as `generate`, when tall
-    // enough.
-    const auto* box = std::get_if<BoxRegion>(&o.params.region);
-    const auto* cylinder = std::get_if<CylinderRegion>(&o.params.region);
-    const double height = box ? box->size.z : cylinder->height;
-    if (!o.no_analysis && !packing.centers.empty() &&
-        height > 2.0 * o.band_clearance * o.params.diameter)
-        stage_analysis(out, packing,
-                       box ? Container(Box(box->size.x, box->size.y))
-                           : Container(Cylinder(0.5 * cylinder->diameter)),
-                       o.band_clearance, summary);
+    // enough. In an annulus or a periodic cell, summary.json records the container for
+    // `packbed analyze`, which measures those shapes.
+    const Container container = region_container(o.params.region);
+    const double height = region_height(o.params.region);
+    const bool analysed_here = container.cylinder() || container.box();
+    if (!analysed_here)
+        summary["analysis_note"] = fmt::format("not run by lattice in {}: run packbed analyze on "
+                                               "particles.csv (summary.json gives the container)",
+                                               container.spec());
+    else if (!o.no_analysis && !packing.centers.empty() &&
+             height > 2.0 * o.band_clearance * o.params.diameter)
+        stage_analysis(out, packing, container, o.band_clearance, summary);
     out.stage("summary.json", summary.dump(2) + "\n");
     out.commit();
     if (!o.quiet) {
@@ -135,8 +144,10 @@ Command register_lattice(CLI::App& parent) {
     app->add_option("-d,--diameter", o.params.diameter, "ball diameter d; the unit of the outputs")
         ->check(real_in(limits::min_diameter, limits::max_diameter, false, false));
     app->add_option("-r,--region", o.region,
-                    "box:LX,LY,LZ (from 0 to L along each axis) or cylinder:D,H (z axis, from "
-                    "z = 0 to H), lengths up to 1e15");
+                    "box:LX,LY,LZ (from 0 to L along each axis), cylinder:D,H (z axis, from "
+                    "z = 0 to H), annulus:D,DI,H (between a tube of diameter D and a coaxial rod "
+                    "of diameter DI) or periodic:LX,LY,H (a cell periodic in x and y: LX, LY "
+                    "whole multiples of the lattice's periods, no --rotate), lengths up to 1e15");
     app->add_option("--origin", o.origin,
                     "x,y,z of the first ball of cell (0,0,0) (ball A of Tsayger's Table 1), "
                     "within 1e6 d of the region; default: d/2 from each wall at the low corner "

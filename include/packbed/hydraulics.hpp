@@ -4,9 +4,11 @@
 // drops, Wen & Yu's minimum fluidization and permeabilities. SI units throughout.
 #pragma once
 
+#include <optional>
 #include <string>
 #include <vector>
 
+#include "packbed/container.hpp"
 #include "packbed/correlations.hpp"
 
 namespace packbed {
@@ -60,6 +62,15 @@ double ergun_pressure_gradient(double porosity, double velocity, const FluidAndP
 CorrelationValue eisfeld_schnitzlein_pressure_gradient(double porosity, double velocity,
                                                        double aspect_ratio,
                                                        const FluidAndParticles& f);
+
+/// The hydraulic diameter of a container's cross-section, \f$D_h = 4 A / P\f$ (A its area, P
+/// its wetted perimeter): a cylinder's D; an annulus' \f$4 \pi (R^2 - R_i^2) / (2 \pi (R +
+/// R_i)) = D - D_I\f$; a box's \f$2 L_x L_y / (L_x + L_y)\f$; nothing for a periodic cell
+/// (no wall). Eisfeld & Schnitzlein's \f$A_w = 1 + 2/(3 a (1-e))\f$ comes from the ratio of
+/// the wall's surface to the particles' (Mehta & Hawley 1969), which \f$a = D_h / d\f$ gives
+/// exactly for any cross-section; their \f$B_w\f$ was fitted to tubes, so using \f$a = D_h /
+/// d\f$ there for an annulus or a box is an assumption. \return length, as the container's
+std::optional<double> hydraulic_diameter(const Container& container);
 
 /// Wen & Yu (1966): \f$Re_{mf} = \sqrt{33.7^2 + 0.0408\,Ar} - 33.7\f$, computed as
 /// \f$0.0408\,Ar / (\sqrt{33.7^2 + 0.0408\,Ar} + 33.7)\f$ (no cancellation at small Ar).

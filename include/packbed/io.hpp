@@ -65,11 +65,18 @@ double container_box_margin(double diameter, double container_radius);
 /// \throws InvalidInput when a value is not finite and > 0
 AxisBox container_box(double container_radius, double height, double diameter);
 
+/// The margin of the default DEM box of any container: container_box_margin(Dp, Rt) with Rt
+/// a cylinder's radius, a box's depth, an annulus' tube radius (its STL is the cylinder's
+/// prism about the tube); Dp / 2 for a periodic cell (only along z: x and y are its periods).
+double container_box_margin(const Container& container, double diameter);
+
 /// The same for any container: its bounds (Container::bounds) and [0, height], widened by
-/// m = container_box_margin(diameter, container.depth()) on every side (for a box: x in
+/// m = container_box_margin(container, diameter) on every side (for a box: x in
 /// [x_low - m, x_high + m], y in [y_low - m, y_high + m], z in [-m, height + m]; for a cylinder
-/// the box above, to the bit). \throws InvalidInput when a bound is not finite, the depth,
-/// the height or the diameter not > 0
+/// the box above, to the bit; for an annulus the box of its tube); for a periodic cell x in
+/// [0, LX] and y in [0, LY] exactly (the data file's periodic box), z in [-m, height + m].
+/// \throws InvalidInput when a bound is not finite, the depth (a periodic cell's area), the
+/// height or the diameter not > 0
 AxisBox container_box(const Container& container, double height, double diameter);
 
 /// The Rayleigh time of a sphere, the time a Rayleigh surface wave takes to cross it (Li, Xu
@@ -113,7 +120,9 @@ struct DemSettle {
 /// `units si`, `atom_style sphere`, `pair_style granular` (hertz/material, Mindlin tangential,
 /// Tsuji damping), the side wall as `fix wall/gran/region` on a region (LAMMPS 2022 has no
 /// STL walls for granular fixes): a cylinder, or for a box a block whose floor and top are
-/// open (its four sides the wall), the floor as `fix wall/gran ... zplane`, gravity,
+/// open (its four sides the wall), for an annulus two regions and two fixes (the tube `side
+/// in`, the rod `side out`), for a periodic cell none (`boundary p p f`, else `f f f`), the
+/// floor as `fix wall/gran ... zplane`, gravity,
 /// `fix nve/sphere`, the time step from rayleigh_time computed in the script from its
 /// variables (and written as a number in a comment), a dump at the first and last step.
 /// \throws InvalidInput when a value is out of range
@@ -122,7 +131,8 @@ std::string lammps_settle_input(const DemSettle& settle);
 /// The same settle for LIGGGHTS 3.8: `atom_style granular`, `pair_style gran model hertz
 /// tangential history`, the material as `fix property/global`, the container's side and
 /// floor from packbed's STL files (`fix mesh/surface`, `fix wall/gran ... mesh`): a prism
-/// about a cylinder, a box's four faces.
+/// about a cylinder, a box's four faces, an annulus' tube and rod in one file; a periodic cell
+/// (`boundary p p f`) has no STL, its floor is `fix wall/gran ... primitive ... zplane 0.0`.
 /// \throws InvalidInput when a value is out of range
 std::string liggghts_settle_input(const DemSettle& settle);
 

@@ -11,6 +11,7 @@
 #include <variant>
 #include <vector>
 
+#include "packbed/container.hpp"
 #include "packbed/packing.hpp"
 #include "packbed/vec3.hpp"
 
@@ -61,10 +62,33 @@ struct CylinderRegion {
     double diameter = 0.0;
     double height = 0.0;
 };
-using LatticeRegion = std::variant<BoxRegion, CylinderRegion>;
+/// The annulus between a tube of diameter `diameter` and a coaxial rod of diameter
+/// `inner_diameter` < diameter about the z axis, from z = 0 to z = height.
+struct AnnulusRegion {
+    double diameter = 0.0;
+    double inner_diameter = 0.0;
+    double height = 0.0;
+};
+/// A cell periodic in x and y, [0, LX) x [0, LY), from z = 0 to z = height, with no side wall.
+/// The lattice must repeat across it: LX and LY whole multiples (to 1e-9 relative) of the
+/// unit cell's edges along x and y, at least 2 d (so that each touching pair has one nearest
+/// copy), and no rotation; every ball of one period is kept once, moved into the cell.
+struct PeriodicRegion {
+    double lx = 0.0;
+    double ly = 0.0;
+    double height = 0.0;
+};
+using LatticeRegion = std::variant<BoxRegion, CylinderRegion, AnnulusRegion, PeriodicRegion>;
 
-/// \return the volume of a region.
+/// \return the volume of a region: LX LY LZ, pi D^2 H / 4, pi (D^2 - DI^2) H / 4, LX LY H.
 double region_volume(const LatticeRegion& region);
+
+/// \return the container of a region (its cross-section; the floor z = 0): Box(LX, LY),
+/// Cylinder(D / 2), Annulus(D / 2, DI / 2), Periodic(LX, LY).
+Container region_container(const LatticeRegion& region);
+
+/// \return the height of a region (a box's LZ).
+double region_height(const LatticeRegion& region);
 
 /// Which balls fill a region.
 enum class LatticeKeep {
@@ -79,8 +103,8 @@ struct LatticeParameters {
     double diameter = 1.0; ///< ball diameter d, 1e-12 to 1e12
     LatticeRegion region = BoxRegion{{10.0, 10.0, 10.0}};
     /// Where the first ball of cell (0, 0, 0) lies (ball A of Table 1 for the diamond
-    /// packing); by default d/2 from each wall at the low corner of a box, on the axis d/2
-    /// above the floor of a cylinder. At most 1e6 d from the region
+    /// packing); by default d/2 from each wall at the low corner of a box or a periodic cell,
+    /// on the axis d/2 above the floor of a cylinder or an annulus. At most 1e6 d from the region
     /// (limits::max_lattice_origin_offset): farther, the positions lose their precision.
     std::optional<Vec3> origin;
     LatticeKeep keep = LatticeKeep::whole;
@@ -111,5 +135,9 @@ struct LatticeContacts {
     double closest = 0.0;                ///< smallest centre distance / d (inf for < 2 balls)
 };
 LatticeContacts lattice_contacts(const Packing& packing, double tolerance = 1e-9);
+/// The same in a periodic cell: distances by the minimum image (Periodic::separation), the
+/// cell at least 2 d wide.
+LatticeContacts lattice_contacts(const Packing& packing, const Periodic& cell,
+                                 double tolerance = 1e-9);
 
 } // namespace packbed

@@ -24,7 +24,9 @@ struct OpenFoamMeshOptions {
 struct OpenFoamCase {
     std::vector<std::pair<std::string, std::string>> files; ///< (relative path, contents)
     std::vector<Solid> particles;                           ///< constant/triSurface/particles.stl
-    std::vector<Solid> wall; ///< constant/triSurface/wall.stl (a cylinder's; empty for a box)
+    std::vector<Solid> wall; ///< constant/triSurface/wall.stl (a cylinder's or an annulus'
+                             ///< tube; empty for a box)
+    std::vector<Solid> rod;  ///< constant/triSurface/rod.stl (an annulus' rod; else empty)
     Vec3 location_in_mesh;   ///< a point of the fluid, farthest from every surface we tried
     double clearance = 0.0;  ///< its distance to the nearest surface (length)
     double fluid_volume = 0; ///< exact void volume of the container with the treated bodies
@@ -39,11 +41,14 @@ struct OpenFoamCase {
 /// (patch "wall", wall.stl: a surface open at both ends reaching half a cell beyond them) out
 /// of it; for a box it is the box itself, ceil(length / cell) cells along each axis, and its
 /// four sides are the patch "wall" (type wall): no wall surface. snappyHexMesh cuts the
-/// particles (patch "particles") out of either. The location in the mesh is searched inside
+/// particles (patch "particles") out of either. For an annulus the background is the
+/// cylinder's about its tube, and snappyHexMesh cuts the tube (wall.stl, patch "wall") and
+/// the rod (rod.stl, patch "rod", refined as the wall); a periodic cell is refused (it would
+/// need cyclic patches). The location in the mesh is searched inside
 /// the container's bounds, its clearance from the wall by Container::wall_distance. `volumes`
 /// gives the exact fluid volume written in the README.
-/// \throws InvalidInput when the options are out of range or no point of the fluid clears
-/// every surface by two cells of the finest level
+/// \throws InvalidInput when the options are out of range, the container is a periodic cell,
+/// or no point of the fluid clears every surface by two cells of the finest level
 OpenFoamCase openfoam_case(const TreatedBed& bed, const SurfaceContainer& container,
                            const TreatmentVolumes& volumes, const std::string& contacts,
                            double diameter, int level, const OpenFoamMeshOptions& options = {});

@@ -201,7 +201,19 @@ std::vector<Solid> container_solids(const Cylinder& cylinder, double z_low, doub
 /// outward, and lie on the box's faces. \param edge > 0
 std::vector<Solid> container_solids(const Box& box, double z_low, double z_high, double edge);
 
-/// The solids of either shape (the overloads above).
+/// An annulus as solids "wall" (the tube: a prism circumscribed about it, as a cylinder's),
+/// "rod" (a prism inscribed in the rod, its corners on it, so that it lies inside the rod),
+/// "bottom" and "top" (strips between the two rings); the tube and the rod have the same
+/// sides and rows (the tube's), and the four together are closed and outward (the rod's
+/// normals point towards the axis, out of the fluid). \param edge > 0
+std::vector<Solid> container_solids(const Annulus& annulus, double z_low, double z_high,
+                                    double edge);
+
+/// A periodic cell as solids "bottom" and "top" only (the box [0, LX] x [0, LY]'s, see the box
+/// overload): it has no side wall.
+std::vector<Solid> container_solids(const Periodic& cell, double z_low, double z_high, double edge);
+
+/// The solids of any shape (the overloads above).
 std::vector<Solid> container_solids(const Container& container, double z_low, double z_high,
                                     double edge);
 
