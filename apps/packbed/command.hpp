@@ -99,15 +99,11 @@ CLI::Option* add_container_option(CLI::App& app, std::string& text, const std::s
                                   const std::vector<std::string_view>& shapes = all_shapes);
 
 /// The container recorded in `summary.json` beside a particle file (written by
-/// `packbed generate`, `lattice`, `analyze`): a cylinder, or the box of a lattice in a box.
+/// `packbed generate`, `lattice`, `analyze`): any of the four shapes (read_bed_summary).
 /// \return nothing when there is no such file or it names no container.
 /// \throws InvalidInput naming the file when it exists but is not a regular file, not a
 /// summary, or has a container outside the limits
 std::optional<Container> container_beside(const std::filesystem::path& particles);
-
-/// The container of a `summary.json` (read_bed_summary's cylinder or box, or an annulus or a
-/// periodic cell from its `container.spec`). \return nothing when it names none.
-/// \throws InvalidInput as read_bed_summary
 
 /// "radius R" for a cylinder, "box:LX,LY" for a box: the container in messages.
 std::string describe(const Container& container);
