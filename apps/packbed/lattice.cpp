@@ -96,18 +96,11 @@ int run_lattice(LatticeOptions& o) {
     auto summary = lattice_summary(o.params, packing);
     out.stage("particles.csv", particles_csv(packing));
     out.stage("particles.vtu", particles_vtu(packing));
-    // A lattice in a cylinder or a box is a bed: the same analysis as `generate`, when tall
-    // enough. In an annulus or a periodic cell, summary.json records the container for
-    // `packbed analyze`, which measures those shapes.
+    // A lattice is a bed: the same analysis as `generate` in its container, when tall enough.
     const Container container = region_container(o.params.region);
     const double height = region_height(o.params.region);
-    const bool analysed_here = container.cylinder() || container.box();
-    if (!analysed_here)
-        summary["analysis_note"] = fmt::format("not run by lattice in {}: run packbed analyze on "
-                                               "particles.csv (summary.json gives the container)",
-                                               container.spec());
-    else if (!o.no_analysis && !packing.centers.empty() &&
-             height > 2.0 * o.band_clearance * o.params.diameter)
+    if (!o.no_analysis && !packing.centers.empty() &&
+        height > 2.0 * o.band_clearance * o.params.diameter)
         stage_analysis(out, packing, container, o.band_clearance, summary);
     out.stage("summary.json", summary.dump(2) + "\n");
     out.commit();
