@@ -190,6 +190,36 @@ check(box["container"]["shape"] == "box" and
 # Whole simple cubic layers from d/2 to 10 balls a side: the band's solid is pi/6 of it.
 check(abs(box["void_fraction"] - (1 - 3.141592653589793 / 6)) < 1e-9,
       f"its void fraction is the lattice's, 1 - pi/6 ({box['void_fraction']:.10f})")
+# 6. An annulus and a periodic cell: every sphere between the walls, each wall's profile, the
+# rod in the OpenFOAM case, the hydraulic diameter; the cell's copies and its LAMMPS box.
+ring = summary("results/annulus")
+check(ring["container"]["spec"] == "annulus:0.02,0.004" and ring["max_overlap_pair"] < 1e-4
+      and ring["max_overlap_wall"] < 1e-4, "the annulus bed ends within the tolerance")
+rows = [[float(v) for v in line.split(",")] for line in
+        open(os.path.join(repo, "results/annulus/particles.csv")).read().split("\n")[1:] if line]
+gaps = [min(0.01 - ((x * x + y * y) ** 0.5 + r), ((x * x + y * y) ** 0.5 - r) - 0.002)
+        for x, y, z, r in rows]
+check(len(rows) == 1500 and min(gaps) > -1e-4 * 0.002,
+      f"its 1500 spheres lie between rod and tube (closest {min(gaps):.2e} m)")
+for wall in ("outer", "inner"):
+    first = open(os.path.join(repo, f"results/annulus/radial_void_fraction_{wall}.csv")).read()
+    e0 = float(first.split("\n")[1].split(",")[2])
+    check(0.95 < e0 < 1, f"the {wall} wall's profile starts near e = 1 at its wall ({e0:.3f})")
+check(os.path.getsize(os.path.join(repo, "results/annulus/case/constant/triSurface/rod.stl")) > 0,
+      "the OpenFOAM case has the rod's surface")
+check("D - DI = 0.016 m" in log_of("packbed hydraulics --bed results/annulus"),
+      "hydraulics takes the hydraulic diameter D - DI")
+bulk = summary("results/bulk")
+check(0.34 < bulk["void_fraction"] < 0.38 and bulk["max_overlap_pair"] < 1e-4,
+      f"the periodic bed is near random close packing (e = {bulk['void_fraction']:.4f})")
+rows = [[float(v) for v in line.split(",")] for line in
+        open(os.path.join(repo, "results/bulk/particles.csv")).read().split("\n")[1:] if line]
+check(all(0 <= x < 0.016 and 0 <= y < 0.016 for x, y, z, r in rows),
+      "its centres are written in the cell")
+data = open(os.path.join(repo, "results/bulk/bed.data")).read()
+check("0 0.016 xlo xhi" in data and "boundary        p p f" in
+      open(os.path.join(repo, "results/bulk/bed.data.lammps.in")).read(),
+      "LAMMPS gets the cell as its box, periodic in x and y")
 if failures:
     sys.exit(f"check-readme: {len(failures)} check(s) failed")
 print("check-readme: every README command ran and its outputs hold")

@@ -472,28 +472,48 @@ TreatmentVolumes treatment_volumes(const Packing& packing, const TreatedBed& bed
     return v;
 }
 
+namespace {
+
+/// The rings of a prism circumscribed about a cylinder of radius `rt` (its faces tangent to
+/// it from outside) between z_low and z_high: `sides` of about `edge` (48 to 100 000), the
+/// corners at rt / cos(pi / sides), in `rows` about as tall as a side is wide (1 to 4 096).
+struct PrismGrid {
+    int sides, rows;
+    double corner, z_low, z_high;
+    PrismGrid(double rt, double low, double high, double edge)
+        : sides(std::clamp(static_cast<int>(std::ceil(2.0 * std::numbers::pi * rt / edge)), 48,
+                           100000))
+        , rows(0)
+        , corner(rt / std::cos(std::numbers::pi / sides))
+        , z_low(low)
+        , z_high(high) {
+        rows = std::clamp(static_cast<int>(std::ceil(
+                              (high - low) / (2.0 * corner * std::sin(std::numbers::pi / sides)))),
+                          1, 4096);
+    }
+    /// Point k of ring `row` at distance `radius` from the axis, every other row turned by
+    /// half a side.
+    Vec3 point(double radius, int row, std::uint32_t k) const {
+        const double angle = 2.0 * std::numbers::pi * (k + 0.5 * (row % 2)) / sides;
+        return Vec3{radius * std::cos(angle), radius * std::sin(angle),
+                    row == rows ? z_high : z_low + (z_high - z_low) * row / rows};
+    }
+};
+
+} // namespace
+
 std::vector<Solid> container_solids(const Cylinder& cylinder, double z_low, double z_high,
                                     double edge) {
     // A prism circumscribed about the cylinder: its faces are tangent to the cylinder from
     // outside, with sides about `edge` long.
-    const double rt = cylinder.radius();
-    const double h = z_high - z_low;
-    const int sides =
-        std::clamp(static_cast<int>(std::ceil(2.0 * std::numbers::pi * rt / edge)), 48, 100000);
-    const double corner = rt / std::cos(std::numbers::pi / sides);
     // The wall in rows about as tall as a side is wide, every other row turned by half a
     // side, so that no two triangles are coplanar (the bottom and top are fans from the
     // axis). Each wall triangle projects onto the plane between a chord at distance Rt from
     // the axis and the circle through the corners: the wall stays outside the cylinder.
-    const int rows = std::clamp(
-        static_cast<int>(std::ceil(h / (2.0 * corner * std::sin(std::numbers::pi / sides)))), 1,
-        4096);
-    const auto s = static_cast<std::uint32_t>(sides);
-    auto ring_point = [&](int row, std::uint32_t k) {
-        const double angle = 2.0 * std::numbers::pi * (k + 0.5 * (row % 2)) / sides;
-        return Vec3{corner * std::cos(angle), corner * std::sin(angle),
-                    row == rows ? z_high : z_low + h * row / rows};
-    };
+    const PrismGrid grid(cylinder.radius(), z_low, z_high, edge);
+    const int rows = grid.rows;
+    const auto s = static_cast<std::uint32_t>(grid.sides);
+    auto ring_point = [&](int row, std::uint32_t k) { return grid.point(grid.corner, row, k); };
     Solid wall{"wall", {}}, bottom{"bottom", {}}, top{"top", {}};
     for (int row = 0; row <= rows; ++row)
         for (std::uint32_t k = 0; k < s; ++k)
@@ -591,19 +611,13 @@ std::vector<Solid> container_solids(const Annulus& annulus, double z_low, double
     // a prism inscribed in it (its corners on the rod, its faces inside it: no sphere outside
     // the rod meets it), with the tube's sides and rows, so that the rings of the two share
     // their angles and the bottom and the top are strips of quads between them.
-    const double rt = annulus.outer_radius(), ri = annulus.inner_radius();
-    const double h = z_high - z_low;
-    const int sides =
-        std::clamp(static_cast<int>(std::ceil(2.0 * std::numbers::pi * rt / edge)), 48, 100000);
-    const double corner = rt / std::cos(std::numbers::pi / sides);
-    const int rows = std::clamp(
-        static_cast<int>(std::ceil(h / (2.0 * corner * std::sin(std::numbers::pi / sides)))), 1,
-        4096);
-    const auto s = static_cast<std::uint32_t>(sides);
+    const double ri = annulus.inner_radius();
+    const PrismGrid grid(annulus.outer_radius(), z_low, z_high, edge);
+    const int rows = grid.rows;
+    const double corner = grid.corner;
+    const auto s = static_cast<std::uint32_t>(grid.sides);
     auto ring_point = [&](double radius, int row, std::uint32_t k) {
-        const double angle = 2.0 * std::numbers::pi * (k + 0.5 * (row % 2)) / sides;
-        return Vec3{radius * std::cos(angle), radius * std::sin(angle),
-                    row == rows ? z_high : z_low + h * row / rows};
+        return grid.point(radius, row, k);
     };
     Solid wall{"wall", {}}, rod{"rod", {}}, bottom{"bottom", {}}, top{"top", {}};
     for (int row = 0; row <= rows; ++row)

@@ -269,8 +269,8 @@ void stage_analysis(OutputDirectory& out, const Packing& packing, const Containe
     // A periodic cell: g(r) no farther than the smaller period (analyze_bed refuses a longer
     // range, which `analyze --rdf-range` may ask for; here nobody asked).
     if (const Periodic* cell = container.periodic(); cell && !packing.radii.empty())
-        options.rdf_range = std::min(options.rdf_range,
-                                     std::min(cell->lx(), cell->ly()) / packing.mean_diameter());
+        options.rdf_range =
+            std::min(options.rdf_range, std::min(cell->lx(), cell->ly()) / packing.mean_diameter());
     const BedAnalysis analysis = analyze_bed(packing, container, options);
     summary["analysis"] = analysis_summary(analysis, options);
     for (const auto& [name, text] : analysis_files(analysis, container))

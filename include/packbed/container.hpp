@@ -52,9 +52,34 @@ concept LateralWall = requires(const C& c, const Vec3& p, double radius) {
     { c.contains(p) } -> std::same_as<bool>;
 };
 
+/// The per-wall questions of the analysis (Container::profile_walls) for a shape whose
+/// profiles are measured from one wall, "wall": its nearest-wall questions as they are (a box's
+/// four faces count as one wall, the nearest; a corner counts with the nearer face).
+template <class Shape> class OneProfileWall {
+public:
+    std::span<const std::string_view> profile_walls() const { return one_wall; }
+    double wall_distance_from(std::size_t, const Vec3& p) const { return self().wall_distance(p); }
+    std::pair<double, double> wall_distances_from(std::size_t, const Vec3& c, double r) const {
+        return self().wall_distances(c, r);
+    }
+    Shape shrunk_from(std::size_t, double d) const { return self().shrunk(d); }
+    double shell_area_from(std::size_t, double d_low, double d_high) const {
+        return self().shell_area(d_low, d_high);
+    }
+    std::size_t nearest_wall(const Vec3&) const { return 0; }
+    std::string_view profile_position_name_from(std::size_t) const {
+        return self().profile_position_name();
+    }
+    double profile_position_from(std::size_t, double d) const { return self().profile_position(d); }
+
+private:
+    static constexpr std::array<std::string_view, 1> one_wall{"wall"};
+    const Shape& self() const { return static_cast<const Shape&>(*this); }
+};
+
 /// A vertical cylinder of radius `radius` whose axis is the z axis (x = y = 0); the floor is
 /// z = 0 and it is open at the top. Immutable after construction: safe to share between threads.
-class Cylinder {
+class Cylinder : public OneProfileWall<Cylinder> {
 public:
     /// \param radius container radius Rt (length, > 0)
     explicit Cylinder(double radius)
@@ -132,27 +157,10 @@ public:
     std::string_view profile_position_name() const { return "radial_position"; }
     double profile_position(double d) const { return m_radius - d; }
 
-    /// The walls the profiles are measured from: one, "wall" (Container::profile_walls).
-    std::span<const std::string_view> profile_walls() const { return one_wall; }
-    /// Wall `wall` (0) of profile_walls: the nearest wall's questions, as they are.
-    double wall_distance_from(std::size_t, const Vec3& p) const { return wall_distance(p); }
-    std::pair<double, double> wall_distances_from(std::size_t, const Vec3& c, double r) const {
-        return wall_distances(c, r);
-    }
-    Cylinder shrunk_from(std::size_t, double d) const { return shrunk(d); }
-    double shell_area_from(std::size_t, double d_low, double d_high) const {
-        return shell_area(d_low, d_high);
-    }
-    std::size_t nearest_wall(const Vec3&) const { return 0; }
-    std::string_view profile_position_name_from(std::size_t) const {
-        return profile_position_name();
-    }
-    double profile_position_from(std::size_t, double d) const { return profile_position(d); }
     /// \return how far the sphere (c, r) reaches beyond the wall, rho + r - Rt (<= 0 inside).
     double sticks_out(const Vec3& c, double r) const { return -wall_distances(c, r).first; }
 
 private:
-    static constexpr std::array<std::string_view, 1> one_wall{"wall"};
     double m_radius;
 };
 
@@ -162,7 +170,7 @@ private:
 /// the set of points at least d from the wall is the box shrunk by d on every side, and a
 /// profile against it counts a corner region with the face nearer to it (docs/analysis.md).
 /// Immutable after construction.
-class Box {
+class Box : public OneProfileWall<Box> {
 public:
     /// The box from (0, 0) to (lx, ly). \param lx,ly widths (length, >= 0)
     Box(double lx, double ly)
@@ -249,28 +257,10 @@ public:
     std::string_view profile_position_name() const { return "wall_distance"; }
     double profile_position(double d) const { return d; }
 
-    /// The walls the profiles are measured from: one, "wall", the four faces together (the
-    /// distance from the nearest face; a corner counts with the nearer face).
-    std::span<const std::string_view> profile_walls() const { return one_wall; }
-    /// Wall `wall` (0) of profile_walls: the nearest face's questions, as they are.
-    double wall_distance_from(std::size_t, const Vec3& p) const { return wall_distance(p); }
-    std::pair<double, double> wall_distances_from(std::size_t, const Vec3& c, double r) const {
-        return wall_distances(c, r);
-    }
-    Box shrunk_from(std::size_t, double d) const { return shrunk(d); }
-    double shell_area_from(std::size_t, double d_low, double d_high) const {
-        return shell_area(d_low, d_high);
-    }
-    std::size_t nearest_wall(const Vec3&) const { return 0; }
-    std::string_view profile_position_name_from(std::size_t) const {
-        return profile_position_name();
-    }
-    double profile_position_from(std::size_t, double d) const { return profile_position(d); }
     /// \return how far the sphere (c, r) reaches beyond the nearest face, r - d (<= 0 inside).
     double sticks_out(const Vec3& c, double r) const { return -wall_distances(c, r).first; }
 
 private:
-    static constexpr std::array<std::string_view, 1> one_wall{"wall"};
     double m_x_low, m_x_high, m_y_low, m_y_high;
 };
 
