@@ -5,7 +5,7 @@
 // Format 3's hash covers the header line and the data, so nearly every change the fuzzer makes
 // would stop at the hash check. Each input is therefore read twice: as it is, and "re-signed"
 // (its third line replaced by the right hash of its second line and its data, as
-// src/checkpoint.cpp computes it), which takes the fuzzer's changes to the range checks of
+// src/generate/checkpoint.cpp computes it), which takes the fuzzer's changes to the range checks of
 // every field behind the hash. If the hash's definition changes, change resigned() with it.
 #include <cinttypes>
 #include <optional>
@@ -26,7 +26,7 @@ packbed::SoftSphereParameters seed_parameters() {
 
 const packbed::SoftSphereParameters parameters = seed_parameters();
 
-/// FNV-1a, 64 bits, continued from `h` (src/checkpoint.cpp).
+/// FNV-1a, 64 bits, continued from `h` (src/generate/checkpoint.cpp).
 std::uint64_t fnv1a(std::string_view bytes, std::uint64_t h = 0xcbf29ce484222325ULL) {
     for (const char c : bytes) {
         h ^= static_cast<unsigned char>(c);

@@ -1,11 +1,11 @@
-// The solvers' internal kernels (src/soft_bed.hpp): the two-pass pair sum against the
+// The solvers' internal kernels (src/generate/soft_bed.hpp): the two-pass pair sum against the
 // one-pass reference, bit for bit, on hand-placed spheres with every special case.
 #include <cstring>
 #include <vector>
 
 #include <gtest/gtest.h>
 
-#include "soft_bed.hpp"
+#include "generate/soft_bed.hpp"
 
 namespace packbed::detail {
 namespace {

@@ -1,7 +1,7 @@
 // Published correlations for beds of mono-sized spheres in tubes, to validate against.
 // One registry per kind; each entry carries its source, its formula and its validity range.
 // How each formula was checked (against two independent sources, or one) is written beside
-// its entry in src/correlations.cpp and in docs/sources.md: that is for us, not for users.
+// its entry in src/analyze/correlations.cpp and in docs/sources.md: that is for us, not for users.
 #pragma once
 
 #include <string>

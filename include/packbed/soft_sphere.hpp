@@ -233,7 +233,7 @@ private:
     std::unique_ptr<State> m_state;
 };
 
-/// Relax the generation stage's bed with FIRE (see Solver::fire and src/fire.cpp): stages
+/// Relax the generation stage's bed with FIRE (see Solver::fire and src/generate/fire.cpp): stages
 /// "initial" (no gravity, overlaps removed), "intermediate" (gravity under the control of
 /// eq. (7), mass-centre rule) and "final" (gravity halved until both largest overlaps are
 /// below the tolerance). `iterations` counts force evaluations; `cg` in a StageRecord and in

@@ -16,7 +16,7 @@
 #include "packbed/error.hpp"
 #include "packbed/files.hpp"
 #include "packbed/limits.hpp"
-#include "random.hpp"
+#include "generate/random.hpp"
 
 namespace packbed {
 

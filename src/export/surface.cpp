@@ -11,7 +11,7 @@
 
 #include <fmt/format.h>
 
-#include "mesh_union.hpp"
+#include "export/mesh_union.hpp"
 #include "packbed/error.hpp"
 #include "packbed/neighbor_list.hpp"
 #include "packbed/volume.hpp"

@@ -15,7 +15,7 @@
 #include <fmt/format.h>
 #include <omp.h>
 
-#include "cell_grid.hpp"
+#include "geometry/cell_grid.hpp"
 #include "packbed/error.hpp"
 #include "packbed/limits.hpp"
 #include "packbed/sizes.hpp"

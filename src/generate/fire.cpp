@@ -32,7 +32,7 @@
 #include "packbed/error.hpp"
 #include "packbed/soft_sphere.hpp"
 #include "parallel.hpp"
-#include "soft_bed.hpp"
+#include "generate/soft_bed.hpp"
 
 namespace packbed {
 

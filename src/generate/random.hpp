@@ -1,7 +1,7 @@
 // Internal: random numbers that are the same bits on every platform. std::mt19937_64 is fully
 // specified by the standard; the distributions of <random> (uniform_real_distribution,
 // normal_distribution, shuffle) are not, so their results differ between standard libraries.
-// The solvers' generation stage (src/soft_bed.hpp) and the sizes (src/sizes.cpp) both draw here.
+// The solvers' generation stage (src/generate/soft_bed.hpp) and the sizes (src/generate/sizes.cpp) both draw here.
 #pragma once
 
 #include <cstdint>

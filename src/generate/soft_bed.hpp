@@ -21,7 +21,7 @@
 #include "packbed/neighbor_list.hpp"
 #include "packbed/packing.hpp"
 #include "packbed/soft_sphere.hpp"
-#include "random.hpp"
+#include "generate/random.hpp"
 
 namespace packbed::detail {
 

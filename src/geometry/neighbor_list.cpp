@@ -9,7 +9,7 @@
 
 #include <omp.h>
 
-#include "cell_grid.hpp"
+#include "geometry/cell_grid.hpp"
 #include "parallel.hpp"
 
 namespace packbed {

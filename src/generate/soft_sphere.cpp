@@ -14,7 +14,7 @@
 #include "packbed/neighbor_list.hpp"
 #include "parallel.hpp"
 #include "require.hpp"
-#include "soft_bed.hpp"
+#include "generate/soft_bed.hpp"
 
 namespace packbed {
 

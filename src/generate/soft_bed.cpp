@@ -1,4 +1,4 @@
-#include "soft_bed.hpp"
+#include "generate/soft_bed.hpp"
 
 #include <numbers>
 #include <type_traits>

@@ -1,4 +1,4 @@
-#include "mesh_union.hpp"
+#include "export/mesh_union.hpp"
 
 #include <stdexcept>
 
