@@ -381,7 +381,9 @@ INSTANTIATE_TEST_SUITE_P(
         naming("generate --container sphere:3", {"--container", "sphere:3", "periodic:LX,LY"}),
         naming("generate --container annulus:10", {"--container", "annulus:10", "annulus:D,DI"}),
         naming("generate --container annulus:4,6", {"--container", "annulus:4,6", "DI < D"}),
-        naming("generate --container box:6,6 --aspect-ratio 5", {"--aspect-ratio", "--container"}),
+        exact("generate --container box:6,6 --aspect-ratio 5",
+              "packbed generate: --aspect-ratio 5 and --container box:6,6 are both given; "
+              "allowed: one of the two"),
         exact("generate --container periodic:8,8 --checkpoint c.json",
               "packbed generate: --checkpoint c.json is not allowed with --container "
               "periodic:8,8; allowed: --checkpoint with a cylinder (a checkpoint does not record "
@@ -813,7 +815,9 @@ INSTANTIATE_TEST_SUITE_P(
               "allowed: 1 to 2, or -1 to -2 counting from the end"),
         exact("analyze bed.csv -R 1 --frames some",
               "packbed: --frames: 'some' is not allowed; allowed: all"),
-        naming("analyze bed.csv -R 1 --frames all --frame 1", {"--frame", "--frames", "excludes"}),
+        exact(
+            "analyze bed.csv -R 1 --frames all --frame 1",
+            "packbed analyze: --frame 1 and --frames all are both given; allowed: one of the two"),
         exact("analyze bed.csv -R 1 --axis 1",
               "packbed: --axis: '1' is not allowed; " + axis_allowed),
         exact("analyze bed.csv -R 1 --axis 1,2,3",

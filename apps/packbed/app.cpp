@@ -182,7 +182,22 @@ int run(int argc, char** argv) {
             }
             return 2;
         }
-        if (dynamic_cast<const CLI::ExtrasError*>(&e)) {
+        if (const std::string text = e.what();
+            dynamic_cast<const CLI::ExcludesError*>(&e) && text.find(" excludes ") != text.npos) {
+            // Two options that say the same thing (--container and --aspect-ratio): both
+            // named with the values given.
+            const std::size_t at = text.find(" excludes ");
+            auto given = [&](const std::string& name) {
+                std::string shown = name;
+                if (const CLI::Option* o = selected.front()->get_option_no_throw(name))
+                    for (const std::string& v : o->results())
+                        shown += " " + v.substr(0, 80);
+                return printable(shown);
+            };
+            fmt::print(stderr, "packbed {}: {} and {} are both given; allowed: one of the two\n",
+                       selected.front()->get_name(), given(text.substr(0, at)),
+                       given(text.substr(at + 10)));
+        } else if (dynamic_cast<const CLI::ExtrasError*>(&e)) {
             // A mistyped option: the closest option of that subcommand.
             std::string suggestion;
             for (const auto& extra : app.remaining(true))
