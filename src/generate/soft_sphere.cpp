@@ -9,12 +9,12 @@
 
 #include <fmt/format.h>
 
+#include "generate/soft_bed.hpp"
 #include "packbed/error.hpp"
 #include "packbed/limits.hpp"
 #include "packbed/neighbor_list.hpp"
 #include "parallel.hpp"
 #include "require.hpp"
-#include "generate/soft_bed.hpp"
 
 namespace packbed {
 
@@ -114,21 +114,20 @@ void SoftSphereParameters::validate() const {
                                        "per particle",
                                        sizes.size(), particles));
     const auto [smallest, largest] = std::minmax_element(sizes.begin(), sizes.end());
-    if (container && !container->cylinder()) { // the fit checked above: only NaN and <= 0 left
-        for (const double d : sizes)
-            if (!(d > 0.0))
-                throw InvalidInput(fmt::format("--sizes: a diameter of {:.6g} Dp is not "
-                                               "allowed; allowed: diameters > 0",
-                                               d));
-    }
-    const double a = container_dp().cylinder() ? 2.0 * container_dp().cylinder()->radius() : 1e300;
-    // Written to fail on NaN: every comparison with NaN is false.
+    const Container shape = container_dp();
+    const Cylinder* const tube = shape.cylinder();
+    // Written to fail on NaN: every comparison with NaN is false. Another container's fit to
+    // the largest sphere was checked above.
     for (const double d : sizes)
-        if (!(d > 0.0 && d < a))
-            throw InvalidInput(fmt::format(
-                "--sizes: a diameter of {:.6g} Dp is not allowed in a tube of a = {:.6g}; allowed: "
-                "diameters > 0 and below the tube's (a Dp, Dp = {:.6g} the reference diameter)",
-                d, aspect_ratio, diameter));
+        if (!(d > 0.0 && (!tube || d < 2.0 * tube->radius())))
+            throw InvalidInput(
+                tube ? fmt::format("--sizes: a diameter of {:.6g} Dp is not allowed in a tube of "
+                                   "a = {:.6g}; allowed: diameters > 0 and below the tube's (a "
+                                   "Dp, Dp = {:.6g} the reference diameter)",
+                                   d, 2.0 * tube->radius(), diameter)
+                     : fmt::format("--sizes: a diameter of {:.6g} Dp is not allowed; allowed: "
+                                   "diameters > 0",
+                                   d));
     if (!(*largest / *smallest <= max_size_ratio))
         throw InvalidInput(fmt::format(
             "--sizes: the largest diameter is {:.6g} times the smallest; allowed: at most {:g} "
