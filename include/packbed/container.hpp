@@ -44,12 +44,16 @@ struct WallPlane {
     double offset = 0.0;
 };
 
-/// What the soft-sphere loops need from a container. The loops are templated on it, so the
-/// wall law inlines. Another container (annulus, box) is another type meeting this concept.
+/// What every shape of `Container` answers (a part of it: the rest is in the class comments).
+/// The wall law calls back f(overlap, push) once per wall a sphere presses into.
 template <class C>
-concept LateralWall = requires(const C& c, const Vec3& p, double radius) {
-    { c.wall_contact(p, radius) } -> std::same_as<WallContact>;
+concept ContainerShape = requires(const C& c, const Vec3& p, double radius) {
+    c.wall_contacts(p, radius, [](double, const Vec3&) {});
     { c.contains(p) } -> std::same_as<bool>;
+    { c.wall_distance(p) } -> std::same_as<double>;
+    { c.sphere_volume(p, radius, 0.0, 1.0) } -> std::same_as<double>;
+    { c.cross_section_area() } -> std::same_as<double>;
+    { c.spec() } -> std::same_as<std::string>;
 };
 
 /// The per-wall questions of the analysis (Container::profile_walls) for a shape whose
@@ -477,7 +481,8 @@ private:
     double m_lx, m_ly;
 };
 
-static_assert(LateralWall<Cylinder>);
+static_assert(ContainerShape<Cylinder> && ContainerShape<Box> && ContainerShape<Annulus> &&
+              ContainerShape<Periodic>);
 
 /// A container of any shape: what generation, analysis and export ask. A Cylinder or a Box
 /// converts to it implicitly. Every question goes to the shape (one std::visit each, in
