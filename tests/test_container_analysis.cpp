@@ -26,6 +26,8 @@
 #include "packbed/read.hpp"
 #include "packbed/summary.hpp"
 
+#include "run_packbed.hpp"
+
 using namespace packbed;
 namespace fs = std::filesystem;
 constexpr double pi = std::numbers::pi;
@@ -56,12 +58,7 @@ Packing cubic_lattice(int n, int layers) {
     return p;
 }
 
-std::string slurp(const fs::path& path) {
-    std::ifstream in(path, std::ios::binary);
-    std::ostringstream s;
-    s << in.rdbuf();
-    return s.str();
-}
+using packbed::test::slurp;
 
 fs::path scratch(const std::string& name) {
     const auto* info = ::testing::UnitTest::GetInstance()->current_test_info();

@@ -28,6 +28,8 @@
 #include "packbed/openfoam.hpp"
 #include "packbed/surface.hpp"
 
+#include "run_packbed.hpp"
+
 using namespace packbed;
 namespace fs = std::filesystem;
 constexpr double pi = std::numbers::pi;
@@ -40,12 +42,7 @@ struct Outcome {
     std::string err;
 };
 
-std::string slurp(const fs::path& path) {
-    std::ifstream in(path, std::ios::binary);
-    std::ostringstream s;
-    s << in.rdbuf();
-    return s.str();
-}
+using packbed::test::slurp;
 
 /// A fresh directory private to the running test.
 fs::path scratch(const std::string& name) {
