@@ -294,6 +294,15 @@ TEST(ContainerExport, OpenFoamCaseOfAPeriodicCellHasCyclicSidesAndCopies) {
     const TriangleMesh& m = c.particles[0].mesh;
     EXPECT_EQ(static_cast<long>(m.vertices.size()) * 2 - static_cast<long>(m.triangles.size()),
               7 * 4);
+    // A cell narrower than twice the largest diameter is refused (the minimum image).
+    try {
+        treat_contacts(packing, caps, SurfaceContainer{Periodic(1.5, 8.0), 3.0});
+        FAIL() << "no exception";
+    } catch (const InvalidInput& e) {
+        EXPECT_STREQ(e.what(), "--container periodic:1.5,8 is not allowed for spheres of diameter "
+                               "up to 1; allowed: periods at least twice the largest diameter, 2 "
+                               "(the minimum image)");
+    }
     // Enlarge and bridges are refused in a cell.
     try {
         treat_contacts(packing, {ContactTreatment::enlarge, 0.01}, cell);

@@ -142,7 +142,7 @@ struct TreatedBed {
 /// the largest overlap); two caps, lenses or bridge ends of one sphere meeting (the parameter
 /// too large); a bridge thinner than the lens of its overlapping pair; enlarge or bridges in a
 /// periodic cell (there, pairs are found by the minimum image and the centres moved into the
-/// cell)
+/// cell); a periodic cell narrower than twice the largest diameter
 TreatedBed treat_contacts(const Packing& packing, const Contacts& contacts,
                           const std::optional<SurfaceContainer>& container);
 

@@ -310,6 +310,16 @@ TreatedBed treat_contacts(const Packing& packing, const Contacts& contacts,
             "--contacts {}:{} is not allowed in the periodic cell {}; allowed: caps:H, shrink:F "
             "or none (the unions of enlarge and bridges are not copied across the sides)",
             name_of(contacts.treatment), contacts.parameter, cell->spec()));
+    if (cell && n > 0) {
+        // The minimum image finds every contact only where no sphere can touch two copies of
+        // another, and a sphere crosses at most one side of each pair.
+        const double widest = 2.0 * *std::max_element(packing.radii.begin(), packing.radii.end());
+        if (!(std::min(cell->lx(), cell->ly()) >= 2.0 * widest))
+            throw InvalidInput(fmt::format(
+                "--container {} is not allowed for spheres of diameter up to {}; allowed: "
+                "periods at least twice the largest diameter, {} (the minimum image)",
+                cell->spec(), widest, 2.0 * widest));
+    }
     std::vector<Vec3> wrapped;
     if (cell)
         for (const Vec3& c : packing.centers)
