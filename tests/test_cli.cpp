@@ -1286,7 +1286,7 @@ TEST(Cli, ExportOfABoxLatticeKeepsItsBox) {
     for (std::size_t at = 0; (at = stl.find("\nsolid ", at)) != std::string::npos; ++at)
         names += stl.substr(at + 7, stl.find('\n', at + 1) - at - 7) + ",";
     EXPECT_EQ(stl.substr(0, stl.find('\n')), "solid particles");
-    EXPECT_EQ(names, "wall,bottom,top,");
+    EXPECT_EQ(names, "x_low,x_high,y_low,y_high,bottom,top,"); // one solid per face
     // The particles 0.05 clear of every face (single precision); the container on the faces.
     const std::string particles = stl.substr(0, stl.find("endsolid particles"));
     std::size_t on_faces = 0;

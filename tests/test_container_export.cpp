@@ -234,17 +234,80 @@ TEST(ContainerExport, OpenFoamCaseOfAnAnnulusCutsTheTubeAndTheRod) {
     EXPECT_NE(files["system/blockMeshDict"].find("(26 26 8) simpleGrading"), std::string::npos);
 }
 
-TEST(ContainerExport, OpenFoamRefusesAPeriodicCell) {
-    const Packing packing = ring_of_balls();
-    const SurfaceContainer cell{Periodic(8.0, 8.0), 2.0};
-    const TreatedBed bed = treat_contacts(packing, {}, cell);
+TEST(ContainerExport, OpenFoamCaseOfAPeriodicCellHasCyclicSidesAndCopies) {
+    // Two balls of Dp = 1 in the cell 3 x 3, touching across the side x = 0 (centres 0.3 and
+    // 2.3: 1 apart by the minimum image), both on the floor; a third in the corner x = 0,
+    // y = 3, alone.
+    Packing packing;
+    packing.add({0.3, 1.0, 0.5}, 0.5);
+    packing.add({2.3, 1.0, 0.5}, 0.5);
+    packing.add({0.2, 2.9, 1.5}, 0.5);
+    const SurfaceContainer cell{Periodic(3.0, 3.0), 3.0};
+    const Contacts caps{ContactTreatment::caps, 0.05};
+    const TreatedBed bed = treat_contacts(packing, caps, cell);
+    // The pair's caps at x = -0.175 and 2.775: the middle of the gap, -0.2 (or 2.8), +- 0.025.
+    ASSERT_EQ(bed.bodies[0].cuts.size(), 2u); // the pair and the floor
+    EXPECT_NEAR(bed.bodies[0].cuts[0].normal.x, -1.0, 1e-15);
+    EXPECT_NEAR(bed.bodies[0].cuts[0].offset, 0.175, 1e-15);
+    EXPECT_NEAR(bed.bodies[1].cuts[0].normal.x, 1.0, 1e-15);
+    EXPECT_NEAR(bed.bodies[1].cuts[0].offset, 2.775, 1e-15);
+    EXPECT_TRUE(bed.bodies[2].cuts.empty());
+    const TreatmentVolumes v = treatment_volumes(packing, bed, cell);
+    const auto cap = [](double c) { return pi * c * c * (1.5 - c) / 3.0; }; // r = 0.5
+    EXPECT_DOUBLE_EQ(v.container_volume, 27.0);
+    EXPECT_NEAR(v.treated_solid, 3.0 * pi / 6.0 - 2.0 * cap(0.025) - 2.0 * cap(0.05), 1e-14);
+    // Copies: the first across x = 0 (+3), the second none (2.3 + 0.5 < 3), the third across
+    // x = 0 and y = 3 and the corner: 3 + 1 + 0 + 3 = 7 bodies, the copies' cuts moved along.
+    const TreatedBed imaged = periodic_images(bed, Periodic(3.0, 3.0));
+    ASSERT_EQ(imaged.bodies.size(), 7u);
+    EXPECT_EQ(imaged.bodies[3].center, (Vec3{3.3, 1.0, 0.5}));
+    EXPECT_NEAR(imaged.bodies[3].cuts[0].offset, 0.175 - 3.0, 1e-14); // x >= 2.825
+    EXPECT_EQ(imaged.bodies[4].center, (Vec3{0.2, 2.9 - 3.0, 1.5}));
+    EXPECT_EQ(imaged.bodies[5].center, (Vec3{3.2, 2.9, 1.5}));
+    EXPECT_EQ(imaged.bodies[6].center, (Vec3{3.2, 2.9 - 3.0, 1.5}));
+    // The case: the cell as background, its sides cyclic pairs; no wall surface.
+    const OpenFoamCase c = openfoam_case(bed, cell, v, "caps:0.05", 1.0, 2);
+    EXPECT_TRUE(c.wall.empty());
+    EXPECT_TRUE(c.rod.empty());
+    std::map<std::string, std::string> files(c.files.begin(), c.files.end());
+    const std::string& block = files["system/blockMeshDict"];
+    EXPECT_NE(block.find("(12 12 12) simpleGrading"), std::string::npos) << block;
+    for (const auto& [side, other, faces] :
+         {std::tuple{"x_low", "x_high", "(3 0 4 7)"}, std::tuple{"x_high", "x_low", "(1 2 6 5)"},
+          std::tuple{"y_low", "y_high", "(0 1 5 4)"}, std::tuple{"y_high", "y_low", "(2 3 7 6)"}})
+        EXPECT_NE(block.find(fmt::format("    {}\n    {{\n        type cyclic;\n        "
+                                         "neighbourPatch {};\n        faces ({});\n",
+                                         side, other, faces)),
+                  std::string::npos)
+            << side << block;
+    EXPECT_EQ(block.find("wall"), std::string::npos);
+    const std::string& snappy = files["system/snappyHexMeshDict"];
+    EXPECT_NE(snappy.find("maxBoundarySkewness 4;"), std::string::npos);
+    EXPECT_EQ(snappy.find("wall.stl"), std::string::npos);
+    EXPECT_NE(files["README.md"].find("3 particles of diameter 1 in the periodic cell x 0 to 3, "
+                                      "y 0 to 3"),
+              std::string::npos);
+    // The particles' surface holds the 7 bodies: 7 closed parts (Euler characteristic 2 each).
+    const TriangleMesh& m = c.particles[0].mesh;
+    EXPECT_EQ(static_cast<long>(m.vertices.size()) * 2 - static_cast<long>(m.triangles.size()),
+              7 * 4);
+    // A cell narrower than twice the largest diameter is refused (the minimum image).
     try {
-        openfoam_case(bed, cell, treatment_volumes(packing, bed, cell), "none", 1.0, 2);
+        treat_contacts(packing, caps, SurfaceContainer{Periodic(1.5, 8.0), 3.0});
         FAIL() << "no exception";
     } catch (const InvalidInput& e) {
-        EXPECT_STREQ(e.what(), "--container periodic:8,8 is not allowed with --format openfoam; "
-                               "allowed: cylinder:D, box:LX,LY or annulus:D,DI (a periodic cell "
-                               "needs cyclic patches, which are not written)");
+        EXPECT_STREQ(e.what(), "--container periodic:1.5,8 is not allowed for spheres of diameter "
+                               "up to 1; allowed: periods at least twice the largest diameter, 2 "
+                               "(the minimum image)");
+    }
+    // Enlarge and bridges are refused in a cell.
+    try {
+        treat_contacts(packing, {ContactTreatment::enlarge, 0.01}, cell);
+        FAIL() << "no exception";
+    } catch (const InvalidInput& e) {
+        EXPECT_STREQ(e.what(), "--contacts enlarge:0.01 is not allowed in the periodic cell "
+                               "periodic:3,3; allowed: caps:H, shrink:F or none (the unions of "
+                               "enlarge and bridges are not copied across the sides)");
     }
 }
 
@@ -463,7 +526,7 @@ TEST(ContainerExportCli, LatticeInAPeriodicCell) {
               "e.g. periodic:2.8284271247461903,2.8284271247461903,3\n");
     EXPECT_FALSE(fs::exists(d / "bad"));
 
-    // The data file: the cell's box, periodic in x and y; surfaces are refused.
+    // The data file: the cell's box, periodic in x and y; STL is refused, OpenFOAM not.
     const std::string csv = (d / "bed" / "particles.csv").string();
     const Outcome l = run_packbed("export " + csv + " -q --out " + (d / "bed.data").string());
     ASSERT_EQ(l.status, 0) << l.err;
@@ -488,18 +551,27 @@ TEST(ContainerExportCli, LatticeInAPeriodicCell) {
     EXPECT_EQ(
         stl.err,
         fmt::format("packbed export: --container {} is not allowed with --format stl; allowed: "
-                    "cylinder:D, box:LX,LY or annulus:D,DI (a periodic cell's surfaces "
-                    "need every sphere cut by a side copied onto the other side and, for "
-                    "openfoam, cyclic patches: not written; lammps-data and liggghts-data "
-                    "take it)\n",
+                    "cylinder:D, box:LX,LY or annulus:D,DI (a periodic cell has no closed "
+                    "surface: it is exported as an openfoam case with cyclic sides, or by "
+                    "lammps-data and liggghts-data)\n",
                     s["container"]["spec"].get<std::string>()));
     EXPECT_FALSE(fs::exists(d / "cell.stl"));
     const Outcome foam =
         run_packbed("export " + csv + " --format openfoam -q --out " + (d / "case").string());
-    EXPECT_EQ(foam.status, 2);
-    EXPECT_NE(foam.err.find("with --format openfoam; allowed: cylinder:D"), std::string::npos)
-        << foam.err;
-    EXPECT_FALSE(fs::exists(d / "case"));
+    ASSERT_EQ(foam.status, 0) << foam.err; // issue 17: cyclic sides
+    EXPECT_NE(slurp(d / "case" / "system" / "blockMeshDict").find("type cyclic;"),
+              std::string::npos);
+    const Outcome enlarge = run_packbed("export " + csv +
+                                        " --format openfoam --contacts "
+                                        "enlarge:0.01 -q --out " +
+                                        (d / "enlarged").string());
+    EXPECT_EQ(enlarge.status, 2);
+    EXPECT_EQ(enlarge.err,
+              fmt::format("packbed export: --contacts enlarge:0.01 is not allowed in the periodic "
+                          "cell {}; allowed: caps:H, shrink:F or none (the unions of enlarge and "
+                          "bridges are not copied across the sides)\n",
+                          s["container"]["spec"].get<std::string>()));
+    EXPECT_FALSE(fs::exists(d / "enlarged"));
 }
 
 TEST(ContainerExportCli, HydraulicsOfAnAnnulusABoxAndAPeriodicCell) {

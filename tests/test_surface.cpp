@@ -596,7 +596,7 @@ TEST(SurfaceBox, CapsOnASphereInACornerOfTheFloor) {
     o.level = 5;
     o.container = c;
     const auto solids = bed_surface(bed, o);
-    ASSERT_EQ(solids.size(), 4u);
+    ASSERT_EQ(solids.size(), 7u); // particles and the six faces of the box
     EXPECT_TRUE(closed_and_oriented({&solids[0].mesh}));
     // H Dp from every face it touched, flat there.
     for (const Vec3& x : solids[0].mesh.vertices) {
@@ -630,9 +630,11 @@ TEST(SurfaceBox, CapsOnASimpleCubicBlockCountEveryContactAndFace) {
     o.level = 3;
     o.container = c;
     const auto solids = bed_surface(bed, o);
-    ASSERT_EQ(solids.size(), 4u);
-    EXPECT_EQ(solids[1].name, "wall");
-    EXPECT_TRUE(closed_and_oriented({&solids[1].mesh, &solids[2].mesh, &solids[3].mesh}));
+    ASSERT_EQ(solids.size(), 7u); // particles and the box's six faces
+    EXPECT_EQ(solids[1].name, "x_low");
+    EXPECT_EQ(solids[6].name, "top");
+    EXPECT_TRUE(closed_and_oriented({&solids[1].mesh, &solids[2].mesh, &solids[3].mesh,
+                                     &solids[4].mesh, &solids[5].mesh, &solids[6].mesh}));
     for (const Vec3& x : solids[0].mesh.vertices) { // inside, 0.05 clear of every face
         EXPECT_GE(std::min({x.x, x.y, 2.0 - x.x, 2.0 - x.y, x.z}), 0.05 - 1e-14);
     }
@@ -667,50 +669,71 @@ TEST(SurfaceBox, ShrinkEnlargeAndBridgesAtTheFaces) {
 
 TEST(SurfaceBox, ContainerSolidsAreTheBoxClosedOutwardAndWatertight) {
     // The box [1, 2] x [-1, 0.5] from z = 0 to 3, triangles about 0.3 wide: 4, 5 and 10 cells
-    // along x, y, z (1.5 / 0.3 is 5 to the last bits).
+    // along x, y, z (1.5 / 0.3 is 5 to the last bits). Issue 17: one named solid per face.
     const Box b(1.0, 2.0, -1.0, 0.5);
     const auto solids = container_solids(b, 0.0, 3.0, 0.3);
-    ASSERT_EQ(solids.size(), 3u);
-    EXPECT_EQ(solids[0].name, "wall");
-    EXPECT_EQ(solids[1].name, "bottom");
-    EXPECT_EQ(solids[2].name, "top");
-    EXPECT_EQ(solids[0].mesh.triangles.size(), 2u * 2u * (4u + 5u) * 10u);
-    EXPECT_EQ(solids[1].mesh.triangles.size(), 2u * 4u * 5u);
-    EXPECT_EQ(solids[2].mesh.triangles.size(), 2u * 4u * 5u);
-    // Closed and outward together (shared rims at the same bits), not alone.
-    EXPECT_TRUE(closed_and_oriented({&solids[0].mesh, &solids[1].mesh, &solids[2].mesh}));
-    EXPECT_FALSE(closed_and_oriented({&solids[0].mesh, &solids[1].mesh}));
-    TriangleMesh all = solids[0].mesh;
-    all.append(solids[1].mesh);
-    all.append(solids[2].mesh);
-    EXPECT_NEAR(all.volume(), 1.0 * 1.5 * 3.0, 1e-13);
-    // Every vertex on the box's faces, every triangle in one face, no edge longer than a
-    // cell's diagonal (0.25 x 0.3 x 0.3).
-    double area = 0.0;
-    for (const auto& t : solids[0].mesh.triangles) {
-        const Vec3 a = solids[0].mesh.vertices[t[0]], p = solids[0].mesh.vertices[t[1]],
-                   q = solids[0].mesh.vertices[t[2]];
-        area += 0.5 * norm(cross(p - a, q - a));
-        for (const Vec3& v : {a, p, q}) {
-            EXPECT_TRUE(v.x == 1.0 || v.x == 2.0 || v.y == -1.0 || v.y == 0.5);
-            EXPECT_GE(v.x, 1.0);
-            EXPECT_LE(v.x, 2.0);
-            EXPECT_GE(v.y, -1.0);
-            EXPECT_LE(v.y, 0.5);
-        }
-        EXPECT_LE(std::max({norm(p - a), norm(q - p), norm(a - q)}), std::hypot(0.3, 0.3) + 1e-12);
+    ASSERT_EQ(solids.size(), 6u);
+    std::vector<std::string> names;
+    std::vector<const TriangleMesh*> meshes;
+    for (const Solid& s : solids) {
+        names.push_back(s.name);
+        meshes.push_back(&s.mesh);
     }
+    EXPECT_EQ(names,
+              (std::vector<std::string>{"x_low", "x_high", "y_low", "y_high", "bottom", "top"}));
+    EXPECT_EQ(solids[0].mesh.triangles.size(), 2u * 5u * 10u); // x faces: 5 cells along y
+    EXPECT_EQ(solids[1].mesh.triangles.size(), 2u * 5u * 10u);
+    EXPECT_EQ(solids[2].mesh.triangles.size(), 2u * 4u * 10u); // y faces: 4 cells along x
+    EXPECT_EQ(solids[3].mesh.triangles.size(), 2u * 4u * 10u);
+    EXPECT_EQ(solids[4].mesh.triangles.size(), 2u * 4u * 5u);
+    EXPECT_EQ(solids[5].mesh.triangles.size(), 2u * 4u * 5u);
+    // Closed and outward together (shared rims at the same bits), not without any one face.
+    EXPECT_TRUE(closed_and_oriented(meshes));
+    for (std::size_t k = 0; k < meshes.size(); ++k) {
+        std::vector<const TriangleMesh*> five = meshes;
+        five.erase(five.begin() + static_cast<std::ptrdiff_t>(k));
+        EXPECT_FALSE(closed_and_oriented(five)) << names[k];
+    }
+    TriangleMesh all;
+    for (const Solid& s : solids)
+        all.append(s.mesh);
+    EXPECT_NEAR(all.volume(), 1.0 * 1.5 * 3.0, 1e-13);
+    // Every vertex of a face on its plane, every normal pointing out of the box, no edge
+    // longer than a cell's diagonal (0.25 x 0.3 x 0.3).
+    const auto on_face = [](std::size_t face, const Vec3& v) {
+        const double value[6] = {v.x, v.x, v.y, v.y, v.z, v.z};
+        const double plane[6] = {1.0, 2.0, -1.0, 0.5, 0.0, 3.0};
+        return value[face] == plane[face];
+    };
+    const Vec3 outward[6] = {{-1, 0, 0}, {1, 0, 0}, {0, -1, 0}, {0, 1, 0}, {0, 0, -1}, {0, 0, 1}};
+    double area = 0.0;
+    for (std::size_t face = 0; face < 6; ++face)
+        for (const auto& t : solids[face].mesh.triangles) {
+            const Vec3 a = solids[face].mesh.vertices[t[0]], p = solids[face].mesh.vertices[t[1]],
+                       q = solids[face].mesh.vertices[t[2]];
+            const Vec3 n = cross(p - a, q - a);
+            if (face < 4)
+                area += 0.5 * norm(n);
+            EXPECT_NEAR(dot(n, outward[face]) / norm(n), 1.0, 1e-12) << names[face];
+            for (const Vec3& v : {a, p, q}) {
+                EXPECT_TRUE(on_face(face, v)) << names[face];
+                EXPECT_GE(v.x, 1.0);
+                EXPECT_LE(v.x, 2.0);
+                EXPECT_GE(v.y, -1.0);
+                EXPECT_LE(v.y, 0.5);
+            }
+            EXPECT_LE(std::max({norm(a - p), norm(q - p), norm(a - q)}),
+                      std::hypot(0.3, 0.3) + 1e-12);
+        }
     EXPECT_NEAR(area, 2.0 * (1.0 + 1.5) * 3.0, 1e-12);
-    for (const Vec3& v : solids[1].mesh.vertices)
-        EXPECT_EQ(v.z, 0.0);
-    for (const Vec3& v : solids[2].mesh.vertices)
-        EXPECT_EQ(v.z, 3.0);
     // Through Container, the same solids; a cylinder's through Container are its own.
     const auto again = container_solids(Container(b), 0.0, 3.0, 0.3);
-    EXPECT_EQ(again[0].mesh.vertices, solids[0].mesh.vertices);
+    for (std::size_t k = 0; k < 6; ++k)
+        EXPECT_EQ(again[k].mesh.vertices, solids[k].mesh.vertices);
     const auto tube = container_solids(Container(Cylinder(2.0)), 0.0, 3.0, 0.3);
     EXPECT_EQ(tube[0].mesh.vertices,
               container_solids(Cylinder(2.0), 0.0, 3.0, 0.3)[0].mesh.vertices);
     // A side shorter than the edge is one cell.
-    EXPECT_EQ(container_solids(Box(0.1, 0.1), 0.0, 0.1, 1.0)[1].mesh.triangles.size(), 2u);
+    for (const Solid& s : container_solids(Box(0.1, 0.1), 0.0, 0.1, 1.0))
+        EXPECT_EQ(s.mesh.triangles.size(), 2u) << s.name;
 }

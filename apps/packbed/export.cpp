@@ -161,12 +161,11 @@ int run_surface_export(const ExportOptions& o, ExportFormat format, const Partic
     const Contacts contacts = parse_contacts(o.contacts);
     const double dp = file.packing.mean_diameter();
     const std::optional<SurfaceContainer> container = bed_container(o, file);
-    if (container && container->container.periodic())
+    if (container && container->container.periodic() && format != ExportFormat::openfoam)
         throw InvalidInput(fmt::format(
             "--container {} is not allowed with --format {}; allowed: cylinder:D, box:LX,LY or "
-            "annulus:D,DI (a periodic cell's surfaces need every sphere cut by a side copied onto "
-            "the other side and, for openfoam, cyclic patches: not written; lammps-data and "
-            "liggghts-data take it)",
+            "annulus:D,DI (a periodic cell has no closed surface: it is exported as an openfoam "
+            "case with cyclic sides, or by lammps-data and liggghts-data)",
             container->container.spec(), o.format));
     SurfaceOptions options;
     double largest = 0.0;

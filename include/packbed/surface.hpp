@@ -140,7 +140,9 @@ struct TreatedBed {
 /// \throws InvalidInput when the treated geometry would not be what the treatment promises,
 /// naming the spheres and what is allowed: shrink leaving bodies overlapping (F Dp not above
 /// the largest overlap); two caps, lenses or bridge ends of one sphere meeting (the parameter
-/// too large); a bridge thinner than the lens of its overlapping pair
+/// too large); a bridge thinner than the lens of its overlapping pair; enlarge or bridges in a
+/// periodic cell (there, pairs are found by the minimum image and the centres moved into the
+/// cell); a periodic cell narrower than twice the largest diameter
 TreatedBed treat_contacts(const Packing& packing, const Contacts& contacts,
                           const std::optional<SurfaceContainer>& container);
 
@@ -179,13 +181,22 @@ double spherical_cap_volume(double radius, double distance);
 /// overlap, the smaller ball when one holds the other.
 double lens_volume(double r1, double r2, double distance);
 
+/// A periodic cell's bed with the copies its surfaces need: every body whose sphere crosses a
+/// side of the cell [0, LX] x [0, LY] is copied across it (shifted by +LX where it crosses
+/// x = 0, -LX where it crosses x = LX, likewise in y, and by both at a corner), its cuts moved
+/// with it, so that the bodies and copies cut by the cell are periodic. The bodies come first,
+/// as given (their centres in the cell, as treat_contacts leaves them), then the copies.
+/// \throws std::logic_error for bridges or a union (treat_contacts refuses them in a cell).
+TreatedBed periodic_images(const TreatedBed& bed, const Periodic& cell);
+
 /// The surface: solid "particles" (every treated body tessellated: the icosphere scaled and
 /// clipped by its cuts, vertices on the sphere, so each polyhedron lies inside its body; each
 /// bridge a prism inscribed in its cylinder; for a bed to unite, the union of all of them by
 /// CGAL's corefinement), and
 /// where the options ask for it the container as "wall" (a prism circumscribed about the
-/// cylinder, so that no sphere inside the cylinder meets it; a box's four faces), "bottom" and
-/// "top" (container_solids).
+/// cylinder, so that no sphere inside the cylinder meets it; a box's four faces are "x_low",
+/// "x_high", "y_low", "y_high" instead), "bottom" and "top" (container_solids). In a periodic
+/// cell the particles include the copies of periodic_images.
 std::vector<Solid> bed_surface(const TreatedBed& bed, const SurfaceOptions& options);
 
 /// The container as solids "wall" (a prism circumscribed about the cylinder, sides about
@@ -194,11 +205,12 @@ std::vector<Solid> bed_surface(const TreatedBed& bed, const SurfaceOptions& opti
 std::vector<Solid> container_solids(const Cylinder& cylinder, double z_low, double z_high,
                                     double edge);
 
-/// A box as solids "wall" (its four faces), "bottom" and "top", each face a grid of
-/// ceil(length / edge) cells a side (at least one, at most 4096) split into two triangles:
-/// triangles about `edge` wide, every vertex of a face's rim shared with the face next to it
-/// (at the same coordinates, so the STL is watertight too); the three together are closed and
-/// outward, and lie on the box's faces. \param edge > 0
+/// A box as six solids, one per face: "x_low", "x_high", "y_low", "y_high" (the sides at
+/// x_low, x_high, y_low, y_high), "bottom" and "top", each face a grid of ceil(length / edge)
+/// cells a side (at least one, at most 4096) split into two triangles: triangles about `edge`
+/// wide, every vertex of a face's rim shared with the face next to it (at the same
+/// coordinates, so the STL is watertight too); the six together are closed and outward, and
+/// lie on the box's faces. \param edge > 0
 std::vector<Solid> container_solids(const Box& box, double z_low, double z_high, double edge);
 
 /// An annulus as solids "wall" (the tube: a prism circumscribed about it, as a cylinder's),

@@ -93,13 +93,14 @@ std::pair<Vec3, double> farthest_fluid_point(const std::vector<TreatedBody>& bod
 
 /// The background mesh of one shape and what the README says of it.
 struct Background {
-    std::string block_mesh;    // blockMeshDict after its header
-    bool wall_surface = false; // the wall is cut out of the background by snappyHexMesh
-    bool rod_surface = false;  // an annulus' rod too (rod.stl, patch rod)
-    std::string where;         // README: "a cylinder of radius R"
-    std::string surfaces;      // README: the wall's surface, after particles.stl's line
-    std::string patches;       // README: after the patches' list
-    std::string cells;         // README: the background cells and the levels
+    std::string block_mesh;     // blockMeshDict after its header
+    bool wall_surface = false;  // the wall is cut out of the background by snappyHexMesh
+    bool rod_surface = false;   // an annulus' rod too (rod.stl, patch rod)
+    std::string where;          // README: "a cylinder of radius R"
+    std::string surfaces;       // README: the wall's surface, after particles.stl's line
+    std::string patches;        // README: after the patches' list
+    std::string cells;          // README: the background cells and the levels
+    int boundary_skewness = 20; // snappyHexMesh's maxBoundarySkewness
 };
 
 /// The cell size of level `level` of cells of `cell`.
@@ -135,7 +136,7 @@ Background background(const Cylinder& cylinder, double height, double cell,
     b.where = fmt::format("a cylinder of radius {}", rt);
     b.surfaces = "; `wall.stl`: the cylinder wall, open, reaching half a cell beyond both ends "
                  "(patch `wall`)";
-    b.patches = "; `outside` keeps no faces";
+    b.patches = ", `wall`; `outside` keeps no faces";
     b.cells = fmt::format("Background cells of {} (Dp / {}); refinement level {} at the "
                           "particles (cells of {}), {} at the wall (cells of {})",
                           cell, options.cells_per_diameter, options.particle_level,
@@ -160,7 +161,7 @@ Background background(const Annulus& annulus, double height, double cell,
                           annulus.outer_radius(), annulus.inner_radius());
     b.surfaces = "; `wall.stl`: the tube, open, reaching half a cell beyond both ends (patch "
                  "`wall`); `rod.stl`: the rod, likewise (patch `rod`)";
-    b.patches = ", `rod`; `outside` keeps no faces";
+    b.patches = ", `wall`, `rod`; `outside` keeps no faces";
     b.cells = fmt::format("Background cells of {} (Dp / {}); refinement level {} at the "
                           "particles (cells of {}), {} at the tube and the rod (cells of {})",
                           cell, options.cells_per_diameter, options.particle_level,
@@ -169,13 +170,52 @@ Background background(const Annulus& annulus, double height, double cell,
     return b;
 }
 
-/// A periodic cell: refused. A case would need cyclic side patches and every sphere cut by a
-/// side copied onto the other side, which this export does not write (docs/surfaces.md).
-Background background(const Periodic& cell, double, double, const OpenFoamMeshOptions&) {
-    throw InvalidInput(fmt::format(
-        "--container {} is not allowed with --format openfoam; allowed: cylinder:D, box:LX,LY "
-        "or annulus:D,DI (a periodic cell needs cyclic patches, which are not written)",
-        cell.spec()));
+/// A periodic cell: the background is the cell itself, [0, LX] x [0, LY] x [0, height], cells
+/// as a box's, its x sides and its y sides pairs of `cyclic` patches (x_low/x_high,
+/// y_low/y_high); particles.stl holds the bodies cut by a side and their copies across it
+/// (periodic_images), so the geometry the sides cut is periodic. No wall.
+Background background(const Periodic& cell, double height, double size,
+                      const OpenFoamMeshOptions& options) {
+    const auto cells = [size](double length) {
+        return std::max(1, static_cast<int>(std::ceil(length / size * (1.0 - 1e-12))));
+    };
+    const double x1 = cell.lx(), y1 = cell.ly();
+    const int nx = cells(x1), ny = cells(y1), nz = cells(height);
+    Background b;
+    b.block_mesh = fmt::format(
+        "// The periodic cell x 0 to {x1}, y 0 to {y1}, z 0 to {h}: its sides are cyclic pairs.\n"
+        "// Cells of at most {cell} (Dp / {cpd}) along each axis.\n"
+        "scale 1;\n\nvertices\n(\n"
+        "    (0 0 0) ({x1} 0 0) ({x1} {y1} 0) (0 {y1} 0)\n"
+        "    (0 0 {h}) ({x1} 0 {h}) ({x1} {y1} {h}) (0 {y1} {h})\n);\n\n"
+        "blocks\n(\n    hex (0 1 2 3 4 5 6 7) ({nx} {ny} {nz}) simpleGrading (1 1 1)\n);\n\n"
+        "edges\n(\n);\n\nboundary\n(\n"
+        "    inlet\n    {{\n        type patch;\n        faces ((0 3 2 1));\n    }}\n"
+        "    outlet\n    {{\n        type patch;\n        faces ((4 5 6 7));\n    }}\n"
+        "    x_low\n    {{\n        type cyclic;\n        neighbourPatch x_high;\n"
+        "        faces ((3 0 4 7));\n    }}\n"
+        "    x_high\n    {{\n        type cyclic;\n        neighbourPatch x_low;\n"
+        "        faces ((1 2 6 5));\n    }}\n"
+        "    y_low\n    {{\n        type cyclic;\n        neighbourPatch y_high;\n"
+        "        faces ((0 1 5 4));\n    }}\n"
+        "    y_high\n    {{\n        type cyclic;\n        neighbourPatch y_low;\n"
+        "        faces ((2 3 7 6));\n    }}\n);\n",
+        fmt::arg("x1", x1), fmt::arg("y1", y1), fmt::arg("h", height), fmt::arg("cell", size),
+        fmt::arg("cpd", options.cells_per_diameter), fmt::arg("nx", nx), fmt::arg("ny", ny),
+        fmt::arg("nz", nz));
+    b.where = fmt::format("the periodic cell x 0 to {}, y 0 to {}", x1, y1);
+    b.surfaces = " with the copies across the sides of those a side cuts. No wall: the cell's "
+                 "sides are the background mesh's own faces, cyclic pairs";
+    b.patches = ", `x_low` and `x_high`, `y_low` and `y_high` (cyclic pairs); no wall";
+    // checkMesh's own limit: with 20, two faces of the particles at skewness 4.4 failed it
+    // in the test's cell (docs/surfaces.md).
+    b.boundary_skewness = 4;
+    b.cells = fmt::format(
+        "Background cells of {} x {} x {} ({} x {} x {} cells: at most Dp / {} = {}); "
+        "refinement level {} at the particles (cells of {}); --wall-level does not apply",
+        x1 / nx, y1 / ny, height / nz, nx, ny, nz, options.cells_per_diameter, size,
+        options.particle_level, refined(size, options.particle_level));
+    return b;
 }
 
 /// A box: the background is the box itself, [x_low, x_high] x [y_low, y_high] x [0, height],
@@ -208,6 +248,7 @@ Background background(const Box& box, double height, double cell,
     b.where = fmt::format("the box x {} to {}, y {} to {}", x0, x1, y0, y1);
     b.surfaces = ". No `wall.stl`: the box's four sides are the background mesh's own faces "
                  "(patch `wall`, type wall)";
+    b.patches = ", `wall`";
     b.cells = fmt::format(
         "Background cells of {} x {} x {} ({} x {} x {} cells: at most Dp / {} = {}); "
         "refinement level {} at the particles (cells of {}); the wall keeps the background "
@@ -238,7 +279,10 @@ OpenFoamCase openfoam_case(const TreatedBed& bed, const SurfaceContainer& contai
     const double finest = refined(
         c.cell_size, back.wall_surface ? std::max(options.particle_level, options.wall_level)
                                        : options.particle_level);
-    const std::vector<TreatedBody>& bodies = bed.bodies;
+    // In a periodic cell the fluid point keeps clear of the copies across the sides too.
+    const Periodic* cell = container.container.periodic();
+    const TreatedBed imaged = cell ? periodic_images(bed, *cell) : TreatedBed{};
+    const std::vector<TreatedBody>& bodies = cell ? imaged.bodies : bed.bodies;
     std::tie(c.location_in_mesh, c.clearance) = farthest_fluid_point(bodies, container, diameter);
     // A bridge's part outside its spheres lies within about its radius of their contact
     // point, which is on a sphere: it is at most that much closer than the spheres.
@@ -300,7 +344,7 @@ OpenFoamCase openfoam_case(const TreatedBed& bed, const SurfaceContainer& contai
         "    nSmoothSurfaceNormals 1;\n    nSmoothNormals 3;\n    nSmoothThickness 10;\n"
         "    maxFaceThicknessRatio 0.5;\n    maxThicknessToMedialRatio 0.3;\n"
         "    minMedialAxisAngle 90;\n    nBufferCellsNoExtrude 0;\n    nLayerIter 50;\n}}\n\n"
-        "meshQualityControls\n{{\n    maxNonOrtho 65;\n    maxBoundarySkewness 20;\n"
+        "meshQualityControls\n{{\n    maxNonOrtho 65;\n    maxBoundarySkewness {skew};\n"
         "    maxInternalSkewness 4;\n    maxConcave 80;\n    minVol 1e-30;\n"
         "    minTetQuality 1e-30;\n    minArea -1;\n    minTwist 0.02;\n"
         "    minDeterminant 0.001;\n    minFaceWeight 0.05;\n    minVolRatio 0.01;\n"
@@ -321,9 +365,10 @@ OpenFoamCase openfoam_case(const TreatedBed& bed, const SurfaceContainer& contai
                                                      "{{ type wall; }} }}\n",
                                                      options.wall_level)
                                        : std::string())),
-        fmt::arg("cpd", options.cells_per_diameter), fmt::arg("lp", options.particle_level),
-        fmt::arg("clear", c.clearance), fmt::arg("x", c.location_in_mesh.x),
-        fmt::arg("y", c.location_in_mesh.y), fmt::arg("z", c.location_in_mesh.z));
+        fmt::arg("skew", back.boundary_skewness), fmt::arg("cpd", options.cells_per_diameter),
+        fmt::arg("lp", options.particle_level), fmt::arg("clear", c.clearance),
+        fmt::arg("x", c.location_in_mesh.x), fmt::arg("y", c.location_in_mesh.y),
+        fmt::arg("z", c.location_in_mesh.z));
     c.files.emplace_back("system/snappyHexMeshDict", snappy);
 
     c.files.emplace_back(
@@ -357,8 +402,8 @@ OpenFoamCase openfoam_case(const TreatedBed& bed, const SurfaceContainer& contai
             "in ParaView to see the mesh.\n\n"
             "- `constant/triSurface/particles.stl`: every particle, closed and separate (patch "
             "`particles`){surfaces}.\n"
-            "- Patches after meshing: `inlet` (z = 0), `outlet` (z = {h}), `particles`, "
-            "`wall`{patches}.\n"
+            "- Patches after meshing: `inlet` (z = 0), `outlet` (z = {h}), `particles`"
+            "{patches}.\n"
             "- {cells}.\n"
             "- `locationInMesh` ({x}, {y}, {z}): {clear} from the nearest surface.\n\n"
             "Exact volumes (geometry, not the mesh): container {vc}; solid {vs} after the "
@@ -366,8 +411,8 @@ OpenFoamCase openfoam_case(const TreatedBed& bed, const SurfaceContainer& contai
             "`checkMesh` prints the mesh's `Total volume`, to compare with the fluid volume: "
             "gaps narrower than the finest cells are lost by the mesh, so refine where that "
             "matters.\n",
-            fmt::arg("n", bodies.size()), fmt::arg("dp", diameter), fmt::arg("where", back.where),
-            fmt::arg("h", height), fmt::arg("contacts", contacts),
+            fmt::arg("n", bed.bodies.size()), fmt::arg("dp", diameter),
+            fmt::arg("where", back.where), fmt::arg("h", height), fmt::arg("contacts", contacts),
             fmt::arg("surfaces", back.surfaces), fmt::arg("patches", back.patches),
             fmt::arg("cells", back.cells), fmt::arg("x", c.location_in_mesh.x),
             fmt::arg("y", c.location_in_mesh.y), fmt::arg("z", c.location_in_mesh.z),

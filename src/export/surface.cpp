@@ -5,6 +5,7 @@
 #include <cstring>
 #include <fstream>
 #include <numbers>
+#include <span>
 #include <stdexcept>
 #include <tuple>
 #include <unordered_map>
@@ -301,10 +302,37 @@ Footprint cut_footprint(const TreatedBody& b, const HalfSpace& h, std::size_t sp
 TreatedBed treat_contacts(const Packing& packing, const Contacts& contacts,
                           const std::optional<SurfaceContainer>& container) {
     const std::size_t n = packing.size();
+    // In a periodic cell the centres moved into the cell, and pairs by the minimum image.
+    const Periodic* cell = container ? container->container.periodic() : nullptr;
+    if (cell && (contacts.treatment == ContactTreatment::enlarge ||
+                 contacts.treatment == ContactTreatment::bridges))
+        throw InvalidInput(fmt::format(
+            "--contacts {}:{} is not allowed in the periodic cell {}; allowed: caps:H, shrink:F "
+            "or none (the unions of enlarge and bridges are not copied across the sides)",
+            name_of(contacts.treatment), contacts.parameter, cell->spec()));
+    if (cell && n > 0) {
+        // The minimum image finds every contact only where no sphere can touch two copies of
+        // another, and a sphere crosses at most one side of each pair.
+        const double widest = 2.0 * *std::max_element(packing.radii.begin(), packing.radii.end());
+        if (!(std::min(cell->lx(), cell->ly()) >= 2.0 * widest))
+            throw InvalidInput(fmt::format(
+                "--container {} is not allowed for spheres of diameter up to {}; allowed: "
+                "periods at least twice the largest diameter, {} (the minimum image)",
+                cell->spec(), widest, 2.0 * widest));
+    }
+    std::vector<Vec3> wrapped;
+    if (cell)
+        for (const Vec3& c : packing.centers)
+            wrapped.push_back(cell->wrapped(c));
+    const std::span<const Vec3> centers =
+        cell ? std::span<const Vec3>(wrapped) : std::span<const Vec3>(packing.centers);
+    const auto separation = [cell](const Vec3& a, const Vec3& b) {
+        return cell ? cell->separation(a, b) : b - a;
+    };
     TreatedBed bed;
     bed.bodies.resize(n);
     for (std::size_t i = 0; i < n; ++i)
-        bed.bodies[i] = {packing.centers[i], packing.radii[i], {}};
+        bed.bodies[i] = {centers[i], packing.radii[i], {}};
     if (contacts.treatment == ContactTreatment::none || n == 0)
         return bed;
     std::vector<TreatedBody>& bodies = bed.bodies;
@@ -322,13 +350,15 @@ TreatedBed treat_contacts(const Packing& packing, const Contacts& contacts,
         for (TreatedBody& b : bodies)
             b.radius *= 1.0 - contacts.parameter;
         NeighborList list;
+        if (cell)
+            list.wrap(*cell);
         std::vector<double> radii(n);
         for (std::size_t i = 0; i < n; ++i)
             radii[i] = bodies[i].radius;
-        list.build(packing.centers, radii, 1e-9 * dp);
+        list.build(centers, radii, 1e-9 * dp);
         for (std::size_t i = 0; i < n; ++i) {
             for (const std::uint32_t j : list.upper_neighbors_of(i)) {
-                const double d = norm(packing.centers[j] - packing.centers[i]);
+                const double d = norm(separation(centers[i], centers[j]));
                 if (!(d > radii[i] + radii[j]))
                     throw InvalidInput(fmt::format(
                         "--contacts shrink:{} leaves spheres {} and {} overlapping (centres {:.6g} "
@@ -363,10 +393,12 @@ TreatedBed treat_contacts(const Packing& packing, const Contacts& contacts,
                          : contacts.treatment == ContactTreatment::bridges ? bridge_gap * dp
                                                                            : 1e-9 * dp;
     NeighborList list;
-    list.build(packing.centers, radii, reach);
+    if (cell)
+        list.wrap(*cell);
+    list.build(centers, radii, reach);
     for (std::size_t i = 0; i < n; ++i)
         for (const std::uint32_t j : list.upper_neighbors_of(i)) {
-            const Vec3 r = packing.centers[j] - packing.centers[i];
+            const Vec3 r = separation(centers[i], centers[j]);
             const double d = norm(r);
             const double gap = d - radii[i] - radii[j];
             if (!(gap < reach) || (contacts.treatment == ContactTreatment::enlarge && gap >= 0.0))
@@ -381,8 +413,8 @@ TreatedBed treat_contacts(const Packing& packing, const Contacts& contacts,
             if (contacts.treatment == ContactTreatment::caps) {
                 const double si = radii[i] + 0.5 * (gap - length);
                 const double sj = radii[j] + 0.5 * (gap - length);
-                bodies[i].cuts.push_back({u, dot(u, packing.centers[i]) + si});
-                bodies[j].cuts.push_back({u * -1.0, dot(u * -1.0, packing.centers[j]) + sj});
+                bodies[i].cuts.push_back({u, dot(u, centers[i]) + si});
+                bodies[j].cuts.push_back({u * -1.0, dot(u * -1.0, centers[j]) + sj});
                 continue;
             }
             // The lens of an overlapping pair: its rim lies in the radical plane, d1 from i.
@@ -428,11 +460,16 @@ TreatmentVolumes treatment_volumes(const Packing& packing, const TreatedBed& bed
         if (n == 0)
             return sum;
         NeighborList list;
+        const Periodic* cell = container.container.periodic();
+        if (cell)
+            list.wrap(*cell);
         list.build(packing.centers, radii, 1e-9 * packing.mean_diameter());
         for (std::size_t i = 0; i < n; ++i)
             for (const std::uint32_t j : list.upper_neighbors_of(i))
                 sum +=
-                    lens_volume(radii[i], radii[j], norm(packing.centers[j] - packing.centers[i]));
+                    lens_volume(radii[i], radii[j],
+                                norm(cell ? cell->separation(packing.centers[i], packing.centers[j])
+                                          : packing.centers[j] - packing.centers[i]));
         return sum;
     };
     for (std::size_t i = 0; i < n; ++i)
@@ -557,28 +594,38 @@ std::vector<Solid> container_solids(const Box& box, double z_low, double z_high,
     const auto at = [](double low, double high, int k, int n) {
         return k == 0 ? low : k == n ? high : low + (high - low) * k / n;
     };
-    // The rim, counter-clockwise seen from above: along y = y0, x = x1, y = y1, x = x0.
-    std::vector<std::pair<double, double>> rim;
-    for (int i = 0; i < nx; ++i)
-        rim.emplace_back(at(x0, x1, i, nx), y0);
-    for (int j = 0; j < ny; ++j)
-        rim.emplace_back(x1, at(y0, y1, j, ny));
-    for (int i = nx; i > 0; --i)
-        rim.emplace_back(at(x0, x1, i, nx), y1);
-    for (int j = ny; j > 0; --j)
-        rim.emplace_back(x0, at(y0, y1, j, ny));
-    const auto s = static_cast<std::uint32_t>(rim.size());
-    Solid wall{"wall", {}}, bottom{"bottom", {}}, top{"top", {}};
-    for (int row = 0; row <= nz; ++row)
-        for (const auto& [x, y] : rim)
-            wall.mesh.vertices.push_back({x, y, at(z_low, z_high, row, nz)});
-    for (std::uint32_t row = 0; row < static_cast<std::uint32_t>(nz); ++row)
-        for (std::uint32_t k = 0; k < s; ++k) {
-            // Going round counter-clockwise with z up, the outward normal is on the right.
-            const std::uint32_t a = row * s + k, b = row * s + (k + 1) % s;
-            wall.mesh.triangles.push_back({a, b, b + s});
-            wall.mesh.triangles.push_back({a, b + s, a + s});
-        }
+    // The four sides, each a grid of its points along the rim (counter-clockwise seen from
+    // above, both ends included) times the rows in z.
+    const auto side = [&](const char* name, std::vector<std::pair<double, double>> along) {
+        Solid face{name, {}};
+        for (int row = 0; row <= nz; ++row)
+            for (const auto& [x, y] : along)
+                face.mesh.vertices.push_back({x, y, at(z_low, z_high, row, nz)});
+        const auto s = static_cast<std::uint32_t>(along.size());
+        for (std::uint32_t row = 0; row < static_cast<std::uint32_t>(nz); ++row)
+            for (std::uint32_t k = 0; k + 1 < s; ++k) {
+                // Going round counter-clockwise with z up, the outward normal is on the right.
+                const std::uint32_t a = row * s + k, b = a + 1;
+                face.mesh.triangles.push_back({a, b, b + s});
+                face.mesh.triangles.push_back({a, b + s, a + s});
+            }
+        return face;
+    };
+    std::vector<std::pair<double, double>> x_low, x_high, y_low, y_high;
+    for (int i = 0; i <= nx; ++i) {
+        y_low.emplace_back(at(x0, x1, i, nx), y0);
+        y_high.emplace_back(at(x0, x1, nx - i, nx), y1);
+    }
+    for (int j = 0; j <= ny; ++j) {
+        x_high.emplace_back(x1, at(y0, y1, j, ny));
+        x_low.emplace_back(x0, at(y0, y1, ny - j, ny));
+    }
+    std::vector<Solid> solids;
+    solids.push_back(side("x_low", std::move(x_low)));
+    solids.push_back(side("x_high", std::move(x_high)));
+    solids.push_back(side("y_low", std::move(y_low)));
+    solids.push_back(side("y_high", std::move(y_high)));
+    Solid bottom{"bottom", {}}, top{"top", {}};
     // Bottom and top: the (nx + 1) x (ny + 1) grid of the rectangle at z_low and z_high.
     const auto ux = static_cast<std::uint32_t>(nx + 1);
     for (Solid* face : {&bottom, &top}) {
@@ -598,8 +645,6 @@ std::vector<Solid> container_solids(const Box& box, double z_low, double z_high,
                 }
             }
     }
-    std::vector<Solid> solids;
-    solids.push_back(std::move(wall));
     solids.push_back(std::move(bottom));
     solids.push_back(std::move(top));
     return solids;
@@ -667,7 +712,7 @@ std::vector<Solid> container_solids(const Periodic& cell, double z_low, double z
     // No side wall: the floor and the top of the cell, as a box's.
     std::vector<Solid> box =
         container_solids(Box(0.0, cell.lx(), 0.0, cell.ly()), z_low, z_high, edge);
-    box.erase(box.begin());
+    box.erase(box.begin(), box.end() - 2); // x_low, x_high, y_low, y_high
     return box;
 }
 
@@ -713,7 +758,43 @@ TriangleMesh bridge_prism(const Vec3& a, const Vec3& b, double rho, int sides) {
 
 } // namespace
 
-std::vector<Solid> bed_surface(const TreatedBed& bed, const SurfaceOptions& options) {
+TreatedBed periodic_images(const TreatedBed& bed, const Periodic& cell) {
+    if (!bed.bridges.empty() || bed.unite)
+        throw std::logic_error("periodic_images: bridges and unions are not copied");
+    TreatedBed out = bed;
+    for (const TreatedBody& b : bed.bodies) {
+        // The shifts that bring a copy into the cell: + a period where the sphere crosses
+        // the low side, - one where it crosses the high side (both at once: narrower cells
+        // are refused by the minimum image's rule, 2 Dp).
+        std::vector<double> xs{0.0}, ys{0.0};
+        if (b.center.x - b.radius < 0.0)
+            xs.push_back(cell.lx());
+        if (b.center.x + b.radius > cell.lx())
+            xs.push_back(-cell.lx());
+        if (b.center.y - b.radius < 0.0)
+            ys.push_back(cell.ly());
+        if (b.center.y + b.radius > cell.ly())
+            ys.push_back(-cell.ly());
+        for (const double sx : xs)
+            for (const double sy : ys) {
+                if (sx == 0.0 && sy == 0.0)
+                    continue;
+                const Vec3 shift{sx, sy, 0.0};
+                TreatedBody copy = b;
+                copy.center = b.center + shift;
+                for (HalfSpace& h : copy.cuts)
+                    h.offset += dot(h.normal, shift);
+                out.bodies.push_back(std::move(copy));
+            }
+    }
+    return out;
+}
+
+std::vector<Solid> bed_surface(const TreatedBed& given, const SurfaceOptions& options) {
+    // A periodic cell: every body cut by a side and its copies across the sides.
+    const Periodic* cell = options.container ? options.container->container.periodic() : nullptr;
+    const TreatedBed imaged = cell ? periodic_images(given, *cell) : TreatedBed{};
+    const TreatedBed& bed = cell ? imaged : given;
     const std::vector<TreatedBody>& bodies = bed.bodies;
     // The icosphere turned by a generic rotation (angles 1, 2 and 3 radians about z, y and x):
     // contact directions along the axes or lattice vectors then never pass through a vertex,
