@@ -816,7 +816,16 @@ TEST(Cli, HydraulicsTakesTheBedsDiameterAndTube) {
     // Ar = g d^3 rho_f (rho_p - rho_f) / mu^2 with d = 2 mm, glass in water (the defaults).
     const double ar = 9.80665 * 8e-9 * 998.2 * (2500.0 - 998.2) / (1.002e-3 * 1.002e-3);
     EXPECT_NEAR(b["archimedes"].get<double>(), ar, 1e-9 * ar);
-    EXPECT_FALSE(b["pressure_gradient"].contains("aspect_ratio")); // a box: no tube
+    // A box of 20 mm x 20 mm: its hydraulic diameter 4 A / P = 2 LX LY / (LX + LY) = 20 mm,
+    // a = 10 for the wall correction, as `--container box:0.02,0.02` gives.
+    EXPECT_NEAR(b["pressure_gradient"]["hydraulic_diameter_m"].get<double>(), 0.02, 1e-15);
+    EXPECT_NEAR(b["pressure_gradient"]["aspect_ratio"].get<double>(), 10.0, 1e-12);
+    const Outcome spec = packbed("hydraulics --json --diameter 0.002 --porosity " +
+                                 b["porosity"]["value"].dump() + " --container box:0.02,0.02");
+    ASSERT_EQ(spec.status, 0) << spec.err;
+    EXPECT_NEAR(nlohmann::json::parse(spec.out)["pressure_gradient"]["eisfeld_schnitzlein_Pa_m"]
+                    .get<double>(),
+                b["pressure_gradient"]["eisfeld_schnitzlein_Pa_m"].get<double>(), 1e-6);
 
     // A cylinder 20 mm wide of 2 mm balls: a = 10 from the bed, unless given.
     const fs::path tube = scratch("tube2mm");

@@ -44,7 +44,7 @@ struct BedFacts {
     std::optional<double> diameter;         ///< the spheres' diameter, in the bed's length unit
     bool sauter_mean = false;               ///< the diameter is the sizes' Sauter mean d32
     std::optional<double> container_radius; ///< likewise
-    std::optional<Container> container;     ///< an annulus or a periodic cell (issue 17)
+    std::optional<Container> container;     ///< a box, an annulus or a periodic cell
     std::string shown;                      ///< the summary's path, printable
 };
 
@@ -64,7 +64,7 @@ BedFacts bed_facts(const std::string& bed) {
     }
     const std::string shown = printable(path.native());
     std::optional<Container> container;
-    if (const auto& c = summary.container; c && (c->annulus() || c->periodic()))
+    if (const auto& c = summary.container; c && !c->cylinder())
         container = c;
     if (!summary.porosity)
         throw InvalidInput(fmt::format("--bed {}: no lattice.porosity or void_fraction; give "
