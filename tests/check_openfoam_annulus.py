@@ -17,29 +17,15 @@ import math
 import os
 import re
 import shutil
-import subprocess
 import sys
 import tempfile
 
-from openfoam_env import openfoam_env
+from openfoam_env import cap, openfoam_or_skip, runner
 
 exe = sys.argv[1]
-if not all(shutil.which(p) for p in ("blockMesh", "snappyHexMesh", "checkMesh")):
-    print("blockMesh, snappyHexMesh or checkMesh (Debian package openfoam) is missing: skipped")
-    sys.exit(77)
-env = openfoam_env()
+env = openfoam_or_skip()
 work = tempfile.mkdtemp(prefix="packbed-foam-annulus-")
-
-
-def run(*args, cwd=work):
-    r = subprocess.run(args, cwd=cwd, env=env, capture_output=True, text=True)
-    assert r.returncode == 0, (args, r.stdout[-3000:], r.stderr[-3000:])
-    return r.stdout
-
-
-def cap(r, s):  # a ball's cap beyond a plane s from its centre
-    c = r - s
-    return math.pi * c * c * (3 * r - c) / 3
+run = runner(env, work)
 
 
 case = os.path.join(work, "case")

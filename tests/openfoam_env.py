@@ -9,3 +9,34 @@ def openfoam_env():
     if "WM_PROJECT_DIR" not in env and os.path.isdir("/usr/share/openfoam"):
         env["WM_PROJECT_DIR"] = "/usr/share/openfoam"
     return env
+
+
+def openfoam_or_skip():
+    """openfoam_env(), or exit 77 (ctest: skipped) when blockMesh, snappyHexMesh or checkMesh
+    is missing."""
+    import shutil
+    import sys
+    if not all(shutil.which(p) for p in ("blockMesh", "snappyHexMesh", "checkMesh")):
+        print("blockMesh, snappyHexMesh or checkMesh (Debian package openfoam) is missing: skipped")
+        sys.exit(77)
+    return openfoam_env()
+
+
+def runner(env, work):
+    """run(*args, cwd=work): the command's stdout, asserting it exits 0 (its last output
+    shown when it does not)."""
+    import subprocess
+
+    def run(*args, cwd=work):
+        r = subprocess.run(args, cwd=cwd, env=env, capture_output=True, text=True)
+        assert r.returncode == 0, (args, r.stdout[-3000:], r.stderr[-3000:])
+        return r.stdout
+    return run
+
+
+def cap(r, s):
+    """The volume of a ball of radius r beyond a plane s from its centre (0 <= s <= r):
+    pi c^2 (3 r - c) / 3, c = r - s."""
+    import math
+    c = r - s
+    return math.pi * c * c * (3 * r - c) / 3
