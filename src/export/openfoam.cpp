@@ -108,17 +108,15 @@ double refined(double cell, int level) {
     return cell / std::ldexp(1.0, level);
 }
 
-/// A cylinder: a box one cell beyond it sideways, exactly 0 to height in z; snappyHexMesh
-/// cuts the wall (wall.stl) out of it, and the box's sides (`outside`) keep no faces.
-Background background(const Cylinder& cylinder, double height, double cell,
-                      const OpenFoamMeshOptions& options) {
-    const double rt = cylinder.radius();
-    Background b;
+/// The blockMeshDict of a box one cell beyond a tube of radius `rt` sideways, 0 to height in
+/// z, its sides `outside`; `about` names what it holds in its first comment.
+std::string box_about_tube(double rt, const std::string& about, double height, double cell,
+                           const OpenFoamMeshOptions& options) {
     const int n_side = static_cast<int>(std::ceil(2.0 * rt / cell)) + 2;
     const double half = 0.5 * n_side * cell;
     const int n_z = std::max(1, static_cast<int>(std::ceil(height / cell)));
-    b.block_mesh = fmt::format(
-        "// Box around the cylinder (radius {rt}, height {h}); cells of {cell} (Dp / {cpd}).\n"
+    return fmt::format(
+        "// Box around {about}, height {h}); cells of {cell} (Dp / {cpd}).\n"
         "scale 1;\n\nvertices\n(\n"
         "    ({lo} {lo} 0) ({hi} {lo} 0) ({hi} {hi} 0) ({lo} {hi} 0)\n"
         "    ({lo} {lo} {h}) ({hi} {lo} {h}) ({hi} {hi} {h}) ({lo} {hi} {h})\n);\n\n"
@@ -129,9 +127,19 @@ Background background(const Cylinder& cylinder, double height, double cell,
         "    outside // outside the wall: no cells remain on it after snappyHexMesh\n"
         "    {{\n        type patch;\n"
         "        faces ((0 1 5 4) (1 2 6 5) (2 3 7 6) (3 0 4 7));\n    }}\n);\n",
-        fmt::arg("rt", rt), fmt::arg("h", height), fmt::arg("cell", cell),
+        fmt::arg("about", about), fmt::arg("h", height), fmt::arg("cell", cell),
         fmt::arg("cpd", options.cells_per_diameter), fmt::arg("lo", -half), fmt::arg("hi", half),
         fmt::arg("n", n_side), fmt::arg("nz", n_z));
+}
+
+/// A cylinder: a box one cell beyond it sideways, exactly 0 to height in z; snappyHexMesh
+/// cuts the wall (wall.stl) out of it, and the box's sides (`outside`) keep no faces.
+Background background(const Cylinder& cylinder, double height, double cell,
+                      const OpenFoamMeshOptions& options) {
+    const double rt = cylinder.radius();
+    Background b;
+    b.block_mesh =
+        box_about_tube(rt, fmt::format("the cylinder (radius {}", rt), height, cell, options);
     b.wall_surface = true;
     b.where = fmt::format("a cylinder of radius {}", rt);
     b.surfaces = "; `wall.stl`: the cylinder wall, open, reaching half a cell beyond both ends "
@@ -150,12 +158,12 @@ Background background(const Cylinder& cylinder, double height, double cell,
 /// patch `rod`) out of it, both refined to the wall level.
 Background background(const Annulus& annulus, double height, double cell,
                       const OpenFoamMeshOptions& options) {
-    Background b = background(Cylinder(annulus.outer_radius()), height, cell, options);
-    const std::string about =
-        fmt::format("// Box around the cylinder (radius {}", annulus.outer_radius());
-    b.block_mesh.replace(0, about.size(),
-                         fmt::format("// Box around the annulus (tube radius {}, rod radius {}",
-                                     annulus.outer_radius(), annulus.inner_radius()));
+    Background b;
+    b.block_mesh = box_about_tube(annulus.outer_radius(),
+                                  fmt::format("the annulus (tube radius {}, rod radius {}",
+                                              annulus.outer_radius(), annulus.inner_radius()),
+                                  height, cell, options);
+    b.wall_surface = true;
     b.rod_surface = true;
     b.where = fmt::format("the annulus between a tube of radius {} and a coaxial rod of radius {}",
                           annulus.outer_radius(), annulus.inner_radius());
