@@ -8,11 +8,13 @@ is stopped and recorded as "> limit" (its time is then a lower bound), and a sol
 the limit is not run at larger Np. Finished runs are not redone, nor stopped ones unless the
 limit is now longer (delete OUT to start over).
 Peak memory is the run's own maximum resident set size (os.wait4). Writes OUT/scaling.csv, prints a
-Markdown table and, where gnuplot exists, draws OUT/scaling.svg (log-log time against Np).
+Markdown table and, where gnuplot exists, draws OUT/scaling.svg (log-log time and steps against
+Np; the rows of --before, an earlier version's scaling.csv, dashed beside them).
 
 Usage: bench/scaling.py [--packbed build/packbed] [--particles 1000,3000,...]
                         [--aspect-ratio 20] [--large 1000000:50] [--solvers paper,fire]
                         [--limit 600] [--threads 2] [--out results/scaling]
+                        [--before OLD/scaling.csv --before-label "(before issue 18)"]
 """
 import argparse
 import csv
@@ -67,34 +69,47 @@ def run_one(args, solver, n, a, out):
 
 
 def plot(args, rows):
+    """Wall time and steps against Np, two panels; rows of --before drawn dashed."""
     if not shutil.which("gnuplot"):
         print("gnuplot not found: no plot", file=sys.stderr)
         return
-    data, stopped = {}, {}
+    series = {}  # (label, finished) -> [(Np, wall, iterations)]
     for r in rows:
-        (data if r["finished"] else stopped).setdefault(r["solver"], []).append(
-            (r["particles"], r["wall_s"]))
-    lines = ["set terminal svg size 760,500 font 'sans,12'",
-             f"set output '{os.path.join(args.out, 'scaling.svg')}'",
-             "set logscale xy", "set grid", "set key top left", "set xrange [500:2e6]",
-             "set yrange [1:30000]", "set xlabel 'spheres Np'",
-             "set ylabel 'wall time of packbed generate (s)'",
-             f"set title 'seed 1, {args.threads} threads, a = {args.aspect_ratio:g} "
-             f"(Np = 1e6: a = 50); open marks: stopped at the {args.limit:g} s limit'",
-             "$targets << EOD", "100000 60", "1000000 900", "EOD"]
-    plots = ["$targets with points pt 3 ps 2 lc rgb 'black' "
-             "title 'issue 5 targets (fire)'"]
+        series.setdefault((r["label"], r["finished"]), []).append(
+            (r["particles"], r["wall_s"], r.get("iterations") or 0))
     colours = {"paper": "#9400d3", "fire": "#009e73"}
-    for points_of, suffix, style, label in ((data, "", "linespoints lw 2 pt 7", ""),
-                                            (stopped, "_stopped", "points pt 6 ps 1.5",
-                                             ", stopped")):
-        for solver, points in points_of.items():
-            lines.append(f"${solver}{suffix} << EOD")
-            lines += [f"{n} {t}" for n, t in sorted(points)]
-            lines.append("EOD")
-            plots.append(f"${solver}{suffix} with {style} "
-                         f"lc rgb '{colours.get(solver, 'blue')}' title '{solver}{label}'")
-    lines.append("plot " + ", ".join(plots))
+    lines = ["set terminal svg size 1200,500 font 'sans,12'",
+             f"set output '{os.path.join(args.out, 'scaling.svg')}'",
+             "set multiplot layout 1,2 title "
+             f"'seed 1, {args.threads} threads, a = {args.aspect_ratio:g} (Np = 1e6: a = 50); "
+             f"open marks: stopped at the limit'",
+             "set logscale xy", "set grid", "set key top left", "set xrange [500:2e6]",
+             "set xlabel 'spheres Np'",
+             "$targets << EOD", "100000 60", "1000000 900", "EOD"]
+    for key, points in series.items():
+        lines.append(f"$s{len(lines)} << EOD")
+        key_name = lines[-1].split()[0]
+        lines += [f"{n} {t} {it}" for n, t, it in sorted(points)]
+        lines.append("EOD")
+        series[key] = (key_name, points)
+
+    def curves(column):
+        out = []
+        for (label, finished), (name, _) in series.items():
+            solver = label.split()[0]
+            dashed = " dt 2" if label != solver else ""
+            style = "linespoints lw 2 pt 7" if finished else "points pt 6 ps 1.5"
+            if column == 3 and not finished:
+                continue  # a stopped run has no step count
+            out.append(f"{name} using 1:{column} with {style}{dashed} lc rgb "
+                       f"'{colours.get(solver, 'blue')}' title '{label}"
+                       f"{'' if finished else ', stopped'}'")
+        return out
+    lines += ["set yrange [0.5:30000]", "set ylabel 'wall time of packbed generate (s)'",
+              "plot $targets with points pt 3 ps 2 lc rgb 'black' title 'targets (fire)', "
+              + ", ".join(curves(2))]
+    lines += ["set yrange [1e4:1e7]", "set ylabel 'steps (iterations), all layers'",
+              "plot " + ", ".join(curves(3)), "unset multiplot"]
     subprocess.run(["gnuplot"], input="\n".join(lines), text=True, check=True)
 
 
@@ -108,6 +123,9 @@ def main():
     p.add_argument("--limit", type=float, default=600.0, help="seconds per run")
     p.add_argument("--threads", type=int, default=2)
     p.add_argument("--out", default="results/scaling")
+    p.add_argument("--before", help="scaling.csv of an earlier version: drawn dashed beside")
+    p.add_argument("--before-label", default="before",
+                   help="what the plot's key adds to the earlier version's solver names")
     args = p.parse_args()
     if args.limit <= 0 or args.threads < 1:
         sys.exit("scaling.py: --limit must be > 0 and --threads >= 1")
@@ -120,7 +138,7 @@ def main():
         for n in sorted(int(float(x)) for x in args.particles.split(",")):
             a = own_a.get(n, args.aspect_ratio)
             r = run_one(args, solver, n, a, os.path.join(args.out, solver, f"n{n}"))
-            rows.append(r)
+            rows.append(dict(r, label=solver))
             wall = f"{r['wall_s']:.1f}" if r["finished"] else f"> {r['wall_s']:.0f} (stopped)"
             e = r.get("void_fraction")
             print(f"| {solver} | {n} | {a:g} | {wall} | {r.get('iterations', '-')} "
@@ -133,6 +151,13 @@ def main():
                                           "peak_mib"], extrasaction="ignore")
         w.writeheader()
         w.writerows(rows)
+    if args.before:
+        with open(args.before) as f:
+            for r in csv.DictReader(f):
+                rows.append({"label": f"{r['solver']} {args.before_label}",
+                             "particles": int(r["particles"]), "wall_s": float(r["wall_s"]),
+                             "finished": r["finished"] == "True",
+                             "iterations": int(r["iterations"]) if r["iterations"] else 0})
     plot(args, rows)
 
 

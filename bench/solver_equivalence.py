@@ -57,18 +57,27 @@ def main():
     p.add_argument("--height", type=float, default=25.0)
     p.add_argument("--out", default="results/equivalence")
     p.add_argument("--paper-runs", default="results/validation")
+    p.add_argument("--fire-args", default="",
+                   help="extra options of the fire runs (a schedule other than the default)")
+    p.add_argument("--label", default="fire",
+                   help="folder of the fire runs under OUT (one per --fire-args)")
+    p.add_argument("--existing-paper-runs-only", action="store_true",
+                   help="compare with the paper runs already made (seeds without one are left "
+                        "out of the paper's mean), do not start new ones")
+    p.add_argument("--threads", default="2")
     args = p.parse_args()
     seeds = parse_seeds(args.seeds)
     verbose = sys.stderr.isatty()
 
-    print("| a | Np | seeds | paper: mean e | fire: mean e | difference | profile RMS "
+    print("| a | Np | seeds paper/fire | paper: mean e | fire: mean e | difference | profile RMS "
           "| paper halves RMS | paper: s, iterations | fire: s, iterations |")
     print("|---|---|---|---|---|---|---|---|---|---|")
     for a in [float(x) for x in args.aspect_ratios.split(",")]:
         runs = {"paper": [], "fire": []}
         for solver in runs:
             for seed in seeds:
-                run = os.path.join(args.out, solver, f"a{a:g}", f"seed{seed}")
+                folder = args.label if solver == "fire" else solver
+                run = os.path.join(args.out, folder, f"a{a:g}", f"seed{seed}")
                 reused = os.path.join(args.paper_runs, f"a{a:g}", f"seed{seed}")
                 if solver == "paper" and os.path.exists(os.path.join(reused, "summary.json")):
                     with open(os.path.join(reused, "summary.json")) as f:
@@ -79,13 +88,17 @@ def main():
                             and s["parameters"].get("solver", "paper") == "paper"):
                         run = reused
                 if not os.path.exists(os.path.join(run, "summary.json")):
+                    if solver == "paper" and args.existing_paper_runs_only:
+                        continue
                     if verbose:
                         print(f"a = {a:g}, seed {seed}, {solver} ...", file=sys.stderr, flush=True)
                     subprocess.run([args.packbed, "generate", "--solver", solver,
                                     "--aspect-ratio", f"{a:g}",
                                     "--particles", str(particles_for(a, args.height)),
                                     "--seed", str(seed), "--band-clearance", "2", "--quiet",
-                                    "--out", run], check=True)
+                                    "--threads", args.threads, "--out", run]
+                                   + (args.fire_args.split() if solver == "fire" else []),
+                                   check=True)
                 runs[solver].append(run)
 
         def summaries(solver):
@@ -98,7 +111,7 @@ def main():
         paper, fire = summaries("paper"), summaries("fire")
         e_paper = sum(s["void_fraction"] for s in paper) / len(paper)
         e_fire = sum(s["void_fraction"] for s in fire) / len(fire)
-        half = len(seeds) // 2
+        half = len(runs["paper"]) // 2
         noise = rms(mean_profile(runs["paper"][:half]), mean_profile(runs["paper"][half:])) \
             if half > 0 else float("nan")
         diff = rms(mean_profile(runs["paper"]), mean_profile(runs["fire"]))
@@ -107,7 +120,8 @@ def main():
             return (f"{sum(x['seconds'] for x in s) / len(s):.1f}, "
                     f"{sum(x['iterations'] for x in s) / len(s):.3g}")
 
-        print(f"| {a:g} | {particles_for(a, args.height)} | {len(seeds)} | {e_paper:.4f} "
+        print(f"| {a:g} | {particles_for(a, args.height)} | {len(runs['paper'])}/{len(seeds)} "
+              f"| {e_paper:.4f} "
               f"| {e_fire:.4f} | {e_fire - e_paper:+.4f} | {diff:.4f} | {noise:.4f} "
               f"| {cost(paper)} | {cost(fire)} |", flush=True)
 

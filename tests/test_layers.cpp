@@ -108,10 +108,19 @@ TEST(FireLayers, BedReachesTheToleranceInsideTheContainer) {
     // 600 (pi / 6) / (pi 2.5^2 (1 - e)) = 28 Dp tall at e = 0.43, not L0 plus gaps.
     EXPECT_GT(top, 24.0);
     EXPECT_LT(top, 30.0);
-    const auto band = band_clear_of_ends(res.packing, 2.0);
-    ASSERT_TRUE(band);
-    const double e = void_fraction(res.packing, res.container, band->z_low, band->z_high);
-    EXPECT_NEAR(e, 0.4329, 0.005); // the paper's a = 5 bed (docs/validation.md), seed spread
+    // The paper's a = 5 bed (docs/validation.md: 0.4326 over 10 seeds, 0.4271-0.4358), here
+    // in layers of 10 Dp: the mean of three seeds (0.4247, 0.4310, 0.4373 under fire's
+    // schedule of issue 18; one seed alone strays by up to 0.008).
+    double mean = 0.0;
+    for (const std::uint64_t seed : {1u, 2u, 3u}) {
+        SoftSphereParameters q = p;
+        q.seed = seed;
+        const SoftSphereResult bed = seed == 1 ? res : relax_with_fire(q);
+        const auto band = band_clear_of_ends(bed.packing, 2.0);
+        ASSERT_TRUE(band);
+        mean += void_fraction(bed.packing, bed.container, band->z_low, band->z_high) / 3.0;
+    }
+    EXPECT_NEAR(mean, 0.4326, 0.004);
 }
 
 TEST(FireLayers, EmptySlicesAreSkipped) {

@@ -64,7 +64,8 @@ TEST(StageTimeLeft, FinalStageCountsTheCgHalvingsStillNeeded) {
 }
 
 TEST(StageTimeLeft, SettlingMassCentreGivesTheTimeToThePapersRule) {
-    SoftSphereParameters p; // mc_window 10, mc_tolerance 1e-4 percent
+    SoftSphereParameters p;
+    p.mc_tolerance = SoftSphereParameters::paper_schedule.mc_tolerance; // 1e-4 %, window 10
     StageTimeLeft estimate(p);
     // A new stage starts afresh: a history of the initial stage must not count.
     for (int t = 0; t < 10; ++t)

@@ -222,11 +222,17 @@ Command register_generate(CLI::App& parent) {
         ->check(real_in(limits::min_ck, 1.0, false, true));
     app->add_option("--cg-step", p.cg_step, "step of the gravity parameter Cg, eq. (7)")
         ->check(real_in(0.0, 5e-6, true, false));
+    constexpr auto paper = SoftSphereParameters::paper_schedule;
+    constexpr auto fire = SoftSphereParameters::fire_schedule;
     app->add_option("--overlap-low", p.overlap_low,
-                    "lower bound of the largest overlap in the intermediate stage, eq. (7), Dp")
+                    fmt::format("lower bound of the largest overlap in the intermediate stage, "
+                                "eq. (7), Dp (default: {:g} with --solver fire, {:g} paper)",
+                                fire.overlap_low, paper.overlap_low))
         ->check(real_in(0.0, 0.5, true, true));
     app->add_option("--overlap-high", p.overlap_high,
-                    "upper bound of the largest overlap in the intermediate stage, eq. (7), Dp")
+                    fmt::format("upper bound of the largest overlap in the intermediate stage, "
+                                "eq. (7), Dp (default: {:g} with --solver fire, {:g} paper)",
+                                fire.overlap_high, paper.overlap_high))
         ->check(real_in(0.0, 0.5, true, true));
     app->add_option("--tolerance", p.tolerance,
                     "largest sphere-sphere and sphere-wall overlap allowed at the end, Dp")
@@ -236,7 +242,9 @@ Command register_generate(CLI::App& parent) {
     app->add_option("--mc-window", p.mc_window, "successive mass-centre records that must agree")
         ->check(whole_in(2, 10'000));
     app->add_option("--mc-tolerance", p.mc_tolerance,
-                    "allowed spread of those records, percent of their mean")
+                    fmt::format("allowed spread of those records, percent of their mean "
+                                "(default: {:g} with --solver fire, {:g} paper)",
+                                fire.mc_tolerance, paper.mc_tolerance))
         ->check(real_in(0.0, 100.0, true, false));
     std::vector<std::string> update_names;
     for (const auto& entry : update_orders())
@@ -250,7 +258,8 @@ Command register_generate(CLI::App& parent) {
         solver_names.push_back(entry.first);
     app->add_option("--solver", o.solver,
                     "paper: the iteration of Salvat et al. (2005); fire: the same energy "
-                    "minimised with FIRE, far fewer iterations (docs/performance.md)")
+                    "minimised with FIRE under its own settling schedule, the paper's beds in "
+                    "far fewer iterations (docs/performance.md)")
         ->check(one_of(solver_names));
     app->add_option("--skin", p.skin, "Verlet neighbour-list skin, Dp")
         ->check(real_in(0.0, 1.0, true, false));

@@ -17,11 +17,11 @@
 #include <emmintrin.h>
 #endif
 
+#include "generate/random.hpp"
 #include "packbed/container.hpp"
 #include "packbed/neighbor_list.hpp"
 #include "packbed/packing.hpp"
 #include "packbed/soft_sphere.hpp"
-#include "generate/random.hpp"
 
 namespace packbed::detail {
 
@@ -29,15 +29,17 @@ namespace packbed::detail {
 /// (std::uniform_real_distribution is implementation-defined); random.hpp holds it.
 using portable_random::uniform01;
 
-/// The parameters a solver runs with: the tolerance and the control band of eq. (7), given in
-/// units of the smallest diameter (SoftSphereParameters::sizes), turned into Dp. The same values
-/// for a mono-sized bed (times 1).
+/// The parameters a solver runs with: the solver's schedule where none was given, and the
+/// tolerance and the control band of eq. (7), given in units of the smallest diameter
+/// (SoftSphereParameters::sizes), turned into Dp. The same values for a mono-sized bed (times 1).
 inline SoftSphereParameters in_dp(const SoftSphereParameters& p) {
     SoftSphereParameters out = p;
     const double smallest = p.smallest_size();
+    const SoftSphereParameters::Schedule schedule = p.schedule();
     out.tolerance *= smallest;
-    out.overlap_low *= smallest;
-    out.overlap_high *= smallest;
+    out.overlap_low = schedule.overlap_low * smallest;
+    out.overlap_high = schedule.overlap_high * smallest;
+    out.mc_tolerance = schedule.mc_tolerance;
     return out;
 }
 

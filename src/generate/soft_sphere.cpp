@@ -91,17 +91,18 @@ void SoftSphereParameters::validate() const {
                         limits::min_ck, limits::min_ck));
     require(cg_step > 0.0 && cg_step <= 5e-6, "cg-step", cg_step,
             "0 < cg-step <= 5e-6 (larger steps keep Cg from settling)");
-    require(overlap_low > 0.0 && overlap_low < 0.5, "overlap-low", overlap_low,
+    const Schedule s = schedule();
+    require(s.overlap_low > 0.0 && s.overlap_low < 0.5, "overlap-low", s.overlap_low,
             "0 < overlap-low < 0.5 (Dp)");
-    require(overlap_high > overlap_low && overlap_high < 0.5, "overlap-high", overlap_high,
-            fmt::format("overlap-low ({}) < overlap-high < 0.5 (Dp)", overlap_low));
+    require(s.overlap_high > s.overlap_low && s.overlap_high < 0.5, "overlap-high", s.overlap_high,
+            fmt::format("overlap-low ({}) < overlap-high < 0.5 (Dp)", s.overlap_low));
     require(tolerance >= limits::min_tolerance && tolerance <= 1e-2, "tolerance", tolerance,
             fmt::format("{:g} <= tolerance <= 0.01 (Dp; below {:g} the rounding of the positions "
                         "is not below the tolerance)",
                         limits::min_tolerance, limits::min_tolerance));
     require(mc_period >= 1 && mc_period <= 1'000'000, "mc-period", mc_period, "1 to 1000000");
     require(mc_window >= 2 && mc_window <= 10'000, "mc-window", mc_window, "2 to 10000");
-    require(mc_tolerance > 0.0 && mc_tolerance <= 100.0, "mc-tolerance", mc_tolerance,
+    require(s.mc_tolerance > 0.0 && s.mc_tolerance <= 100.0, "mc-tolerance", s.mc_tolerance,
             "0 < mc-tolerance <= 100 (percent)");
     require(skin > 0.0 && skin <= 1.0, "skin", skin, "0 < skin <= 1 (Dp)");
     require(layer_height == 0.0 || (layer_height >= 10.0 && layer_height <= 1e6), "layer-height",
@@ -157,6 +158,12 @@ double initial_bed_height(const SoftSphereParameters& p) {
     for (const double d : p.sizes)
         solid += d * d * d;
     return std::numbers::pi / 6.0 * solid / (container.cross_section_area() * (1.0 - p.e0));
+}
+
+SoftSphereParameters::Schedule SoftSphereParameters::schedule() const {
+    const Schedule& own = solver == Solver::paper ? paper_schedule : fire_schedule;
+    return {overlap_low.value_or(own.overlap_low), overlap_high.value_or(own.overlap_high),
+            mc_tolerance.value_or(own.mc_tolerance)};
 }
 
 double SoftSphereParameters::smallest_size() const {
@@ -353,7 +360,7 @@ const SoftSphereParameters& SoftSphereGenerator::parameters() const {
 StageRecord SoftSphereGenerator::run_initial_stage(const RunControl& control) {
     State& st = *m_state;
     const std::uint64_t start = st.iterations;
-    detail::MassCentreWindow window(st.params.mc_window, st.params.mc_tolerance);
+    detail::MassCentreWindow window(st.params.mc_window, st.params.schedule().mc_tolerance);
     st.cg = 0.0;
     for (;;) {
         const SweepStats s = st.sweep(0.0);
@@ -369,15 +376,16 @@ StageRecord SoftSphereGenerator::run_intermediate_stage(const RunControl& contro
     State& st = *m_state;
     const SoftSphereParameters& p = st.params;
     const std::uint64_t start = st.iterations;
-    detail::MassCentreWindow window(p.mc_window, p.mc_tolerance);
+    const SoftSphereParameters::Schedule schedule = p.schedule();
+    detail::MassCentreWindow window(p.mc_window, schedule.mc_tolerance);
     st.cg = 0.0; // "starting from a null initial value"
     for (;;) {
         const SweepStats s = st.sweep(st.cg);
         st.check(s, "intermediate", true);
         // Eq. (7): keep the largest pair overlap inside [delta_L, delta_U].
-        if (s.pair < p.overlap_low)
+        if (s.pair < schedule.overlap_low)
             st.cg += p.cg_step;
-        else if (s.pair > p.overlap_high)
+        else if (s.pair > schedule.overlap_high)
             st.cg = std::max(st.cg - p.cg_step, 0.0);
         if ((st.iterations - start) % p.mc_period == 0) {
             const double mc = st.mass_centre_z();
@@ -393,7 +401,7 @@ StageRecord SoftSphereGenerator::run_final_stage(const RunControl& control) {
     State& st = *m_state;
     const SoftSphereParameters& p = st.params;
     const std::uint64_t start = st.iterations;
-    detail::MassCentreWindow window(p.mc_window, p.mc_tolerance);
+    detail::MassCentreWindow window(p.mc_window, p.schedule().mc_tolerance);
     std::uint32_t steps = 0;
     // Below this Cg, gravity moves a sphere by less than 1e-8 of the tolerance per iteration.
     const double stalled_cg = 1e-8 * p.tolerance;
@@ -401,7 +409,7 @@ StageRecord SoftSphereGenerator::run_final_stage(const RunControl& control) {
         // A new step: Cg halved, held constant until the mass centre settles.
         st.cg *= 0.5;
         ++steps;
-        window = detail::MassCentreWindow(p.mc_window, p.mc_tolerance);
+        window = detail::MassCentreWindow(p.mc_window, p.schedule().mc_tolerance);
         for (std::uint64_t k = 1;; ++k) {
             const SweepStats s = st.sweep(st.cg);
             st.check(s, "final", true);

@@ -17,7 +17,7 @@ constexpr double min_fall = 0.1;
 StageTimeLeft::StageTimeLeft(const SoftSphereParameters& parameters)
     : m_tolerance(parameters.tolerance)
     , m_mc_window(parameters.mc_window)
-    , m_mc_fraction(parameters.mc_tolerance / 100.0) {}
+    , m_mc_fraction(parameters.schedule().mc_tolerance / 100.0) {}
 
 std::optional<double> StageTimeLeft::update(const Progress& progress, double seconds) {
     if (progress.stage != m_stage) {
