@@ -86,16 +86,16 @@ def plot(args, rows):
              "set logscale xy", "set grid", "set key top left", "set xrange [500:2e6]",
              "set xlabel 'spheres Np'",
              "$targets << EOD", "100000 60", "1000000 900", "EOD"]
-    for key, points in series.items():
-        lines.append(f"$s{len(lines)} << EOD")
-        key_name = lines[-1].split()[0]
+    blocks = {}  # (label, finished) -> gnuplot data block name
+    for k, (key, points) in enumerate(series.items()):
+        blocks[key] = f"$s{k}"
+        lines.append(f"{blocks[key]} << EOD")
         lines += [f"{n} {t} {it}" for n, t, it in sorted(points)]
         lines.append("EOD")
-        series[key] = (key_name, points)
 
     def curves(column):
         out = []
-        for (label, finished), (name, _) in series.items():
+        for (label, finished), name in blocks.items():
             solver = label.split()[0]
             dashed = " dt 2" if label != solver else ""
             style = "linespoints lw 2 pt 7" if finished else "points pt 6 ps 1.5"

@@ -401,7 +401,8 @@ StageRecord SoftSphereGenerator::run_final_stage(const RunControl& control) {
     State& st = *m_state;
     const SoftSphereParameters& p = st.params;
     const std::uint64_t start = st.iterations;
-    detail::MassCentreWindow window(p.mc_window, p.schedule().mc_tolerance);
+    const double mc_tolerance = p.schedule().mc_tolerance;
+    detail::MassCentreWindow window(p.mc_window, mc_tolerance);
     std::uint32_t steps = 0;
     // Below this Cg, gravity moves a sphere by less than 1e-8 of the tolerance per iteration.
     const double stalled_cg = 1e-8 * p.tolerance;
@@ -409,7 +410,7 @@ StageRecord SoftSphereGenerator::run_final_stage(const RunControl& control) {
         // A new step: Cg halved, held constant until the mass centre settles.
         st.cg *= 0.5;
         ++steps;
-        window = detail::MassCentreWindow(p.mc_window, p.schedule().mc_tolerance);
+        window = detail::MassCentreWindow(p.mc_window, mc_tolerance);
         for (std::uint64_t k = 1;; ++k) {
             const SweepStats s = st.sweep(st.cg);
             st.check(s, "final", true);

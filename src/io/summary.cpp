@@ -11,6 +11,7 @@
 namespace packbed {
 
 nlohmann::json soft_sphere_parameters_json(const SoftSphereParameters& p) {
+    const SoftSphereParameters::Schedule schedule = p.schedule(); // the values the run used
     return {{"aspect_ratio", p.aspect_ratio},
             {"particles", p.particles},
             {"seed", p.seed},
@@ -18,12 +19,12 @@ nlohmann::json soft_sphere_parameters_json(const SoftSphereParameters& p) {
             {"e0", p.e0},
             {"ck", p.ck},
             {"cg_step", p.cg_step},
-            {"overlap_low", p.schedule().overlap_low},
-            {"overlap_high", p.schedule().overlap_high},
+            {"overlap_low", schedule.overlap_low},
+            {"overlap_high", schedule.overlap_high},
             {"tolerance", p.tolerance},
             {"mc_period", p.mc_period},
             {"mc_window", p.mc_window},
-            {"mc_tolerance", p.schedule().mc_tolerance},
+            {"mc_tolerance", schedule.mc_tolerance},
             {"update", to_string(p.update)},
             {"solver", to_string(p.solver)},
             {"skin", p.skin},
