@@ -17,9 +17,9 @@
 #include "packbed/io.hpp"
 #include "packbed/limits.hpp"
 #include "packbed/output.hpp"
+#include "packbed/pipeline.hpp"
 #include "packbed/read.hpp"
 #include "packbed/summary.hpp"
-#include "plots.hpp"
 
 namespace packbed::cli {
 
@@ -44,26 +44,6 @@ struct AnalyzeOptions {
     bool force = false;
 };
 
-/// Refuse spheres that stick out of the container by more than the tolerance
-/// (Container::sticks_out: beyond a wall; in a periodic cell, a centre outside the cell).
-/// `shifted` says that the centres are relative to --axis and --floor.
-void check_inside(const ParticleFile& file, const std::string& name, const Container& container,
-                  double tolerance, bool shifted) {
-    for (std::size_t i = 0; i < file.packing.size(); ++i) {
-        const Vec3& c = file.packing.centers[i];
-        const double r = file.packing.radii[i];
-        const double out_wall = container.sticks_out(c, r);
-        const double below = -(c.z - r);
-        if (out_wall > tolerance || below > tolerance)
-            throw InvalidInput(fmt::format(
-                "{}:{}: the sphere at ({}, {}, {}){} sticks out of the container ({}, "
-                "floor z = 0) by {:.4g}; allowed: up to {:.4g} (--outside-tolerance, in Dp)",
-                printable(name), file.lines[i], c.x, c.y, c.z,
-                shifted ? " (from --axis and --floor)" : "", describe(container),
-                std::max(out_wall, below), tolerance));
-    }
-}
-
 /// The void fraction of one frame for the time series; nothing when the frame has no spheres
 /// or is not taller than twice the band clearance, or than --band's top (a bed still being
 /// filled).
@@ -72,7 +52,8 @@ std::optional<double> frame_void_fraction(const ParticleFile& frame, const Conta
     if (frame.packing.size() == 0)
         return std::nullopt;
     const double dp = o.diameter > 0.0 ? o.diameter : frame.packing.mean_diameter();
-    check_inside(frame, name, container, o.outside_tolerance * dp, o.placement.shifted());
+    check_inside(frame.packing, frame.lines, name, container, o.outside_tolerance * dp,
+                 o.placement.shifted());
     // Only the void fraction: the rest of analyze_bed (contacts, g(r)) is for the last frame.
     const std::optional<Band> band =
         o.analysis.band
@@ -131,7 +112,8 @@ int run_analyze(AnalyzeOptions& o) {
         o.analysis.diameter = o.diameter;
     if (read) {
         const double dp = o.diameter > 0.0 ? o.diameter : read->packing.mean_diameter();
-        check_inside(*read, path.string(), container, o.outside_tolerance * dp, shifted);
+        check_inside(read->packing, read->lines, path.string(), container, o.outside_tolerance * dp,
+                     shifted);
     }
 
     const fs::path out_dir = o.out.empty() ? path.parent_path() / "analysis" : fs::path(o.out);
@@ -165,7 +147,8 @@ int run_analyze(AnalyzeOptions& o) {
                                            "spheres in at least one frame",
                                            printable(path.native())));
         const double dp = o.diameter > 0.0 ? o.diameter : read->packing.mean_diameter();
-        check_inside(*read, path.string(), container, o.outside_tolerance * dp, shifted);
+        check_inside(read->packing, read->lines, path.string(), container, o.outside_tolerance * dp,
+                     shifted);
         out.stage("void_fraction_series.csv", table);
     }
     const ParticleFile& file = *read;

@@ -42,10 +42,6 @@ CLI::Validator one_of(std::vector<std::string> names);
 /// A whole number within [low, high].
 CLI::Validator whole_in(unsigned long long low, unsigned long long high);
 
-/// \return the comma-separated finite numbers of `text` ("1,2.5,-3"), or nothing when it is
-/// not exactly that (an empty item, a non-number, NaN or infinity).
-std::optional<std::vector<double>> comma_numbers(std::string_view text);
-
 /// Run the library's parallel loops on at most `threads` OpenMP threads, fewer while the
 /// machine is busy (OpenMP's dynamic adjustment, which in GCC's libgomp subtracts the load
 /// average from the cores): a thread that waits for a core at every barrier turns seconds
@@ -70,28 +66,7 @@ struct InputPlacement {
 /// \return the --frame option (for excludes)
 CLI::Option* add_input_placement(CLI::App& app, InputPlacement& placement);
 
-/// `--container SPEC`, the container in length units, the one form every subcommand takes:
-/// `cylinder:D`, a tube of inner diameter D (the axis is the z axis, the floor z = 0);
-/// `box:LX,LY`, four flat walls at x = 0, LX and y = 0, LY; `annulus:D,DI`, the space between
-/// the tube of diameter D and a coaxial rod of diameter DI < D; `periodic:LX,LY`, a cell
-/// periodic in x and y, [0, LX) x [0, LY), with no side walls.
-struct ContainerSpec {
-    std::string shape;     ///< "cylinder", "box", "annulus" or "periodic"
-    double diameter = 0.0; ///< a cylinder's or annulus's D, > 0
-    double inner = 0.0;    ///< an annulus's DI, 0 < DI < D
-    double lx = 0.0;       ///< a box's or cell's widths, > 0
-    double ly = 0.0;
-    /// \return the library's container.
-    Container container() const;
-};
-
-/// \return the container of `text` ("cylinder:D", "box:LX,LY", "annulus:D,DI",
-/// "periodic:LX,LY"), or nothing when it is not one.
-std::optional<ContainerSpec> parse_container(std::string_view text);
-
-/// The shapes every subcommand takes.
-inline const std::vector<std::string_view> all_shapes{"cylinder", "box", "annulus", "periodic"};
-
+/// `--container SPEC` (ContainerSpec, parse_container).
 /// Add `--container SPEC` to `app`, bound to `text` ("" when not given), checked by
 /// parse_container. \param meaning what lengths are measured in and what it replaces, for
 /// --help \param shapes the shapes the subcommand takes
@@ -104,8 +79,5 @@ CLI::Option* add_container_option(CLI::App& app, std::string& text, const std::s
 /// \throws InvalidInput naming the file when it exists but is not a regular file, not a
 /// summary, or has a container outside the limits
 std::optional<Container> container_beside(const std::filesystem::path& particles);
-
-/// "radius R" for a cylinder, "box:LX,LY" for a box: the container in messages.
-std::string describe(const Container& container);
 
 } // namespace packbed::cli

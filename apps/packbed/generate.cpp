@@ -10,15 +10,14 @@
 
 #include "command.hpp"
 #include "packbed/analysis.hpp"
-#include "packbed/checkpoint.hpp"
 #include "packbed/error.hpp"
 #include "packbed/io.hpp"
 #include "packbed/limits.hpp"
 #include "packbed/output.hpp"
+#include "packbed/pipeline.hpp"
 #include "packbed/sizes.hpp"
 #include "packbed/soft_sphere.hpp"
 #include "packbed/summary.hpp"
-#include "plots.hpp"
 #include "progress.hpp"
 
 namespace packbed::cli {
@@ -40,122 +39,50 @@ struct GenerateOptions {
     bool force = false;
 };
 
-/// The seed of the sizes' random numbers: --seed XOR the golden-ratio constant 0x9E3779B97F4A7C15,
-/// a stream of its own, so that the centres of the generation stage are drawn from the same
-/// numbers whatever the sizes.
-std::uint64_t sizes_seed(std::uint64_t seed) {
-    return seed ^ 0x9E3779B97F4A7C15ull;
-}
-
 int run_generate(GenerateOptions& o) {
+    GenerateRequest request;
+    request.params = o.params;
     for (const auto& [name, value] : update_orders())
         if (name == o.update)
-            o.params.update = value;
+            request.params.update = value;
     for (const auto& [name, value] : solvers())
         if (name == o.solver)
-            o.params.solver = value;
-    // Spheres of many sizes (docs/sizes.md): the diameters drawn from --sizes, the reference
-    // diameter Dp their Sauter mean d32, each sphere's size in units of it. `mono` draws
-    // nothing and changes nothing: the bed of --diameter, bit for bit.
-    std::optional<SizeStatistics> drawn;
-    if (o.sizes != "mono") {
-        FractionBasis basis = FractionBasis::volume;
-        for (const auto& [name, value] : fraction_bases())
-            if (name == o.fractions)
-                basis = value;
-        const SizeDistribution distribution = parse_sizes(o.sizes, o.params.diameter);
-        const std::vector<double> diameters =
-            draw_diameters(distribution, o.params.particles, basis, sizes_seed(o.params.seed));
-        drawn = size_statistics(diameters);
-        o.params.diameter = drawn->sauter_mean;
-        o.params.sizes.clear();
-        for (const double d : diameters)
-            o.params.sizes.push_back(d / drawn->sauter_mean);
-        if (!o.checkpoint.empty())
-            throw InvalidInput(fmt::format("--checkpoint {} is not allowed with --sizes {}; "
-                                           "allowed: --checkpoint with mono-sized beds (a "
-                                           "checkpoint does not record the sizes yet)",
-                                           o.checkpoint, o.sizes));
-    }
-    if (const auto spec = parse_container(o.container); spec && spec->shape != "cylinder") {
-        // Another container, in units of Dp (with --sizes, d32), checked in the user's units.
-        const Container in_dp = spec->container().scaled(1.0 / o.params.diameter);
-        const std::string problem = container_fit_problem(in_dp, o.params.largest_size());
-        if (!problem.empty())
-            throw InvalidInput(fmt::format(
-                "--container {} is not allowed with Dp = {:.6g}{}; allowed: {}", o.container,
-                o.params.diameter, drawn ? " (the sizes' Sauter mean d32)" : "", problem));
-        o.params.container = in_dp;
-        if (!o.checkpoint.empty())
-            throw InvalidInput(fmt::format("--checkpoint {} is not allowed with --container {}; "
-                                           "allowed: --checkpoint with a cylinder (a checkpoint "
-                                           "does not record the container yet)",
-                                           o.checkpoint, o.container));
-    } else if (const auto tube = parse_container(o.container)) {
-        // a = D / Dp, both in the unit of --diameter (with --sizes, Dp is d32).
-        const double a = tube->diameter / o.params.diameter;
-        const std::string_view dp = drawn ? "the sizes' Sauter mean d32" : "--diameter";
-        if (!(a >= 1.0 && a <= 1e4))
-            throw InvalidInput(fmt::format(
-                "--container {}: the tube's diameter over {} ({}) is a = {:.6g}; "
-                "allowed: a from 1 to 10000 (D from {:.6g} to {:.6g})",
-                o.container, dp, o.params.diameter, a, o.params.diameter, 1e4 * o.params.diameter));
-        o.params.aspect_ratio = a;
-    }
-    o.params.validate();
+            request.params.solver = value;
+    for (const auto& [name, value] : fraction_bases())
+        if (name == o.fractions)
+            request.fractions = value;
+    request.sizes = o.sizes;
+    request.container = o.container;
+    request.checkpoint = o.checkpoint;
+    request.band_clearance = o.band_clearance;
+    const PreparedGeneration prepared = prepare_generation(request);
+    const SoftSphereParameters& params = prepared.params;
     // Every check before the run: the output directory, the checkpoint.
     OutputDirectory out(o.out, "--out", OutputKind::directory, o.force);
     use_threads(o.threads);
 
-    TerminalProgress progress(progress_wanted(o.quiet), o.params);
+    TerminalProgress progress(progress_wanted(o.quiet), params);
     RunControl control;
     control.on_progress = [&](const Progress& p) { progress(p); };
-    std::optional<LayerCheckpoint> resume;
-    if (!o.checkpoint.empty()) {
-        if (o.params.solver != Solver::fire || fire_layers(o.params) == 1)
-            throw InvalidInput(fmt::format(
-                "--checkpoint {}: only a fire run in layers can be resumed, this run is {}; "
-                "allowed: --solver fire with an initial height L0 = {:.4g} Dp above twice "
-                "--layer-height (now {})",
-                o.checkpoint, o.params.solver == Solver::fire ? "in one piece" : "paper mode",
-                initial_bed_height(o.params), o.params.layer_height));
-        check_writable_file("--checkpoint", o.checkpoint); // now, not after the first layer
-        out.keep("--checkpoint", o.checkpoint);
-        if (std::filesystem::exists(o.checkpoint)) {
-            resume = read_checkpoint(o.checkpoint, o.params);
-            control.resume = &*resume;
+    GeneratedBed bed = run_generation(
+        prepared, control, static_cast<int>(o.threads), &out, [&](std::uint32_t layers_done) {
             if (!o.quiet)
                 fmt::print(stderr, "packbed generate: resuming from {} after layer {} of {}\n",
-                           o.checkpoint, resume->layers_done, fire_layers(o.params));
-        }
-        control.on_layer = [&](const LayerCheckpoint& state) {
-            write_checkpoint(o.checkpoint, o.params, state);
-        };
-    }
-    const SoftSphereResult result = generate_soft_sphere(o.params, control);
+                           o.checkpoint, layers_done, fire_layers(params));
+        });
     progress.finish();
-
-    auto summary =
-        soft_sphere_summary(o.params, result, o.band_clearance, static_cast<int>(o.threads));
-    if (drawn)
-        summary["sizes"] = {{"spec", o.sizes},
-                            {"fractions", o.fractions},
-                            {"reference_diameter", "the Sauter mean d32: a = D / d32, and "
-                                                   "lengths in Dp are in units of it"},
-                            {"statistics", size_statistics_summary(*drawn)}};
-    out.stage("particles.csv", particles_csv(result.packing));
-    out.stage("particles.vtu", particles_vtu(result.packing));
+    const SoftSphereResult& result = bed.result;
+    auto& summary = bed.summary;
     // The same analysis as `packbed analyze`, when the bed is tall enough for the band.
-    if (summary["void_fraction"].is_number())
-        stage_analysis(out, result.packing, result.container, o.band_clearance, summary);
-    out.stage("summary.json", summary.dump(2) + "\n");
+    stage_bed(out, result.packing, result.container, o.band_clearance,
+              summary["void_fraction"].is_number(), summary);
     out.commit();
     if (!o.quiet) {
         fmt::print("packbed generate: {} spheres, {}, seed {}: {} iterations, {:.2f} s\n",
-                   o.params.particles,
-                   o.params.container ? result.container.spec()
-                                      : fmt::format("a = {}", o.params.aspect_ratio),
-                   o.params.seed, result.iterations, result.seconds);
+                   params.particles,
+                   params.container ? result.container.spec()
+                                    : fmt::format("a = {}", params.aspect_ratio),
+                   params.seed, result.iterations, result.seconds);
         fmt::print("largest overlaps: sphere-sphere {:.3e} Dp, sphere-wall {:.3e} Dp\n",
                    result.max_overlap_pair, result.max_overlap_wall);
         if (summary["void_fraction"].is_number())

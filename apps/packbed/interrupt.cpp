@@ -13,6 +13,7 @@
 #include <fmt/format.h>
 
 #include "packbed/output.hpp"
+#include "packbed/pipeline.hpp"
 
 namespace packbed::cli {
 
@@ -69,16 +70,14 @@ void wait_for_signals(sigset_t set) {
 void handle_interrupts() {
     const sigset_t set = handled_signals();
     pthread_sigmask(SIG_BLOCK, &set, nullptr);
+    // The pipeline's child programs (gnuplot), to stop first.
+    set_child_watcher([](pid_t pid) { g_child = pid; });
     std::thread(wait_for_signals, set).detach();
 }
 
 void set_command_name(const std::string& name) {
     std::lock_guard lock(g_name_mutex);
     g_name = name;
-}
-
-void watch_child(pid_t pid) {
-    g_child = pid;
 }
 
 void progress_line_drawn(bool drawn) {

@@ -11,7 +11,7 @@ namespace packbed::cli {
 
 /// Block SIGINT, SIGTERM and SIGHUP in the calling thread, and so in every thread it starts
 /// later (OpenMP's), and start the thread that waits for them. When one arrives, that thread
-/// stops the child program being waited on (watch_child), removes every output not yet in
+/// stops the child program being waited on (set_child_watcher), removes every output not yet in
 /// place (cancel_outputs), erases the progress line, prints "packbed COMMAND: interrupted;
 /// nothing was written" and ends the process with status 130. If the outputs were already in
 /// place, it does nothing and the run ends normally. Call once, first thing in main.
@@ -19,10 +19,6 @@ void handle_interrupts();
 
 /// Name the subcommand for the message.
 void set_command_name(const std::string& name);
-
-/// Tell the interrupt handler about a child process (in its own process group) to kill first,
-/// or 0 when there is none.
-void watch_child(pid_t pid);
 
 /// Tell the interrupt handler whether a progress line is on the terminal.
 void progress_line_drawn(bool drawn);

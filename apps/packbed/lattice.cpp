@@ -12,8 +12,8 @@
 #include "packbed/io.hpp"
 #include "packbed/lattice.hpp"
 #include "packbed/limits.hpp"
+#include "packbed/pipeline.hpp"
 #include "packbed/summary.hpp"
-#include "plots.hpp"
 
 namespace packbed::cli {
 
@@ -94,15 +94,13 @@ int run_lattice(LatticeOptions& o) {
 
     const Packing packing = fill_lattice(o.params);
     auto summary = lattice_summary(o.params, packing);
-    out.stage("particles.csv", particles_csv(packing));
-    out.stage("particles.vtu", particles_vtu(packing));
     // A lattice is a bed: the same analysis as `generate` in its container, when tall enough.
     const Container container = region_container(o.params.region);
     const double height = region_height(o.params.region);
-    if (!o.no_analysis && !packing.centers.empty() &&
-        height > 2.0 * o.band_clearance * o.params.diameter)
-        stage_analysis(out, packing, container, o.band_clearance, summary);
-    out.stage("summary.json", summary.dump(2) + "\n");
+    stage_bed(out, packing, container, o.band_clearance,
+              !o.no_analysis && !packing.centers.empty() &&
+                  height > 2.0 * o.band_clearance * o.params.diameter,
+              summary);
     out.commit();
     if (!o.quiet) {
         fmt::print("packbed lattice: {} balls of a {} packing (coordination {}, porosity {:.5f})\n",

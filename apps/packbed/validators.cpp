@@ -90,23 +90,6 @@ void add_output_directory(CLI::App& app, std::string& out, bool& force,
                  "replace a non-empty output directory whole (its old files are deleted)");
 }
 
-std::optional<std::vector<double>> comma_numbers(std::string_view text) {
-    std::vector<double> values;
-    while (true) {
-        const std::size_t comma = text.find(',');
-        const std::string_view item = text.substr(0, comma);
-        double value = 0.0;
-        const auto [ptr, ec] = std::from_chars(item.data(), item.data() + item.size(), value);
-        if (item.empty() || ec != std::errc() || ptr != item.data() + item.size() ||
-            !std::isfinite(value))
-            return std::nullopt;
-        values.push_back(value);
-        if (comma == std::string_view::npos)
-            return values;
-        text.remove_prefix(comma + 1);
-    }
-}
-
 void use_threads(unsigned long long threads) {
     omp_set_num_threads(static_cast<int>(threads));
     if (std::getenv("OMP_DYNAMIC") == nullptr) // OMP_DYNAMIC=false keeps the count fixed
@@ -119,12 +102,6 @@ std::optional<Container> container_beside(const std::filesystem::path& particles
     if (!std::filesystem::exists(std::filesystem::symlink_status(summary, ec)))
         return std::nullopt;
     return read_bed_summary(summary).container;
-}
-
-std::string describe(const Container& container) {
-    if (const Cylinder* c = container.cylinder())
-        return fmt::format("radius {}", c->radius());
-    return container.spec();
 }
 
 namespace {
@@ -185,44 +162,6 @@ CLI::Option* add_input_placement(CLI::App& app, InputPlacement& p) {
                    "the container's floor z, subtracted from every centre (file units)")
         ->check(real_in(-limits::max_length, limits::max_length, false, false));
     return frame;
-}
-
-Container ContainerSpec::container() const {
-    if (shape == "box")
-        return Box(lx, ly);
-    if (shape == "annulus")
-        return Annulus(0.5 * diameter, 0.5 * inner);
-    if (shape == "periodic")
-        return Periodic(lx, ly);
-    return Cylinder(0.5 * diameter);
-}
-
-std::optional<ContainerSpec> parse_container(std::string_view text) {
-    const std::size_t colon = text.find(':');
-    if (colon == std::string_view::npos)
-        return std::nullopt;
-    const std::string_view shape = text.substr(0, colon);
-    const auto known = std::find(all_shapes.begin(), all_shapes.end(), shape);
-    const auto v = comma_numbers(text.substr(colon + 1));
-    if (known == all_shapes.end() || !v || v->size() != (shape == "cylinder" ? 1u : 2u))
-        return std::nullopt;
-    // Every side within max_length of the origin, as the analysis allows.
-    const bool round = shape == "cylinder" || shape == "annulus";
-    const double largest = round ? 2.0 * limits::max_length : limits::max_length;
-    for (const double x : *v)
-        if (!(x > 0.0 && x <= largest))
-            return std::nullopt;
-    ContainerSpec spec{std::string(shape)};
-    if (shape == "annulus" && !((*v)[1] < (*v)[0]))
-        return std::nullopt;
-    if (round) {
-        spec.diameter = (*v)[0];
-        spec.inner = v->size() > 1 ? (*v)[1] : 0.0;
-    } else {
-        spec.lx = (*v)[0];
-        spec.ly = (*v)[1];
-    }
-    return spec;
 }
 
 CLI::Option* add_container_option(CLI::App& app, std::string& text, const std::string& meaning,

@@ -11,6 +11,7 @@
 #include <concepts>
 #include <cstddef>
 #include <limits>
+#include <optional>
 #include <span>
 #include <string>
 #include <string_view>
@@ -591,5 +592,35 @@ public:
 private:
     Shape m_shape;
 };
+
+/// \return the comma-separated finite numbers of `text` ("1,2.5,-3"), or nothing when it is
+/// not exactly that (an empty item, a non-number, NaN or infinity).
+std::optional<std::vector<double>> comma_numbers(std::string_view text);
+
+/// A container as users write it, in length units, the one form every front end takes:
+/// `cylinder:D`, a tube of inner diameter D (the axis is the z axis, the floor z = 0);
+/// `box:LX,LY`, four flat walls at x = 0, LX and y = 0, LY; `annulus:D,DI`, the space between
+/// the tube of diameter D and a coaxial rod of diameter DI < D; `periodic:LX,LY`, a cell
+/// periodic in x and y, [0, LX) x [0, LY), with no side walls.
+struct ContainerSpec {
+    std::string shape;     ///< "cylinder", "box", "annulus" or "periodic"
+    double diameter = 0.0; ///< a cylinder's or annulus's D, > 0
+    double inner = 0.0;    ///< an annulus's DI, 0 < DI < D
+    double lx = 0.0;       ///< a box's or cell's widths, > 0
+    double ly = 0.0;
+    /// \return the library's container.
+    Container container() const;
+};
+
+/// \return the container of `text` ("cylinder:D", "box:LX,LY", "annulus:D,DI",
+/// "periodic:LX,LY"; every length in (0, limits::max_length], diameters up to twice that), or
+/// nothing when it is not one.
+std::optional<ContainerSpec> parse_container(std::string_view text);
+
+/// "radius R" for a cylinder, its spec (box:LX,LY, ...) for the others: a container in messages.
+std::string describe(const Container& container);
+
+/// The shapes parse_container takes.
+inline const std::vector<std::string_view> all_shapes{"cylinder", "box", "annulus", "periodic"};
 
 } // namespace packbed

@@ -1,4 +1,5 @@
-#include "plots.hpp"
+// The plots of an analysis and the analysis generate and lattice stage (pipeline.hpp).
+#include "packbed/pipeline.hpp"
 
 #include <fcntl.h>
 #include <signal.h>
@@ -7,19 +8,33 @@
 
 #include <cstdio>
 #include <fstream>
+#include <mutex>
 
 #include <fmt/format.h>
 #include <unistd.h>
 
-#include "interrupt.hpp"
 #include "packbed/analysis_files.hpp"
 #include "packbed/correlations.hpp"
 #include "packbed/io.hpp"
 #include "packbed/summary.hpp"
 
-namespace packbed::cli {
+namespace packbed {
 
 namespace {
+
+/// set_child_watcher's hook, and the lock that guards it.
+std::mutex watcher_lock;
+std::function<void(pid_t)> child_watcher;
+
+void watch_child(pid_t pid) {
+    std::function<void(pid_t)> watcher;
+    {
+        const std::lock_guard lock(watcher_lock);
+        watcher = child_watcher;
+    }
+    if (watcher)
+        watcher(pid);
+}
 
 /// A gnuplot datablock named `name` with the bins' middles over Dp and their values.
 std::string datablock(std::string_view name, const std::vector<ProfileBin>& bins, double dp) {
@@ -72,6 +87,11 @@ int run_gnuplot(const std::filesystem::path& folder, const std::string& script) 
 }
 
 } // namespace
+
+void set_child_watcher(std::function<void(pid_t)> watcher) {
+    const std::lock_guard lock(watcher_lock);
+    child_watcher = std::move(watcher);
+}
 
 std::string stage_plots(OutputDirectory& out, const BedAnalysis& a, const Container& container) {
     const double dp = a.diameter;
@@ -279,4 +299,4 @@ void stage_analysis(OutputDirectory& out, const Packing& packing, const Containe
         summary["analysis"]["plots"] = why;
 }
 
-} // namespace packbed::cli
+} // namespace packbed

@@ -1,0 +1,155 @@
+// A soft-sphere bed from a request to its files, and the checks of a bed read from a file
+// (pipeline.hpp).
+#include <filesystem>
+
+#include <fmt/format.h>
+
+#include "packbed/checkpoint.hpp"
+#include "packbed/error.hpp"
+#include "packbed/files.hpp"
+#include "packbed/io.hpp"
+#include "packbed/pipeline.hpp"
+#include "packbed/summary.hpp"
+
+namespace packbed {
+
+namespace {
+
+/// The seed of the sizes' random numbers: --seed XOR the golden-ratio constant 0x9E3779B97F4A7C15,
+/// a stream of its own, so that the centres of the generation stage are drawn from the same
+/// numbers whatever the sizes.
+std::uint64_t sizes_seed(std::uint64_t seed) {
+    return seed ^ 0x9E3779B97F4A7C15ull;
+}
+
+} // namespace
+
+PreparedGeneration prepare_generation(GenerateRequest request) {
+    PreparedGeneration prepared{request, request.params, std::nullopt};
+    SoftSphereParameters& p = prepared.params;
+    // Spheres of many sizes (docs/sizes.md): the diameters drawn from --sizes, the reference
+    // diameter Dp their Sauter mean d32, each sphere's size in units of it. `mono` draws
+    // nothing and changes nothing: the bed of --diameter, bit for bit.
+    if (request.sizes != "mono") {
+        const SizeDistribution distribution = parse_sizes(request.sizes, p.diameter);
+        const std::vector<double> diameters =
+            draw_diameters(distribution, p.particles, request.fractions, sizes_seed(p.seed));
+        prepared.drawn = size_statistics(diameters);
+        p.diameter = prepared.drawn->sauter_mean;
+        p.sizes.clear();
+        for (const double d : diameters)
+            p.sizes.push_back(d / prepared.drawn->sauter_mean);
+        if (!request.checkpoint.empty())
+            throw InvalidInput(fmt::format("--checkpoint {} is not allowed with --sizes {}; "
+                                           "allowed: --checkpoint with mono-sized beds (a "
+                                           "checkpoint does not record the sizes yet)",
+                                           printable(request.checkpoint), request.sizes));
+    }
+    const std::optional<ContainerSpec> spec =
+        request.container.empty() ? std::nullopt : parse_container(request.container);
+    if (!request.container.empty() && !spec)
+        throw InvalidInput(fmt::format(
+            "--container '{}' is not allowed; allowed: cylinder:D, box:LX,LY, annulus:D,DI "
+            "(DI < D) or periodic:LX,LY, lengths > 0",
+            printable(request.container.substr(0, 80))));
+    if (spec && spec->shape != "cylinder") {
+        // Another container, in units of Dp (with --sizes, d32), checked in the user's units.
+        const Container in_dp = spec->container().scaled(1.0 / p.diameter);
+        const std::string problem = container_fit_problem(in_dp, p.largest_size());
+        if (!problem.empty())
+            throw InvalidInput(fmt::format(
+                "--container {} is not allowed with Dp = {:.6g}{}; allowed: {}", request.container,
+                p.diameter, prepared.drawn ? " (the sizes' Sauter mean d32)" : "", problem));
+        p.container = in_dp;
+        if (!request.checkpoint.empty())
+            throw InvalidInput(fmt::format("--checkpoint {} is not allowed with --container {}; "
+                                           "allowed: --checkpoint with a cylinder (a checkpoint "
+                                           "does not record the container yet)",
+                                           printable(request.checkpoint), request.container));
+    } else if (spec) {
+        // a = D / Dp, both in the unit of --diameter (with --sizes, Dp is d32).
+        const double a = spec->diameter / p.diameter;
+        const std::string_view dp = prepared.drawn ? "the sizes' Sauter mean d32" : "--diameter";
+        if (!(a >= 1.0 && a <= 1e4))
+            throw InvalidInput(
+                fmt::format("--container {}: the tube's diameter over {} ({}) is a = {:.6g}; "
+                            "allowed: a from 1 to 10000 (D from {:.6g} to {:.6g})",
+                            request.container, dp, p.diameter, a, p.diameter, 1e4 * p.diameter));
+        p.aspect_ratio = a;
+    }
+    p.validate();
+    if (!request.checkpoint.empty()) {
+        check_path("--checkpoint", request.checkpoint);
+        if (p.solver != Solver::fire || fire_layers(p) == 1)
+            throw InvalidInput(fmt::format(
+                "--checkpoint {}: only a fire run in layers can be resumed, this run is {}; "
+                "allowed: --solver fire with an initial height L0 = {:.4g} Dp above twice "
+                "--layer-height (now {})",
+                printable(request.checkpoint),
+                p.solver == Solver::fire ? "in one piece" : "paper mode", initial_bed_height(p),
+                p.layer_height));
+    }
+    return prepared;
+}
+
+GeneratedBed run_generation(const PreparedGeneration& prepared, RunControl control, int threads,
+                            OutputDirectory* out,
+                            const std::function<void(std::uint32_t)>& on_resume) {
+    const SoftSphereParameters& p = prepared.params;
+    const std::string& checkpoint = prepared.request.checkpoint;
+    std::optional<LayerCheckpoint> resume;
+    if (!checkpoint.empty()) {
+        check_writable_file("--checkpoint", checkpoint); // now, not after the first layer
+        if (out)
+            out->keep("--checkpoint", checkpoint);
+        if (std::filesystem::exists(checkpoint)) {
+            resume = read_checkpoint(checkpoint, p);
+            control.resume = &*resume;
+            if (on_resume)
+                on_resume(resume->layers_done);
+        }
+        control.on_layer = [&](const LayerCheckpoint& state) {
+            write_checkpoint(checkpoint, p, state);
+        };
+    }
+    GeneratedBed bed;
+    bed.result = generate_soft_sphere(p, control);
+    bed.summary = soft_sphere_summary(p, bed.result, prepared.request.band_clearance, threads);
+    if (prepared.drawn)
+        bed.summary["sizes"] = {{"spec", prepared.request.sizes},
+                                {"fractions", to_string(prepared.request.fractions)},
+                                {"reference_diameter",
+                                 "the Sauter mean d32: a = D / d32, and lengths in Dp are in "
+                                 "units of it"},
+                                {"statistics", size_statistics_summary(*prepared.drawn)}};
+    return bed;
+}
+
+void stage_bed(OutputDirectory& out, const Packing& packing, const Container& container,
+               double band_clearance, bool analyse, nlohmann::json& summary) {
+    out.stage("particles.csv", particles_csv(packing));
+    out.stage("particles.vtu", particles_vtu(packing));
+    if (analyse)
+        stage_analysis(out, packing, container, band_clearance, summary);
+    out.stage("summary.json", summary.dump(2) + "\n");
+}
+
+void check_inside(const Packing& packing, const std::vector<std::size_t>& lines,
+                  std::string_view name, const Container& container, double tolerance,
+                  bool shifted) {
+    for (std::size_t i = 0; i < packing.size(); ++i) {
+        const Vec3& c = packing.centers[i];
+        const double r = packing.radii[i];
+        const double out_wall = container.sticks_out(c, r);
+        const double below = -(c.z - r);
+        if (out_wall > tolerance || below > tolerance)
+            throw InvalidInput(fmt::format(
+                "{}:{}: the sphere at ({}, {}, {}){} sticks out of the container ({}, "
+                "floor z = 0) by {:.4g}; allowed: up to {:.4g} (--outside-tolerance, in Dp)",
+                printable(name), i < lines.size() ? lines[i] : i + 1, c.x, c.y, c.z,
+                shifted ? " (from --axis and --floor)" : "", describe(container),
+                std::max(out_wall, below), tolerance));
+    }
+}
+
+} // namespace packbed
