@@ -33,61 +33,15 @@ struct LatticeOptions {
     bool force = false;
 };
 
-/// `box:LX,LY,LZ`, `cylinder:D,H`, `annulus:D,DI,H` (0 < DI < D) or `periodic:LX,LY,H`,
-/// lengths in (0, limits::max_length].
-LatticeRegion parse_region(const std::string& text) {
-    const std::string allowed =
-        fmt::format("allowed: box:LX,LY,LZ, cylinder:D,H, annulus:D,DI,H (DI < D) or "
-                    "periodic:LX,LY,H with lengths > 0 and at most {:g}",
-                    limits::max_length);
-    const std::size_t colon = text.find(':');
-    const std::string shape = text.substr(0, colon);
-    const auto values =
-        colon == std::string::npos ? std::nullopt : comma_numbers(text.substr(colon + 1));
-    auto positive = [&] {
-        for (const double v : *values)
-            if (!(v > 0.0 && v <= limits::max_length))
-                return false;
-        return true;
-    };
-    if (values && shape == "box" && values->size() == 3 && positive())
-        return BoxRegion{{(*values)[0], (*values)[1], (*values)[2]}};
-    if (values && shape == "cylinder" && values->size() == 2 && positive())
-        return CylinderRegion{(*values)[0], (*values)[1]};
-    if (values && shape == "annulus" && values->size() == 3 && positive() &&
-        (*values)[1] < (*values)[0])
-        return AnnulusRegion{(*values)[0], (*values)[1], (*values)[2]};
-    if (values && shape == "periodic" && values->size() == 3 && positive())
-        return PeriodicRegion{(*values)[0], (*values)[1], (*values)[2]};
-    throw InvalidInput(fmt::format("--region '{}' is not allowed; {}", text, allowed));
-}
-
 int run_lattice(LatticeOptions& o) {
     for (const auto& [name, value] : lattice_types())
         if (name == o.type)
             o.params.type = value;
-    o.params.region = parse_region(o.region);
-    if (!o.origin.empty()) {
-        const auto xyz = comma_numbers(o.origin);
-        if (!xyz || xyz->size() != 3)
-            throw InvalidInput(fmt::format(
-                "--origin '{}' is not allowed; allowed: x,y,z (three finite numbers)", o.origin));
-        o.params.origin = Vec3{(*xyz)[0], (*xyz)[1], (*xyz)[2]};
-    }
+    o.params.region = parse_lattice_region(o.region);
+    if (!o.origin.empty())
+        o.params.origin = parse_lattice_origin(o.origin);
     o.params.keep = o.keep == "centres" ? LatticeKeep::centres : LatticeKeep::whole;
-    for (std::string_view rest = o.rotate; !rest.empty();) { // AXIS:DEGREES,AXIS:DEGREES...
-        const std::size_t comma = rest.find(',');
-        const std::string_view item = rest.substr(0, comma);
-        const auto angle =
-            item.size() > 2 && item[1] == ':' ? comma_numbers(item.substr(2)) : std::nullopt;
-        if (!angle || angle->size() != 1 || (item[0] != 'x' && item[0] != 'y' && item[0] != 'z'))
-            throw InvalidInput(fmt::format("--rotate '{}' is not allowed; allowed: AXIS:DEGREES "
-                                           "pairs separated by commas, AXIS x, y or z (e.g. "
-                                           "z:30,x:10)",
-                                           o.rotate));
-        o.params.rotations.emplace_back(item[0], angle->front());
-        rest = comma == std::string_view::npos ? std::string_view{} : rest.substr(comma + 1);
-    }
+    o.params.rotations = parse_rotations(o.rotate);
     o.params.validate();
     // Every check before the work.
     OutputDirectory out(o.out, "--out", OutputKind::directory, o.force);

@@ -140,4 +140,16 @@ LatticeContacts lattice_contacts(const Packing& packing, double tolerance = 1e-9
 LatticeContacts lattice_contacts(const Packing& packing, const Periodic& cell,
                                  double tolerance = 1e-9);
 
+/// \return the region of `text`: `box:LX,LY,LZ`, `cylinder:D,H`, `annulus:D,DI,H` (0 < DI < D)
+/// or `periodic:LX,LY,H`, lengths in (0, limits::max_length].
+/// \throws InvalidInput "--region '...' is not allowed; allowed: ..."
+LatticeRegion parse_lattice_region(std::string_view text);
+
+/// \return the origin of `text`, "x,y,z". \throws InvalidInput naming --origin
+Vec3 parse_lattice_origin(std::string_view text);
+
+/// \return the rotations of `text`, "AXIS:DEGREES" pairs separated by commas ("z:30,x:10"),
+/// in order; none for "". \throws InvalidInput naming --rotate
+std::vector<std::pair<char, double>> parse_rotations(std::string_view text);
+
 } // namespace packbed

@@ -11,6 +11,7 @@
 #include <fmt/format.h>
 
 #include "packbed/error.hpp"
+#include "packbed/files.hpp"
 #include "packbed/limits.hpp"
 #include "packbed/neighbor_list.hpp"
 
@@ -438,6 +439,61 @@ LatticeContacts lattice_contacts(const Packing& packing, const Periodic& cell, d
                 ++out.contacts[i];
         }
     return out;
+}
+
+LatticeRegion parse_lattice_region(std::string_view text) {
+    const std::string allowed =
+        fmt::format("allowed: box:LX,LY,LZ, cylinder:D,H, annulus:D,DI,H (DI < D) or "
+                    "periodic:LX,LY,H with lengths > 0 and at most {:g}",
+                    limits::max_length);
+    const std::size_t colon = text.find(':');
+    const std::string_view shape = text.substr(0, colon);
+    const auto values =
+        colon == std::string_view::npos ? std::nullopt : comma_numbers(text.substr(colon + 1));
+    auto positive = [&] {
+        for (const double v : *values)
+            if (!(v > 0.0 && v <= limits::max_length))
+                return false;
+        return true;
+    };
+    if (values && shape == "box" && values->size() == 3 && positive())
+        return BoxRegion{{(*values)[0], (*values)[1], (*values)[2]}};
+    if (values && shape == "cylinder" && values->size() == 2 && positive())
+        return CylinderRegion{(*values)[0], (*values)[1]};
+    if (values && shape == "annulus" && values->size() == 3 && positive() &&
+        (*values)[1] < (*values)[0])
+        return AnnulusRegion{(*values)[0], (*values)[1], (*values)[2]};
+    if (values && shape == "periodic" && values->size() == 3 && positive())
+        return PeriodicRegion{(*values)[0], (*values)[1], (*values)[2]};
+    throw InvalidInput(
+        fmt::format("--region '{}' is not allowed; {}", printable(text.substr(0, 80)), allowed));
+}
+
+Vec3 parse_lattice_origin(std::string_view text) {
+    const auto xyz = comma_numbers(text);
+    if (!xyz || xyz->size() != 3)
+        throw InvalidInput(
+            fmt::format("--origin '{}' is not allowed; allowed: x,y,z (three finite numbers)",
+                        printable(text.substr(0, 80))));
+    return Vec3{(*xyz)[0], (*xyz)[1], (*xyz)[2]};
+}
+
+std::vector<std::pair<char, double>> parse_rotations(std::string_view text) {
+    std::vector<std::pair<char, double>> rotations;
+    for (std::string_view rest = text; !rest.empty();) { // AXIS:DEGREES,AXIS:DEGREES...
+        const std::size_t comma = rest.find(',');
+        const std::string_view item = rest.substr(0, comma);
+        const auto angle =
+            item.size() > 2 && item[1] == ':' ? comma_numbers(item.substr(2)) : std::nullopt;
+        if (!angle || angle->size() != 1 || (item[0] != 'x' && item[0] != 'y' && item[0] != 'z'))
+            throw InvalidInput(fmt::format("--rotate '{}' is not allowed; allowed: AXIS:DEGREES "
+                                           "pairs separated by commas, AXIS x, y or z (e.g. "
+                                           "z:30,x:10)",
+                                           printable(text.substr(0, 80))));
+        rotations.emplace_back(item[0], angle->front());
+        rest = comma == std::string_view::npos ? std::string_view{} : rest.substr(comma + 1);
+    }
+    return rotations;
 }
 
 } // namespace packbed
