@@ -23,6 +23,9 @@ packages=(
   libbenchmark-dev          # benchmarks
   python3                   # bench/ scripts, examples/validate.py
   gnuplot-nox               # plots of examples/validate.py
+  python3-dev pybind11-dev  # the Python module (import packbed)
+  python3-numpy             # its arrays
+  python3-matplotlib        # the README's Python example plots with it
 )
 if [[ ${1:-} == --test ]]; then
   # ParaView reads particles.vtu and renders it headless (pvbatch under xvfb-run). In Debian 12
@@ -35,6 +38,7 @@ if [[ ${1:-} == --test ]]; then
   else
     packages+=(paraview python3-paraview xvfb)
   fi
+  packages+=(python3-pytest)  # the Python module's tests
   packages+=(lammps)        # reads the data files of packbed export (lmp)
   packages+=(liggghts)      # and LIGGGHTS reads them too
   packages+=(admesh)        # checks the STL surfaces of packbed export

@@ -73,11 +73,4 @@ CLI::Option* add_input_placement(CLI::App& app, InputPlacement& placement);
 CLI::Option* add_container_option(CLI::App& app, std::string& text, const std::string& meaning,
                                   const std::vector<std::string_view>& shapes = all_shapes);
 
-/// The container recorded in `summary.json` beside a particle file (written by
-/// `packbed generate`, `lattice`, `analyze`): any of the four shapes (read_bed_summary).
-/// \return nothing when there is no such file or it names no container.
-/// \throws InvalidInput naming the file when it exists but is not a regular file, not a
-/// summary, or has a container outside the limits
-std::optional<Container> container_beside(const std::filesystem::path& particles);
-
 } // namespace packbed::cli

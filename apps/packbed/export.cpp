@@ -20,6 +20,7 @@
 #include "packbed/limits.hpp"
 #include "packbed/openfoam.hpp"
 #include "packbed/output.hpp"
+#include "packbed/pipeline.hpp"
 #include "packbed/read.hpp"
 #include "packbed/surface.hpp"
 #include "packbed/volume.hpp"

@@ -96,14 +96,6 @@ void use_threads(unsigned long long threads) {
         omp_set_dynamic(1);
 }
 
-std::optional<Container> container_beside(const std::filesystem::path& particles) {
-    const std::filesystem::path summary = particles.parent_path() / "summary.json";
-    std::error_code ec;
-    if (!std::filesystem::exists(std::filesystem::symlink_status(summary, ec)))
-        return std::nullopt;
-    return read_bed_summary(summary).container;
-}
-
 namespace {
 
 /// --frame: a whole number other than 0 (1 the first frame, -1 the last).

@@ -3,6 +3,7 @@
 // less than the other nor a copy of this logic.
 #pragma once
 
+#include <filesystem>
 #include <functional>
 #include <optional>
 #include <string>
@@ -95,6 +96,13 @@ void set_child_watcher(std::function<void(pid_t)> watcher);
 
 // ---------------------------------------------------------------------------------------------
 // reading a bed
+
+/// The container recorded in `summary.json` beside a particle file (written by
+/// `packbed generate`, `lattice`, `analyze`): any of the four shapes (read_bed_summary).
+/// \return nothing when there is no such file or it names no container.
+/// \throws InvalidInput naming the file when it exists but is not a regular file, not a
+/// summary, or has a container outside the limits
+std::optional<Container> container_beside(const std::filesystem::path& particles);
 
 /// Refuse spheres that stick out of the container by more than `tolerance` (length units;
 /// Container::sticks_out: beyond a wall, or a centre outside a periodic cell) or below the floor.

@@ -1,5 +1,4 @@
-// A soft-sphere bed from a request to its files, and the checks of a bed read from a file
-// (pipeline.hpp).
+// A soft-sphere bed from a request to its files (pipeline.hpp).
 #include <filesystem>
 
 #include <fmt/format.h>
@@ -132,24 +131,6 @@ void stage_bed(OutputDirectory& out, const Packing& packing, const Container& co
     if (analyse)
         stage_analysis(out, packing, container, band_clearance, summary);
     out.stage("summary.json", summary.dump(2) + "\n");
-}
-
-void check_inside(const Packing& packing, const std::vector<std::size_t>& lines,
-                  std::string_view name, const Container& container, double tolerance,
-                  bool shifted) {
-    for (std::size_t i = 0; i < packing.size(); ++i) {
-        const Vec3& c = packing.centers[i];
-        const double r = packing.radii[i];
-        const double out_wall = container.sticks_out(c, r);
-        const double below = -(c.z - r);
-        if (out_wall > tolerance || below > tolerance)
-            throw InvalidInput(fmt::format(
-                "{}:{}: the sphere at ({}, {}, {}){} sticks out of the container ({}, "
-                "floor z = 0) by {:.4g}; allowed: up to {:.4g} (--outside-tolerance, in Dp)",
-                printable(name), i < lines.size() ? lines[i] : i + 1, c.x, c.y, c.z,
-                shifted ? " (from --axis and --floor)" : "", describe(container),
-                std::max(out_wall, below), tolerance));
-    }
 }
 
 } // namespace packbed

@@ -1,0 +1,624 @@
+// packbed._core: the library for Python (pybind11). A thin caller of the library's pipeline
+// (packbed/pipeline.hpp), as the command line is; python/packbed/__init__.py re-exports it.
+// Arrays: a Bed's centres and radii are numpy views of its own memory (no copy); everything
+// else is copied into new arrays.
+#include <csignal>
+#include <cstdint>
+#include <limits>
+#include <optional>
+#include <string>
+
+#include <fmt/format.h>
+#include <omp.h>
+#include <pybind11/functional.h>
+#include <pybind11/numpy.h>
+#include <pybind11/pybind11.h>
+#include <pybind11/stl.h>
+#include <pybind11/stl/filesystem.h>
+
+#include "packbed/analysis.hpp"
+#include "packbed/analysis_files.hpp"
+#include "packbed/bed_checks.hpp"
+#include "packbed/error.hpp"
+#include "packbed/files.hpp"
+#include "packbed/lattice.hpp"
+#include "packbed/limits.hpp"
+#include "packbed/output.hpp"
+#include "packbed/pipeline.hpp"
+#include "packbed/read.hpp"
+#include "packbed/summary.hpp"
+#include "packbed/version.hpp"
+#include "packbed/volume.hpp"
+
+namespace py = pybind11;
+using namespace packbed;
+
+namespace {
+
+/// A bed: spheres with their own radii, the container they are in (when known) and the record
+/// of how it was made or read (summary.json's content).
+struct Bed {
+    Packing packing;
+    std::optional<Container> container;
+    nlohmann::json summary = nlohmann::json::object();
+};
+
+/// One profile of an analysis as numpy arrays: each bin's interval [low, high] and its value.
+struct Profile {
+    py::array_t<double> low, high, value;
+};
+
+Profile profile(const std::vector<ProfileBin>& bins) {
+    Profile p{py::array_t<double>(static_cast<py::ssize_t>(bins.size())),
+              py::array_t<double>(static_cast<py::ssize_t>(bins.size())),
+              py::array_t<double>(static_cast<py::ssize_t>(bins.size()))};
+    auto low = p.low.mutable_unchecked<1>(), high = p.high.mutable_unchecked<1>(),
+         value = p.value.mutable_unchecked<1>();
+    for (std::size_t i = 0; i < bins.size(); ++i) {
+        const auto k = static_cast<py::ssize_t>(i);
+        low(k) = bins[i].low;
+        high(k) = bins[i].high;
+        value(k) = bins[i].value;
+    }
+    return p;
+}
+
+/// An analysis as Python sees it: the library's BedAnalysis, its numbers as summary.json has
+/// them, and the container it was measured in.
+struct Analysis {
+    BedAnalysis analysis;
+    nlohmann::json summary;
+    Container container;
+};
+
+/// JSON to Python objects, through Python's own json module (exact for every double: both
+/// write and read shortest round-trip text).
+py::object to_python(const nlohmann::json& value) {
+    return py::module_::import("json").attr("loads")(value.dump());
+}
+
+/// A whole number given to Python as `int`, checked with the library's wording.
+std::uint64_t whole(std::string_view option, long long value, long long low, long long high) {
+    if (value < low || value > high)
+        throw InvalidInput(fmt::format("--{}: {} is not allowed; allowed: a whole number from {} "
+                                       "to {}",
+                                       option, value, low, high));
+    return static_cast<std::uint64_t>(value);
+}
+
+/// The value of a named choice (update order, solver, ...), or InvalidInput naming them all.
+template <class T>
+T choice(std::string_view option, const std::string& name,
+         const std::vector<std::pair<std::string, T>>& choices) {
+    std::string names;
+    for (const auto& [n, value] : choices) {
+        if (n == name)
+            return value;
+        names += (names.empty() ? "" : ", ") + n;
+    }
+    throw InvalidInput(fmt::format("--{} '{}' is not allowed; allowed: {}", option,
+                                   printable(name.substr(0, 80)), names));
+}
+
+/// Run `work` without the GIL, checking for Ctrl-C (Python's SIGINT flag) from the calling
+/// thread through `control.should_stop`, which the library calls every mc_period iterations.
+/// A signal turns into KeyboardInterrupt; a progress callback's exception goes through.
+template <class Work>
+auto run_interruptible(RunControl& control, const py::object& progress, Work&& work) {
+    std::optional<py::error_already_set> callback_error;
+    bool interrupted = false;
+    control.should_stop = [&] {
+        py::gil_scoped_acquire gil;
+        if (PyErr_CheckSignals() != 0) {
+            PyErr_Clear();
+            interrupted = true;
+        }
+        return interrupted || callback_error.has_value();
+    };
+    if (!progress.is_none())
+        control.on_progress = [&](const Progress& p) {
+            py::gil_scoped_acquire gil;
+            if (callback_error)
+                return;
+            try {
+                py::dict report;
+                report["stage"] = std::string(p.stage);
+                report["iteration"] = p.iteration;
+                report["cg"] = p.cg;
+                report["max_overlap_pair"] = p.max_overlap_pair;
+                report["max_overlap_wall"] = p.max_overlap_wall;
+                report["mass_centre_z"] = p.mass_centre_z;
+                report["layer"] = p.layer;
+                report["layers"] = p.layers;
+                progress(report);
+            } catch (py::error_already_set& e) {
+                callback_error.emplace(std::move(e));
+            }
+        };
+    try {
+        py::gil_scoped_release released;
+        return work();
+    } catch (const Cancelled&) {
+        if (callback_error)
+            throw std::move(*callback_error);
+        if (interrupted) {
+            PyErr_SetNone(PyExc_KeyboardInterrupt);
+            throw py::error_already_set();
+        }
+        throw;
+    }
+}
+
+/// The threads of the library's parallel loops: at most `threads`, fewer while the machine is
+/// busy, as the command line's --threads (results do not depend on it). None: OpenMP's default.
+void use_threads(const std::optional<long long>& threads) {
+    if (!threads)
+        return;
+    omp_set_num_threads(static_cast<int>(whole("threads", *threads, 1, 1024)));
+    if (std::getenv("OMP_DYNAMIC") == nullptr)
+        omp_set_dynamic(1);
+}
+
+/// A container from its spec text, or InvalidInput naming `option`.
+Container container_of(std::string_view option, const std::string& spec) {
+    const auto parsed = parse_container(spec);
+    if (!parsed)
+        throw InvalidInput(fmt::format("--{} '{}' is not allowed; allowed: cylinder:D, box:LX,LY, "
+                                       "annulus:D,DI (0 < DI < D) or periodic:LX,LY, lengths > 0",
+                                       option, printable(spec.substr(0, 80))));
+    return parsed->container();
+}
+
+Bed generate(double aspect_ratio, const std::optional<std::string>& container, long long particles,
+             long long seed, double diameter, const std::string& sizes,
+             const std::string& fractions, double e0, double ck, double cg_step,
+             std::optional<double> overlap_low, std::optional<double> overlap_high,
+             double tolerance, long long mc_period, long long mc_window,
+             std::optional<double> mc_tolerance, const std::string& update,
+             const std::string& solver, double skin, double layer_height,
+             const std::optional<std::filesystem::path>& checkpoint,
+             std::optional<long long> max_iterations, double band_clearance,
+             std::optional<long long> threads, const py::object& progress,
+             const std::optional<std::filesystem::path>& out, bool force) {
+    GenerateRequest request;
+    SoftSphereParameters& p = request.params;
+    p.aspect_ratio = aspect_ratio;
+    p.particles = whole("particles", particles, 1, static_cast<long long>(limits::max_spheres));
+    p.seed = whole("seed", seed, 0, std::numeric_limits<long long>::max());
+    p.diameter = diameter;
+    p.e0 = e0;
+    p.ck = ck;
+    p.cg_step = cg_step;
+    p.overlap_low = overlap_low;
+    p.overlap_high = overlap_high;
+    p.tolerance = tolerance;
+    p.mc_period = static_cast<std::uint32_t>(whole("mc-period", mc_period, 1, 1'000'000));
+    p.mc_window = static_cast<std::uint32_t>(whole("mc-window", mc_window, 2, 10'000));
+    p.mc_tolerance = mc_tolerance;
+    p.update = choice("update", update, update_orders());
+    p.solver = choice("solver", solver, solvers());
+    p.skin = skin;
+    p.layer_height = layer_height;
+    if (max_iterations)
+        p.max_iterations =
+            whole("max-iterations", *max_iterations, 1, std::numeric_limits<long long>::max());
+    request.sizes = sizes;
+    request.fractions = choice("fractions", fractions, fraction_bases());
+    request.container = container.value_or("");
+    request.checkpoint = checkpoint ? checkpoint->string() : std::string();
+    if (!(band_clearance >= 0.0 && std::isfinite(band_clearance)))
+        throw InvalidInput(fmt::format("--band-clearance: {} is not allowed; allowed: a number "
+                                       ">= 0",
+                                       band_clearance));
+    request.band_clearance = band_clearance;
+    const PreparedGeneration prepared = prepare_generation(request);
+    std::optional<OutputDirectory> directory;
+    if (out)
+        directory.emplace(*out, "--out", OutputKind::directory, force);
+    use_threads(threads);
+    RunControl control;
+    GeneratedBed generated = run_interruptible(control, progress, [&] {
+        return run_generation(prepared, control, omp_get_max_threads(),
+                              directory ? &*directory : nullptr);
+    });
+    Bed bed{std::move(generated.result.packing), generated.result.container,
+            std::move(generated.summary)};
+    if (directory) {
+        stage_bed(*directory, bed.packing, *bed.container, band_clearance,
+                  bed.summary["void_fraction"].is_number(), bed.summary);
+        directory->commit();
+    }
+    return bed;
+}
+
+Bed read_bed(const std::filesystem::path& path, const std::string& format, long long frame,
+             std::optional<std::pair<double, double>> axis, double floor,
+             std::optional<double> diameter, const std::optional<std::string>& container,
+             double outside_tolerance) {
+    check_path("path", path);
+    ReadOptions options;
+    options.format = choice("format", format == "auto" ? "auto" : format, [] {
+        std::vector<std::pair<std::string, std::optional<ParticleFormat>>> formats{
+            {"auto", std::nullopt}};
+        for (const auto& [name, value] : particle_formats())
+            formats.emplace_back(name, value);
+        return formats;
+    }());
+    if (frame == 0)
+        throw InvalidInput("--frame: 0 is not allowed; allowed: a whole number other than 0: 1 "
+                           "the first frame, -1 the last");
+    options.frame = frame;
+    if (axis)
+        options.axis = {axis->first, axis->second};
+    options.floor = floor;
+    if (diameter)
+        options.radius = 0.5 * *diameter;
+    ParticleFile file = read_particles(path, options);
+    Bed bed{std::move(file.packing), std::nullopt, nlohmann::json::object()};
+    bed.container =
+        container ? std::optional(container_of("container", *container)) : container_beside(path);
+    if (bed.container && bed.packing.size() > 0) {
+        const double dp = diameter ? *diameter : bed.packing.mean_diameter();
+        check_inside(bed.packing, file.lines, path.string(), *bed.container, outside_tolerance * dp,
+                     axis.has_value() || floor != 0.0);
+    }
+    bed.summary["particles_file"] = path.string();
+    bed.summary["particles"] = bed.packing.size();
+    bed.summary["frame"] = file.frame;
+    if (bed.container)
+        bed.summary["container"] = container_summary(*bed.container);
+    return bed;
+}
+
+/// A bed from numpy arrays: centres (N x 3) and radii (N), or one diameter for all.
+Bed from_arrays(
+    const py::array_t<double, py::array::c_style | py::array::forcecast>& centers,
+    const std::optional<py::array_t<double, py::array::c_style | py::array::forcecast>>& radii,
+    std::optional<double> diameter, const std::optional<std::string>& container) {
+    if (centers.ndim() != 2 || centers.shape(1) != 3)
+        throw InvalidInput(fmt::format("centers: an array of shape ({}) is not allowed; "
+                                       "allowed: shape (N, 3)",
+                                       centers.ndim() == 1 ? fmt::format("{},", centers.shape(0))
+                                                           : std::string("...")));
+    const auto n = static_cast<std::size_t>(centers.shape(0));
+    if (n > limits::max_spheres)
+        throw InvalidInput(fmt::format("centers: {} spheres are not allowed; allowed: at most {}",
+                                       n, limits::max_spheres));
+    if (radii.has_value() == diameter.has_value())
+        throw InvalidInput("radii and diameter: exactly one is allowed (radii, an array of N "
+                           "radii, or diameter, one for every sphere)");
+    if (radii && (radii->ndim() != 1 || static_cast<std::size_t>(radii->shape(0)) != n))
+        throw InvalidInput(fmt::format("radii: an array of {} values for {} centres is not "
+                                       "allowed; allowed: one radius per centre",
+                                       radii->size(), n));
+    Bed bed;
+    bed.packing.centers.resize(n);
+    bed.packing.radii.resize(n);
+    const auto c = centers.unchecked<2>();
+    for (std::size_t i = 0; i < n; ++i) {
+        const auto k = static_cast<py::ssize_t>(i);
+        const Vec3 v{c(k, 0), c(k, 1), c(k, 2)};
+        const double r = radii ? radii->at(k) : 0.5 * *diameter;
+        if (!(std::isfinite(v.x) && std::isfinite(v.y) && std::isfinite(v.z) &&
+              std::abs(v.x) <= limits::max_length && std::abs(v.y) <= limits::max_length &&
+              std::abs(v.z) <= limits::max_length))
+            throw InvalidInput(fmt::format("centers[{}]: ({}, {}, {}) is not allowed; allowed: "
+                                           "finite numbers within {:g}",
+                                           i, v.x, v.y, v.z, limits::max_length));
+        if (!(r >= 0.5 * limits::min_diameter && r <= 0.5 * limits::max_diameter))
+            throw InvalidInput(fmt::format("radii[{}]: {} is not allowed; allowed: {:g} to {:g}", i,
+                                           r, 0.5 * limits::min_diameter,
+                                           0.5 * limits::max_diameter));
+        bed.packing.centers[i] = v;
+        bed.packing.radii[i] = r;
+    }
+    if (container) {
+        bed.container = container_of("container", *container);
+        check_inside(bed.packing, {}, "centers", *bed.container,
+                     0.01 * (n > 0 ? bed.packing.mean_diameter() : 0.0), false);
+        bed.summary["container"] = container_summary(*bed.container);
+    }
+    bed.summary["particles"] = n;
+    return bed;
+}
+
+Analysis analyze(const Bed& bed, const std::optional<std::string>& container,
+                 std::optional<std::pair<double, double>> band, double band_clearance,
+                 std::optional<double> diameter, double shell_width, double slab_height,
+                 double centre_bin, double contact_tolerance, double rdf_range, double rdf_bin,
+                 std::optional<long long> threads, const std::optional<std::filesystem::path>& out,
+                 bool force) {
+    const std::optional<Container> given =
+        container ? std::optional(container_of("container", *container)) : bed.container;
+    if (!given)
+        throw InvalidInput("--container is needed: this bed has no container (give container="
+                           "'cylinder:D', 'box:LX,LY', 'annulus:D,DI' or 'periodic:LX,LY')");
+    AnalysisOptions options;
+    options.diameter = diameter;
+    options.band_clearance = band_clearance;
+    if (band)
+        options.band = Band{band->first, band->second};
+    options.shell_width = shell_width;
+    options.slab_height = slab_height;
+    options.centre_bin = centre_bin;
+    options.contact_tolerance = contact_tolerance;
+    options.rdf_range = rdf_range;
+    options.rdf_bin = rdf_bin;
+    std::optional<OutputDirectory> directory;
+    if (out)
+        directory.emplace(*out, "--out", OutputKind::directory, force);
+    use_threads(threads);
+    Analysis result{{}, {}, *given};
+    {
+        py::gil_scoped_release released;
+        result.analysis = analyze_bed(bed.packing, *given, options);
+    }
+    result.summary = analysis_summary(result.analysis, options);
+    result.summary["warnings"] = analysis_warnings(bed.packing, *given, result.analysis);
+    result.summary["container"] = container_summary(*given);
+    if (directory) {
+        for (const auto& [name, text] : analysis_files(result.analysis, *given))
+            directory->stage(name, text);
+        if (const std::string why = stage_plots(*directory, result.analysis, *given); !why.empty())
+            result.summary["plots"] = why;
+        directory->stage("summary.json", result.summary.dump(2) + "\n");
+        directory->commit();
+    }
+    return result;
+}
+
+Bed lattice(const std::string& type, const std::string& region, double diameter,
+            const std::optional<std::string>& origin, const std::string& keep,
+            const std::string& rotate, double band_clearance, bool analysis,
+            const std::optional<std::filesystem::path>& out, bool force) {
+    LatticeParameters p;
+    p.type = choice("type", type, lattice_types());
+    p.region = parse_lattice_region(region);
+    p.diameter = diameter;
+    if (origin)
+        p.origin = parse_lattice_origin(*origin);
+    p.keep = choice("keep", keep,
+                    std::vector<std::pair<std::string, LatticeKeep>>{
+                        {"whole", LatticeKeep::whole}, {"centres", LatticeKeep::centres}});
+    p.rotations = parse_rotations(rotate);
+    p.validate();
+    std::optional<OutputDirectory> directory;
+    if (out)
+        directory.emplace(*out, "--out", OutputKind::directory, force);
+    Bed bed{fill_lattice(p), region_container(p.region), nlohmann::json()};
+    bed.summary = lattice_summary(p, bed.packing);
+    if (directory) {
+        stage_bed(*directory, bed.packing, *bed.container, band_clearance,
+                  analysis && !bed.packing.centers.empty() &&
+                      region_height(p.region) > 2.0 * band_clearance * p.diameter,
+                  bed.summary);
+        directory->commit();
+    }
+    return bed;
+}
+
+void write_bed(Bed& bed, const std::filesystem::path& out, bool force, bool analysis,
+               double band_clearance) {
+    if (!bed.container)
+        throw InvalidInput("write: this bed has no container; allowed: a bed made by generate "
+                           "or lattice, or read or built with container=...");
+    OutputDirectory directory(out, "--out", OutputKind::directory, force);
+    nlohmann::json summary = bed.summary;
+    const bool tall = bed.packing.size() > 0 &&
+                      bed_top(bed.packing) > 2.0 * band_clearance * bed.packing.mean_diameter();
+    stage_bed(directory, bed.packing, *bed.container, band_clearance, analysis && tall, summary);
+    directory.commit();
+}
+
+} // namespace
+
+PYBIND11_MODULE(_core, m) {
+    m.doc() = "packbed's library: packed beds of spheres generated, read, measured and written";
+    m.attr("__version__") = std::string(version);
+
+    static py::exception<ConvergenceError> convergence(m, "ConvergenceError", PyExc_RuntimeError);
+    py::register_exception_translator([](std::exception_ptr p) {
+        try {
+            if (p)
+                std::rethrow_exception(p);
+        } catch (const InvalidInput& e) {
+            PyErr_SetString(PyExc_ValueError, e.what());
+        } catch (const ConvergenceError& e) {
+            convergence(e.what());
+        } catch (const Cancelled&) {
+            PyErr_SetNone(PyExc_KeyboardInterrupt);
+        }
+    });
+
+    py::class_<Bed>(m, "Bed", R"(A bed of spheres: centres, radii, its container and its record.
+
+Build one from arrays: Bed(centers, radii=None, diameter=None, container=None), with centers
+of shape (N, 3), and either radii (N) or one diameter for every sphere; container a spec
+string ('cylinder:D', 'box:LX,LY', 'annulus:D,DI', 'periodic:LX,LY'), the floor at z = 0.)")
+        .def(py::init(&from_arrays), py::arg("centers"), py::arg("radii") = py::none(),
+             py::kw_only(), py::arg("diameter") = py::none(), py::arg("container") = py::none())
+        .def_property_readonly(
+            "centers",
+            [](py::object self) {
+                Bed& bed = self.cast<Bed&>();
+                static_assert(sizeof(Vec3) == 3 * sizeof(double));
+                return py::array_t<double>(
+                    {static_cast<py::ssize_t>(bed.packing.size()), py::ssize_t{3}},
+                    {static_cast<py::ssize_t>(sizeof(Vec3)),
+                     static_cast<py::ssize_t>(sizeof(double))},
+                    reinterpret_cast<double*>(bed.packing.centers.data()), self);
+            },
+            "The centres, a numpy array (N, 3) viewing the bed's own memory (no copy).")
+        .def_property_readonly(
+            "radii",
+            [](py::object self) {
+                Bed& bed = self.cast<Bed&>();
+                return py::array_t<double>(static_cast<py::ssize_t>(bed.packing.size()),
+                                           bed.packing.radii.data(), self);
+            },
+            "The radii, a numpy array (N) viewing the bed's own memory (no copy).")
+        .def_property_readonly(
+            "container",
+            [](const Bed& bed) -> std::optional<std::string> {
+                if (!bed.container)
+                    return std::nullopt;
+                return bed.container->spec();
+            },
+            "The container as a spec string ('cylinder:D', ...), or None when unknown.")
+        .def_property_readonly(
+            "summary", [](const Bed& bed) { return to_python(bed.summary); },
+            "The bed's record as a dict: what summary.json holds (for a generated bed the "
+            "parameters, the stages, the void fraction, the largest overlaps).")
+        .def("__len__", [](const Bed& bed) { return bed.packing.size(); })
+        .def("write", &write_bed, py::arg("out"), py::kw_only(), py::arg("force") = false,
+             py::arg("analysis") = true, py::arg("band_clearance") = 1.0,
+             R"(Write the bed as `packbed generate` does: particles.csv, particles.vtu, the
+analysis (tables and plots, when the bed is taller than twice band_clearance) and summary.json
+in the directory `out` (new or empty; force=True replaces a non-empty one whole).)");
+
+    py::class_<Profile>(m, "Profile", "A profile: each bin's interval [low, high] and its value.")
+        .def_readonly("low", &Profile::low, "The bins' lower ends (length), numpy array.")
+        .def_readonly("high", &Profile::high, "The bins' upper ends (length), numpy array.")
+        .def_readonly("value", &Profile::value, "The bins' values, numpy array.")
+        .def_property_readonly(
+            "middle",
+            [](const Profile& p) -> py::array_t<double> {
+                return py::array_t<double>(
+                    py::module_::import("numpy").attr("add")(p.low, p.high).attr("__mul__")(0.5));
+            },
+            "The bins' middles (length), numpy array.");
+
+    py::class_<Analysis>(m, "Analysis", "What analyze measured.")
+        .def_property_readonly(
+            "void_fraction", [](const Analysis& a) { return a.analysis.void_fraction; },
+            "The overall void fraction in the band, exact.")
+        .def_property_readonly(
+            "band",
+            [](const Analysis& a) {
+                return std::make_pair(a.analysis.band.z_low, a.analysis.band.z_high);
+            },
+            "The band (z_low, z_high) the numbers refer to (length).")
+        .def_property_readonly(
+            "diameter", [](const Analysis& a) { return a.analysis.diameter; },
+            "The reference diameter Dp (length).")
+        .def_property_readonly(
+            "radial_void_fraction",
+            [](const Analysis& a) { return profile(a.analysis.radial_void_fraction); },
+            "e(d) against the distance from the wall (a container of one wall; see walls).")
+        .def_property_readonly(
+            "centre_distribution",
+            [](const Analysis& a) { return profile(a.analysis.centre_distribution); },
+            "The density of centres against the distance from the wall over its mean.")
+        .def_property_readonly(
+            "axial_void_fraction",
+            [](const Analysis& a) { return profile(a.analysis.axial_void_fraction); },
+            "e(z) over slabs from the floor to the top.")
+        .def_property_readonly(
+            "pair_correlation",
+            [](const Analysis& a) { return profile(a.analysis.pair_correlation); },
+            "g(r) against the centre distance, corrected for the container.")
+        .def_property_readonly(
+            "walls",
+            [](const Analysis& a) {
+                py::dict walls;
+                for (const WallAnalysis& w : a.analysis.walls) {
+                    py::dict wall;
+                    wall["void_fraction"] = profile(w.void_fraction);
+                    wall["centre_distribution"] = profile(w.centre_distribution);
+                    wall["wall_contacts"] = w.wall_contacts;
+                    walls[py::str(w.name)] = wall;
+                }
+                return walls;
+            },
+            "Each profile wall's name ('wall', or 'outer' and 'inner' in an annulus) to its "
+            "void_fraction and centre_distribution profiles and wall_contacts.")
+        .def_property_readonly(
+            "coordination_histogram",
+            [](const Analysis& a) {
+                const auto& h = a.analysis.coordination.histogram;
+                py::array_t<std::int64_t> out(static_cast<py::ssize_t>(h.size()));
+                for (std::size_t k = 0; k < h.size(); ++k)
+                    out.mutable_at(static_cast<py::ssize_t>(k)) = static_cast<std::int64_t>(h[k]);
+                return out;
+            },
+            "histogram[k]: spheres (centre in the band) with k sphere-sphere contacts.")
+        .def_property_readonly(
+            "summary", [](const Analysis& a) { return to_python(a.summary); },
+            "The numbers as `packbed analyze` writes them in summary.json (band, void fraction, "
+            "coordination, rattlers, wall contacts, options, warnings).");
+
+    m.def("generate", &generate, py::kw_only(), py::arg("aspect_ratio") = 5.0,
+          py::arg("container") = py::none(), py::arg("particles") = 500, py::arg("seed") = 1,
+          py::arg("diameter") = 1.0, py::arg("sizes") = "mono", py::arg("fractions") = "volume",
+          py::arg("e0") = SoftSphereParameters{}.e0, py::arg("ck") = SoftSphereParameters{}.ck,
+          py::arg("cg_step") = SoftSphereParameters{}.cg_step, py::arg("overlap_low") = py::none(),
+          py::arg("overlap_high") = py::none(),
+          py::arg("tolerance") = SoftSphereParameters{}.tolerance,
+          py::arg("mc_period") = SoftSphereParameters{}.mc_period,
+          py::arg("mc_window") = SoftSphereParameters{}.mc_window,
+          py::arg("mc_tolerance") = py::none(),
+          py::arg("update") = to_string(SoftSphereParameters{}.update),
+          py::arg("solver") = to_string(SoftSphereParameters{}.solver),
+          py::arg("skin") = SoftSphereParameters{}.skin,
+          py::arg("layer_height") = SoftSphereParameters{}.layer_height,
+          py::arg("checkpoint") = py::none(), py::arg("max_iterations") = py::none(),
+          py::arg("band_clearance") = 1.0, py::arg("threads") = py::none(),
+          py::arg("progress") = py::none(), py::arg("out") = py::none(), py::arg("force") = false,
+          R"(Pack spheres in a container with the soft-sphere algorithm of Salvat et al. (2005).
+
+The keyword arguments are `packbed generate`'s options in snake_case, with the same defaults
+(`packbed generate --help`, docs/generate.md): aspect_ratio a = D/Dp (or container, a spec
+string such as 'cylinder:0.05', 'box:LX,LY', 'annulus:D,DI', 'periodic:LX,LY' in the unit of
+diameter), particles Np, seed, diameter Dp, sizes (a --sizes spec, docs/sizes.md), fractions
+('volume' or 'number'), e0, ck, cg_step, overlap_low, overlap_high, tolerance, mc_period,
+mc_window, mc_tolerance (None: the solver's schedule), update ('in-place' or 'simultaneous'),
+solver ('fire' or 'paper'), skin, layer_height, checkpoint (a file), max_iterations,
+band_clearance. threads: at most this many threads (None: all; the result does not depend on
+it). progress: called as progress(report) every mc_period iterations with a dict (stage,
+iteration, cg, max_overlap_pair, max_overlap_wall, mass_centre_z, layer, layers). out: a
+directory to write what `packbed generate` writes there (None: nothing is written); force:
+replace a non-empty one.
+
+Returns a Bed (same seed and options: the same bits as the command line). Raises ValueError
+for a bad value (the message names the option, the value and what is allowed),
+ConvergenceError when the run does not converge, KeyboardInterrupt on Ctrl-C (nothing is
+written). The GIL is released while it runs.)");
+
+    m.def("read", &read_bed, py::arg("path"), py::kw_only(), py::arg("format") = "auto",
+          py::arg("frame") = -1, py::arg("axis") = py::none(), py::arg("floor") = 0.0,
+          py::arg("diameter") = py::none(), py::arg("container") = py::none(),
+          py::arg("outside_tolerance") = 0.01,
+          R"(Read a bed from a file, as `packbed analyze` does: CSV/TSV tables, XYZ, LAMMPS and
+LIGGGHTS dumps and data files, each gzip-compressed or not (format 'auto' detects it).
+
+frame: 1 the first, -1 the last. axis (X, Y) and floor: the container's axis and floor,
+subtracted from every centre. diameter: of spheres in files without a size column. container: a
+spec string; None: the one summary.json beside the file records, if any. Spheres sticking out of
+the container by more than outside_tolerance Dp raise ValueError, as every bad input does.)");
+
+    m.def("analyze", &analyze, py::arg("bed"), py::kw_only(), py::arg("container") = py::none(),
+          py::arg("band") = py::none(), py::arg("band_clearance") = 1.0,
+          py::arg("diameter") = py::none(), py::arg("shell_width") = AnalysisOptions{}.shell_width,
+          py::arg("slab_height") = AnalysisOptions{}.slab_height,
+          py::arg("centre_bin") = AnalysisOptions{}.centre_bin,
+          py::arg("contact_tolerance") = AnalysisOptions{}.contact_tolerance,
+          py::arg("rdf_range") = AnalysisOptions{}.rdf_range,
+          py::arg("rdf_bin") = AnalysisOptions{}.rdf_bin, py::arg("threads") = py::none(),
+          py::arg("out") = py::none(), py::arg("force") = false,
+          R"(Measure a bed as `packbed analyze` does: the overall void fraction (exact), the
+radial (wall) and axial void fraction profiles, the centre distribution, contacts and
+coordination, and g(r), in the band band_clearance Dp clear of the floor and the top (or band =
+(z_low, z_high)). container: a spec string; None: the bed's own. Lengths in Dp are in units of
+diameter (None: the mean sphere diameter). out: a directory to write the tables, plots and
+summary.json to (None: nothing is written). Returns an Analysis with numpy arrays.)");
+
+    m.def("lattice", &lattice, py::kw_only(), py::arg("type") = "diamond",
+          py::arg("region") = "box:10,10,10", py::arg("diameter") = 1.0,
+          py::arg("origin") = py::none(), py::arg("keep") = "whole", py::arg("rotate") = "",
+          py::arg("band_clearance") = 1.0, py::arg("analysis") = true, py::arg("out") = py::none(),
+          py::arg("force") = false,
+          R"(A regular packing of touching balls filling a region, as `packbed lattice`: type
+'diamond' (tetrahedral, Tsayger 2013), 'sc', 'bcc', 'fcc' or 'hcp'; region 'box:LX,LY,LZ',
+'cylinder:D,H', 'annulus:D,DI,H' or 'periodic:LX,LY,H'; origin 'x,y,z'; keep 'whole' or
+'centres'; rotate 'AXIS:DEGREES,...'. out: a directory to write what the command writes.)");
+}

@@ -1,0 +1,37 @@
+"""packbed: packed beds of spheres, generated, read, measured and written.
+
+The library of the `packbed` command line, for Python, with numpy arrays:
+
+    import packbed
+    bed = packbed.generate(aspect_ratio=5, particles=500, seed=1)
+    bed.centers, bed.radii            # numpy views of the bed (no copy)
+    a = packbed.analyze(bed)          # profiles as numpy arrays, a.summary the numbers
+    bed.write("my-bed")               # what `packbed generate` writes
+
+Bad values raise ValueError with the command line's message, a run that does not converge
+raises packbed.ConvergenceError, and Ctrl-C raises KeyboardInterrupt. See help(packbed.generate).
+"""
+
+from ._core import (
+    Analysis,
+    Bed,
+    ConvergenceError,
+    Profile,
+    __version__,
+    analyze,
+    generate,
+    lattice,
+    read,
+)
+
+__all__ = [
+    "Analysis",
+    "Bed",
+    "ConvergenceError",
+    "Profile",
+    "__version__",
+    "analyze",
+    "generate",
+    "lattice",
+    "read",
+]

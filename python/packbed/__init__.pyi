@@ -1,0 +1,135 @@
+# Type stubs of the packbed module (python/module.cpp): names and types for editors.
+from typing import Any, Callable, Dict, Optional, Tuple
+
+import numpy as np
+import numpy.typing as npt
+
+__version__: str
+
+class ConvergenceError(RuntimeError): ...
+
+class Bed:
+    def __init__(
+        self,
+        centers: npt.ArrayLike,
+        radii: Optional[npt.ArrayLike] = None,
+        *,
+        diameter: Optional[float] = None,
+        container: Optional[str] = None,
+    ) -> None: ...
+    @property
+    def centers(self) -> npt.NDArray[np.float64]: ...
+    @property
+    def radii(self) -> npt.NDArray[np.float64]: ...
+    @property
+    def container(self) -> Optional[str]: ...
+    @property
+    def summary(self) -> Dict[str, Any]: ...
+    def __len__(self) -> int: ...
+    def write(
+        self, out: str, *, force: bool = False, analysis: bool = True, band_clearance: float = 1.0
+    ) -> None: ...
+
+class Profile:
+    @property
+    def low(self) -> npt.NDArray[np.float64]: ...
+    @property
+    def high(self) -> npt.NDArray[np.float64]: ...
+    @property
+    def value(self) -> npt.NDArray[np.float64]: ...
+    @property
+    def middle(self) -> npt.NDArray[np.float64]: ...
+
+class Analysis:
+    @property
+    def void_fraction(self) -> float: ...
+    @property
+    def band(self) -> Tuple[float, float]: ...
+    @property
+    def diameter(self) -> float: ...
+    @property
+    def radial_void_fraction(self) -> Profile: ...
+    @property
+    def centre_distribution(self) -> Profile: ...
+    @property
+    def axial_void_fraction(self) -> Profile: ...
+    @property
+    def pair_correlation(self) -> Profile: ...
+    @property
+    def walls(self) -> Dict[str, Dict[str, Any]]: ...
+    @property
+    def coordination_histogram(self) -> npt.NDArray[np.int64]: ...
+    @property
+    def summary(self) -> Dict[str, Any]: ...
+
+def generate(
+    *,
+    aspect_ratio: float = 5.0,
+    container: Optional[str] = None,
+    particles: int = 500,
+    seed: int = 1,
+    diameter: float = 1.0,
+    sizes: str = "mono",
+    fractions: str = "volume",
+    e0: float = 0.47,
+    ck: float = 0.3,
+    cg_step: float = 1.25e-7,
+    overlap_low: Optional[float] = None,
+    overlap_high: Optional[float] = None,
+    tolerance: float = 1e-4,
+    mc_period: int = 100,
+    mc_window: int = 10,
+    mc_tolerance: Optional[float] = None,
+    update: str = "simultaneous",
+    solver: str = "fire",
+    skin: float = 0.1,
+    layer_height: float = 30.0,
+    checkpoint: Optional[str] = None,
+    max_iterations: Optional[int] = None,
+    band_clearance: float = 1.0,
+    threads: Optional[int] = None,
+    progress: Optional[Callable[[Dict[str, Any]], None]] = None,
+    out: Optional[str] = None,
+    force: bool = False,
+) -> Bed: ...
+def read(
+    path: str,
+    *,
+    format: str = "auto",
+    frame: int = -1,
+    axis: Optional[Tuple[float, float]] = None,
+    floor: float = 0.0,
+    diameter: Optional[float] = None,
+    container: Optional[str] = None,
+    outside_tolerance: float = 0.01,
+) -> Bed: ...
+def analyze(
+    bed: Bed,
+    *,
+    container: Optional[str] = None,
+    band: Optional[Tuple[float, float]] = None,
+    band_clearance: float = 1.0,
+    diameter: Optional[float] = None,
+    shell_width: float = 0.02,
+    slab_height: float = 0.05,
+    centre_bin: float = 0.02,
+    contact_tolerance: float = 1e-3,
+    rdf_range: float = 3.0,
+    rdf_bin: float = 0.02,
+    threads: Optional[int] = None,
+    out: Optional[str] = None,
+    force: bool = False,
+) -> Analysis: ...
+def lattice(
+    *,
+    type: str = "diamond",
+    region: str = "box:10,10,10",
+    diameter: float = 1.0,
+    origin: Optional[str] = None,
+    keep: str = "whole",
+    rotate: str = "",
+    band_clearance: float = 1.0,
+    analysis: bool = True,
+    out: Optional[str] = None,
+    force: bool = False,
+) -> Bed: ...
