@@ -29,6 +29,7 @@
 #include "packbed/summary.hpp"
 #include "packbed/version.hpp"
 #include "packbed/volume.hpp"
+#include "packbed/voxel.hpp"
 
 namespace py = pybind11;
 using namespace packbed;
@@ -410,6 +411,65 @@ void write_bed(Bed& bed, const std::filesystem::path& out, bool force, bool anal
     directory.commit();
 }
 
+/// A vector's memory handed to numpy without a copy: the array owns the vector through a
+/// capsule.
+template <class T>
+py::array owned_array(std::vector<T>&& data, const VoxelGrid& grid, py::dtype dtype) {
+    auto* owner = new std::vector<T>(std::move(data));
+    py::capsule free(owner, [](void* p) { delete static_cast<std::vector<T>*>(p); });
+    const auto [nx, ny, nz] = grid.count;
+    const auto item = static_cast<py::ssize_t>(sizeof(T));
+    return py::array(
+        dtype,
+        {static_cast<py::ssize_t>(nx), static_cast<py::ssize_t>(ny), static_cast<py::ssize_t>(nz)},
+        {static_cast<py::ssize_t>(ny * nz) * item, static_cast<py::ssize_t>(nz) * item, item},
+        owner->data(), free);
+}
+
+py::array voxelize_bed(const Bed& bed, double voxel_size,
+                       std::optional<std::array<double, 6>> region, const std::string& kind,
+                       const std::optional<std::string>& container,
+                       std::optional<long long> threads,
+                       const std::optional<std::filesystem::path>& out) {
+    const std::optional<Container> given =
+        container ? std::optional(container_of("container", *container)) : bed.container;
+    if (!given)
+        throw InvalidInput("--container is needed: this bed has no container (give container="
+                           "'cylinder:D', 'box:LX,LY', 'annulus:D,DI' or 'periodic:LX,LY')");
+    if (kind != "binary" && kind != "fraction")
+        throw InvalidInput(fmt::format("--kind '{}' is not allowed; allowed: binary, fraction",
+                                       printable(kind.substr(0, 80))));
+    std::optional<ImageFormat> format;
+    if (out) {
+        format = image_format(*out);
+        if (!format)
+            throw InvalidInput(fmt::format("--out {}: the extension is not allowed; allowed: "
+                                           ".npy, .tif (or .tiff) or .raw (with a .raw.json "
+                                           "header)",
+                                           printable(out->native())));
+    }
+    const bool binary = kind == "binary";
+    // every check before the work
+    voxel_grid(bed.packing, *given, voxel_size, region, binary ? 1 : sizeof(double));
+    std::optional<OutputDirectory> directory;
+    if (out)
+        directory.emplace(out->parent_path().empty() ? "." : out->parent_path(), "--out",
+                          OutputKind::files);
+    use_threads(threads);
+    VoxelImage image;
+    {
+        py::gil_scoped_release released;
+        image = voxelize(bed.packing, *given, voxel_size, region, binary);
+    }
+    if (directory) {
+        stage_image(*directory, out->filename().string(), *format, image);
+        directory->commit();
+    }
+    if (binary)
+        return owned_array(std::move(image.pore), image.grid, py::dtype("bool"));
+    return owned_array(std::move(image.fraction), image.grid, py::dtype("float64"));
+}
+
 } // namespace
 
 PYBIND11_MODULE(_core, m) {
@@ -611,6 +671,20 @@ coordination, and g(r), in the band band_clearance Dp clear of the floor and the
 (z_low, z_high)). container: a spec string; None: the bed's own. Lengths in Dp are in units of
 diameter (None: the mean sphere diameter). out: a directory to write the tables, plots and
 summary.json to (None: nothing is written). Returns an Analysis with numpy arrays.)");
+
+    m.def("voxelize", &voxelize_bed, py::arg("bed"), py::kw_only(), py::arg("voxel_size"),
+          py::arg("region") = py::none(), py::arg("kind") = "binary",
+          py::arg("container") = py::none(), py::arg("threads") = py::none(),
+          py::arg("out") = py::none(),
+          R"(A bed as a voxel image, as `packbed voxelize`: a numpy array of shape (nx, ny, nz),
+im[i, j, k] the voxel [x0 + i h, x0 + (i + 1) h] x ... (h = voxel_size).
+
+kind 'binary': bool, True where the voxel's centre is pore space (inside the container and in
+no sphere), False where it is solid (a sphere, or outside the container), as PoreSpy expects.
+kind 'fraction': float64, each voxel's solid fraction computed exactly from the spheres (closed
+form); its sum times h^3 is the spheres' volume in the grid's box. region: (xlow, ylow, zlow,
+xhigh, yhigh, zhigh); None: the container across and the floor to the bed's top. out: also write
+it to a .npy, .tif or .raw (+ .raw.json) file. The array owns its memory (no copy is made).)");
 
     m.def("lattice", &lattice, py::kw_only(), py::arg("type") = "diamond",
           py::arg("region") = "box:10,10,10", py::arg("diameter") = 1.0,

@@ -220,6 +220,18 @@ data = open(os.path.join(repo, "results/bulk/bed.data")).read()
 check("0 0.016 xlo xhi" in data and "boundary        p p f" in
       open(os.path.join(repo, "results/bulk/bed.data.lammps.in")).read(),
       "LAMMPS gets the cell as its box, periodic in x and y")
+# The Python example: the module's bed, its profile plotted, its voxel images; the study.
+py = log_of("packbed.voxelize")
+m = re.search(r"500 spheres, centres \(500, 3\) void fraction ([0-9.]+)", py)
+check(m is not None and abs(float(m.group(1)) - summary("results/a5-n500")["void_fraction"]) < 1e-15,
+      "Python: generate(aspect_ratio=5, particles=500, seed=1) is the first command's bed")
+m = re.search(r"binary image ([0-9.]+) exact ([0-9.]+)", py)
+check(m is not None and abs(float(m.group(1)) - float(m.group(2))) < 0.01 and 0.3 < float(m.group(2)) < 0.5,
+      "Python: the box's porosity from the binary and the exact image agree within 0.01")
+check(os.path.getsize(os.path.join(repo, "results/python-radial.png")) > 10000 and
+      os.path.getsize(os.path.join(repo, "results/void-fraction-study.png")) > 10000,
+      "Python: the profile and the study are plotted")
+
 if failures:
     sys.exit(f"check-readme: {len(failures)} check(s) failed")
 print("check-readme: every README command ran and its outputs hold")

@@ -277,7 +277,7 @@ TEST_P(CliBadInput, Exit2OneLineNamingTheInputNothingLeft) {
 }
 
 const std::string subcommands =
-    "allowed: generate, lattice, hydraulics, export, analyze, correlations";
+    "allowed: generate, lattice, hydraulics, export, analyze, correlations, voxelize";
 const std::string a_path = "allowed: a path of at most 4095 bytes without control characters "
                            "(newline, tab, ...)";
 const std::string regular = "allowed: a readable regular file";
@@ -325,11 +325,14 @@ INSTANTIATE_TEST_SUITE_P(
               "packbed: --config 'a\\x1b[31mb.toml' is not allowed (a control character in the "
               "path); " +
                   a_path),
+        exact("voxelize @D/bed.csv --voxel-size 0.1 -o @D/im.png",
+              "packbed voxelize: --out @D/im.png: the extension is not allowed; allowed: .npy, .tif (or "
+              ".tiff) or .raw (with a .raw.json header)"),
         exact("--config range.toml generate",
               "packbed: --aspect-ratio: 0.5 is not allowed; allowed: a number in [1, 10000]"),
         exact("--config range.toml",
               "packbed: a subcommand is required; allowed: generate, lattice, hydraulics, "
-              "export, analyze, correlations"),
+              "export, analyze, correlations, voxelize"),
         exact("generate --config @D/unknown.toml",
               "packbed: --config @D/unknown.toml: line 2: unknown key 'warp_speed'; allowed: "
               "aspect-ratio, "

@@ -23,6 +23,7 @@ Command register_correlations(CLI::App& parent);
 Command register_lattice(CLI::App& parent);
 Command register_hydraulics(CLI::App& parent);
 Command register_export(CLI::App& parent);
+Command register_voxelize(CLI::App& parent);
 
 namespace {
 
@@ -63,7 +64,8 @@ std::vector<Command> build_app(CLI::App& app) {
     app.config_formatter(std::make_shared<TomlConfig>(&app));
     std::vector<Command> commands{register_generate(app),   register_lattice(app),
                                   register_hydraulics(app), register_export(app),
-                                  register_analyze(app),    register_correlations(app)};
+                                  register_analyze(app),    register_correlations(app),
+                                  register_voxelize(app)};
     hide_defaults_outside_their_range(app);
     return commands;
 }

@@ -95,4 +95,8 @@ inline constexpr std::size_t max_frames = 100'000;
 /// bytes), far below what a small "zip bomb" (compressed 1000 to 1) unpacks to.
 inline constexpr std::uint64_t max_decompressed_bytes = std::uint64_t{16} << 30;
 
+/// The bytes of one voxel image (voxelize) in memory and in its file: 16 GiB, 2^34 voxels of a
+/// binary image, 2^31 of a fraction image (8 bytes each).
+inline constexpr double max_image_bytes = 17179869184.0;
+
 } // namespace packbed::limits

@@ -18,6 +18,7 @@
 #include "packbed/packing.hpp"
 #include "packbed/sizes.hpp"
 #include "packbed/soft_sphere.hpp"
+#include "packbed/voxel.hpp"
 
 namespace packbed {
 
@@ -112,5 +113,29 @@ std::optional<Container> container_beside(const std::filesystem::path& particles
 void check_inside(const Packing& packing, const std::vector<std::size_t>& lines,
                   std::string_view name, const Container& container, double tolerance,
                   bool shifted);
+
+// ---------------------------------------------------------------------------------------------
+// voxel images
+
+/// A voxel image of a bed: the pore image (binary) or the solid fraction image.
+struct VoxelImage {
+    VoxelGrid grid;
+    bool binary = true;
+    std::vector<std::uint8_t> pore; ///< binary: 1 pore, 0 solid (pore_image)
+    std::vector<double> fraction;   ///< not binary: each voxel's solid fraction, exact
+    /// \return the porosity of the image: the mean of the pore image, or 1 - the mean solid
+    /// fraction (over every voxel of the grid, the container's outside included)
+    double porosity() const;
+};
+
+/// Make the image `voxelize` makes: voxel_grid, then pore_image or solid_fraction_image.
+/// \throws InvalidInput as voxel_grid
+VoxelImage voxelize(const Packing& packing, const Container& container, double voxel_size,
+                    const std::optional<std::array<double, 6>>& region, bool binary);
+
+/// Stage an image as the file `name` of `out` in `format`, and a raw image's header as
+/// name + ".json" (image_header).
+void stage_image(OutputDirectory& out, const std::string& name, ImageFormat format,
+                 const VoxelImage& image);
 
 } // namespace packbed

@@ -7,6 +7,7 @@ The library of the `packbed` command line, for Python, with numpy arrays:
     bed.centers, bed.radii            # numpy views of the bed (no copy)
     a = packbed.analyze(bed)          # profiles as numpy arrays, a.summary the numbers
     bed.write("my-bed")               # what `packbed generate` writes
+    im = packbed.voxelize(bed, voxel_size=0.05)   # True = pore space, as PoreSpy
 
 Bad values raise ValueError with the command line's message, a run that does not converge
 raises packbed.ConvergenceError, and Ctrl-C raises KeyboardInterrupt. See help(packbed.generate).
@@ -22,6 +23,7 @@ from ._core import (
     generate,
     lattice,
     read,
+    voxelize,
 )
 
 __all__ = [
@@ -34,4 +36,5 @@ __all__ = [
     "generate",
     "lattice",
     "read",
+    "voxelize",
 ]

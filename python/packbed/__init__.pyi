@@ -133,3 +133,13 @@ def lattice(
     out: Optional[str] = None,
     force: bool = False,
 ) -> Bed: ...
+def voxelize(
+    bed: Bed,
+    *,
+    voxel_size: float,
+    region: Optional[Tuple[float, float, float, float, float, float]] = None,
+    kind: str = "binary",
+    container: Optional[str] = None,
+    threads: Optional[int] = None,
+    out: Optional[str] = None,
+) -> npt.NDArray[Any]: ...

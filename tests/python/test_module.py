@@ -128,6 +128,12 @@ def test_a_lattice_in_a_box_has_its_exact_porosity():
         (lambda: packbed.analyze(packbed.Bed([[0, 0, 0.5]], diameter=1.0)), ["container"]),
         (lambda: packbed.lattice(region="sphere:3"), ["region", "sphere:3", "allowed"]),
         (lambda: packbed.lattice(type="quasi"), ["type", "quasi", "allowed"]),
+        (lambda: packbed.voxelize(packbed.lattice(), voxel_size=0), ["voxel-size", "allowed"]),
+        (lambda: packbed.voxelize(packbed.lattice(), voxel_size=1e-9), ["voxel-size", "GiB"]),
+        (lambda: packbed.voxelize(packbed.lattice(), voxel_size=0.1, kind="grey"),
+         ["kind", "grey", "allowed"]),
+        (lambda: packbed.voxelize(packbed.lattice(), voxel_size=0.1, out="im.jpg"),
+         ["im.jpg", "allowed"]),
     ],
 )
 def test_bad_values_raise_value_error_with_one_line(call, words):
@@ -207,3 +213,73 @@ def test_help_shows_the_docstrings():
     for name in packbed.__all__:
         if not name.startswith("__"):
             assert name in stubs
+
+
+def test_voxelize_a_sphere_on_a_voxel_corner():
+    # a ball of radius 0.8 on the corner shared by 8 voxels of edge 1: each holds an eighth of
+    # it exactly, and no voxel centre (0.866 away) is inside it: all pore
+    bed = packbed.Bed([[1.0, 1.0, 1.0]], [0.8], container="box:2,2")
+    fraction = packbed.voxelize(bed, voxel_size=1.0, kind="fraction", region=(0, 0, 0, 2, 2, 2))
+    assert fraction.shape == (2, 2, 2) and fraction.dtype == np.float64
+    assert np.allclose(fraction, 4 / 3 * math.pi * 0.8**3 / 8 / 1.0, rtol=0, atol=1e-14)
+    pores = packbed.voxelize(bed, voxel_size=1.0, region=(0, 0, 0, 2, 2, 2))
+    assert pores.dtype == np.bool_ and pores.all()
+    assert pores.flags["OWNDATA"] is False and pores.base is not None  # the library's memory
+
+
+def test_voxelize_a_sphere_cut_by_the_region():
+    # centre on the face x = 0 of the region: half the ball in the image
+    bed = packbed.Bed([[1.5, 1.5, 1.5]], [1.0], container="box:3,3")
+    h = 0.1
+    image = packbed.voxelize(bed, voxel_size=h, kind="fraction", region=(1.5, 0, 0, 3.5, 3, 3))
+    assert image.shape == (20, 30, 30)
+    assert image.sum() * h**3 == pytest.approx(2 / 3 * math.pi, rel=1e-12)
+
+
+def test_voxel_images_sum_to_the_solid_volume_and_match_the_binary(bed):
+    h = 0.05
+    fraction = packbed.voxelize(bed, voxel_size=h, kind="fraction")
+    # the default region holds every sphere whole: the sum is the spheres' volume
+    assert fraction.sum() * h**3 == pytest.approx(150 * math.pi / 6, rel=1e-9)
+    binary = packbed.voxelize(bed, voxel_size=h)
+    assert binary.shape == fraction.shape == (80, 80, math.ceil(bed_top(bed) / h - 1e-9))
+    # a voxel wholly in a sphere is solid in both, one touching none pore-or-outside in both
+    assert not binary[fraction >= 1 - 1e-12].any()
+    solid = ~binary
+    # the binary image's solid inside the tube is the solid fraction to the sampling's error
+    x = (np.arange(80) + 0.5) * h - 2.0
+    inside = (x[:, None] ** 2 + x[None, :] ** 2 <= 4.0)[:, :, None]
+    solid_in_tube = (solid & inside).sum() / (inside.sum() * binary.shape[2])
+    assert solid_in_tube == pytest.approx(fraction.sum() / (inside.sum() * binary.shape[2]),
+                                          abs=3e-3)
+
+
+def bed_top(bed):
+    return float((bed.centers[:, 2] + bed.radii).max())
+
+
+def test_voxel_files_read_back_in_numpy_and_tifffile(bed, tmp_path):
+    tifffile = pytest.importorskip("tifffile")  # Debian python3-tifffile, install-deps --test
+    for kind in ["binary", "fraction"]:
+        image = packbed.voxelize(bed, voxel_size=0.1, kind=kind, out=tmp_path / f"{kind}.npy")
+        assert np.array_equal(np.load(tmp_path / f"{kind}.npy"), image)
+        packbed.voxelize(bed, voxel_size=0.1, kind=kind, out=tmp_path / f"{kind}.tif")
+        tif = tifffile.imread(tmp_path / f"{kind}.tif")
+        assert tif.shape == image.shape
+        assert np.array_equal(tif.astype(image.dtype), image)
+        packbed.voxelize(bed, voxel_size=0.1, kind=kind, out=tmp_path / f"{kind}.raw")
+        header = json.loads((tmp_path / f"{kind}.raw.json").read_text())
+        raw = np.fromfile(tmp_path / f"{kind}.raw", dtype=header["dtype"])
+        assert np.array_equal(raw.reshape(header["shape"]).astype(image.dtype), image)
+        assert header["voxel_size"] == 0.1 and header["origin"] == [-2.0, -2.0, 0.0]
+
+
+def test_the_command_lines_voxelize_writes_the_modules_image(bed, cli_bed, tmp_path):
+    status, out, err = cli("voxelize", cli_bed / "particles.csv", "--voxel-size", 0.1, "--kind",
+                           "fraction", "-o", tmp_path / "im.npy")
+    assert status == 0, err
+    assert np.array_equal(np.load(tmp_path / "im.npy"),
+                          packbed.voxelize(bed, voxel_size=0.1, kind="fraction"))
+    status, _, err = cli("voxelize", cli_bed / "particles.csv", "--voxel-size", 0.1, "-o",
+                         tmp_path / "im.png")
+    assert status == 2 and err.count("\n") == 1 and "im.png" in err and "allowed" in err

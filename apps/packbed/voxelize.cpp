@@ -1,0 +1,147 @@
+// `packbed voxelize`: a bed as a voxel image for image-based tools (PoreSpy and the like).
+#include <filesystem>
+#include <memory>
+#include <optional>
+
+#include <fmt/format.h>
+#include <omp.h>
+
+#include "command.hpp"
+#include "packbed/error.hpp"
+#include "packbed/files.hpp"
+#include "packbed/limits.hpp"
+#include "packbed/output.hpp"
+#include "packbed/pipeline.hpp"
+#include "packbed/read.hpp"
+#include "packbed/voxel.hpp"
+
+namespace packbed::cli {
+
+namespace {
+
+struct VoxelizeOptions {
+    std::string particles;
+    std::string format = "auto";
+    std::string container;
+    double diameter = 0.0; // 0: from the file
+    double voxel_size = 0.0;
+    std::string region; // XLOW,YLOW,ZLOW,XHIGH,YHIGH,ZHIGH; "": the container, floor to top
+    std::string kind = "binary";
+    std::string out;
+    double outside_tolerance = 0.01;
+    InputPlacement placement;
+    unsigned long long threads = static_cast<unsigned long long>(omp_get_num_procs());
+    bool quiet = false;
+};
+
+int run_voxelize(VoxelizeOptions& o) {
+    const std::filesystem::path path(o.particles);
+    const auto format = image_format(o.out);
+    if (!format)
+        throw InvalidInput(fmt::format("--out {}: the extension is not allowed; allowed: .npy, "
+                                       ".tif (or .tiff) or .raw (with a .raw.json header)",
+                                       printable(o.out)));
+    ReadOptions read_options;
+    if (o.diameter > 0.0)
+        read_options.radius = 0.5 * o.diameter;
+    for (const auto& [name, value] : particle_formats())
+        if (name == o.format)
+            read_options.format = value;
+    o.placement.apply(read_options);
+    const ParticleFile file = read_particles(path, read_options);
+    std::optional<Container> container;
+    if (const auto spec = parse_container(o.container))
+        container = spec->container();
+    else
+        container = container_beside(path);
+    if (!container)
+        throw InvalidInput(fmt::format("--container is needed: no summary.json with a container "
+                                       "next to {}",
+                                       printable(path.native())));
+    const double dp = o.diameter > 0.0          ? o.diameter
+                      : file.packing.size() > 0 ? file.packing.mean_diameter()
+                                                : 1.0;
+    check_inside(file.packing, file.lines, path.string(), *container, o.outside_tolerance * dp,
+                 o.placement.shifted());
+    std::optional<std::array<double, 6>> region;
+    if (!o.region.empty()) {
+        const auto v = comma_numbers(o.region);
+        if (!v || v->size() != 6)
+            throw InvalidInput(fmt::format("--region '{}' is not allowed; allowed: XLOW,YLOW,ZLOW,"
+                                           "XHIGH,YHIGH,ZHIGH (six numbers, file units)",
+                                           printable(o.region.substr(0, 80))));
+        region = std::array<double, 6>{(*v)[0], (*v)[1], (*v)[2], (*v)[3], (*v)[4], (*v)[5]};
+    }
+    const bool binary = o.kind == "binary";
+    // Every check before the work: the grid's size, the output.
+    voxel_grid(file.packing, *container, o.voxel_size, region, binary ? 1 : sizeof(double));
+    const std::filesystem::path target(o.out);
+    OutputDirectory out(target.parent_path().empty() ? "." : target.parent_path(), "--out",
+                        OutputKind::files);
+    out.keep("the particles file", path);
+    use_threads(o.threads);
+    const VoxelImage image = voxelize(file.packing, *container, o.voxel_size, region, binary);
+    stage_image(out, target.filename().string(), *format, image);
+    out.commit();
+    if (!o.quiet)
+        fmt::print("packbed voxelize: {} x {} x {} voxels of {:g} ({}), porosity of the image "
+                   "{:.5f}: {}\n",
+                   image.grid.count[0], image.grid.count[1], image.grid.count[2], image.grid.size,
+                   binary ? "1 = pore, 0 = solid" : "solid fractions, exact", image.porosity(),
+                   target.string());
+    return 0;
+}
+
+} // namespace
+
+Command register_voxelize(CLI::App& parent) {
+    auto options = std::make_shared<VoxelizeOptions>();
+    auto& o = *options;
+    CLI::App* app = parent.add_subcommand(
+        "voxelize", "A bed as a voxel image: binary (1 = pore space, as PoreSpy) or the exact "
+                    "solid fraction of each voxel; .npy, .tif or .raw + .json (docs/voxels.md)");
+    app->option_defaults()->always_capture_default();
+    app->fallthrough();
+    app->add_option("particles", o.particles,
+                    "the bed: any file analyze reads (CSV, XYZ, LAMMPS/LIGGGHTS dump or data; "
+                    "also .gz)")
+        ->required()
+        ->check(path_text());
+    std::vector<std::string> formats{"auto"};
+    for (const auto& entry : particle_formats())
+        formats.push_back(entry.first);
+    app->add_option("--format", o.format, "file format; auto: from the extension or first line")
+        ->check(one_of(formats));
+    add_container_option(*app, o.container, "file units; default: summary.json next to the file");
+    app->add_option("--voxel-size", o.voxel_size, "the voxels' edge h (file units)")
+        ->required()
+        ->check(real_in(0.0, limits::max_length, true, false));
+    app->add_option("--region", o.region,
+                    "XLOW,YLOW,ZLOW,XHIGH,YHIGH,ZHIGH: the box imaged (file units); default: the "
+                    "container across, the floor to the bed's top")
+        ->check(path_text());
+    app->add_option("--kind", o.kind,
+                    "binary: 1 where a voxel's centre is pore space (inside the container, in no "
+                    "sphere), 0 solid; fraction: each voxel's solid fraction, exact (float64)")
+        ->check(one_of({"binary", "fraction"}));
+    app->add_option("-o,--out", o.out,
+                    "the image file: .npy (numpy), .tif (tifffile, ImageJ) or .raw (and .raw.json "
+                    "with its shape, type, voxel size and origin); replaced if it exists")
+        ->required()
+        ->check(path_text());
+    app->add_option("-d,--diameter", o.diameter,
+                    "the sphere size of files without a radius or diameter column")
+        ->check(real_in(limits::min_diameter, limits::max_diameter, false, false));
+    add_input_placement(*app, o.placement);
+    app->add_option("--outside-tolerance", o.outside_tolerance,
+                    "how far a sphere may stick out of the wall or floor, Dp")
+        ->check(real_in(0.0, 1.0, false, false));
+    app->add_option("-j,--threads", o.threads,
+                    "at most this many threads, fewer while the machine is busy (results do not "
+                    "depend on it)")
+        ->check(whole_in(1, 1024));
+    app->add_flag("-q,--quiet", o.quiet, "no report on the terminal");
+    return {app, [options] { return run_voxelize(*options); }};
+}
+
+} // namespace packbed::cli

@@ -1,0 +1,102 @@
+// Voxel images of a bed, for image-based tools (PoreSpy, OpenPNM, imageJ): a binary image of
+// the pore space and an exact partial-volume image of the solid (docs/voxels.md).
+#pragma once
+
+#include <array>
+#include <cstddef>
+#include <cstdint>
+#include <filesystem>
+#include <optional>
+#include <string>
+#include <string_view>
+#include <vector>
+
+#include "packbed/container.hpp"
+#include "packbed/packing.hpp"
+#include "packbed/vec3.hpp"
+
+namespace packbed {
+
+/// A grid of cubic voxels: voxel (i, j, k) spans [low + (i, j, k) h, low + (i + 1, j + 1, k + 1)
+/// h]. Images are stored in C order with k (z) fastest: index (i ny + j) nz + k, as numpy's im[i,
+/// j, k] of shape (nx, ny, nz).
+struct VoxelGrid {
+    Vec3 low;                           ///< the lower corner (length)
+    double size = 1.0;                  ///< the voxel edge h (length)
+    std::array<std::size_t, 3> count{}; ///< voxels along x, y and z
+    /// \return the number of voxels.
+    std::size_t voxels() const { return count[0] * count[1] * count[2]; }
+    /// \return the upper corner, low + count h.
+    Vec3 high() const;
+};
+
+/// The grid of voxel size `size` over `region` (low x, y, z, high x, y, z; default: the
+/// container's bounds across and the floor to the bed's top, bed_top), `count` the region's
+/// extent over `size` rounded up to a whole number (one within 1e-9 of a whole number is it):
+/// the grid covers the region, its upper sides moved out to whole voxels.
+/// \param bytes_per_voxel of the image to be made: 1 binary, 8 fractions
+/// \throws InvalidInput naming --voxel-size or --region when the size is not a positive finite
+/// length, the region is empty, or the image would take more than limits::max_image_bytes
+VoxelGrid voxel_grid(const Packing& packing, const Container& container, double size,
+                     const std::optional<std::array<double, 6>>& region = std::nullopt,
+                     std::size_t bytes_per_voxel = 1);
+
+/// The binary image of the pore space, as PoreSpy expects: 1 (True) where the voxel's centre is
+/// pore space, inside the container and inside no sphere; 0 (False) where it is solid, inside a
+/// sphere (|x - c| < r) or outside the container (the wall, the rod: solid to image tools).
+/// In a periodic cell the spheres' copies across the sides count too. Parallel; the same bytes
+/// for any number of threads.
+std::vector<std::uint8_t> pore_image(const Packing& packing, const Container& container,
+                                     const VoxelGrid& grid);
+
+/// The exact partial-volume image of the solid: each voxel's volume inside the spheres over its
+/// own volume, the sum over spheres of the exact volume of each sphere inside the voxel
+/// (ball_orthant_volume by inclusion-exclusion over the voxel's corners; 1 for a voxel wholly
+/// inside). Overlaps count twice, as in every void fraction of the analysis (volume.hpp); the
+/// generator's beds overlap by at most 1e-4 Dp. The container does not enter: voxels outside it
+/// hold 0. In a periodic cell the spheres' copies across the sides count too. The sum over the
+/// image times h^3 is the spheres' volume inside the grid's box. Parallel; the same bits for
+/// any number of threads (each voxel sums its spheres in their order).
+std::vector<double> solid_fraction_image(const Packing& packing, const Container& container,
+                                         const VoxelGrid& grid);
+
+/// Volume of the unit ball inside the orthant {x > a, y > b, z > c}, any a, b, c, in closed
+/// form. For a, b, c >= 0 (a^2 + b^2 + c^2 < 1), integrating the chord over y and then x,
+/// \f$V = P(X) - P(a)\f$ with \f$X = \sqrt{1 - b^2 - c^2}\f$ and
+/// \f$P(x) = -\frac{c}{2} S_p(x) - \frac{b}{2} S_q(x) + b c x + \frac{\pi}{4}(x - x^3/3) -
+/// \frac12 J_c(x) - \frac12 J_b(x)\f$, where \f$p^2 = 1 - c^2\f$, \f$q^2 = 1 - b^2\f$,
+/// \f$S_p(x) = \frac12 (x \sqrt{p^2 - x^2} + p^2 \arcsin(x/p))\f$ and
+/// \f$J_b(x) = \int (1 - x^2) \arcsin(b / \sqrt{1 - x^2})\,dx = (x - x^3/3)
+/// \arcsin(b/\sqrt{1-x^2}) - \frac{b}{3}(\frac12 (q^2 \arcsin(x/q) - x\sqrt{q^2 - x^2}) - 2
+/// \arcsin(x/q)) - \frac23 \arctan(b x / \sqrt{q^2 - x^2})\f$ (by parts; derived for this
+/// project, docs/voxels.md, and checked against quadrature in test_voxel). A negative bound
+/// reflects: \f$V(a, b, c) = 2 V(0, b, c) - V(-a, b, c)\f$.
+double ball_orthant_volume(double a, double b, double c);
+
+/// The volume of the ball (centre, radius) inside the box [low, high], exact: ball_orthant_volume
+/// at the box's eight corners by inclusion-exclusion.
+double ball_box_volume(const Vec3& center, double radius, const Vec3& low, const Vec3& high);
+
+/// Image file formats of voxelize.
+enum class ImageFormat {
+    npy, ///< numpy's .npy (version 1.0): bool (binary) or little-endian float64
+    tif, ///< a multi-page TIFF, one page per i (x) of ny rows by nz columns: tifffile.imread
+         ///< gives shape (nx, ny, nz); 8-bit (0/1) or 64-bit IEEE float; at most 4 GiB
+    raw, ///< the bytes in C order, and FILE.json with shape, dtype, order, voxel size and origin
+};
+
+/// \return the format of a file name's extension (.npy, .tif/.tiff, .raw), or nothing.
+std::optional<ImageFormat> image_format(const std::filesystem::path& path);
+
+/// Write an image, a pore image's bytes or (`pore` null) a fraction image's doubles, to `path`
+/// in `format` (a raw image's header, image_header, is the caller's to write beside it). The
+/// caller stages `path` (OutputDirectory::reserve).
+/// \throws InvalidInput for a TIFF over 4 GiB \throws std::runtime_error when writing fails
+void write_image(const std::filesystem::path& path, ImageFormat format, const VoxelGrid& grid,
+                 const std::vector<std::uint8_t>* pore, const std::vector<double>* fraction);
+
+/// The JSON header of a raw image (and what voxelize records): shape, dtype, order "C" (z
+/// fastest), voxel_size, origin (the grid's lower corner), and the convention of the values.
+std::string image_header(const VoxelGrid& grid, bool binary);
+
+} // namespace packbed

@@ -1,0 +1,592 @@
+// Voxel images of a bed (voxel.hpp, docs/voxels.md).
+#include "packbed/voxel.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <cstring>
+#include <fstream>
+#include <limits>
+#include <numbers>
+
+#include <fmt/format.h>
+#include <nlohmann/json.hpp>
+
+#include "packbed/error.hpp"
+#include "packbed/files.hpp"
+#include "packbed/limits.hpp"
+#include "packbed/volume.hpp"
+
+namespace packbed {
+
+namespace {
+
+/// P(x) of voxel.hpp, the antiderivative over x of the ball's volume above y = b and z = c,
+/// given the roots \f$r_p = \sqrt{p^2 - x^2}\f$ and \f$r_q = \sqrt{q^2 - x^2}\f$
+/// (\f$p^2 = 1 - c^2\f$, \f$q^2 = 1 - b^2\f$). Every arcsine is written as an arctangent of
+/// those roots, \f$\arcsin(x/q) = \arctan(x / r_q)\f$ and \f$\arcsin(b/\sqrt{1 - x^2}) =
+/// \arctan(b / r_q)\f$: at the upper end x = X the roots are exactly c and b, where the
+/// arcsines of arguments rounded near 1 would lose half their digits (1e-8 of the ball).
+double orthant_antiderivative(double x, double b, double c, double rp, double rq) {
+    const double p2 = 1.0 - c * c, q2 = 1.0 - b * b;
+    const double cubic = x - x * x * x / 3.0;
+    // S(x) = 1/2 (x r + m^2 arcsin(x / m)), the antiderivative of the chord sqrt(m^2 - x^2)
+    const auto chord = [&](double r, double m2) { return 0.5 * (x * r + m2 * std::atan2(x, r)); };
+    // J_t(x) = int (1 - x^2) arcsin(t / sqrt(1 - x^2)) dx (voxel.hpp)
+    const auto by_parts = [&](double t, double r, double m2) {
+        const double inner = std::atan2(x, r);
+        return cubic * std::atan2(t, r) - t / 3.0 * (0.5 * (m2 * inner - x * r) - 2.0 * inner) -
+               2.0 / 3.0 * std::atan2(t * x, r);
+    };
+    return -0.5 * c * chord(rp, p2) - 0.5 * b * chord(rq, q2) + b * c * x +
+           0.25 * std::numbers::pi * cubic - 0.5 * by_parts(c, rp, p2) - 0.5 * by_parts(b, rq, q2);
+}
+
+/// 1 - a^2 - b^2 for |a|, |b| <= 1, to within rounding of the result: the larger square taken
+/// from 1 first and the smaller then (each subtraction exact where the result is small, by
+/// Sterbenz's lemma), the squares' own rounding errors (fma) last. Near the sphere's surface
+/// this is the square of a root whose arctangents would otherwise lose half their digits.
+double one_minus_squares(double a, double b) {
+    double big = std::abs(a), small = std::abs(b);
+    if (big < small)
+        std::swap(big, small);
+    const double big2 = big * big, small2 = small * small;
+    const double errors = std::fma(big, big, -big2) + std::fma(small, small, -small2);
+    return ((1.0 - big2) - small2) - errors;
+}
+
+/// ball_orthant_volume for 0 <= a, b, c <= 1: P(X) - P(a).
+double orthant_volume_positive(double a, double b, double c) {
+    const double rest = 1.0 - b * b - c * c;
+    if (a * a >= rest)
+        return 0.0;
+    const double upper = orthant_antiderivative(std::sqrt(rest), b, c, b, c);
+    const double lower =
+        orthant_antiderivative(a, b, c, std::sqrt(std::max(0.0, one_minus_squares(c, a))),
+                               std::sqrt(std::max(0.0, one_minus_squares(b, a))));
+    return std::max(0.0, upper - lower);
+}
+
+/// The voxel index range [first, last] whose centres low + (i + 1/2) h lie strictly within
+/// (from, to); empty (first > last) when none does, clipped to [0, n).
+std::pair<long long, long long> centres_within(double from, double to, double low, double h,
+                                               std::size_t n) {
+    long long first = static_cast<long long>(std::ceil((from - low) / h - 0.5));
+    if (low + (static_cast<double>(first) + 0.5) * h <= from)
+        ++first;
+    long long last = static_cast<long long>(std::floor((to - low) / h - 0.5));
+    if (low + (static_cast<double>(last) + 0.5) * h >= to)
+        --last;
+    return {std::max(first, 0ll), std::min(last, static_cast<long long>(n) - 1)};
+}
+
+/// The voxel index range [first, last] of the voxels that meet [from, to], clipped to [0, n).
+std::pair<long long, long long> voxels_meeting(double from, double to, double low, double h,
+                                               std::size_t n) {
+    const auto first = static_cast<long long>(std::floor((from - low) / h));
+    const auto last = static_cast<long long>(std::floor((to - low) / h));
+    return {std::max(first, 0ll), std::min(last, static_cast<long long>(n) - 1)};
+}
+
+/// A sphere to draw: its centre (a periodic copy's, moved by whole periods) and radius.
+struct Ball {
+    Vec3 c;
+    double r;
+};
+
+/// The spheres, with their copies across a periodic cell's sides, that reach the grid, in
+/// order (each sphere, then its copies).
+std::vector<Ball> balls_reaching(const Packing& packing, const Container& container,
+                                 const VoxelGrid& grid) {
+    const Vec3 high = grid.high();
+    const Periodic* cell = container.periodic();
+    std::vector<Ball> balls;
+    balls.reserve(packing.size());
+    for (std::size_t n = 0; n < packing.size(); ++n) {
+        const double r = packing.radii[n];
+        for (int sx = cell ? -1 : 0; sx <= (cell ? 1 : 0); ++sx)
+            for (int sy = cell ? -1 : 0; sy <= (cell ? 1 : 0); ++sy) {
+                Vec3 c = packing.centers[n];
+                if (cell) {
+                    c.x += sx * cell->lx();
+                    c.y += sy * cell->ly();
+                }
+                if (c.x + r > grid.low.x && c.x - r < high.x && c.y + r > grid.low.y &&
+                    c.y - r < high.y && c.z + r > grid.low.z && c.z - r < high.z)
+                    balls.push_back({c, r});
+            }
+    }
+    return balls;
+}
+
+/// For each x plane i of the grid, the balls that reach it (those whose x extent meets voxel
+/// i's slab, or, with `centres`, holds a voxel centre of it), in ball order: compressed rows.
+struct PlaneLists {
+    std::vector<std::size_t> start; // of plane i's entries, count[0] + 1 of them
+    std::vector<std::uint32_t> ball;
+};
+
+PlaneLists plane_lists(const std::vector<Ball>& balls, const VoxelGrid& grid, bool centres) {
+    const std::size_t nx = grid.count[0];
+    auto range = [&](const Ball& b) {
+        return centres ? centres_within(b.c.x - b.r, b.c.x + b.r, grid.low.x, grid.size, nx)
+                       : voxels_meeting(b.c.x - b.r, b.c.x + b.r, grid.low.x, grid.size, nx);
+    };
+    PlaneLists lists;
+    lists.start.assign(nx + 1, 0);
+    for (const Ball& b : balls) {
+        const auto [first, last] = range(b);
+        for (long long i = first; i <= last; ++i)
+            ++lists.start[static_cast<std::size_t>(i) + 1];
+    }
+    for (std::size_t i = 0; i < nx; ++i)
+        lists.start[i + 1] += lists.start[i];
+    lists.ball.resize(lists.start[nx]);
+    std::vector<std::size_t> next(lists.start.begin(), lists.start.end() - 1);
+    for (std::size_t n = 0; n < balls.size(); ++n) {
+        const auto [first, last] = range(balls[n]);
+        for (long long i = first; i <= last; ++i)
+            lists.ball[next[static_cast<std::size_t>(i)]++] = static_cast<std::uint32_t>(n);
+    }
+    return lists;
+}
+
+double centre_of(double low, double h, std::size_t i) {
+    return low + (static_cast<double>(i) + 0.5) * h;
+}
+
+} // namespace
+
+Vec3 VoxelGrid::high() const {
+    return {low.x + static_cast<double>(count[0]) * size,
+            low.y + static_cast<double>(count[1]) * size,
+            low.z + static_cast<double>(count[2]) * size};
+}
+
+VoxelGrid voxel_grid(const Packing& packing, const Container& container, double size,
+                     const std::optional<std::array<double, 6>>& region,
+                     std::size_t bytes_per_voxel) {
+    const double max_voxels = limits::max_image_bytes / static_cast<double>(bytes_per_voxel);
+    if (!(std::isfinite(size) && size > 0.0 && size <= limits::max_length))
+        throw InvalidInput(fmt::format("--voxel-size: {} is not allowed; allowed: a length > 0 "
+                                       "and at most {:g}",
+                                       size, limits::max_length));
+    std::array<double, 6> box{};
+    if (region) {
+        box = *region;
+    } else {
+        const Rectangle b = container.bounds();
+        box = {b.x_low, b.y_low, 0.0, b.x_high, b.y_high, bed_top(packing)};
+    }
+    for (int d = 0; d < 3; ++d)
+        if (!(std::isfinite(box[d]) && std::isfinite(box[d + 3]) && box[d] < box[d + 3] &&
+              std::abs(box[d]) <= limits::max_length && std::abs(box[d + 3]) <= limits::max_length))
+            throw InvalidInput(fmt::format(
+                "--region {},{},{},{},{},{} is not allowed; allowed: XLOW,YLOW,ZLOW,XHIGH,YHIGH,"
+                "ZHIGH with each low below its high, within {:g}{}",
+                box[0], box[1], box[2], box[3], box[4], box[5], limits::max_length,
+                region ? ""
+                       : " (the default region: the container across, the floor to the "
+                         "bed's top: is the bed empty?)"));
+    VoxelGrid grid;
+    grid.low = {box[0], box[1], box[2]};
+    grid.size = size;
+    double voxels = 1.0;
+    for (int d = 0; d < 3; ++d) {
+        // whole voxels covering the region (a quotient within 1e-9 of a whole number is it)
+        const double n = std::max(1.0, std::ceil((box[d + 3] - box[d]) / size - 1e-9));
+        voxels *= n;
+        if (!(voxels <= max_voxels))
+            throw InvalidInput(fmt::format(
+                "--voxel-size {} is not allowed for this region ({:g} x {:g} x {:g}): the image "
+                "would hold more than {:g} voxels ({:g} GiB); allowed: a voxel size of at least "
+                "{:.4g}",
+                size, box[3] - box[0], box[4] - box[1], box[5] - box[2], max_voxels,
+                limits::max_image_bytes / 1073741824.0,
+                std::cbrt((box[3] - box[0]) * (box[4] - box[1]) * (box[5] - box[2]) / max_voxels)));
+        grid.count[static_cast<std::size_t>(d)] = static_cast<std::size_t>(n);
+    }
+    return grid;
+}
+
+double ball_orthant_volume(double a, double b, double c) {
+    a = std::clamp(a, -1.0, 1.0);
+    b = std::clamp(b, -1.0, 1.0);
+    c = std::clamp(c, -1.0, 1.0);
+    // {x > a} with a < 0 is everything but {x < a}, the mirror of {x > -a}; and the half
+    // {x > 0} is half of everything by symmetry.
+    if (a < 0.0)
+        return 2.0 * ball_orthant_volume(0.0, b, c) - ball_orthant_volume(-a, b, c);
+    if (b < 0.0)
+        return 2.0 * ball_orthant_volume(a, 0.0, c) - ball_orthant_volume(a, -b, c);
+    if (c < 0.0)
+        return 2.0 * ball_orthant_volume(a, b, 0.0) - ball_orthant_volume(a, b, -c);
+    return orthant_volume_positive(a, b, c);
+}
+
+double ball_box_volume(const Vec3& center, double radius, const Vec3& low, const Vec3& high) {
+    const double lo[3] = {(low.x - center.x) / radius, (low.y - center.y) / radius,
+                          (low.z - center.z) / radius};
+    const double hi[3] = {(high.x - center.x) / radius, (high.y - center.y) / radius,
+                          (high.z - center.z) / radius};
+    // vol(box) = sum over its corners of (-1)^(number of upper ends) V(corner).
+    double sum = 0.0;
+    for (int corner = 0; corner < 8; ++corner) {
+        const bool ux = corner & 1, uy = corner & 2, uz = corner & 4;
+        const double v =
+            ball_orthant_volume(ux ? hi[0] : lo[0], uy ? hi[1] : lo[1], uz ? hi[2] : lo[2]);
+        sum += ((ux + uy + uz) % 2 == 0) ? v : -v;
+    }
+    return std::max(0.0, sum) * radius * radius * radius;
+}
+
+std::vector<std::uint8_t> pore_image(const Packing& packing, const Container& container,
+                                     const VoxelGrid& grid) {
+    const auto [nx, ny, nz] = grid.count;
+    const double h = grid.size;
+    std::vector<std::uint8_t> image(grid.voxels());
+    const std::vector<Ball> balls = balls_reaching(packing, container, grid);
+    const PlaneLists lists = plane_lists(balls, grid, true);
+    // The containers are upright prisms above the floor: a column (i, j) is inside or not at
+    // every height above z = 0.
+    const auto k_floor =
+        centres_within(0.0, std::numeric_limits<double>::infinity(), grid.low.z, h, nz).first;
+#pragma omp parallel for schedule(dynamic, 1)
+    for (std::size_t i = 0; i < nx; ++i) {
+        std::uint8_t* plane = image.data() + i * ny * nz;
+        const double x = centre_of(grid.low.x, h, i);
+        for (std::size_t j = 0; j < ny; ++j) {
+            const double y = centre_of(grid.low.y, h, j);
+            const bool inside = container.contains({x, y, std::max(0.0, grid.low.z)});
+            std::uint8_t* row = plane + j * nz;
+            std::memset(row, 0, nz);
+            if (inside && k_floor < static_cast<long long>(nz))
+                std::memset(row + k_floor, 1, nz - static_cast<std::size_t>(k_floor));
+        }
+        for (std::size_t e = lists.start[i]; e < lists.start[i + 1]; ++e) {
+            const Ball& b = balls[lists.ball[e]];
+            const double dx = x - b.c.x;
+            const double across = b.r * b.r - dx * dx;
+            if (across <= 0.0)
+                continue;
+            const double w = std::sqrt(across);
+            const auto [j0, j1] = centres_within(b.c.y - w, b.c.y + w, grid.low.y, h, ny);
+            for (long long j = j0; j <= j1; ++j) {
+                const double dy = centre_of(grid.low.y, h, static_cast<std::size_t>(j)) - b.c.y;
+                const double up = across - dy * dy;
+                if (up <= 0.0)
+                    continue;
+                const double dz = std::sqrt(up);
+                const auto [k0, k1] = centres_within(b.c.z - dz, b.c.z + dz, grid.low.z, h, nz);
+                if (k0 <= k1)
+                    std::memset(plane + static_cast<std::size_t>(j) * nz + k0, 0,
+                                static_cast<std::size_t>(k1 - k0 + 1));
+            }
+        }
+    }
+    return image;
+}
+
+namespace {
+
+/// The exact volumes of one ball in the voxels of a block of planes, from ball_orthant_volume at
+/// the voxel corners (grid nodes), each node computed once per ball and block.
+///
+/// By the ball's symmetry a box is measured in the octant its corners are in, reflected to
+/// a, b, c >= 0 (a voxel that straddles a plane through the centre is split there): no
+/// reflection formula, one positive evaluation per node, V = P(X) - P(a) with P(X) shared by
+/// every node of a line along x.
+class BallInVoxels {
+public:
+    BallInVoxels(const Ball& ball, const VoxelGrid& grid, std::array<long long, 3> first,
+                 std::array<long long, 3> last)
+        : m_ball(ball)
+        , m_grid(grid)
+        , m_first(first) {
+        // the nodes of the voxels first..last, and one more slot for the centre's plane
+        for (int d = 0; d < 3; ++d)
+            m_nodes[d] = static_cast<std::size_t>(last[d] - first[d] + 3);
+        m_value.assign(m_nodes[0] * m_nodes[1] * m_nodes[2], -1.0);
+        m_upper.assign(m_nodes[1] * m_nodes[2], std::numeric_limits<double>::quiet_NaN());
+    }
+
+    /// \return the volume of the ball in voxel (i, j, k) over r^3.
+    double voxel(long long i, long long j, long long k) {
+        const long long index[3] = {i, j, k};
+        // Per axis one or two segments, each (near, far) from the centre: a node of the grid
+        // (its index) or the centre itself (-1).
+        std::array<std::array<long long, 2>, 2> segments[3];
+        int count[3];
+        for (int d = 0; d < 3; ++d) {
+            const double low = coordinate(d, index[d]), high = coordinate(d, index[d] + 1);
+            const double c = centre(d);
+            if (low >= c) {
+                segments[d][0] = {index[d], index[d] + 1};
+                count[d] = 1;
+            } else if (high <= c) {
+                segments[d][0] = {index[d] + 1, index[d]};
+                count[d] = 1;
+            } else {
+                segments[d][0] = {-1, index[d] + 1};
+                segments[d][1] = {-1, index[d]};
+                count[d] = 2;
+            }
+        }
+        double sum = 0.0;
+        for (int sx = 0; sx < count[0]; ++sx)
+            for (int sy = 0; sy < count[1]; ++sy)
+                for (int sz = 0; sz < count[2]; ++sz)
+                    for (int corner = 0; corner < 8; ++corner) {
+                        const int fx = corner & 1, fy = (corner >> 1) & 1, fz = (corner >> 2) & 1;
+                        const double v =
+                            node(segments[0][sx][fx], segments[1][sy][fy], segments[2][sz][fz]);
+                        sum += ((fx + fy + fz) % 2 == 0) ? v : -v;
+                    }
+        return std::max(0.0, sum);
+    }
+
+private:
+    double coordinate(int d, long long n) const {
+        const double low = d == 0 ? m_grid.low.x : d == 1 ? m_grid.low.y : m_grid.low.z;
+        return low + static_cast<double>(n) * m_grid.size;
+    }
+    double centre(int d) const { return d == 0 ? m_ball.c.x : d == 1 ? m_ball.c.y : m_ball.c.z; }
+    /// |node - centre| / r, clamped to 1 (the centre itself: -1 gives 0)
+    double offset(int d, long long n) const {
+        if (n < 0)
+            return 0.0;
+        return std::min(1.0, std::abs(coordinate(d, n) - centre(d)) / m_ball.r);
+    }
+
+    /// The slot of node n (or of the centre's plane, n = -1) along axis d.
+    std::size_t slot(int d, long long n) const {
+        return n < 0 ? m_nodes[d] - 1 : static_cast<std::size_t>(n - m_first[d]);
+    }
+
+    /// ball_orthant_volume at a node in the octant away from the centre, cached.
+    double node(long long i, long long j, long long k) {
+        const std::size_t at = (slot(0, i) * m_nodes[1] + slot(1, j)) * m_nodes[2] + slot(2, k);
+        if (m_value[at] >= 0.0)
+            return m_value[at];
+        const double a = offset(0, i), b = offset(1, j), c = offset(2, k);
+        double v = 0.0;
+        const double rest = 1.0 - b * b - c * c;
+        if (a * a < rest) {
+            double& upper = m_upper[slot(1, j) * m_nodes[2] + slot(2, k)];
+            if (std::isnan(upper))
+                upper = orthant_antiderivative(std::sqrt(rest), b, c, b, c);
+            v = std::max(0.0,
+                         upper - orthant_antiderivative(
+                                     a, b, c, std::sqrt(std::max(0.0, one_minus_squares(c, a))),
+                                     std::sqrt(std::max(0.0, one_minus_squares(b, a)))));
+        }
+        m_value[at] = v;
+        return v;
+    }
+
+    Ball m_ball;
+    const VoxelGrid& m_grid;
+    std::array<long long, 3> m_first;
+    std::array<std::size_t, 3> m_nodes{};
+    std::vector<double> m_value; // per node, -1 until computed
+    std::vector<double> m_upper; // P(X) per line (j, k), NaN until computed
+};
+
+} // namespace
+
+std::vector<double> solid_fraction_image(const Packing& packing, const Container& container,
+                                         const VoxelGrid& grid) {
+    const auto [nx, ny, nz] = grid.count;
+    const double h = grid.size;
+    std::vector<double> image(grid.voxels(), 0.0);
+    const std::vector<Ball> balls = balls_reaching(packing, container, grid);
+    // Blocks of planes, each a task: a ball's nodes are computed once per block it meets. Up to
+    // 32 planes, and at least 16 blocks when there are as many planes (the bits do not depend
+    // on it: each voxel still sums its balls in their order).
+    const std::size_t block = std::clamp<std::size_t>(nx / 16, 1, 32);
+    const std::size_t blocks = (nx + block - 1) / block;
+    VoxelGrid block_grid = grid;
+    block_grid.size = h * static_cast<double>(block);
+    block_grid.count[0] = blocks;
+    const PlaneLists lists = plane_lists(balls, block_grid, false);
+#pragma omp parallel for schedule(dynamic, 1)
+    for (std::size_t b = 0; b < blocks; ++b) {
+        const long long i_first = static_cast<long long>(b * block);
+        const long long i_last = static_cast<long long>(std::min(nx, (b + 1) * block)) - 1;
+        for (std::size_t e = lists.start[b]; e < lists.start[b + 1]; ++e) {
+            const Ball& ball = balls[lists.ball[e]];
+            const double r2 = ball.r * ball.r;
+            const double scale = ball.r * ball.r * ball.r / (h * h * h);
+            const auto [ia, ib] =
+                voxels_meeting(ball.c.x - ball.r, ball.c.x + ball.r, grid.low.x, h, nx);
+            const auto [ja, jb] =
+                voxels_meeting(ball.c.y - ball.r, ball.c.y + ball.r, grid.low.y, h, ny);
+            const auto [ka, kb] =
+                voxels_meeting(ball.c.z - ball.r, ball.c.z + ball.r, grid.low.z, h, nz);
+            const long long i0 = std::max(ia, i_first), i1 = std::min(ib, i_last);
+            if (i0 > i1 || ja > jb || ka > kb)
+                continue;
+            BallInVoxels exact(ball, grid, {i0, ja, ka}, {i1, jb, kb});
+            for (long long i = i0; i <= i1; ++i) {
+                double* plane = image.data() + static_cast<std::size_t>(i) * ny * nz;
+                const double x0 = grid.low.x + static_cast<double>(i) * h, x1 = x0 + h;
+                const double near_x = std::max({x0 - ball.c.x, ball.c.x - x1, 0.0});
+                const double far_x = std::max(std::abs(x0 - ball.c.x), std::abs(x1 - ball.c.x));
+                if (near_x * near_x >= r2)
+                    continue;
+                for (long long j = ja; j <= jb; ++j) {
+                    const double y0 = grid.low.y + static_cast<double>(j) * h, y1 = y0 + h;
+                    const double near_y = std::max({y0 - ball.c.y, ball.c.y - y1, 0.0});
+                    const double far_y = std::max(std::abs(y0 - ball.c.y), std::abs(y1 - ball.c.y));
+                    const double near_xy = near_x * near_x + near_y * near_y;
+                    if (near_xy >= r2)
+                        continue;
+                    const double far_xy = far_x * far_x + far_y * far_y;
+                    const double reach = std::sqrt(r2 - near_xy);
+                    const auto [k0, k1] =
+                        voxels_meeting(ball.c.z - reach, ball.c.z + reach, grid.low.z, h, nz);
+                    double* row = plane + static_cast<std::size_t>(j) * nz;
+                    for (long long k = k0; k <= k1; ++k) {
+                        const double z0 = grid.low.z + static_cast<double>(k) * h, z1 = z0 + h;
+                        const double near_z = std::max({z0 - ball.c.z, ball.c.z - z1, 0.0});
+                        if (near_xy + near_z * near_z >= r2)
+                            continue;
+                        const double far_z =
+                            std::max(std::abs(z0 - ball.c.z), std::abs(z1 - ball.c.z));
+                        if (far_xy + far_z * far_z <= r2)
+                            row[k] += 1.0;
+                        else
+                            row[k] += exact.voxel(i, j, k) * scale;
+                    }
+                }
+            }
+        }
+    }
+    return image;
+}
+
+std::optional<ImageFormat> image_format(const std::filesystem::path& path) {
+    const std::string extension = path.extension().string();
+    if (extension == ".npy")
+        return ImageFormat::npy;
+    if (extension == ".tif" || extension == ".tiff")
+        return ImageFormat::tif;
+    if (extension == ".raw")
+        return ImageFormat::raw;
+    return std::nullopt;
+}
+
+std::string image_header(const VoxelGrid& grid, bool binary) {
+    nlohmann::json header;
+    header["shape"] = grid.count;
+    header["dtype"] = binary ? "uint8" : "float64";
+    header["byte_order"] = "little";
+    header["order"] = "C (index (i ny + j) nz + k: z fastest; numpy im[i, j, k])";
+    header["voxel_size"] = grid.size;
+    header["origin"] = {grid.low.x, grid.low.y, grid.low.z};
+    header["values"] = binary ? "1 (True): pore space (inside the container, inside no sphere); "
+                                "0 (False): solid (a sphere, or outside the container), as "
+                                "PoreSpy's images"
+                              : "the solid fraction of each voxel, exact (the spheres' volume "
+                                "inside it over its volume)";
+    return header.dump(2) + "\n";
+}
+
+namespace {
+
+void put16(std::string& s, std::uint16_t v) {
+    s.push_back(static_cast<char>(v & 0xff));
+    s.push_back(static_cast<char>(v >> 8));
+}
+void put32(std::string& s, std::uint32_t v) {
+    for (int b = 0; b < 4; ++b)
+        s.push_back(static_cast<char>((v >> (8 * b)) & 0xff));
+}
+
+/// The .npy header (format version 1.0): magic, header length, the dict padded so that the data
+/// starts at a multiple of 64 bytes.
+std::string npy_header(const VoxelGrid& grid, bool binary) {
+    std::string dict =
+        fmt::format("{{'descr': '{}', 'fortran_order': False, 'shape': ({}, {}, "
+                    "{}), }}",
+                    binary ? "|b1" : "<f8", grid.count[0], grid.count[1], grid.count[2]);
+    const std::size_t unpadded = 10 + dict.size() + 1;
+    dict.append((64 - unpadded % 64) % 64, ' ');
+    dict.push_back('\n');
+    std::string header("\x93NUMPY\x01\x00", 8);
+    put16(header, static_cast<std::uint16_t>(dict.size()));
+    return header + dict;
+}
+
+} // namespace
+
+void write_image(const std::filesystem::path& path, ImageFormat format, const VoxelGrid& grid,
+                 const std::vector<std::uint8_t>* pore, const std::vector<double>* fraction) {
+    const bool binary = pore != nullptr;
+    const char* data = binary ? reinterpret_cast<const char*>(pore->data())
+                              : reinterpret_cast<const char*>(fraction->data());
+    const std::size_t bytes_per_voxel = binary ? 1 : sizeof(double);
+    const std::size_t bytes = grid.voxels() * bytes_per_voxel;
+    std::ofstream out(path, std::ios::binary);
+    if (format == ImageFormat::npy) {
+        out << npy_header(grid, binary);
+    } else if (format == ImageFormat::tif) {
+        // Baseline TIFF, little-endian: the pixel data of every page first, then one IFD per
+        // page (ny rows of nz columns, one strip), each pointing at the next.
+        const std::size_t page = grid.count[1] * grid.count[2] * bytes_per_voxel;
+        constexpr std::size_t entries = 11, ifd_size = 2 + entries * 12 + 4;
+        const std::size_t data_end = 8 + bytes + (bytes & 1); // IFDs start on a word boundary
+        const double total =
+            static_cast<double>(data_end) + static_cast<double>(grid.count[0]) * ifd_size;
+        if (total > 4294967295.0)
+            throw InvalidInput(fmt::format(
+                "--out {}: a TIFF of {:.4g} bytes is not allowed; allowed: at most 4 GiB (use "
+                ".npy or .raw for larger images)",
+                printable(path.filename().native()), total));
+        std::string header("II", 2);
+        put16(header, 42);
+        put32(header, static_cast<std::uint32_t>(data_end)); // the first IFD after the data
+        out << header;
+        out.write(data, static_cast<std::streamsize>(bytes));
+        if (bytes & 1)
+            out.put('\0');
+        std::string ifds;
+        for (std::size_t i = 0; i < grid.count[0]; ++i) {
+            const std::size_t at = data_end + i * ifd_size;
+            auto entry = [&](std::uint16_t tag, std::uint16_t type, std::uint32_t value) {
+                put16(ifds, tag);
+                put16(ifds, type);
+                put32(ifds, 1);
+                if (type == 3) { // SHORT, left-justified in the value field
+                    put16(ifds, static_cast<std::uint16_t>(value));
+                    put16(ifds, 0);
+                } else {
+                    put32(ifds, value);
+                }
+            };
+            put16(ifds, entries);
+            entry(256, 4, static_cast<std::uint32_t>(grid.count[2])); // ImageWidth
+            entry(257, 4, static_cast<std::uint32_t>(grid.count[1])); // ImageLength
+            entry(258, 3, binary ? 8 : 64);                           // BitsPerSample
+            entry(259, 3, 1);                                         // no compression
+            entry(262, 3, 1);                                         // BlackIsZero
+            entry(273, 4, static_cast<std::uint32_t>(8 + i * page));  // StripOffsets
+            entry(277, 3, 1);                                         // SamplesPerPixel
+            entry(278, 4, static_cast<std::uint32_t>(grid.count[1])); // RowsPerStrip
+            entry(279, 4, static_cast<std::uint32_t>(page));          // StripByteCounts
+            entry(284, 3, 1);                                         // contiguous
+            entry(339, 3, binary ? 1 : 3); // SampleFormat: unsigned integer or IEEE float
+            put32(ifds, i + 1 < grid.count[0] ? static_cast<std::uint32_t>(at + ifd_size) : 0);
+        }
+        out << ifds;
+        out.flush();
+        if (!out)
+            throw std::runtime_error(fmt::format("cannot write {}", printable(path.native())));
+        return;
+    }
+    out.write(data, static_cast<std::streamsize>(bytes));
+    out.flush();
+    if (!out)
+        throw std::runtime_error(fmt::format("cannot write {}", printable(path.native())));
+}
+
+} // namespace packbed
