@@ -38,7 +38,7 @@ if [[ ${1:-} == --test ]]; then
   else
     packages+=(paraview python3-paraview xvfb)
   fi
-  packages+=(python3-pytest)  # the Python module's tests
+  packages+=(python3-pytest python3-tifffile)  # the Python module's tests (TIFF read back)
   packages+=(lammps)        # reads the data files of packbed export (lmp)
   packages+=(liggghts)      # and LIGGGHTS reads them too
   packages+=(admesh)        # checks the STL surfaces of packbed export
