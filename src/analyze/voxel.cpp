@@ -241,7 +241,8 @@ double ball_box_volume(const Vec3& center, double radius, const Vec3& low, const
 
 std::vector<std::uint8_t> pore_image(const Packing& packing, const Container& container,
                                      const VoxelGrid& grid) {
-    const auto [nx, ny, nz] = grid.count;
+    // plain names, not a structured binding: clang 14 cannot name those inside OpenMP regions
+    const std::size_t nx = grid.count[0], ny = grid.count[1], nz = grid.count[2];
     const double h = grid.size;
     std::vector<std::uint8_t> image(grid.voxels());
     const std::vector<Ball> balls = balls_reaching(packing, container, grid);
@@ -395,7 +396,8 @@ private:
 
 std::vector<double> solid_fraction_image(const Packing& packing, const Container& container,
                                          const VoxelGrid& grid) {
-    const auto [nx, ny, nz] = grid.count;
+    // plain names, not a structured binding: clang 14 cannot name those inside OpenMP regions
+    const std::size_t nx = grid.count[0], ny = grid.count[1], nz = grid.count[2];
     const double h = grid.size;
     std::vector<double> image(grid.voxels(), 0.0);
     const std::vector<Ball> balls = balls_reaching(packing, container, grid);
