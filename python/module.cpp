@@ -607,10 +607,14 @@ in the directory `out` (new or empty; force=True replaces a non-empty one whole)
             "The numbers as `packbed analyze` writes them in summary.json (band, void fraction, "
             "coordination, rattlers, wall contacts, options, warnings).");
 
-    m.def("generate", &generate, py::kw_only(), py::arg("aspect_ratio") = 5.0,
-          py::arg("container") = py::none(), py::arg("particles") = 500, py::arg("seed") = 1,
-          py::arg("diameter") = 1.0, py::arg("sizes") = "mono", py::arg("fractions") = "volume",
-          py::arg("e0") = SoftSphereParameters{}.e0, py::arg("ck") = SoftSphereParameters{}.ck,
+    m.def("generate", &generate, py::kw_only(),
+          py::arg("aspect_ratio") = SoftSphereParameters{}.aspect_ratio,
+          py::arg("container") = py::none(),
+          py::arg("particles") = SoftSphereParameters{}.particles,
+          py::arg("seed") = SoftSphereParameters{}.seed,
+          py::arg("diameter") = SoftSphereParameters{}.diameter, py::arg("sizes") = "mono",
+          py::arg("fractions") = "volume", py::arg("e0") = SoftSphereParameters{}.e0,
+          py::arg("ck") = SoftSphereParameters{}.ck,
           py::arg("cg_step") = SoftSphereParameters{}.cg_step, py::arg("overlap_low") = py::none(),
           py::arg("overlap_high") = py::none(),
           py::arg("tolerance") = SoftSphereParameters{}.tolerance,
