@@ -66,14 +66,20 @@ double orthant_volume_positive(double a, double b, double c) {
     return std::max(0.0, upper - lower);
 }
 
+/// `x` (an index computed in floating point, maybe infinite) as a whole number clamped to
+/// [-2, n + 1]: beyond the grid it only needs to stay beyond it (no undefined conversion).
+long long index_of(double x, std::size_t n) {
+    return static_cast<long long>(std::clamp(x, -2.0, static_cast<double>(n) + 1.0));
+}
+
 /// The voxel index range [first, last] whose centres low + (i + 1/2) h lie strictly within
 /// (from, to); empty (first > last) when none does, clipped to [0, n).
 std::pair<long long, long long> centres_within(double from, double to, double low, double h,
                                                std::size_t n) {
-    long long first = static_cast<long long>(std::ceil((from - low) / h - 0.5));
+    long long first = index_of(std::ceil((from - low) / h - 0.5), n);
     if (low + (static_cast<double>(first) + 0.5) * h <= from)
         ++first;
-    long long last = static_cast<long long>(std::floor((to - low) / h - 0.5));
+    long long last = index_of(std::floor((to - low) / h - 0.5), n);
     if (low + (static_cast<double>(last) + 0.5) * h >= to)
         --last;
     return {std::max(first, 0ll), std::min(last, static_cast<long long>(n) - 1)};
@@ -82,8 +88,8 @@ std::pair<long long, long long> centres_within(double from, double to, double lo
 /// The voxel index range [first, last] of the voxels that meet [from, to], clipped to [0, n).
 std::pair<long long, long long> voxels_meeting(double from, double to, double low, double h,
                                                std::size_t n) {
-    const auto first = static_cast<long long>(std::floor((from - low) / h));
-    const auto last = static_cast<long long>(std::floor((to - low) / h));
+    const auto first = index_of(std::floor((from - low) / h), n);
+    const auto last = index_of(std::floor((to - low) / h), n);
     return {std::max(first, 0ll), std::min(last, static_cast<long long>(n) - 1)};
 }
 
