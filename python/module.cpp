@@ -150,14 +150,10 @@ auto run_interruptible(RunControl& control, const py::object& progress, Work&& w
     }
 }
 
-/// The threads of the library's parallel loops: at most `threads`, fewer while the machine is
-/// busy, as the command line's --threads (results do not depend on it). None: OpenMP's default.
-void use_threads(const std::optional<long long>& threads) {
-    if (!threads)
-        return;
-    omp_set_num_threads(static_cast<int>(whole("threads", *threads, 1, 1024)));
-    if (std::getenv("OMP_DYNAMIC") == nullptr)
-        omp_set_dynamic(1);
+/// threads=N as the command line's --threads (packbed::use_threads); None: OpenMP's default.
+void set_threads(const std::optional<long long>& threads) {
+    if (threads)
+        use_threads(whole("threads", *threads, 1, 1024));
 }
 
 /// A container from its spec text, or InvalidInput naming `option`.
@@ -168,6 +164,17 @@ Container container_of(std::string_view option, const std::string& spec) {
                                        "annulus:D,DI (0 < DI < D) or periodic:LX,LY, lengths > 0",
                                        option, printable(spec.substr(0, 80))));
     return parsed->container();
+}
+
+/// The container `container` names, else the bed's own. \throws InvalidInput when neither is
+/// there
+Container container_for(const Bed& bed, const std::optional<std::string>& container) {
+    if (container)
+        return container_of("container", *container);
+    if (!bed.container)
+        throw InvalidInput("--container is needed: this bed has no container (give container="
+                           "'cylinder:D', 'box:LX,LY', 'annulus:D,DI' or 'periodic:LX,LY')");
+    return *bed.container;
 }
 
 Bed generate(double aspect_ratio, const std::optional<std::string>& container, long long particles,
@@ -216,7 +223,7 @@ Bed generate(double aspect_ratio, const std::optional<std::string>& container, l
     std::optional<OutputDirectory> directory;
     if (out)
         directory.emplace(*out, "--out", OutputKind::directory, force);
-    use_threads(threads);
+    set_threads(threads);
     RunControl control;
     GeneratedBed generated = run_interruptible(control, progress, [&] {
         return run_generation(prepared, control, omp_get_max_threads(),
@@ -329,11 +336,7 @@ Analysis analyze(const Bed& bed, const std::optional<std::string>& container,
                  double centre_bin, double contact_tolerance, double rdf_range, double rdf_bin,
                  std::optional<long long> threads, const std::optional<std::filesystem::path>& out,
                  bool force) {
-    const std::optional<Container> given =
-        container ? std::optional(container_of("container", *container)) : bed.container;
-    if (!given)
-        throw InvalidInput("--container is needed: this bed has no container (give container="
-                           "'cylinder:D', 'box:LX,LY', 'annulus:D,DI' or 'periodic:LX,LY')");
+    const Container given = container_for(bed, container);
     AnalysisOptions options;
     options.diameter = diameter;
     options.band_clearance = band_clearance;
@@ -348,19 +351,19 @@ Analysis analyze(const Bed& bed, const std::optional<std::string>& container,
     std::optional<OutputDirectory> directory;
     if (out)
         directory.emplace(*out, "--out", OutputKind::directory, force);
-    use_threads(threads);
-    Analysis result{{}, {}, *given};
+    set_threads(threads);
+    Analysis result{{}, {}, given};
     {
         py::gil_scoped_release released;
-        result.analysis = analyze_bed(bed.packing, *given, options);
+        result.analysis = analyze_bed(bed.packing, given, options);
     }
     result.summary = analysis_summary(result.analysis, options);
-    result.summary["warnings"] = analysis_warnings(bed.packing, *given, result.analysis);
-    result.summary["container"] = container_summary(*given);
+    result.summary["warnings"] = analysis_warnings(bed.packing, given, result.analysis);
+    result.summary["container"] = container_summary(given);
     if (directory) {
-        for (const auto& [name, text] : analysis_files(result.analysis, *given))
+        for (const auto& [name, text] : analysis_files(result.analysis, given))
             directory->stage(name, text);
-        if (const std::string why = stage_plots(*directory, result.analysis, *given); !why.empty())
+        if (const std::string why = stage_plots(*directory, result.analysis, given); !why.empty())
             result.summary["plots"] = why;
         directory->stage("summary.json", result.summary.dump(2) + "\n");
         directory->commit();
@@ -431,11 +434,7 @@ py::array voxelize_bed(const Bed& bed, double voxel_size,
                        const std::optional<std::string>& container,
                        std::optional<long long> threads,
                        const std::optional<std::filesystem::path>& out) {
-    const std::optional<Container> given =
-        container ? std::optional(container_of("container", *container)) : bed.container;
-    if (!given)
-        throw InvalidInput("--container is needed: this bed has no container (give container="
-                           "'cylinder:D', 'box:LX,LY', 'annulus:D,DI' or 'periodic:LX,LY')");
+    const Container given = container_for(bed, container);
     if (kind != "binary" && kind != "fraction")
         throw InvalidInput(fmt::format("--kind '{}' is not allowed; allowed: binary, fraction",
                                        printable(kind.substr(0, 80))));
@@ -450,16 +449,16 @@ py::array voxelize_bed(const Bed& bed, double voxel_size,
     }
     const bool binary = kind == "binary";
     // every check before the work
-    voxel_grid(bed.packing, *given, voxel_size, region, binary ? 1 : sizeof(double));
+    voxel_grid(bed.packing, given, voxel_size, region, binary ? 1 : sizeof(double));
     std::optional<OutputDirectory> directory;
     if (out)
         directory.emplace(out->parent_path().empty() ? "." : out->parent_path(), "--out",
                           OutputKind::files);
-    use_threads(threads);
+    set_threads(threads);
     VoxelImage image;
     {
         py::gil_scoped_release released;
-        image = voxelize(bed.packing, *given, voxel_size, region, binary);
+        image = voxelize(bed.packing, given, voxel_size, region, binary);
     }
     if (directory) {
         stage_image(*directory, out->filename().string(), *format, image);

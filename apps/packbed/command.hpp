@@ -42,13 +42,6 @@ CLI::Validator one_of(std::vector<std::string> names);
 /// A whole number within [low, high].
 CLI::Validator whole_in(unsigned long long low, unsigned long long high);
 
-/// Run the library's parallel loops on at most `threads` OpenMP threads, fewer while the
-/// machine is busy (OpenMP's dynamic adjustment, which in GCC's libgomp subtracts the load
-/// average from the cores): a thread that waits for a core at every barrier turns seconds
-/// into minutes, and the results do not depend on the number of threads anyway. Setting
-/// OMP_DYNAMIC (e.g. false, for benchmarks) leaves the choice to OpenMP.
-void use_threads(unsigned long long threads);
-
 /// Which frame of a bed file to read and where its container is: --frame, --axis and --floor,
 /// the same for every subcommand that reads a bed (analyze, export).
 struct InputPlacement {

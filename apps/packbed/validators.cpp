@@ -90,12 +90,6 @@ void add_output_directory(CLI::App& app, std::string& out, bool& force,
                  "replace a non-empty output directory whole (its old files are deleted)");
 }
 
-void use_threads(unsigned long long threads) {
-    omp_set_num_threads(static_cast<int>(threads));
-    if (std::getenv("OMP_DYNAMIC") == nullptr) // OMP_DYNAMIC=false keeps the count fixed
-        omp_set_dynamic(1);
-}
-
 namespace {
 
 /// --frame: a whole number other than 0 (1 the first frame, -1 the last).

@@ -22,6 +22,13 @@
 
 namespace packbed {
 
+/// Run the library's parallel loops on at most `threads` OpenMP threads, fewer while the
+/// machine is busy (OpenMP's dynamic adjustment, which in GCC's libgomp subtracts the load
+/// average from the cores): a thread that waits for a core at every barrier turns seconds
+/// into minutes, and the results do not depend on the number of threads anyway. Setting
+/// OMP_DYNAMIC (e.g. false, for benchmarks) leaves the choice to OpenMP.
+void use_threads(unsigned long long threads);
+
 // ---------------------------------------------------------------------------------------------
 // generate: the soft-sphere bed of Salvat et al. (2005)
 

@@ -1,5 +1,8 @@
 // A soft-sphere bed from a request to its files (pipeline.hpp).
+#include <cstdlib>
 #include <filesystem>
+
+#include <omp.h>
 
 #include <fmt/format.h>
 
@@ -22,6 +25,12 @@ std::uint64_t sizes_seed(std::uint64_t seed) {
 }
 
 } // namespace
+
+void use_threads(unsigned long long threads) {
+    omp_set_num_threads(static_cast<int>(threads));
+    if (std::getenv("OMP_DYNAMIC") == nullptr) // OMP_DYNAMIC=false keeps the count fixed
+        omp_set_dynamic(1);
+}
 
 PreparedGeneration prepare_generation(GenerateRequest request) {
     PreparedGeneration prepared{request, request.params, std::nullopt};
