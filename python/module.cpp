@@ -23,6 +23,7 @@
 #include "packbed/files.hpp"
 #include "packbed/lattice.hpp"
 #include "packbed/limits.hpp"
+#include "packbed/option_ranges.hpp"
 #include "packbed/output.hpp"
 #include "packbed/pipeline.hpp"
 #include "packbed/read.hpp"
@@ -78,13 +79,11 @@ py::object to_python(const nlohmann::json& value) {
     return py::module_::import("json").attr("loads")(value.dump());
 }
 
-/// A whole number given to Python as `int`, checked with the library's wording.
-std::uint64_t whole(std::string_view option, long long value, long long low, long long high) {
-    if (value < low || value > high)
-        throw InvalidInput(fmt::format("--{}: {} is not allowed; allowed: a whole number from {} "
-                                       "to {}",
-                                       option, value, low, high));
-    return static_cast<std::uint64_t>(value);
+/// Each of `warnings` as a Python UserWarning (the command line prints them on stderr).
+void warn(const std::vector<std::string>& warnings) {
+    for (const std::string& w : warnings)
+        if (PyErr_WarnEx(PyExc_UserWarning, w.c_str(), 1) != 0)
+            throw py::error_already_set();
 }
 
 /// The value of a named choice (update order, solver, ...), or InvalidInput naming them all.
@@ -153,7 +152,7 @@ auto run_interruptible(RunControl& control, const py::object& progress, Work&& w
 /// threads=N as the command line's --threads (packbed::use_threads); None: OpenMP's default.
 void set_threads(const std::optional<long long>& threads) {
     if (threads)
-        use_threads(whole("threads", *threads, 1, 1024));
+        use_threads(check_option("threads", *threads, option_range::threads));
 }
 
 /// A container from its spec text, or InvalidInput naming `option`.
@@ -190,35 +189,36 @@ Bed generate(double aspect_ratio, const std::optional<std::string>& container, l
              const std::optional<std::filesystem::path>& out, bool force) {
     GenerateRequest request;
     SoftSphereParameters& p = request.params;
-    p.aspect_ratio = aspect_ratio;
-    p.particles = whole("particles", particles, 1, static_cast<long long>(limits::max_spheres));
-    p.seed = whole("seed", seed, 0, std::numeric_limits<long long>::max());
-    p.diameter = diameter;
-    p.e0 = e0;
-    p.ck = ck;
-    p.cg_step = cg_step;
-    p.overlap_low = overlap_low;
-    p.overlap_high = overlap_high;
-    p.tolerance = tolerance;
-    p.mc_period = static_cast<std::uint32_t>(whole("mc-period", mc_period, 1, 1'000'000));
-    p.mc_window = static_cast<std::uint32_t>(whole("mc-window", mc_window, 2, 10'000));
-    p.mc_tolerance = mc_tolerance;
+    namespace range = option_range;
+    p.aspect_ratio = check_option("aspect-ratio", aspect_ratio, range::aspect_ratio);
+    p.particles = check_option("particles", particles, range::particles);
+    p.seed = check_option("seed", seed, range::seed);
+    p.diameter = check_option("diameter", diameter, range::diameter);
+    p.e0 = check_option("e0", e0, range::e0);
+    p.ck = check_option("ck", ck, range::ck);
+    p.cg_step = check_option("cg-step", cg_step, range::cg_step);
+    if (overlap_low)
+        p.overlap_low = check_option("overlap-low", *overlap_low, range::overlap_bound);
+    if (overlap_high)
+        p.overlap_high = check_option("overlap-high", *overlap_high, range::overlap_bound);
+    p.tolerance = check_option("tolerance", tolerance, range::tolerance);
+    p.mc_period =
+        static_cast<std::uint32_t>(check_option("mc-period", mc_period, range::mc_period));
+    p.mc_window =
+        static_cast<std::uint32_t>(check_option("mc-window", mc_window, range::mc_window));
+    if (mc_tolerance)
+        p.mc_tolerance = check_option("mc-tolerance", *mc_tolerance, range::mc_tolerance);
     p.update = choice("update", update, update_orders());
     p.solver = choice("solver", solver, solvers());
-    p.skin = skin;
-    p.layer_height = layer_height;
+    p.skin = check_option("skin", skin, range::skin);
+    p.layer_height = check_option("layer-height", layer_height, range::layer_height);
     if (max_iterations)
-        p.max_iterations =
-            whole("max-iterations", *max_iterations, 1, std::numeric_limits<long long>::max());
+        p.max_iterations = check_option("max-iterations", *max_iterations, range::max_iterations);
     request.sizes = sizes;
     request.fractions = choice("fractions", fractions, fraction_bases());
     request.container = container.value_or("");
     request.checkpoint = checkpoint ? checkpoint->string() : std::string();
-    if (!(band_clearance >= 0.0 && std::isfinite(band_clearance)))
-        throw InvalidInput(fmt::format("--band-clearance: {} is not allowed; allowed: a number "
-                                       ">= 0",
-                                       band_clearance));
-    request.band_clearance = band_clearance;
+    request.band_clearance = check_option("band-clearance", band_clearance, range::band_clearance);
     const PreparedGeneration prepared = prepare_generation(request);
     std::optional<OutputDirectory> directory;
     if (out)
@@ -258,18 +258,16 @@ Bed read_bed(const std::filesystem::path& path, const std::string& format, long 
     options.frame = frame;
     if (axis)
         options.axis = {axis->first, axis->second};
-    options.floor = floor;
+    options.floor = check_option("floor", floor, option_range::floor_height);
     if (diameter)
-        options.radius = 0.5 * *diameter;
-    ParticleFile file = read_particles(path, options);
-    Bed bed{std::move(file.packing), std::nullopt, nlohmann::json::object()};
-    bed.container =
-        container ? std::optional(container_of("container", *container)) : container_beside(path);
-    if (bed.container && bed.packing.size() > 0) {
-        const double dp = diameter ? *diameter : bed.packing.mean_diameter();
-        check_inside(bed.packing, file.lines, path.string(), *bed.container, outside_tolerance * dp,
-                     axis.has_value() || floor != 0.0);
-    }
+        options.radius = 0.5 * check_option("diameter", *diameter, option_range::diameter);
+    check_option("outside-tolerance", outside_tolerance, option_range::outside_tolerance);
+    if (container)
+        container_of("container", *container); // its own message for a bad spec
+    BedInContainer read =
+        read_bed_in_container(path, options, container.value_or(""), 0.0, outside_tolerance);
+    ParticleFile& file = read.file;
+    Bed bed{std::move(file.packing), std::move(read.container), nlohmann::json::object()};
     bed.summary["particles_file"] = path.string();
     bed.summary["particles"] = bed.packing.size();
     bed.summary["frame"] = file.frame;
@@ -337,17 +335,20 @@ Analysis analyze(const Bed& bed, const std::optional<std::string>& container,
                  std::optional<long long> threads, const std::optional<std::filesystem::path>& out,
                  bool force) {
     const Container given = container_for(bed, container);
+    namespace range = option_range;
     AnalysisOptions options;
-    options.diameter = diameter;
-    options.band_clearance = band_clearance;
+    if (diameter)
+        options.diameter = check_option("diameter", *diameter, range::diameter);
+    options.band_clearance = check_option("band-clearance", band_clearance, range::band_clearance);
     if (band)
         options.band = Band{band->first, band->second};
-    options.shell_width = shell_width;
-    options.slab_height = slab_height;
-    options.centre_bin = centre_bin;
-    options.contact_tolerance = contact_tolerance;
-    options.rdf_range = rdf_range;
-    options.rdf_bin = rdf_bin;
+    options.shell_width = check_option("shell-width", shell_width, range::shell_width);
+    options.slab_height = check_option("slab-height", slab_height, range::slab_height);
+    options.centre_bin = check_option("centre-bin", centre_bin, range::centre_bin);
+    options.contact_tolerance =
+        check_option("contact-tolerance", contact_tolerance, range::contact_tolerance);
+    options.rdf_range = check_option("rdf-range", rdf_range, range::rdf_range);
+    options.rdf_bin = check_option("rdf-bin", rdf_bin, range::rdf_bin);
     std::optional<OutputDirectory> directory;
     if (out)
         directory.emplace(*out, "--out", OutputKind::directory, force);
@@ -378,7 +379,8 @@ Bed lattice(const std::string& type, const std::string& region, double diameter,
     LatticeParameters p;
     p.type = choice("type", type, lattice_types());
     p.region = parse_lattice_region(region);
-    p.diameter = diameter;
+    p.diameter = check_option("diameter", diameter, option_range::diameter);
+    check_option("band-clearance", band_clearance, option_range::lattice_band_clearance);
     if (origin)
         p.origin = parse_lattice_origin(*origin);
     p.keep = choice("keep", keep,
@@ -412,6 +414,97 @@ void write_bed(Bed& bed, const std::filesystem::path& out, bool force, bool anal
                       bed_top(bed.packing) > 2.0 * band_clearance * bed.packing.mean_diameter();
     stage_bed(directory, bed.packing, *bed.container, band_clearance, analysis && tall, summary);
     directory.commit();
+}
+
+py::object hydraulics(std::optional<double> porosity, const std::optional<std::string>& bed,
+                      std::optional<double> diameter, double particle_density, double fluid_density,
+                      double viscosity, double gravity, std::optional<double> velocity,
+                      std::optional<double> aspect_ratio,
+                      const std::optional<std::string>& container) {
+    namespace range = option_range;
+    HydraulicsRequest request;
+    FluidAndParticles& f = request.fluid;
+    if (porosity)
+        request.porosity = check_option("porosity", *porosity, range::porosity);
+    if (bed) {
+        check_path("--bed", *bed);
+        request.bed = *bed;
+    }
+    request.diameter_given = diameter.has_value();
+    if (diameter)
+        f.diameter = check_option("diameter", *diameter, range::diameter_m);
+    f.particle_density = check_option("particle-density", particle_density, range::density_kg_m3);
+    f.fluid_density = check_option("fluid-density", fluid_density, range::density_kg_m3);
+    f.viscosity = check_option("viscosity", viscosity, range::viscosity_pa_s);
+    f.gravity = check_option("gravity", gravity, range::gravity_m_s2);
+    if (velocity)
+        request.velocity = check_option("velocity", *velocity, range::velocity_m_s);
+    request.aspect_ratio_given = aspect_ratio.has_value();
+    if (aspect_ratio && container)
+        throw InvalidInput(fmt::format("--aspect-ratio {} and --container {} are both given; "
+                                       "allowed: one of the two",
+                                       *aspect_ratio, printable(container->substr(0, 80))));
+    if (aspect_ratio)
+        request.aspect_ratio =
+            check_option("aspect-ratio", *aspect_ratio, range::tube_aspect_ratio);
+    request.container = container.value_or("");
+    const Report report = hydraulics_report(request);
+    warn(report.warnings);
+    return to_python(report.values);
+}
+
+py::object correlations(double aspect_ratio, double profile_step, double profile_to) {
+    CorrelationsRequest request;
+    request.aspect_ratio = check_option("aspect-ratio", aspect_ratio, option_range::aspect_ratio);
+    request.profile_step = check_option("profile-step", profile_step, option_range::profile_step);
+    request.profile_to = check_option("profile-to", profile_to, option_range::profile_to);
+    const Report report = correlations_report(request);
+    warn(report.warnings);
+    return to_python(report.values);
+}
+
+std::string export_bed_to(const Bed& bed, const std::filesystem::path& out,
+                          const std::string& format, const std::optional<std::string>& container,
+                          std::optional<double> container_height, bool no_container, double density,
+                          const std::optional<std::string>& box,
+                          std::optional<double> fluid_velocity, const std::string& contacts,
+                          long long refine, std::optional<double> edge,
+                          long long cells_per_diameter, long long particle_level,
+                          long long wall_level, bool force) {
+    namespace range = option_range;
+    check_path("out", out);
+    ExportRequest request;
+    request.format = format;
+    request.out = out;
+    request.force = force;
+    // the bed's file where it was read from one (the outputs must not replace it)
+    const bool from_file = bed.summary.is_object() && bed.summary.contains("particles_file");
+    request.source = from_file ? bed.summary["particles_file"].get<std::string>() : "Python";
+    if (from_file)
+        request.keep = request.source;
+    request.container =
+        container ? std::optional(container_of("container", *container)) : bed.container;
+    if (container_height)
+        request.container_height =
+            check_option("container-height", *container_height, range::container_height);
+    request.no_container = no_container;
+    request.density = check_option("density", density, range::density);
+    request.box = box.value_or("");
+    if (fluid_velocity)
+        request.fluid_velocity =
+            check_option("fluid-velocity", *fluid_velocity, range::fluid_velocity);
+    request.contacts = contacts;
+    request.refine = static_cast<int>(check_option("refine", refine, range::refine));
+    if (edge)
+        request.edge = check_option("edge", *edge, range::edge);
+    request.mesh.cells_per_diameter = static_cast<int>(
+        check_option("cells-per-diameter", cells_per_diameter, range::cells_per_diameter));
+    request.mesh.particle_level =
+        static_cast<int>(check_option("particle-level", particle_level, range::refinement_level));
+    request.mesh.wall_level =
+        static_cast<int>(check_option("wall-level", wall_level, range::refinement_level));
+    py::gil_scoped_release released;
+    return export_bed(bed.packing, {}, request);
 }
 
 /// A vector's memory handed to numpy without a copy: the array owns the vector through a
@@ -688,6 +781,55 @@ kind 'fraction': float64, each voxel's solid fraction computed exactly from the 
 form); its sum times h^3 is the spheres' volume in the grid's box. region: (xlow, ylow, zlow,
 xhigh, yhigh, zhigh); None: the container across and the floor to the bed's top. out: also write
 it to a .npy, .tif or .raw (+ .raw.json) file. The array owns its memory (no copy is made).)");
+
+    m.def("export", &export_bed_to, py::arg("bed"), py::arg("out"), py::kw_only(),
+          py::arg("format") = ExportRequest{}.format, py::arg("container") = py::none(),
+          py::arg("container_height") = py::none(), py::arg("no_container") = false,
+          py::arg("density") = ExportRequest{}.density, py::arg("box") = py::none(),
+          py::arg("fluid_velocity") = py::none(), py::arg("contacts") = ExportRequest{}.contacts,
+          py::arg("refine") = ExportRequest{}.refine, py::arg("edge") = py::none(),
+          py::arg("cells_per_diameter") = ExportRequest{}.mesh.cells_per_diameter,
+          py::arg("particle_level") = ExportRequest{}.mesh.particle_level,
+          py::arg("wall_level") = ExportRequest{}.mesh.wall_level, py::arg("force") = false,
+          R"(Write a bed as `packbed export` does, to the file (or, for 'openfoam', the case
+directory) `out`: format 'lammps-data' (atom_style sphere), 'liggghts-data' (atom_style
+granular), 'stl', 'stl-ascii', 'obj' or 'openfoam' (docs/dem.md, docs/surfaces.md).
+
+container: a spec string; None: the bed's own (none: no wall treatment and no example DEM
+input). container_height: None, the bed's top + 1 Dp. no_container: surfaces without the
+container's solids, data files in the spheres' bounding box. Data files: density, box
+('xlo,xhi,ylo,yhi,zlo,zhi'), fluid_velocity. Surfaces: contacts ('none', 'shrink:F',
+'enlarge:F', 'caps:H', 'bridges:D'), refine (icosphere level) or edge, and for 'openfoam'
+cells_per_diameter, particle_level, wall_level. force: replace a non-empty case directory.
+Returns the command line's report line. Raises ValueError for a bad value.)");
+
+    m.def("hydraulics", &hydraulics, py::kw_only(), py::arg("porosity") = py::none(),
+          py::arg("bed") = py::none(), py::arg("diameter") = py::none(),
+          py::arg("particle_density") = HydraulicsRequest{}.fluid.particle_density,
+          py::arg("fluid_density") = HydraulicsRequest{}.fluid.fluid_density,
+          py::arg("viscosity") = HydraulicsRequest{}.fluid.viscosity,
+          py::arg("gravity") = HydraulicsRequest{}.fluid.gravity, py::arg("velocity") = py::none(),
+          py::arg("aspect_ratio") = py::none(), py::arg("container") = py::none(),
+          R"(The onset of fluidization and the fluid velocity for a DEM start (Tsayger 2013, eq.
+(1)), Wen & Yu, Ergun's and Eisfeld & Schnitzlein's pressure gradients, permeabilities and the
+regular packings, as `packbed hydraulics --json`; SI units.
+
+porosity, or bed (a summary.json or its directory: a lattice's exact porosity or a generated
+bed's void fraction, its diameter read as metres unless diameter is given, its tube's aspect
+ratio unless aspect_ratio is given). diameter (m; None: the bed's, else 1 mm), particle_density
+and fluid_density (kg/m^3; glass in water by default), viscosity (Pa s), gravity (m/s^2),
+velocity (m/s; None: the critical one of eq. (1)), aspect_ratio a = D/d or container (a spec in
+metres; a = D_h / d) for the wall-corrected pressure drop. Returns a dict; a correlation used
+outside its range gives a UserWarning. Raises ValueError for a bad value.)");
+
+    m.def("correlations", &correlations, py::kw_only(),
+          py::arg("aspect_ratio") = CorrelationsRequest{}.aspect_ratio,
+          py::arg("profile_step") = CorrelationsRequest{}.profile_step,
+          py::arg("profile_to") = CorrelationsRequest{}.profile_to,
+          R"(The published void-fraction correlations at the aspect ratio a = D/d, as `packbed
+correlations --json`: a dict with the mean void fractions and the radial profiles (x from the
+wall in d, from 0 to profile_to in steps of profile_step), each with its formula, source and
+validity range. A correlation used outside its range gives a UserWarning.)");
 
     m.def("lattice", &lattice, py::kw_only(), py::arg("type") = "diamond",
           py::arg("region") = "box:10,10,10", py::arg("diameter") = 1.0,

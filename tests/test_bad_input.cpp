@@ -326,7 +326,8 @@ INSTANTIATE_TEST_SUITE_P(
               "path); " +
                   a_path),
         exact("voxelize @D/bed.csv --voxel-size 0.1 -o @D/im.png",
-              "packbed voxelize: --out @D/im.png: the extension is not allowed; allowed: .npy, .tif (or "
+              "packbed voxelize: --out @D/im.png: the extension is not allowed; allowed: .npy, "
+              ".tif (or "
               ".tiff) or .raw (with a .raw.json header)"),
         exact("--config range.toml generate",
               "packbed: --aspect-ratio: 0.5 is not allowed; allowed: a number in [1, 10000]"),
@@ -435,7 +436,7 @@ INSTANTIATE_TEST_SUITE_P(
         exact("generate --aspect-ratio 1e5",
               "packbed: --aspect-ratio: 1e5 is not allowed; allowed: a number in [1, 10000]"),
         exact("generate --particles 100000001",
-              "packbed: --particles: '100000001' is not allowed; allowed: a whole number from 1 "
+              "packbed: --particles: 100000001 is not allowed; allowed: a whole number from 1 "
               "to 100000000"),
         exact("generate --seed 18446744073709551616",
               "packbed: --seed: '18446744073709551616' is not allowed; allowed: a whole number "
@@ -448,13 +449,13 @@ INSTANTIATE_TEST_SUITE_P(
               "packbed: --max-iterations: '18446744073709551616' is not allowed; allowed: a "
               "whole number from 1 to 18446744073709551615"),
         exact("generate --threads 1025",
-              "packbed: --threads: '1025' is not allowed; allowed: a whole number from 1 to "
+              "packbed: --threads: 1025 is not allowed; allowed: a whole number from 1 to "
               "1024"),
         exact("generate --mc-period 1000001",
-              "packbed: --mc-period: '1000001' is not allowed; allowed: a whole number from 1 "
+              "packbed: --mc-period: 1000001 is not allowed; allowed: a whole number from 1 "
               "to 1000000"),
         exact("generate --mc-window 10001",
-              "packbed: --mc-window: '10001' is not allowed; allowed: a whole number from 2 to "
+              "packbed: --mc-window: 10001 is not allowed; allowed: a whole number from 2 to "
               "10000"),
         exact("generate --layer-height 1e7",
               "packbed: --layer-height: 1e7 is not allowed; allowed: a number in [0, 1e+06]"),
@@ -471,7 +472,7 @@ INSTANTIATE_TEST_SUITE_P(
         exact("generate --aspect-ratio 0.8",
               "packbed: --aspect-ratio: 0.8 is not allowed; allowed: a number in [1, 10000]"),
         exact("generate --particles 0",
-              "packbed: --particles: '0' is not allowed; allowed: a whole number from 1 to "
+              "packbed: --particles: 0 is not allowed; allowed: a whole number from 1 to "
               "100000000"),
         exact("generate --particles -5",
               "packbed: --particles: '-5' is not allowed; allowed: a whole number from 1 to "
@@ -502,16 +503,16 @@ INSTANTIATE_TEST_SUITE_P(
         exact("generate --skin 0", "packbed: --skin: 0 is not allowed; allowed: a number in "
                                    "(0, 1]"),
         exact("generate --mc-period 0",
-              "packbed: --mc-period: '0' is not allowed; allowed: a whole number from 1 to "
+              "packbed: --mc-period: 0 is not allowed; allowed: a whole number from 1 to "
               "1000000"),
         exact("generate --mc-window 1",
-              "packbed: --mc-window: '1' is not allowed; allowed: a whole number from 2 to "
+              "packbed: --mc-window: 1 is not allowed; allowed: a whole number from 2 to "
               "10000"),
         exact("generate --max-iterations 0",
-              "packbed: --max-iterations: '0' is not allowed; allowed: a whole number from 1 to "
+              "packbed: --max-iterations: 0 is not allowed; allowed: a whole number from 1 to "
               "18446744073709551615"),
         exact("generate --threads 0",
-              "packbed: --threads: '0' is not allowed; allowed: a whole number from 1 to 1024"),
+              "packbed: --threads: 0 is not allowed; allowed: a whole number from 1 to 1024"),
         exact("generate --band-clearance -1",
               "packbed: --band-clearance: -1 is not allowed; allowed: a number >= 0"),
         exact("generate --layer-height 5",
@@ -798,7 +799,7 @@ INSTANTIATE_TEST_SUITE_P(
               "packbed analyze: --band-clearance 1e+300 Dp is not allowed for this bed (top at 40, "
               "40 Dp); allowed: less than half its height"),
         exact("analyze bed.csv -R 1 --threads 0",
-              "packbed: --threads: '0' is not allowed; allowed: a whole number from 1 to 1024"),
+              "packbed: --threads: 0 is not allowed; allowed: a whole number from 1 to 1024"),
         exact("analyze bed.csv -R 1 --format png",
               "packbed: --format: 'png' is not allowed; allowed: auto, csv, xyz, lammps-dump, "
               "lammps-data"),
@@ -960,10 +961,10 @@ INSTANTIATE_TEST_SUITE_P(
               "packbed export: --format openfoam needs the container: give --container (no "
               "summary.json with a container next to @D/two.csv)"),
         exact("export two.csv --format openfoam -R 2 --cells-per-diameter 0",
-              "packbed: --cells-per-diameter: '0' is not allowed; allowed: a whole number from 1 "
+              "packbed: --cells-per-diameter: 0 is not allowed; allowed: a whole number from 1 "
               "to 100"),
         exact("export two.csv --format openfoam -R 2 --particle-level 9",
-              "packbed: --particle-level: '9' is not allowed; allowed: a whole number from 0 to "
+              "packbed: --particle-level: 9 is not allowed; allowed: a whole number from 0 to "
               "8"),
         exact("export two.csv --format openfoam -R 2 --wall-level x",
               "packbed: --wall-level: 'x' is not allowed; allowed: a whole number from 0 to 8"),
@@ -1044,7 +1045,7 @@ INSTANTIATE_TEST_SUITE_P(
               "packbed export: cut.csv.gz: the gzip data ends early (a truncated .gz file?); "
               "allowed: a complete gzip file"),
         exact("export @D/two.csv --format stl --refine 9",
-              "packbed: --refine: '9' is not allowed; allowed: a whole number from 0 to 7"),
+              "packbed: --refine: 9 is not allowed; allowed: a whole number from 0 to 7"),
         exact("export two.csv --format stl --refine -1",
               "packbed: --refine: '-1' is not allowed; allowed: a whole number from 0 to 7"),
         exact("export two.csv --format stl --refine x",

@@ -48,12 +48,12 @@ struct AnalyzeOptions {
 /// or is not taller than twice the band clearance, or than --band's top (a bed still being
 /// filled).
 std::optional<double> frame_void_fraction(const ParticleFile& frame, const Container& container,
-                                          const AnalyzeOptions& o, const std::string& name) {
+                                          const AnalyzeOptions& o, const ReadOptions& read,
+                                          const std::string& name) {
     if (frame.packing.size() == 0)
         return std::nullopt;
     const double dp = o.diameter > 0.0 ? o.diameter : frame.packing.mean_diameter();
-    check_inside(frame.packing, frame.lines, name, container, o.outside_tolerance * dp,
-                 o.placement.shifted());
+    check_file_inside(frame, read, name, container, o.outside_tolerance);
     // Only the void fraction: the rest of analyze_bed (contacts, g(r)) is for the last frame.
     const std::optional<Band> band =
         o.analysis.band
@@ -88,21 +88,20 @@ int run_analyze(AnalyzeOptions& o) {
         if (name == o.format)
             read_options.format = value;
     o.placement.apply(read_options);
-    const bool shifted = o.placement.shifted();
     const bool series = o.frames == "all";
-    std::optional<ParticleFile> read;
-    if (!series)
-        read = read_particles(path, read_options);
     if (const auto b = comma_numbers(o.band); b && b->size() == 2)
         o.analysis.band = Band{(*b)[0], (*b)[1]};
     // --container, then --container-radius, then the container summary.json records.
+    std::optional<ParticleFile> read;
     std::optional<Container> given;
-    if (const auto spec = parse_container(o.container))
-        given = spec->container();
-    else if (o.container_radius > 0.0)
-        given = Cylinder(o.container_radius);
-    else
-        given = container_beside(path);
+    if (series) {
+        given = find_container(path, o.container, o.container_radius);
+    } else {
+        BedInContainer bed = read_bed_in_container(path, read_options, o.container,
+                                                   o.container_radius, o.outside_tolerance);
+        read = std::move(bed.file);
+        given = std::move(bed.container);
+    }
     if (!given)
         throw InvalidInput(fmt::format("--container (or --container-radius) is needed: no "
                                        "summary.json with a container next to {}",
@@ -110,11 +109,6 @@ int run_analyze(AnalyzeOptions& o) {
     const Container container = *given;
     if (o.diameter > 0.0)
         o.analysis.diameter = o.diameter;
-    if (read) {
-        const double dp = o.diameter > 0.0 ? o.diameter : read->packing.mean_diameter();
-        check_inside(read->packing, read->lines, path.string(), container, o.outside_tolerance * dp,
-                     shifted);
-    }
 
     const fs::path out_dir = o.out.empty() ? path.parent_path() / "analysis" : fs::path(o.out);
     OutputDirectory out(out_dir, "--out", OutputKind::directory, o.force);
@@ -129,7 +123,7 @@ int run_analyze(AnalyzeOptions& o) {
             ++frames;
             std::optional<double> e;
             try {
-                e = frame_void_fraction(frame, container, o, path.string());
+                e = frame_void_fraction(frame, container, o, read_options, path.string());
             } catch (const InvalidInput& error) {
                 throw InvalidInput(fmt::format(
                     "frame {}{}: {}", frame.frame,
@@ -146,9 +140,7 @@ int run_analyze(AnalyzeOptions& o) {
             throw InvalidInput(fmt::format("{}: no frame has spheres; allowed: a file with "
                                            "spheres in at least one frame",
                                            printable(path.native())));
-        const double dp = o.diameter > 0.0 ? o.diameter : read->packing.mean_diameter();
-        check_inside(read->packing, read->lines, path.string(), container, o.outside_tolerance * dp,
-                     shifted);
+        check_file_inside(*read, read_options, path.string(), container, o.outside_tolerance);
         out.stage("void_fraction_series.csv", table);
     }
     const ParticleFile& file = *read;
@@ -213,7 +205,6 @@ Command register_analyze(CLI::App& parent) {
                    "wall contacts, g(r)");
     app->option_defaults()->always_capture_default();
     app->fallthrough();
-    const double inf = std::numeric_limits<double>::infinity();
     app->add_option("particles", o.particles,
                     "the bed: a table (CSV x,y,z,r or d; ParaView CSV; ;/tab/space separated), "
                     "XYZ, a LAMMPS/LIGGGHTS dump or data file; also .gz")
@@ -228,7 +219,7 @@ Command register_analyze(CLI::App& parent) {
         app->add_option("-R,--container-radius", o.container_radius,
                         "cylinder radius Rt (file units), shorthand of --container "
                         "cylinder:2Rt; default: summary.json next to the file")
-            ->check(real_in(0.0, limits::max_length, true, false));
+            ->check(real_in(option_range::container_radius));
     add_container_option(*app, o.container, "file units; default: summary.json next to the file",
                          all_shapes)
         ->excludes(radius);
@@ -236,11 +227,11 @@ Command register_analyze(CLI::App& parent) {
     app->add_option("-d,--diameter", o.diameter,
                     "reference diameter Dp, and the sphere size of files without a radius or "
                     "diameter column; default: the mean sphere diameter")
-        ->check(real_in(limits::min_diameter, limits::max_diameter, false, false));
+        ->check(real_in(option_range::diameter));
     CLI::Option* clearance =
         app->add_option("--band-clearance", a.band_clearance,
                         "properties refer to the band this far from floor and top, Dp")
-            ->check(real_in(0.0, inf, false, true));
+            ->check(real_in(option_range::band_clearance));
     app->add_option("--band", o.band,
                     "ZLOW,ZHIGH: the band the properties refer to (file units, 0 <= ZLOW < ZHIGH "
                     "<= the bed's top), instead of --band-clearance")
@@ -257,17 +248,17 @@ Command register_analyze(CLI::App& parent) {
             "ZLOW,ZHIGH"))
         ->excludes(clearance);
     app->add_option("--shell-width", a.shell_width, "shell width of the radial profile, Dp")
-        ->check(real_in(1e-4, 10.0, false, false));
+        ->check(real_in(option_range::shell_width));
     app->add_option("--slab-height", a.slab_height, "slab height of the axial profile, Dp")
-        ->check(real_in(1e-4, 10.0, false, false));
+        ->check(real_in(option_range::slab_height));
     app->add_option("--centre-bin", a.centre_bin, "bin width of the centre distribution, Dp")
-        ->check(real_in(1e-4, 10.0, false, false));
+        ->check(real_in(option_range::centre_bin));
     app->add_option("--contact-tolerance", a.contact_tolerance, "a gap up to this is a contact, Dp")
-        ->check(real_in(0.0, 0.5, false, false));
+        ->check(real_in(option_range::contact_tolerance));
     app->add_option("--rdf-range", a.rdf_range, "largest distance of g(r), Dp")
-        ->check(real_in(0.1, 20.0, false, false));
+        ->check(real_in(option_range::rdf_range));
     app->add_option("--rdf-bin", a.rdf_bin, "bin width of g(r), Dp")
-        ->check(real_in(1e-4, 1.0, false, false));
+        ->check(real_in(option_range::rdf_bin));
     CLI::Option* frame = add_input_placement(*app, o.placement);
     app->add_option("--frames", o.frames,
                     "all: the void fraction of every frame in void_fraction_series.csv (frame, "
@@ -276,11 +267,11 @@ Command register_analyze(CLI::App& parent) {
         ->excludes(frame);
     app->add_option("--outside-tolerance", o.outside_tolerance,
                     "how far a sphere may stick out of the wall or floor, Dp")
-        ->check(real_in(0.0, 1.0, false, false));
+        ->check(real_in(option_range::outside_tolerance));
     app->add_option("-j,--threads", o.threads,
                     "at most this many threads, fewer while the machine is busy (results do not "
                     "depend on it)")
-        ->check(whole_in(1, 1024));
+        ->check(whole_in(option_range::threads));
     app->add_flag("-q,--quiet", o.quiet, "no report on the terminal");
     return {app, [options] { return run_analyze(*options); }};
 }

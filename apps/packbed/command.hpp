@@ -11,6 +11,7 @@
 #include <CLI/CLI.hpp>
 
 #include "packbed/container.hpp"
+#include "packbed/option_ranges.hpp"
 #include "packbed/read.hpp"
 
 namespace packbed::cli {
@@ -21,9 +22,11 @@ struct Command {
     std::function<int()> run; ///< returns the exit status
 };
 
-/// A real number within [low, high] (each end open or closed). Rejects text that is not
-/// wholly a finite number. The message names the value and the allowed range; CLI11 prefixes
-/// the option name.
+/// A real number within `range` (option_ranges.hpp: the table the Python module checks with too).
+/// Rejects text that is not wholly a finite number. The message names the value and the allowed
+/// range; CLI11 prefixes the option name.
+CLI::Validator real_in(const NumberRange& range);
+/// \copydoc real_in(const NumberRange&), for an option of one subcommand only
 CLI::Validator real_in(double low, double high, bool low_open, bool high_open);
 
 /// A path: not empty, no control characters (newline, tab, ...), at most 4095 bytes
@@ -39,7 +42,9 @@ void add_output_directory(CLI::App& app, std::string& out, bool& force,
 /// One of `names` (exactly). The message quotes the value, so an empty one shows as ''.
 CLI::Validator one_of(std::vector<std::string> names);
 
-/// A whole number within [low, high].
+/// A whole number within `range` (option_ranges.hpp). The message quotes text that is not one.
+CLI::Validator whole_in(const WholeRange& range);
+/// \copydoc whole_in(const WholeRange&)
 CLI::Validator whole_in(unsigned long long low, unsigned long long high);
 
 /// Which frame of a bed file to read and where its container is: --frame, --axis and --floor,

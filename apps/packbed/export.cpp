@@ -1,29 +1,17 @@
 // `packbed export`: any bed (generated, lattice, read from elsewhere) as a DEM data file or as
-// a surface for meshers (STL, OBJ) with the contacts treated.
-#include <algorithm>
-#include <cctype>
-#include <charconv>
+// a surface for meshers (STL, OBJ) with the contacts treated: the options, the bed read and its
+// container found; the library's export_bed (src/pipeline/export.cpp) writes.
 #include <filesystem>
 #include <memory>
 #include <optional>
-#include <stdexcept>
 #include <string>
 #include <vector>
 
 #include <fmt/format.h>
-#include <nlohmann/json.hpp>
 
 #include "command.hpp"
-#include "packbed/error.hpp"
-#include "packbed/files.hpp"
-#include "packbed/io.hpp"
-#include "packbed/limits.hpp"
-#include "packbed/openfoam.hpp"
-#include "packbed/output.hpp"
 #include "packbed/pipeline.hpp"
 #include "packbed/read.hpp"
-#include "packbed/surface.hpp"
-#include "packbed/volume.hpp"
 
 namespace packbed::cli {
 
@@ -31,435 +19,39 @@ namespace {
 
 namespace fs = std::filesystem;
 
-/// What `export` writes. The data files: LAMMPS `atom_style sphere` and LIGGGHTS `atom_style
-/// granular` read the same columns; the name sets the first-line comment and the hint. The
-/// surfaces: see packbed/surface.hpp.
-enum class ExportFormat { lammps_data, liggghts_data, stl, stl_ascii, obj, openfoam };
-
-const std::vector<std::pair<std::string, ExportFormat>>& export_formats() {
-    static const std::vector<std::pair<std::string, ExportFormat>> formats{
-        {"lammps-data", ExportFormat::lammps_data},
-        {"liggghts-data", ExportFormat::liggghts_data},
-        {"stl", ExportFormat::stl},
-        {"stl-ascii", ExportFormat::stl_ascii},
-        {"obj", ExportFormat::obj},
-        {"openfoam", ExportFormat::openfoam}};
-    return formats;
-}
-
+/// `packbed export`'s options: the library's request and how to read the bed.
 struct ExportOptions {
     std::string particles;
-    std::string format = "lammps-data";
-    std::string out;
-    double density = 2500.0;
-    std::string box;            // empty: the bounding box of the spheres
-    double fluid_velocity = -1; // < 0: none
-    double diameter = 0.0;      // files without radii
-    InputPlacement placement;   // --frame, --axis, --floor
-    // Surfaces
-    std::string contacts = "none";
-    int refine = 3;
-    double edge = 0.0;             // > 0: overrides refine
+    ExportRequest request;         // --out empty: default_export_path
+    std::string out;               // --out
+    double diameter = 0.0;         // files without radii
+    InputPlacement placement;      // --frame, --axis, --floor
     double container_radius = 0.0; // 0: from summary.json beside the file, if any
     std::string container;         // --container SPEC (any shape), instead of -R
-    double container_height = 0.0; // 0: the bed's top + 1 Dp
-    bool no_container = false;
-    OpenFoamMeshOptions mesh;
     bool quiet = false;
-    bool force = false;
 };
 
-AxisBox parse_box(const std::string& text) {
-    const auto v = comma_numbers(text);
-    if (!v || v->size() != 6 || !((*v)[0] < (*v)[1] && (*v)[2] < (*v)[3] && (*v)[4] < (*v)[5]))
-        throw InvalidInput(
-            fmt::format("--box '{}' is not allowed; allowed: xlo,xhi,ylo,yhi,zlo,zhi "
-                        "with lo < hi",
-                        printable(text)));
-    return {{(*v)[0], (*v)[2], (*v)[4]}, {(*v)[1], (*v)[3], (*v)[5]}};
-}
-
-/// The output file `out_path` and the files `sidecars` beside it, reserved before any work:
-/// the folder is checked, and no output may be the input.
-std::unique_ptr<OutputDirectory> file_output(const ExportOptions& o, const fs::path& out_path,
-                                             const std::vector<std::string>& sidecars) {
-    if (!out_path.has_filename() || out_path.filename() == "." || out_path.filename() == "..")
-        throw InvalidInput(fmt::format("--out {} is not allowed; allowed: a file name",
-                                       printable(out_path.native())));
-    auto out = std::make_unique<OutputDirectory>(out_path.has_parent_path() ? out_path.parent_path()
-                                                                            : fs::path("."),
-                                                 "--out", OutputKind::files);
-    out->keep("the particles file", o.particles);
-    const std::string name = out_path.filename().string();
-    out->reserve(name);
-    for (const std::string& sidecar : sidecars)
-        out->reserve(name + sidecar);
-    return out;
-}
-
-/// The bed's container: --container, --container-radius or summary.json beside the file (a
-/// cylinder or a box), the height from --container-height or the bed's top + 1 Dp.
-/// \return nothing when none gives a container. \throws InvalidInput when the height is not
-/// above the bed or a centre lies outside the container
-std::optional<SurfaceContainer> bed_container(const ExportOptions& o, const ParticleFile& file) {
-    const auto spec = parse_container(o.container);
-    const std::optional<Container> given =
-        spec                       ? std::optional<Container>(spec->container())
-        : o.container_radius > 0.0 ? std::optional<Container>(Cylinder(o.container_radius))
-                                   : container_beside(o.particles);
-    if (!given)
-        return std::nullopt;
-    const double top = bed_top(file.packing);
-    const double height =
-        o.container_height > 0.0 ? o.container_height : top + file.packing.mean_diameter();
-    if (!(height > top))
-        throw InvalidInput(fmt::format(
-            "--container-height {} is not allowed; allowed: above the bed's top, {}", height, top));
-    for (std::size_t i = 0; i < file.packing.size(); ++i) {
-        const Vec3& c = file.packing.centers[i];
-        if (!(given->wall_distance(c) > 0.0) || c.z <= 0.0)
-            throw InvalidInput(fmt::format(
-                "{}:{}: the sphere centre ({}, {}, {}) is outside the container ({}, "
-                "floor z = 0); allowed: centres inside it",
-                printable(o.particles), file.lines[i], c.x, c.y, c.z, describe(*given)));
-    }
-    return SurfaceContainer{*given, height};
-}
-
-/// The container in packbed.json: its shape, size and height.
-nlohmann::ordered_json container_json(const SurfaceContainer& container) {
-    if (const Cylinder* c = container.container.cylinder())
-        return {{"shape", "cylinder"}, {"radius", c->radius()}, {"height", container.height}};
-    if (const Annulus* a = container.container.annulus())
-        return {{"shape", "annulus"},
-                {"radius", a->outer_radius()},
-                {"inner_radius", a->inner_radius()},
-                {"height", container.height}};
-    const Rectangle b = container.container.bounds();
-    return {{"shape", container.container.name()},
-            {"size", {b.x_high - b.x_low, b.y_high - b.y_low}},
-            {"corner", {b.x_low, b.y_low}},
-            {"height", container.height}};
-}
-
-/// STL, OBJ or an OpenFOAM case: treat the contacts, tessellate, write the surfaces and the
-/// volumes.
-int run_surface_export(const ExportOptions& o, ExportFormat format, const ParticleFile& file) {
-    // The output first, so that everything that can refuse it does before the work.
-    const fs::path out_path =
-        !o.out.empty() ? fs::path(o.out)
-        : format == ExportFormat::openfoam
-            ? fs::path(o.particles).parent_path() / "openfoam"
-            : fs::path(o.particles)
-                  .replace_extension(format == ExportFormat::obj ? ".obj" : ".stl");
-    std::unique_ptr<OutputDirectory> out;
-    if (format == ExportFormat::openfoam) {
-        out = std::make_unique<OutputDirectory>(out_path, "--out", OutputKind::directory, o.force);
-        out->keep("the particles file", o.particles);
-    } else {
-        out = file_output(o, out_path, {".json"});
-    }
-    const Contacts contacts = parse_contacts(o.contacts);
-    const double dp = file.packing.mean_diameter();
-    const std::optional<SurfaceContainer> container = bed_container(o, file);
-    if (container && container->container.periodic() && format != ExportFormat::openfoam)
-        throw InvalidInput(fmt::format(
-            "--container {} is not allowed with --format {}; allowed: cylinder:D, box:LX,LY or "
-            "annulus:D,DI (a periodic cell has no closed surface: it is exported as an openfoam "
-            "case with cyclic sides, or by lammps-data and liggghts-data)",
-            container->container.spec(), o.format));
-    SurfaceOptions options;
-    double largest = 0.0;
-    for (const double r : file.packing.radii)
-        largest = std::max(largest, r);
-    options.level = o.edge > 0.0 ? icosphere_level_for_edge(largest, o.edge) : o.refine;
-    options.container = container;
-    options.write_container = !o.no_container;
-    const TreatedBed bed = treat_contacts(file.packing, contacts, container);
-    if (container)
-        for (std::size_t i = 0; i < bed.bodies.size(); ++i) {
-            const TreatedBody& b = bed.bodies[i];
-            if (!(b.center.z + b.radius < container->height))
-                throw InvalidInput(fmt::format(
-                    "--container-height {} is not allowed; allowed: above the top of every "
-                    "treated sphere (sphere {} reaches {})",
-                    container->height, i + 1, b.center.z + b.radius));
-        }
-    if (format == ExportFormat::openfoam && !container)
-        throw InvalidInput(
-            fmt::format("--format openfoam needs the container: give --container (no "
-                        "summary.json with a container next to {})",
-                        printable(o.particles)));
-
-    // What every surface export reports (printed, and written as JSON beside the output).
-    nlohmann::ordered_json report;
-    report["particles"] = o.particles;
-    report["spheres"] = file.packing.size();
-    report["contacts"] = o.contacts;
-    report["diameter"] = dp;
-    report["icosphere_level"] = options.level;
-    std::optional<TreatmentVolumes> volumes;
-    std::string change;
-    if (container) {
-        const TreatmentVolumes& v =
-            volumes.emplace(treatment_volumes(file.packing, bed, *container));
-        report["container"] = container_json(*container);
-        report["volumes"] = {
-            {"container", v.container_volume},
-            {"untouched_solid", v.untouched_solid},
-            {"treated_solid", v.treated_solid},
-            {"fluid", v.container_volume - v.treated_solid},
-            {"untouched_void_fraction", v.untouched_void_fraction},
-            {"treated_void_fraction", v.treated_void_fraction},
-            {"void_fraction_change", v.treated_void_fraction - v.untouched_void_fraction}};
-        change = fmt::format("; void fraction in the container (z 0 to {:.6g}) {:.6f} -> {:.6f} "
-                             "({:+.6f})",
-                             container->height, v.untouched_void_fraction, v.treated_void_fraction,
-                             v.treated_void_fraction - v.untouched_void_fraction);
-    }
-
-    if (format == ExportFormat::openfoam) {
-        const OpenFoamCase foam =
-            openfoam_case(bed, *container, *volumes, o.contacts, dp, options.level, o.mesh);
-        report["openfoam"] = {
-            {"cell_size", foam.cell_size},
-            {"particle_level", o.mesh.particle_level},
-            {"wall_level", o.mesh.wall_level},
-            {"location_in_mesh",
-             {foam.location_in_mesh.x, foam.location_in_mesh.y, foam.location_in_mesh.z}},
-            {"clearance", foam.clearance}};
-        for (const auto& [path, text] : foam.files)
-            out->stage(path, text);
-        write_surface(foam.particles, SurfaceFormat::stl_binary,
-                      out->reserve("constant/triSurface/particles.stl"));
-        if (!foam.wall.empty()) // a cylinder's wall; a box's is the background's faces
-            write_surface(foam.wall, SurfaceFormat::stl_binary,
-                          out->reserve("constant/triSurface/wall.stl"));
-        if (!foam.rod.empty()) // an annulus' rod
-            write_surface(foam.rod, SurfaceFormat::stl_binary,
-                          out->reserve("constant/triSurface/rod.stl"));
-        out->stage("packbed.json", report.dump(2) + "\n");
-        out->commit();
-        if (!o.quiet)
-            fmt::print("packbed export: OpenFOAM case in {} ({} spheres, contacts {}{}); run "
-                       "blockMesh, snappyHexMesh -overwrite, checkMesh there\n",
-                       out_path.string(), file.packing.size(), o.contacts, change);
-        return 0;
-    }
-
-    const std::vector<Solid> solids = bed_surface(bed, options);
-    std::size_t triangles = 0;
-    report["solids"] = nlohmann::ordered_json::array();
-    for (const Solid& s : solids) {
-        triangles += s.mesh.triangles.size();
-        report["solids"].push_back({{"name", s.name}, {"triangles", s.mesh.triangles.size()}});
-    }
-    const std::string name = out_path.filename().string();
-    write_surface(solids,
-                  format == ExportFormat::stl         ? SurfaceFormat::stl_binary
-                  : format == ExportFormat::stl_ascii ? SurfaceFormat::stl_ascii
-                                                      : SurfaceFormat::obj,
-                  out->reserve(name));
-    out->stage(name + ".json", report.dump(2) + "\n");
-    out->commit();
-    if (!o.quiet)
-        fmt::print("packbed export: {} spheres to {} ({} triangles, icosphere level {}, contacts "
-                   "{}){}\n",
-                   file.packing.size(), out_path.string(), triangles, options.level, o.contacts,
-                   change);
-    return 0;
-}
-
-/// The names of the example DEM run written beside a data file `name` when the container is
-/// known (docs/dem.md).
-struct DemFiles {
-    std::string input, dump, wall, bottom; // wall, bottom: LIGGGHTS only
-};
-
-DemFiles dem_files(const std::string& name, ExportFormat format, bool periodic) {
-    if (format == ExportFormat::lammps_data)
-        return {name + ".lammps.in", name + ".lammps.dump", "", ""};
-    if (periodic) // no side wall, the floor a plane: no STL
-        return {name + ".liggghts.in", name + ".liggghts.dump", "", ""};
-    return {name + ".liggghts.in", name + ".liggghts.dump", name + ".wall.stl",
-            name + ".bottom.stl"};
-}
-
-/// A LAMMPS or LIGGGHTS data file; where the container is known, its box holds the container
-/// and an example settle (input, and for LIGGGHTS the wall STL files) is written beside it.
-int run_data_export(const ExportOptions& o, ExportFormat format, const ParticleFile& file) {
-    const bool lammps = format == ExportFormat::lammps_data;
-    const std::optional<AxisBox> given_box =
-        o.box.empty() ? std::nullopt : std::optional<AxisBox>(parse_box(o.box));
-    const fs::path out_path =
-        o.out.empty() ? fs::path(o.particles).replace_extension(".data") : fs::path(o.out);
-    const std::string name = out_path.filename().string();
-    const std::optional<SurfaceContainer> container =
-        o.no_container ? std::nullopt : bed_container(o, file);
-    const double dp = file.packing.mean_diameter();
-    std::vector<std::string> sidecars;
-    if (o.fluid_velocity >= 0.0)
-        sidecars.push_back(".fluid.in");
-    if (given_box && container && container->container.periodic())
-        throw InvalidInput(fmt::format("--box {} is not allowed with the periodic cell {}; "
-                                       "allowed: no --box (the data file's box is the cell, its "
-                                       "periods), or --no-container",
-                                       printable(o.box), container->container.spec()));
-    const DemFiles dem = dem_files(name, format, container && container->container.periodic());
-    if (container) {
-        // The inputs name the files as single words.
-        const bool word = !name.empty() && std::all_of(name.begin(), name.end(), [](char c) {
-            return std::isalnum(static_cast<unsigned char>(c)) || c == '.' || c == '_' ||
-                   c == '-' || c == '+';
-        });
-        if (!word)
-            throw InvalidInput(fmt::format(
-                "--out {}: the file name '{}' is not allowed with the example DEM input, which "
-                "names it; allowed: letters, digits, '.', '_', '-' and '+' (or --no-container: "
-                "no example)",
-                printable(out_path.native()), printable(name)));
-        for (const std::string& f : {dem.input, dem.wall, dem.bottom})
-            if (!f.empty())
-                sidecars.push_back(f.substr(name.size()));
-    }
-    const auto out = file_output(o, out_path, sidecars);
-    const std::string program = lammps ? "LAMMPS" : "LIGGGHTS";
-    // The title: where the spheres came from, shortened to the file's name (then cut) where
-    // the path would make it longer than LAMMPS and LIGGGHTS read.
-    const auto title = [&](std::string_view source) {
-        std::string t =
-            fmt::format("{} spheres from {} (packbed export, {} atom_style {})",
-                        file.packing.size(), source, program, lammps ? "sphere" : "granular");
-        if (o.fluid_velocity >= 0.0)
-            t += fmt::format("; fluid superficial velocity {} (packbed hydraulics)",
-                             o.fluid_velocity);
-        return t;
-    };
-    std::string comment = title(o.particles);
-    if (comment.size() > max_data_header_line) {
-        const std::string base = fs::path(o.particles).filename().string();
-        const std::size_t room = max_data_header_line - (title("").size() + 3);
-        comment = title(base.size() <= room ? base : "..." + base.substr(base.size() - room));
-    }
-    // The box: --box, else the container and a margin where it is known, else the spheres'
-    // bounding box (the header says which where the container is known).
-    // A periodic cell: every centre moved by whole periods into the cell (the data file's box).
-    Packing packing = file.packing;
-    if (container)
-        if (const Periodic* cell = container->container.periodic())
-            for (Vec3& c : packing.centers)
-                c = cell->wrapped(c);
-    AxisBox box = bounding_box(packing);
-    std::string box_note;
-    if (given_box) {
-        box = *given_box;
-        if (container)
-            box_note = "box from --box";
-    } else if (container) {
-        const Container& c = container->container;
-        box = container_box(c, container->height, dp);
-        // The cylinder's margin rule in Rt; a box's in its depth, half the narrower width; an
-        // annulus' in its tube's radius; a periodic cell's box is the cell in x and y.
-        const Cylinder* cylinder = c.cylinder();
-        if (c.periodic())
-            box_note = fmt::format("box: the periodic cell {0} (boundary p p f), z from -{2:.9g} "
-                                   "to the height {1:.9g} + {2:.9g} (Dp/2)",
-                                   c.spec(), container->height, container_box_margin(c, dp));
-        else
-            box_note =
-                fmt::format("box: the container ({}, height {:.9g}) and a margin of {:.9g} "
-                            "(the larger of Dp/2 and {}) on every side",
-                            cylinder ? fmt::format("radius {:.9g}", cylinder->radius()) : c.spec(),
-                            container->height, container_box_margin(c, dp),
-                            cylinder      ? "Rt/100"
-                            : c.annulus() ? "the tube's radius/100"
-                                          : "a hundredth of half the narrower width");
-    }
-    out->stage(name, lammps_data(packing, o.density, box, comment,
-                                 box_note.empty() ? std::vector<std::string>{}
-                                                  : std::vector<std::string>{box_note}));
-    if (o.fluid_velocity >= 0.0)
-        out->stage(name + ".fluid.in",
-                   fmt::format("# for the coupling: include this file in the {} input\n"
-                               "variable fluid_velocity equal {}\n",
-                               program, o.fluid_velocity));
-    std::string note;
-    if (container) {
-        DemSettle settle;
-        settle.data_file = name;
-        settle.wall_stl = dem.wall;
-        settle.bottom_stl = dem.bottom;
-        settle.dump = dem.dump;
-        settle.container = container->container;
-        settle.container_height = container->height;
-        settle.smallest_radius =
-            file.packing.radii.empty()
-                ? 0.5 * dp
-                : *std::min_element(file.packing.radii.begin(), file.packing.radii.end());
-        settle.diameter = dp;
-        settle.density = o.density;
-        // The container's side (every solid but the floor and the top: an annulus' tube and
-        // rod in one) and floor as LIGGGHTS walls, triangles about 1 Dp wide.
-        const std::vector<Solid> solids =
-            container_solids(container->container, 0.0, container->height, dp);
-        Solid side{"wall", {}}, bottom{"bottom", {}};
-        for (const Solid& solid : solids)
-            if (solid.name == "bottom")
-                bottom.mesh.append(solid.mesh);
-            else if (solid.name != "top")
-                side.mesh.append(solid.mesh);
-        bool inside = true;
-        // (A periodic cell writes no STL: its box is the cell, the floor a plane.)
-        if (container->container.periodic())
-            side.mesh = bottom.mesh = {};
-        for (const Solid* k : {&side, &bottom})
-            for (const Vec3& v : k->mesh.vertices) {
-                // As the STL stores it: single precision.
-                const auto f = [](double x) { return static_cast<double>(static_cast<float>(x)); };
-                inside = inside && f(v.x) >= box.lo.x && f(v.x) <= box.hi.x && f(v.y) >= box.lo.y &&
-                         f(v.y) <= box.hi.y && f(v.z) >= box.lo.z && f(v.z) <= box.hi.z;
-            }
-        if (lammps) {
-            out->stage(dem.input, lammps_settle_input(settle));
-        } else {
-            out->stage(dem.input, liggghts_settle_input(settle));
-            if (!dem.wall.empty()) {
-                write_surface({side}, SurfaceFormat::stl_ascii, out->reserve(dem.wall));
-                write_surface({bottom}, SurfaceFormat::stl_ascii, out->reserve(dem.bottom));
-            }
-        }
-        if (!given_box && !inside)
-            throw std::logic_error("the container's STL lies outside the default box");
-        note = fmt::format("; {}; example settle: {} -in {}{}", box_note,
-                           lammps ? "lmp" : "liggghts", dem.input,
-                           inside   ? ""
-                           : lammps ? " (note: the container reaches outside --box: spheres "
-                                      "that leave the box are lost)"
-                                    : " (note: the container's STL reaches outside --box: "
-                                      "LIGGGHTS refuses mesh elements outside the box)");
-    }
-    out->commit();
-    if (!o.quiet)
-        fmt::print("packbed export: {} spheres to {} ({}: read_data {}{}{})\n", file.packing.size(),
-                   out_path.string(), program, name,
-                   o.fluid_velocity >= 0.0 ? fmt::format("; include {}.fluid.in", name) : "", note);
-    return 0;
-}
-
-int run_export(const ExportOptions& o) {
-    ExportFormat format = ExportFormat::lammps_data;
-    for (const auto& [name, value] : export_formats())
-        if (name == o.format)
-            format = value;
+int run_export(ExportOptions& o) {
+    ExportRequest& request = o.request;
+    request.out =
+        o.out.empty() ? default_export_path(o.particles, request.format) : fs::path(o.out);
+    request.source = o.particles;
+    request.keep = o.particles;
     ReadOptions read;
     if (o.diameter > 0.0)
         read.radius = 0.5 * o.diameter;
     o.placement.apply(read);
     const ParticleFile file = read_particles(o.particles, read);
-    if (format == ExportFormat::stl || format == ExportFormat::stl_ascii ||
-        format == ExportFormat::obj || format == ExportFormat::openfoam)
-        return run_surface_export(o, format, file);
-    return run_data_export(o, format, file);
+    // The container: --container, --container-radius or summary.json beside the file.
+    const auto spec = parse_container(o.container);
+    request.container = spec ? std::optional<Container>(spec->container())
+                        : o.container_radius > 0.0
+                            ? std::optional<Container>(Cylinder(o.container_radius))
+                            : container_beside(o.particles);
+    const std::string report = export_bed(file.packing, file.lines, request);
+    if (!o.quiet)
+        fmt::print("packbed export: {}\n", report);
+    return 0;
 }
 
 } // namespace
@@ -471,16 +63,13 @@ Command register_export(CLI::App& parent) {
         "export", "Write a bed (ours, a lattice, or one read from CSV, XYZ or a dump) as a "
                   "LAMMPS or LIGGGHTS data file, or as a surface (STL, OBJ) for meshers");
     app->option_defaults()->always_capture_default();
-    const double inf = std::numeric_limits<double>::infinity();
     app->add_option("particles", o.particles,
                     "the bed: a table (CSV, ParaView CSV, ;/tab/space separated), XYZ, a "
                     "LAMMPS/LIGGGHTS dump or data file; also .gz")
         ->required()
         ->check(path_text());
-    std::vector<std::string> names;
-    for (const auto& entry : export_formats())
-        names.push_back(entry.first);
-    app->add_option("-f,--format", o.format,
+    const std::vector<std::string> names = export_format_names();
+    app->add_option("-f,--format", o.request.format,
                     "lammps-data (atom_style sphere), liggghts-data (atom_style granular), stl "
                     "(binary), stl-ascii (one named solid per part), obj, or openfoam (a case "
                     "directory for blockMesh + snappyHexMesh)")
@@ -490,58 +79,58 @@ Command register_export(CLI::App& parent) {
                     "the case directory for openfoam (default: openfoam/ beside the file; a new "
                     "or empty one, or an existing one with --force)")
         ->check(path_text());
-    app->add_flag("--force", o.force,
+    app->add_flag("--force", o.request.force,
                   "openfoam: replace a non-empty case directory whole (its old files are "
                   "deleted); files are replaced without it");
-    app->add_option("--contacts", o.contacts,
+    app->add_option("--contacts", o.request.contacts,
                     "surfaces: none; shrink:F (radii times 1 - F, gaps); enlarge:F (radii times "
                     "1 + F, united); caps:H (flat faces H Dp apart at every contact closer than "
                     "H Dp, and H Dp from the walls); bridges:D (a cylinder of diameter D Dp "
                     "along each contact, united); F, H, D in (0, 0.5) (docs/surfaces.md)");
-    app->add_option("--refine", o.refine,
+    app->add_option("--refine", o.request.refine,
                     "surfaces: icosphere level of each sphere (20 x 4^level triangles)")
-        ->check(whole_in(0, 7));
-    app->add_option("--edge", o.edge,
+        ->check(whole_in(option_range::refine));
+    app->add_option("--edge", o.request.edge,
                     "surfaces: largest mean triangle edge instead of --refine (file units)")
-        ->check(real_in(0.0, inf, true, true));
+        ->check(real_in(option_range::edge));
     CLI::Option* radius =
         app->add_option("-R,--container-radius", o.container_radius,
                         "cylinder radius, shorthand of --container cylinder:2R (default: "
                         "summary.json beside the file; none if absent: surfaces without wall "
                         "treatment or container solids, data files in the spheres' bounding box "
                         "without an example DEM input)")
-            ->check(real_in(0.0, inf, true, true));
+            ->check(real_in(option_range::export_container_radius));
     add_container_option(*app, o.container, "file units; default: summary.json beside the file")
         ->excludes(radius);
-    app->add_option("--container-height", o.container_height,
+    app->add_option("--container-height", o.request.container_height,
                     "container height from the floor z = 0 (default: the bed's top + 1 Dp)")
-        ->check(real_in(0.0, inf, true, true));
-    app->add_flag("--no-container", o.no_container,
+        ->check(real_in(option_range::container_height));
+    app->add_flag("--no-container", o.request.no_container,
                   "surfaces: cut against the container but do not write its solids; data "
                   "files: ignore it (the spheres' bounding box, no example DEM input)");
-    app->add_option("--cells-per-diameter", o.mesh.cells_per_diameter,
+    app->add_option("--cells-per-diameter", o.request.mesh.cells_per_diameter,
                     "openfoam: background (blockMesh) cells per particle diameter")
-        ->check(whole_in(1, 100));
-    app->add_option("--particle-level", o.mesh.particle_level,
+        ->check(whole_in(option_range::cells_per_diameter));
+    app->add_option("--particle-level", o.request.mesh.particle_level,
                     "openfoam: snappyHexMesh refinement level at the particles")
-        ->check(whole_in(0, 8));
-    app->add_option("--wall-level", o.mesh.wall_level,
+        ->check(whole_in(option_range::refinement_level));
+    app->add_option("--wall-level", o.request.mesh.wall_level,
                     "openfoam: snappyHexMesh refinement level at the wall")
-        ->check(whole_in(0, 8));
-    app->add_option("--density", o.density, "particle density written for every atom")
-        ->check(real_in(0.0, inf, true, true));
-    app->add_option("--box", o.box,
+        ->check(whole_in(option_range::refinement_level));
+    app->add_option("--density", o.request.density, "particle density written for every atom")
+        ->check(real_in(option_range::density));
+    app->add_option("--box", o.request.box,
                     "xlo,xhi,ylo,yhi,zlo,zhi (default: the container and a margin of "
                     "max(Dp/2, Rt/100), a box's half narrower width for Rt, where the container "
                     "is known, else the smallest box holding every sphere)");
-    app->add_option("--fluid-velocity", o.fluid_velocity,
+    app->add_option("--fluid-velocity", o.request.fluid_velocity,
                     "record this fluid velocity (e.g. from packbed hydraulics) in the header and "
                     "in FILE.fluid.in as a LAMMPS variable")
-        ->check(real_in(0.0, inf, false, true));
+        ->check(real_in(option_range::fluid_velocity));
     app->add_option("-d,--diameter", o.diameter,
                     "sphere diameter, for files without a radius or diameter column (XYZ, "
                     "dumps, tables, data files of atom_style atomic)")
-        ->check(real_in(0.0, inf, true, true));
+        ->check(real_in(option_range::export_diameter));
     add_input_placement(*app, o.placement);
     app->add_flag("-q,--quiet", o.quiet, "no report on the terminal");
     app->fallthrough();

@@ -110,24 +110,23 @@ Command register_generate(CLI::App& parent) {
         "generate", "Pack spheres in a container with the soft-sphere algorithm of Salvat et al. "
                     "(2005) and write particles.csv, particles.vtu and summary.json");
     app->option_defaults()->always_capture_default();
-    const double inf = std::numeric_limits<double>::infinity();
 
     CLI::Option* aspect =
         app->add_option("-a,--aspect-ratio", p.aspect_ratio,
                         "a = 2 Rt / Dp, tube over sphere diameter (shorthand of --container)")
-            ->check(real_in(1.0, 1e4, false, false));
+            ->check(real_in(option_range::aspect_ratio));
     add_container_option(*app, o.container,
                          "lengths in the unit of --diameter; a tube: a = D / Dp; instead of "
                          "--aspect-ratio")
         ->excludes(aspect);
     app->add_option("-n,--particles", p.particles, "Np, number of spheres")
-        ->check(whole_in(1, limits::max_spheres));
+        ->check(whole_in(option_range::particles));
     app->add_option("-s,--seed", p.seed, "seed of the random generation stage")
-        ->check(whole_in(0, std::numeric_limits<std::uint64_t>::max()));
+        ->check(whole_in(option_range::seed));
     app->add_option("-d,--diameter", p.diameter,
                     "sphere diameter Dp; the unit of every length "
                     "in the outputs")
-        ->check(real_in(limits::min_diameter, limits::max_diameter, false, false));
+        ->check(real_in(option_range::diameter));
     std::vector<std::string> kinds;
     for (const auto& entry : size_kinds())
         kinds.push_back(std::string(size_syntax(entry.second)));
@@ -144,35 +143,35 @@ Command register_generate(CLI::App& parent) {
         ->check(one_of(bases));
     add_output_directory(*app, o.out, o.force);
     app->add_option("--e0", p.e0, "initial overall void fraction for L0, eq. (6)")
-        ->check(real_in(0.0, 1.0, true, true));
+        ->check(real_in(option_range::e0));
     app->add_option("--ck", p.ck, "elasticity parameter Ck of eq. (4)")
-        ->check(real_in(limits::min_ck, 1.0, false, true));
+        ->check(real_in(option_range::ck));
     app->add_option("--cg-step", p.cg_step, "step of the gravity parameter Cg, eq. (7)")
-        ->check(real_in(0.0, 5e-6, true, false));
+        ->check(real_in(option_range::cg_step));
     constexpr auto paper = SoftSphereParameters::paper_schedule;
     constexpr auto fire = SoftSphereParameters::fire_schedule;
     app->add_option("--overlap-low", p.overlap_low,
                     fmt::format("lower bound of the largest overlap in the intermediate stage, "
                                 "eq. (7), Dp (default: {:g} with --solver fire, {:g} paper)",
                                 fire.overlap_low, paper.overlap_low))
-        ->check(real_in(0.0, 0.5, true, true));
+        ->check(real_in(option_range::overlap_bound));
     app->add_option("--overlap-high", p.overlap_high,
                     fmt::format("upper bound of the largest overlap in the intermediate stage, "
                                 "eq. (7), Dp (default: {:g} with --solver fire, {:g} paper)",
                                 fire.overlap_high, paper.overlap_high))
-        ->check(real_in(0.0, 0.5, true, true));
+        ->check(real_in(option_range::overlap_bound));
     app->add_option("--tolerance", p.tolerance,
                     "largest sphere-sphere and sphere-wall overlap allowed at the end, Dp")
-        ->check(real_in(limits::min_tolerance, 1e-2, false, false));
+        ->check(real_in(option_range::tolerance));
     app->add_option("--mc-period", p.mc_period, "iterations between mass-centre records")
-        ->check(whole_in(1, 1'000'000));
+        ->check(whole_in(option_range::mc_period));
     app->add_option("--mc-window", p.mc_window, "successive mass-centre records that must agree")
-        ->check(whole_in(2, 10'000));
+        ->check(whole_in(option_range::mc_window));
     app->add_option("--mc-tolerance", p.mc_tolerance,
                     fmt::format("allowed spread of those records, percent of their mean "
                                 "(default: {:g} with --solver fire, {:g} paper)",
                                 fire.mc_tolerance, paper.mc_tolerance))
-        ->check(real_in(0.0, 100.0, true, false));
+        ->check(real_in(option_range::mc_tolerance));
     std::vector<std::string> update_names;
     for (const auto& entry : update_orders())
         update_names.push_back(entry.first);
@@ -189,25 +188,25 @@ Command register_generate(CLI::App& parent) {
                     "far fewer iterations (docs/performance.md)")
         ->check(one_of(solver_names));
     app->add_option("--skin", p.skin, "Verlet neighbour-list skin, Dp")
-        ->check(real_in(0.0, 1.0, true, false));
+        ->check(real_in(option_range::skin));
     app->add_option("--layer-height", p.layer_height,
                     "fire solver: a bed whose initial height L0 exceeds twice this is relaxed in "
                     "layers about this tall, bottom first; 0: in one piece (Dp; 0 or 10 to 1e6)")
-        ->check(real_in(0.0, 1e6, false, false));
+        ->check(real_in(option_range::layer_height));
     app->add_option("--checkpoint", o.checkpoint,
                     "fire solver in layers: save the state to this file after each layer, and "
                     "resume from it when it exists (the same options give the same bytes)")
         ->check(path_text());
     app->add_option("--max-iterations", p.max_iterations, "give up after this many iterations")
-        ->check(whole_in(1, std::numeric_limits<std::uint64_t>::max()));
+        ->check(whole_in(option_range::max_iterations));
     app->add_option("--band-clearance", o.band_clearance,
                     "the void fraction is measured between this distance above the floor and "
                     "below the bed top, Dp")
-        ->check(real_in(0.0, inf, false, true));
+        ->check(real_in(option_range::band_clearance));
     app->add_option("-j,--threads", o.threads,
                     "at most this many threads, fewer while the machine is busy (results do not "
                     "depend on it)")
-        ->check(whole_in(1, 1024));
+        ->check(whole_in(option_range::threads));
     app->add_flag("-q,--quiet", o.quiet, "no progress and no report on the terminal");
     app->fallthrough(); // --config belongs to the top-level app
     app->footer("Options may also come from a TOML file: packbed generate --config FILE.toml "

@@ -1,289 +1,63 @@
 // `packbed hydraulics`: the fluid velocity that starts a DEM run of a fluidized bed (Tsayger
 // 2013, eq. (1)), pressure drops, minimum fluidization and permeability, for a porosity given
 // or read from a bed's summary.json.
-#include <cmath>
-#include <filesystem>
 #include <memory>
-#include <optional>
 #include <string>
-#include <system_error>
 
 #include <fmt/format.h>
 #include <nlohmann/json.hpp>
 
 #include "command.hpp"
-#include "packbed/error.hpp"
-#include "packbed/files.hpp"
-#include "packbed/hydraulics.hpp"
-#include "packbed/lattice.hpp"
 #include "packbed/limits.hpp"
-#include "packbed/read.hpp"
+#include "packbed/pipeline.hpp"
 
 namespace packbed::cli {
 
 namespace {
 
-namespace fs = std::filesystem;
+/// `packbed hydraulics`'s options, as the library's request.
+using HydraulicsOptions = HydraulicsRequest;
 
-struct HydraulicsOptions {
-    FluidAndParticles fluid{1e-3, 2500.0, 998.2, 1.002e-3, 9.80665}; // glass in water, 20 C
-    double porosity = 0.0;                                           // 0: from --bed
-    std::string bed;
-    double velocity = 0.0;     // 0: the critical velocity of eq. (1)
-    double aspect_ratio = 0.0; // 0: no wall-corrected pressure drop
-    bool json = false;
-    bool diameter_given = false;     // --diameter on the command line (or in --config)
-    bool aspect_ratio_given = false; // --aspect-ratio likewise
-    std::string container;           // --container SPEC (metres), instead of -a
-};
-
-/// What hydraulics takes from a bed's summary.json.
-struct BedFacts {
-    double porosity = 0.0;
-    std::string porosity_from;
-    std::optional<double> diameter;         ///< the spheres' diameter, in the bed's length unit
-    bool sauter_mean = false;               ///< the diameter is the sizes' Sauter mean d32
-    std::optional<double> container_radius; ///< likewise
-    std::optional<Container> container;     ///< a box, an annulus or a periodic cell
-    std::string shown;                      ///< the summary's path, printable
-};
-
-/// The porosity of a bed from its summary.json (or the directory holding it): a generated
-/// bed's overall void fraction, or a lattice's exact porosity (the paper's choice for eq. (1));
-/// and the spheres' diameter and container radius it records.
-BedFacts bed_facts(const std::string& bed) {
-    fs::path path(bed);
-    std::error_code error;
-    if (fs::is_directory(path, error))
-        path /= "summary.json";
-    BedSummary summary;
-    try { // a regular file of bounded size, the porosity in (0, 1)
-        summary = read_bed_summary(path);
-    } catch (const InvalidInput& e) {
-        throw InvalidInput(fmt::format("--bed {}", e.what()));
-    }
-    const std::string shown = printable(path.native());
-    std::optional<Container> container;
-    if (const auto& c = summary.container; c && !c->cylinder())
-        container = c;
-    if (!summary.porosity)
-        throw InvalidInput(fmt::format("--bed {}: no lattice.porosity or void_fraction; give "
-                                       "--porosity",
-                                       shown));
-    return {*summary.porosity,
-            fmt::format("{} of {}", summary.porosity_source, shown),
-            summary.diameter,
-            summary.sauter_mean,
-            summary.container_radius,
-            container,
-            shown};
-}
-
-/// \return the path of the first number of `value` that is not finite (nlohmann::json prints
-/// them as null), or nothing.
-std::string first_not_finite(const nlohmann::json& value, const std::string& path = "") {
-    if (value.is_number_float())
-        return std::isfinite(value.get<double>()) ? "" : path;
-    if (value.is_object() || value.is_array()) {
-        std::size_t index = 0;
-        for (auto it = value.begin(); it != value.end(); ++it, ++index) {
-            const std::string key = value.is_object() ? it.key() : std::to_string(index);
-            if (std::string bad = first_not_finite(*it, path.empty() ? key : path + "." + key);
-                !bad.empty())
-                return bad;
-        }
-    }
-    return "";
-}
-
-int run_hydraulics(const HydraulicsOptions& o) {
-    if (o.porosity > 0.0 && !o.bed.empty())
-        throw InvalidInput(fmt::format("--porosity {} and --bed '{}' both given; allowed: one of "
-                                       "them",
-                                       o.porosity, o.bed));
-    if (o.porosity <= 0.0 && o.bed.empty())
-        throw InvalidInput("no porosity given; allowed: --porosity E (0 < E < 1) or --bed "
-                           "SUMMARY.json");
-    FluidAndParticles f = o.fluid;
-    double aspect_ratio = o.aspect_ratio;
-    std::string aspect_ratio_from = "given";
-    const auto spec = parse_container(o.container);
-    std::optional<Container> container;
-    std::string container_from = fmt::format("--container {}", o.container);
-    // A container from --bed is in the bed's length unit: a = D_h / the bed's diameter.
-    std::optional<double> bed_diameter;
-    if (spec)
-        container = spec->container();
-    double e = o.porosity;
-    std::string origin = "given";
-    std::string diameter_from = o.diameter_given ? "given" : "the default";
-    if (!o.bed.empty()) {
-        // A bed's lengths are in the unit of its --diameter; hydraulics reads them as metres
-        // unless --diameter is given (issue 15: the default 1 mm was used silently).
-        const BedFacts bed = bed_facts(o.bed);
-        e = bed.porosity;
-        origin = bed.porosity_from;
-        if (!o.diameter_given && bed.diameter) {
-            if (*bed.diameter == 1.0) // generate's and lattice's default: no unit at all
-                throw InvalidInput(fmt::format(
-                    "--bed {}: diameter = 1, packbed's default (lengths in sphere diameters, "
-                    "no unit); allowed: give --diameter in metres",
-                    bed.shown));
-            if (!(*bed.diameter >= limits::min_particle_diameter_m &&
-                  *bed.diameter <= limits::max_particle_diameter_m))
-                throw InvalidInput(fmt::format(
-                    "--bed {}: diameter = {} is not allowed as metres; allowed: {:g} to {:g} m, "
-                    "or give --diameter in metres",
-                    bed.shown, *bed.diameter, limits::min_particle_diameter_m,
-                    limits::max_particle_diameter_m));
-            f.diameter = *bed.diameter;
-            // Spheres of several sizes: their Sauter mean d32, the diameter of Ergun's equation
-            // and of the correlations for mixtures (docs/sizes.md).
-            diameter_from =
-                bed.sauter_mean
-                    ? fmt::format("the Sauter mean diameter d32 of the sizes of {}, read as "
-                                  "metres (the diameter of Ergun's equation for mixtures)",
-                                  bed.shown)
-                    : fmt::format("the diameter of {}, read as metres", bed.shown);
-        }
-        // The tube of a cylindrical bed gives the wall-corrected pressure drop.
-        // An annulus or a periodic cell: its hydraulic diameter, or no wall.
-        if (!o.aspect_ratio_given && !spec && bed.container && bed.diameter) {
-            container = bed.container;
-            bed_diameter = bed.diameter;
-            container_from = fmt::format("the {} of {}", bed.container->spec(), bed.shown);
-        } else if (!o.aspect_ratio_given && !spec && bed.diameter && bed.container_radius) {
-            const double a = 2.0 * *bed.container_radius / *bed.diameter;
-            if (a > 1.0 && a <= limits::max_tube_aspect_ratio) {
-                aspect_ratio = a;
-                aspect_ratio_from = fmt::format("2 container.radius / diameter of {}", bed.shown);
-            }
-        }
-    }
-    std::optional<double> hydraulic; // an annulus' or a box's D_h = 4 A / P, metres
-    std::string wall_correction;     // a periodic cell: why there is none
-    if (spec && spec->shape == "cylinder") {
-        // a = D / d, both in metres, once d is known (given, the default, or the bed's).
-        aspect_ratio = spec->diameter / f.diameter;
-        if (!(aspect_ratio >= 1.0 && aspect_ratio <= limits::max_tube_aspect_ratio))
-            throw InvalidInput(fmt::format(
-                "--container {}: the tube's diameter over the particle diameter ({} m) is a = "
-                "{:.6g}; allowed: a from 1 to {:g}",
-                o.container, f.diameter, aspect_ratio, limits::max_tube_aspect_ratio));
-        aspect_ratio_from = fmt::format("--container {} over the particle diameter", o.container);
-    } else if (container && container->periodic()) {
-        aspect_ratio = 0.0;
-        wall_correction = fmt::format("none: {} is a periodic cell, it has no wall (Ergun, no "
-                                      "wall correction)",
-                                      container_from);
-    } else if (container) {
-        // An annulus or a box: a = D_h / d with the hydraulic diameter 4 A / P.
-        hydraulic = hydraulic_diameter(*container);
-        aspect_ratio = *hydraulic / bed_diameter.value_or(f.diameter);
-        if (bed_diameter) // in metres, at the particle diameter used
-            hydraulic = aspect_ratio * f.diameter;
-        const std::string formula = container->annulus() ? "D - DI" : "2 LX LY / (LX + LY)";
-        if (!(aspect_ratio >= 1.0 && aspect_ratio <= limits::max_tube_aspect_ratio))
-            throw InvalidInput(fmt::format(
-                "{}: the hydraulic diameter {} = {} m over the particle diameter ({} m) is a = "
-                "{:.6g}; allowed: a from 1 to {:g}",
-                container_from, formula, *hydraulic, f.diameter, aspect_ratio,
-                limits::max_tube_aspect_ratio));
-        aspect_ratio_from = fmt::format(
-            "{}: the hydraulic diameter 4 A / P = {} = {} m over the particle diameter (exact "
-            "for the wall term A_w, the wall-to-particle surface ratio; an assumption for B_w, "
-            "fitted to tubes)",
-            container_from, formula, *hydraulic);
-    }
-    const double ar = archimedes_number(f);
-    const auto coefficients = fluidization_coefficients(e);
-    const double re_c = critical_reynolds(ar, e);
-    const double w = superficial_velocity(re_c, f);
-    const double re_mf = wen_yu_reynolds(ar);
-    const double u = o.velocity > 0.0 ? o.velocity : w;
-    const double u_re = f.fluid_density * u * f.diameter / f.viscosity;
-    const double u_mf = superficial_velocity(re_mf, f);
-    const double ergun = ergun_pressure_gradient(e, u, f);
-    const double k_carman_kozeny = carman_kozeny_permeability(e, f.diameter);
-    const double k_ergun = ergun_permeability(e, f.diameter);
-    nlohmann::json out;
-    out["units"] = "SI: m, kg/m^3, Pa s, m/s, Pa/m, m^2";
-    out["porosity"] = {{"value", e}, {"from", origin}};
-    out["fluid_and_particles"] = {{"diameter_m", f.diameter},
-                                  {"diameter_from", diameter_from},
-                                  {"particle_density_kg_m3", f.particle_density},
-                                  {"fluid_density_kg_m3", f.fluid_density},
-                                  {"viscosity_Pa_s", f.viscosity},
-                                  {"gravity_m_s2", f.gravity}};
-    out["archimedes"] = ar;
-    out["equation_1"] = {{"source", "Tsayger (2013) eq. (1), Goroshko, Rosenbaum & Todes (1958)"},
-                         {"formula", "Ar = 150 (1-e)/e^3 Re + 1.75/e^3 Re^2"},
-                         {"linear", coefficients.linear},
-                         {"quadratic", coefficients.quadratic},
-                         {"critical_reynolds", re_c},
-                         {"superficial_velocity_m_s", w}};
-    out["wen_yu_1966"] = {{"reynolds_mf", re_mf}, {"velocity_mf_m_s", u_mf}};
-    out["pressure_gradient"] = {{"velocity_m_s", u}, {"reynolds", u_re}, {"ergun_Pa_m", ergun}};
-    std::string warning;
-    if (aspect_ratio > 0.0) {
-        const CorrelationValue es = eisfeld_schnitzlein_pressure_gradient(e, u, aspect_ratio, f);
-        out["pressure_gradient"]["eisfeld_schnitzlein_Pa_m"] = es.value;
-        out["pressure_gradient"]["aspect_ratio"] = aspect_ratio;
-        out["pressure_gradient"]["aspect_ratio_from"] = aspect_ratio_from;
-        out["pressure_gradient"]["eisfeld_schnitzlein_in_range"] = es.warning.empty();
-        if (hydraulic)
-            out["pressure_gradient"]["hydraulic_diameter_m"] = *hydraulic;
-        warning = es.warning;
-    }
-    if (!wall_correction.empty())
-        out["pressure_gradient"]["wall_correction"] = wall_correction;
-    out["permeability_m2"] = {{"carman_kozeny", k_carman_kozeny}, {"ergun", k_ergun}};
-    // Eqs. (2)-(4): eq. (1) at the exact porosities of the three regular packings.
-    const double hexagonal = fluidization_coefficients(unit_cell(LatticeType::fcc).porosity).linear;
-    for (const auto& [name, type] : {std::pair{"hexagonal (fcc, hcp)", LatticeType::fcc},
-                                     {"cubic (sc)", LatticeType::sc},
-                                     {"tetrahedral (diamond)", LatticeType::diamond}}) {
-        const double porosity = unit_cell(type).porosity;
-        const auto c = fluidization_coefficients(porosity);
-        out["regular_packings"].push_back({{"packing", name},
-                                           {"porosity", porosity},
-                                           {"linear", c.linear},
-                                           {"quadratic", c.quadratic},
-                                           {"permeability_over_hexagonal", hexagonal / c.linear},
-                                           {"critical_reynolds", critical_reynolds(ar, porosity)}});
-    }
-    // The library refuses results that are not finite; this holds for what is computed here.
-    if (const std::string bad = first_not_finite(out); !bad.empty())
-        throw InvalidInput(fmt::format(
-            "{} is not a finite number for porosity = {}, diameter = {}, particle-density = {}, "
-            "fluid-density = {}, viscosity = {}, gravity = {}, velocity = {}; allowed: inputs "
-            "that give one",
-            bad, e, f.diameter, f.particle_density, f.fluid_density, f.viscosity, f.gravity, u));
-    if (!warning.empty())
-        fmt::print(stderr, "packbed hydraulics: warning: {}\n", warning);
-    if (o.json) {
+int run_hydraulics(const HydraulicsOptions& o, bool json) {
+    const Report report = hydraulics_report(o);
+    const nlohmann::json& out = report.values;
+    for (const auto& w : report.warnings)
+        fmt::print(stderr, "packbed hydraulics: warning: {}\n", w);
+    if (json) {
         fmt::print("{}\n", out.dump(2));
         return 0;
     }
-    fmt::print("porosity e = {:.5f} ({})\n", e, origin);
-    fmt::print("particle diameter d = {:.6g} m ({})\n", f.diameter, diameter_from);
-    fmt::print("Archimedes number Ar = {:.6g}\n", ar);
-    fmt::print("eq. (1) at e: Ar = {:.6g} Re + {:.6g} Re^2\n", coefficients.linear,
-               coefficients.quadratic);
+    const auto& fluid = out["fluid_and_particles"];
+    const auto& eq1 = out["equation_1"];
+    const auto& drop = out["pressure_gradient"];
+    fmt::print("porosity e = {:.5f} ({})\n", out["porosity"]["value"].get<double>(),
+               out["porosity"]["from"].get<std::string>());
+    fmt::print("particle diameter d = {:.6g} m ({})\n", fluid["diameter_m"].get<double>(),
+               fluid["diameter_from"].get<std::string>());
+    fmt::print("Archimedes number Ar = {:.6g}\n", out["archimedes"].get<double>());
+    fmt::print("eq. (1) at e: Ar = {:.6g} Re + {:.6g} Re^2\n", eq1["linear"].get<double>(),
+               eq1["quadratic"].get<double>());
     fmt::print("critical Re = {:.6g}; superficial velocity w = {:.6g} m/s (the initial fluid "
                "velocity for DEM)\n",
-               re_c, w);
-    fmt::print("Wen & Yu (1966): Re_mf = {:.6g}, u_mf = {:.6g} m/s\n", re_mf, u_mf);
-    fmt::print("at u = {:.6g} m/s (Re = {:.6g}): Ergun {:.6g} Pa/m", u, u_re, ergun);
-    if (aspect_ratio > 0.0)
-        fmt::print(", Eisfeld & Schnitzlein (a = {:.6g}) {:.6g} Pa/m", aspect_ratio,
-                   out["pressure_gradient"]["eisfeld_schnitzlein_Pa_m"].get<double>());
-    if (hydraulic)
-        fmt::print("\nwall correction: a = {}", aspect_ratio_from);
-    if (!wall_correction.empty())
-        fmt::print("\nwall correction: {}", wall_correction);
-    fmt::print("\npermeability: Carman-Kozeny {:.6g} m^2, Ergun {:.6g} m^2\n", k_carman_kozeny,
-               k_ergun);
+               eq1["critical_reynolds"].get<double>(),
+               eq1["superficial_velocity_m_s"].get<double>());
+    fmt::print("Wen & Yu (1966): Re_mf = {:.6g}, u_mf = {:.6g} m/s\n",
+               out["wen_yu_1966"]["reynolds_mf"].get<double>(),
+               out["wen_yu_1966"]["velocity_mf_m_s"].get<double>());
+    fmt::print("at u = {:.6g} m/s (Re = {:.6g}): Ergun {:.6g} Pa/m",
+               drop["velocity_m_s"].get<double>(), drop["reynolds"].get<double>(),
+               drop["ergun_Pa_m"].get<double>());
+    if (drop.contains("aspect_ratio"))
+        fmt::print(", Eisfeld & Schnitzlein (a = {:.6g}) {:.6g} Pa/m",
+                   drop["aspect_ratio"].get<double>(),
+                   drop["eisfeld_schnitzlein_Pa_m"].get<double>());
+    if (drop.contains("hydraulic_diameter_m"))
+        fmt::print("\nwall correction: a = {}", drop["aspect_ratio_from"].get<std::string>());
+    if (drop.contains("wall_correction"))
+        fmt::print("\nwall correction: {}", drop["wall_correction"].get<std::string>());
+    fmt::print("\npermeability: Carman-Kozeny {:.6g} m^2, Ergun {:.6g} m^2\n",
+               out["permeability_m2"]["carman_kozeny"].get<double>(),
+               out["permeability_m2"]["ergun"].get<double>());
     fmt::print("\nregular packings, eq. (1) at their exact porosities (Tsayger's eqs. 2-4):\n");
     fmt::print("{:<22} {:>9} {:>10} {:>9} {:>13} {:>12}\n", "packing", "porosity", "A", "B",
                "permeability", "critical Re");
@@ -300,6 +74,7 @@ int run_hydraulics(const HydraulicsOptions& o) {
 
 Command register_hydraulics(CLI::App& parent) {
     auto options = std::make_shared<HydraulicsOptions>();
+    auto json = std::make_shared<bool>(false);
     auto& o = *options;
     CLI::App* app = parent.add_subcommand(
         "hydraulics", "Onset of fluidization (Tsayger 2013, eq. 1) and the fluid velocity for a "
@@ -309,46 +84,45 @@ Command register_hydraulics(CLI::App& parent) {
     // microgravity to centrifuges.
     app->add_option("-e,--porosity", o.porosity,
                     "bed porosity (void fraction); one of --porosity and --bed is needed")
-        ->check(real_in(0.0, 1.0, true, true));
+        ->check(real_in(option_range::porosity));
     app->add_option("--bed", o.bed,
                     "a bed's summary.json (or its directory): a lattice's exact porosity or a "
                     "generated bed's void fraction; also its diameter, read as metres, unless "
                     "--diameter, and a cylinder's aspect ratio unless --aspect-ratio")
         ->check(path_text());
     app->add_option("-d,--diameter", o.fluid.diameter, "particle diameter, m (1 nm to 10 m)")
-        ->check(real_in(limits::min_particle_diameter_m, limits::max_particle_diameter_m, false,
-                        false));
+        ->check(real_in(option_range::diameter_m));
     app->add_option("--particle-density", o.fluid.particle_density,
                     "kg/m^3, above the fluid's (aerogels to tungsten)")
-        ->check(real_in(limits::min_density_kg_m3, limits::max_density_kg_m3, false, false));
+        ->check(real_in(option_range::density_kg_m3));
     app->add_option("--fluid-density", o.fluid.fluid_density,
                     "kg/m^3 (default: water, 20 C; gases at low pressure to mercury)")
-        ->check(real_in(limits::min_density_kg_m3, limits::max_density_kg_m3, false, false));
+        ->check(real_in(option_range::density_kg_m3));
     app->add_option("--viscosity", o.fluid.viscosity,
                     "dynamic viscosity, Pa s (default: water; gases to heavy oils)")
-        ->check(real_in(limits::min_viscosity_pa_s, limits::max_viscosity_pa_s, false, false));
+        ->check(real_in(option_range::viscosity_pa_s));
     app->add_option("-g,--gravity", o.fluid.gravity, "m/s^2 (microgravity to centrifuges)")
-        ->check(real_in(limits::min_gravity_m_s2, limits::max_gravity_m_s2, false, false));
+        ->check(real_in(option_range::gravity_m_s2));
     app->add_option("-u,--velocity", o.velocity,
                     "superficial velocity for the pressure drops, m/s (default: the critical one)")
-        ->check(real_in(0.0, limits::max_velocity_m_s, true, false));
+        ->check(real_in(option_range::velocity_m_s));
     CLI::Option* aspect =
         app->add_option("-a,--aspect-ratio", o.aspect_ratio,
                         "tube over particle diameter: adds Eisfeld & Schnitzlein's wall-corrected "
                         "pressure drop (shorthand of --container)")
-            ->check(real_in(1.0, limits::max_tube_aspect_ratio, false, false));
+            ->check(real_in(option_range::tube_aspect_ratio));
     add_container_option(*app, o.container,
                          "metres: a = D_h / d with the hydraulic diameter D_h = 4 A / P (D, "
                          "annulus D - DI, box 2 LX LY / (LX + LY)); a periodic cell has no wall; "
                          "instead of --aspect-ratio")
         ->excludes(aspect);
-    app->add_flag("--json", o.json, "print everything as JSON");
+    app->add_flag("--json", *json, "print everything as JSON");
     app->fallthrough();
     app->footer("Exit status: 0 success, 2 bad input (e.g. a particle lighter than the fluid).");
-    return {app, [options, app] {
+    return {app, [options, json, app] {
                 options->diameter_given = app->count("--diameter") > 0;
                 options->aspect_ratio_given = app->count("--aspect-ratio") > 0;
-                return run_hydraulics(*options);
+                return run_hydraulics(*options, *json);
             }};
 }
 

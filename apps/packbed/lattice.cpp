@@ -87,7 +87,7 @@ Command register_lattice(CLI::App& parent) {
                     "fcc and hcp: 12, 0.260")
         ->check(one_of(type_names));
     app->add_option("-d,--diameter", o.params.diameter, "ball diameter d; the unit of the outputs")
-        ->check(real_in(limits::min_diameter, limits::max_diameter, false, false));
+        ->check(real_in(option_range::diameter));
     app->add_option("-r,--region", o.region,
                     "box:LX,LY,LZ (from 0 to L along each axis), cylinder:D,H (z axis, from "
                     "z = 0 to H), annulus:D,DI,H (between a tube of diameter D and a coaxial rod "
@@ -107,7 +107,7 @@ Command register_lattice(CLI::App& parent) {
     add_output_directory(*app, o.out, o.force);
     app->add_option("--band-clearance", o.band_clearance,
                     "the analysis band starts and ends this far from floor and top, d")
-        ->check(real_in(0.0, 1e6, false, true));
+        ->check(real_in(option_range::lattice_band_clearance));
     app->add_flag("--no-analysis", o.no_analysis,
                   "only the balls and their summary: no profiles, plots or analysis (a million "
                   "balls: 4 s instead of 37 s, docs/performance.md)");

@@ -17,11 +17,8 @@
 
 namespace packbed::cli {
 
-CLI::Validator real_in(double low, double high, bool low_open, bool high_open) {
-    const std::string allowed =
-        std::isinf(high) ? fmt::format("a number {} {:g}", low_open ? ">" : ">=", low)
-                         : fmt::format("a number in {}{:g}, {:g}{}", low_open ? "(" : "[", low,
-                                       high, high_open ? ")" : "]");
+CLI::Validator real_in(const NumberRange& range) {
+    const std::string allowed = range.allowed();
     return CLI::Validator(
         [=](std::string& text) -> std::string {
             double value = 0.0;
@@ -29,9 +26,27 @@ CLI::Validator real_in(double low, double high, bool low_open, bool high_open) {
             const auto [ptr, ec] = std::from_chars(text.data(), end, value);
             if (ec != std::errc() || ptr != end || !std::isfinite(value))
                 return fmt::format("'{}' is not allowed; allowed: {}", printable(text), allowed);
-            const bool above = low_open ? value > low : value >= low;
-            const bool below = high_open ? value < high : value <= high;
-            if (!above || !below)
+            if (!range.holds(value))
+                return fmt::format("{} is not allowed; allowed: {}", text, allowed);
+            return {};
+        },
+        allowed);
+}
+
+CLI::Validator real_in(double low, double high, bool low_open, bool high_open) {
+    return real_in(NumberRange{low, high, low_open, high_open});
+}
+
+CLI::Validator whole_in(const WholeRange& range) {
+    const std::string allowed = range.allowed();
+    return CLI::Validator(
+        [=](std::string& text) -> std::string {
+            unsigned long long value = 0;
+            const char* end = text.data() + text.size();
+            const auto [ptr, ec] = std::from_chars(text.data(), end, value);
+            if (ec != std::errc() || ptr != end)
+                return fmt::format("'{}' is not allowed; allowed: {}", printable(text), allowed);
+            if (value < range.low || value > range.high)
                 return fmt::format("{} is not allowed; allowed: {}", text, allowed);
             return {};
         },
@@ -39,17 +54,7 @@ CLI::Validator real_in(double low, double high, bool low_open, bool high_open) {
 }
 
 CLI::Validator whole_in(unsigned long long low, unsigned long long high) {
-    const std::string allowed = fmt::format("a whole number from {} to {}", low, high);
-    return CLI::Validator(
-        [=](std::string& text) -> std::string {
-            unsigned long long value = 0;
-            const char* end = text.data() + text.size();
-            const auto [ptr, ec] = std::from_chars(text.data(), end, value);
-            if (ec != std::errc() || ptr != end || value < low || value > high)
-                return fmt::format("'{}' is not allowed; allowed: {}", printable(text), allowed);
-            return {};
-        },
-        allowed);
+    return whole_in(WholeRange{low, high});
 }
 
 CLI::Validator one_of(std::vector<std::string> names) {
@@ -146,7 +151,7 @@ CLI::Option* add_input_placement(CLI::App& app, InputPlacement& p) {
         ->check(axis_position());
     app.add_option("--floor", p.floor,
                    "the container's floor z, subtracted from every centre (file units)")
-        ->check(real_in(-limits::max_length, limits::max_length, false, false));
+        ->check(real_in(option_range::floor_height));
     return frame;
 }
 

@@ -48,21 +48,14 @@ int run_voxelize(VoxelizeOptions& o) {
         if (name == o.format)
             read_options.format = value;
     o.placement.apply(read_options);
-    const ParticleFile file = read_particles(path, read_options);
-    std::optional<Container> container;
-    if (const auto spec = parse_container(o.container))
-        container = spec->container();
-    else
-        container = container_beside(path);
-    if (!container)
+    const BedInContainer bed =
+        read_bed_in_container(path, read_options, o.container, 0.0, o.outside_tolerance);
+    if (!bed.container)
         throw InvalidInput(fmt::format("--container is needed: no summary.json with a container "
                                        "next to {}",
                                        printable(path.native())));
-    const double dp = o.diameter > 0.0          ? o.diameter
-                      : file.packing.size() > 0 ? file.packing.mean_diameter()
-                                                : 1.0;
-    check_inside(file.packing, file.lines, path.string(), *container, o.outside_tolerance * dp,
-                 o.placement.shifted());
+    const ParticleFile& file = bed.file;
+    const Container& container = *bed.container;
     std::optional<std::array<double, 6>> region;
     if (!o.region.empty()) {
         const auto v = comma_numbers(o.region);
@@ -74,13 +67,13 @@ int run_voxelize(VoxelizeOptions& o) {
     }
     const bool binary = o.kind == "binary";
     // Every check before the work: the grid's size, the output.
-    voxel_grid(file.packing, *container, o.voxel_size, region, binary ? 1 : sizeof(double));
+    voxel_grid(file.packing, container, o.voxel_size, region, binary ? 1 : sizeof(double));
     const std::filesystem::path target(o.out);
     OutputDirectory out(target.parent_path().empty() ? "." : target.parent_path(), "--out",
                         OutputKind::files);
     out.keep("the particles file", path);
     use_threads(o.threads);
-    const VoxelImage image = voxelize(file.packing, *container, o.voxel_size, region, binary);
+    const VoxelImage image = voxelize(file.packing, container, o.voxel_size, region, binary);
     stage_image(out, target.filename().string(), *format, image);
     out.commit();
     if (!o.quiet)
@@ -115,7 +108,7 @@ Command register_voxelize(CLI::App& parent) {
     add_container_option(*app, o.container, "file units; default: summary.json next to the file");
     app->add_option("--voxel-size", o.voxel_size, "the voxels' edge h (file units)")
         ->required()
-        ->check(real_in(0.0, limits::max_length, true, false));
+        ->check(real_in(option_range::voxel_size));
     app->add_option("--region", o.region,
                     "XLOW,YLOW,ZLOW,XHIGH,YHIGH,ZHIGH: the box imaged (file units); default: the "
                     "container across, the floor to the bed's top")
@@ -131,15 +124,15 @@ Command register_voxelize(CLI::App& parent) {
         ->check(path_text());
     app->add_option("-d,--diameter", o.diameter,
                     "the sphere size of files without a radius or diameter column")
-        ->check(real_in(limits::min_diameter, limits::max_diameter, false, false));
+        ->check(real_in(option_range::diameter));
     add_input_placement(*app, o.placement);
     app->add_option("--outside-tolerance", o.outside_tolerance,
                     "how far a sphere may stick out of the wall or floor, Dp")
-        ->check(real_in(0.0, 1.0, false, false));
+        ->check(real_in(option_range::outside_tolerance));
     app->add_option("-j,--threads", o.threads,
                     "at most this many threads, fewer while the machine is busy (results do not "
                     "depend on it)")
-        ->check(whole_in(1, 1024));
+        ->check(whole_in(option_range::threads));
     app->add_flag("-q,--quiet", o.quiet, "no report on the terminal");
     return {app, [options] { return run_voxelize(*options); }};
 }

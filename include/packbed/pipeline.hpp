@@ -14,8 +14,11 @@
 
 #include "packbed/analysis.hpp"
 #include "packbed/container.hpp"
+#include "packbed/hydraulics.hpp"
+#include "packbed/openfoam.hpp"
 #include "packbed/output.hpp"
 #include "packbed/packing.hpp"
+#include "packbed/read.hpp"
 #include "packbed/sizes.hpp"
 #include "packbed/soft_sphere.hpp"
 #include "packbed/voxel.hpp"
@@ -112,6 +115,33 @@ void set_child_watcher(std::function<void(pid_t)> watcher);
 /// summary, or has a container outside the limits
 std::optional<Container> container_beside(const std::filesystem::path& particles);
 
+/// The container of the bed file `particles`: the spec `container` when given, else a
+/// cylinder of radius `cylinder_radius` when > 0, else the one summary.json beside the file
+/// records (container_beside). \return nothing when none of these gives one.
+/// \throws InvalidInput for a bad spec or summary.json
+std::optional<Container> find_container(const std::filesystem::path& particles,
+                                        const std::string& container, double cylinder_radius = 0.0);
+
+/// A bed read from a file, with its container when one is known.
+struct BedInContainer {
+    ParticleFile file;
+    std::optional<Container> container;
+};
+
+/// Read a bed file as `analyze`, `voxelize` and `packbed.read` do: read_particles, its
+/// container (find_container), and, where there is one, the check that no sphere sticks out
+/// by more than `outside_tolerance` Dp (Dp: the given diameter, else the spheres' mean;
+/// check_inside).
+/// \throws InvalidInput naming the file (and line) and what is allowed
+BedInContainer read_bed_in_container(const std::filesystem::path& particles,
+                                     const ReadOptions& options, const std::string& container,
+                                     double cylinder_radius, double outside_tolerance);
+
+/// check_inside for a file read with `options`, at `outside_tolerance` Dp (Dp: the file's
+/// given diameter, else the spheres' mean), saying whether --axis and --floor moved it.
+void check_file_inside(const ParticleFile& file, const ReadOptions& options, std::string_view name,
+                       const Container& container, double outside_tolerance);
+
 /// Refuse spheres that stick out of the container by more than `tolerance` (length units;
 /// Container::sticks_out: beyond a wall, or a centre outside a periodic cell) or below the floor.
 /// \param name the file in messages, with each sphere's line \param lines each sphere's line
@@ -120,6 +150,87 @@ std::optional<Container> container_beside(const std::filesystem::path& particles
 void check_inside(const Packing& packing, const std::vector<std::size_t>& lines,
                   std::string_view name, const Container& container, double tolerance,
                   bool shifted);
+
+// ---------------------------------------------------------------------------------------------
+// export
+
+/// What `packbed export` is asked for, once the bed is read and its container known.
+struct ExportRequest {
+    std::string format = "lammps-data"; ///< one of export_format_names()
+    /// the file (data file, STL, OBJ: its `.json` report and the example DEM input beside it)
+    /// or the case directory (openfoam: new or empty, or any with `force`)
+    std::filesystem::path out;
+    bool force = false;
+    std::string source;         ///< the bed's name in headers, reports and messages (its file)
+    std::filesystem::path keep; ///< an input the outputs must not replace ("": none)
+    std::optional<Container> container; ///< the bed's; none: no wall treatment, no example
+    double container_height = 0.0;      ///< 0: the bed's top + 1 Dp
+    bool no_container = false;          ///< surfaces: no container solids; data files: ignore it
+    // data files
+    double density = 2500.0;    ///< written for every atom
+    std::string box;            ///< "xlo,xhi,ylo,yhi,zlo,zhi"; "": the container's or the bed's
+    double fluid_velocity = -1; ///< >= 0: recorded in the header and FILE.fluid.in
+    // surfaces
+    std::string contacts = "none"; ///< a contact treatment (surface.hpp, docs/surfaces.md)
+    int refine = 3;                ///< icosphere level
+    double edge = 0.0;             ///< > 0: the largest mean triangle edge, instead of refine
+    OpenFoamMeshOptions mesh;
+};
+
+/// The formats of export: lammps-data, liggghts-data, stl, stl-ascii, obj, openfoam.
+std::vector<std::string> export_format_names();
+
+/// Where `export` writes by default for the bed file `particles`: the file with .data, .stl or
+/// .obj, or the directory openfoam/ beside it.
+std::filesystem::path default_export_path(const std::filesystem::path& particles,
+                                          const std::string& format);
+
+/// Write a bed as `request` says (every check before the work; nothing half-written).
+/// \param lines each sphere's line in its file, for messages (empty: the sphere's number)
+/// \return the report line (what was written where)
+/// \throws InvalidInput naming the option, the value and what is allowed
+std::string export_bed(const Packing& packing, const std::vector<std::size_t>& lines,
+                       const ExportRequest& request);
+
+// ---------------------------------------------------------------------------------------------
+// hydraulics and correlations
+
+/// A computed report: its numbers as `--json` prints them, and the warnings to show with them
+/// (a correlation used outside its validity range).
+struct Report {
+    nlohmann::json values;
+    std::vector<std::string> warnings;
+};
+
+/// What `packbed hydraulics` is asked for (SI units).
+struct HydraulicsRequest {
+    FluidAndParticles fluid{1e-3, 2500.0, 998.2, 1.002e-3, 9.80665}; ///< glass in water, 20 C
+    double porosity = 0.0;                                           ///< 0: from `bed`
+    std::string bed;                 ///< a summary.json or its directory; "": `porosity`
+    double velocity = 0.0;           ///< 0: the critical velocity of eq. (1)
+    double aspect_ratio = 0.0;       ///< 0: no wall-corrected pressure drop (or from `bed`)
+    bool diameter_given = false;     ///< fluid.diameter was given (not the default)
+    bool aspect_ratio_given = false; ///< aspect_ratio was given
+    std::string container;           ///< a ContainerSpec in metres, instead of aspect_ratio
+};
+
+/// The onset of fluidization (Tsayger 2013, eq. (1)) and the fluid velocity for a DEM start,
+/// Wen & Yu, Ergun's and Eisfeld & Schnitzlein's pressure gradients, permeabilities and the
+/// regular packings' eqs. (2)-(4), for a porosity given or read from a bed's summary.json.
+/// \throws InvalidInput naming the input, the value and what is allowed (also when a result
+/// would not be a finite number)
+Report hydraulics_report(const HydraulicsRequest& request);
+
+/// What `packbed correlations` is asked for.
+struct CorrelationsRequest {
+    double aspect_ratio = 5.0;  ///< a = D/d
+    double profile_step = 0.01; ///< of the radial profiles, d
+    double profile_to = 5.0;    ///< the radial profiles from the wall to this, d
+};
+
+/// The published void-fraction correlations at an aspect ratio: the mean void fractions and
+/// the radial profiles, each with its formula, source and validity range.
+Report correlations_report(const CorrelationsRequest& request);
 
 // ---------------------------------------------------------------------------------------------
 // voxel images

@@ -8,6 +8,9 @@ The library of the `packbed` command line, for Python, with numpy arrays:
     a = packbed.analyze(bed)          # profiles as numpy arrays, a.summary the numbers
     bed.write("my-bed")               # what `packbed generate` writes
     im = packbed.voxelize(bed, voxel_size=0.05)   # True = pore space, as PoreSpy
+    packbed.export(bed, "bed.data")                # a LAMMPS data file (or STL, OpenFOAM, ...)
+    packbed.hydraulics(porosity=0.4)               # eq. (1) of Tsayger (2013), Ergun, ... (dict)
+    packbed.correlations(aspect_ratio=5)           # the void-fraction correlations (dict)
 
 Bad values raise ValueError with the command line's message, a run that does not converge
 raises packbed.ConvergenceError, and Ctrl-C raises KeyboardInterrupt. See help(packbed.generate).
@@ -20,7 +23,10 @@ from ._core import (
     Profile,
     __version__,
     analyze,
+    correlations,
+    export,
     generate,
+    hydraulics,
     lattice,
     read,
     voxelize,
@@ -33,7 +39,10 @@ __all__ = [
     "Profile",
     "__version__",
     "analyze",
+    "correlations",
+    "export",
     "generate",
+    "hydraulics",
     "lattice",
     "read",
     "voxelize",

@@ -143,3 +143,38 @@ def voxelize(
     threads: Optional[int] = None,
     out: Optional[str] = None,
 ) -> npt.NDArray[Any]: ...
+def export(
+    bed: Bed,
+    out: str,
+    *,
+    format: str = "lammps-data",
+    container: Optional[str] = None,
+    container_height: Optional[float] = None,
+    no_container: bool = False,
+    density: float = 2500.0,
+    box: Optional[str] = None,
+    fluid_velocity: Optional[float] = None,
+    contacts: str = "none",
+    refine: int = 3,
+    edge: Optional[float] = None,
+    cells_per_diameter: int = 4,
+    particle_level: int = 2,
+    wall_level: int = 1,
+    force: bool = False,
+) -> str: ...
+def hydraulics(
+    *,
+    porosity: Optional[float] = None,
+    bed: Optional[str] = None,
+    diameter: Optional[float] = None,
+    particle_density: float = 2500.0,
+    fluid_density: float = 998.2,
+    viscosity: float = 0.001002,
+    gravity: float = 9.80665,
+    velocity: Optional[float] = None,
+    aspect_ratio: Optional[float] = None,
+    container: Optional[str] = None,
+) -> Dict[str, Any]: ...
+def correlations(
+    *, aspect_ratio: float = 5.0, profile_step: float = 0.01, profile_to: float = 5.0
+) -> Dict[str, Any]: ...

@@ -19,6 +19,34 @@ std::optional<Container> container_beside(const std::filesystem::path& particles
     return read_bed_summary(summary).container;
 }
 
+std::optional<Container> find_container(const std::filesystem::path& particles,
+                                        const std::string& container, double cylinder_radius) {
+    if (const auto spec = parse_container(container))
+        return spec->container();
+    if (cylinder_radius > 0.0)
+        return Cylinder(cylinder_radius);
+    return container_beside(particles);
+}
+
+BedInContainer read_bed_in_container(const std::filesystem::path& particles,
+                                     const ReadOptions& options, const std::string& container,
+                                     double cylinder_radius, double outside_tolerance) {
+    BedInContainer bed{read_particles(particles, options),
+                       find_container(particles, container, cylinder_radius)};
+    if (bed.container)
+        check_file_inside(bed.file, options, particles.string(), *bed.container, outside_tolerance);
+    return bed;
+}
+
+void check_file_inside(const ParticleFile& file, const ReadOptions& options, std::string_view name,
+                       const Container& container, double outside_tolerance) {
+    if (file.packing.size() == 0)
+        return;
+    const double dp = options.radius ? 2.0 * *options.radius : file.packing.mean_diameter();
+    const bool shifted = options.axis[0] != 0.0 || options.axis[1] != 0.0 || options.floor != 0.0;
+    check_inside(file.packing, file.lines, name, container, outside_tolerance * dp, shifted);
+}
+
 void check_inside(const Packing& packing, const std::vector<std::size_t>& lines,
                   std::string_view name, const Container& container, double tolerance,
                   bool shifted) {

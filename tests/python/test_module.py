@@ -283,3 +283,92 @@ def test_the_command_lines_voxelize_writes_the_modules_image(bed, cli_bed, tmp_p
     status, _, err = cli("voxelize", cli_bed / "particles.csv", "--voxel-size", 0.1, "-o",
                          tmp_path / "im.png")
     assert status == 2 and err.count("\n") == 1 and "im.png" in err and "allowed" in err
+
+
+# The same one-line message from both front ends: the Python call and the command line that
+# gives the same value (option_ranges.hpp, one table for both).
+@pytest.mark.parametrize(
+    "call, arguments",
+    [
+        (lambda: packbed.generate(e0=1.5), ["generate", "--e0", "1.5"]),
+        (lambda: packbed.generate(particles=0), ["generate", "-n", "0"]),
+        (lambda: packbed.generate(aspect_ratio=0.5), ["generate", "-a", "0.5"]),
+        (lambda: packbed.generate(ck=2), ["generate", "--ck", "2"]),
+        (lambda: packbed.generate(mc_window=1), ["generate", "--mc-window", "1"]),
+        (lambda: packbed.generate(threads=0), ["generate", "-j", "0"]),
+        (lambda: packbed.analyze(packbed.lattice(), shell_width=20),
+         ["analyze", "x.csv", "--shell-width", "20"]),
+        (lambda: packbed.voxelize(packbed.lattice(), voxel_size=0),
+         ["voxelize", "x.csv", "--voxel-size", "0", "-o", "im.npy"]),
+        (lambda: packbed.hydraulics(porosity=1.5), ["hydraulics", "--porosity", "1.5"]),
+        (lambda: packbed.hydraulics(porosity=0.4, gravity=0),
+         ["hydraulics", "--porosity", "0.4", "--gravity", "0"]),
+        (lambda: packbed.correlations(profile_step=2), ["correlations", "--profile-step", "2"]),
+        (lambda: packbed.export(packbed.lattice(), "x.data", refine=9),
+         ["export", "x.csv", "--refine", "9"]),
+    ],
+)
+def test_a_bad_value_gets_the_command_lines_message(call, arguments):
+    with pytest.raises(ValueError) as raised:
+        call()
+    status, _, err = cli(*arguments)
+    assert status == 2
+    assert err == f"packbed: {raised.value}\n"
+
+
+def test_hydraulics_and_correlations_give_the_command_lines_numbers():
+    status, out, _ = cli("hydraulics", "--porosity", "0.4", "-a", "5", "--json")
+    assert status == 0
+    got = packbed.hydraulics(porosity=0.4, aspect_ratio=5)
+    assert got == json.loads(out)
+    # Ergun at the critical velocity of eq. (1) (Tsayger 2013): 150 (1-e)^2/e^3 mu u/d^2
+    # + 1.75 (1-e)/e^3 rho u^2/d, for glass (1 mm) in water
+    e, d, mu, rho = 0.4, 1e-3, 1.002e-3, 998.2
+    u = got["pressure_gradient"]["velocity_m_s"]
+    ergun = 150 * (1 - e) ** 2 / e**3 * mu * u / d**2 + 1.75 * (1 - e) / e**3 * rho * u**2 / d
+    assert got["pressure_gradient"]["ergun_Pa_m"] == pytest.approx(ergun, rel=1e-12)
+    status, out, _ = cli("correlations", "-a", "5", "--json")
+    assert status == 0
+    assert packbed.correlations(aspect_ratio=5) == json.loads(out)
+
+
+def test_a_correlation_out_of_its_range_warns_as_the_command_line():
+    status, _, err = cli("correlations", "-a", "1.2")
+    assert status == 0 and "warning" in err
+    with pytest.warns(UserWarning) as warned:
+        packbed.correlations(aspect_ratio=1.2)
+    assert [f"packbed correlations: warning: {w.message}" for w in warned] == err.splitlines()
+
+
+@pytest.mark.parametrize(
+    "format, name, extra",
+    [
+        ("lammps-data", "bed.data", []),
+        ("liggghts-data", "bed.data", []),
+        ("stl", "bed.stl", ["--contacts", "caps:0.02", "--refine", "2"]),
+    ],
+)
+def test_export_writes_the_command_lines_files(cli_bed, tmp_path, format, name, extra):
+    particles = str(cli_bed / "particles.csv")
+    (tmp_path / "cli").mkdir()
+    (tmp_path / "py").mkdir()
+    status, _, err = cli("export", particles, "-f", format, "-q", "-o", tmp_path / "cli" / name,
+                         *extra)
+    assert status == 0, err
+    keywords = dict(contacts="caps:0.02", refine=2) if extra else {}
+    report = packbed.export(packbed.read(particles), str(tmp_path / "py" / name), format=format,
+                            **keywords)
+    assert str(tmp_path / "py" / name) in report
+    written = sorted(os.listdir(tmp_path / "cli"))
+    assert sorted(os.listdir(tmp_path / "py")) == written and len(written) >= 2
+    for f in written:
+        assert (tmp_path / "py" / f).read_bytes() == (tmp_path / "cli" / f).read_bytes(), f
+
+
+def test_export_of_a_bed_made_in_python_holds_every_sphere(bed, tmp_path):
+    packbed.export(bed, str(tmp_path / "bed.data"))
+    lines = (tmp_path / "bed.data").read_text().splitlines()
+    assert "150 spheres from Python" in lines[0]
+    assert "150 atoms" in lines
+    # the example settle beside it: the container (a = 4) is the bed's own
+    assert (tmp_path / "bed.data.lammps.in").exists()
