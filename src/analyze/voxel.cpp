@@ -7,38 +7,58 @@
 #include <fstream>
 #include <limits>
 #include <numbers>
+#include <tuple>
 
 #include <fmt/format.h>
 #include <nlohmann/json.hpp>
+#include <omp.h>
 
 #include "packbed/error.hpp"
 #include "packbed/files.hpp"
 #include "packbed/limits.hpp"
+#include "packbed/option_ranges.hpp"
 #include "packbed/volume.hpp"
 
 namespace packbed {
 
 namespace {
 
-/// P(x) of voxel.hpp, the antiderivative over x of the ball's volume above y = b and z = c,
-/// given the roots \f$r_p = \sqrt{p^2 - x^2}\f$ and \f$r_q = \sqrt{q^2 - x^2}\f$
-/// (\f$p^2 = 1 - c^2\f$, \f$q^2 = 1 - b^2\f$). Every arcsine is written as an arctangent of
-/// those roots, \f$\arcsin(x/q) = \arctan(x / r_q)\f$ and \f$\arcsin(b/\sqrt{1 - x^2}) =
-/// \arctan(b / r_q)\f$: at the upper end x = X the roots are exactly c and b, where the
-/// arcsines of arguments rounded near 1 would lose half their digits (1e-8 of the ball).
-double orthant_antiderivative(double x, double b, double c, double rp, double rq) {
-    const double p2 = 1.0 - c * c, q2 = 1.0 - b * b;
+/// The part of P(x) (voxel.hpp) that holds t, one of b and c:
+/// \f$H(x, t) = -\frac{t}{2} S(x) - \frac{1}{2} J_t(x)\f$ with \f$m^2 = 1 - t^2\f$, given the
+/// root \f$r = \sqrt{m^2 - x^2}\f$, so that P(x) = H(x, c) + H(x, b) + b c x + pi/4 (x - x^3/3).
+/// H depends on x and one of b, c only: a ball's nodes share it along whole planes.
+/// Every arcsine is written as an arctangent of the root, \f$\arcsin(x/m) = \arctan(x / r)\f$
+/// and \f$\arcsin(t/\sqrt{1 - x^2}) = \arctan(t / r)\f$: at the upper end x = X the roots are
+/// exactly the other of b and c, where the arcsines of arguments rounded near 1 would lose half
+/// their digits (1e-8 of the ball).
+/// atan2(y, r) for r >= 0: atan(y / r), half the time of atan2 and within an ulp of it (the
+/// quotient's rounding), atan2 itself at r = 0.
+double arctan(double y, double r) {
+    return r > 0.0 ? std::atan(y / r) : std::atan2(y, r);
+}
+
+double half_antiderivative(double x, double t, double r) {
+    const double m2 = 1.0 - t * t;
     const double cubic = x - x * x * x / 3.0;
+    const double inner = arctan(x, r);
     // S(x) = 1/2 (x r + m^2 arcsin(x / m)), the antiderivative of the chord sqrt(m^2 - x^2)
-    const auto chord = [&](double r, double m2) { return 0.5 * (x * r + m2 * std::atan2(x, r)); };
-    // J_t(x) = int (1 - x^2) arcsin(t / sqrt(1 - x^2)) dx (voxel.hpp)
-    const auto by_parts = [&](double t, double r, double m2) {
-        const double inner = std::atan2(x, r);
-        return cubic * std::atan2(t, r) - t / 3.0 * (0.5 * (m2 * inner - x * r) - 2.0 * inner) -
-               2.0 / 3.0 * std::atan2(t * x, r);
-    };
-    return -0.5 * c * chord(rp, p2) - 0.5 * b * chord(rq, q2) + b * c * x +
-           0.25 * std::numbers::pi * cubic - 0.5 * by_parts(c, rp, p2) - 0.5 * by_parts(b, rq, q2);
+    const double chord = 0.5 * (x * r + m2 * inner);
+    // J_t(x) = int (1 - x^2) arcsin(t / sqrt(1 - x^2)) dx (voxel.hpp), by parts
+    const double by_parts = cubic * arctan(t, r) -
+                            t / 3.0 * (0.5 * (m2 * inner - x * r) - 2.0 * inner) -
+                            2.0 / 3.0 * arctan(t * x, r);
+    return -0.5 * t * chord - 0.5 * by_parts;
+}
+
+/// The terms of P(x) that hold neither root: b c x + pi/4 (x - x^3/3).
+double plain_terms(double x, double b, double c) {
+    return b * c * x + 0.25 * std::numbers::pi * (x - x * x * x / 3.0);
+}
+
+/// P(X) at the upper end X = sqrt(1 - b^2 - c^2), where the roots are c and b.
+double upper_antiderivative(double b, double c) {
+    const double x = std::sqrt(1.0 - b * b - c * c);
+    return half_antiderivative(x, c, b) + half_antiderivative(x, b, c) + plain_terms(x, b, c);
 }
 
 /// 1 - a^2 - b^2 for |a|, |b| <= 1, to within rounding of the result: the larger square taken
@@ -59,11 +79,11 @@ double orthant_volume_positive(double a, double b, double c) {
     const double rest = 1.0 - b * b - c * c;
     if (a * a >= rest)
         return 0.0;
-    const double upper = orthant_antiderivative(std::sqrt(rest), b, c, b, c);
     const double lower =
-        orthant_antiderivative(a, b, c, std::sqrt(std::max(0.0, one_minus_squares(c, a))),
-                               std::sqrt(std::max(0.0, one_minus_squares(b, a))));
-    return std::max(0.0, upper - lower);
+        half_antiderivative(a, c, std::sqrt(std::max(0.0, one_minus_squares(c, a)))) +
+        half_antiderivative(a, b, std::sqrt(std::max(0.0, one_minus_squares(b, a)))) +
+        plain_terms(a, b, c);
+    return std::max(0.0, upper_antiderivative(b, c) - lower);
 }
 
 /// `x` (an index computed in floating point, maybe infinite) as a whole number clamped to
@@ -172,10 +192,7 @@ VoxelGrid voxel_grid(const Packing& packing, const Container& container, double 
                      const std::optional<std::array<double, 6>>& region,
                      std::size_t bytes_per_voxel) {
     const double max_voxels = limits::max_image_bytes / static_cast<double>(bytes_per_voxel);
-    if (!(std::isfinite(size) && size > 0.0 && size <= limits::max_length))
-        throw InvalidInput(fmt::format("--voxel-size: {} is not allowed; allowed: a length > 0 "
-                                       "and at most {:g}",
-                                       size, limits::max_length));
+    check_option("voxel-size", size, option_range::voxel_size);
     std::array<double, 6> box{};
     if (region) {
         box = *region;
@@ -296,45 +313,98 @@ std::vector<std::uint8_t> pore_image(const Packing& packing, const Container& co
 namespace {
 
 /// The exact volumes of one ball in the voxels of a block of planes, from ball_orthant_volume at
-/// the voxel corners (grid nodes), each node computed once per ball and block.
+/// the voxel corners (grid nodes).
 ///
 /// By the ball's symmetry a box is measured in the octant its corners are in, reflected to
 /// a, b, c >= 0 (a voxel that straddles a plane through the centre is split there): no
-/// reflection formula, one positive evaluation per node, V = P(X) - P(a) with P(X) shared by
-/// every node of a line along x.
+/// reflection formula, one positive evaluation per node, V = P(X) - P(a). P splits into
+/// parts of two of a, b, c each (half_antiderivative), computed once per line of nodes: P(X)
+/// per line along x, H(a, c) per line along y, H(a, b) per line along z. Every node's value
+/// is then a few additions, computed for the whole box at once (branch-free loops); the
+/// arctangents are spent per line, not per node. One object per thread, reused ball after ball.
 class BallInVoxels {
 public:
-    BallInVoxels(const Ball& ball, const VoxelGrid& grid, std::array<long long, 3> first,
-                 std::array<long long, 3> last)
-        : m_ball(ball)
-        , m_grid(grid)
-        , m_first(first) {
-        // the nodes of the voxels first..last, and one more slot for the centre's plane
-        for (int d = 0; d < 3; ++d)
-            m_nodes[d] = static_cast<std::size_t>(last[d] - first[d] + 3);
-        m_value.assign(m_nodes[0] * m_nodes[1] * m_nodes[2], -1.0);
-        m_upper.assign(m_nodes[1] * m_nodes[2], std::numeric_limits<double>::quiet_NaN());
+    explicit BallInVoxels(const VoxelGrid& grid)
+        : m_grid(grid) {}
+
+    /// Measure `ball` in the voxels first..last (inclusive) from now on.
+    void start(const Ball& ball, std::array<long long, 3> first, std::array<long long, 3> last) {
+        m_first = first;
+        const double centre[3] = {ball.c.x, ball.c.y, ball.c.z};
+        const double low[3] = {m_grid.low.x, m_grid.low.y, m_grid.low.z};
+        for (int d = 0; d < 3; ++d) {
+            // the nodes of the voxels first..last, and one more slot for the centre's plane
+            const auto n = static_cast<std::size_t>(last[d] - first[d] + 3);
+            m_nodes[d] = n;
+            m_offset[d].resize(n);
+            for (std::size_t s = 0; s + 1 < n; ++s) {
+                const double at =
+                    low[d] +
+                    static_cast<double>(first[d] + static_cast<long long>(s)) * m_grid.size;
+                // |node - centre| / r, clamped to 1
+                m_offset[d][s] = std::min(1.0, std::abs(at - centre[d]) / ball.r);
+            }
+            m_offset[d][n - 1] = 0.0;
+            m_coordinate_low[d] = low[d];
+            m_centre[d] = centre[d];
+        }
+        const std::size_t nx = m_nodes[0], ny = m_nodes[1], nz = m_nodes[2];
+        const std::vector<double>&ax = m_offset[0], &by = m_offset[1], &cz = m_offset[2];
+        // The parts of P, where a node can be inside the ball (elsewhere unused: 0).
+        m_upper.assign(ny * nz, 0.0);
+        for (std::size_t y = 0; y < ny; ++y)
+            for (std::size_t z = 0; z < nz; ++z)
+                if (by[y] * by[y] + cz[z] * cz[z] < 1.0)
+                    m_upper[y * nz + z] = upper_antiderivative(by[y], cz[z]);
+        const auto halves = [&](std::vector<double>& table, const std::vector<double>& t) {
+            table.assign(nx * t.size(), 0.0);
+            for (std::size_t x = 0; x < nx; ++x)
+                for (std::size_t u = 0; u < t.size(); ++u)
+                    if (ax[x] * ax[x] + t[u] * t[u] < 1.0)
+                        table[x * t.size() + u] = half_antiderivative(
+                            ax[x], t[u], std::sqrt(std::max(0.0, one_minus_squares(t[u], ax[x]))));
+        };
+        halves(m_half_c, cz);
+        halves(m_half_b, by);
+        // V = P(X) - P(a) at every node inside the ball, 0 outside.
+        m_value.resize(nx * ny * nz);
+        for (std::size_t x = 0; x < nx; ++x) {
+            const double a = ax[x], a2 = a * a, plain = plain_terms(a, 0.0, 0.0);
+            const double* half_c = m_half_c.data() + x * nz;
+            for (std::size_t y = 0; y < ny; ++y) {
+                const double b = by[y], rest = 1.0 - b * b, ab = a * b;
+                const double lower_ab = m_half_b[x * ny + y] + plain;
+                const double* upper = m_upper.data() + y * nz;
+                double* value = m_value.data() + (x * ny + y) * nz;
+                for (std::size_t z = 0; z < nz; ++z) {
+                    const double c = cz[z];
+                    const double v = upper[z] - (half_c[z] + lower_ab + ab * c);
+                    value[z] = a2 < rest - c * c ? std::max(0.0, v) : 0.0;
+                }
+            }
+        }
     }
 
     /// \return the volume of the ball in voxel (i, j, k) over r^3.
-    double voxel(long long i, long long j, long long k) {
+    double voxel(long long i, long long j, long long k) const {
         const long long index[3] = {i, j, k};
-        // Per axis one or two segments, each (near, far) from the centre: a node of the grid
-        // (its index) or the centre itself (-1).
-        std::array<std::array<long long, 2>, 2> segments[3];
+        // Per axis one or two segments, each (near, far) from the centre: the slot of a node
+        // of the grid or of the centre's plane.
+        std::array<std::array<std::size_t, 2>, 2> segments[3];
         int count[3];
         for (int d = 0; d < 3; ++d) {
             const double low = coordinate(d, index[d]), high = coordinate(d, index[d] + 1);
-            const double c = centre(d);
-            if (low >= c) {
-                segments[d][0] = {index[d], index[d] + 1};
+            const auto near = static_cast<std::size_t>(index[d] - m_first[d]);
+            const std::size_t centre = m_nodes[d] - 1;
+            if (low >= m_centre[d]) {
+                segments[d][0] = {near, near + 1};
                 count[d] = 1;
-            } else if (high <= c) {
-                segments[d][0] = {index[d] + 1, index[d]};
+            } else if (high <= m_centre[d]) {
+                segments[d][0] = {near + 1, near};
                 count[d] = 1;
             } else {
-                segments[d][0] = {-1, index[d] + 1};
-                segments[d][1] = {-1, index[d]};
+                segments[d][0] = {centre, near + 1};
+                segments[d][1] = {centre, near};
                 count[d] = 2;
             }
         }
@@ -353,49 +423,24 @@ public:
 
 private:
     double coordinate(int d, long long n) const {
-        const double low = d == 0 ? m_grid.low.x : d == 1 ? m_grid.low.y : m_grid.low.z;
-        return low + static_cast<double>(n) * m_grid.size;
-    }
-    double centre(int d) const { return d == 0 ? m_ball.c.x : d == 1 ? m_ball.c.y : m_ball.c.z; }
-    /// |node - centre| / r, clamped to 1 (the centre itself: -1 gives 0)
-    double offset(int d, long long n) const {
-        if (n < 0)
-            return 0.0;
-        return std::min(1.0, std::abs(coordinate(d, n) - centre(d)) / m_ball.r);
+        return m_coordinate_low[d] + static_cast<double>(n) * m_grid.size;
     }
 
-    /// The slot of node n (or of the centre's plane, n = -1) along axis d.
-    std::size_t slot(int d, long long n) const {
-        return n < 0 ? m_nodes[d] - 1 : static_cast<std::size_t>(n - m_first[d]);
+    /// ball_orthant_volume at the node of slots (x, y, z), in the octant away from the centre.
+    double node(std::size_t x, std::size_t y, std::size_t z) const {
+        return m_value[(x * m_nodes[1] + y) * m_nodes[2] + z];
     }
 
-    /// ball_orthant_volume at a node in the octant away from the centre, cached.
-    double node(long long i, long long j, long long k) {
-        const std::size_t at = (slot(0, i) * m_nodes[1] + slot(1, j)) * m_nodes[2] + slot(2, k);
-        if (m_value[at] >= 0.0)
-            return m_value[at];
-        const double a = offset(0, i), b = offset(1, j), c = offset(2, k);
-        double v = 0.0;
-        const double rest = 1.0 - b * b - c * c;
-        if (a * a < rest) {
-            double& upper = m_upper[slot(1, j) * m_nodes[2] + slot(2, k)];
-            if (std::isnan(upper))
-                upper = orthant_antiderivative(std::sqrt(rest), b, c, b, c);
-            v = std::max(0.0,
-                         upper - orthant_antiderivative(
-                                     a, b, c, std::sqrt(std::max(0.0, one_minus_squares(c, a))),
-                                     std::sqrt(std::max(0.0, one_minus_squares(b, a)))));
-        }
-        m_value[at] = v;
-        return v;
-    }
-
-    Ball m_ball;
     const VoxelGrid& m_grid;
-    std::array<long long, 3> m_first;
+    std::array<long long, 3> m_first{};
     std::array<std::size_t, 3> m_nodes{};
-    std::vector<double> m_value; // per node, -1 until computed
-    std::vector<double> m_upper; // P(X) per line (j, k), NaN until computed
+    double m_coordinate_low[3]{};
+    double m_centre[3]{};
+    std::vector<double> m_offset[3]; // |node - centre| / r per slot and axis
+    std::vector<double> m_value;     // per node
+    std::vector<double> m_upper;     // P(X) per line (y, z)
+    std::vector<double> m_half_c;    // H(a, c) per (x, z)
+    std::vector<double> m_half_b;    // H(a, b) per (x, y)
 };
 
 } // namespace
@@ -407,21 +452,40 @@ std::vector<double> solid_fraction_image(const Packing& packing, const Container
     const double h = grid.size;
     std::vector<double> image(grid.voxels(), 0.0);
     const std::vector<Ball> balls = balls_reaching(packing, container, grid);
-    // Blocks of planes, each a task: a ball's nodes are computed once per block it meets. Up to
-    // 32 planes, and at least 16 blocks when there are as many planes (the bits do not depend
-    // on it: each voxel still sums its balls in their order).
-    const std::size_t block = std::clamp<std::size_t>(nx / 16, 1, 32);
+    // Blocks of planes, each a task: a ball's nodes are computed once per block it meets, so
+    // blocks are as wide as 4 tasks per thread allow, up to 64 planes (the bits do not depend
+    // on it: each voxel sums its balls in the same order, from the floor up).
+    const auto tasks = 4 * static_cast<std::size_t>(std::max(1, omp_get_max_threads()));
+    const std::size_t block = std::clamp<std::size_t>(nx / tasks, 1, 64);
     const std::size_t blocks = (nx + block - 1) / block;
     VoxelGrid block_grid = grid;
     block_grid.size = h * static_cast<double>(block);
     block_grid.count[0] = blocks;
     const PlaneLists lists = plane_lists(balls, block_grid, false);
+    // Strips across y, 4 of the largest radii wide, for the order of the balls in a block.
+    double largest = 0.0;
+    for (const Ball& ball : balls)
+        largest = std::max(largest, ball.r);
+    std::vector<long long> strip(balls.size());
+    for (std::size_t n = 0; n < balls.size(); ++n)
+        strip[n] = index_of(std::floor((balls[n].c.y - grid.low.y) / (4.0 * largest)), ny);
 #pragma omp parallel for schedule(dynamic, 1)
     for (std::size_t b = 0; b < blocks; ++b) {
         const long long i_first = static_cast<long long>(b * block);
         const long long i_last = static_cast<long long>(std::min(nx, (b + 1) * block)) - 1;
-        for (std::size_t e = lists.start[b]; e < lists.start[b + 1]; ++e) {
-            const Ball& ball = balls[lists.ball[e]];
+        BallInVoxels exact(grid);
+        // The block's balls in strips across y, each from the floor up (ties in ball order):
+        // the voxels a ball adds to are then mostly in the cache from its neighbours below,
+        // where in the file's order each ball would fetch its rows from memory. The order is
+        // the data's, whatever the blocks and threads.
+        std::vector<std::uint32_t> order(
+            lists.ball.begin() + static_cast<std::ptrdiff_t>(lists.start[b]),
+            lists.ball.begin() + static_cast<std::ptrdiff_t>(lists.start[b + 1]));
+        std::sort(order.begin(), order.end(), [&](std::uint32_t p, std::uint32_t q) {
+            return std::tuple(strip[p], balls[p].c.z, p) < std::tuple(strip[q], balls[q].c.z, q);
+        });
+        for (const std::uint32_t n : order) {
+            const Ball& ball = balls[n];
             const double r2 = ball.r * ball.r;
             const double scale = ball.r * ball.r * ball.r / (h * h * h);
             const auto [ia, ib] =
@@ -433,7 +497,7 @@ std::vector<double> solid_fraction_image(const Packing& packing, const Container
             const long long i0 = std::max(ia, i_first), i1 = std::min(ib, i_last);
             if (i0 > i1 || ja > jb || ka > kb)
                 continue;
-            BallInVoxels exact(ball, grid, {i0, ja, ka}, {i1, jb, kb});
+            exact.start(ball, {i0, ja, ka}, {i1, jb, kb});
             for (long long i = i0; i <= i1; ++i) {
                 double* plane = image.data() + static_cast<std::size_t>(i) * ny * nz;
                 const double x0 = grid.low.x + static_cast<double>(i) * h, x1 = x0 + h;
