@@ -228,6 +228,17 @@ check(m is not None and abs(float(m.group(1)) - summary("results/a5-n500")["void
 m = re.search(r"binary image ([0-9.]+) exact ([0-9.]+)", py)
 check(m is not None and abs(float(m.group(1)) - float(m.group(2))) < 0.01 and 0.3 < float(m.group(2)) < 0.5,
       "Python: the box's porosity from the binary and the exact image agree within 0.01")
+data = open(os.path.join(repo, "results/python-bed.data")).read()
+check("500 atoms" in data and "500 spheres to " in py and
+      os.path.exists(os.path.join(repo, "results/python-bed.data.lammps.in")),
+      "Python: export writes the LAMMPS data file of the 500 spheres and its example settle")
+m = re.search(r"Ergun ([0-9.e+-]+) Pa/m at w = ([0-9.e+-]+) m/s", py)
+e = summary("results/a5-n500")["void_fraction"]
+if m:  # Ergun (1952) at the velocity of eq. (1), glass (1 mm) in water, the defaults
+    u, d, mu, rho = float(m.group(2)), 1e-3, 1.002e-3, 998.2
+    ergun = 150 * (1 - e) ** 2 / e ** 3 * mu * u / d ** 2 + 1.75 * (1 - e) / e ** 3 * rho * u ** 2 / d
+check(m is not None and abs(float(m.group(1)) / ergun - 1) < 1e-9,
+      "Python: hydraulics gives Ergun's pressure gradient at the bed's void fraction")
 check(os.path.getsize(os.path.join(repo, "results/python-radial.png")) > 10000 and
       os.path.getsize(os.path.join(repo, "results/void-fraction-study.png")) > 10000,
       "Python: the profile and the study are plotted")
