@@ -239,10 +239,12 @@ Bed generate(double aspect_ratio, const std::optional<std::string>& container, l
     return bed;
 }
 
-Bed read_bed(const std::filesystem::path& path, const std::string& format, long long frame,
-             std::optional<std::pair<double, double>> axis, double floor,
-             std::optional<double> diameter, const std::optional<std::string>& container,
-             double outside_tolerance) {
+/// The reading options of `read` and `analyze_frames`, every value checked as the command line
+/// checks --format, --frame, --axis, --floor, --diameter, --outside-tolerance and --container.
+ReadOptions read_options_of(const std::filesystem::path& path, const std::string& format,
+                            long long frame, std::optional<std::pair<double, double>> axis,
+                            double floor, std::optional<double> diameter,
+                            const std::optional<std::string>& container, double outside_tolerance) {
     check_path("path", path);
     ReadOptions options;
     options.format = choice("format", format == "auto" ? "auto" : format, [] {
@@ -264,6 +266,15 @@ Bed read_bed(const std::filesystem::path& path, const std::string& format, long 
     check_option("outside-tolerance", outside_tolerance, option_range::outside_tolerance);
     if (container)
         container_of("container", *container); // its own message for a bad spec
+    return options;
+}
+
+Bed read_bed(const std::filesystem::path& path, const std::string& format, long long frame,
+             std::optional<std::pair<double, double>> axis, double floor,
+             std::optional<double> diameter, const std::optional<std::string>& container,
+             double outside_tolerance) {
+    const ReadOptions options =
+        read_options_of(path, format, frame, axis, floor, diameter, container, outside_tolerance);
     BedInContainer read =
         read_bed_in_container(path, options, container.value_or(""), 0.0, outside_tolerance);
     ParticleFile& file = read.file;
@@ -274,6 +285,56 @@ Bed read_bed(const std::filesystem::path& path, const std::string& format, long 
     if (bed.container)
         bed.summary["container"] = container_summary(*bed.container);
     return bed;
+}
+
+py::dict analyze_frames(const std::filesystem::path& path, const std::string& format,
+                        std::optional<std::pair<double, double>> axis, double floor,
+                        std::optional<double> diameter, const std::optional<std::string>& container,
+                        double outside_tolerance, std::optional<std::pair<double, double>> band,
+                        double band_clearance, std::optional<long long> threads) {
+    const ReadOptions options =
+        read_options_of(path, format, -1, axis, floor, diameter, container, outside_tolerance);
+    AnalysisOptions analysis;
+    if (diameter)
+        analysis.diameter = *diameter;
+    if (band)
+        analysis.band = Band{band->first, band->second};
+    analysis.band_clearance =
+        check_option("band-clearance", band_clearance, option_range::band_clearance);
+    const std::optional<Container> found = find_container(path, container.value_or(""));
+    if (!found)
+        throw InvalidInput(fmt::format("--container is needed: no summary.json with a container "
+                                       "next to {}",
+                                       printable(path.native())));
+    set_threads(threads);
+    FrameSeries series;
+    {
+        py::gil_scoped_release released;
+        series = void_fraction_series(path, options, *found, analysis, outside_tolerance);
+    }
+    const auto n = static_cast<py::ssize_t>(series.frames.size());
+    py::array_t<std::int64_t> frame(n), particles(n);
+    py::array_t<double> timestep(n), void_fraction(n);
+    const double nan = std::numeric_limits<double>::quiet_NaN();
+    for (py::ssize_t i = 0; i < n; ++i) {
+        const FrameVoidFraction& row = series.frames[static_cast<std::size_t>(i)];
+        frame.mutable_at(i) = static_cast<std::int64_t>(row.frame);
+        particles.mutable_at(i) = static_cast<std::int64_t>(row.particles);
+        timestep.mutable_at(i) = row.timestep ? static_cast<double>(*row.timestep) : nan;
+        void_fraction.mutable_at(i) = row.void_fraction.value_or(nan);
+    }
+    py::dict result;
+    result["frame"] = frame;
+    result["timestep"] = timestep;
+    result["void_fraction"] = void_fraction;
+    result["particles"] = particles;
+    Bed last{std::move(series.last.packing), *found, nlohmann::json::object()};
+    last.summary["particles_file"] = path.string();
+    last.summary["particles"] = last.packing.size();
+    last.summary["frame"] = series.last.frame;
+    last.summary["container"] = container_summary(*found);
+    result["last"] = py::cast(std::move(last));
+    return result;
 }
 
 /// A bed from numpy arrays: centres (N x 3) and radii (N), or one diameter for all.
@@ -751,6 +812,19 @@ frame: 1 the first, -1 the last. axis (X, Y) and floor: the container's axis and
 subtracted from every centre. diameter: of spheres in files without a size column. container: a
 spec string; None: the one summary.json beside the file records, if any. Spheres sticking out of
 the container by more than outside_tolerance Dp raise ValueError, as every bad input does.)");
+
+    m.def("analyze_frames", &analyze_frames, py::arg("path"), py::kw_only(),
+          py::arg("format") = "auto", py::arg("axis") = py::none(), py::arg("floor") = 0.0,
+          py::arg("diameter") = py::none(), py::arg("container") = py::none(),
+          py::arg("outside_tolerance") = 0.01, py::arg("band") = py::none(),
+          py::arg("band_clearance") = 1.0, py::arg("threads") = py::none(),
+          R"(The void fraction of every frame of a trajectory (a LAMMPS or LIGGGHTS dump), as
+`packbed analyze --frames all` writes it in void_fraction_series.csv: a dict of numpy arrays
+frame, timestep (NaN where the file has none), void_fraction (NaN where the frame has no
+spheres or is not taller than the band) and particles, and 'last', the last frame with spheres
+as a Bed (analyze it for the rest). The band: band = (z_low, z_high), fixed, or band_clearance
+Dp clear of each frame's ends. Reading options and container as read(); every frame is checked
+inside the container.)");
 
     m.def("analyze", &analyze, py::arg("bed"), py::kw_only(), py::arg("container") = py::none(),
           py::arg("band") = py::none(), py::arg("band_clearance") = 1.0,

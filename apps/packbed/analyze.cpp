@@ -44,26 +44,6 @@ struct AnalyzeOptions {
     bool force = false;
 };
 
-/// The void fraction of one frame for the time series; nothing when the frame has no spheres
-/// or is not taller than twice the band clearance, or than --band's top (a bed still being
-/// filled).
-std::optional<double> frame_void_fraction(const ParticleFile& frame, const Container& container,
-                                          const AnalyzeOptions& o, const ReadOptions& read,
-                                          const std::string& name) {
-    if (frame.packing.size() == 0)
-        return std::nullopt;
-    const double dp = o.diameter > 0.0 ? o.diameter : frame.packing.mean_diameter();
-    check_file_inside(frame, read, name, container, o.outside_tolerance);
-    // Only the void fraction: the rest of analyze_bed (contacts, g(r)) is for the last frame.
-    const std::optional<Band> band =
-        o.analysis.band
-            ? (o.analysis.band->z_high > bed_top(frame.packing) ? std::nullopt : o.analysis.band)
-            : band_clear_of_ends(frame.packing, o.analysis.band_clearance * dp);
-    if (!band)
-        return std::nullopt;
-    return void_fraction(frame.packing, container, band->z_low, band->z_high);
-}
-
 /// "N spheres touch the wall"; for an annulus each wall's count; in a periodic cell, that it
 /// has no wall (nor wall profiles).
 std::string wall_contacts_line(const BedAnalysis& a) {
@@ -118,30 +98,11 @@ int run_analyze(AnalyzeOptions& o) {
     if (series) {
         // Every frame: its void fraction in the series; the last frame with spheres is the one
         // analysed in full below.
-        std::string table = "frame,timestep,void_fraction,particles\n";
-        for_each_particle_frame(path, read_options, [&](ParticleFile&& frame) {
-            ++frames;
-            std::optional<double> e;
-            try {
-                e = frame_void_fraction(frame, container, o, read_options, path.string());
-            } catch (const InvalidInput& error) {
-                throw InvalidInput(fmt::format(
-                    "frame {}{}: {}", frame.frame,
-                    frame.timestep ? fmt::format(" (timestep {})", *frame.timestep) : std::string(),
-                    error.what()));
-            }
-            table += fmt::format("{},{},{},{}\n", frame.frame,
-                                 frame.timestep ? std::to_string(*frame.timestep) : "",
-                                 e ? fmt::format("{}", *e) : "", frame.packing.size());
-            if (frame.packing.size() > 0)
-                read = std::move(frame);
-        });
-        if (!read)
-            throw InvalidInput(fmt::format("{}: no frame has spheres; allowed: a file with "
-                                           "spheres in at least one frame",
-                                           printable(path.native())));
-        check_file_inside(*read, read_options, path.string(), container, o.outside_tolerance);
-        out.stage("void_fraction_series.csv", table);
+        FrameSeries frames_read =
+            void_fraction_series(path, read_options, container, o.analysis, o.outside_tolerance);
+        frames = frames_read.frames.size();
+        out.stage("void_fraction_series.csv", frame_series_table(frames_read));
+        read = std::move(frames_read.last);
     }
     const ParticleFile& file = *read;
     const BedAnalysis analysis = analyze_bed(file.packing, container, o.analysis);

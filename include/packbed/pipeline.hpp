@@ -142,6 +142,32 @@ BedInContainer read_bed_in_container(const std::filesystem::path& particles,
 void check_file_inside(const ParticleFile& file, const ReadOptions& options, std::string_view name,
                        const Container& container, double outside_tolerance);
 
+/// One frame of a trajectory in a void-fraction series (`analyze --frames all`).
+struct FrameVoidFraction {
+    std::size_t frame = 0;               ///< from 1
+    std::optional<long long> timestep;   ///< the dump's, when it has one
+    std::optional<double> void_fraction; ///< none: no spheres, or not tall enough for the band
+    std::size_t particles = 0;
+};
+
+/// Every frame of a trajectory, its void fraction in the band of `analysis` (a fixed band, or
+/// band_clearance Dp clear of the frame's ends), and the last frame with spheres, for the full
+/// analysis.
+struct FrameSeries {
+    std::vector<FrameVoidFraction> frames;
+    ParticleFile last;
+};
+
+/// Read every frame of `particles` (for_each_particle_frame), each checked inside `container`
+/// (check_file_inside at `outside_tolerance` Dp), and measure its void fraction.
+/// \throws InvalidInput naming the frame (and timestep), or when no frame has spheres
+FrameSeries void_fraction_series(const std::filesystem::path& particles, const ReadOptions& options,
+                                 const Container& container, const AnalysisOptions& analysis,
+                                 double outside_tolerance);
+
+/// void_fraction_series.csv: frame,timestep,void_fraction,particles (empty where none).
+std::string frame_series_table(const FrameSeries& series);
+
 /// Refuse spheres that stick out of the container by more than `tolerance` (length units;
 /// Container::sticks_out: beyond a wall, or a centre outside a periodic cell) or below the floor.
 /// \param name the file in messages, with each sphere's line \param lines each sphere's line

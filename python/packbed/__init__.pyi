@@ -178,3 +178,16 @@ def hydraulics(
 def correlations(
     *, aspect_ratio: float = 5.0, profile_step: float = 0.01, profile_to: float = 5.0
 ) -> Dict[str, Any]: ...
+def analyze_frames(
+    path: str,
+    *,
+    format: str = "auto",
+    axis: Optional[Tuple[float, float]] = None,
+    floor: float = 0.0,
+    diameter: Optional[float] = None,
+    container: Optional[str] = None,
+    outside_tolerance: float = 0.01,
+    band: Optional[Tuple[float, float]] = None,
+    band_clearance: float = 1.0,
+    threads: Optional[int] = None,
+) -> Dict[str, Any]: ...

@@ -8,6 +8,7 @@
 #include "packbed/files.hpp"
 #include "packbed/pipeline.hpp"
 #include "packbed/read.hpp"
+#include "packbed/volume.hpp"
 
 namespace packbed {
 
@@ -45,6 +46,55 @@ void check_file_inside(const ParticleFile& file, const ReadOptions& options, std
     const double dp = options.radius ? 2.0 * *options.radius : file.packing.mean_diameter();
     const bool shifted = options.axis[0] != 0.0 || options.axis[1] != 0.0 || options.floor != 0.0;
     check_inside(file.packing, file.lines, name, container, outside_tolerance * dp, shifted);
+}
+
+FrameSeries void_fraction_series(const std::filesystem::path& particles, const ReadOptions& options,
+                                 const Container& container, const AnalysisOptions& analysis,
+                                 double outside_tolerance) {
+    const std::string name = particles.string();
+    FrameSeries series;
+    bool any = false;
+    for_each_particle_frame(particles, options, [&](ParticleFile&& frame) {
+        FrameVoidFraction row{frame.frame, frame.timestep, std::nullopt, frame.packing.size()};
+        if (frame.packing.size() > 0) {
+            try {
+                check_file_inside(frame, options, name, container, outside_tolerance);
+            } catch (const InvalidInput& error) {
+                throw InvalidInput(fmt::format(
+                    "frame {}{}: {}", frame.frame,
+                    frame.timestep ? fmt::format(" (timestep {})", *frame.timestep) : std::string(),
+                    error.what()));
+            }
+            // Only the void fraction: the rest of analyze_bed (contacts, g(r)) is for the last
+            // frame. A fixed band above the frame's top: not yet filled, no value.
+            const double dp =
+                analysis.diameter ? *analysis.diameter : frame.packing.mean_diameter();
+            const std::optional<Band> band =
+                analysis.band ? (analysis.band->z_high > bed_top(frame.packing) ? std::nullopt
+                                                                                : analysis.band)
+                              : band_clear_of_ends(frame.packing, analysis.band_clearance * dp);
+            if (band)
+                row.void_fraction =
+                    void_fraction(frame.packing, container, band->z_low, band->z_high);
+            series.last = std::move(frame);
+            any = true;
+        }
+        series.frames.push_back(row);
+    });
+    if (!any)
+        throw InvalidInput(fmt::format("{}: no frame has spheres; allowed: a file with spheres in "
+                                       "at least one frame",
+                                       printable(name)));
+    return series;
+}
+
+std::string frame_series_table(const FrameSeries& series) {
+    std::string table = "frame,timestep,void_fraction,particles\n";
+    for (const FrameVoidFraction& row : series.frames)
+        table += fmt::format(
+            "{},{},{},{}\n", row.frame, row.timestep ? std::to_string(*row.timestep) : "",
+            row.void_fraction ? fmt::format("{}", *row.void_fraction) : "", row.particles);
+    return table;
 }
 
 void check_inside(const Packing& packing, const std::vector<std::size_t>& lines,

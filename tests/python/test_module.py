@@ -372,3 +372,34 @@ def test_export_of_a_bed_made_in_python_holds_every_sphere(bed, tmp_path):
     assert "150 atoms" in lines
     # the example settle beside it: the container (a = 4) is the bed's own
     assert (tmp_path / "bed.data.lammps.in").exists()
+
+
+def test_analyze_frames_gives_the_command_lines_series(tmp_path):
+    # A trajectory of a simple cubic lattice of unit balls filling a 4 x 4 box layer by layer:
+    # 1, 3 and 4 layers. With a band 1 Dp clear of the ends, the first frame has none; the
+    # others have whole middle layers in it, void fraction 1 - pi/6 exactly.
+    lattice = packbed.lattice(type="sc", region="box:4,4,4")
+    centers = np.array(lattice.centers)
+    dump = tmp_path / "fill.dump"
+    with open(dump, "w") as f:
+        for step, layers in [(0, 1), (1000, 3), (2000, 4)]:
+            frame = centers[centers[:, 2] < layers]
+            f.write(f"ITEM: TIMESTEP\n{step}\nITEM: NUMBER OF ATOMS\n{len(frame)}\n"
+                    "ITEM: BOX BOUNDS pp pp ff\n0 4\n0 4\n0 4\nITEM: ATOMS id type x y z radius\n")
+            for i, (x, y, z) in enumerate(frame):
+                f.write(f"{i + 1} 1 {x!r} {y!r} {z!r} 0.5\n")
+    series = packbed.analyze_frames(str(dump), container="box:4,4")
+    assert list(series["frame"]) == [1, 2, 3]
+    assert list(series["timestep"]) == [0, 1000, 2000]
+    assert list(series["particles"]) == [16, 48, 64]
+    assert math.isnan(series["void_fraction"][0])
+    assert series["void_fraction"][1:] == pytest.approx([1 - math.pi / 6] * 2, abs=1e-12)
+    assert len(series["last"]) == 64
+    status, _, err = cli("analyze", dump, "--container", "box:4,4", "--frames", "all", "-q",
+                         "--out", tmp_path / "cli")
+    assert status == 0, err
+    rows = (tmp_path / "cli" / "void_fraction_series.csv").read_text().splitlines()
+    assert rows[0] == "frame,timestep,void_fraction,particles"
+    for row, e in zip(rows[1:], series["void_fraction"]):
+        value = row.split(",")[2]
+        assert (value == "" and math.isnan(e)) or float(value) == e
