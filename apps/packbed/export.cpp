@@ -42,12 +42,11 @@ int run_export(ExportOptions& o) {
         read.radius = 0.5 * o.diameter;
     o.placement.apply(read);
     const ParticleFile file = read_particles(o.particles, read);
-    // The container: --container, --container-radius or summary.json beside the file.
-    const auto spec = parse_container(o.container);
-    request.container = spec ? std::optional<Container>(spec->container())
-                        : o.container_radius > 0.0
-                            ? std::optional<Container>(Cylinder(o.container_radius))
-                            : container_beside(o.particles);
+    // The container: --container, --container-radius or summary.json beside the file (not
+    // looked for where --no-container has a data file ignore it).
+    const bool data_file = request.format == "lammps-data" || request.format == "liggghts-data";
+    if (!(data_file && request.no_container))
+        request.container = find_container(o.particles, o.container, o.container_radius);
     const std::string report = export_bed(file.packing, file.lines, request);
     if (!o.quiet)
         fmt::print("packbed export: {}\n", report);

@@ -441,6 +441,10 @@ std::string export_bed(const Packing& packing, const std::vector<std::size_t>& l
                                        printable(request.format.substr(0, 80)), names));
     }
     const ExportFormat format = found->second;
+    if (packing.size() == 0)
+        throw InvalidInput(fmt::format("{}: no spheres to export; allowed: a bed with at least "
+                                       "one sphere",
+                                       printable(request.source)));
     if (format == ExportFormat::stl || format == ExportFormat::stl_ascii ||
         format == ExportFormat::obj || format == ExportFormat::openfoam)
         return surface_export(request, format, packing, lines);

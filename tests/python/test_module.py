@@ -134,6 +134,13 @@ def test_a_lattice_in_a_box_has_its_exact_porosity():
          ["kind", "grey", "allowed"]),
         (lambda: packbed.voxelize(packbed.lattice(), voxel_size=0.1, out="im.jpg"),
          ["im.jpg", "allowed"]),
+        (lambda: packbed.export(packbed.Bed(np.zeros((0, 3)), diameter=1.0), "x.data"),
+         ["no spheres", "allowed"]),
+        (lambda: packbed.export(packbed.lattice(), "x.data", format="vrml"),
+         ["format", "vrml", "allowed"]),
+        (lambda: packbed.hydraulics(), ["porosity", "allowed"]),
+        (lambda: packbed.hydraulics(porosity=0.4, aspect_ratio=5, container="cylinder:0.01"),
+         ["aspect-ratio", "container", "allowed"]),
     ],
 )
 def test_bad_values_raise_value_error_with_one_line(call, words):
