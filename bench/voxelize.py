@@ -2,10 +2,11 @@
 the Python module (the computation alone) and the command line (with reading the bed and
 writing the .npy file). Usage (Debian's Python, the module on the path):
 
-    PYTHONPATH=build/python /usr/bin/python3 bench/voxelize.py BED_DIR [VOXEL_SIZE] [REPEATS]
+    PYTHONPATH=build/python /usr/bin/python3 bench/voxelize.py BED_DIR [VOXEL_SIZE] [REPEATS] [module]
 
 BED_DIR holds particles.csv and summary.json (e.g. `packbed generate -a 20 -n 100000 -s 1
---out BED_DIR`); VOXEL_SIZE in the bed's units (default 0.05: 20 voxels per diameter of 1).
+--out BED_DIR`); VOXEL_SIZE in the bed's units (default 0.05: 20 voxels per diameter of 1);
+`module`: the module's timings only (to compare two builds, one PYTHONPATH each, in one command).
 """
 
 import os
@@ -35,6 +36,8 @@ print(f"image {shape[0]} x {shape[1]} x {shape[2]} = {shape[0] * shape[1] * shap
 for kind in best:
     print(f"module, {kind}: {best[kind]:.2f} s (best of {repeats})")
 print(f"ratio exact / binary: {best['fraction'] / best['binary']:.1f}")
+if len(sys.argv) > 4 and sys.argv[4] == "module":
+    sys.exit(0)
 with tempfile.TemporaryDirectory() as folder:
     for kind in ["binary", "fraction"]:
         start = time.perf_counter()
