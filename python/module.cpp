@@ -155,21 +155,11 @@ void set_threads(const std::optional<long long>& threads) {
         use_threads(check_option("threads", *threads, option_range::threads));
 }
 
-/// A container from its spec text, or InvalidInput naming `option`.
-Container container_of(std::string_view option, const std::string& spec) {
-    const auto parsed = parse_container(spec);
-    if (!parsed)
-        throw InvalidInput(fmt::format("--{} '{}' is not allowed; allowed: cylinder:D, box:LX,LY, "
-                                       "annulus:D,DI (0 < DI < D) or periodic:LX,LY, lengths > 0",
-                                       option, printable(spec.substr(0, 80))));
-    return parsed->container();
-}
-
 /// The container `container` names, else the bed's own. \throws InvalidInput when neither is
 /// there
 Container container_for(const Bed& bed, const std::optional<std::string>& container) {
     if (container)
-        return container_of("container", *container);
+        return container_from_spec("--container", *container);
     if (!bed.container)
         throw InvalidInput("--container is needed: this bed has no container (give container="
                            "'cylinder:D', 'box:LX,LY', 'annulus:D,DI' or 'periodic:LX,LY')");
@@ -265,8 +255,20 @@ ReadOptions read_options_of(const std::filesystem::path& path, const std::string
         options.radius = 0.5 * check_option("diameter", *diameter, option_range::diameter);
     check_option("outside-tolerance", outside_tolerance, option_range::outside_tolerance);
     if (container)
-        container_of("container", *container); // its own message for a bad spec
+        container_from_spec("--container", *container); // its own message for a bad spec
     return options;
+}
+
+/// A bed read from the file `path` (one frame of it) in its container, with its record.
+Bed file_bed(const std::filesystem::path& path, ParticleFile&& file,
+             std::optional<Container> container) {
+    Bed bed{std::move(file.packing), std::move(container), nlohmann::json::object()};
+    bed.summary["particles_file"] = path.string();
+    bed.summary["particles"] = bed.packing.size();
+    bed.summary["frame"] = file.frame;
+    if (bed.container)
+        bed.summary["container"] = container_summary(*bed.container);
+    return bed;
 }
 
 Bed read_bed(const std::filesystem::path& path, const std::string& format, long long frame,
@@ -277,14 +279,7 @@ Bed read_bed(const std::filesystem::path& path, const std::string& format, long 
         read_options_of(path, format, frame, axis, floor, diameter, container, outside_tolerance);
     BedInContainer read =
         read_bed_in_container(path, options, container.value_or(""), 0.0, outside_tolerance);
-    ParticleFile& file = read.file;
-    Bed bed{std::move(file.packing), std::move(read.container), nlohmann::json::object()};
-    bed.summary["particles_file"] = path.string();
-    bed.summary["particles"] = bed.packing.size();
-    bed.summary["frame"] = file.frame;
-    if (bed.container)
-        bed.summary["container"] = container_summary(*bed.container);
-    return bed;
+    return file_bed(path, std::move(read.file), std::move(read.container));
 }
 
 py::dict analyze_frames(const std::filesystem::path& path, const std::string& format,
@@ -328,12 +323,7 @@ py::dict analyze_frames(const std::filesystem::path& path, const std::string& fo
     result["timestep"] = timestep;
     result["void_fraction"] = void_fraction;
     result["particles"] = particles;
-    Bed last{std::move(series.last.packing), *found, nlohmann::json::object()};
-    last.summary["particles_file"] = path.string();
-    last.summary["particles"] = last.packing.size();
-    last.summary["frame"] = series.last.frame;
-    last.summary["container"] = container_summary(*found);
-    result["last"] = py::cast(std::move(last));
+    result["last"] = py::cast(file_bed(path, std::move(series.last), found));
     return result;
 }
 
@@ -380,7 +370,7 @@ Bed from_arrays(
         bed.packing.radii[i] = r;
     }
     if (container) {
-        bed.container = container_of("container", *container);
+        bed.container = container_from_spec("--container", *container);
         check_inside(bed.packing, {}, "centers", *bed.container,
                      0.01 * (n > 0 ? bed.packing.mean_diameter() : 0.0), false);
         bed.summary["container"] = container_summary(*bed.container);
@@ -544,7 +534,7 @@ std::string export_bed_to(const Bed& bed, const std::filesystem::path& out,
     if (from_file)
         request.keep = request.source;
     request.container =
-        container ? std::optional(container_of("container", *container)) : bed.container;
+        container ? std::optional(container_from_spec("--container", *container)) : bed.container;
     if (container_height)
         request.container_height =
             check_option("container-height", *container_height, range::container_height);

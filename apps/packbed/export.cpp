@@ -42,10 +42,8 @@ int run_export(ExportOptions& o) {
         read.radius = 0.5 * o.diameter;
     o.placement.apply(read);
     const ParticleFile file = read_particles(o.particles, read);
-    // The container: --container, --container-radius or summary.json beside the file (not
-    // looked for where --no-container has a data file ignore it).
-    const bool data_file = request.format == "lammps-data" || request.format == "liggghts-data";
-    if (!(data_file && request.no_container))
+    // The container: --container, --container-radius or summary.json beside the file.
+    if (export_uses_container(request))
         request.container = find_container(o.particles, o.container, o.container_radius);
     const std::string report = export_bed(file.packing, file.lines, request);
     if (!o.quiet)

@@ -115,10 +115,15 @@ void set_child_watcher(std::function<void(pid_t)> watcher);
 /// summary, or has a container outside the limits
 std::optional<Container> container_beside(const std::filesystem::path& particles);
 
+/// The container a spec text names (parse_container). \throws InvalidInput naming `option`,
+/// the text and the four forms when it names none
+Container container_from_spec(std::string_view option, const std::string& spec);
+
 /// The container of the bed file `particles`: the spec `container` when given, else a
 /// cylinder of radius `cylinder_radius` when > 0, else the one summary.json beside the file
 /// records (container_beside). \return nothing when none of these gives one.
-/// \throws InvalidInput for a bad spec or summary.json
+/// \throws InvalidInput for a spec that is not one (never skipped for the next source) or a bad
+/// summary.json
 std::optional<Container> find_container(const std::filesystem::path& particles,
                                         const std::string& container, double cylinder_radius = 0.0);
 
@@ -210,6 +215,11 @@ std::vector<std::string> export_format_names();
 /// .obj, or the directory openfoam/ beside it.
 std::filesystem::path default_export_path(const std::filesystem::path& particles,
                                           const std::string& format);
+
+/// Whether export_bed uses the request's container: always for surfaces (cutting, walls), for
+/// data files unless `no_container` (then they ignore it; the caller need not look for one).
+/// \throws InvalidInput for an unknown format
+bool export_uses_container(const ExportRequest& request);
 
 /// Write a bed as `request` says (every check before the work; nothing half-written).
 /// \param lines each sphere's line in its file, for messages (empty: the sphere's number)

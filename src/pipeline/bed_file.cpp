@@ -20,10 +20,19 @@ std::optional<Container> container_beside(const std::filesystem::path& particles
     return read_bed_summary(summary).container;
 }
 
+Container container_from_spec(std::string_view option, const std::string& spec) {
+    const auto parsed = parse_container(spec);
+    if (!parsed)
+        throw InvalidInput(fmt::format("{} '{}' is not allowed; allowed: cylinder:D, box:LX,LY, "
+                                       "annulus:D,DI (0 < DI < D) or periodic:LX,LY, lengths > 0",
+                                       option, printable(spec.substr(0, 80))));
+    return parsed->container();
+}
+
 std::optional<Container> find_container(const std::filesystem::path& particles,
                                         const std::string& container, double cylinder_radius) {
-    if (const auto spec = parse_container(container))
-        return spec->container();
+    if (!container.empty())
+        return container_from_spec("--container", container);
     if (cylinder_radius > 0.0)
         return Cylinder(cylinder_radius);
     return container_beside(particles);

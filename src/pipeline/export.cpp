@@ -10,6 +10,7 @@
 #include <vector>
 
 #include <fmt/format.h>
+#include <fmt/ranges.h>
 #include <nlohmann/json.hpp>
 
 #include "packbed/error.hpp"
@@ -416,37 +417,54 @@ std::vector<std::string> export_format_names() {
     return names;
 }
 
+namespace {
+
+/// The format `name`. \throws InvalidInput naming every format
+ExportFormat export_format(const std::string& name) {
+    const auto& formats = export_formats();
+    const auto found = std::find_if(formats.begin(), formats.end(),
+                                    [&](const auto& entry) { return entry.first == name; });
+    if (found == formats.end())
+        throw InvalidInput(fmt::format("--format '{}' is not allowed; allowed: {}",
+                                       printable(name.substr(0, 80)),
+                                       fmt::join(export_format_names(), ", ")));
+    return found->second;
+}
+
+bool is_surface(ExportFormat format) {
+    return format == ExportFormat::stl || format == ExportFormat::stl_ascii ||
+           format == ExportFormat::obj || format == ExportFormat::openfoam;
+}
+
+} // namespace
+
 std::filesystem::path default_export_path(const std::filesystem::path& particles,
                                           const std::string& format) {
-    if (format == "openfoam")
+    switch (export_format(format)) {
+    case ExportFormat::openfoam:
         return particles.parent_path() / "openfoam";
-    if (format == "stl" || format == "stl-ascii")
+    case ExportFormat::stl:
+    case ExportFormat::stl_ascii:
         return fs::path(particles).replace_extension(".stl");
-    if (format == "obj")
+    case ExportFormat::obj:
         return fs::path(particles).replace_extension(".obj");
-    return fs::path(particles).replace_extension(".data");
+    default:
+        return fs::path(particles).replace_extension(".data");
+    }
+}
+
+bool export_uses_container(const ExportRequest& request) {
+    return is_surface(export_format(request.format)) || !request.no_container;
 }
 
 std::string export_bed(const Packing& packing, const std::vector<std::size_t>& lines,
                        const ExportRequest& request) {
-    const auto formats = export_formats();
-    const auto found = std::find_if(formats.begin(), formats.end(), [&](const auto& entry) {
-        return entry.first == request.format;
-    });
-    if (found == formats.end()) {
-        std::string names;
-        for (const auto& entry : formats)
-            names += (names.empty() ? "" : ", ") + entry.first;
-        throw InvalidInput(fmt::format("--format '{}' is not allowed; allowed: {}",
-                                       printable(request.format.substr(0, 80)), names));
-    }
-    const ExportFormat format = found->second;
+    const ExportFormat format = export_format(request.format);
     if (packing.size() == 0)
         throw InvalidInput(fmt::format("{}: no spheres to export; allowed: a bed with at least "
                                        "one sphere",
                                        printable(request.source)));
-    if (format == ExportFormat::stl || format == ExportFormat::stl_ascii ||
-        format == ExportFormat::obj || format == ExportFormat::openfoam)
+    if (is_surface(format))
         return surface_export(request, format, packing, lines);
     return data_export(request, format, packing, lines);
 }
