@@ -101,6 +101,33 @@ TEST(Voxel, ASphereOnAVoxelCornerFillsItsEightVoxelsEqually) {
         EXPECT_EQ(v, 0);
 }
 
+TEST(Voxel, EveryVoxelHoldsItsBallBoxVolume) {
+    // Random balls (radii 0.3 to 3.5 voxels, so some lie within one voxel and some straddle
+    // many and the planes through their centres): each voxel of the image against the sum of
+    // ball_box_volume over the balls, the closed form at its eight corners, one voxel at a time.
+    std::mt19937_64 random(7);
+    std::uniform_real_distribution<double> where(-0.5, 6.5), size(0.3, 3.5);
+    Packing p;
+    for (int n = 0; n < 12; ++n) {
+        p.centers.push_back({where(random), where(random), where(random)});
+        p.radii.push_back(size(random));
+    }
+    const VoxelGrid g = grid_of({0, 0, 0}, 1.0, 6, 7, 8);
+    const Container box(Box(20.0, 20.0));
+    const auto image = solid_fraction_image(p, box, g);
+    double worst = 0.0;
+    for (std::size_t i = 0; i < 6; ++i)
+        for (std::size_t j = 0; j < 7; ++j)
+            for (std::size_t k = 0; k < 8; ++k) {
+                const Vec3 low{double(i), double(j), double(k)}, high{i + 1.0, j + 1.0, k + 1.0};
+                double expected = 0.0;
+                for (std::size_t n = 0; n < p.size(); ++n)
+                    expected += ball_box_volume(p.centers[n], p.radii[n], low, high);
+                worst = std::max(worst, std::abs(image[(i * 7 + j) * 8 + k] - expected));
+            }
+    EXPECT_LT(worst, 1e-12);
+}
+
 TEST(Voxel, ASphereCutByTheRegionCountsOnlyItsPartInside) {
     // centre on the region's face x = 0: half the ball inside; on its edge x = y = 0: a quarter;
     // on its corner: an eighth
