@@ -560,10 +560,9 @@ std::string export_bed_to(const Bed& bed, const std::filesystem::path& out,
 
 /// A vector's memory handed to numpy without a copy: the array owns the vector through a
 /// capsule.
-template <class T>
-py::array owned_array(std::vector<T>&& data, const VoxelGrid& grid, py::dtype dtype) {
-    auto* owner = new std::vector<T>(std::move(data));
-    py::capsule free(owner, [](void* p) { delete static_cast<std::vector<T>*>(p); });
+template <class T> py::array owned_array(Voxels<T>&& data, const VoxelGrid& grid, py::dtype dtype) {
+    auto* owner = new Voxels<T>(std::move(data));
+    py::capsule free(owner, [](void* p) { delete static_cast<Voxels<T>*>(p); });
     const auto [nx, ny, nz] = grid.count;
     const auto item = static_cast<py::ssize_t>(sizeof(T));
     return py::array(
@@ -575,13 +574,11 @@ py::array owned_array(std::vector<T>&& data, const VoxelGrid& grid, py::dtype dt
 
 py::array voxelize_bed(const Bed& bed, double voxel_size,
                        std::optional<std::array<double, 6>> region, const std::string& kind,
-                       const std::optional<std::string>& container,
+                       const std::string& dtype, const std::optional<std::string>& container,
                        std::optional<long long> threads,
                        const std::optional<std::filesystem::path>& out) {
     const Container given = container_for(bed, container);
-    if (kind != "binary" && kind != "fraction")
-        throw InvalidInput(fmt::format("--kind '{}' is not allowed; allowed: binary, fraction",
-                                       printable(kind.substr(0, 80))));
+    const VoxelType type = voxel_type(kind, dtype);
     std::optional<ImageFormat> format;
     if (out) {
         format = image_format(*out);
@@ -591,9 +588,8 @@ py::array voxelize_bed(const Bed& bed, double voxel_size,
                                            "header)",
                                            printable(out->native())));
     }
-    const bool binary = kind == "binary";
     // every check before the work
-    voxel_grid(bed.packing, given, voxel_size, region, binary ? 1 : sizeof(double));
+    voxel_grid(bed.packing, given, voxel_size, region, voxel_bytes(type));
     std::optional<OutputDirectory> directory;
     if (out)
         directory.emplace(out->parent_path().empty() ? "." : out->parent_path(), "--out",
@@ -602,15 +598,18 @@ py::array voxelize_bed(const Bed& bed, double voxel_size,
     VoxelImage image;
     {
         py::gil_scoped_release released;
-        image = voxelize(bed.packing, given, voxel_size, region, binary);
+        image = voxelize(bed.packing, given, voxel_size, region, type);
     }
     if (directory) {
         stage_image(*directory, out->filename().string(), *format, image);
         directory->commit();
     }
-    if (binary)
-        return owned_array(std::move(image.pore), image.grid, py::dtype("bool"));
-    return owned_array(std::move(image.fraction), image.grid, py::dtype("float64"));
+    const py::dtype numpy_type(voxel_type_name(type));
+    if (type == VoxelType::boolean)
+        return owned_array(std::move(image.pore), image.grid, numpy_type);
+    if (type == VoxelType::float64)
+        return owned_array(std::move(image.fraction), image.grid, numpy_type);
+    return owned_array(std::move(image.fraction32), image.grid, numpy_type);
 }
 
 } // namespace
@@ -833,7 +832,7 @@ diameter (None: the mean sphere diameter). out: a directory to write the tables,
 summary.json to (None: nothing is written). Returns an Analysis with numpy arrays.)");
 
     m.def("voxelize", &voxelize_bed, py::arg("bed"), py::kw_only(), py::arg("voxel_size"),
-          py::arg("region") = py::none(), py::arg("kind") = "binary",
+          py::arg("region") = py::none(), py::arg("kind") = "binary", py::arg("dtype") = "float64",
           py::arg("container") = py::none(), py::arg("threads") = py::none(),
           py::arg("out") = py::none(),
           R"(A bed as a voxel image, as `packbed voxelize`: a numpy array of shape (nx, ny, nz),
@@ -842,7 +841,9 @@ im[i, j, k] the voxel [x0 + i h, x0 + (i + 1) h] x ... (h = voxel_size).
 kind 'binary': bool, True where the voxel's centre is pore space (inside the container and in
 no sphere), False where it is solid (a sphere, or outside the container), as PoreSpy expects.
 kind 'fraction': float64, each voxel's solid fraction computed exactly from the spheres (closed
-form); its sum times h^3 is the spheres' volume in the grid's box. region: (xlow, ylow, zlow,
+form); its sum times h^3 is the spheres' volume in the grid's box. dtype 'float32' (kind
+'fraction' only): the same fractions each rounded once to single precision, half the memory.
+region: (xlow, ylow, zlow,
 xhigh, yhigh, zhigh); None: the container across and the floor to the bed's top. out: also write
 it to a .npy, .tif or .raw (+ .raw.json) file. The array owns its memory (no copy is made).)");
 

@@ -41,7 +41,7 @@ VoxelGrid grid_of(Vec3 low, double h, std::size_t nx, std::size_t ny, std::size_
     return g;
 }
 
-double sum(const std::vector<double>& v) {
+template <class Vector> double sum(const Vector& v) {
     double s = 0.0;
     for (const double x : v)
         s += x;
@@ -155,7 +155,7 @@ TEST(Voxel, PartialVolumesSumToTheSolidVolumeInTheRegion) {
     params.seed = 4;
     const SoftSphereResult bed = generate_soft_sphere(params);
     const std::array<double, 6> region{-2.2, -1.9, 0.7, 2.1, 2.3, 4.9};
-    const VoxelImage image = voxelize(bed.packing, bed.container, 0.07, region, false);
+    const VoxelImage image = voxelize(bed.packing, bed.container, 0.07, region, VoxelType::float64);
     double expected = 0.0;
     for (std::size_t i = 0; i < bed.packing.size(); ++i)
         expected += sphere_volume_in_box(bed.packing.centers[i], bed.packing.radii[i],
@@ -166,6 +166,20 @@ TEST(Voxel, PartialVolumesSumToTheSolidVolumeInTheRegion) {
     // and no voxel holds more than itself (overlaps are at most 1e-4 Dp)
     for (const double f : image.fraction)
         ASSERT_LE(f, 1.0 + 1e-3);
+    // in single precision: each voxel within float's rounding of the double one (a few
+    // roundings where spheres share a voxel), and the sum still the solid volume to 1e-9
+    const VoxelImage single =
+        voxelize(bed.packing, bed.container, 0.07, region, VoxelType::float32);
+    ASSERT_EQ(single.fraction32.size(), image.fraction.size());
+    double single_sum = 0.0, worst = 0.0;
+    for (std::size_t n = 0; n < image.fraction.size(); ++n) {
+        single_sum += single.fraction32[n];
+        worst = std::max(worst, std::abs(single.fraction32[n] - image.fraction[n]));
+    }
+    EXPECT_LT(worst, 3e-7);
+    EXPECT_GT(worst, 0.0); // rounded indeed: not the double image
+    EXPECT_NEAR(single_sum * h3 / expected, 1.0, 1e-9);
+    EXPECT_NEAR(single.porosity(), image.porosity(), 1e-9);
 }
 
 TEST(Voxel, ALatticesPoreImageHasItsPorosity) {
@@ -177,11 +191,11 @@ TEST(Voxel, ALatticesPoreImageHasItsPorosity) {
     p.region = BoxRegion{{4.0, 4.0, 4.0}};
     const Packing balls = fill_lattice(p);
     const Container box(Box(4.0, 4.0));
-    const VoxelImage binary = voxelize(balls, box, 0.025, std::nullopt, true);
+    const VoxelImage binary = voxelize(balls, box, 0.025, std::nullopt, VoxelType::boolean);
     EXPECT_EQ(binary.grid.count[0], 160u);
     EXPECT_EQ(binary.grid.count[2], 160u);
     EXPECT_NEAR(binary.porosity(), 1 - pi / 6, 2e-3);
-    const VoxelImage exact = voxelize(balls, box, 0.1, std::nullopt, false);
+    const VoxelImage exact = voxelize(balls, box, 0.1, std::nullopt, VoxelType::float64);
     EXPECT_NEAR(exact.porosity(), 1 - pi / 6, 1e-12);
 }
 
@@ -217,13 +231,24 @@ TEST(Voxel, TheSameBitsForAnyNumberOfThreads) {
     params.seed = 2;
     const SoftSphereResult bed = generate_soft_sphere(params);
     omp_set_num_threads(1);
-    const VoxelImage one = voxelize(bed.packing, bed.container, 0.05, std::nullopt, false);
-    const VoxelImage one_binary = voxelize(bed.packing, bed.container, 0.05, std::nullopt, true);
+    const VoxelImage one =
+        voxelize(bed.packing, bed.container, 0.05, std::nullopt, VoxelType::float64);
+    const VoxelImage one_binary =
+        voxelize(bed.packing, bed.container, 0.05, std::nullopt, VoxelType::boolean);
     omp_set_num_threads(2);
-    const VoxelImage two = voxelize(bed.packing, bed.container, 0.05, std::nullopt, false);
-    const VoxelImage two_binary = voxelize(bed.packing, bed.container, 0.05, std::nullopt, true);
+    const VoxelImage two =
+        voxelize(bed.packing, bed.container, 0.05, std::nullopt, VoxelType::float64);
+    const VoxelImage two_binary =
+        voxelize(bed.packing, bed.container, 0.05, std::nullopt, VoxelType::boolean);
     EXPECT_TRUE(one.fraction == two.fraction);
     EXPECT_TRUE(one_binary.pore == two_binary.pore);
+    omp_set_num_threads(1);
+    const VoxelImage one_single =
+        voxelize(bed.packing, bed.container, 0.05, std::nullopt, VoxelType::float32);
+    omp_set_num_threads(2);
+    const VoxelImage two_single =
+        voxelize(bed.packing, bed.container, 0.05, std::nullopt, VoxelType::float32);
+    EXPECT_TRUE(one_single.fraction32 == two_single.fraction32);
 }
 
 TEST(Voxel, BadGridsAreRefusedNamingTheOption) {

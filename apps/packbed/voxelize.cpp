@@ -27,6 +27,7 @@ struct VoxelizeOptions {
     double voxel_size = 0.0;
     std::string region; // XLOW,YLOW,ZLOW,XHIGH,YHIGH,ZHIGH; "": the container, floor to top
     std::string kind = "binary";
+    std::string dtype = "float64";
     std::string out;
     double outside_tolerance = 0.01;
     InputPlacement placement;
@@ -65,23 +66,25 @@ int run_voxelize(VoxelizeOptions& o) {
                                            printable(o.region.substr(0, 80))));
         region = std::array<double, 6>{(*v)[0], (*v)[1], (*v)[2], (*v)[3], (*v)[4], (*v)[5]};
     }
-    const bool binary = o.kind == "binary";
+    const VoxelType type = voxel_type(o.kind, o.dtype);
+    const bool binary = type == VoxelType::boolean;
     // Every check before the work: the grid's size, the output.
-    voxel_grid(file.packing, container, o.voxel_size, region, binary ? 1 : sizeof(double));
+    voxel_grid(file.packing, container, o.voxel_size, region, voxel_bytes(type));
     const std::filesystem::path target(o.out);
     OutputDirectory out(target.parent_path().empty() ? "." : target.parent_path(), "--out",
                         OutputKind::files);
     out.keep("the particles file", path);
     use_threads(o.threads);
-    const VoxelImage image = voxelize(file.packing, container, o.voxel_size, region, binary);
+    const VoxelImage image = voxelize(file.packing, container, o.voxel_size, region, type);
     stage_image(out, target.filename().string(), *format, image);
     out.commit();
     if (!o.quiet)
         fmt::print("packbed voxelize: {} x {} x {} voxels of {:g} ({}), porosity of the image "
                    "{:.5f}: {}\n",
                    image.grid.count[0], image.grid.count[1], image.grid.count[2], image.grid.size,
-                   binary ? "1 = pore, 0 = solid" : "solid fractions, exact", image.porosity(),
-                   target.string());
+                   binary ? "1 = pore, 0 = solid"
+                          : fmt::format("solid fractions, exact, {}", o.dtype),
+                   image.porosity(), target.string());
     return 0;
 }
 
@@ -117,6 +120,10 @@ Command register_voxelize(CLI::App& parent) {
                     "binary: 1 where a voxel's centre is pore space (inside the container, in no "
                     "sphere), 0 solid; fraction: each voxel's solid fraction, exact (float64)")
         ->check(one_of({"binary", "fraction"}));
+    app->add_option("--dtype", o.dtype,
+                    "the fractions' type: float64, or float32 for half the memory and file "
+                    "(each value rounded once; --kind fraction only)")
+        ->check(one_of({"float64", "float32"}));
     app->add_option("-o,--out", o.out,
                     "the image file: .npy (numpy), .tif (tifffile, ImageJ) or .raw (and .raw.json "
                     "with its shape, type, voxel size and origin); replaced if it exists")

@@ -274,18 +274,30 @@ Report correlations_report(const CorrelationsRequest& request);
 /// A voxel image of a bed: the pore image (binary) or the solid fraction image.
 struct VoxelImage {
     VoxelGrid grid;
-    bool binary = true;
-    std::vector<std::uint8_t> pore; ///< binary: 1 pore, 0 solid (pore_image)
-    std::vector<double> fraction;   ///< not binary: each voxel's solid fraction, exact
+    VoxelType type = VoxelType::boolean;
+    Voxels<std::uint8_t> pore; ///< boolean: 1 pore, 0 solid (pore_image)
+    Voxels<double> fraction;   ///< float64: each voxel's solid fraction, exact
+    Voxels<float> fraction32;  ///< float32: the same, each rounded to single precision
+    /// \return whether this is the pore image
+    bool binary() const { return type == VoxelType::boolean; }
+    /// \return the voxels of its type, in C order (VoxelGrid)
+    const void* data() const;
     /// \return the porosity of the image: the mean of the pore image, or 1 - the mean solid
     /// fraction (over every voxel of the grid, the container's outside included)
     double porosity() const;
 };
 
-/// Make the image `voxelize` makes: voxel_grid, then pore_image or solid_fraction_image.
+/// The type of voxelize's image from its --kind (binary, fraction) and --dtype (float64,
+/// float32; fractions only).
+/// \throws InvalidInput naming the option for any other text, and for a --dtype other than
+/// float64 with --kind binary (a bool image)
+VoxelType voxel_type(std::string_view kind, std::string_view dtype);
+
+/// Make the image `voxelize` makes: voxel_grid, then pore_image (type boolean) or
+/// solid_fraction_image (float64 or float32).
 /// \throws InvalidInput as voxel_grid
 VoxelImage voxelize(const Packing& packing, const Container& container, double voxel_size,
-                    const std::optional<std::array<double, 6>>& region, bool binary);
+                    const std::optional<std::array<double, 6>>& region, VoxelType type);
 
 /// Stage an image as the file `name` of `out` in `format`, and a raw image's header as
 /// name + ".json" (image_header).

@@ -139,6 +139,7 @@ def voxelize(
     voxel_size: float,
     region: Optional[Tuple[float, float, float, float, float, float]] = None,
     kind: str = "binary",
+    dtype: str = "float64",
     container: Optional[str] = None,
     threads: Optional[int] = None,
     out: Optional[str] = None,

@@ -294,12 +294,12 @@ double ball_box_volume(const Vec3& center, double radius, const Vec3& low, const
     return std::max(0.0, sum) * radius * radius * radius;
 }
 
-std::vector<std::uint8_t> pore_image(const Packing& packing, const Container& container,
-                                     const VoxelGrid& grid) {
+Voxels<std::uint8_t> pore_image(const Packing& packing, const Container& container,
+                                const VoxelGrid& grid) {
     // plain names, not a structured binding: clang 14 cannot name those inside OpenMP regions
     const std::size_t nx = grid.count[0], ny = grid.count[1], nz = grid.count[2];
     const double h = grid.size;
-    std::vector<std::uint8_t> image(grid.voxels());
+    Voxels<std::uint8_t> image(grid.voxels()); // every voxel written below
     const std::vector<Ball> balls = balls_reaching(packing, container, grid);
     const PlaneLists lists = plane_lists(balls, grid, true);
     // The containers are upright prisms above the floor: a column (i, j) is inside or not at
@@ -571,12 +571,13 @@ private:
 
 } // namespace
 
-std::vector<double> solid_fraction_image(const Packing& packing, const Container& container,
-                                         const VoxelGrid& grid) {
+template <class Real>
+Voxels<Real> solid_fraction_image(const Packing& packing, const Container& container,
+                                  const VoxelGrid& grid) {
     // plain names, not a structured binding: clang 14 cannot name those inside OpenMP regions
     const std::size_t nx = grid.count[0], ny = grid.count[1], nz = grid.count[2];
     const double h = grid.size;
-    std::vector<double> image(grid.voxels(), 0.0);
+    Voxels<Real> image(grid.voxels()); // zeroed block by block below
     const std::vector<Ball> balls = balls_reaching(packing, container, grid);
     // Blocks of planes, each a task: a ball's nodes are computed once per block it meets, so
     // blocks are as wide as 4 tasks per thread allow, up to 64 planes (the bits do not depend
@@ -599,6 +600,9 @@ std::vector<double> solid_fraction_image(const Packing& packing, const Container
     for (std::size_t b = 0; b < blocks; ++b) {
         const long long i_first = static_cast<long long>(b * block);
         const long long i_last = static_cast<long long>(std::min(nx, (b + 1) * block)) - 1;
+        // the block's planes zeroed by the thread that fills them
+        std::fill(image.begin() + i_first * static_cast<std::ptrdiff_t>(ny * nz),
+                  image.begin() + (i_last + 1) * static_cast<std::ptrdiff_t>(ny * nz), Real(0));
         BallInVoxels exact(grid);
         // The block's balls in strips across y, each from the floor up (ties in ball order):
         // the voxels a ball adds to are then mostly in the cache from its neighbours below,
@@ -625,7 +629,7 @@ std::vector<double> solid_fraction_image(const Packing& packing, const Container
                 continue;
             exact.start(ball, {i0, ja, ka}, {i1, jb, kb});
             for (long long i = i0; i <= i1; ++i) {
-                double* plane = image.data() + static_cast<std::size_t>(i) * ny * nz;
+                Real* plane = image.data() + static_cast<std::size_t>(i) * ny * nz;
                 const double x0 = grid.low.x + static_cast<double>(i) * h, x1 = x0 + h;
                 const double near_x = std::max({x0 - ball.c.x, ball.c.x - x1, 0.0});
                 const double far_x = std::max(std::abs(x0 - ball.c.x), std::abs(x1 - ball.c.x));
@@ -654,7 +658,7 @@ std::vector<double> solid_fraction_image(const Packing& packing, const Container
                         if (in0 > in1)
                             in0 = k1 + 1, in1 = k1;
                     }
-                    double* row = plane + static_cast<std::size_t>(j) * nz;
+                    Real* row = plane + static_cast<std::size_t>(j) * nz;
                     if (in0 <= in1)
                         exact.start_row(i, j, {k0, in0 - 1}, {in1 + 1, k1});
                     else
@@ -663,12 +667,12 @@ std::vector<double> solid_fraction_image(const Packing& packing, const Container
                         const double z0 = grid.low.z + static_cast<double>(k) * h, z1 = z0 + h;
                         const double near_z = std::max({z0 - ball.c.z, ball.c.z - z1, 0.0});
                         if (near_xy + near_z * near_z < r2)
-                            row[k] += exact.voxel_in_row(k) * scale;
+                            row[k] += static_cast<Real>(exact.voxel_in_row(k) * scale);
                     };
                     for (long long k = k0; k < in0; ++k)
                         cut(k);
                     for (long long k = in0; k <= in1; ++k)
-                        row[k] += 1.0;
+                        row[k] += Real(1);
                     for (long long k = std::max(in1 + 1, in0); k <= k1; ++k)
                         cut(k);
                 }
@@ -676,6 +680,25 @@ std::vector<double> solid_fraction_image(const Packing& packing, const Container
         }
     }
     return image;
+}
+
+template Voxels<double> solid_fraction_image(const Packing&, const Container&, const VoxelGrid&);
+template Voxels<float> solid_fraction_image(const Packing&, const Container&, const VoxelGrid&);
+
+const char* voxel_type_name(VoxelType type) {
+    switch (type) {
+    case VoxelType::boolean:
+        return "bool";
+    case VoxelType::float64:
+        return "float64";
+    case VoxelType::float32:
+        return "float32";
+    }
+    return "";
+}
+
+std::size_t voxel_bytes(VoxelType type) {
+    return type == VoxelType::boolean ? 1 : type == VoxelType::float64 ? 8 : 4;
 }
 
 std::optional<ImageFormat> image_format(const std::filesystem::path& path) {
@@ -689,10 +712,11 @@ std::optional<ImageFormat> image_format(const std::filesystem::path& path) {
     return std::nullopt;
 }
 
-std::string image_header(const VoxelGrid& grid, bool binary) {
+std::string image_header(const VoxelGrid& grid, VoxelType type) {
+    const bool binary = type == VoxelType::boolean;
     nlohmann::json header;
     header["shape"] = grid.count;
-    header["dtype"] = binary ? "uint8" : "float64";
+    header["dtype"] = binary ? "uint8" : voxel_type_name(type);
     header["byte_order"] = "little";
     header["order"] = "C (index (i ny + j) nz + k: z fastest; numpy im[i, j, k])";
     header["voxel_size"] = grid.size;
@@ -718,11 +742,13 @@ void put32(std::string& s, std::uint32_t v) {
 
 /// The .npy header (format version 1.0): magic, header length, the dict padded so that the data
 /// starts at a multiple of 64 bytes.
-std::string npy_header(const VoxelGrid& grid, bool binary) {
-    std::string dict =
-        fmt::format("{{'descr': '{}', 'fortran_order': False, 'shape': ({}, {}, "
-                    "{}), }}",
-                    binary ? "|b1" : "<f8", grid.count[0], grid.count[1], grid.count[2]);
+std::string npy_header(const VoxelGrid& grid, VoxelType type) {
+    const char* descr = type == VoxelType::boolean   ? "|b1"
+                        : type == VoxelType::float64 ? "<f8"
+                                                     : "<f4";
+    std::string dict = fmt::format("{{'descr': '{}', 'fortran_order': False, 'shape': ({}, {}, "
+                                   "{}), }}",
+                                   descr, grid.count[0], grid.count[1], grid.count[2]);
     const std::size_t unpadded = 10 + dict.size() + 1;
     dict.append((64 - unpadded % 64) % 64, ' ');
     dict.push_back('\n');
@@ -734,15 +760,14 @@ std::string npy_header(const VoxelGrid& grid, bool binary) {
 } // namespace
 
 void write_image(const std::filesystem::path& path, ImageFormat format, const VoxelGrid& grid,
-                 const std::vector<std::uint8_t>* pore, const std::vector<double>* fraction) {
-    const bool binary = pore != nullptr;
-    const char* data = binary ? reinterpret_cast<const char*>(pore->data())
-                              : reinterpret_cast<const char*>(fraction->data());
-    const std::size_t bytes_per_voxel = binary ? 1 : sizeof(double);
+                 VoxelType type, const void* voxels) {
+    const bool binary = type == VoxelType::boolean;
+    const char* data = static_cast<const char*>(voxels);
+    const std::size_t bytes_per_voxel = voxel_bytes(type);
     const std::size_t bytes = grid.voxels() * bytes_per_voxel;
     std::ofstream out(path, std::ios::binary);
     if (format == ImageFormat::npy) {
-        out << npy_header(grid, binary);
+        out << npy_header(grid, type);
     } else if (format == ImageFormat::tif) {
         // Baseline TIFF, little-endian: the pixel data of every page first, then one IFD per
         // page (ny rows of nz columns, one strip), each pointing at the next.
@@ -778,16 +803,16 @@ void write_image(const std::filesystem::path& path, ImageFormat format, const Vo
                 }
             };
             put16(ifds, entries);
-            entry(256, 4, static_cast<std::uint32_t>(grid.count[2])); // ImageWidth
-            entry(257, 4, static_cast<std::uint32_t>(grid.count[1])); // ImageLength
-            entry(258, 3, binary ? 8 : 64);                           // BitsPerSample
-            entry(259, 3, 1);                                         // no compression
-            entry(262, 3, 1);                                         // BlackIsZero
-            entry(273, 4, static_cast<std::uint32_t>(8 + i * page));  // StripOffsets
-            entry(277, 3, 1);                                         // SamplesPerPixel
-            entry(278, 4, static_cast<std::uint32_t>(grid.count[1])); // RowsPerStrip
-            entry(279, 4, static_cast<std::uint32_t>(page));          // StripByteCounts
-            entry(284, 3, 1);                                         // contiguous
+            entry(256, 4, static_cast<std::uint32_t>(grid.count[2]));       // ImageWidth
+            entry(257, 4, static_cast<std::uint32_t>(grid.count[1]));       // ImageLength
+            entry(258, 3, static_cast<std::uint32_t>(8 * bytes_per_voxel)); // BitsPerSample
+            entry(259, 3, 1);                                               // no compression
+            entry(262, 3, 1);                                               // BlackIsZero
+            entry(273, 4, static_cast<std::uint32_t>(8 + i * page));        // StripOffsets
+            entry(277, 3, 1);                                               // SamplesPerPixel
+            entry(278, 4, static_cast<std::uint32_t>(grid.count[1]));       // RowsPerStrip
+            entry(279, 4, static_cast<std::uint32_t>(page));                // StripByteCounts
+            entry(284, 3, 1);                                               // contiguous
             entry(339, 3, binary ? 1 : 3); // SampleFormat: unsigned integer or IEEE float
             put32(ifds, i + 1 < grid.count[0] ? static_cast<std::uint32_t>(at + ifd_size) : 0);
         }

@@ -1,39 +1,81 @@
 // A bed's voxel image and its file (pipeline.hpp).
 #include <numeric>
 
+#include <fmt/format.h>
+
 #include "packbed/pipeline.hpp"
+
+#include "packbed/error.hpp"
+#include "packbed/files.hpp"
 
 namespace packbed {
 
+VoxelType voxel_type(std::string_view kind, std::string_view dtype) {
+    if (kind != "binary" && kind != "fraction")
+        throw InvalidInput(fmt::format("--kind '{}' is not allowed; allowed: binary, fraction",
+                                       printable(kind.substr(0, 80))));
+    if (dtype != "float64" && dtype != "float32")
+        throw InvalidInput(fmt::format("--dtype '{}' is not allowed; allowed: float64, float32",
+                                       printable(dtype.substr(0, 80))));
+    if (kind == "binary") {
+        if (dtype != "float64")
+            throw InvalidInput(fmt::format("--dtype {} is not allowed with --kind binary (a bool "
+                                           "image); allowed: float64 or float32 with --kind "
+                                           "fraction",
+                                           dtype));
+        return VoxelType::boolean;
+    }
+    return dtype == "float32" ? VoxelType::float32 : VoxelType::float64;
+}
+
+const void* VoxelImage::data() const {
+    switch (type) {
+    case VoxelType::boolean:
+        return pore.data();
+    case VoxelType::float64:
+        return fraction.data();
+    case VoxelType::float32:
+        return fraction32.data();
+    }
+    return nullptr;
+}
+
 double VoxelImage::porosity() const {
     const double voxels = static_cast<double>(grid.voxels());
-    if (binary) {
+    switch (type) {
+    case VoxelType::boolean: {
         std::size_t pores = 0;
         for (const std::uint8_t v : pore)
             pores += v;
         return static_cast<double>(pores) / voxels;
     }
-    return 1.0 - std::accumulate(fraction.begin(), fraction.end(), 0.0) / voxels;
+    case VoxelType::float64:
+        return 1.0 - std::accumulate(fraction.begin(), fraction.end(), 0.0) / voxels;
+    case VoxelType::float32:
+        return 1.0 - std::accumulate(fraction32.begin(), fraction32.end(), 0.0) / voxels;
+    }
+    return 0.0;
 }
 
 VoxelImage voxelize(const Packing& packing, const Container& container, double voxel_size,
-                    const std::optional<std::array<double, 6>>& region, bool binary) {
+                    const std::optional<std::array<double, 6>>& region, VoxelType type) {
     VoxelImage image;
-    image.binary = binary;
-    image.grid = voxel_grid(packing, container, voxel_size, region, binary ? 1 : sizeof(double));
-    if (binary)
+    image.type = type;
+    image.grid = voxel_grid(packing, container, voxel_size, region, voxel_bytes(type));
+    if (type == VoxelType::boolean)
         image.pore = pore_image(packing, container, image.grid);
+    else if (type == VoxelType::float64)
+        image.fraction = solid_fraction_image<double>(packing, container, image.grid);
     else
-        image.fraction = solid_fraction_image(packing, container, image.grid);
+        image.fraction32 = solid_fraction_image<float>(packing, container, image.grid);
     return image;
 }
 
 void stage_image(OutputDirectory& out, const std::string& name, ImageFormat format,
                  const VoxelImage& image) {
-    write_image(out.reserve(name), format, image.grid, image.binary ? &image.pore : nullptr,
-                image.binary ? nullptr : &image.fraction);
+    write_image(out.reserve(name), format, image.grid, image.type, image.data());
     if (format == ImageFormat::raw)
-        out.stage(name + ".json", image_header(image.grid, image.binary));
+        out.stage(name + ".json", image_header(image.grid, image.type));
 }
 
 } // namespace packbed
