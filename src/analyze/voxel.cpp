@@ -383,6 +383,11 @@ public:
         }
         const std::size_t nx = m_nodes[0], ny = m_nodes[1], nz = m_nodes[2];
         const std::vector<double>&ax = m_offset[0], &by = m_offset[1], &cz = m_offset[2];
+        // every voxel's segments along z, the same for all its rows
+        m_z_segments.resize(static_cast<std::size_t>(last[2] - first[2] + 1));
+        for (std::size_t k = 0; k < m_z_segments.size(); ++k)
+            m_z_segments[k].count =
+                segments_of(2, first[2] + static_cast<long long>(k), m_z_segments[k].slots);
         // The parts of P, where a node can be inside the ball (elsewhere unused: 0). Each
         // table's arctangents are taken in one batch (arctangents), then its entries.
         m_upper.assign(ny * nz, 0.0);
@@ -443,18 +448,23 @@ public:
                 const double lower_ab = m_half_b[x * ny + y] + plain;
                 const double* upper = m_upper.data() + y * nz;
                 double* value = m_value.data() + (x * ny + y) * nz;
+                // Only the grid nodes within the ball's chord along z (and one beyond each
+                // end) can be inside it; the rest hold 0. The centre's plane is slot nz - 1.
+                const auto [z0, z1] = chord_slots(std::sqrt(std::max(0.0, rest - a2)));
+                std::fill(value, value + z0, 0.0);
+                std::fill(value + z1, value + nz - 1, 0.0);
                 const auto node = [&](std::size_t z) {
                     const double c = cz[z];
                     const double v = upper[z] - (half_c[z] + lower_ab + ab * c);
                     value[z] = a2 < rest - c * c ? std::max(0.0, v) : 0.0;
                 };
-                // Only the grid nodes within the ball's chord along z (and one beyond each
-                // end) can be inside it; the rest hold 0.
-                const auto [z0, z1] = chord_slots(std::sqrt(std::max(0.0, rest - a2)));
-                std::fill(value, value + z0, 0.0);
-                for (std::size_t z = z0; z < z1; ++z)
-                    node(z);
-                std::fill(value + z1, value + nz - 1, 0.0);
+                const double* c = cz.data();
+#pragma omp simd
+                for (std::size_t z = z0; z < z1; ++z) {
+                    const double v = upper[z] - (half_c[z] + lower_ab + ab * c[z]);
+                    const double positive = v > 0.0 ? v : 0.0;
+                    value[z] = a2 < rest - c[z] * c[z] ? positive : 0.0;
+                }
                 node(nz - 1);
             }
         }
@@ -492,9 +502,11 @@ public:
                     const double* v = m_value.data() +
                                       (segments[0][sx][fx] * m_nodes[1] + segments[1][sy][fy]) * nz;
                     const double sign = (fx + fy) % 2 == 0 ? 1.0 : -1.0;
+                    double* line = m_line.data();
                     for (int s = 0; s < ranges; ++s)
+#pragma omp simd
                         for (std::size_t z = slots[s].first; z < slots[s].second; ++z)
-                            m_line[z] += sign * v[z];
+                            line[z] += sign * v[z];
                 }
     }
 
@@ -502,11 +514,10 @@ public:
     /// took: the sum over the voxel's corners, each signed by how many of its bounds are the
     /// far ones, of ball_orthant_volume there.
     double voxel_in_row(long long k) const {
-        std::array<std::array<std::size_t, 2>, 2> segments;
-        const int count = segments_of(2, k, segments);
+        const ZSegments& z = m_z_segments[static_cast<std::size_t>(k - m_first[2])];
         double sum = 0.0;
-        for (int sz = 0; sz < count; ++sz)
-            sum += m_line[segments[sz][0]] - m_line[segments[sz][1]];
+        for (int sz = 0; sz < z.count; ++sz)
+            sum += m_line[z.slots[sz][0]] - m_line[z.slots[sz][1]];
         return std::max(0.0, sum);
     }
 
@@ -560,9 +571,14 @@ private:
     std::vector<double> m_offset[3]; // |node - centre| / r per slot and axis
     std::vector<double> m_value;     // per node
     std::vector<double> m_line;      // per node along z: the row's x and y corners summed
-    std::vector<double> m_upper;     // P(X) per line (y, z)
-    std::vector<double> m_half_c;    // H(a, c) per (x, z)
-    std::vector<double> m_half_b;    // H(a, b) per (x, y)
+    struct ZSegments {
+        int count = 0;
+        std::array<std::array<std::size_t, 2>, 2> slots{};
+    };
+    std::vector<ZSegments> m_z_segments; // per voxel along z (segments_of)
+    std::vector<double> m_upper;         // P(X) per line (y, z)
+    std::vector<double> m_half_c;        // H(a, c) per (x, z)
+    std::vector<double> m_half_b;        // H(a, b) per (x, y)
     // a table's entries in the making: where each goes, its root, its tangents
     std::vector<std::size_t> m_where;
     std::vector<double> m_root;
@@ -791,11 +807,11 @@ void write_image(const std::filesystem::path& path, ImageFormat format, const Vo
         std::string ifds;
         for (std::size_t i = 0; i < grid.count[0]; ++i) {
             const std::size_t at = data_end + i * ifd_size;
-            auto entry = [&](std::uint16_t tag, std::uint16_t type, std::uint32_t value) {
+            auto entry = [&](std::uint16_t tag, std::uint16_t field, std::uint32_t value) {
                 put16(ifds, tag);
-                put16(ifds, type);
+                put16(ifds, field);
                 put32(ifds, 1);
-                if (type == 3) { // SHORT, left-justified in the value field
+                if (field == 3) { // SHORT, left-justified in the value field
                     put16(ifds, static_cast<std::uint16_t>(value));
                     put16(ifds, 0);
                 } else {
