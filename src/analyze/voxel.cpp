@@ -453,18 +453,16 @@ public:
                 const auto [z0, z1] = chord_slots(std::sqrt(std::max(0.0, rest - a2)));
                 std::fill(value, value + z0, 0.0);
                 std::fill(value + z1, value + nz - 1, 0.0);
-                const auto node = [&](std::size_t z) {
-                    const double c = cz[z];
-                    const double v = upper[z] - (half_c[z] + lower_ab + ab * c);
-                    value[z] = a2 < rest - c * c ? std::max(0.0, v) : 0.0;
-                };
                 const double* c = cz.data();
-#pragma omp simd
-                for (std::size_t z = z0; z < z1; ++z) {
+                // V at node z, 0 outside the ball (branch-free, so that the loop is vectorised)
+                const auto node = [&](std::size_t z) {
                     const double v = upper[z] - (half_c[z] + lower_ab + ab * c[z]);
                     const double positive = v > 0.0 ? v : 0.0;
                     value[z] = a2 < rest - c[z] * c[z] ? positive : 0.0;
-                }
+                };
+#pragma omp simd
+                for (std::size_t z = z0; z < z1; ++z)
+                    node(z);
                 node(nz - 1);
             }
         }
