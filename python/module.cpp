@@ -514,14 +514,14 @@ py::object correlations(double aspect_ratio, double profile_step, double profile
     return to_python(report.values);
 }
 
-std::string export_bed_to(const Bed& bed, const std::filesystem::path& out,
-                          const std::string& format, const std::optional<std::string>& container,
-                          std::optional<double> container_height, bool no_container, double density,
-                          const std::optional<std::string>& box,
-                          std::optional<double> fluid_velocity, const std::string& contacts,
-                          long long refine, std::optional<double> edge,
-                          long long cells_per_diameter, long long particle_level,
-                          long long wall_level, bool force) {
+std::string
+export_bed_to(const Bed& bed, const std::filesystem::path& out, const std::string& format,
+              const std::optional<std::string>& container, std::optional<double> container_height,
+              bool no_container, double density, const std::optional<std::string>& box,
+              std::optional<double> fluid_velocity, const std::string& contacts, long long refine,
+              std::optional<double> edge, long long cells_per_diameter, long long particle_level,
+              long long wall_level, long long ranks, double reynolds, double fluid_density,
+              double viscosity, std::optional<double> scale, bool force) {
     namespace range = option_range;
     check_path("out", out);
     ExportRequest request;
@@ -554,6 +554,12 @@ std::string export_bed_to(const Bed& bed, const std::filesystem::path& out,
         static_cast<int>(check_option("particle-level", particle_level, range::refinement_level));
     request.mesh.wall_level =
         static_cast<int>(check_option("wall-level", wall_level, range::refinement_level));
+    request.flow.ranks = static_cast<int>(check_option("ranks", ranks, range::ranks));
+    request.flow.reynolds = check_option("reynolds", reynolds, range::reynolds);
+    request.flow.fluid_density = check_option("fluid-density", fluid_density, range::density_kg_m3);
+    request.flow.viscosity = check_option("viscosity", viscosity, range::viscosity_pa_s);
+    if (scale)
+        request.flow.scale = check_option("scale", *scale, range::metres_per_unit);
     py::gil_scoped_release released;
     return export_bed(bed.packing, {}, request);
 }
@@ -855,7 +861,12 @@ it to a .npy, .tif or .raw (+ .raw.json) file. The array owns its memory (no cop
           py::arg("refine") = ExportRequest{}.refine, py::arg("edge") = py::none(),
           py::arg("cells_per_diameter") = ExportRequest{}.mesh.cells_per_diameter,
           py::arg("particle_level") = ExportRequest{}.mesh.particle_level,
-          py::arg("wall_level") = ExportRequest{}.mesh.wall_level, py::arg("force") = false,
+          py::arg("wall_level") = ExportRequest{}.mesh.wall_level,
+          py::arg("ranks") = OpenFoamFlowOptions{}.ranks,
+          py::arg("reynolds") = OpenFoamFlowOptions{}.reynolds,
+          py::arg("fluid_density") = OpenFoamFlowOptions{}.fluid_density,
+          py::arg("viscosity") = OpenFoamFlowOptions{}.viscosity, py::arg("scale") = py::none(),
+          py::arg("force") = false,
           R"(Write a bed as `packbed export` does, to the file (or, for 'openfoam', the case
 directory) `out`: format 'lammps-data' (atom_style sphere), 'liggghts-data' (atom_style
 granular), 'stl', 'stl-ascii', 'obj' or 'openfoam' (docs/dem.md, docs/surfaces.md).
@@ -865,7 +876,9 @@ input). container_height: None, the bed's top + 1 Dp. no_container: surfaces wit
 container's solids, data files in the spheres' bounding box. Data files: density, box
 ('xlo,xhi,ylo,yhi,zlo,zhi'), fluid_velocity. Surfaces: contacts ('none', 'shrink:F',
 'enlarge:F', 'caps:H', 'bridges:D'), refine (icosphere level) or edge, and for 'openfoam'
-cells_per_diameter, particle_level, wall_level. force: replace a non-empty case directory.
+cells_per_diameter, particle_level, wall_level; the flow of its Allrun: ranks, reynolds (or
+fluid_velocity, m/s), fluid_density (kg/m^3), viscosity (Pa s), scale (metres per unit of the
+bed's lengths; None: particles of 1 mm). force: replace a non-empty case directory.
 Returns the command line's report line. Raises ValueError for a bad value.)");
 
     m.def("hydraulics", &hydraulics, py::kw_only(), py::arg("porosity") = py::none(),

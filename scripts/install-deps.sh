@@ -43,6 +43,7 @@ if [[ ${1:-} == --test ]]; then
   packages+=(liggghts)      # and LIGGGHTS reads them too
   packages+=(admesh)        # checks the STL surfaces of packbed export
   packages+=(openfoam)      # surfaceCheck, blockMesh, snappyHexMesh, checkMesh on them
+  packages+=(openmpi-bin)   # mpirun: the exported case's Allrun on 2 ranks
   packages+=(clang)               # scripts/test-sanitize.sh and scripts/fuzz.sh: clang 14,
   packages+=(libclang-rt-14-dev)  # its ASan/UBSan/libFuzzer runtimes,
   packages+=(libomp-dev)          # and OpenMP for clang (libomp)

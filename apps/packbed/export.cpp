@@ -114,6 +114,23 @@ Command register_export(CLI::App& parent) {
     app->add_option("--wall-level", o.request.mesh.wall_level,
                     "openfoam: snappyHexMesh refinement level at the wall")
         ->check(whole_in(option_range::refinement_level));
+    app->add_option("--ranks", o.request.flow.ranks,
+                    "openfoam: MPI ranks of the case's Allrun (decomposeParDict)")
+        ->check(whole_in(option_range::ranks));
+    app->add_option("--reynolds", o.request.flow.reynolds,
+                    "openfoam: the particle Reynolds number rho u d / mu of the inlet's "
+                    "superficial velocity u (unless --fluid-velocity)")
+        ->check(real_in(option_range::reynolds));
+    app->add_option("--fluid-density", o.request.flow.fluid_density,
+                    "openfoam: the fluid's density, kg/m^3 (default: water at 20 C)")
+        ->check(real_in(option_range::density_kg_m3));
+    app->add_option("--viscosity", o.request.flow.viscosity,
+                    "openfoam: the fluid's dynamic viscosity, Pa s (default: water at 20 C)")
+        ->check(real_in(option_range::viscosity_pa_s));
+    app->add_option("--scale", o.request.flow.scale,
+                    "openfoam: metres per unit of the bed's lengths (Allrun scales the mesh; "
+                    "default: particles of 1 mm)")
+        ->check(real_in(option_range::metres_per_unit));
     app->add_option("--density", o.request.density, "particle density written for every atom")
         ->check(real_in(option_range::density));
     app->add_option("--box", o.request.box,
@@ -121,8 +138,9 @@ Command register_export(CLI::App& parent) {
                     "max(Dp/2, Rt/100), a box's half narrower width for Rt, where the container "
                     "is known, else the smallest box holding every sphere)");
     app->add_option("--fluid-velocity", o.request.fluid_velocity,
-                    "record this fluid velocity (e.g. from packbed hydraulics) in the header and "
-                    "in FILE.fluid.in as a LAMMPS variable")
+                    "data files: record this fluid velocity (e.g. from packbed hydraulics) in the "
+                    "header and in FILE.fluid.in as a LAMMPS variable; openfoam: the inlet's "
+                    "superficial velocity, m/s (instead of --reynolds)")
         ->check(real_in(option_range::fluid_velocity));
     app->add_option("-d,--diameter", o.diameter,
                     "sphere diameter, for files without a radius or diameter column (XYZ, "

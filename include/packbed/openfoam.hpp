@@ -19,19 +19,36 @@ struct OpenFoamMeshOptions {
     int wall_level = 1;         ///< ... at a cylinder's wall, 0 to 8 (a box's is not refined)
 };
 
+/// The flow of the runnable case (simpleFoam, laminar, incompressible), in SI units: the case
+/// is meshed in the bed's units and Allrun scales it to metres (transformPoints) before the
+/// flow is solved. Defaults: water at 20 C and particles of 1 mm, as packbed hydraulics.
+struct OpenFoamFlowOptions {
+    int ranks = 2;                ///< MPI ranks of Allrun (decomposeParDict), 1 to 1024
+    double fluid_density = 998.2; ///< kg/m^3
+    double viscosity = 1.002e-3;  ///< dynamic, Pa s
+    double velocity = 0.0;        ///< superficial velocity at the inlet, m/s; 0: from reynolds
+    double reynolds = 1.0;        ///< particle Reynolds number rho u d / mu, u superficial
+    double scale = 0.0;           ///< metres per unit of the bed's lengths; 0: d = 1 mm
+};
+
 /// What openfoam_case builds: the text files by path inside the case directory, the two
 /// surfaces to write under constant/triSurface, and the numbers its README and users need.
 struct OpenFoamCase {
     std::vector<std::pair<std::string, std::string>> files; ///< (relative path, contents)
     std::vector<Solid> particles;                           ///< constant/triSurface/particles.stl
-    std::vector<Solid> wall; ///< constant/triSurface/wall.stl (a cylinder's or an annulus'
-                             ///< tube; empty for a box)
-    std::vector<Solid> rod;  ///< constant/triSurface/rod.stl (an annulus' rod; else empty)
-    Vec3 location_in_mesh;   ///< a point of the fluid, farthest from every surface we tried
-    double clearance = 0.0;  ///< its distance to the nearest surface (length)
-    double fluid_volume = 0; ///< exact void volume of the container with the treated bodies
-    double cell_size = 0.0;  ///< background cell edge, Dp / cells_per_diameter (length; a
-                             ///< box's cells are at most that long)
+    std::vector<Solid> wall;    ///< constant/triSurface/wall.stl (a cylinder's or an annulus'
+                                ///< tube; empty for a box)
+    std::vector<Solid> rod;     ///< constant/triSurface/rod.stl (an annulus' rod; else empty)
+    Vec3 location_in_mesh;      ///< a point of the fluid, farthest from every surface we tried
+    double clearance = 0.0;     ///< its distance to the nearest surface (length)
+    double fluid_volume = 0;    ///< exact void volume of the container with the treated bodies
+    double cell_size = 0.0;     ///< background cell edge, Dp / cells_per_diameter (length; a
+                                ///< box's cells are at most that long)
+    double scale = 0.0;         ///< metres per bed unit (Allrun's transformPoints)
+    double velocity = 0.0;      ///< the inlet's superficial velocity, m/s
+    double reynolds = 0.0;      ///< the particle Reynolds number of that velocity
+    std::vector<double> planes; ///< heights of the pressure planes, m (after scaling)
+    std::string allrun;         ///< the script Allrun (to be written executable)
 };
 
 /// The case for `bed` (from treat_contacts) in `container`, surfaces tessellated with
@@ -43,14 +60,20 @@ struct OpenFoamCase {
 /// four sides are the patch "wall" (type wall): no wall surface. snappyHexMesh cuts the
 /// particles (patch "particles") out of either. For an annulus the background is the
 /// cylinder's about its tube, and snappyHexMesh cuts the tube (wall.stl, patch "wall") and
-/// the rod (rod.stl, patch "rod", refined as the wall); a periodic cell is refused (it would
-/// need cyclic patches). The location in the mesh is searched inside
+/// the rod (rod.stl, patch "rod", refined as the wall); a periodic cell is the background
+/// itself, its sides cyclic pairs. The location in the mesh is searched inside
 /// the container's bounds, its clearance from the wall by Container::wall_distance. `volumes`
 /// gives the exact fluid volume written in the README.
+/// The flow files (`flow`): 0.orig/U and p (inlet velocity, outlet pressure 0, no slip on the
+/// walls and particles), constant/transportProperties and turbulenceProperties (laminar),
+/// fvSchemes and fvSolution for simpleFoam, decomposeParDict (hierarchical, `ranks` along z),
+/// function objects writing the area-averaged pressure on planes across the bed clear of its
+/// ends and the inlet's and outlet's fluxes, and Allrun (mesh, scale, run; docs/notes).
 /// \throws InvalidInput when the options are out of range, the container is a periodic cell,
 /// or no point of the fluid clears every surface by two cells of the finest level
 OpenFoamCase openfoam_case(const TreatedBed& bed, const SurfaceContainer& container,
                            const TreatmentVolumes& volumes, const std::string& contacts,
-                           double diameter, int level, const OpenFoamMeshOptions& options = {});
+                           double diameter, int level, const OpenFoamMeshOptions& options = {},
+                           const OpenFoamFlowOptions& flow = {});
 
 } // namespace packbed

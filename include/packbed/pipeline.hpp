@@ -206,6 +206,7 @@ struct ExportRequest {
     int refine = 3;                ///< icosphere level
     double edge = 0.0;             ///< > 0: the largest mean triangle edge, instead of refine
     OpenFoamMeshOptions mesh;
+    OpenFoamFlowOptions flow; ///< openfoam: the flow of the runnable case
 };
 
 /// The formats of export: lammps-data, liggghts-data, stl, stl-ascii, obj, openfoam.

@@ -161,6 +161,11 @@ def export(
     cells_per_diameter: int = 4,
     particle_level: int = 2,
     wall_level: int = 1,
+    ranks: int = 2,
+    reynolds: float = 1.0,
+    fluid_density: float = 998.2,
+    viscosity: float = 0.001002,
+    scale: Optional[float] = None,
     force: bool = False,
 ) -> str: ...
 def hydraulics(

@@ -450,7 +450,11 @@ public:
                 double* value = m_value.data() + (x * ny + y) * nz;
                 // Only the grid nodes within the ball's chord along z (and one beyond each
                 // end) can be inside it; the rest hold 0. The centre's plane is slot nz - 1.
-                const auto [z0, z1] = chord_slots(std::sqrt(std::max(0.0, rest - a2)));
+                // plain names, not a structured binding: clang 14 cannot name those in the
+                // omp simd loop
+                const std::pair<std::size_t, std::size_t> chord =
+                    chord_slots(std::sqrt(std::max(0.0, rest - a2)));
+                const std::size_t z0 = chord.first, z1 = chord.second;
                 std::fill(value, value + z0, 0.0);
                 std::fill(value + z1, value + nz - 1, 0.0);
                 const double* c = cz.data();

@@ -9,17 +9,20 @@
 #include <fmt/format.h>
 
 #include "packbed/error.hpp"
+#include "packbed/option_ranges.hpp"
 #include "require.hpp"
 
 namespace packbed {
 
 namespace {
 
-std::string header(const std::string& object, const std::string& location) {
+/// The FoamFile header of a dictionary, or of a field of class `type`.
+std::string header(const std::string& object, const std::string& location,
+                   const std::string& type = "dictionary") {
     return fmt::format("/*--- written by packbed export --format openfoam ---*/\n"
-                       "FoamFile\n{{\n    version 2.0;\n    format ascii;\n    class dictionary;\n"
+                       "FoamFile\n{{\n    version 2.0;\n    format ascii;\n    class {};\n"
                        "    location \"{}\";\n    object {};\n}}\n\n",
-                       location, object);
+                       type, location, object);
 }
 
 /// The fluid point farthest from every surface among candidates on eight vertical lines
@@ -266,11 +269,167 @@ Background background(const Box& box, double height, double cell,
     return b;
 }
 
+/// The files that make the meshed case run (OpenFoamFlowOptions; docs/notes/openfoam-v1912.md
+/// has the sources of each setting): `walls` the no-slip patches, `bed_top` the bed's top
+/// (bed units), the pressure planes between 1 Dp above the floor and 1 Dp below the top;
+/// `section` the container's cross-section (bed units): the inlet's flow rate is the
+/// superficial velocity times it, whatever part of the inlet the particles cover.
+void add_flow_files(OpenFoamCase& c, const std::vector<std::string>& walls, double bed_top,
+                    double section, double diameter, const OpenFoamFlowOptions& flow) {
+    check_option("ranks", flow.ranks, option_range::ranks);
+    check_option("fluid-density", flow.fluid_density, option_range::density_kg_m3);
+    check_option("viscosity", flow.viscosity, option_range::viscosity_pa_s);
+    if (flow.velocity != 0.0)
+        check_option("fluid-velocity", flow.velocity, option_range::velocity_m_s);
+    else
+        check_option("reynolds", flow.reynolds, option_range::reynolds);
+    const double d = c.scale * diameter; // m
+    const double nu = flow.viscosity / flow.fluid_density;
+    c.velocity = flow.velocity > 0.0 ? flow.velocity : flow.reynolds * nu / d;
+    c.reynolds = c.velocity * d / nu;
+    const double area = section * c.scale * c.scale; // m^2
+    // Planes clear of the bed's ends by 1 Dp (or its middle half when it is lower than 3 Dp).
+    double low = diameter, high = bed_top - diameter;
+    if (high - low < diameter) {
+        low = 0.25 * bed_top;
+        high = 0.75 * bed_top;
+    }
+    constexpr int planes = 9;
+    for (int n = 0; n < planes; ++n)
+        c.planes.push_back(c.scale * (low + (high - low) * n / (planes - 1)));
+
+    std::string u_walls, p_walls;
+    for (const std::string& w : walls) {
+        u_walls += fmt::format("    {} {{ type noSlip; }}\n", w);
+        p_walls += fmt::format("    {} {{ type zeroGradient; }}\n", w);
+    }
+    c.files.emplace_back(
+        "0.orig/U",
+        header("U", "0", "volVectorField") +
+            fmt::format("dimensions [0 1 -1 0 0 0 0];\n\ninternalField uniform (0 0 0);\n\n"
+                        "boundaryField\n{{\n    #includeEtc \"caseDicts/setConstraintTypes\"\n"
+                        "    // the superficial velocity {u} m/s times the cross-section {a} m^2\n"
+                        "    inlet {{ type flowRateInletVelocity; volumetricFlowRate {q}; value "
+                        "uniform (0 0 0); }}\n"
+                        "    outlet {{ type inletOutlet; inletValue uniform (0 0 0); value "
+                        "$internalField; }}\n{walls}}}\n",
+                        fmt::arg("u", c.velocity), fmt::arg("a", area),
+                        fmt::arg("q", c.velocity * area), fmt::arg("walls", u_walls)));
+    c.files.emplace_back(
+        "0.orig/p",
+        header("p", "0", "volScalarField") +
+            fmt::format("// kinematic: p / rho, m^2/s^2\ndimensions [0 2 -2 0 0 0 0];\n\n"
+                        "internalField uniform 0;\n\n"
+                        "boundaryField\n{{\n    #includeEtc \"caseDicts/setConstraintTypes\"\n"
+                        "    inlet {{ type zeroGradient; }}\n"
+                        "    outlet {{ type fixedValue; value uniform 0; }}\n{walls}}}\n",
+                        fmt::arg("walls", p_walls)));
+    c.files.emplace_back("constant/transportProperties",
+                         header("transportProperties", "constant") +
+                             fmt::format("// rho = {} kg/m^3, mu = {} Pa s\n"
+                                         "transportModel Newtonian;\nnu {};\n",
+                                         flow.fluid_density, flow.viscosity, nu));
+    c.files.emplace_back("constant/turbulenceProperties",
+                         header("turbulenceProperties", "constant") + "simulationType laminar;\n");
+    c.files.emplace_back(
+        "system/decomposeParDict",
+        header("decomposeParDict", "system") +
+            fmt::format("numberOfSubdomains {0};\n// slabs along z: hierarchical works in "
+                        "parallel snappyHexMesh (Debian's scotch and metis are stubs)\n"
+                        "method hierarchical;\ncoeffs {{ n (1 1 {0}); }}\n",
+                        flow.ranks));
+    std::string functions;
+    for (std::size_t n = 0; n < c.planes.size(); ++n)
+        functions += fmt::format(
+            "    p{n}\n    {{\n        type surfaceFieldValue;\n"
+            "        libs (\"libfieldFunctionObjects.so\");\n"
+            "        writeControl timeStep;\n        writeInterval 10;\n        log false;\n"
+            "        writeFields false;\n        writeArea true;\n"
+            "        regionType sampledSurface;\n        name p{n};\n"
+            "        sampledSurfaceDict {{ type plane; planeType pointAndNormal; "
+            "pointAndNormalDict {{ point (0 0 {z}); normal (0 0 1); }} interpolate false; }}\n"
+            "        operation areaAverage;\n        fields (p);\n    }}\n",
+            fmt::arg("n", n), fmt::arg("z", c.planes[n]));
+    functions += "    inletFlux\n    {\n        type surfaceFieldValue;\n"
+                 "        libs (\"libfieldFunctionObjects.so\");\n"
+                 "        writeControl timeStep;\n        writeInterval 10;\n        log false;\n"
+                 "        writeFields false;\n        regionType patch;\n        name inlet;\n"
+                 "        operation sum;\n        fields (phi);\n    }\n"
+                 "    outletFlux\n    {\n        $inletFlux;\n        name outlet;\n    }\n";
+    c.files.emplace_back(
+        "system/controlDict",
+        header("controlDict", "system") +
+            "application simpleFoam;\nstartFrom latestTime;\nstartTime 0;\nstopAt endTime;\n"
+            "endTime 3000;\ndeltaT 1;\nwriteControl timeStep;\nwriteInterval 3000;\n"
+            "purgeWrite 0;\nwriteFormat ascii;\nwritePrecision 10;\nwriteCompression off;\n"
+            "timeFormat general;\ntimePrecision 6;\nrunTimeModifiable true;\n\n"
+            "// the area-averaged (kinematic) pressure on planes z = const across the bed, clear "
+            "of its ends, and the volumetric fluxes of the inlet and outlet (postProcessing/)\n"
+            "functions\n{\n" +
+            functions + "}\n");
+    c.files.emplace_back(
+        "system/fvSchemes",
+        header("fvSchemes", "system") +
+            "ddtSchemes { default steadyState; }\n"
+            "gradSchemes { default Gauss linear; grad(U) cellLimited Gauss linear 1; }\n"
+            "divSchemes\n{\n    default none;\n"
+            "    div(phi,U) bounded Gauss linearUpwind grad(U);\n"
+            "    div((nuEff*dev2(T(grad(U))))) Gauss linear;\n}\n"
+            "laplacianSchemes { default Gauss linear limited corrected 0.33; }\n"
+            "interpolationSchemes { default linear; }\n"
+            "snGradSchemes { default limited corrected 0.33; }\n");
+    c.files.emplace_back(
+        "system/fvSolution",
+        header("fvSolution", "system") +
+            "solvers\n{\n"
+            "    p { solver GAMG; smoother GaussSeidel; tolerance 1e-9; relTol 0.01; }\n"
+            "    U { solver smoothSolver; smoother symGaussSeidel; tolerance 1e-10; relTol 0.1; }\n"
+            "}\n\n"
+            "SIMPLE\n{\n    nNonOrthogonalCorrectors 1;\n    consistent yes;\n"
+            "    residualControl { p 1e-6; U 1e-7; }\n}\n\n"
+            "relaxationFactors { equations { U 0.9; } }\n");
+    c.allrun = fmt::format(
+        "#!/bin/bash\n"
+        "# Mesh, scale to metres, solve and post-process this case (written by packbed "
+        "export).\n# Each step's output is in log.STEP; the first that fails stops the "
+        "run.\nset -euo pipefail\ncd \"$(dirname \"$0\")\"\n"
+        "# Debian's OpenFOAM finds its etc/ only through WM_PROJECT_DIR\n"
+        "if [ -z \"${{WM_PROJECT_DIR:-}}\" ] && [ -d /usr/share/openfoam ]; then\n"
+        "    export WM_PROJECT_DIR=/usr/share/openfoam\nfi\n"
+        "ranks=${{RANKS:-{ranks}}}  # as decomposeParDict's numberOfSubdomains\n"
+        "mpi_flags=(-np \"$ranks\" -x WM_PROJECT_DIR)\n"
+        "if [ \"$(id -u)\" = 0 ]; then mpi_flags+=(--allow-run-as-root); fi\n"
+        "step() {{\n    local name=$1\n    shift\n    echo \"$name\"\n"
+        "    if ! \"$@\" > \"log.$name\" 2>&1; then\n"
+        "        echo \"$name failed (log.$name):\" >&2\n"
+        "        tail -n 20 \"log.$name\" >&2\n        exit 1\n    fi\n}}\n"
+        "parallel() {{\n    if [ \"$ranks\" -gt 1 ]; then\n"
+        "        mpirun \"${{mpi_flags[@]}}\" \"$@\" -parallel\n    else\n        \"$@\"\n"
+        "    fi\n}}\n"
+        "step blockMesh blockMesh\n"
+        "if [ \"$ranks\" -gt 1 ]; then step decomposePar decomposePar -force; fi\n"
+        "step snappyHexMesh parallel snappyHexMesh -overwrite\n"
+        "# the bed's units to metres: {scale} m per unit (d = {d} m)\n"
+        "step transformPoints parallel transformPoints -scale '({scale} {scale} {scale})'\n"
+        "if [ \"$ranks\" -gt 1 ]; then\n"
+        "    for p in processor*; do rm -rf \"$p/0\"; cp -r 0.orig \"$p/0\"; done\n"
+        "else\n    rm -rf 0\n    cp -r 0.orig 0\nfi\n"
+        "step checkMesh parallel checkMesh\n"
+        "step simpleFoam parallel simpleFoam\n"
+        "if [ \"$ranks\" -gt 1 ]; then\n"
+        "    step reconstructParMesh reconstructParMesh -constant\n"
+        "    step reconstructPar reconstructPar -latestTime\nfi\n"
+        "grep -E 'SIMPLE solution converged' log.simpleFoam || echo 'simpleFoam did not "
+        "converge within endTime: see log.simpleFoam' >&2\n",
+        fmt::arg("ranks", flow.ranks), fmt::arg("scale", c.scale), fmt::arg("d", d));
+}
+
 } // namespace
 
 OpenFoamCase openfoam_case(const TreatedBed& bed, const SurfaceContainer& container,
                            const TreatmentVolumes& volumes, const std::string& contacts,
-                           double diameter, int level, const OpenFoamMeshOptions& options) {
+                           double diameter, int level, const OpenFoamMeshOptions& options,
+                           const OpenFoamFlowOptions& flow) {
     detail::require(options.cells_per_diameter >= 1 && options.cells_per_diameter <= 100,
                     "--cells-per-diameter", options.cells_per_diameter, "1 to 100");
     detail::require(options.particle_level >= 0 && options.particle_level <= 8, "--particle-level",
@@ -379,35 +538,52 @@ OpenFoamCase openfoam_case(const TreatedBed& bed, const SurfaceContainer& contai
         fmt::arg("z", c.location_in_mesh.z));
     c.files.emplace_back("system/snappyHexMeshDict", snappy);
 
-    c.files.emplace_back(
-        "system/controlDict",
-        header("controlDict", "system") +
-            "application simpleFoam;\nstartFrom startTime;\nstartTime 0;\nstopAt endTime;\n"
-            "endTime 1000;\ndeltaT 1;\nwriteControl timeStep;\nwriteInterval 100;\n"
-            "purgeWrite 0;\nwriteFormat ascii;\nwritePrecision 10;\nwriteCompression off;\n"
-            "timeFormat general;\ntimePrecision 6;\nrunTimeModifiable true;\n");
-    c.files.emplace_back("system/fvSchemes",
-                         header("fvSchemes", "system") +
-                             "ddtSchemes { default steadyState; }\n"
-                             "gradSchemes { default Gauss linear; }\n"
-                             "divSchemes { default none; }\n"
-                             "laplacianSchemes { default Gauss linear corrected; }\n"
-                             "interpolationSchemes { default linear; }\n"
-                             "snGradSchemes { default corrected; }\n");
-    c.files.emplace_back("system/fvSolution", header("fvSolution", "system") + "solvers {}\n");
+    // The flow: scaled to metres by Allrun, d = 1 mm unless a scale is given.
+    if (flow.scale != 0.0)
+        check_option("scale", flow.scale, option_range::metres_per_unit);
+    c.scale = flow.scale > 0.0 ? flow.scale : 1e-3 / diameter;
+    std::vector<std::string> walls{"particles"};
+    if (!cell)
+        walls.push_back("wall");
+    if (back.rod_surface)
+        walls.push_back("rod");
+    if (back.wall_surface)
+        walls.push_back("outside"); // no faces after snappyHexMesh; an entry all the same
+    double bed_top = 0.0;
+    for (const TreatedBody& b : bed.bodies)
+        bed_top = std::max(bed_top, b.center.z + b.radius);
+    add_flow_files(c, walls, std::min(bed_top, height), container.container.cross_section_area(),
+                   diameter, flow);
     c.files.emplace_back("case.foam", ""); // what ParaView opens the case by
 
     const double bed_void = volumes.untouched_void_fraction;
     c.files.emplace_back(
         "README.md",
         fmt::format(
-            "# Packed bed for snappyHexMesh (written by packbed export)\n\n"
+            "# Packed bed for snappyHexMesh and simpleFoam (written by packbed export)\n\n"
             "{n} particles of diameter {dp} in {where}, from z = 0 to {h} "
             "(lengths in the bed's unit; `scale 1`). Contacts: `{contacts}`.\n\n"
-            "```sh\nblockMesh\nsnappyHexMesh -overwrite\ncheckMesh\n```\n\n"
+            "Run it all, on {ranks} MPI rank(s) (`RANKS=N ./Allrun` for another count; "
+            "decomposeParDict is written for {ranks}):\n\n```sh\n./Allrun\n```\n\n"
+            "blockMesh, decomposePar, snappyHexMesh, transformPoints (the bed's units to metres: "
+            "{scale} m per unit, so d = {dm} m), checkMesh, simpleFoam (laminar, steady), "
+            "reconstructParMesh and reconstructPar; each step's output in `log.STEP`. The "
+            "fluid: rho = {rho} kg/m^3, mu = {mu} Pa s (nu = {nu} m^2/s); the inlet's "
+            "superficial velocity {u} m/s, the particle Reynolds number rho u d / mu = {re:.4g}; "
+            "the inlet's flow rate that velocity times the container's cross-section, the outlet "
+            "at "
+            "p = 0 (`p` is kinematic, p / rho); no slip on the particles and "
+            "walls. Or step by step: `blockMesh`, `snappyHexMesh -overwrite`, `checkMesh` mesh it "
+            "in the bed's units.\n\n"
+            "`postProcessing/p0` to `p{last}`: the area-averaged (kinematic) pressure on the "
+            "planes "
+            "z = {z0} to {z1} m across the bed, 1 Dp clear of its ends, with each plane's fluid "
+            "area; `postProcessing/inletFlux` and `outletFlux`: the volumetric fluxes (m^3/s). "
+            "The pressure gradient is -rho times the slope of the planes' pressures against "
+            "z.\n\n"
             "(Debian's OpenFOAM needs `export WM_PROJECT_DIR=/usr/share/openfoam` first, "
-            "where its `etc/` is; elsewhere source OpenFOAM's `etc/bashrc`.) Open `case.foam` "
-            "in ParaView to see the mesh.\n\n"
+            "where its `etc/` is, as Allrun does; elsewhere source OpenFOAM's `etc/bashrc`.) Open "
+            "`case.foam` in ParaView to see the mesh and the flow.\n\n"
             "- `constant/triSurface/particles.stl`: every particle, closed and separate (patch "
             "`particles`){surfaces}.\n"
             "- Patches after meshing: `inlet` (z = 0), `outlet` (z = {h}), `particles`"
@@ -426,7 +602,13 @@ OpenFoamCase openfoam_case(const TreatedBed& bed, const SurfaceContainer& contai
             fmt::arg("y", c.location_in_mesh.y), fmt::arg("z", c.location_in_mesh.z),
             fmt::arg("clear", c.clearance), fmt::arg("vc", volumes.container_volume),
             fmt::arg("vs", volumes.treated_solid), fmt::arg("vf", c.fluid_volume),
-            fmt::arg("e0", bed_void), fmt::arg("e1", volumes.treated_void_fraction)));
+            fmt::arg("e0", bed_void), fmt::arg("e1", volumes.treated_void_fraction),
+            fmt::arg("ranks", flow.ranks), fmt::arg("scale", c.scale),
+            fmt::arg("dm", c.scale * diameter), fmt::arg("rho", flow.fluid_density),
+            fmt::arg("mu", flow.viscosity), fmt::arg("nu", flow.viscosity / flow.fluid_density),
+            fmt::arg("u", c.velocity), fmt::arg("re", c.reynolds),
+            fmt::arg("last", c.planes.size() - 1), fmt::arg("z0", c.planes.front()),
+            fmt::arg("z1", c.planes.back())));
     return c;
 }
 

@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <cctype>
 #include <filesystem>
+#include <fstream>
 #include <memory>
 #include <optional>
 #include <stdexcept>
@@ -189,17 +190,39 @@ std::string surface_export(const ExportRequest& o, ExportFormat format, const Pa
     }
 
     if (format == ExportFormat::openfoam) {
+        OpenFoamFlowOptions flow = o.flow;
+        if (o.fluid_velocity > 0.0) // the inlet's, instead of the Reynolds number's
+            flow.velocity = o.fluid_velocity;
         const OpenFoamCase foam =
-            openfoam_case(bed, *container, *volumes, o.contacts, dp, options.level, o.mesh);
+            openfoam_case(bed, *container, *volumes, o.contacts, dp, options.level, o.mesh, flow);
         report["openfoam"] = {
             {"cell_size", foam.cell_size},
             {"particle_level", o.mesh.particle_level},
             {"wall_level", o.mesh.wall_level},
             {"location_in_mesh",
              {foam.location_in_mesh.x, foam.location_in_mesh.y, foam.location_in_mesh.z}},
-            {"clearance", foam.clearance}};
+            {"clearance", foam.clearance},
+            {"flow",
+             {{"ranks", flow.ranks},
+              {"metres_per_unit", foam.scale},
+              {"fluid_density", flow.fluid_density},
+              {"viscosity", flow.viscosity},
+              {"velocity", foam.velocity},
+              {"reynolds", foam.reynolds},
+              {"pressure_planes", foam.planes}}}};
         for (const auto& [path, text] : foam.files)
             out->stage(path, text);
+        {
+            const fs::path allrun = out->reserve("Allrun");
+            std::ofstream script(allrun, std::ios::binary);
+            script << foam.allrun;
+            script.close();
+            if (!script)
+                throw std::runtime_error(fmt::format("cannot write {}", allrun.string()));
+            fs::permissions(allrun,
+                            fs::perms::owner_exec | fs::perms::group_exec | fs::perms::others_exec,
+                            fs::perm_options::add);
+        }
         write_surface(foam.particles, SurfaceFormat::stl_binary,
                       out->reserve("constant/triSurface/particles.stl"));
         if (!foam.wall.empty()) // a cylinder's wall; a box's is the background's faces
@@ -210,8 +233,8 @@ std::string surface_export(const ExportRequest& o, ExportFormat format, const Pa
                           out->reserve("constant/triSurface/rod.stl"));
         out->stage("packbed.json", report.dump(2) + "\n");
         out->commit();
-        return fmt::format("OpenFOAM case in {} ({} spheres, contacts {}{}); run blockMesh, "
-                           "snappyHexMesh -overwrite, checkMesh there",
+        return fmt::format("OpenFOAM case in {} ({} spheres, contacts {}{}); run ./Allrun "
+                           "there",
                            out_path.string(), packing.size(), o.contacts, change);
     }
 

@@ -400,6 +400,34 @@ def test_export_writes_the_command_lines_files(cli_bed, tmp_path, format, name, 
         assert (tmp_path / "py" / f).read_bytes() == (tmp_path / "cli" / f).read_bytes(), f
 
 
+def test_export_writes_the_command_lines_openfoam_case(cli_bed, tmp_path):
+    # the flow's options by keyword: the same case, file by file, Allrun executable
+    particles = str(cli_bed / "particles.csv")
+    status, _, err = cli("export", particles, "-f", "openfoam", "-q", "-o", tmp_path / "cli",
+                         "--contacts", "caps:0.02", "--ranks", "3", "--reynolds", "2",
+                         "--fluid-density", "1.2", "--viscosity", "1.8e-5", "--scale", "0.002")
+    assert status == 0, err
+    packbed.export(packbed.read(particles), str(tmp_path / "py"), format="openfoam",
+                   contacts="caps:0.02", ranks=3, reynolds=2, fluid_density=1.2,
+                   viscosity=1.8e-5, scale=0.002)
+    written = sorted(str(f.relative_to(tmp_path / "cli")) for f in (tmp_path / "cli").rglob("*"))
+    assert written == sorted(str(f.relative_to(tmp_path / "py"))
+                             for f in (tmp_path / "py").rglob("*"))
+    for f in written:
+        if (tmp_path / "cli" / f).is_file():
+            assert (tmp_path / "py" / f).read_bytes() == (tmp_path / "cli" / f).read_bytes(), f
+    assert os.access(tmp_path / "py" / "Allrun", os.X_OK)
+    decompose = (tmp_path / "py" / "system" / "decomposeParDict").read_text()
+    assert "numberOfSubdomains 3;" in decompose and "n (1 1 3);" in decompose
+    # nu = mu / rho, and the velocity of Re_p = 2 at d = 2 mm: u = Re nu / d
+    nu = 1.8e-5 / 1.2
+    assert f"nu {nu:g};" in (tmp_path / "py" / "constant" / "transportProperties").read_text()
+    flow = json.loads((tmp_path / "py" / "packbed.json").read_text())["openfoam"]["flow"]
+    assert flow["velocity"] == pytest.approx(2 * nu / 0.002, rel=1e-12)
+    with pytest.raises(ValueError, match="--ranks: 0 is not allowed"):
+        packbed.export(packbed.read(particles), str(tmp_path / "bad"), format="openfoam", ranks=0)
+
+
 def test_export_of_a_bed_made_in_python_holds_every_sphere(bed, tmp_path):
     packbed.export(bed, str(tmp_path / "bed.data"))
     lines = (tmp_path / "bed.data").read_text().splitlines()
