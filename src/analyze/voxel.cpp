@@ -36,15 +36,23 @@ namespace {
 /// and \f$\arcsin(t/\sqrt{1 - x^2}) = \arctan(t / r)\f$: at the upper end x = X the roots are
 /// exactly the other of b and c, where the arcsines of arguments rounded near 1 would lose half
 /// their digits (1e-8 of the ball).
-/// atan2(y, r) for r >= 0: atan(y / r), half the time of atan2 and within an ulp of it (the
-/// quotient's rounding), atan2 itself at r = 0.
-double arctan(double y, double r) {
-    return r > 0.0 ? std::atan(y / r) : std::atan2(y, r);
+/// The tangent y / r whose arctangent is atan2(y, r) for r >= 0 (+-inf at r = 0): atan of it
+/// takes half the time of atan2 and is within an ulp of it (the quotient's rounding).
+double tangent(double y, double r) {
+    if (r > 0.0)
+        return y / r;
+    return y == 0.0 ? 0.0 : std::copysign(std::numeric_limits<double>::infinity(), y);
 }
 
-/// H from its three arctangents, atan2(x, r), atan2(t, r) and atan2(t x, r).
-double half_from_arctangents(double x, double t, double r, double inner, double outer,
-                             double product) {
+/// The three tangents whose arctangents H(x, t) holds, given its root r: x / r, t / r and
+/// t x / r.
+std::array<double, 3> half_tangents(double x, double t, double r) {
+    return {tangent(x, r), tangent(t, r), tangent(t * x, r)};
+}
+
+/// H from the arctangents `at` of half_tangents(x, t, r).
+double half_from_arctangents(double x, double t, double r, const double* at) {
+    const double inner = at[0], outer = at[1], product = at[2];
     const double m2 = 1.0 - t * t;
     const double cubic = x - x * x * x / 3.0;
     // S(x) = 1/2 (x r + m^2 arcsin(x / m)), the antiderivative of the chord sqrt(m^2 - x^2)
@@ -56,14 +64,10 @@ double half_from_arctangents(double x, double t, double r, double inner, double 
 }
 
 double half_antiderivative(double x, double t, double r) {
-    return half_from_arctangents(x, t, r, arctan(x, r), arctan(t, r), arctan(t * x, r));
-}
-
-/// The tangent y / r whose arctangent is atan2(y, r) for r >= 0 (+-inf at r = 0).
-double tangent(double y, double r) {
-    if (r > 0.0)
-        return y / r;
-    return y == 0.0 ? 0.0 : std::copysign(std::numeric_limits<double>::infinity(), y);
+    std::array<double, 3> at = half_tangents(x, t, r);
+    for (double& v : at)
+        v = std::atan(v);
+    return half_from_arctangents(x, t, r, at.data());
 }
 
 /// Each value of `v` replaced by its arctangent, two at a time through glibc's vector math
@@ -87,10 +91,33 @@ double plain_terms(double x, double b, double c) {
     return b * c * x + 0.25 * std::numbers::pi * (x - x * x * x / 3.0);
 }
 
+/// The upper end X = sqrt(1 - b^2 - c^2) of P, where the roots are c and b, and the tangents
+/// of its halves H(X, c) (root b) and H(X, b) (root c).
+struct UpperEnd {
+    double x;
+    std::array<double, 6> tangents;
+};
+
+UpperEnd upper_end(double b, double c) {
+    UpperEnd end{std::sqrt(1.0 - b * b - c * c), {}};
+    const auto first = half_tangents(end.x, c, b), second = half_tangents(end.x, b, c);
+    std::copy(first.begin(), first.end(), end.tangents.begin());
+    std::copy(second.begin(), second.end(), end.tangents.begin() + 3);
+    return end;
+}
+
+/// P(X) from the arctangents `at` of upper_end(b, c).tangents.
+double upper_from_arctangents(double b, double c, double x, const double* at) {
+    return half_from_arctangents(x, c, b, at) + half_from_arctangents(x, b, c, at + 3) +
+           plain_terms(x, b, c);
+}
+
 /// P(X) at the upper end X = sqrt(1 - b^2 - c^2), where the roots are c and b.
 double upper_antiderivative(double b, double c) {
-    const double x = std::sqrt(1.0 - b * b - c * c);
-    return half_antiderivative(x, c, b) + half_antiderivative(x, b, c) + plain_terms(x, b, c);
+    UpperEnd end = upper_end(b, c);
+    for (double& v : end.tangents)
+        v = std::atan(v);
+    return upper_from_arctangents(b, c, end.x, end.tangents.data());
 }
 
 /// 1 - a^2 - b^2 for |a|, |b| <= 1, to within rounding of the result: the larger square taken
@@ -397,22 +424,15 @@ public:
         for (std::size_t y = 0; y < ny; ++y)
             for (std::size_t z = 0; z < nz; ++z)
                 if (by[y] * by[y] + cz[z] * cz[z] < 1.0) {
-                    // P(X) at the upper end X = sqrt(1 - b^2 - c^2), where the roots are c and b
-                    const double b = by[y], c = cz[z], x = std::sqrt(1.0 - b * b - c * c);
+                    const UpperEnd end = upper_end(by[y], cz[z]);
                     m_where.push_back(y * nz + z);
-                    m_root.push_back(x);
-                    m_tangent.insert(m_tangent.end(),
-                                     {tangent(x, b), tangent(c, b), tangent(c * x, b),
-                                      tangent(x, c), tangent(b, c), tangent(b * x, c)});
+                    m_root.push_back(end.x);
+                    m_tangent.insert(m_tangent.end(), end.tangents.begin(), end.tangents.end());
                 }
         arctangents(m_tangent);
-        for (std::size_t e = 0; e < m_where.size(); ++e) {
-            const double b = by[m_where[e] / nz], c = cz[m_where[e] % nz], x = m_root[e];
-            const double* at = m_tangent.data() + 6 * e;
-            m_upper[m_where[e]] = half_from_arctangents(x, c, b, at[0], at[1], at[2]) +
-                                  half_from_arctangents(x, b, c, at[3], at[4], at[5]) +
-                                  plain_terms(x, b, c);
-        }
+        for (std::size_t e = 0; e < m_where.size(); ++e)
+            m_upper[m_where[e]] = upper_from_arctangents(by[m_where[e] / nz], cz[m_where[e] % nz],
+                                                         m_root[e], m_tangent.data() + 6 * e);
         const auto halves = [&](std::vector<double>& table, const std::vector<double>& t) {
             table.assign(nx * t.size(), 0.0);
             m_where.clear();
@@ -425,15 +445,14 @@ public:
                         const double r = std::sqrt(std::max(0.0, one_minus_squares(t[u], a)));
                         m_where.push_back(x * t.size() + u);
                         m_root.push_back(r);
-                        m_tangent.insert(m_tangent.end(),
-                                         {tangent(a, r), tangent(t[u], r), tangent(t[u] * a, r)});
+                        const auto tangents = half_tangents(a, t[u], r);
+                        m_tangent.insert(m_tangent.end(), tangents.begin(), tangents.end());
                     }
             arctangents(m_tangent);
             for (std::size_t e = 0; e < m_where.size(); ++e) {
-                const double* at = m_tangent.data() + 3 * e;
                 const std::size_t x = m_where[e] / t.size(), u = m_where[e] % t.size();
                 table[m_where[e]] =
-                    half_from_arctangents(ax[x], t[u], m_root[e], at[0], at[1], at[2]);
+                    half_from_arctangents(ax[x], t[u], m_root[e], m_tangent.data() + 3 * e);
             }
         };
         halves(m_half_c, cz);
