@@ -504,6 +504,20 @@ py::object hydraulics(std::optional<double> porosity, const std::optional<std::s
     return to_python(report.values);
 }
 
+py::object cfd_report_of(const std::filesystem::path& case_dir,
+                         const std::optional<std::filesystem::path>& out, bool force) {
+    const Report report = cfd_report(case_dir);
+    OutputDirectory directory(out ? *out : case_dir / "cfd-report", "--out", OutputKind::directory,
+                              force);
+    const std::string why = stage_cfd_report(directory, report);
+    directory.commit();
+    std::vector<std::string> warnings = report.warnings;
+    if (!why.empty())
+        warnings.push_back(why);
+    warn(warnings);
+    return to_python(report.values);
+}
+
 py::object correlations(double aspect_ratio, double profile_step, double profile_to) {
     CorrelationsRequest request;
     request.aspect_ratio = check_option("aspect-ratio", aspect_ratio, option_range::aspect_ratio);
@@ -520,8 +534,8 @@ export_bed_to(const Bed& bed, const std::filesystem::path& out, const std::strin
               bool no_container, double density, const std::optional<std::string>& box,
               std::optional<double> fluid_velocity, const std::string& contacts, long long refine,
               std::optional<double> edge, long long cells_per_diameter, long long particle_level,
-              long long wall_level, long long ranks, double reynolds, double fluid_density,
-              double viscosity, std::optional<double> scale, bool force) {
+              long long wall_level, long long ranks, double reynolds, const std::string& turbulence,
+              double fluid_density, double viscosity, std::optional<double> scale, bool force) {
     namespace range = option_range;
     check_path("out", out);
     ExportRequest request;
@@ -556,6 +570,7 @@ export_bed_to(const Bed& bed, const std::filesystem::path& out, const std::strin
         static_cast<int>(check_option("wall-level", wall_level, range::refinement_level));
     request.flow.ranks = static_cast<int>(check_option("ranks", ranks, range::ranks));
     request.flow.reynolds = check_option("reynolds", reynolds, range::reynolds);
+    request.turbulence = turbulence;
     request.flow.fluid_density = check_option("fluid-density", fluid_density, range::density_kg_m3);
     request.flow.viscosity = check_option("viscosity", viscosity, range::viscosity_pa_s);
     if (scale)
@@ -864,6 +879,7 @@ it to a .npy, .tif or .raw (+ .raw.json) file. The array owns its memory (no cop
           py::arg("wall_level") = ExportRequest{}.mesh.wall_level,
           py::arg("ranks") = OpenFoamFlowOptions{}.ranks,
           py::arg("reynolds") = OpenFoamFlowOptions{}.reynolds,
+          py::arg("turbulence") = ExportRequest{}.turbulence,
           py::arg("fluid_density") = OpenFoamFlowOptions{}.fluid_density,
           py::arg("viscosity") = OpenFoamFlowOptions{}.viscosity, py::arg("scale") = py::none(),
           py::arg("force") = false,
@@ -877,7 +893,7 @@ container's solids, data files in the spheres' bounding box. Data files: density
 ('xlo,xhi,ylo,yhi,zlo,zhi'), fluid_velocity. Surfaces: contacts ('none', 'shrink:F',
 'enlarge:F', 'caps:H', 'bridges:D'), refine (icosphere level) or edge, and for 'openfoam'
 cells_per_diameter, particle_level, wall_level; the flow of its Allrun: ranks, reynolds (or
-fluid_velocity, m/s), fluid_density (kg/m^3), viscosity (Pa s), scale (metres per unit of the
+fluid_velocity, m/s), turbulence ('laminar', 'kEpsilon', 'kOmegaSST'), fluid_density (kg/m^3), viscosity (Pa s), scale (metres per unit of the
 bed's lengths; None: particles of 1 mm). force: replace a non-empty case directory.
 Returns the command line's report line. Raises ValueError for a bad value.)");
 
@@ -899,6 +915,17 @@ and fluid_density (kg/m^3; glass in water by default), viscosity (Pa s), gravity
 velocity (m/s; None: the critical one of eq. (1)), aspect_ratio a = D/d or container (a spec in
 metres; a = D_h / d) for the wall-corrected pressure drop. Returns a dict; a correlation used
 outside its range gives a UserWarning. Raises ValueError for a bad value.)");
+
+    m.def("cfd_report", &cfd_report_of, py::arg("case"), py::kw_only(), py::arg("out") = py::none(),
+          py::arg("force") = false,
+          R"(The pressure drop of a case written by export(..., format='openfoam') and run by its
+Allrun, as `packbed cfd-report CASE --json`: the planes' area-averaged pressures (Pa), the
+gradient of the straight line fitted to them, Ergun's and Eisfeld & Schnitzlein's gradients at
+the bed's own void fraction between the planes, the fluxes, whether simpleFoam converged and
+the mesh's void fraction. Writes pressure.csv, cfd_report.json and the plot pressure.svg/.png
+to out (None: CASE/cfd-report; force replaces a non-empty one). Returns a dict; a correlation
+outside its range, or no plot, gives a UserWarning. Raises ValueError for a case that is not
+a run one.)");
 
     m.def("correlations", &correlations, py::kw_only(),
           py::arg("aspect_ratio") = CorrelationsRequest{}.aspect_ratio,

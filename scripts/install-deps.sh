@@ -1,9 +1,10 @@
 #!/usr/bin/env bash
 # Install what packbed needs on Debian 12, from Debian's packages only; nothing when everything
-# is already there. Usage: scripts/install-deps.sh [--test]
-#   --test  also what the test suite needs beyond the build (ParaView and its Python, LAMMPS,
-#           LIGGGHTS, admesh and OpenFOAM to check the files packbed writes; clang for the
-#           sanitizers)
+# is already there. Usage: scripts/install-deps.sh [--cfd] [--test]
+#   --cfd   also what runs an exported OpenFOAM case and draws its flow (OpenFOAM, Open MPI,
+#           ParaView and its Python, xvfb)
+#   --test  also what the test suite needs beyond the build (the --cfd packages, LAMMPS,
+#           LIGGGHTS and admesh to check the files packbed writes; clang for the sanitizers)
 # It never removes a package: apt-get runs with --no-remove, and a package that conflicts with
 # one already installed is left out, saying so.
 set -euo pipefail
@@ -27,7 +28,18 @@ packages=(
   python3-numpy             # its arrays
   python3-matplotlib        # the README's Python example plots with it
 )
-if [[ ${1:-} == --test ]]; then
+cfd=0 test=0
+for option in "$@"; do
+  case $option in
+    --cfd) cfd=1 ;;
+    --test) cfd=1 test=1 ;;
+    *)
+      echo "install-deps: unknown option '$option'; allowed: --cfd, --test" >&2
+      exit 2
+      ;;
+  esac
+done
+if ((cfd)); then
   # ParaView reads particles.vtu and renders it headless (pvbatch under xvfb-run). In Debian 12
   # its Python (python3-paraview) conflicts with python3-vtk9: a user who has python3-vtk9
   # keeps it, the VTU test reads with it, and the ParaView test reports skipped.
@@ -38,12 +50,14 @@ if [[ ${1:-} == --test ]]; then
   else
     packages+=(paraview python3-paraview xvfb)
   fi
+  packages+=(openfoam)      # blockMesh, snappyHexMesh, simpleFoam: the exported case's Allrun
+  packages+=(openmpi-bin)   # mpirun: Allrun on --ranks N
+fi
+if ((test)); then
   packages+=(python3-pytest python3-tifffile)  # the Python module's tests (TIFF read back)
   packages+=(lammps)        # reads the data files of packbed export (lmp)
   packages+=(liggghts)      # and LIGGGHTS reads them too
   packages+=(admesh)        # checks the STL surfaces of packbed export
-  packages+=(openfoam)      # surfaceCheck, blockMesh, snappyHexMesh, checkMesh on them
-  packages+=(openmpi-bin)   # mpirun: the exported case's Allrun on 2 ranks
   packages+=(clang)               # scripts/test-sanitize.sh and scripts/fuzz.sh: clang 14,
   packages+=(libclang-rt-14-dev)  # its ASan/UBSan/libFuzzer runtimes,
   packages+=(libomp-dev)          # and OpenMP for clang (libomp)

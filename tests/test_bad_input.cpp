@@ -277,7 +277,7 @@ TEST_P(CliBadInput, Exit2OneLineNamingTheInputNothingLeft) {
 }
 
 const std::string subcommands =
-    "allowed: generate, lattice, hydraulics, export, analyze, correlations, voxelize";
+    "allowed: generate, lattice, hydraulics, export, analyze, correlations, voxelize, cfd-report";
 const std::string a_path = "allowed: a path of at most 4095 bytes without control characters "
                            "(newline, tab, ...)";
 const std::string regular = "allowed: a readable regular file";
@@ -333,7 +333,7 @@ INSTANTIATE_TEST_SUITE_P(
               "packbed: --aspect-ratio: 0.5 is not allowed; allowed: a number in [1, 10000]"),
         exact("--config range.toml",
               "packbed: a subcommand is required; allowed: generate, lattice, hydraulics, "
-              "export, analyze, correlations, voxelize"),
+              "export, analyze, correlations, voxelize, cfd-report"),
         exact("generate --config @D/unknown.toml",
               "packbed: --config @D/unknown.toml: line 2: unknown key 'warp_speed'; allowed: "
               "aspect-ratio, "

@@ -24,6 +24,7 @@ Command register_lattice(CLI::App& parent);
 Command register_hydraulics(CLI::App& parent);
 Command register_export(CLI::App& parent);
 Command register_voxelize(CLI::App& parent);
+Command register_cfd_report(CLI::App& parent);
 
 namespace {
 
@@ -65,7 +66,7 @@ std::vector<Command> build_app(CLI::App& app) {
     std::vector<Command> commands{register_generate(app),   register_lattice(app),
                                   register_hydraulics(app), register_export(app),
                                   register_analyze(app),    register_correlations(app),
-                                  register_voxelize(app)};
+                                  register_voxelize(app),   register_cfd_report(app)};
     hide_defaults_outside_their_range(app);
     return commands;
 }

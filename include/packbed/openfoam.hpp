@@ -19,6 +19,12 @@ struct OpenFoamMeshOptions {
     int wall_level = 1;         ///< ... at a cylinder's wall, 0 to 8 (a box's is not refined)
 };
 
+/// The flow model of the case: laminar, or a RANS model with wall functions.
+enum class Turbulence { laminar, k_epsilon, k_omega_sst };
+
+/// The names --turbulence takes, as OpenFOAM names the models: laminar, kEpsilon, kOmegaSST.
+const std::vector<std::pair<std::string, Turbulence>>& turbulence_models();
+
 /// The flow of the runnable case (simpleFoam, laminar, incompressible), in SI units: the case
 /// is meshed in the bed's units and Allrun scales it to metres (transformPoints) before the
 /// flow is solved. Defaults: water at 20 C and particles of 1 mm, as packbed hydraulics.
@@ -29,6 +35,9 @@ struct OpenFoamFlowOptions {
     double velocity = 0.0;        ///< superficial velocity at the inlet, m/s; 0: from reynolds
     double reynolds = 1.0;        ///< particle Reynolds number rho u d / mu, u superficial
     double scale = 0.0;           ///< metres per unit of the bed's lengths; 0: d = 1 mm
+    /// laminar, or RANS (0.orig/k, epsilon or omega, nut: 5 % turbulence intensity and a
+    /// mixing length of 0.1 d at the inlet, wall functions on the walls and particles)
+    Turbulence turbulence = Turbulence::laminar;
 };
 
 /// What openfoam_case builds: the text files by path inside the case directory, the two

@@ -90,10 +90,10 @@ inline constexpr WholeRange refinement_level{0, 8}; ///< --particle-level, --wal
 inline constexpr NumberRange density{0.0, inf, true, true};
 inline constexpr NumberRange fluid_velocity{0.0, inf, false, true};
 inline constexpr NumberRange export_diameter{0.0, inf, true, true};
-// export --format openfoam's flow (SI): ranks of Allrun, the particle Reynolds number (laminar
-// steady flow: simpleFoam's laminar model), metres per unit of the bed's lengths
+// export --format openfoam's flow (SI): ranks of Allrun, the particle Reynolds number (steady
+// laminar flow to a few hundred, RANS beyond), metres per unit of the bed's lengths
 inline constexpr WholeRange ranks{1, 1024};
-inline constexpr NumberRange reynolds{0.0, 1e3, true, false};
+inline constexpr NumberRange reynolds{0.0, 1e5, true, false};
 inline constexpr NumberRange metres_per_unit{0.0, 1e3, true, false};
 
 // hydraulics (SI; limits.hpp: nanoparticles to boulders, gases to liquid metals, microgravity

@@ -8,6 +8,7 @@
 #include <optional>
 #include <string>
 #include <string_view>
+#include <vector>
 
 #include <nlohmann/json.hpp>
 #include <sys/types.h>
@@ -206,7 +207,8 @@ struct ExportRequest {
     int refine = 3;                ///< icosphere level
     double edge = 0.0;             ///< > 0: the largest mean triangle edge, instead of refine
     OpenFoamMeshOptions mesh;
-    OpenFoamFlowOptions flow; ///< openfoam: the flow of the runnable case
+    OpenFoamFlowOptions flow;           ///< openfoam: the flow of the runnable case
+    std::string turbulence = "laminar"; ///< openfoam: a name of turbulence_models() (flow's)
 };
 
 /// The formats of export: lammps-data, liggghts-data, stl, stl-ascii, obj, openfoam.
@@ -268,6 +270,35 @@ struct CorrelationsRequest {
 /// The published void-fraction correlations at an aspect ratio: the mean void fractions and
 /// the radial profiles, each with its formula, source and validity range.
 Report correlations_report(const CorrelationsRequest& request);
+
+// ---------------------------------------------------------------------------------------------
+// cfd-report: a run OpenFOAM case's pressure drop against the correlations
+
+/// A straight line p = intercept + slope z fitted by least squares.
+struct PressureFit {
+    double slope = 0.0;
+    double intercept = 0.0;
+    double standard_error = 0.0; ///< of the slope; 0 for two points
+};
+
+/// The least-squares line through the planes' (z, p).
+/// \throws InvalidInput for fewer than 2 points, lists of different lengths or one height
+PressureFit fit_pressure(const std::vector<double>& z, const std::vector<double>& p);
+
+/// The pressure drop of a case written by export --format openfoam and run by its Allrun:
+/// the planes' area-averaged pressures (postProcessing/pN, times rho: Pa), the gradient -dp/dz
+/// of the straight line fitted to them, Ergun's and Eisfeld & Schnitzlein's gradients at the
+/// bed's own void fraction between the first and the last plane and the wall's aspect ratio
+/// (both recorded in packbed.json by the export), the inlet's and outlet's fluxes, whether
+/// simpleFoam converged (log.simpleFoam) and the mesh's void fraction (log.checkMesh's total
+/// volume over the container's). A correlation outside its range gives a warning.
+/// \throws InvalidInput naming CASE when a file is missing or not what Allrun writes
+Report cfd_report(const std::filesystem::path& case_dir);
+
+/// Stage `report` (cfd_report) in `out`: pressure.csv (the planes), cfd_report.json and the
+/// plot pressure.svg/.png (the planes, the fit and the correlations' lines through the planes'
+/// mean). \return "" or why there is no plot (gnuplot missing or failed)
+std::string stage_cfd_report(OutputDirectory& out, const Report& report);
 
 // ---------------------------------------------------------------------------------------------
 // voxel images

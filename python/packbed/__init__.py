@@ -11,6 +11,7 @@ The library of the `packbed` command line, for Python, with numpy arrays:
     packbed.export(bed, "bed.data")                # a LAMMPS data file (or STL, OpenFOAM, ...)
     packbed.hydraulics(porosity=0.4)               # eq. (1) of Tsayger (2013), Ergun, ... (dict)
     packbed.correlations(aspect_ratio=5)           # the void-fraction correlations (dict)
+    packbed.cfd_report("case")        # a run OpenFOAM case's pressure drop against Ergun's (dict)
 
 Bad values raise ValueError with the command line's message, a run that does not converge
 raises packbed.ConvergenceError, and Ctrl-C raises KeyboardInterrupt. See help(packbed.generate).
@@ -24,6 +25,7 @@ from ._core import (
     __version__,
     analyze,
     analyze_frames,
+    cfd_report,
     correlations,
     export,
     generate,
@@ -41,6 +43,7 @@ __all__ = [
     "__version__",
     "analyze",
     "analyze_frames",
+    "cfd_report",
     "correlations",
     "export",
     "generate",

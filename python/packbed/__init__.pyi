@@ -163,11 +163,18 @@ def export(
     wall_level: int = 1,
     ranks: int = 2,
     reynolds: float = 1.0,
+    turbulence: str = "laminar",
     fluid_density: float = 998.2,
     viscosity: float = 0.001002,
     scale: Optional[float] = None,
     force: bool = False,
 ) -> str: ...
+def cfd_report(
+    case: str,
+    *,
+    out: Optional[str] = None,
+    force: bool = False,
+) -> Dict[str, Any]: ...
 def hydraulics(
     *,
     porosity: Optional[float] = None,

@@ -269,6 +269,59 @@ Background background(const Box& box, double height, double cell,
     return b;
 }
 
+/// The RANS fields of a case (model k-epsilon or k-omega SST), in SI units: at the inlet a
+/// turbulence intensity I = 5 % of the local velocity (k = 3/2 (I u)^2) and a mixing length
+/// l = 0.1 d (epsilon = C_mu^{3/4} k^{3/2} / l, omega = k^{1/2} / (C_mu^{1/4} l), C_mu = 0.09:
+/// OpenFOAM's turbulentIntensityKineticEnergyInlet and turbulentMixingLength*Inlet); the same
+/// values inside at the start; wall functions on `walls` (kqRWallFunction, epsilon- or
+/// omegaWallFunction, nutkWallFunction); inletOutlet at the outlet.
+void add_rans_fields(OpenFoamCase& c, const std::vector<std::string>& walls, Turbulence model,
+                     double d) {
+    constexpr double intensity = 0.05, cmu = 0.09;
+    const double length = 0.1 * d;
+    const double k = 1.5 * (intensity * c.velocity) * (intensity * c.velocity);
+    const double epsilon = std::pow(cmu, 0.75) * std::pow(k, 1.5) / length;
+    const double omega = std::sqrt(k) / (std::pow(cmu, 0.25) * length);
+    const auto field = [&](const std::string& name, const char* dimensions, double value,
+                           const std::string& inlet, const std::string& wall) {
+        std::string on_walls;
+        for (const std::string& w : walls)
+            on_walls += fmt::format("    {} {{ type {}; value uniform {}; }}\n", w, wall, value);
+        c.files.emplace_back(
+            "0.orig/" + name,
+            header(name, "0", "volScalarField") +
+                fmt::format("dimensions {};\n\ninternalField uniform {};\n\nboundaryField\n{{\n"
+                            "    #includeEtc \"caseDicts/setConstraintTypes\"\n"
+                            "    inlet {{ {} value uniform {}; }}\n"
+                            "    outlet {{ type inletOutlet; inletValue uniform {}; value uniform "
+                            "{}; }}\n{}}}\n",
+                            dimensions, value, inlet, value, value, value, on_walls));
+    };
+    field("k", "[0 2 -2 0 0 0 0]", k,
+          fmt::format("type turbulentIntensityKineticEnergyInlet; intensity {};", intensity),
+          "kqRWallFunction");
+    if (model == Turbulence::k_epsilon)
+        field(
+            "epsilon", "[0 2 -3 0 0 0 0]", epsilon,
+            fmt::format("type turbulentMixingLengthDissipationRateInlet; mixingLength {};", length),
+            "epsilonWallFunction");
+    else
+        field("omega", "[0 0 -1 0 0 0 0]", omega,
+              fmt::format("type turbulentMixingLengthFrequencyInlet; mixingLength {};", length),
+              "omegaWallFunction");
+    std::string nut_walls;
+    for (const std::string& w : walls)
+        nut_walls += fmt::format("    {} {{ type nutkWallFunction; value uniform 0; }}\n", w);
+    c.files.emplace_back(
+        "0.orig/nut",
+        header("nut", "0", "volScalarField") +
+            "dimensions [0 2 -1 0 0 0 0];\n\ninternalField uniform 0;\n\nboundaryField\n{\n"
+            "    #includeEtc \"caseDicts/setConstraintTypes\"\n"
+            "    inlet { type calculated; value uniform 0; }\n"
+            "    outlet { type calculated; value uniform 0; }\n" +
+            nut_walls + "}\n");
+}
+
 /// The files that make the meshed case run (OpenFoamFlowOptions; docs/notes/openfoam-v1912.md
 /// has the sources of each setting): `walls` the no-slip patches, `bed_top` the bed's top
 /// (bed units), the pressure planes between 1 Dp above the floor and 1 Dp below the top;
@@ -329,8 +382,21 @@ void add_flow_files(OpenFoamCase& c, const std::vector<std::string>& walls, doub
                              fmt::format("// rho = {} kg/m^3, mu = {} Pa s\n"
                                          "transportModel Newtonian;\nnu {};\n",
                                          flow.fluid_density, flow.viscosity, nu));
-    c.files.emplace_back("constant/turbulenceProperties",
-                         header("turbulenceProperties", "constant") + "simulationType laminar;\n");
+    const Turbulence model = flow.turbulence;
+    const bool rans = model != Turbulence::laminar;
+    std::string model_name;
+    for (const auto& [name, value] : turbulence_models())
+        if (value == model)
+            model_name = name;
+    c.files.emplace_back(
+        "constant/turbulenceProperties",
+        header("turbulenceProperties", "constant") +
+            (rans ? fmt::format("simulationType RAS;\nRAS\n{{\n    RASModel {};\n    turbulence "
+                                "on;\n    printCoeffs on;\n}}\n",
+                                model_name)
+                  : std::string("simulationType laminar;\n")));
+    if (rans)
+        add_rans_fields(c, walls, model, d);
     c.files.emplace_back(
         "system/decomposeParDict",
         header("decomposeParDict", "system") +
@@ -367,27 +433,36 @@ void add_flow_files(OpenFoamCase& c, const std::vector<std::string>& walls, doub
             "of its ends, and the volumetric fluxes of the inlet and outlet (postProcessing/)\n"
             "functions\n{\n" +
             functions + "}\n");
+    // RANS: the turbulence quantities upwind (bounded), the wall distance of kOmegaSST, looser
+    // residuals (a RANS solution's residuals level off higher) and relaxed k, epsilon, omega.
     c.files.emplace_back(
         "system/fvSchemes",
         header("fvSchemes", "system") +
             "ddtSchemes { default steadyState; }\n"
             "gradSchemes { default Gauss linear; grad(U) cellLimited Gauss linear 1; }\n"
             "divSchemes\n{\n    default none;\n"
-            "    div(phi,U) bounded Gauss linearUpwind grad(U);\n"
+            "    div(phi,U) bounded Gauss linearUpwind grad(U);\n" +
+            (rans ? "    div(phi,k) bounded Gauss upwind;\n    div(phi,epsilon) bounded Gauss "
+                    "upwind;\n    div(phi,omega) bounded Gauss upwind;\n"
+                  : "") +
             "    div((nuEff*dev2(T(grad(U))))) Gauss linear;\n}\n"
             "laplacianSchemes { default Gauss linear limited corrected 0.33; }\n"
             "interpolationSchemes { default linear; }\n"
-            "snGradSchemes { default limited corrected 0.33; }\n");
+            "snGradSchemes { default limited corrected 0.33; }\n" +
+            (rans ? "wallDist { method meshWave; }\n" : ""));
     c.files.emplace_back(
         "system/fvSolution",
         header("fvSolution", "system") +
             "solvers\n{\n"
             "    p { solver GAMG; smoother GaussSeidel; tolerance 1e-9; relTol 0.01; }\n"
-            "    U { solver smoothSolver; smoother symGaussSeidel; tolerance 1e-10; relTol 0.1; }\n"
+            "    \"(U|k|epsilon|omega)\" { solver smoothSolver; smoother symGaussSeidel; "
+            "tolerance 1e-10; relTol 0.1; }\n"
             "}\n\n"
-            "SIMPLE\n{\n    nNonOrthogonalCorrectors 1;\n    consistent yes;\n"
-            "    residualControl { p 1e-6; U 1e-7; }\n}\n\n"
-            "relaxationFactors { equations { U 0.9; } }\n");
+            "SIMPLE\n{\n    nNonOrthogonalCorrectors 1;\n    consistent yes;\n" +
+            (rans ? "    residualControl { p 1e-5; U 1e-5; \"(k|epsilon|omega)\" 1e-5; }\n}\n\n"
+                    "relaxationFactors { equations { U 0.9; \"(k|epsilon|omega)\" 0.7; } }\n"
+                  : "    residualControl { p 1e-6; U 1e-6; }\n}\n\n"
+                    "relaxationFactors { equations { U 0.9; } }\n"));
     c.allrun = fmt::format(
         "#!/bin/bash\n"
         "# Mesh, scale to metres, solve and post-process this case (written by packbed "
@@ -425,6 +500,14 @@ void add_flow_files(OpenFoamCase& c, const std::vector<std::string>& walls, doub
 }
 
 } // namespace
+
+const std::vector<std::pair<std::string, Turbulence>>& turbulence_models() {
+    static const std::vector<std::pair<std::string, Turbulence>> models{
+        {"laminar", Turbulence::laminar},
+        {"kEpsilon", Turbulence::k_epsilon},
+        {"kOmegaSST", Turbulence::k_omega_sst}};
+    return models;
+}
 
 OpenFoamCase openfoam_case(const TreatedBed& bed, const SurfaceContainer& container,
                            const TreatmentVolumes& volumes, const std::string& contacts,

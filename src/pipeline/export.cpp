@@ -193,8 +193,19 @@ std::string surface_export(const ExportRequest& o, ExportFormat format, const Pa
         OpenFoamFlowOptions flow = o.flow;
         if (o.fluid_velocity > 0.0) // the inlet's, instead of the Reynolds number's
             flow.velocity = o.fluid_velocity;
+        std::vector<std::string> models;
+        for (const auto& [name, model] : turbulence_models()) {
+            models.push_back(name);
+            if (name == o.turbulence)
+                flow.turbulence = model;
+        }
+        if (std::find(models.begin(), models.end(), o.turbulence) == models.end())
+            throw InvalidInput(fmt::format("--turbulence '{}' is not allowed; allowed: {}",
+                                           printable(o.turbulence.substr(0, 80)),
+                                           fmt::join(models, ", ")));
         const OpenFoamCase foam =
             openfoam_case(bed, *container, *volumes, o.contacts, dp, options.level, o.mesh, flow);
+        const std::optional<double> hydraulic = hydraulic_diameter(container->container);
         report["openfoam"] = {
             {"cell_size", foam.cell_size},
             {"particle_level", o.mesh.particle_level},
@@ -209,7 +220,14 @@ std::string surface_export(const ExportRequest& o, ExportFormat format, const Pa
               {"viscosity", flow.viscosity},
               {"velocity", foam.velocity},
               {"reynolds", foam.reynolds},
-              {"pressure_planes", foam.planes}}}};
+              {"turbulence", o.turbulence},
+              {"pressure_planes", foam.planes},
+              // what cfd-report compares with: the bed's void fraction between the first and
+              // the last plane (exact, untreated) and the wall's aspect ratio D_h / d
+              {"band_void_fraction",
+               void_fraction(packing, container->container, foam.planes.front() / foam.scale,
+                             foam.planes.back() / foam.scale)},
+              {"aspect_ratio", hydraulic ? nlohmann::json(*hydraulic / dp) : nlohmann::json()}}}};
         for (const auto& [path, text] : foam.files)
             out->stage(path, text);
         {

@@ -1,6 +1,8 @@
 // The plots of an analysis and the analysis generate and lattice stage (pipeline.hpp).
 #include "packbed/pipeline.hpp"
 
+#include "gnuplot.hpp"
+
 #include <fcntl.h>
 #include <signal.h>
 #include <spawn.h>
@@ -87,6 +89,28 @@ int run_gnuplot(const std::filesystem::path& folder, const std::string& script) 
 }
 
 } // namespace
+
+std::string draw_plots(OutputDirectory& out, const std::vector<std::string>& names,
+                       const std::string& script) {
+    std::vector<std::filesystem::path> files;
+    for (const auto& name : names)
+        for (const auto& [extension, terminal] : plot_terminals)
+            files.push_back(out.reserve(name + "." + extension));
+    const auto script_path = out.reserve("plots.gp");
+    std::ofstream(script_path) << script;
+    const int status = run_gnuplot(script_path.parent_path(), script_path.filename().string());
+    out.discard("plots.gp");
+    bool all = status == 0;
+    for (const auto& file : files)
+        all = all && std::filesystem::exists(file) && std::filesystem::file_size(file) > 0;
+    if (all)
+        return {};
+    // No plots, but the rest of the output stands.
+    for (const auto& file : files)
+        out.discard(file.filename().string());
+    return status == 127 ? "gnuplot not found (Debian package gnuplot-nox): no plots"
+                         : fmt::format("gnuplot failed (exit status {}): no plots", status);
+}
 
 void set_child_watcher(std::function<void(pid_t)> watcher) {
     const std::lock_guard lock(watcher_lock);
@@ -212,16 +236,6 @@ std::string stage_plots(OutputDirectory& out, const BedAnalysis& a, const Contai
                               "{{where}}'\nplot {}\nset autoscale y\n",
                               curves_by_size);
     }
-    std::vector<std::filesystem::path> files;
-    for (const auto& name : names)
-        for (const char* extension : {".svg", ".png"})
-            files.push_back(out.reserve(name + extension));
-    const auto script_path = out.reserve("plots.gp");
-    const std::filesystem::path folder = script_path.parent_path();
-    // The same four plots for each terminal: SVG for documents, PNG (cairo) for everything else.
-    const std::pair<const char*, const char*> terminals[] = {
-        {"svg", "set terminal svg size 800,450 background '#ffffff'"},
-        {"png", "set terminal pngcairo size 1000,560 background '#ffffff'"}};
     // The wall plots (none in a periodic cell), then the axial profile and g(r).
     const std::string wall_plots =
         a.walls.empty()
@@ -236,7 +250,8 @@ std::string stage_plots(OutputDirectory& out, const BedAnalysis& a, const Contai
                           "set title 'Radial distribution of sphere centres, {where}'\n"
                           "{centre_range}plot {centre_curves}\n"
                           "unset label 1\nset autoscale y\n");
-    for (const auto& [extension, terminal] : terminals)
+    // The same plots for each terminal.
+    for (const auto& [extension, terminal] : plot_terminals)
         script += fmt::format(
             fmt::runtime(
                 "{terminal}\nunset label 1\nset key top right\nset autoscale y\n"
@@ -267,19 +282,7 @@ std::string stage_plots(OutputDirectory& out, const BedAnalysis& a, const Contai
                                        fmt::arg("x_label", x_label), fmt::arg("x_max", x_max),
                                        fmt::arg("centre_top", centre_top),
                                        fmt::arg("where", where))));
-    std::ofstream(script_path) << script;
-    const int status = run_gnuplot(folder, script_path.filename().string());
-    out.discard("plots.gp");
-    bool all = status == 0;
-    for (const auto& file : files)
-        all = all && std::filesystem::exists(file) && std::filesystem::file_size(file) > 0;
-    if (all)
-        return {};
-    // No plots, but the rest of the output stands.
-    for (const auto& file : files)
-        out.discard(file.filename().string());
-    return status == 127 ? "gnuplot not found (Debian package gnuplot-nox): no plots"
-                         : fmt::format("gnuplot failed (exit status {}): no plots", status);
+    return draw_plots(out, names, script);
 }
 
 void stage_analysis(OutputDirectory& out, const Packing& packing, const Container& container,

@@ -1,0 +1,418 @@
+// `packbed cfd-report`: the pressure gradient of a run OpenFOAM case next to the correlations
+// (pipeline.hpp).
+#include <cmath>
+#include <filesystem>
+#include <map>
+#include <set>
+#include <string>
+#include <vector>
+
+#include <fmt/format.h>
+#include <nlohmann/json.hpp>
+
+#include "gnuplot.hpp"
+#include "packbed/error.hpp"
+#include "packbed/files.hpp"
+#include "packbed/hydraulics.hpp"
+#include "packbed/limits.hpp"
+#include "packbed/pipeline.hpp"
+
+namespace packbed {
+
+namespace {
+
+namespace fs = std::filesystem;
+
+/// The longest line read from a log or a table (OpenFOAM's are far shorter).
+constexpr std::size_t line_limit = 1 << 16;
+
+/// The case's path as messages show it.
+std::string shown(const fs::path& path) {
+    return printable(path.native());
+}
+
+/// A number of `text` (all of it), or nothing.
+std::optional<double> number(const std::string& text) {
+    try {
+        std::size_t used = 0;
+        const double v = std::stod(text, &used);
+        if (used == text.size() && std::isfinite(v))
+            return v;
+    } catch (const std::exception&) {
+    }
+    return std::nullopt;
+}
+
+/// The whitespace-separated words of `line`.
+std::vector<std::string> words(const std::string& line) {
+    std::vector<std::string> out;
+    std::size_t i = 0;
+    while (i < line.size()) {
+        while (i < line.size() && std::isspace(static_cast<unsigned char>(line[i])))
+            ++i;
+        const std::size_t start = i;
+        while (i < line.size() && !std::isspace(static_cast<unsigned char>(line[i])))
+            ++i;
+        if (i > start)
+            out.push_back(line.substr(start, i - start));
+    }
+    return out;
+}
+
+/// The last row of a function object's table, postProcessing/NAME/TIME/surfaceFieldValue.dat
+/// (the latest start time when the run was restarted), as column name -> value; the column
+/// names are those of its last header line ("# Time <tab> area <tab> areaAverage(p)").
+std::map<std::string, double> last_row(const fs::path& case_dir, const std::string& name) {
+    const fs::path folder = case_dir / "postProcessing" / name;
+    std::error_code error;
+    std::optional<double> latest;
+    fs::path table;
+    if (fs::is_directory(folder, error))
+        for (const auto& entry : fs::directory_iterator(folder, error)) {
+            const auto t = number(entry.path().filename().string());
+            if (t && (!latest || *t > *latest) &&
+                fs::is_regular_file(entry.path() / "surfaceFieldValue.dat", error)) {
+                latest = t;
+                table = entry.path() / "surfaceFieldValue.dat";
+            }
+        }
+    if (table.empty())
+        throw InvalidInput(fmt::format("CASE {}: no postProcessing/{}/TIME/surfaceFieldValue.dat; "
+                                       "allowed: a case exported by packbed export --format "
+                                       "openfoam and run by its Allrun",
+                                       shown(case_dir), name));
+    std::ifstream in = open_regular_file("CASE", table);
+    std::vector<std::string> header, row;
+    std::string line;
+    for (LineRead r; (r = read_line(in, line, line_limit)) != LineRead::end;) {
+        if (r != LineRead::line)
+            throw InvalidInput(fmt::format("CASE {}: {} cannot be read (a line longer than {} "
+                                           "bytes, or an I/O error)",
+                                           shown(case_dir), shown(table), line_limit));
+        std::vector<std::string> w = words(line);
+        if (w.empty())
+            continue;
+        if (w.front() == "#") {
+            w.erase(w.begin());
+            if (!w.empty() && w.front() == "Time")
+                header = std::move(w);
+        } else {
+            row = std::move(w);
+        }
+    }
+    if (header.empty() || row.size() != header.size())
+        throw InvalidInput(fmt::format("CASE {}: {} has no rows under a '# Time ...' header; "
+                                       "allowed: a case whose solver ran at least one iteration",
+                                       shown(case_dir), shown(table)));
+    std::map<std::string, double> out;
+    for (std::size_t k = 0; k < row.size(); ++k) {
+        const auto v = number(row[k]);
+        if (!v)
+            throw InvalidInput(fmt::format("CASE {}: {}: '{}' in column {} is not a finite number",
+                                           shown(case_dir), shown(table), printable(row[k]),
+                                           header[k]));
+        out[header[k]] = *v;
+    }
+    return out;
+}
+
+/// A column of `row` (last_row) that must be there.
+double column(const std::map<std::string, double>& row, const std::string& name,
+              const fs::path& case_dir, const std::string& table) {
+    const auto it = row.find(name);
+    if (it == row.end())
+        throw InvalidInput(fmt::format("CASE {}: postProcessing/{} has no column {}",
+                                       shown(case_dir), table, name));
+    return it->second;
+}
+
+/// What a solver's log says about its end: simpleFoam's "SIMPLE solution converged in N
+/// iterations" and each field's initial residual in the last iteration.
+struct SolverLog {
+    bool converged = false;
+    long iterations = 0; ///< the last "Time = N"
+    std::map<std::string, double> residuals;
+};
+
+SolverLog read_solver_log(const fs::path& case_dir) {
+    SolverLog out;
+    const fs::path path = case_dir / "log.simpleFoam";
+    std::error_code error;
+    if (!fs::exists(path, error))
+        return out;
+    std::ifstream in = open_regular_file("CASE", path);
+    std::string line;
+    // A field solved twice in an iteration (p, with a non-orthogonal corrector): its first
+    // initial residual is the iteration's, the one residualControl compares.
+    std::set<std::string> solved;
+    for (LineRead r; (r = read_line(in, line, line_limit)) != LineRead::end;) {
+        if (r != LineRead::line)
+            continue; // a long line is nothing we look for
+        if (line.starts_with("Time = ")) {
+            solved.clear();
+            if (const auto t = number(line.substr(7)))
+                out.iterations = std::lround(*t);
+        } else if (line.find("SIMPLE solution converged") != std::string::npos) {
+            out.converged = true;
+        } else if (const auto at = line.find("Solving for "); at != std::string::npos) {
+            // "smoothSolver:  Solving for Ux, Initial residual = 1e-07, Final residual = ..."
+            const auto comma = line.find(',', at);
+            const auto equals = line.find("Initial residual = ", at);
+            if (comma == std::string::npos || equals == std::string::npos)
+                continue;
+            const std::string field = line.substr(at + 12, comma - at - 12);
+            if (!solved.insert(field).second)
+                continue;
+            const auto end = line.find(',', equals);
+            if (const auto v = number(line.substr(equals + 19, end - equals - 19)))
+                out.residuals[field] = *v;
+        }
+    }
+    return out;
+}
+
+/// checkMesh's "Total volume = V." (m^3 after Allrun's transformPoints), or nothing.
+std::optional<double> mesh_volume(const fs::path& case_dir) {
+    const fs::path path = case_dir / "log.checkMesh";
+    std::error_code error;
+    if (!fs::exists(path, error))
+        return std::nullopt;
+    std::ifstream in = open_regular_file("CASE", path);
+    std::string line;
+    std::optional<double> out;
+    for (LineRead r; (r = read_line(in, line, line_limit)) != LineRead::end;) {
+        const auto at = line.find("Total volume = ");
+        if (r != LineRead::line || at == std::string::npos)
+            continue;
+        std::string value = words(line.substr(at + 15)).front();
+        if (!value.empty() && value.back() == '.')
+            value.pop_back();
+        out = number(value);
+    }
+    return out;
+}
+
+/// A number in packbed.json that must be there.
+double recorded(const nlohmann::json& json, const nlohmann::json::json_pointer& at,
+                const fs::path& case_dir) {
+    if (!json.contains(at) || !json.at(at).is_number())
+        throw InvalidInput(fmt::format("CASE {}: packbed.json has no number at {}; allowed: a "
+                                       "case exported by this version of packbed export --format "
+                                       "openfoam",
+                                       shown(case_dir), at.to_string()));
+    const double v = json.at(at).get<double>();
+    if (!std::isfinite(v))
+        throw InvalidInput(fmt::format("CASE {}: packbed.json {} = {} is not allowed; allowed: a "
+                                       "finite number",
+                                       shown(case_dir), at.to_string(), v));
+    return v;
+}
+
+} // namespace
+
+/// The least-squares line through (z_k, p_k): slope \f$b = \sum (z - \bar z)(p - \bar p) /
+/// \sum (z - \bar z)^2\f$ and its standard error \f$\sqrt{\sum r^2 / ((n - 2) \sum (z - \bar
+/// z)^2)}\f$ (residuals r; 0 for two points).
+PressureFit fit_pressure(const std::vector<double>& z, const std::vector<double>& p) {
+    const std::size_t n = z.size();
+    if (n < 2 || p.size() != n)
+        throw InvalidInput(fmt::format("pressure planes: {} heights and {} pressures; allowed: "
+                                       "at least 2 of each, as many of one as of the other",
+                                       n, p.size()));
+    double mz = 0.0, mp = 0.0;
+    for (std::size_t k = 0; k < n; ++k) {
+        mz += z[k] / static_cast<double>(n);
+        mp += p[k] / static_cast<double>(n);
+    }
+    double szz = 0.0, szp = 0.0;
+    for (std::size_t k = 0; k < n; ++k) {
+        szz += (z[k] - mz) * (z[k] - mz);
+        szp += (z[k] - mz) * (p[k] - mp);
+    }
+    if (!(szz > 0.0))
+        throw InvalidInput("pressure planes: all at one height; allowed: two heights or more");
+    PressureFit fit;
+    fit.slope = szp / szz;
+    fit.intercept = mp - fit.slope * mz;
+    double rr = 0.0;
+    for (std::size_t k = 0; k < n; ++k) {
+        const double r = p[k] - (fit.intercept + fit.slope * z[k]);
+        rr += r * r;
+    }
+    fit.standard_error = n > 2 ? std::sqrt(rr / (static_cast<double>(n - 2) * szz)) : 0.0;
+    return fit;
+}
+
+Report cfd_report(const std::filesystem::path& case_dir) {
+    check_path("CASE", case_dir);
+    std::error_code error;
+    if (!fs::is_directory(case_dir, error))
+        throw InvalidInput(fmt::format("CASE {} is not a directory; allowed: the directory of a "
+                                       "case written by packbed export --format openfoam",
+                                       shown(case_dir)));
+    nlohmann::json json;
+    {
+        const std::string text =
+            read_small_file("CASE", case_dir / "packbed.json", limits::max_small_file);
+        json = nlohmann::json::parse(text, nullptr, false);
+        if (json.is_discarded() || !json.is_object())
+            throw InvalidInput(
+                fmt::format("CASE {}: packbed.json is not a JSON object", shown(case_dir)));
+    }
+    using ptr = nlohmann::json::json_pointer;
+    const ptr flow("/openfoam/flow");
+    const double rho = recorded(json, flow / "fluid_density", case_dir);
+    const double mu = recorded(json, flow / "viscosity", case_dir);
+    const double u = recorded(json, flow / "velocity", case_dir);
+    const double scale = recorded(json, flow / "metres_per_unit", case_dir);
+    const double band_void = recorded(json, flow / "band_void_fraction", case_dir);
+    const double diameter = recorded(json, ptr("/diameter"), case_dir) * scale; // m
+    const nlohmann::json& planes_json = json.at(flow / "pressure_planes");
+    if (!planes_json.is_array() || planes_json.size() < 2)
+        throw InvalidInput(fmt::format("CASE {}: packbed.json's openfoam.flow.pressure_planes is "
+                                       "not a list of 2 heights or more",
+                                       shown(case_dir)));
+
+    Report report;
+    nlohmann::ordered_json out;
+    out["case"] = case_dir.string();
+    // The planes: the area-averaged kinematic pressure (m^2/s^2) times rho, in Pa.
+    std::vector<double> z, p;
+    nlohmann::ordered_json planes = nlohmann::ordered_json::array();
+    for (std::size_t k = 0; k < planes_json.size(); ++k) {
+        const std::string name = fmt::format("p{}", k);
+        const auto row = last_row(case_dir, name);
+        const double zk = recorded(json, flow / "pressure_planes" / k, case_dir);
+        const double pk = rho * column(row, "areaAverage(p)", case_dir, name);
+        z.push_back(zk);
+        p.push_back(pk);
+        planes.push_back({{"z_m", zk},
+                          {"pressure_Pa", pk},
+                          {"fluid_area_m2", column(row, "Area", case_dir, name)}});
+    }
+    const PressureFit fit = fit_pressure(z, p);
+    const double gradient = -fit.slope;
+
+    const double inlet = column(last_row(case_dir, "inletFlux"), "sum(phi)", case_dir, "inletFlux");
+    const double outlet =
+        column(last_row(case_dir, "outletFlux"), "sum(phi)", case_dir, "outletFlux");
+    const SolverLog log = read_solver_log(case_dir);
+
+    // The correlations at the bed's own void fraction between the planes; the particle
+    // density does not enter a pressure drop (FluidAndParticles wants one above the fluid's).
+    FluidAndParticles fluid;
+    fluid.diameter = diameter;
+    fluid.fluid_density = rho;
+    fluid.viscosity = mu;
+    fluid.particle_density = std::max(2500.0, 2.0 * rho);
+    const double ergun = ergun_pressure_gradient(band_void, u, fluid);
+    nlohmann::ordered_json correlations = {{"ergun_Pa_m", ergun},
+                                           {"cfd_over_ergun", gradient / ergun}};
+    const ptr aspect = flow / "aspect_ratio";
+    if (json.contains(aspect) && json.at(aspect).is_number()) {
+        const double a = recorded(json, aspect, case_dir);
+        const CorrelationValue es = eisfeld_schnitzlein_pressure_gradient(band_void, u, a, fluid);
+        correlations["aspect_ratio"] = a;
+        correlations["eisfeld_schnitzlein_Pa_m"] = es.value;
+        correlations["cfd_over_eisfeld_schnitzlein"] = gradient / es.value;
+        if (!es.warning.empty())
+            report.warnings.push_back(es.warning);
+    } else {
+        correlations["eisfeld_schnitzlein"] = "no wall (a periodic cell): Ergun only";
+    }
+
+    out["flow"] = {{"superficial_velocity_m_s", u},
+                   {"reynolds", rho * u * diameter / mu},
+                   {"fluid_density_kg_m3", rho},
+                   {"viscosity_Pa_s", mu},
+                   {"diameter_m", diameter}};
+    out["solver"] = {{"log", "log.simpleFoam"},
+                     {"converged", log.converged},
+                     {"iterations", log.iterations},
+                     {"last_initial_residuals", log.residuals}};
+    out["fluxes_m3_s"] = {{"inlet", inlet},
+                          {"outlet", outlet},
+                          {"imbalance", std::abs(inlet + outlet) / std::abs(inlet)}};
+    out["planes"] = planes;
+    out["pressure_gradient_Pa_m"] = {{"cfd", gradient},
+                                     {"standard_error", fit.standard_error},
+                                     {"from_m", z.front()},
+                                     {"to_m", z.back()},
+                                     {"fit_intercept_Pa", fit.intercept}};
+    out["correlations"] = correlations;
+    // The void fractions: the bed's between the planes (what the correlations use), the
+    // container's before and after the contact treatment, and the mesh's (checkMesh's volume).
+    nlohmann::ordered_json voids = {{"band", band_void}};
+    const ptr untouched("/volumes/untouched_void_fraction"),
+        treated("/volumes/treated_void_fraction");
+    if (json.contains(untouched) && json.contains(treated)) {
+        voids["container_untouched"] = recorded(json, untouched, case_dir);
+        voids["container_treated"] = recorded(json, treated, case_dir);
+        if (const auto v = mesh_volume(case_dir); v && json.contains(ptr("/volumes/container"))) {
+            const double container =
+                recorded(json, ptr("/volumes/container"), case_dir) * scale * scale * scale;
+            voids["mesh"] = *v / container;
+        }
+    }
+    out["void_fraction"] = voids;
+    if (!log.converged)
+        report.warnings.push_back(fmt::format("{}: no \"SIMPLE solution converged\" in "
+                                              "log.simpleFoam: the pressures are those of the "
+                                              "last iteration written",
+                                              shown(case_dir)));
+    report.values = out;
+    return report;
+}
+
+std::string stage_cfd_report(OutputDirectory& out, const Report& report) {
+    const nlohmann::json& v = report.values;
+    std::string table = "z_m,pressure_Pa,fluid_area_m2\n";
+    for (const auto& plane : v["planes"])
+        table +=
+            fmt::format("{},{},{}\n", plane["z_m"].get<double>(),
+                        plane["pressure_Pa"].get<double>(), plane["fluid_area_m2"].get<double>());
+    out.stage("pressure.csv", table);
+    out.stage("cfd_report.json", v.dump(2) + "\n");
+
+    // The plot: the planes' pressures, the fitted line and the correlations' lines through
+    // the planes' mean, against the height in mm.
+    const auto& g = v["pressure_gradient_Pa_m"];
+    const auto& c = v["correlations"];
+    double mz = 0.0, mp = 0.0;
+    std::string points = "$planes << EOD\n";
+    const double n = static_cast<double>(v["planes"].size());
+    for (const auto& plane : v["planes"]) {
+        const double z = plane["z_m"].get<double>(), p = plane["pressure_Pa"].get<double>();
+        points += fmt::format("{} {}\n", 1e3 * z, p);
+        mz += 1e3 * z / n;
+        mp += p / n;
+    }
+    points += "EOD\n";
+    // A line of gradient G (Pa/m) through the mean point, z in mm.
+    const auto line = [&](double gradient) {
+        return fmt::format("({:.17g} - {:.17g} * (x - {:.17g}) * 1e-3)", mp, gradient, mz);
+    };
+    std::string curves = fmt::format(
+        "$planes using 1:2 with points pt 7 ps 1.2 lc rgb 'black' title 'CFD, planes', {} with "
+        "lines lw 2 lc rgb 'black' title 'CFD fit: {:.4g} Pa/m', {} with lines dt 2 lw 2 title "
+        "'Ergun: {:.4g} Pa/m'",
+        line(g["cfd"].get<double>()), g["cfd"].get<double>(), line(c["ergun_Pa_m"].get<double>()),
+        c["ergun_Pa_m"].get<double>());
+    if (c.contains("eisfeld_schnitzlein_Pa_m"))
+        curves += fmt::format(", {} with lines dt 4 lw 2 title 'Eisfeld & Schnitzlein: {:.4g} "
+                              "Pa/m' noenhanced",
+                              line(c["eisfeld_schnitzlein_Pa_m"].get<double>()),
+                              c["eisfeld_schnitzlein_Pa_m"].get<double>());
+    std::string script = points;
+    for (const auto& [extension, terminal] : plot_terminals)
+        script += fmt::format(
+            "{}\nset output 'pressure.{}'\nset xlabel 'height z (mm)'\nset ylabel 'pressure "
+            "(Pa)'\nset key top right\nset title 'Pressure across the bed, Re_p = {:.3g}, void "
+            "fraction {:.4f}'\nplot [{:.17g}:{:.17g}] {}\n",
+            terminal, extension, v["flow"]["reynolds"].get<double>(),
+            v["void_fraction"]["band"].get<double>(), 1e3 * g["from_m"].get<double>(),
+            1e3 * g["to_m"].get<double>(), curves);
+    return draw_plots(out, {"pressure"}, script);
+}
+
+} // namespace packbed
