@@ -152,8 +152,12 @@ old = make_case("old")
 j = json.load(open(os.path.join(old, "packbed.json")))
 del j["openfoam"]["flow"]["band_void_fraction"]
 json.dump(j, open(os.path.join(old, "packbed.json"), "w"))
+planeless = make_case("planeless")
+j = json.load(open(os.path.join(planeless, "packbed.json")))
+del j["openfoam"]["flow"]["pressure_planes"]
+json.dump(j, open(os.path.join(planeless, "packbed.json"), "w"))
 for case, words in ((bad, "postProcessing/p3"), (nan, "not a finite number"),
-                    (old, "band_void_fraction"), (os.path.join(work, "none"), "not a directory"),
+                    (old, "band_void_fraction"), (planeless, "pressure_planes"), (os.path.join(work, "none"), "not a directory"),
                     (work, "packbed.json")):
     out = subprocess.run([exe, "cfd-report", case], capture_output=True, text=True)
     assert out.returncode == 2, (case, out.returncode, out.stderr)

@@ -269,6 +269,14 @@ Background background(const Box& box, double height, double cell,
     return b;
 }
 
+/// The name OpenFOAM and --turbulence give `model` (turbulence_models()).
+std::string turbulence_name(Turbulence model) {
+    for (const auto& [name, value] : turbulence_models())
+        if (value == model)
+            return name;
+    return "laminar";
+}
+
 /// The RANS fields of a case (model k-epsilon or k-omega SST), in SI units: at the inlet a
 /// turbulence intensity I = 5 % of the local velocity (k = 3/2 (I u)^2) and a mixing length
 /// l = 0.1 d (epsilon = C_mu^{3/4} k^{3/2} / l, omega = k^{1/2} / (C_mu^{1/4} l), C_mu = 0.09:
@@ -384,16 +392,12 @@ void add_flow_files(OpenFoamCase& c, const std::vector<std::string>& walls, doub
                                          flow.fluid_density, flow.viscosity, nu));
     const Turbulence model = flow.turbulence;
     const bool rans = model != Turbulence::laminar;
-    std::string model_name;
-    for (const auto& [name, value] : turbulence_models())
-        if (value == model)
-            model_name = name;
     c.files.emplace_back(
         "constant/turbulenceProperties",
         header("turbulenceProperties", "constant") +
             (rans ? fmt::format("simulationType RAS;\nRAS\n{{\n    RASModel {};\n    turbulence "
                                 "on;\n    printCoeffs on;\n}}\n",
-                                model_name)
+                                turbulence_name(model))
                   : std::string("simulationType laminar;\n")));
     if (rans)
         add_rans_fields(c, walls, model, d);
@@ -650,7 +654,7 @@ OpenFoamCase openfoam_case(const TreatedBed& bed, const SurfaceContainer& contai
             "count):\n\n```sh\n./Allrun\n```\n\n"
             "blockMesh, decomposePar, snappyHexMesh, transformPoints (the bed's units to "
             "metres: "
-            "{scale} m per unit, so d = {dm} m), checkMesh, simpleFoam (laminar, steady), "
+            "{scale} m per unit, so d = {dm} m), checkMesh, simpleFoam ({model}, steady), "
             "reconstructParMesh and reconstructPar; each step's output in `log.STEP`. The "
             "fluid: rho = {rho} kg/m^3, mu = {mu} Pa s (nu = {nu} m^2/s); the inlet's "
             "superficial velocity {u} m/s, the particle Reynolds number rho u d / mu = "
@@ -692,6 +696,9 @@ OpenFoamCase openfoam_case(const TreatedBed& bed, const SurfaceContainer& contai
             fmt::arg("clear", c.clearance), fmt::arg("vc", volumes.container_volume),
             fmt::arg("vs", volumes.treated_solid), fmt::arg("vf", c.fluid_volume),
             fmt::arg("e0", bed_void), fmt::arg("e1", volumes.treated_void_fraction),
+            fmt::arg("model", flow.turbulence == Turbulence::laminar
+                                  ? std::string("laminar")
+                                  : "RANS, " + turbulence_name(flow.turbulence)),
             fmt::arg("ranks", flow.ranks), fmt::arg("scale", c.scale),
             fmt::arg("dm", c.scale * diameter), fmt::arg("rho", flow.fluid_density),
             fmt::arg("mu", flow.viscosity), fmt::arg("nu", flow.viscosity / flow.fluid_density),

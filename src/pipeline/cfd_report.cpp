@@ -267,11 +267,14 @@ Report cfd_report(const std::filesystem::path& case_dir) {
     const double scale = recorded(json, flow / "metres_per_unit", case_dir);
     const double band_void = recorded(json, flow / "band_void_fraction", case_dir);
     const double diameter = recorded(json, ptr("/diameter"), case_dir) * scale; // m
-    const nlohmann::json& planes_json = json.at(flow / "pressure_planes");
-    if (!planes_json.is_array() || planes_json.size() < 2)
+    const ptr planes_at = flow / "pressure_planes";
+    if (!json.contains(planes_at) || !json.at(planes_at).is_array() ||
+        json.at(planes_at).size() < 2)
         throw InvalidInput(fmt::format("CASE {}: packbed.json's openfoam.flow.pressure_planes is "
-                                       "not a list of 2 heights or more",
+                                       "not a list of heights; allowed: 2 heights or more, as "
+                                       "packbed export --format openfoam writes",
                                        shown(case_dir)));
+    const nlohmann::json& planes_json = json.at(planes_at);
 
     Report report;
     nlohmann::ordered_json out;
@@ -299,12 +302,13 @@ Report cfd_report(const std::filesystem::path& case_dir) {
     const SolverLog log = read_solver_log(case_dir);
 
     // The correlations at the bed's own void fraction between the planes; the particle
-    // density does not enter a pressure drop (FluidAndParticles wants one above the fluid's).
+    // density does not enter a pressure drop (FluidAndParticles wants one above the fluid's:
+    // the densest allowed).
     FluidAndParticles fluid;
     fluid.diameter = diameter;
     fluid.fluid_density = rho;
     fluid.viscosity = mu;
-    fluid.particle_density = std::max(2500.0, 2.0 * rho);
+    fluid.particle_density = limits::max_density_kg_m3;
     const double ergun = ergun_pressure_gradient(band_void, u, fluid);
     nlohmann::ordered_json correlations = {{"ergun_Pa_m", ergun},
                                            {"cfd_over_ergun", gradient / ergun}};
