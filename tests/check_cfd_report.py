@@ -23,8 +23,6 @@ import subprocess
 import sys
 import tempfile
 
-exe = sys.argv[1]
-work = tempfile.mkdtemp(prefix="packbed-cfd-report-")
 
 RHO, MU, U, SCALE = 998.2, 1.002e-3, 2.5e-3, 1e-3  # water, 2.5 mm/s, bed units of 1 mm
 D, E, A = 1.0, 0.42, 5.0  # diameter (bed units), void fraction between the planes, D/d
@@ -45,7 +43,8 @@ def table(path, region, columns, rows):
             f.write("\t".join(f"{v:.10e}" if i else f"{v:<18g}" for i, v in enumerate(row)) + "\n")
 
 
-def make_case(name, scatter=None, restarted=False):
+def make_case(work, name, scatter=None, restarted=False):
+    """The case NAME under WORK; pressures on the line GRADIENT, plus `scatter` (kinematic)."""
     case = os.path.join(work, name)
     os.makedirs(case)
     json.dump({"diameter": D,
@@ -85,83 +84,89 @@ def make_case(name, scatter=None, restarted=False):
     return case
 
 
-def report(case, *extra):
+def report(exe, case, *extra):
     out = subprocess.run([exe, "cfd-report", case, "--json", *extra], capture_output=True,
                          text=True)
     assert out.returncode == 0, out.stderr
     return json.loads(out.stdout)
 
 
-# Eisfeld & Schnitzlein (2001), spheres: K1 = 154, k1 = 1.15, k2 = 0.87 (docs/notes/
-# openfoam-v1912.md, section 7); Ergun (1952).
-d = D * SCALE
-ergun = 150 * MU * U * (1 - E) ** 2 / (E**3 * d**2) + 1.75 * RHO * U**2 * (1 - E) / (E**3 * d)
-aw = 1 + 2 / (3 * A * (1 - E))
-bw = (1.15 / A**2 + 0.87) ** 2
-es = 154 * aw**2 * MU * U * (1 - E) ** 2 / (E**3 * d**2) + aw / bw * RHO * U**2 * (1 - E) / (E**3 * d)
+def main(exe):
+    work = tempfile.mkdtemp(prefix="packbed-cfd-report-")
+    # Eisfeld & Schnitzlein (2001), spheres: K1 = 154, k1 = 1.15, k2 = 0.87 (docs/notes/
+    # openfoam-v1912.md, section 7); Ergun (1952).
+    d = D * SCALE
+    ergun = 150 * MU * U * (1 - E) ** 2 / (E**3 * d**2) + 1.75 * RHO * U**2 * (1 - E) / (E**3 * d)
+    aw = 1 + 2 / (3 * A * (1 - E))
+    bw = (1.15 / A**2 + 0.87) ** 2
+    es = 154 * aw**2 * MU * U * (1 - E) ** 2 / (E**3 * d**2) + aw / bw * RHO * U**2 * (1 - E) / (E**3 * d)
 
-case = make_case("line")
-r = report(case)
-g = r["pressure_gradient_Pa_m"]
-assert math.isclose(g["cfd"], GRADIENT, rel_tol=1e-9), g
-assert g["standard_error"] < 1e-9 * GRADIENT, g
-assert math.isclose(r["correlations"]["ergun_Pa_m"], ergun, rel_tol=1e-12), (r, ergun)
-assert math.isclose(r["correlations"]["eisfeld_schnitzlein_Pa_m"], es, rel_tol=1e-12), (r, es)
-assert math.isclose(r["correlations"]["cfd_over_eisfeld_schnitzlein"], GRADIENT / es,
-                    rel_tol=1e-9)
-assert math.isclose(r["fluxes_m3_s"]["imbalance"], 3e-4, rel_tol=1e-9), r["fluxes_m3_s"]
-assert r["solver"]["converged"] and r["solver"]["iterations"] == 2, r["solver"]
-# the last iteration's first p residual (1e-3), not its corrector's (5e-11)
-assert r["solver"]["last_initial_residuals"] == {"Ux": 5e-4, "p": 1e-3}, r["solver"]
-assert math.isclose(r["void_fraction"]["mesh"], 0.055, rel_tol=1e-9), r["void_fraction"]
-assert math.isclose(r["flow"]["reynolds"], RHO * U * d / MU, rel_tol=1e-12), r["flow"]
-rows = list(csv.DictReader(open(os.path.join(case, "cfd-report", "pressure.csv"))))
-assert [float(row["z_m"]) for row in rows] == Z, rows
-for row, z in zip(rows, Z):
-    assert math.isclose(float(row["pressure_Pa"]), GRADIENT * (0.02 - z), rel_tol=1e-9), row
-if shutil.which("gnuplot"):
-    for ext in ("svg", "png"):
-        assert os.path.getsize(os.path.join(case, "cfd-report", f"pressure.{ext}")) > 0, ext
-print(f"line: {g['cfd']:.6f} Pa/m (made {GRADIENT}); Ergun {ergun:.6g}, Eisfeld & Schnitzlein "
-      f"{es:.6g} Pa/m")
+    case = make_case(work, "line")
+    r = report(exe, case)
+    g = r["pressure_gradient_Pa_m"]
+    assert math.isclose(g["cfd"], GRADIENT, rel_tol=1e-9), g
+    assert g["standard_error"] < 1e-9 * GRADIENT, g
+    assert math.isclose(r["correlations"]["ergun_Pa_m"], ergun, rel_tol=1e-12), (r, ergun)
+    assert math.isclose(r["correlations"]["eisfeld_schnitzlein_Pa_m"], es, rel_tol=1e-12), (r, es)
+    assert math.isclose(r["correlations"]["cfd_over_eisfeld_schnitzlein"], GRADIENT / es,
+                        rel_tol=1e-9)
+    assert math.isclose(r["fluxes_m3_s"]["imbalance"], 3e-4, rel_tol=1e-9), r["fluxes_m3_s"]
+    assert r["solver"]["converged"] and r["solver"]["iterations"] == 2, r["solver"]
+    # the last iteration's first p residual (1e-3), not its corrector's (5e-11)
+    assert r["solver"]["last_initial_residuals"] == {"Ux": 5e-4, "p": 1e-3}, r["solver"]
+    assert math.isclose(r["void_fraction"]["mesh"], 0.055, rel_tol=1e-9), r["void_fraction"]
+    assert math.isclose(r["flow"]["reynolds"], RHO * U * d / MU, rel_tol=1e-12), r["flow"]
+    rows = list(csv.DictReader(open(os.path.join(case, "cfd-report", "pressure.csv"))))
+    assert [float(row["z_m"]) for row in rows] == Z, rows
+    for row, z in zip(rows, Z):
+        assert math.isclose(float(row["pressure_Pa"]), GRADIENT * (0.02 - z), rel_tol=1e-9), row
+    if shutil.which("gnuplot"):
+        for ext in ("svg", "png"):
+            assert os.path.getsize(os.path.join(case, "cfd-report", f"pressure.{ext}")) > 0, ext
+    print(f"line: {g['cfd']:.6f} Pa/m (made {GRADIENT}); Ergun {ergun:.6g}, Eisfeld & Schnitzlein "
+          f"{es:.6g} Pa/m")
 
-# Scattered planes: the slope and its standard error of the least-squares formula.
-scatter = [0.1 * math.sin(3.0 * k) / RHO for k in range(9)]
-case = make_case("scatter", scatter)
-g = report(case)["pressure_gradient_Pa_m"]
-p = [GRADIENT * (0.02 - z) + RHO * s for z, s in zip(Z, scatter)]
-mz, mp = sum(Z) / 9, sum(p) / 9
-szz = sum((z - mz) ** 2 for z in Z)
-slope = sum((z - mz) * (q - mp) for z, q in zip(Z, p)) / szz
-rr = sum((q - (mp + slope * (z - mz))) ** 2 for z, q in zip(Z, p))
-assert math.isclose(g["cfd"], -slope, rel_tol=1e-9), (g, slope)
-assert math.isclose(g["standard_error"], math.sqrt(rr / (7 * szz)), rel_tol=1e-6), g
-print(f"scatter: {g['cfd']:.6f} +- {g['standard_error']:.4f} Pa/m")
+    # Scattered planes: the slope and its standard error of the least-squares formula.
+    scatter = [0.1 * math.sin(3.0 * k) / RHO for k in range(9)]
+    case = make_case(work, "scatter", scatter)
+    g = report(exe, case)["pressure_gradient_Pa_m"]
+    p = [GRADIENT * (0.02 - z) + RHO * s for z, s in zip(Z, scatter)]
+    mz, mp = sum(Z) / 9, sum(p) / 9
+    szz = sum((z - mz) ** 2 for z in Z)
+    slope = sum((z - mz) * (q - mp) for z, q in zip(Z, p)) / szz
+    rr = sum((q - (mp + slope * (z - mz))) ** 2 for z, q in zip(Z, p))
+    assert math.isclose(g["cfd"], -slope, rel_tol=1e-9), (g, slope)
+    assert math.isclose(g["standard_error"], math.sqrt(rr / (7 * szz)), rel_tol=1e-6), g
+    print(f"scatter: {g['cfd']:.6f} +- {g['standard_error']:.4f} Pa/m")
 
-# A restarted run: the table of the latest start time (20) is the one read.
-g = report(make_case("restarted", restarted=True))["pressure_gradient_Pa_m"]
-assert math.isclose(g["cfd"], GRADIENT + RHO, rel_tol=1e-9), g
+    # A restarted run: the table of the latest start time (20) is the one read.
+    g = report(exe, make_case(work, "restarted", restarted=True))["pressure_gradient_Pa_m"]
+    assert math.isclose(g["cfd"], GRADIENT + RHO, rel_tol=1e-9), g
 
-# Bad cases: exit 2, one line naming CASE, nothing written.
-bad = make_case("bad")
-os.remove(os.path.join(bad, "postProcessing", "p3", "0", "surfaceFieldValue.dat"))
-nan = make_case("nan")
-with open(os.path.join(nan, "postProcessing", "p0", "0", "surfaceFieldValue.dat"), "a") as f:
-    f.write("30\t1e-06\tnan\n")
-old = make_case("old")
-j = json.load(open(os.path.join(old, "packbed.json")))
-del j["openfoam"]["flow"]["band_void_fraction"]
-json.dump(j, open(os.path.join(old, "packbed.json"), "w"))
-planeless = make_case("planeless")
-j = json.load(open(os.path.join(planeless, "packbed.json")))
-del j["openfoam"]["flow"]["pressure_planes"]
-json.dump(j, open(os.path.join(planeless, "packbed.json"), "w"))
-for case, words in ((bad, "postProcessing/p3"), (nan, "not a finite number"),
-                    (old, "band_void_fraction"), (planeless, "pressure_planes"), (os.path.join(work, "none"), "not a directory"),
-                    (work, "packbed.json")):
-    out = subprocess.run([exe, "cfd-report", case], capture_output=True, text=True)
-    assert out.returncode == 2, (case, out.returncode, out.stderr)
-    assert out.stderr.count("\n") == 1 and "CASE" in out.stderr and words in out.stderr, out.stderr
-    assert not os.path.exists(os.path.join(case, "cfd-report")), case
-    print(f"refused: {out.stderr.strip()}")
-shutil.rmtree(work)
+    # Bad cases: exit 2, one line naming CASE, nothing written.
+    bad = make_case(work, "bad")
+    os.remove(os.path.join(bad, "postProcessing", "p3", "0", "surfaceFieldValue.dat"))
+    nan = make_case(work, "nan")
+    with open(os.path.join(nan, "postProcessing", "p0", "0", "surfaceFieldValue.dat"), "a") as f:
+        f.write("30\t1e-06\tnan\n")
+    old = make_case(work, "old")
+    j = json.load(open(os.path.join(old, "packbed.json")))
+    del j["openfoam"]["flow"]["band_void_fraction"]
+    json.dump(j, open(os.path.join(old, "packbed.json"), "w"))
+    planeless = make_case(work, "planeless")
+    j = json.load(open(os.path.join(planeless, "packbed.json")))
+    del j["openfoam"]["flow"]["pressure_planes"]
+    json.dump(j, open(os.path.join(planeless, "packbed.json"), "w"))
+    for case, words in ((bad, "postProcessing/p3"), (nan, "not a finite number"),
+                        (old, "band_void_fraction"), (planeless, "pressure_planes"), (os.path.join(work, "none"), "not a directory"),
+                        (work, "packbed.json")):
+        out = subprocess.run([exe, "cfd-report", case], capture_output=True, text=True)
+        assert out.returncode == 2, (case, out.returncode, out.stderr)
+        assert out.stderr.count("\n") == 1 and "CASE" in out.stderr and words in out.stderr, out.stderr
+        assert not os.path.exists(os.path.join(case, "cfd-report")), case
+        print(f"refused: {out.stderr.strip()}")
+    shutil.rmtree(work)
+
+
+if __name__ == "__main__":
+    main(sys.argv[1])

@@ -9,16 +9,19 @@ Re_p = 1). Asserts
   inlet's flux is the superficial velocity times the tube's cross-section;
 - the pressure gradient over the bed clear of its ends (a straight line fitted to the 9
   planes' area-averaged pressures) against Eisfeld & Schnitzlein's at the bed's own void
-  fraction in the same band (packbed hydraulics): measured 0.55 of it (930.5 Pa/m against
-  1692 Pa/m; Ergun 889.5 Pa/m). The band asserted is 0.3 to 1.5: one bed at a = 3, the edge of
-  Eisfeld & Schnitzlein's data, on a mesh of Dp/16 at the particles, not yet a validation
-  (docs/notes/openfoam-v1912.md); it fails when the case's units, fluid or boundary
-  conditions are wrong (each of which moves it by orders of magnitude) or the flow short-cuts.
+  fraction in the same band (packbed hydraulics): measured 0.550 of it (930.5 Pa/m against
+  1692 Pa/m; Ergun 889.5 Pa/m). The band asserted is 0.45 to 0.65, 0.550 +- 18 %: the run is
+  deterministic (the same packages give the same digits), so the band is for another
+  OpenFOAM build or rank count, and narrow enough to catch what matters. One refinement level
+  coarser moved the paper's bed from 0.70 to 1.29 (docs/validation.md, "CFD"); wrong units,
+  fluid or boundary conditions move it by orders of magnitude. This is not the validation (the
+  bed is a = 3, the edge of Eisfeld & Schnitzlein's data): that is docs/validation.md.
 
 With a RANS model (`check_openfoam_flow.py PACKBED kOmegaSST 100`: --turbulence and
 --reynolds), the same bed at Re_p = 100: simpleFoam ran the model (its log names it, nut is
-not zero), converged to the RANS residuals (1e-5), conserved mass, and the gradient lies in
-the same band of Eisfeld & Schnitzlein (measured: 0.664, 1.995e5 Pa/m against 3.006e5).
+not zero), converged to the RANS residuals (1e-5), conserved mass, and the gradient lies
+within 18 % of the measured 0.664 of Eisfeld & Schnitzlein (1.995e5 Pa/m against 3.006e5):
+0.54 to 0.78.
 
 Usage: check_openfoam_flow.py PACKBED [TURBULENCE REYNOLDS]. Exit 77 (skipped) when OpenFOAM
 or mpirun is missing (scripts/install-deps.sh --test installs both)."""
@@ -105,7 +108,8 @@ print(f"pressure gradient {gradient:.4g} Pa/m over z {z[0]:.4g} to {z[-1]:.4g} m
       f"Schnitzlein {report['eisfeld_schnitzlein_Pa_m']:.4g} Pa/m (ratio {ratio:.3f}), Ergun "
       f"{report['ergun_Pa_m']:.4g} Pa/m, at the band's void fraction "
       f"{summary['void_fraction']:.4f}")
-assert 0.3 < ratio < 1.5, ratio
+measured = 0.550 if turbulence == "laminar" else 0.664
+assert abs(ratio / measured - 1) < 0.18, (ratio, measured)
 if turbulence != "laminar":  # the model ran: a turbulent viscosity somewhere in the bed
     times = [d for d in os.listdir(case) if re.fullmatch(r"[0-9]+", d) and d != "0"]
     nut = open(os.path.join(case, max(times, key=int), "nut")).read()

@@ -1346,6 +1346,23 @@ TEST(Cli, ExportOfABoxLatticeKeepsItsBox) {
     EXPECT_GT(at[1].get<double>(), 0.0);
     EXPECT_LT(at[1].get<double>(), 4.0);
     EXPECT_EQ(foam["volumes"]["fluid"], report["volumes"]["fluid"]);
+    // --velocity (the alias of --fluid-velocity) sets the inlet's, and Re_p = rho u d / mu
+    // follows (d = 1 mm by default); --turbulence kEpsilon adds its fields.
+    const Outcome v = packbed("export " + csv +
+                              " --format openfoam --contacts caps:0.05 --velocity 0.002 "
+                              "--turbulence kEpsilon -q --out " +
+                              (d / "rans").string());
+    ASSERT_EQ(v.status, 0) << v.err;
+    const auto flow = nlohmann::json::parse(slurp(d / "rans" / "packbed.json"))["openfoam"]["flow"];
+    EXPECT_EQ(flow["velocity"].get<double>(), 0.002);
+    EXPECT_NEAR(flow["reynolds"].get<double>(), 998.2 * 0.002 * 1e-3 / 1.002e-3, 1e-12);
+    EXPECT_EQ(flow["turbulence"], "kEpsilon");
+    EXPECT_GT(flow["band_void_fraction"].get<double>(), 0.0);
+    EXPECT_LT(flow["band_void_fraction"].get<double>(), 1.0);
+    EXPECT_TRUE(fs::exists(d / "rans" / "0.orig" / "epsilon"));
+    EXPECT_FALSE(fs::exists(d / "rans" / "0.orig" / "omega"));
+    EXPECT_NE(slurp(d / "rans" / "constant" / "turbulenceProperties").find("RASModel kEpsilon;"),
+              std::string::npos);
 
     // The data files: the box holds the container with a margin of max(Dp/2, 2/100) = 0.5, the
     // LAMMPS settle walls it in with a block region, the LIGGGHTS one with the box's faces.

@@ -144,7 +144,7 @@ Command register_export(CLI::App& parent) {
                     "xlo,xhi,ylo,yhi,zlo,zhi (default: the container and a margin of "
                     "max(Dp/2, Rt/100), a box's half narrower width for Rt, where the container "
                     "is known, else the smallest box holding every sphere)");
-    app->add_option("--fluid-velocity", o.request.fluid_velocity,
+    app->add_option("--fluid-velocity,--velocity", o.request.fluid_velocity,
                     "data files: record this fluid velocity (e.g. from packbed hydraulics) in the "
                     "header and in FILE.fluid.in as a LAMMPS variable; openfoam: the inlet's "
                     "superficial velocity, m/s (instead of --reynolds)")

@@ -351,6 +351,23 @@ def test_a_bad_value_gets_the_command_lines_message(call, arguments):
     assert err == f"packbed: {raised.value}\n"
 
 
+def test_cfd_report_gives_the_command_lines_numbers(tmp_path):
+    # a run case's files, made without OpenFOAM by the command line's own test
+    sys.path.insert(0, str(Path(__file__).resolve().parents[1]))
+    from check_cfd_report import GRADIENT, make_case
+
+    case = make_case(str(tmp_path), "case")
+    status, out, err = cli("cfd-report", case, "--json", "--out", str(tmp_path / "cli"))
+    assert status == 0, err
+    got = packbed.cfd_report(case, out=str(tmp_path / "module"))
+    assert got == json.loads(out)
+    assert got["pressure_gradient_Pa_m"]["cfd"] == pytest.approx(GRADIENT, rel=1e-9)
+    for name in ("pressure.csv", "cfd_report.json"):
+        assert (tmp_path / "module" / name).read_bytes() == (tmp_path / "cli" / name).read_bytes()
+    with pytest.raises(ValueError, match="^CASE .*none is not a directory"):
+        packbed.cfd_report(str(tmp_path / "none"))
+
+
 def test_hydraulics_and_correlations_give_the_command_lines_numbers():
     status, out, _ = cli("hydraulics", "--porosity", "0.4", "-a", "5", "--json")
     assert status == 0
