@@ -1,5 +1,6 @@
 // `packbed cfd-report`: the pressure gradient of a run OpenFOAM case next to the correlations
 // (pipeline.hpp).
+#include <charconv>
 #include <cmath>
 #include <filesystem>
 #include <map>
@@ -31,15 +32,12 @@ std::string shown(const fs::path& path) {
     return printable(path.native());
 }
 
-/// A number of `text` (all of it), or nothing.
+/// A finite number that is all of `text` (from_chars: no locale, no leading '+'), or nothing.
 std::optional<double> number(const std::string& text) {
-    try {
-        std::size_t used = 0;
-        const double v = std::stod(text, &used);
-        if (used == text.size() && std::isfinite(v))
-            return v;
-    } catch (const std::exception&) {
-    }
+    double v = 0.0;
+    const auto [end, error] = std::from_chars(text.data(), text.data() + text.size(), v);
+    if (error == std::errc() && end == text.data() + text.size() && std::isfinite(v))
+        return v;
     return std::nullopt;
 }
 
