@@ -893,8 +893,9 @@ container's solids, data files in the spheres' bounding box. Data files: density
 ('xlo,xhi,ylo,yhi,zlo,zhi'), fluid_velocity. Surfaces: contacts ('none', 'shrink:F',
 'enlarge:F', 'caps:H', 'bridges:D'), refine (icosphere level) or edge, and for 'openfoam'
 cells_per_diameter, particle_level, wall_level; the flow of its Allrun: ranks, reynolds (or
-fluid_velocity, m/s), turbulence ('laminar', 'kEpsilon', 'kOmegaSST'), fluid_density (kg/m^3), viscosity (Pa s), scale (metres per unit of the
-bed's lengths; None: particles of 1 mm). force: replace a non-empty case directory.
+fluid_velocity, m/s), turbulence ('laminar', 'kEpsilon', 'kOmegaSST'), fluid_density
+(kg/m^3), viscosity (Pa s), scale (metres per unit of the bed's lengths; None: particles of
+1 mm). force: replace a non-empty case directory.
 Returns the command line's report line. Raises ValueError for a bad value.)");
 
     m.def("hydraulics", &hydraulics, py::kw_only(), py::arg("porosity") = py::none(),
