@@ -39,21 +39,6 @@ std::string lower(std::string_view s) {
     return out;
 }
 
-std::vector<std::string_view> split_spaces(std::string_view line) {
-    std::vector<std::string_view> fields;
-    std::size_t i = 0;
-    while (i < line.size()) {
-        while (i < line.size() && std::isspace(static_cast<unsigned char>(line[i])))
-            ++i;
-        const std::size_t start = i;
-        while (i < line.size() && !std::isspace(static_cast<unsigned char>(line[i])))
-            ++i;
-        if (i > start)
-            fields.push_back(line.substr(start, i - start));
-    }
-    return fields;
-}
-
 /// The text before a '#' comment.
 std::string_view before_comment(std::string_view line) {
     return line.substr(0, line.find('#'));

@@ -41,22 +41,6 @@ std::optional<double> number(const std::string& text) {
     return std::nullopt;
 }
 
-/// The whitespace-separated words of `line`.
-std::vector<std::string> words(const std::string& line) {
-    std::vector<std::string> out;
-    std::size_t i = 0;
-    while (i < line.size()) {
-        while (i < line.size() && std::isspace(static_cast<unsigned char>(line[i])))
-            ++i;
-        const std::size_t start = i;
-        while (i < line.size() && !std::isspace(static_cast<unsigned char>(line[i])))
-            ++i;
-        if (i > start)
-            out.push_back(line.substr(start, i - start));
-    }
-    return out;
-}
-
 /// The last row of a function object's table, postProcessing/NAME/TIME/surfaceFieldValue.dat
 /// (the latest start time when the run was restarted), as column name -> value; the column
 /// names are those of its last header line ("# Time <tab> area <tab> areaAverage(p)").
@@ -87,7 +71,8 @@ std::map<std::string, double> last_row(const fs::path& case_dir, const std::stri
             throw InvalidInput(fmt::format("CASE {}: {} cannot be read (a line longer than {} "
                                            "bytes, or an I/O error)",
                                            shown(case_dir), shown(table), line_limit));
-        std::vector<std::string> w = words(line);
+        const auto fields = split_spaces(line);
+        std::vector<std::string> w(fields.begin(), fields.end());
         if (w.empty())
             continue;
         if (w.front() == "#") {
@@ -182,8 +167,11 @@ std::optional<double> mesh_volume(const fs::path& case_dir) {
         const auto at = line.find("Total volume = ");
         if (r != LineRead::line || at == std::string::npos)
             continue;
-        std::string value = words(line.substr(at + 15)).front();
-        if (!value.empty() && value.back() == '.')
+        const auto fields = split_spaces(std::string_view(line).substr(at + 15));
+        if (fields.empty())
+            continue;
+        std::string value(fields.front());
+        if (value.back() == '.')
             value.pop_back();
         out = number(value);
     }
