@@ -10,6 +10,11 @@ radial void-fraction profiles (x from the wall 0 to a/2, 0.02 Dp shells), the sa
 two halves of the paper's seeds (the noise floor) and the mean wall time and iterations.
 Targets (issue 5): |mean difference| <= 0.003 and profile RMS <= 0.01.
 
+With --reference fire the reference runs are the fire solver's (into OUT/fire-reference/) and
+the compared ones take --fire-args, e.g. the LAMMPS engine (issue 21: within 0.005 and 0.015):
+    bench/solver_equivalence.py --reference fire --fire-args "--engine lammps --ranks 2" \
+        --label lammps
+
 Usage: bench/solver_equivalence.py [--packbed build/packbed] [--aspect-ratios 5,10]
                                    [--seeds 1-10] [--out results/equivalence]
                                    [--paper-runs results/validation]
@@ -64,22 +69,27 @@ def main():
     p.add_argument("--existing-paper-runs-only", action="store_true",
                    help="compare with the paper runs already made (seeds without one are left "
                         "out of the paper's mean), do not start new ones")
+    p.add_argument("--reference", choices=["paper", "fire"], default="paper",
+                   help="the solver the runs of --fire-args are compared with")
     p.add_argument("--threads", default="2")
     args = p.parse_args()
     seeds = parse_seeds(args.seeds)
     verbose = sys.stderr.isatty()
 
-    print("| a | Np | seeds paper/fire | paper: mean e | fire: mean e | difference | profile RMS "
-          "| paper halves RMS | paper: s, iterations | fire: s, iterations |")
+    ref, label = args.reference, args.label
+    print(f"| a | Np | seeds {ref}/{label} | {ref}: mean e | {label}: mean e | difference "
+          f"| profile RMS | {ref} halves RMS | {ref}: s, iterations | {label}: s, iterations |")
     print("|---|---|---|---|---|---|---|---|---|---|")
     for a in [float(x) for x in args.aspect_ratios.split(",")]:
         runs = {"paper": [], "fire": []}
         for solver in runs:
             for seed in seeds:
-                folder = args.label if solver == "fire" else solver
+                folder = args.label if solver == "fire" else (
+                    "paper" if args.reference == "paper" else "fire-reference")
                 run = os.path.join(args.out, folder, f"a{a:g}", f"seed{seed}")
                 reused = os.path.join(args.paper_runs, f"a{a:g}", f"seed{seed}")
-                if solver == "paper" and os.path.exists(os.path.join(reused, "summary.json")):
+                if (solver == "paper" and args.reference == "paper"
+                        and os.path.exists(os.path.join(reused, "summary.json"))):
                     with open(os.path.join(reused, "summary.json")) as f:
                         s = json.load(f)
                     # Reuse only the same bed: same Np, same band, the paper's solver.
@@ -88,11 +98,12 @@ def main():
                             and s["parameters"].get("solver", "paper") == "paper"):
                         run = reused
                 if not os.path.exists(os.path.join(run, "summary.json")):
-                    if solver == "paper" and args.existing_paper_runs_only:
+                    if solver == "paper" and args.reference == "paper" and args.existing_paper_runs_only:
                         continue
                     if verbose:
                         print(f"a = {a:g}, seed {seed}, {solver} ...", file=sys.stderr, flush=True)
-                    subprocess.run([args.packbed, "generate", "--solver", solver,
+                    subprocess.run([args.packbed, "generate",
+                                    "--solver", solver if solver == "fire" else args.reference,
                                     "--aspect-ratio", f"{a:g}",
                                     "--particles", str(particles_for(a, args.height)),
                                     "--seed", str(seed), "--band-clearance", "2", "--quiet",

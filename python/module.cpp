@@ -2,6 +2,8 @@
 // (packbed/pipeline.hpp), as the command line is; python/packbed/__init__.py re-exports it.
 // Arrays: a Bed's centres and radii are numpy views of its own memory (no copy); everything
 // else is copied into new arrays.
+#include <stdlib.h>
+
 #include <csignal>
 #include <cstdint>
 #include <limits>
@@ -176,7 +178,9 @@ Bed generate(double aspect_ratio, const std::optional<std::string>& container, l
              const std::optional<std::filesystem::path>& checkpoint,
              std::optional<long long> max_iterations, double band_clearance,
              std::optional<long long> threads, const py::object& progress,
-             const std::optional<std::filesystem::path>& out, bool force) {
+             const std::optional<std::filesystem::path>& out, bool force, const std::string& engine,
+             long long ranks, const std::optional<std::string>& mpi_command,
+             const std::string& lmp) {
     GenerateRequest request;
     SoftSphereParameters& p = request.params;
     namespace range = option_range;
@@ -209,19 +213,52 @@ Bed generate(double aspect_ratio, const std::optional<std::string>& container, l
     request.container = container.value_or("");
     request.checkpoint = checkpoint ? checkpoint->string() : std::string();
     request.band_clearance = check_option("band-clearance", band_clearance, range::band_clearance);
+    request.engine = choice("engine", engine, engines());
+    LammpsLauncher launcher;
+    launcher.ranks = static_cast<std::uint32_t>(check_option("ranks", ranks, range::lammps_ranks));
+    launcher.mpi_command = mpi_command.value_or("");
+    launcher.lmp = lmp;
+    if (request.engine != Engine::lammps && (ranks != 1 || mpi_command.has_value() || lmp != "lmp"))
+        throw InvalidInput(fmt::format("ranks, mpi_command and lmp are not allowed with engine "
+                                       "'{}'; allowed: with engine 'lammps'",
+                                       engine));
     const PreparedGeneration prepared = prepare_generation(request);
-    std::optional<OutputDirectory> directory;
-    if (out)
+    if (request.engine == Engine::lammps)
+        lammps_launch(launcher); // mpi_command and lmp checked before anything is written
+    // The LAMMPS engine runs in a folder: `out`'s staging folder, or a temporary one removed
+    // with what LAMMPS wrote there (the directory is never committed).
+    std::filesystem::path scratch;
+    struct RemoveScratch {
+        const std::filesystem::path& path;
+        ~RemoveScratch() {
+            std::error_code ignored;
+            if (!path.empty())
+                std::filesystem::remove_all(path, ignored);
+        }
+    } remove_scratch{scratch};
+    std::optional<OutputDirectory> directory; // destroyed (its staging removed) before scratch
+    if (out) {
         directory.emplace(*out, "--out", OutputKind::directory, force);
+    } else if (request.engine == Engine::lammps) {
+        std::string name =
+            (std::filesystem::temp_directory_path() / "packbed-lammps-XXXXXX").string();
+        if (::mkdtemp(name.data()) == nullptr)
+            throw std::runtime_error("cannot create a temporary folder for LAMMPS in " +
+                                     std::filesystem::temp_directory_path().string());
+        scratch = name;
+        directory.emplace(scratch, "--out", OutputKind::directory, false);
+    }
     set_threads(threads);
     RunControl control;
     GeneratedBed generated = run_interruptible(control, progress, [&] {
+        if (request.engine == Engine::lammps)
+            return run_lammps_generation(prepared, launcher, control, *directory);
         return run_generation(prepared, control, omp_get_max_threads(),
                               directory ? &*directory : nullptr);
     });
     Bed bed{std::move(generated.result.packing), generated.result.container,
             std::move(generated.summary)};
-    if (directory) {
+    if (out) {
         stage_bed(*directory, bed.packing, *bed.container, band_clearance,
                   bed.summary["void_fraction"].is_number(), bed.summary);
         directory->commit();
@@ -791,6 +828,8 @@ in the directory `out` (new or empty; force=True replaces a non-empty one whole)
           py::arg("checkpoint") = py::none(), py::arg("max_iterations") = py::none(),
           py::arg("band_clearance") = 1.0, py::arg("threads") = py::none(),
           py::arg("progress") = py::none(), py::arg("out") = py::none(), py::arg("force") = false,
+          py::arg("engine") = to_string(Engine::packbed), py::arg("ranks") = 1,
+          py::arg("mpi_command") = py::none(), py::arg("lmp") = "lmp",
           R"(Pack spheres in a container with the soft-sphere algorithm of Salvat et al. (2005).
 
 The keyword arguments are `packbed generate`'s options in snake_case, with the same defaults
@@ -804,7 +843,9 @@ band_clearance. threads: at most this many threads (None: all; the result does n
 it). progress: called as progress(report) every mc_period iterations with a dict (stage,
 iteration, cg, max_overlap_pair, max_overlap_wall, mass_centre_z, layer, layers). out: a
 directory to write what `packbed generate` writes there (None: nothing is written); force:
-replace a non-empty one.
+replace a non-empty one. engine: 'packbed' (here, threads) or 'lammps' (the same relaxation run
+by LAMMPS, docs/lammps.md) with ranks (mpirun -np ranks), mpi_command (a launcher's words
+instead) and lmp (the LAMMPS program); with out, LAMMPS's files are kept in out/lammps/.
 
 Returns a Bed (same seed and options: the same bits as the command line). Raises ValueError
 for a bad value (the message names the option, the value and what is allowed),

@@ -233,6 +233,20 @@ data = open(os.path.join(repo, "results/bulk/bed.data")).read()
 check("0 0.016 xlo xhi" in data and "boundary        p p f" in
       open(os.path.join(repo, "results/bulk/bed.data.lammps.in")).read(),
       "LAMMPS gets the cell as its box, periodic in x and y")
+# 7. LAMMPS as the engine: the paper's case relaxed by LAMMPS on 2 ranks, within the tolerance
+# and the paper's void fraction; the cluster's job run and brought back by import-lammps.
+lmp = summary("results/a5-lammps")
+check(lmp["engine"]["name"] == "lammps" and lmp["engine"]["ranks"] == 2
+      and lmp["max_overlap_pair"] < 1e-4 and lmp["max_overlap_wall"] < 1e-4,
+      "LAMMPS relaxed the paper's case on 2 ranks within the 1e-4 Dp tolerance")
+check(0.42 < lmp["void_fraction"] < 0.45,
+      f"its void fraction {lmp['void_fraction']:.4f} in (0.42, 0.45) (the paper: 0.43-0.44)")
+back = summary("results/cluster-bed")
+check(back["particles"] == 1500 and back["engine"]["imported_from"] == "results/cluster-job"
+      and max(back["max_overlap_pair"], back["max_overlap_wall"]) < 1e-4,
+      "import-lammps brought back the cluster job's 1500 spheres, checked")
+check("#SBATCH --ntasks" in open(os.path.join(repo, "results/cluster-job/README.md")).read(),
+      "the job's README has a Slurm script")
 # The Python example: the module's bed, its profile plotted, its voxel images; the study.
 py = log_of("packbed.voxelize")
 m = re.search(r"500 spheres, centres \(500, 3\) void fraction ([0-9.]+)", py)

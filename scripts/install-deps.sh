@@ -1,8 +1,9 @@
 #!/usr/bin/env bash
 # Install what packbed needs on Debian 12, from Debian's packages only; nothing when everything
-# is already there. Usage: scripts/install-deps.sh [--cfd] [--test]
+# is already there. Usage: scripts/install-deps.sh [--cfd] [--lammps] [--test]
 #   --cfd   also what runs an exported OpenFOAM case and draws its flow (OpenFOAM, Open MPI,
 #           ParaView and its Python, xvfb)
+#   --lammps also what `packbed generate --engine lammps` runs (LAMMPS, Open MPI)
 #   --test  also what the test suite needs beyond the build (the --cfd packages, LAMMPS,
 #           LIGGGHTS and admesh to check the files packbed writes; clang for the sanitizers)
 # It never removes a package: apt-get runs with --no-remove, and a package that conflicts with
@@ -28,13 +29,14 @@ packages=(
   python3-numpy             # its arrays
   python3-matplotlib        # the README's Python example plots with it
 )
-cfd=0 test=0
+cfd=0 lammps=0 test=0
 for option in "$@"; do
   case $option in
     --cfd) cfd=1 ;;
-    --test) cfd=1 test=1 ;;
+    --lammps) lammps=1 ;;
+    --test) cfd=1 lammps=1 test=1 ;;
     *)
-      echo "install-deps: unknown option '$option'; allowed: --cfd, --test" >&2
+      echo "install-deps: unknown option '$option'; allowed: --cfd, --lammps, --test" >&2
       exit 2
       ;;
   esac
@@ -53,9 +55,12 @@ if ((cfd)); then
   packages+=(openfoam)      # blockMesh, snappyHexMesh, simpleFoam: the exported case's Allrun
   packages+=(openmpi-bin)   # mpirun: Allrun on --ranks N
 fi
+if ((lammps)); then
+  packages+=(lammps)        # lmp: generate --engine lammps; it reads packbed export's data files
+  packages+=(openmpi-bin)   # mpirun: --engine lammps --ranks N
+fi
 if ((test)); then
   packages+=(python3-pytest python3-tifffile)  # the Python module's tests (TIFF read back)
-  packages+=(lammps)        # reads the data files of packbed export (lmp)
   packages+=(liggghts)      # and LIGGGHTS reads them too
   packages+=(admesh)        # checks the STL surfaces of packbed export
   packages+=(clang)               # scripts/test-sanitize.sh and scripts/fuzz.sh: clang 14,

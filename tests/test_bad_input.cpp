@@ -277,7 +277,8 @@ TEST_P(CliBadInput, Exit2OneLineNamingTheInputNothingLeft) {
 }
 
 const std::string subcommands =
-    "allowed: generate, lattice, hydraulics, export, analyze, correlations, voxelize, cfd-report";
+    "allowed: generate, lattice, hydraulics, export, analyze, correlations, voxelize, cfd-report, "
+    "import-lammps";
 const std::string a_path = "allowed: a path of at most 4095 bytes without control characters "
                            "(newline, tab, ...)";
 const std::string regular = "allowed: a readable regular file";
@@ -333,15 +334,13 @@ INSTANTIATE_TEST_SUITE_P(
               "packbed: --aspect-ratio: 0.5 is not allowed; allowed: a number in [1, 10000]"),
         exact("--config range.toml",
               "packbed: a subcommand is required; allowed: generate, lattice, hydraulics, "
-              "export, analyze, correlations, voxelize, cfd-report"),
+              "export, analyze, correlations, voxelize, cfd-report, import-lammps"),
         exact("generate --config @D/unknown.toml",
               "packbed: --config @D/unknown.toml: line 2: unknown key 'warp_speed'; allowed: "
-              "aspect-ratio, "
-              "band-clearance, cg-step, checkpoint, ck, container, diameter, e0, force, "
-              "fractions, layer-height, "
-              "max-iterations, mc-period, mc-tolerance, mc-window, out, overlap-high, "
-              "overlap-low, particles, quiet, seed, sizes, skin, solver, threads, tolerance, "
-              "update"),
+              "aspect-ratio, band-clearance, cg-step, checkpoint, ck, container, diameter, e0, "
+              "engine, force, fractions, layer-height, lmp, max-iterations, mc-period, "
+              "mc-tolerance, mc-window, mpi-command, out, overlap-high, overlap-low, particles, "
+              "quiet, ranks, seed, sizes, skin, solver, threads, tolerance, update, write-only"),
         exact("generate --config @D/broken.toml",
               "packbed: --config @D/broken.toml: line 1, column 16: Error while parsing value: "
               "could not "
@@ -392,6 +391,29 @@ INSTANTIATE_TEST_SUITE_P(
               "packbed generate: --checkpoint c.json is not allowed with --container "
               "periodic:8,8; allowed: --checkpoint with a cylinder (a checkpoint does not record "
               "the container yet)"),
+        // The LAMMPS engine (issue 21): its options without it, what it cannot run, an
+        // engine or a launcher that is not one; import-lammps of a folder that is not a job.
+        exact("generate --ranks 4",
+              "packbed generate: --ranks, --mpi-command, --lmp and --write-only are not allowed "
+              "with --engine packbed; allowed: with --engine lammps"),
+        exact("generate --engine lammps --solver paper",
+              "packbed generate: --solver paper is not allowed with --engine lammps; allowed: "
+              "--solver fire (LAMMPS runs the fire solver's energy and schedule)"),
+        exact("generate --engine lammps --checkpoint c.json",
+              "packbed generate: --checkpoint c.json is not allowed with --engine lammps; "
+              "allowed: --checkpoint with --engine packbed"),
+        exact("generate --engine lammps --sizes uniform:0.5,1 -n 100 --write-only @D/job",
+              "packbed generate: --engine lammps with 100 distinct sphere sizes is not allowed; "
+              "allowed: at most 16 (one atom type and one group of wall fixes each): a --sizes "
+              "of discrete diameters"),
+        naming("generate --engine gromacs", {"--engine", "gromacs", "packbed, lammps"}),
+        naming("generate --engine lammps --ranks 0", {"--ranks", "0"}),
+        exact(std::vector<std::string>{"generate", "--engine", "lammps", "--mpi-command", " "},
+              "packbed generate: --mpi-command '' is not allowed; allowed: a launcher's words "
+              "such as 'srun -n 64'"),
+        exact("import-lammps @D/nothing-here",
+              "packbed import-lammps: FOLDER @D/nothing-here is not a directory; allowed: the "
+              "folder of a job written by packbed generate --engine lammps --write-only"),
         // Non-numbers.
         exact("generate --aspect-ratio five",
               "packbed: --aspect-ratio: 'five' is not allowed; allowed: a number in [1, 10000]"),

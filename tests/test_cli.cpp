@@ -275,7 +275,7 @@ TEST(Cli, AMistypedNameGetsTheClosestOne) {
     EXPECT_EQ(subcommand.status, 2);
     EXPECT_EQ(subcommand.err, "packbed: 'generat' is not a subcommand (did you mean generate?); "
                               "allowed: generate, lattice, hydraulics, export, analyze, "
-                              "correlations, voxelize, cfd-report\n");
+                              "correlations, voxelize, cfd-report, import-lammps\n");
     // Nothing close: no guess.
     EXPECT_EQ(packbed("generate --zzzzzz 4").err.find("did you mean"), std::string::npos);
 }

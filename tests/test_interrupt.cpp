@@ -166,6 +166,8 @@ struct Command {
     std::string out; // the output (--out), relative to work
     bool plots;      // draws plots with gnuplot when it is installed
     std::function<void(const fs::path&)> prepare = [](const fs::path&) {}; // inputs into work
+    std::string child = "gnuplot";   // the child program of Point::gnuplot
+    std::string child_argument = ""; // one of its arguments, to tell one run of it from another
 };
 
 // Inputs sized so that each phase lasts long enough to be hit (on 2 busy cores: computation
@@ -176,6 +178,18 @@ Command generate() {
              "--threads", "1", "--out", "out"},
             "out",
             true};
+}
+// The LAMMPS engine (issue 21): packbed waits for lmp, a child program in its own process
+// group, which the signal must stop with packbed.
+Command generate_lammps() {
+    Command c{"generate",
+              {"generate", "-q", "--engine", "lammps", "-a", "5", "-n", "500", "--seed", "1",
+               "--out", "out"},
+              "out",
+              true};
+    c.child = "lmp";
+    c.child_argument = "-in"; // the run, not the `lmp -h` that comes first
+    return c;
 }
 Command lattice() { // about 1.8e5 balls: 20 MB of CSV and VTU, without the analysis (the
                     // cylinder's case below runs it)
@@ -274,15 +288,23 @@ bool in_place(const fs::path& work, const std::string& out) {
 }
 
 /// The pid of a gnuplot child of `pid`, or 0.
-pid_t gnuplot_child(pid_t pid) {
+/// \return the child of `pid` running `program` with `argument` among its arguments (any when
+/// `argument` is empty), or 0.
+pid_t child_named(pid_t pid, const std::string& program, const std::string& argument) {
     std::ifstream children("/proc/" + std::to_string(pid) + "/task/" + std::to_string(pid) +
                            "/children");
     for (pid_t child = 0; children >> child;) {
         std::ifstream comm("/proc/" + std::to_string(child) + "/comm");
         std::string name;
         comm >> name;
-        if (name == "gnuplot")
+        if (name != program)
+            continue;
+        if (argument.empty())
             return child;
+        std::ifstream cmdline("/proc/" + std::to_string(child) + "/cmdline");
+        for (std::string word; std::getline(cmdline, word, '\0');)
+            if (word == argument)
+                return child;
     }
     return 0;
 }
@@ -297,11 +319,11 @@ bool ended(pid_t pid) {
     return close != std::string::npos && close + 2 < line.size() && line[close + 2] == 'Z';
 }
 
-bool gnuplot_installed() {
+bool installed(const std::string& program) {
     const char* path = std::getenv("PATH");
     std::istringstream dirs(path != nullptr ? path : "/usr/bin:/bin");
     for (std::string dir; std::getline(dirs, dir, ':');)
-        if (!dir.empty() && ::access((fs::path(dir) / "gnuplot").c_str(), X_OK) == 0)
+        if (!dir.empty() && ::access((fs::path(dir) / program).c_str(), X_OK) == 0)
             return true;
     return false;
 }
@@ -311,7 +333,7 @@ enum class Point { early, output, gnuplot };
 const char* to_string(Point p) {
     return p == Point::early    ? "early (computing)"
            : p == Point::output ? "during output"
-                                : "while gnuplot runs";
+                                : "while its child program (gnuplot, lmp) runs";
 }
 
 /// One run of `c`, signalled with `signal` at `point` (or after `delay`).
@@ -357,7 +379,7 @@ Interrupted run_interrupted(const Command& c, const fs::path& root, int signal,
         } else if (*point == Point::output) {
             now = new_data(work, inputs);
         } else {
-            now = (r.gnuplot = gnuplot_child(r.pid)) != 0;
+            now = (r.gnuplot = child_named(r.pid, c.child, c.child_argument)) != 0;
         }
         if (now) {
             r.committed = in_place(work, c.out);
@@ -411,7 +433,9 @@ bool expect_interrupted_or_complete(const Command& c, const Interrupted& r, bool
 
 /// SIGINT and SIGTERM at `point`: each run retried (up to 3 times) until the point is reached.
 void interrupt_at(const Command& c, Point point) {
-    if (point == Point::gnuplot && !gnuplot_installed())
+    if (c.child == "lmp" && !installed("lmp"))
+        GTEST_SKIP() << "lmp is not installed (Debian package lammps): no LAMMPS to interrupt";
+    if (point == Point::gnuplot && !installed(c.child))
         GTEST_SKIP() << "gnuplot is not installed (Debian package gnuplot-nox): no plots to "
                         "interrupt";
     for (const int signal : {SIGINT, SIGTERM}) {
@@ -523,7 +547,7 @@ void sweep(const Command& c) {
 struct Case {
     std::string name;
     std::function<Command()> command;
-    std::string what; // early, output, gnuplot, kill, sweep
+    std::string what; // early, output, gnuplot (or child: Command::child), kill, sweep
 };
 
 void PrintTo(const Case& c, std::ostream* os) {
@@ -539,7 +563,7 @@ TEST_P(Interrupt, LeavesNothingOrTheWholeOutput) {
         interrupt_at(c, Point::early);
     else if (p.what == "output")
         interrupt_at(c, Point::output);
-    else if (p.what == "gnuplot")
+    else if (p.what == "gnuplot" || p.what == "child")
         interrupt_at(c, Point::gnuplot);
     else if (p.what == "kill")
         kill_during_output(c);
@@ -562,6 +586,7 @@ std::vector<Case> cases() {
         for (const std::string what : {"early", "output", "kill", "sweep"})
             out.push_back({name, command, what});
     out.push_back({"Generate", generate, "gnuplot"});
+    out.push_back({"GenerateLammps", generate_lammps, "child"}); // while lmp runs
     out.push_back({"Analyze", analyze, "gnuplot"});
     out.push_back({"LatticeCylinder", lattice_cylinder, "gnuplot"});
     return out;

@@ -25,6 +25,7 @@ Command register_hydraulics(CLI::App& parent);
 Command register_export(CLI::App& parent);
 Command register_voxelize(CLI::App& parent);
 Command register_cfd_report(CLI::App& parent);
+Command register_import_lammps(CLI::App& parent);
 
 namespace {
 
@@ -63,10 +64,10 @@ std::vector<Command> build_app(CLI::App& app) {
                    "read a subcommand's options from this TOML file (keys are the option names, "
                    "e.g. aspect-ratio = 5); the command line wins");
     app.config_formatter(std::make_shared<TomlConfig>(&app));
-    std::vector<Command> commands{register_generate(app),   register_lattice(app),
-                                  register_hydraulics(app), register_export(app),
-                                  register_analyze(app),    register_correlations(app),
-                                  register_voxelize(app),   register_cfd_report(app)};
+    std::vector<Command> commands{
+        register_generate(app), register_lattice(app),    register_hydraulics(app),
+        register_export(app),   register_analyze(app),    register_correlations(app),
+        register_voxelize(app), register_cfd_report(app), register_import_lammps(app)};
     hide_defaults_outside_their_range(app);
     return commands;
 }

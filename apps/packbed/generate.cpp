@@ -12,6 +12,7 @@
 #include "packbed/analysis.hpp"
 #include "packbed/error.hpp"
 #include "packbed/io.hpp"
+#include "packbed/lammps_engine.hpp"
 #include "packbed/limits.hpp"
 #include "packbed/output.hpp"
 #include "packbed/pipeline.hpp"
@@ -34,10 +35,72 @@ struct GenerateOptions {
     std::string sizes = "mono";
     std::string fractions = to_string(FractionBasis::volume);
     double band_clearance = 1.0;
+    std::string engine = to_string(Engine::packbed);
+    LammpsLauncher lammps;
+    std::string write_only; // --write-only DIR: the LAMMPS job, not run
     unsigned long long threads = static_cast<unsigned long long>(omp_get_num_procs());
     bool quiet = false;
     bool force = false;
 };
+
+/// The print-out of a generated bed (generate, import-lammps). \param command the subcommand
+/// \param engine " (LAMMPS)" or "" \param more what else `out` holds, or ""
+void report_bed(const PreparedGeneration& prepared, const GeneratedBed& bed,
+                const OutputDirectory& out, std::string_view command, std::string_view engine,
+                std::string_view more) {
+    const SoftSphereParameters& params = prepared.params;
+    const SoftSphereResult& result = bed.result;
+    const auto& summary = bed.summary;
+    fmt::print("packbed {}: {} spheres, {}, seed {}{}: {} iterations, {:.2f} s\n", command,
+               params.particles,
+               params.container ? result.container.spec()
+                                : fmt::format("a = {}", params.aspect_ratio),
+               params.seed, engine, result.iterations, result.seconds);
+    fmt::print("largest overlaps: sphere-sphere {:.3e} Dp, sphere-wall {:.3e} Dp\n",
+               result.max_overlap_pair, result.max_overlap_wall);
+    if (summary["void_fraction"].is_number())
+        fmt::print("void fraction: {:.4f} (between z = {:.4g} and z = {:.4g})\n",
+                   summary["void_fraction"].get<double>(),
+                   summary["void_fraction_band"][0].get<double>(),
+                   summary["void_fraction_band"][1].get<double>());
+    else
+        fmt::print("void fraction: not computed: {}\n",
+                   summary["void_fraction_note"].get<std::string>());
+    fmt::print("results in {}/ (particles.csv, particles.vtu, summary.json and the "
+               "analysis tables{})\n",
+               out.path().string(), more);
+}
+
+/// --engine lammps: the job written (--write-only) or run by LAMMPS and read back.
+int run_lammps(GenerateOptions& o, const PreparedGeneration& prepared) {
+    lammps_launch(o.lammps); // --mpi-command and --lmp checked before anything is written
+    if (!o.write_only.empty()) {
+        OutputDirectory out(o.write_only, "--write-only", OutputKind::directory, o.force);
+        const std::vector<std::string> command =
+            stage_lammps_job(out, "", prepared, o.lammps, LammpsPairStyle::gran_hooke);
+        out.commit();
+        if (!o.quiet)
+            fmt::print("packbed generate: the LAMMPS job for {} spheres is in {}/; run it there "
+                       "with `{} -in in.packbed` (README.md has a cluster's script), then "
+                       "`packbed import-lammps {}`\n",
+                       prepared.params.particles, out.path().string(),
+                       fmt::join(command.begin(), command.end() - 4, " "), out.path().string());
+        return 0;
+    }
+    OutputDirectory out(o.out, "--out", OutputKind::directory, o.force);
+    TerminalProgress progress(progress_wanted(o.quiet), prepared.params, "LAMMPS");
+    RunControl control;
+    control.on_progress = [&](const Progress& p) { progress(p); };
+    GeneratedBed bed = run_lammps_generation(prepared, o.lammps, control, out);
+    progress.finish();
+    stage_bed(out, bed.result.packing, bed.result.container, o.band_clearance,
+              bed.summary["void_fraction"].is_number(), bed.summary);
+    out.commit();
+    if (!o.quiet)
+        report_bed(prepared, bed, out, "generate", " (LAMMPS)",
+                   "; lammps/: the job and LAMMPS's log");
+    return 0;
+}
 
 int run_generate(GenerateOptions& o) {
     GenerateRequest request;
@@ -55,7 +118,18 @@ int run_generate(GenerateOptions& o) {
     request.container = o.container;
     request.checkpoint = o.checkpoint;
     request.band_clearance = o.band_clearance;
+    for (const auto& [name, value] : engines())
+        if (name == o.engine)
+            request.engine = value;
+    const bool lammps_only = o.lammps.ranks != 1 || !o.lammps.mpi_command.empty() ||
+                             o.lammps.lmp != "lmp" || !o.write_only.empty();
+    if (request.engine != Engine::lammps && lammps_only)
+        throw InvalidInput(fmt::format("--ranks, --mpi-command, --lmp and --write-only are not "
+                                       "allowed with --engine {}; allowed: with --engine lammps",
+                                       o.engine));
     const PreparedGeneration prepared = prepare_generation(request);
+    if (request.engine == Engine::lammps)
+        return run_lammps(o, prepared);
     const SoftSphereParameters& params = prepared.params;
     // Every check before the run: the output directory, the checkpoint.
     OutputDirectory out(o.out, "--out", OutputKind::directory, o.force);
@@ -77,30 +151,53 @@ int run_generate(GenerateOptions& o) {
     stage_bed(out, result.packing, result.container, o.band_clearance,
               summary["void_fraction"].is_number(), summary);
     out.commit();
-    if (!o.quiet) {
-        fmt::print("packbed generate: {} spheres, {}, seed {}: {} iterations, {:.2f} s\n",
-                   params.particles,
-                   params.container ? result.container.spec()
-                                    : fmt::format("a = {}", params.aspect_ratio),
-                   params.seed, result.iterations, result.seconds);
-        fmt::print("largest overlaps: sphere-sphere {:.3e} Dp, sphere-wall {:.3e} Dp\n",
-                   result.max_overlap_pair, result.max_overlap_wall);
-        if (summary["void_fraction"].is_number())
-            fmt::print("void fraction: {:.4f} (between z = {:.4g} and z = {:.4g})\n",
-                       summary["void_fraction"].get<double>(),
-                       summary["void_fraction_band"][0].get<double>(),
-                       summary["void_fraction_band"][1].get<double>());
-        else
-            fmt::print("void fraction: not computed: {}\n",
-                       summary["void_fraction_note"].get<std::string>());
-        fmt::print("results in {}/ (particles.csv, particles.vtu, summary.json and the "
-                   "analysis tables)\n",
-                   out.path().string());
-    }
+    if (!o.quiet)
+        report_bed(prepared, bed, out, "generate", "", "");
+    return 0;
+}
+
+struct ImportOptions {
+    std::string folder;
+    std::string out = "packbed-out";
+    bool quiet = false;
+    bool force = false;
+};
+
+int run_import(const ImportOptions& o) {
+    OutputDirectory out(o.out, "--out", OutputKind::directory, o.force);
+    out.keep("FOLDER", o.folder);
+    ImportedLammps imported = import_lammps(o.folder);
+    GeneratedBed& bed = imported.bed;
+    stage_bed(out, bed.result.packing, bed.result.container,
+              imported.prepared.request.band_clearance, bed.summary["void_fraction"].is_number(),
+              bed.summary);
+    out.commit();
+    if (!o.quiet)
+        report_bed(imported.prepared, bed, out, "import-lammps", " (LAMMPS)", "");
     return 0;
 }
 
 } // namespace
+
+Command register_import_lammps(CLI::App& parent) {
+    auto options = std::make_shared<ImportOptions>();
+    auto& o = *options;
+    CLI::App* app = parent.add_subcommand(
+        "import-lammps",
+        "Bring back a bed LAMMPS relaxed from a job of `generate --engine lammps --write-only`: "
+        "read bed.dump and log.lammps, check the bed and write what generate writes");
+    app->option_defaults()->always_capture_default();
+    app->add_option("folder", o.folder,
+                    "the job's folder (job.json, log.lammps and bed.dump in it)")
+        ->required()
+        ->check(path_text());
+    add_output_directory(*app, o.out, o.force);
+    app->add_flag("-q,--quiet", o.quiet, "no report on the terminal");
+    app->fallthrough();
+    app->footer("Exit status: 0 success, 1 the LAMMPS run failed or its bed fails a check, 2 bad "
+                "input, 130 interrupted.");
+    return {app, [options] { return run_import(*options); }};
+}
 
 Command register_generate(CLI::App& parent) {
     auto options = std::make_shared<GenerateOptions>();
@@ -187,6 +284,29 @@ Command register_generate(CLI::App& parent) {
                     "minimised with FIRE under its own settling schedule, the paper's beds in "
                     "far fewer iterations (docs/performance.md)")
         ->check(one_of(solver_names));
+    std::vector<std::string> engine_names;
+    for (const auto& entry : engines())
+        engine_names.push_back(entry.first);
+    CLI::Option* engine =
+        app->add_option("--engine", o.engine,
+                        "packbed: relax here (OpenMP threads); lammps: the fire solver's energy "
+                        "and schedule run by LAMMPS (MPI ranks), the bed read back and checked "
+                        "(docs/lammps.md)")
+            ->check(one_of(engine_names));
+    app->add_option("--ranks", o.lammps.ranks,
+                    "--engine lammps: MPI ranks, `mpirun -np RANKS lmp` (1: lmp alone)")
+        ->check(whole_in(option_range::lammps_ranks));
+    app->add_option("--mpi-command", o.lammps.mpi_command,
+                    "--engine lammps: a launcher's words instead of `mpirun -np RANKS` (e.g. "
+                    "'srun -n 64'); no shell runs them");
+    app->add_option("--lmp", o.lammps.lmp,
+                    "--engine lammps: the LAMMPS program (lmp, lmp_mpi or a path)");
+    app->add_option("--write-only", o.write_only,
+                    "--engine lammps: write the LAMMPS job (data file, input, README with a "
+                    "cluster's script) to this new directory and stop; `packbed import-lammps "
+                    "DIR` brings the bed back")
+        ->check(path_text());
+    (void)engine;
     app->add_option("--skin", p.skin, "Verlet neighbour-list skin, Dp")
         ->check(real_in(option_range::skin));
     app->add_option("--layer-height", p.layer_height,

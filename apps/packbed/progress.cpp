@@ -49,8 +49,10 @@ void TerminalProgress::operator()(const Progress& p) {
     const std::optional<double> left = p.layers > 1 ? run_left : stage_left;
     if (m_drawn && now - m_last < std::chrono::milliseconds(100))
         return;
-    const std::string left_text =
-        left.has_value() ? fmt::format("~{:.0f} s left", left.value_or(0.0)) : "estimating";
+    const std::string left_text = !m_engine.empty() ? m_engine
+                                  : left.has_value()
+                                      ? fmt::format("~{:.0f} s left", left.value_or(0.0))
+                                      : "estimating";
     m_last = now;
     m_drawn = true;
     progress_line_drawn(true);

@@ -25,9 +25,13 @@ class TerminalProgress {
 public:
     /// \param enabled when false, every call does nothing
     /// \param parameters the run's, for the estimate of the time left in each stage
-    TerminalProgress(bool enabled, const SoftSphereParameters& parameters)
+    /// \param engine "" for packbed's solvers, whose time left is estimated; else the engine's
+    /// name, shown instead (LAMMPS's settling rule is not the mass-centre rule the estimate
+    /// follows)
+    TerminalProgress(bool enabled, const SoftSphereParameters& parameters, std::string engine = {})
         : m_enabled(enabled)
-        , m_time_left(parameters) {}
+        , m_time_left(parameters)
+        , m_engine(std::move(engine)) {}
     ~TerminalProgress() { finish(); }
     TerminalProgress(const TerminalProgress&) = delete;
     TerminalProgress& operator=(const TerminalProgress&) = delete;
@@ -41,6 +45,7 @@ private:
     bool m_enabled;
     bool m_drawn = false;
     StageTimeLeft m_time_left;
+    std::string m_engine;
     std::chrono::steady_clock::time_point m_start = std::chrono::steady_clock::now();
     std::chrono::steady_clock::time_point m_last{};
     LayerTimeLeft m_layers_left;

@@ -41,10 +41,12 @@ AxisBox bounding_box(const Packing& packing);
 /// \param box must hold every centre (LAMMPS drops atoms outside a fixed box)
 /// \param comment first line of the file (no newline)
 /// \param notes header comments written after it, each as a line `# NOTE`
+/// \param types each sphere's atom type, from 1 (the LAMMPS engine's sizes); empty: type 1
 /// \throws InvalidInput when the density is not > 0, a centre is outside the box, or a header
 /// line (the comment, a note) is longer than max_data_header_line (or holds a newline)
 std::string lammps_data(const Packing& packing, double density, const AxisBox& box,
-                        std::string_view comment, const std::vector<std::string>& notes = {});
+                        std::string_view comment, const std::vector<std::string>& notes = {},
+                        const std::vector<std::uint32_t>& types = {});
 
 /// The longest header line LAMMPS (2022) and LIGGGHTS (3.8) read whole: both read the data
 /// file's lines into 256-byte buffers, and go on reading the rest of a longer title as a header

@@ -93,6 +93,8 @@ inline constexpr NumberRange export_diameter{0.0, inf, true, true};
 // export --format openfoam's flow (SI): ranks of Allrun, the particle Reynolds number (steady
 // laminar flow to a few hundred, RANS beyond), metres per unit of the bed's lengths
 inline constexpr WholeRange ranks{1, 1024};
+/// generate --engine lammps: mpirun's ranks (a cluster's launcher: --mpi-command).
+inline constexpr WholeRange lammps_ranks{1, 1'000'000};
 inline constexpr NumberRange reynolds{0.0, 1e5, true, false};
 inline constexpr NumberRange metres_per_unit{0.0, 1e3, true, false};
 

@@ -16,6 +16,7 @@
 #include "packbed/analysis.hpp"
 #include "packbed/container.hpp"
 #include "packbed/hydraulics.hpp"
+#include "packbed/lammps_engine.hpp"
 #include "packbed/openfoam.hpp"
 #include "packbed/output.hpp"
 #include "packbed/packing.hpp"
@@ -46,6 +47,7 @@ struct GenerateRequest {
     std::string container;                           ///< a ContainerSpec text; "": aspect_ratio
     std::string checkpoint;                          ///< --checkpoint file; "": none
     double band_clearance = 1.0;                     ///< of the void-fraction band, Dp
+    Engine engine = Engine::packbed; ///< who relaxes the bed (Engine::lammps: the fire solver's)
 };
 
 /// A request with its sizes drawn and its container resolved into the solver's parameters,
@@ -78,6 +80,47 @@ struct GeneratedBed {
 GeneratedBed run_generation(const PreparedGeneration& prepared, RunControl control, int threads,
                             OutputDirectory* out = nullptr,
                             const std::function<void(std::uint32_t layers_done)>& on_resume = {});
+
+/// summary.json of a generated bed: soft_sphere_summary (with `threads`) and, for drawn sizes,
+/// their spec and statistics.
+nlohmann::json generation_summary(const PreparedGeneration& prepared,
+                                  const SoftSphereResult& result, int threads);
+
+// ---------------------------------------------------------------------------------------------
+// generate --engine lammps (lammps_engine.hpp, docs/lammps.md)
+
+/// Which pair style the LAMMPS of `launcher` has, from `lmp -h` (run in `out`'s staging
+/// folder): gran/hooke where listed, else harmonic/cut.
+/// \throws InvalidInput naming --lmp when it cannot be started or is not LAMMPS
+LammpsPairStyle probe_lammps(const LammpsLauncher& launcher, OutputDirectory& out);
+
+/// Stage a LAMMPS job for `prepared` in `out`, in `folder` ("": at the top): start.data,
+/// in.packbed, README.md and job.json (the request, for
+/// import_lammps). \return the words that run it in that folder.
+std::vector<std::string> stage_lammps_job(OutputDirectory& out, const std::string& folder,
+                                          const PreparedGeneration& prepared,
+                                          const LammpsLauncher& launcher, LammpsPairStyle style);
+
+/// generate --engine lammps: the job staged in `out`'s lammps/ folder, LAMMPS run there
+/// (without a shell; progress from its log, stopped when control.should_stop() says so),
+/// the bed read back and checked (lammps_result), its summary with the engine recorded.
+/// \throws InvalidInput (LAMMPS or the launcher missing), ConvergenceError (LAMMPS failed: its
+/// own message), Cancelled
+GeneratedBed run_lammps_generation(const PreparedGeneration& prepared,
+                                   const LammpsLauncher& launcher, const RunControl& control,
+                                   OutputDirectory& out);
+
+/// A bed LAMMPS relaxed in a job folder, brought back.
+struct ImportedLammps {
+    PreparedGeneration prepared; ///< the request of the folder's job.json
+    GeneratedBed bed;
+};
+
+/// import-lammps FOLDER: the folder of a job written by --write-only (job.json) after LAMMPS
+/// ran in it (log.lammps, bed.dump), read back and checked as generate --engine lammps does.
+/// \throws InvalidInput naming the folder when a file is missing or job.json is not one;
+/// ConvergenceError when the run failed or the bed fails a check
+ImportedLammps import_lammps(const std::filesystem::path& folder);
 
 // ---------------------------------------------------------------------------------------------
 // the outputs of a bed

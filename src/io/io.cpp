@@ -40,7 +40,8 @@ AxisBox bounding_box(const Packing& packing) {
 }
 
 std::string lammps_data(const Packing& packing, double density, const AxisBox& box,
-                        std::string_view comment, const std::vector<std::string>& notes) {
+                        std::string_view comment, const std::vector<std::string>& notes,
+                        const std::vector<std::uint32_t>& types) {
     if (!(std::isfinite(density) && density > 0.0))
         throw InvalidInput(
             fmt::format("density = {} is not allowed; allowed: a number > 0", density));
@@ -68,15 +69,17 @@ std::string lammps_data(const Packing& packing, double density, const AxisBox& b
                 i + 1, c.x, c.y, c.z, box.lo.x, box.hi.x, box.lo.y, box.hi.y, box.lo.z, box.hi.z));
     }
     fmt::memory_buffer out;
-    fmt::format_to(std::back_inserter(out), "{}\n\n{} atoms\n1 atom types\n\n", header,
-                   packing.size());
+    const std::uint32_t ntypes = types.empty() ? 1u : *std::max_element(types.begin(), types.end());
+    fmt::format_to(std::back_inserter(out), "{}\n\n{} atoms\n{} atom types\n\n", header,
+                   packing.size(), ntypes);
     fmt::format_to(std::back_inserter(out), "{} {} xlo xhi\n{} {} ylo yhi\n{} {} zlo zhi\n\n",
                    box.lo.x, box.hi.x, box.lo.y, box.hi.y, box.lo.z, box.hi.z);
     fmt::format_to(std::back_inserter(out), "Atoms # sphere\n\n");
     for (std::size_t i = 0; i < packing.size(); ++i) {
         const Vec3 c = packing.centers[i];
-        fmt::format_to(std::back_inserter(out), "{} 1 {} {} {} {} {}\n", i + 1,
-                       2.0 * packing.radii[i], density, c.x, c.y, c.z);
+        fmt::format_to(std::back_inserter(out), "{} {} {} {} {} {} {}\n", i + 1,
+                       types.empty() ? 1u : types[i], 2.0 * packing.radii[i], density, c.x, c.y,
+                       c.z);
     }
     return fmt::to_string(out);
 }

@@ -86,6 +86,16 @@ PreparedGeneration prepare_generation(GenerateRequest request) {
         p.aspect_ratio = a;
     }
     p.validate();
+    if (request.engine == Engine::lammps) {
+        if (p.solver != Solver::fire)
+            throw InvalidInput("--solver paper is not allowed with --engine lammps; allowed: "
+                               "--solver fire (LAMMPS runs the fire solver's energy and "
+                               "schedule)");
+        if (!request.checkpoint.empty())
+            throw InvalidInput(fmt::format("--checkpoint {} is not allowed with --engine lammps; "
+                                           "allowed: --checkpoint with --engine packbed",
+                                           printable(request.checkpoint)));
+    }
     if (!request.checkpoint.empty()) {
         check_path("--checkpoint", request.checkpoint);
         if (p.solver != Solver::fire || fire_layers(p) == 1)
@@ -122,15 +132,22 @@ GeneratedBed run_generation(const PreparedGeneration& prepared, RunControl contr
     }
     GeneratedBed bed;
     bed.result = generate_soft_sphere(p, control);
-    bed.summary = soft_sphere_summary(p, bed.result, prepared.request.band_clearance, threads);
-    if (prepared.drawn)
-        bed.summary["sizes"] = {{"spec", prepared.request.sizes},
-                                {"fractions", to_string(prepared.request.fractions)},
-                                {"reference_diameter",
-                                 "the Sauter mean d32: a = D / d32, and lengths in Dp are in "
-                                 "units of it"},
-                                {"statistics", size_statistics_summary(*prepared.drawn)}};
+    bed.summary = generation_summary(prepared, bed.result, threads);
     return bed;
+}
+
+nlohmann::json generation_summary(const PreparedGeneration& prepared,
+                                  const SoftSphereResult& result, int threads) {
+    nlohmann::json summary =
+        soft_sphere_summary(prepared.params, result, prepared.request.band_clearance, threads);
+    if (prepared.drawn)
+        summary["sizes"] = {{"spec", prepared.request.sizes},
+                            {"fractions", to_string(prepared.request.fractions)},
+                            {"reference_diameter",
+                             "the Sauter mean d32: a = D / d32, and lengths in Dp are in "
+                             "units of it"},
+                            {"statistics", size_statistics_summary(*prepared.drawn)}};
+    return summary;
 }
 
 void stage_bed(OutputDirectory& out, const Packing& packing, const Container& container,

@@ -1,19 +1,13 @@
 // The plots of an analysis and the analysis generate and lattice stage (pipeline.hpp).
 #include "packbed/pipeline.hpp"
 
+#include "child.hpp"
 #include "gnuplot.hpp"
-
-#include <fcntl.h>
-#include <signal.h>
-#include <spawn.h>
-#include <sys/wait.h>
 
 #include <cstdio>
 #include <fstream>
-#include <mutex>
 
 #include <fmt/format.h>
-#include <unistd.h>
 
 #include "packbed/analysis_files.hpp"
 #include "packbed/correlations.hpp"
@@ -24,20 +18,6 @@ namespace packbed {
 
 namespace {
 
-/// set_child_watcher's hook, and the lock that guards it.
-std::mutex watcher_lock;
-std::function<void(pid_t)> child_watcher;
-
-void watch_child(pid_t pid) {
-    std::function<void(pid_t)> watcher;
-    {
-        const std::lock_guard lock(watcher_lock);
-        watcher = child_watcher;
-    }
-    if (watcher)
-        watcher(pid);
-}
-
 /// A gnuplot datablock named `name` with the bins' middles over Dp and their values.
 std::string datablock(std::string_view name, const std::vector<ProfileBin>& bins, double dp) {
     std::string out = fmt::format("${} << EOD\n", name);
@@ -46,46 +26,12 @@ std::string datablock(std::string_view name, const std::vector<ProfileBin>& bins
     return out + "EOD\n";
 }
 
-/// Run `gnuplot SCRIPT` in `folder`, without a shell, its output to /dev/null, in a process
-/// group of its own (the interrupt handler stops it; a Ctrl-C reaches packbed only).
-/// `script` and the files it writes are named relative to `folder`, so no text of the user's
-/// (an output path) ever reaches gnuplot.
-/// \return the exit status; 127 when gnuplot cannot be started.
+/// Run `gnuplot SCRIPT` in `folder` (run_program), its output dropped. `script` and the files
+/// it writes are named relative to `folder`, so no text of the user's (an output path) ever
+/// reaches gnuplot. \return the exit status; 127 when gnuplot cannot be started.
 int run_gnuplot(const std::filesystem::path& folder, const std::string& script) {
-    posix_spawn_file_actions_t actions;
-    posix_spawn_file_actions_init(&actions);
-    posix_spawn_file_actions_addopen(&actions, STDIN_FILENO, "/dev/null", O_RDONLY, 0);
-    posix_spawn_file_actions_addopen(&actions, STDOUT_FILENO, "/dev/null", O_WRONLY, 0);
-    posix_spawn_file_actions_addopen(&actions, STDERR_FILENO, "/dev/null", O_WRONLY, 0);
-    posix_spawn_file_actions_addchdir_np(&actions, folder.c_str());
-    posix_spawnattr_t attributes;
-    posix_spawnattr_init(&attributes);
-    sigset_t none, defaults;
-    sigemptyset(&none);
-    sigemptyset(&defaults);
-    sigaddset(&defaults, SIGINT);
-    sigaddset(&defaults, SIGTERM);
-    sigaddset(&defaults, SIGHUP);
-    posix_spawnattr_setsigmask(&attributes, &none);
-    posix_spawnattr_setsigdefault(&attributes, &defaults);
-    posix_spawnattr_setpgroup(&attributes, 0);
-    posix_spawnattr_setflags(&attributes, POSIX_SPAWN_SETSIGMASK | POSIX_SPAWN_SETSIGDEF |
-                                              POSIX_SPAWN_SETPGROUP);
-    std::string program = "gnuplot", argument = script;
-    char* argv[] = {program.data(), argument.data(), nullptr};
-    pid_t pid = 0;
-    const int spawned = posix_spawnp(&pid, "gnuplot", &actions, &attributes, argv, environ);
-    posix_spawn_file_actions_destroy(&actions);
-    posix_spawnattr_destroy(&attributes);
-    if (spawned != 0)
-        return 127;
-    watch_child(pid);
-    int status = 0;
-    const bool waited = waitpid(pid, &status, 0) == pid;
-    watch_child(0);
-    if (!waited || !WIFEXITED(status))
-        return 1;
-    return WEXITSTATUS(status);
+    const int status = run_program({"gnuplot", script}, folder, "/dev/null");
+    return status < 0 ? 1 : status;
 }
 
 } // namespace
@@ -110,11 +56,6 @@ std::string draw_plots(OutputDirectory& out, const std::vector<std::string>& nam
         out.discard(file.filename().string());
     return status == 127 ? "gnuplot not found (Debian package gnuplot-nox): no plots"
                          : fmt::format("gnuplot failed (exit status {}): no plots", status);
-}
-
-void set_child_watcher(std::function<void(pid_t)> watcher) {
-    const std::lock_guard lock(watcher_lock);
-    child_watcher = std::move(watcher);
 }
 
 std::string stage_plots(OutputDirectory& out, const BedAnalysis& a, const Container& container) {

@@ -6,9 +6,11 @@ Run by ctest (python_module): PYTHONPATH holds build/python, PACKBED the command
 import json
 import math
 import os
+import shutil
 import signal
 import subprocess
 import sys
+import tempfile
 import time
 from pathlib import Path
 
@@ -139,6 +141,8 @@ def test_a_lattice_in_a_box_has_its_exact_porosity():
         (lambda: packbed.export(packbed.lattice(), "x.data", format="vrml"),
          ["format", "vrml", "allowed"]),
         (lambda: packbed.hydraulics(), ["porosity", "allowed"]),
+        (lambda: packbed.generate(engine="gromacs"), ["engine", "gromacs", "allowed"]),
+        (lambda: packbed.generate(ranks=2), ["ranks", "engine", "allowed"]),
         (lambda: packbed.hydraulics(porosity=0.4, aspect_ratio=5, container="cylinder:0.01"),
          ["aspect-ratio", "container", "allowed"]),
     ],
@@ -159,6 +163,22 @@ def test_bad_output_directory_raises_and_writes_nothing(tmp_path):
     with pytest.raises(ValueError, match="--out"):
         packbed.generate(particles=10, out=str(full))
     assert sorted(os.listdir(full)) == ["mine.txt"]
+
+
+@pytest.mark.skipif(shutil.which("lmp") is None, reason="lmp (Debian package lammps) missing")
+def test_the_lammps_engine_gives_the_command_lines_bed(tmp_path):
+    # LAMMPS on one rank: the same bed from both front ends, bit for bit, and the temporary
+    # folder LAMMPS ran in removed.
+    before = set(Path(tempfile.gettempdir()).glob("packbed-lammps-*"))
+    bed = packbed.generate(engine="lammps", **BED)
+    assert set(Path(tempfile.gettempdir()).glob("packbed-lammps-*")) == before
+    status, _, err = cli("generate", "--engine", "lammps", "-a", 4, "-n", 150, "-s", 7, "-q",
+                         "--out", tmp_path / "cli")
+    assert status == 0, err
+    table = read_csv(tmp_path / "cli" / "particles.csv")
+    assert np.array_equal(bed.centers, table[:, :3])
+    assert bed.summary["engine"]["name"] == "lammps"
+    assert bed.summary["max_overlap_pair"] < 1e-4 and bed.summary["max_overlap_wall"] < 1e-4
 
 
 def test_a_run_that_does_not_converge_raises_convergence_error(tmp_path):

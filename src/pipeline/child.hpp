@@ -1,0 +1,25 @@
+// Internal: the programs the pipeline starts (gnuplot, LAMMPS), without a shell.
+#pragma once
+
+#include <sys/types.h>
+
+#include <filesystem>
+#include <functional>
+#include <string>
+#include <vector>
+
+namespace packbed {
+
+/// Run `words` (the program, looked up on PATH, then its arguments) in `folder`, without a
+/// shell, its standard input /dev/null and its output (stdout and stderr) written to `output`
+/// (created or truncated; /dev/null to drop it), in a process group of its own (the interrupt
+/// handler stops it through set_child_watcher; a Ctrl-C reaches packbed only). No text of the
+/// user's reaches a shell: each word is one argument.
+/// \param keep_going when given, called about ten times a second while the program runs;
+/// returning false stops the program's process group (SIGTERM) and waits for it
+/// \return the exit status; 127 when the program cannot be started; -1 when it was stopped
+/// (by keep_going) or killed by a signal
+int run_program(const std::vector<std::string>& words, const std::filesystem::path& folder,
+                const std::filesystem::path& output, const std::function<bool()>& keep_going = {});
+
+} // namespace packbed

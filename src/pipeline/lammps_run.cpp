@@ -1,0 +1,335 @@
+// generate --engine lammps, --write-only and import-lammps (pipeline.hpp, docs/lammps.md).
+#include <charconv>
+#include <chrono>
+#include <fstream>
+
+#include <fmt/format.h>
+#include <fmt/ranges.h>
+
+#include "child.hpp"
+#include "packbed/error.hpp"
+#include "packbed/files.hpp"
+#include "packbed/limits.hpp"
+#include "packbed/pipeline.hpp"
+#include "packbed/summary.hpp"
+#include "packbed/version.hpp"
+
+namespace packbed {
+
+namespace {
+
+namespace fs = std::filesystem;
+
+/// The README of a job folder: how to run it here or on a cluster, and bring the bed back.
+std::string job_readme(const std::string& command, const LammpsJob& job,
+                       const PreparedGeneration& prepared) {
+    const SoftSphereParameters& p = prepared.params;
+    return fmt::format(
+        R"(# A packbed bed for LAMMPS to relax
+
+Written by packbed {version} (`packbed generate --engine lammps`): {n} spheres, seed {seed},
+the generation stage of Salvat et al. (2005) in `start.data` ({types} atom type(s), one per
+sphere size), the fire solver's energy and gravity schedule in `in.packbed` (docs/lammps.md in
+packbed's sources says how each term maps onto LAMMPS). Lengths are in units of Dp.
+
+## Run it
+
+Here, on this folder's machine:
+
+    {command} -in in.packbed
+
+On a cluster with Slurm, with the folder copied there (`sbatch job.sh`):
+
+    #!/bin/bash
+    #SBATCH --job-name=packbed
+    #SBATCH --ntasks=64
+    #SBATCH --time=04:00:00
+    module load lammps        # or however the cluster provides LAMMPS (any version since 2020)
+    srun lmp -in in.packbed -log log.lammps
+
+LAMMPS writes `log.lammps` and, at the end, the relaxed bed `bed.dump`. A run that fails says
+why in the log, on a line starting with `ERROR` or `PACKBED FAILED`.
+
+## Bring it back
+
+    packbed import-lammps THIS-FOLDER --out bed
+
+reads `bed.dump` and `log.lammps`, checks the bed with packbed's own code (every sphere there,
+the largest overlaps of pairs, walls and floor below {tol} Dp) and writes what `packbed
+generate` writes: particles.csv, particles.vtu, summary.json and the analysis. `job.json` holds
+the options it needs; the bed's lengths come back in the unit of --diameter.
+)",
+        fmt::arg("version", version), fmt::arg("n", p.particles), fmt::arg("seed", p.seed),
+        fmt::arg("types", job.types), fmt::arg("command", command),
+        fmt::arg("tol", p.tolerance * p.smallest_size()));
+}
+
+/// job.json: what import_lammps needs to rebuild the run's parameters.
+nlohmann::json job_json(const GenerateRequest& r, const std::vector<std::string>& command,
+                        LammpsPairStyle style) {
+    const SoftSphereParameters& p = r.params;
+    const SoftSphereParameters::Schedule schedule = p.schedule();
+    return {{"packbed", std::string(version)},
+            {"engine", "lammps"},
+            {"command", command},
+            {"pair_style", to_string(style)},
+            {"request",
+             {{"aspect_ratio", p.aspect_ratio},
+              {"container", r.container},
+              {"particles", p.particles},
+              {"seed", p.seed},
+              {"diameter", p.diameter},
+              {"sizes", r.sizes},
+              {"fractions", to_string(r.fractions)},
+              {"e0", p.e0},
+              {"ck", p.ck},
+              {"tolerance", p.tolerance},
+              {"overlap_low", schedule.overlap_low},
+              {"overlap_high", schedule.overlap_high},
+              {"skin", p.skin},
+              {"max_iterations", p.max_iterations},
+              {"band_clearance", r.band_clearance}}}};
+}
+
+/// The words of a command as one line for a README (each word as it is; the README is text
+/// for a person, never run by packbed).
+std::string command_line(const std::vector<std::string>& words) {
+    return fmt::format("{}", fmt::join(words, " "));
+}
+
+/// The words that run the job in its folder.
+std::vector<std::string> lammps_command(const LammpsLauncher& launcher) {
+    std::vector<std::string> words = lammps_launch(launcher);
+    for (const char* w : {"-in", "in.packbed", "-log", "log.lammps"})
+        words.emplace_back(w);
+    return words;
+}
+
+/// The bed LAMMPS relaxed, with its summary: generate's, with the engine recorded.
+GeneratedBed lammps_bed(const PreparedGeneration& prepared, SoftSphereResult result,
+                        const nlohmann::json& engine) {
+    GeneratedBed bed;
+    bed.result = std::move(result);
+    bed.summary = generation_summary(prepared, bed.result, 1);
+    bed.summary["parameters"].erase("threads");
+    bed.summary["parameters"].erase("layer_height");
+    bed.summary["parameters"].erase("update");
+    bed.summary["engine"] = engine;
+    return bed;
+}
+
+} // namespace
+
+LammpsPairStyle probe_lammps(const LammpsLauncher& launcher, OutputDirectory& out) {
+    const fs::path help = out.reserve("lmp-help.txt");
+    const int status = run_program({launcher.lmp, "-h"}, help.parent_path(), help);
+    std::string text;
+    {
+        std::ifstream in(help, std::ios::binary);
+        text.assign(std::istreambuf_iterator<char>(in), {});
+    }
+    out.discard("lmp-help.txt");
+    if (status == 127)
+        throw InvalidInput(fmt::format(
+            "--lmp {}: no such program on the PATH; allowed: an installed LAMMPS (Debian: "
+            "scripts/install-deps.sh --lammps installs lammps and openmpi-bin)",
+            printable(launcher.lmp)));
+    if (status != 0 ||
+        text.find("Large-scale Atomic/Molecular Massively Parallel") == std::string::npos)
+        throw InvalidInput(fmt::format("--lmp {}: `{} -h` did not answer as LAMMPS does (exit "
+                                       "status {}); allowed: a LAMMPS executable",
+                                       printable(launcher.lmp), printable(launcher.lmp), status));
+    // `lmp -h` lists the styles in columns: a name between spaces or at a line's ends
+    const auto has = [&](std::string_view style) {
+        for (std::size_t at = text.find(style); at != std::string::npos;
+             at = text.find(style, at + 1)) {
+            const char before = at == 0 ? ' ' : text[at - 1];
+            const std::size_t end = at + style.size();
+            const char after = end < text.size() ? text[end] : ' ';
+            if ((before == ' ' || before == '\n') && (after == ' ' || after == '\n'))
+                return true;
+        }
+        return false;
+    };
+    if (has("gran/hooke"))
+        return LammpsPairStyle::gran_hooke;
+    if (has("harmonic/cut"))
+        return LammpsPairStyle::harmonic_cut;
+    throw InvalidInput(fmt::format("--lmp {}: this LAMMPS has neither pair_style gran/hooke "
+                                   "(GRANULAR package) nor harmonic/cut; allowed: a LAMMPS "
+                                   "with either",
+                                   printable(launcher.lmp)));
+}
+
+std::vector<std::string> stage_lammps_job(OutputDirectory& out, const std::string& folder,
+                                          const PreparedGeneration& prepared,
+                                          const LammpsLauncher& launcher, LammpsPairStyle style) {
+    const std::vector<std::string> command = lammps_command(launcher);
+    const std::string launch = command_line(lammps_launch(launcher));
+    const LammpsJob job = lammps_job(prepared.params, style, launch);
+    const std::string at = folder.empty() ? "" : folder + "/";
+    out.stage(at + std::string(lammps_files::data), job.data);
+    out.stage(at + std::string(lammps_files::input), job.input);
+    out.stage(at + std::string(lammps_files::readme), job_readme(launch, job, prepared));
+    out.stage(at + std::string(lammps_files::job),
+              job_json(prepared.request, command, style).dump(2) + "\n");
+    return command;
+}
+
+GeneratedBed run_lammps_generation(const PreparedGeneration& prepared,
+                                   const LammpsLauncher& launcher, const RunControl& control,
+                                   OutputDirectory& out) {
+    const auto t0 = std::chrono::steady_clock::now();
+    const LammpsPairStyle style = probe_lammps(launcher, out);
+    const std::vector<std::string> command =
+        stage_lammps_job(out, "lammps", prepared, launcher, style);
+    const fs::path log = out.reserve("lammps/" + std::string(lammps_files::log));
+    const fs::path folder = log.parent_path();
+    const fs::path screen = out.reserve("lammps/" + std::string(lammps_files::screen));
+    out.reserve("lammps/" + std::string(lammps_files::dump));
+
+    // Progress from the log's thermo lines (step pe fmax pair wall mc g, every 1000 steps) and
+    // the stage each PACKBED line ends.
+    std::ifstream reader;
+    std::string pending, stage = "initial";
+    const double ck = prepared.params.ck;
+    const auto keep_going = [&] {
+        if (control.should_stop && control.should_stop())
+            return false;
+        if (!control.on_progress)
+            return true;
+        if (!reader.is_open())
+            reader.open(log, std::ios::binary);
+        if (!reader.is_open())
+            return true;
+        reader.clear();
+        char buffer[4096];
+        while (reader.read(buffer, sizeof buffer) || reader.gcount() > 0) {
+            pending.append(buffer, static_cast<std::size_t>(reader.gcount()));
+            if (reader.eof())
+                break;
+        }
+        for (std::size_t end; (end = pending.find('\n')) != std::string::npos;) {
+            const std::string line = pending.substr(0, end);
+            pending.erase(0, end + 1);
+            const std::vector<std::string_view> w = split_spaces(line);
+            if (w.size() >= 3 && w[0] == "PACKBED" && w[1] == "stage")
+                stage = w[2] == "initial" ? "intermediate" : "final";
+            if (w.size() != 7)
+                continue;
+            double v[7];
+            bool numbers = true;
+            for (std::size_t k = 0; k < 7 && numbers; ++k) {
+                const auto [p, ec] = std::from_chars(w[k].data(), w[k].data() + w[k].size(), v[k]);
+                numbers = ec == std::errc() && p == w[k].data() + w[k].size();
+            }
+            if (numbers)
+                control.on_progress(Progress{stage, static_cast<std::uint64_t>(v[0]), v[6] * ck,
+                                             std::max(0.0, v[3]), std::max(0.0, v[4]), v[5]});
+        }
+        return true;
+    };
+    const int status = run_program(command, folder, screen, keep_going);
+    if (control.should_stop && control.should_stop())
+        throw Cancelled();
+    if (status == 127)
+        throw InvalidInput(fmt::format("{}: no such program on the PATH; allowed: an installed "
+                                       "launcher (Debian: openmpi-bin gives mpirun)",
+                                       printable(command.front())));
+    SoftSphereResult result;
+    try {
+        result = lammps_result(prepared.params, folder);
+    } catch (const ConvergenceError& e) {
+        throw ConvergenceError(fmt::format("{} (LAMMPS's exit status {}; command: {})", e.what(),
+                                           status, printable(command_line(command))));
+    }
+    if (status != 0)
+        throw ConvergenceError(fmt::format("LAMMPS wrote the bed but ended with exit status {} "
+                                           "(command: {})",
+                                           status, printable(command_line(command))));
+    result.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+    return lammps_bed(prepared, std::move(result),
+                      {{"name", "lammps"},
+                       {"command", command},
+                       {"ranks", launcher.mpi_command.empty() ? launcher.ranks : 0},
+                       {"pair_style", to_string(style)},
+                       {"files", "lammps/: the job (start.data, in.packbed, ...) and LAMMPS's "
+                                 "log.lammps, screen.txt, bed.dump"}});
+}
+
+ImportedLammps import_lammps(const fs::path& folder) {
+    check_path("FOLDER", folder);
+    std::error_code error;
+    if (!fs::is_directory(folder, error))
+        throw InvalidInput(fmt::format("FOLDER {} is not a directory; allowed: the folder of a job "
+                                       "written by packbed generate --engine lammps --write-only",
+                                       printable(folder.string())));
+    const fs::path job_path = folder / lammps_files::job;
+    const std::string text = read_small_file("FOLDER", job_path, limits::max_small_file);
+    const nlohmann::json json = nlohmann::json::parse(text, nullptr, false);
+    const auto bad = [&](std::string_view what) {
+        return InvalidInput(fmt::format("FOLDER {}: {} in {} is missing or not allowed; "
+                                        "allowed: the job.json packbed generate --engine lammps "
+                                        "--write-only wrote",
+                                        printable(folder.string()), what, lammps_files::job));
+    };
+    if (json.is_discarded() || !json.is_object() || !json.contains("request") ||
+        !json["request"].is_object())
+        throw bad("the request");
+    const nlohmann::json& r = json["request"];
+    GenerateRequest request;
+    SoftSphereParameters& p = request.params;
+    const auto number = [&](const char* key) {
+        if (!r.contains(key) || !r[key].is_number())
+            throw bad(key);
+        return r[key].get<double>();
+    };
+    const auto whole = [&](const char* key) {
+        if (!r.contains(key) || !r[key].is_number_unsigned())
+            throw bad(key);
+        return r[key].get<std::uint64_t>();
+    };
+    const auto word = [&](const char* key) {
+        if (!r.contains(key) || !r[key].is_string())
+            throw bad(key);
+        return r[key].get<std::string>();
+    };
+    p.aspect_ratio = number("aspect_ratio");
+    p.particles = whole("particles");
+    p.seed = whole("seed");
+    p.diameter = number("diameter");
+    p.e0 = number("e0");
+    p.ck = number("ck");
+    p.tolerance = number("tolerance");
+    p.overlap_low = number("overlap_low");
+    p.overlap_high = number("overlap_high");
+    p.skin = number("skin");
+    p.max_iterations = whole("max_iterations");
+    request.container = word("container");
+    request.sizes = word("sizes");
+    request.band_clearance = number("band_clearance");
+    const std::string fractions = word("fractions");
+    bool known = false;
+    for (const auto& [name, value] : fraction_bases())
+        if (name == fractions) {
+            request.fractions = value;
+            known = true;
+        }
+    if (!known)
+        throw bad("fractions");
+    request.engine = Engine::lammps;
+    for (const std::string_view file : {lammps_files::log, lammps_files::dump})
+        if (!fs::is_regular_file(folder / file))
+            throw InvalidInput(fmt::format("FOLDER {}: {} is missing; allowed: a job folder after "
+                                           "LAMMPS ran in it (README.md there says how)",
+                                           printable(folder.string()), file));
+    ImportedLammps imported{prepare_generation(request), {}};
+    imported.bed = lammps_bed(imported.prepared, lammps_result(imported.prepared.params, folder),
+                              {{"name", "lammps"},
+                               {"imported_from", printable(folder.string())},
+                               {"command", json.value("command", nlohmann::json::array())},
+                               {"pair_style", json.value("pair_style", "")}});
+    return imported;
+}
+
+} // namespace packbed
