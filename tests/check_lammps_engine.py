@@ -93,6 +93,40 @@ try:
                                       open(os.path.join(again, "particles.csv")).read())
         check(same, "the same seed on the same ranks gives the same bytes")
 
+    # 1b. The other containers map onto LAMMPS: a box's four walls, a periodic cell's
+    # boundaries (the floor its one wall), an annulus's rod; and two sizes as two types.
+    for spec, inside in (
+            ("box:6,5", lambda x, y, r: min(x - r, 6 - x - r, y - r, 5 - y - r)),
+            ("periodic:6,6", lambda x, y, r: min(x, 6 - x, y, 6 - y) + r),
+            ("annulus:8,2", lambda x, y, r: min(4 - math.hypot(x, y) - r,
+                                                math.hypot(x, y) - r - 1))):
+        out = os.path.join(tmp, spec.split(":")[0])
+        p = run(["generate", "--engine", "lammps", "--container", spec, "-n", "300", "-s", "2",
+                 "-q", "-o", out])
+        ok = p.returncode == 0
+        if ok:
+            balls = spheres(os.path.join(out, "particles.csv"))
+            gap = min(inside(x, y, r) for x, y, z, r in balls)
+            floor = max(r - z for x, y, z, r in balls)
+            s = json.load(open(os.path.join(out, "summary.json")))
+            ok = (len(balls) == 300 and gap > -1e-4 and floor < 1e-4
+                  and s["max_overlap_pair"] < 1e-4)
+        check(ok, f"--container {spec}: relaxed by LAMMPS, every sphere inside, overlaps within "
+                  f"the tolerance ({p.returncode}: {p.stderr.strip()[:160]})")
+    out = os.path.join(tmp, "sizes")
+    p = run(["generate", "--engine", "lammps", "--sizes", "discrete:1:0.5,1.5:0.5", "-a", "6",
+             "-n", "300", "-s", "2", "-q", "-o", out])
+    ok = p.returncode == 0
+    if ok:
+        balls = spheres(os.path.join(out, "particles.csv"))
+        worst = 0.0
+        for i, (x, y, z, r) in enumerate(balls):
+            for (u, v, w, q) in balls[i + 1:]:
+                worst = max(worst, (r + q - math.dist((x, y, z), (u, v, w))) / (2 * min(r, q)))
+        ok = len({r for *_, r in balls}) == 2 and worst < 1e-4
+    check(ok, f"two sizes: every pair within 1e-4 of its smaller diameter ({p.returncode}: "
+              f"{p.stderr.strip()[:160]})")
+
     # 2. A schedule that does not end: the initial stage's overlaps not gone in 50 iterations.
     out = os.path.join(tmp, "short")
     p = run(["generate", "--engine", "lammps", "-a", "5", "-n", "500", "--max-iterations", "50",

@@ -166,6 +166,9 @@ TEST(LammpsJob, EveryContainerMapsOntoLammps) {
     EXPECT_NE(periodic.input.find("boundary        p p m"), std::string::npos);
     EXPECT_EQ(periodic.input.find("side1"), std::string::npos);
     EXPECT_NE(periodic.data.find("0 4 xlo xhi\n0 3 ylo yhi"), std::string::npos);
+    // the floor is its one wall: compute reduce gives a scalar, not a vector
+    EXPECT_NE(periodic.input.find("variable wall1 equal c_walls\n"), std::string::npos);
+    EXPECT_NE(periodic.input.find("variable wall equal v_wall1"), std::string::npos);
 
     p.container = Container(Annulus(3.0, 0.8));
     input = lammps_job(p, LammpsPairStyle::gran_hooke, "lmp").input;

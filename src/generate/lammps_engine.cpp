@@ -373,7 +373,9 @@ LammpsJob lammps_job(const SoftSphereParameters& parameters, LammpsPairStyle sty
         overlaps += fmt::format("variable w{} atom {}\n", k + 1, walls.overlaps[k]);
         reduce += fmt::format(" v_w{}", k + 1);
     }
-    overlaps += reduce + "\nvariable wall1 equal c_walls[1]\n";
+    // one value (a periodic cell: the floor alone) makes compute reduce a scalar
+    overlaps += reduce + (walls.overlaps.size() == 1 ? "\nvariable wall1 equal c_walls\n"
+                                                     : "\nvariable wall1 equal c_walls[1]\n");
     for (std::size_t k = 2; k <= walls.overlaps.size(); ++k)
         overlaps += fmt::format(
             "variable wall{0} equal (c_walls[{0}]>v_wall{1})*c_walls[{0}]+(c_walls[{0}]<=v_wall{1})"
