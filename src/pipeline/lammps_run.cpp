@@ -2,6 +2,7 @@
 #include <charconv>
 #include <chrono>
 #include <fstream>
+#include <functional>
 
 #include <fmt/format.h>
 #include <fmt/ranges.h>
@@ -64,31 +65,21 @@ the options it needs; the bed's lengths come back in the unit of --diameter.
         fmt::arg("tol", p.tolerance * p.smallest_size()));
 }
 
-/// job.json: what import_lammps needs to rebuild the run's parameters.
+/// job.json: what import_lammps needs to rebuild the run's parameters: summary.json's
+/// parameters (soft_sphere_parameters_json, the schedule's values resolved) and the request's
+/// container, sizes and band.
 nlohmann::json job_json(const GenerateRequest& r, const std::vector<std::string>& command,
                         LammpsPairStyle style) {
-    const SoftSphereParameters& p = r.params;
-    const SoftSphereParameters::Schedule schedule = p.schedule();
+    nlohmann::json request = soft_sphere_parameters_json(r.params);
+    request["container"] = r.container;
+    request["sizes"] = r.sizes;
+    request["fractions"] = to_string(r.fractions);
+    request["band_clearance"] = r.band_clearance;
     return {{"packbed", std::string(version)},
             {"engine", "lammps"},
             {"command", command},
             {"pair_style", to_string(style)},
-            {"request",
-             {{"aspect_ratio", p.aspect_ratio},
-              {"container", r.container},
-              {"particles", p.particles},
-              {"seed", p.seed},
-              {"diameter", p.diameter},
-              {"sizes", r.sizes},
-              {"fractions", to_string(r.fractions)},
-              {"e0", p.e0},
-              {"ck", p.ck},
-              {"tolerance", p.tolerance},
-              {"overlap_low", schedule.overlap_low},
-              {"overlap_high", schedule.overlap_high},
-              {"skin", p.skin},
-              {"max_iterations", p.max_iterations},
-              {"band_clearance", r.band_clearance}}}};
+            {"request", std::move(request)}};
 }
 
 /// The words of a command as one line for a README (each word as it is; the README is text
@@ -104,6 +95,54 @@ std::vector<std::string> lammps_command(const LammpsLauncher& launcher) {
         words.emplace_back(w);
     return words;
 }
+
+/// Progress from LAMMPS's log as it grows: its thermo lines (step pe fmax pair wall mc g,
+/// every 1 000 steps), in the stage the last PACKBED line began.
+class LogProgress {
+public:
+    LogProgress(fs::path log, double ck)
+        : m_log(std::move(log))
+        , m_ck(ck) {}
+
+    /// Read what the log gained and report each thermo line in it.
+    void poll(const std::function<void(const Progress&)>& report) {
+        if (!m_reader.is_open())
+            m_reader.open(m_log, std::ios::binary);
+        if (!m_reader.is_open())
+            return;
+        m_reader.clear(); // past the end of what was there last time
+        char buffer[4096];
+        while (m_reader.read(buffer, sizeof buffer) || m_reader.gcount() > 0)
+            m_pending.append(buffer, static_cast<std::size_t>(m_reader.gcount()));
+        for (std::size_t end; (end = m_pending.find('\n')) != std::string::npos;) {
+            line(std::string_view(m_pending).substr(0, end), report);
+            m_pending.erase(0, end + 1);
+        }
+    }
+
+private:
+    void line(std::string_view text, const std::function<void(const Progress&)>& report) {
+        const std::vector<std::string_view> w = split_spaces(text);
+        if (w.size() >= 3 && w[0] == "PACKBED" && w[1] == "stage")
+            m_stage = w[2] == "initial" ? "intermediate" : "final";
+        if (w.size() != 7)
+            return;
+        double v[7];
+        for (std::size_t k = 0; k < 7; ++k) {
+            const auto [end, ec] = std::from_chars(w[k].data(), w[k].data() + w[k].size(), v[k]);
+            if (ec != std::errc() || end != w[k].data() + w[k].size())
+                return;
+        }
+        report(Progress{m_stage, static_cast<std::uint64_t>(v[0]), v[6] * m_ck, std::max(0.0, v[3]),
+                        std::max(0.0, v[4]), v[5]});
+    }
+
+    fs::path m_log;
+    double m_ck;
+    std::ifstream m_reader;
+    std::string m_pending;
+    std::string m_stage = "initial";
+};
 
 /// The bed LAMMPS relaxed, with its summary: generate's, with the engine recorded.
 GeneratedBed lammps_bed(const PreparedGeneration& prepared, SoftSphereResult result,
@@ -188,45 +227,12 @@ GeneratedBed run_lammps_generation(const PreparedGeneration& prepared,
     const fs::path screen = out.reserve("lammps/" + std::string(lammps_files::screen));
     out.reserve("lammps/" + std::string(lammps_files::dump));
 
-    // Progress from the log's thermo lines (step pe fmax pair wall mc g, every 1000 steps) and
-    // the stage each PACKBED line ends.
-    std::ifstream reader;
-    std::string pending, stage = "initial";
-    const double ck = prepared.params.ck;
+    LogProgress progress(log, prepared.params.ck);
     const auto keep_going = [&] {
         if (control.should_stop && control.should_stop())
             return false;
-        if (!control.on_progress)
-            return true;
-        if (!reader.is_open())
-            reader.open(log, std::ios::binary);
-        if (!reader.is_open())
-            return true;
-        reader.clear();
-        char buffer[4096];
-        while (reader.read(buffer, sizeof buffer) || reader.gcount() > 0) {
-            pending.append(buffer, static_cast<std::size_t>(reader.gcount()));
-            if (reader.eof())
-                break;
-        }
-        for (std::size_t end; (end = pending.find('\n')) != std::string::npos;) {
-            const std::string line = pending.substr(0, end);
-            pending.erase(0, end + 1);
-            const std::vector<std::string_view> w = split_spaces(line);
-            if (w.size() >= 3 && w[0] == "PACKBED" && w[1] == "stage")
-                stage = w[2] == "initial" ? "intermediate" : "final";
-            if (w.size() != 7)
-                continue;
-            double v[7];
-            bool numbers = true;
-            for (std::size_t k = 0; k < 7 && numbers; ++k) {
-                const auto [p, ec] = std::from_chars(w[k].data(), w[k].data() + w[k].size(), v[k]);
-                numbers = ec == std::errc() && p == w[k].data() + w[k].size();
-            }
-            if (numbers)
-                control.on_progress(Progress{stage, static_cast<std::uint64_t>(v[0]), v[6] * ck,
-                                             std::max(0.0, v[3]), std::max(0.0, v[4]), v[5]});
-        }
+        if (control.on_progress)
+            progress.poll(control.on_progress);
         return true;
     };
     const int status = run_program(command, folder, screen, keep_going);
