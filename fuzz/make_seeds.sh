@@ -56,4 +56,11 @@ cp small.data "$corpus/fuzz_data/generate-a3-n12.data"
 gzip -9n <small.data >"$corpus/fuzz_data/generate-a3-n12.data.gz"
 gzip -9n <small/particles.csv >"$corpus/fuzz_csv/generate-a3-n12.csv.gz"
 gzip -9n <"$corpus/fuzz_dump/generate-a3-n12.dump" >"$corpus/fuzz_dump/generate-a3-n12.dump.gz"
+# A real LAMMPS log of the engine (fuzz_lammps_log), where LAMMPS is installed.
+if command -v lmp >/dev/null && command -v mpirun >/dev/null; then
+  "$packbed" generate -q --engine lammps -a 3 -n 30 -o lmp
+  cp lmp/lammps/log.lammps "$corpus/fuzz_lammps_log/real-a3-n30.log"
+else
+  echo "make_seeds: no lmp and mpirun, fuzz_lammps_log's real log left as it is" >&2
+fi
 echo "make_seeds: seeds regenerated with $packbed"

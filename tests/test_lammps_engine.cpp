@@ -10,6 +10,7 @@
 
 #include "packbed/error.hpp"
 #include "packbed/lammps_engine.hpp"
+#include "packbed/limits.hpp"
 
 using namespace packbed;
 
@@ -249,5 +250,69 @@ TEST(LammpsResult, TheBedIsReadBackAndChecked) {
     } catch (const ConvergenceError& e) {
         EXPECT_EQ(std::string(e.what()),
                   "LAMMPS: ERROR on proc 1: Lost atoms: original 3 current 2");
+    }
+}
+
+TEST(LammpsResult, ALogNotWrittenByTheJobIsRefusedWithItsLine) {
+    // import-lammps reads a folder from elsewhere: a log cut, edited or from another job gives
+    // a ConvergenceError naming what is wrong, never a count converted beyond its range.
+    SoftSphereParameters p;
+    p.particles = 3;
+    const Folder f;
+    f.write("bed.dump", dump({{0, 0, 0.5}, {1.2, 0, 0.5}, {0.6, 0, 1.5}}));
+    const auto refused = [&](const std::string& from, const std::string& to) {
+        std::string log = finished_log();
+        log.replace(log.find(from), from.size(), to);
+        f.write("log.lammps", log);
+        try {
+            lammps_result(p, f.path);
+        } catch (const ConvergenceError& e) {
+            return std::string(e.what());
+        }
+        return std::string("accepted");
+    };
+    EXPECT_EQ(refused("step 300", "step -300"),
+              "LAMMPS's log has a stage line whose step is -300; allowed: a whole number from 0 "
+              "to 9.0072e+15");
+    EXPECT_EQ(refused("step 5300", "step 1e30"),
+              "LAMMPS's log has a stage line whose step is 1e30; allowed: a whole number from 0 "
+              "to 9.0072e+15");
+    EXPECT_EQ(refused("rounds 2", "rounds 1e20"),
+              "LAMMPS's log has a stage line whose rounds is 1e20; allowed: a whole number from "
+              "0 to 4.29497e+09");
+    EXPECT_EQ(refused("step 6000 g", "step 6000.5 g"),
+              "LAMMPS's log has a stage line whose step is 6000.5; allowed: a whole number from "
+              "0 to 9.0072e+15");
+    EXPECT_EQ(refused("pair 0.015", "pair nan"),
+              "LAMMPS's log has a stage line that is not numbers: 'PACKBED stage intermediate "
+              "step 5300 g 0.0002 pair nan wall 0.012 mc 2.5 rounds 2'");
+    EXPECT_EQ(refused("stage final", "stage initial"),
+              "LAMMPS's log has the stages initial, intermediate, initial; the job prints "
+              "initial, intermediate, final");
+    EXPECT_EQ(refused("stage initial", "stage \x1b[2J"),
+              "LAMMPS's log has the stages \\x1b[2J, intermediate, final; the job prints "
+              "initial, intermediate, final");
+
+    // a log too large to be a job's (sparse: no disk written) is refused before it is read
+    f.write("log.lammps", finished_log());
+    std::filesystem::resize_file(f.path / "log.lammps", limits::max_small_file + 1);
+    try {
+        lammps_result(p, f.path);
+        FAIL() << "a log of 64 MiB was read";
+    } catch (const InvalidInput& e) {
+        EXPECT_NE(std::string(e.what()).find("log.lammps is 67108865 bytes; allowed: at most "
+                                             "67108864"),
+                  std::string::npos)
+            << e.what();
+    }
+    // a screen output that is a device (a link to /dev/zero) is not read: the log's words
+    f.write("log.lammps", "LAMMPS (7 Jan 2022)\nPACKBED FAILED the bed did not settle within 9 "
+                          "iterations\n");
+    std::filesystem::create_symlink("/dev/zero", f.path / "screen.txt");
+    try {
+        lammps_result(p, f.path);
+        FAIL() << "a failed run passed";
+    } catch (const ConvergenceError& e) {
+        EXPECT_EQ(std::string(e.what()), "LAMMPS: the bed did not settle within 9 iterations");
     }
 }

@@ -100,7 +100,9 @@ std::vector<std::string> lammps_launch(const LammpsLauncher& launcher);
 /// overlaps below the tolerance.
 /// \param parameters those the job was written with
 /// \throws ConvergenceError with LAMMPS's own message when the run failed (an ERROR line, a
-/// schedule that did not end, no bed written) or the bed fails a check
+/// schedule that did not end, no bed written), when the log's stage lines are not the job's,
+/// or when the bed fails a check; InvalidInput for a log or screen output above
+/// limits::max_small_file
 SoftSphereResult lammps_result(const SoftSphereParameters& parameters,
                                const std::filesystem::path& folder);
 

@@ -28,6 +28,7 @@
 #include "packbed/error.hpp"
 #include "packbed/files.hpp"
 #include "packbed/io.hpp"
+#include "packbed/limits.hpp"
 #include "packbed/read.hpp"
 #include "packbed/version.hpp"
 
@@ -300,18 +301,41 @@ std::optional<StageRecord> stage_line(std::string_view line, double ck) {
                                                printable(line.substr(0, 200))));
         return value;
     };
+    // A count: a whole number from 0 to `largest` (a log edited or cut short may hold any
+    // number; converting one beyond the integer's range would be undefined).
+    const auto count = [&](std::size_t k, std::string_view what, double largest) {
+        const double value = number(k);
+        if (!(value >= 0.0 && value <= largest && value == std::floor(value)))
+            throw ConvergenceError(fmt::format("LAMMPS's log has a stage line whose {} is {}; "
+                                               "allowed: a whole number from 0 to {:g}",
+                                               what, printable(w[k]), largest));
+        return value;
+    };
     StageRecord r;
     r.name = std::string(w[2]);
-    r.iterations = static_cast<std::uint64_t>(number(4)); // the step, made a count by the caller
+    // the step, made a count by the caller; LAMMPS's steps are 64-bit, counted here exactly
+    // up to 2^53
+    r.iterations = static_cast<std::uint64_t>(count(4, "step", 9007199254740992.0));
     r.cg = number(6) * ck;
     r.max_overlap_pair = std::max(0.0, number(8));
     r.max_overlap_wall = std::max(0.0, number(10));
     r.mass_centre_z = number(12);
-    r.steps = static_cast<std::uint32_t>(number(14));
+    r.steps = static_cast<std::uint32_t>(count(14, "rounds", 4294967295.0));
     return r;
 }
 
+/// A text file LAMMPS wrote, whole; "" when it is not there or not a regular file (a device or
+/// a pipe in a folder from elsewhere is never read). \throws InvalidInput above
+/// limits::max_small_file (a job's log is a few MB at most).
 std::string read_text(const std::filesystem::path& path) {
+    std::error_code error;
+    if (!std::filesystem::is_regular_file(path, error))
+        return {};
+    const std::uintmax_t size = std::filesystem::file_size(path, error);
+    if (!error && size > limits::max_small_file)
+        throw InvalidInput(fmt::format("{} is {} bytes; allowed: at most {} (LAMMPS's log and "
+                                       "screen output of a packbed job are far smaller)",
+                                       printable(path.string()), size, limits::max_small_file));
     std::ifstream in(path, std::ios::binary);
     std::ostringstream text;
     text << in.rdbuf();
@@ -456,6 +480,14 @@ SoftSphereResult lammps_result(const SoftSphereParameters& parameters,
             result.neighbor_builds += std::strtoull(line.data() + 23, nullptr, 10);
         }
     }
+    if (done && result.stages.size() == 3 &&
+        !(result.stages[0].name == "initial" && result.stages[1].name == "intermediate" &&
+          result.stages[2].name == "final"))
+        throw ConvergenceError(fmt::format(
+            "LAMMPS's log has the stages {}, {}, {}; the job prints initial, intermediate, final",
+            printable(result.stages[0].name.substr(0, 40)),
+            printable(result.stages[1].name.substr(0, 40)),
+            printable(result.stages[2].name.substr(0, 40))));
     if (!done || result.stages.size() != 3) {
         const std::string screen = read_text(folder / lammps_files::screen);
         std::string why = lammps_error(screen);

@@ -1,6 +1,7 @@
 // generate --engine lammps, --write-only and import-lammps (pipeline.hpp, docs/lammps.md).
 #include <charconv>
 #include <chrono>
+#include <cmath>
 #include <fstream>
 #include <functional>
 
@@ -130,9 +131,11 @@ private:
         double v[7];
         for (std::size_t k = 0; k < 7; ++k) {
             const auto [end, ec] = std::from_chars(w[k].data(), w[k].data() + w[k].size(), v[k]);
-            if (ec != std::errc() || end != w[k].data() + w[k].size())
+            if (ec != std::errc() || end != w[k].data() + w[k].size() || !std::isfinite(v[k]))
                 return;
         }
+        if (!(v[0] >= 0.0 && v[0] <= 9007199254740992.0)) // a step, to convert without UB
+            return;
         report(Progress{m_stage, static_cast<std::uint64_t>(v[0]), v[6] * m_ck, std::max(0.0, v[3]),
                         std::max(0.0, v[4]), v[5]});
     }
