@@ -6,7 +6,6 @@
 #include <cstdint>
 #include <exception>
 #include <limits>
-#include <numbers>
 #include <span>
 #include <string>
 #include <utility>
@@ -24,8 +23,6 @@
 namespace packbed {
 
 namespace {
-
-constexpr double pi = std::numbers::pi;
 
 /// Spheres are summed in fixed chunks, each into its own partial histogram, and the partials
 /// are added in chunk order: the same bits whatever the number of threads.
