@@ -60,6 +60,57 @@ TEST(SoftBedKernels, PairFactorsGiveContactMovesBitForBit) {
     EXPECT_GT(bed.contact_move_from_factors(bed.slot[1], law, wall).z, 0.0);
 }
 
+TEST(StallGuard, LiftsSpheresSqueezedOnTheFloorOnceThenCallsTheBedJammed) {
+    // Two spheres on the floor of a tube of Rt = 1 Dp, 0.98 Dp apart: overlapping by 0.02 Dp,
+    // held at z = r, so their contact pushes only sideways. Records every 100 iterations; a
+    // window of 3 that agrees within 1 % is a stall.
+    SoftBed bed(Cylinder(1.0));
+    bed.packing.add({-0.49, 0.0, 0.5}, 0.5);
+    bed.packing.add({0.49, 0.0, 0.5}, 0.5);
+    bed.packing.add({0.0, 0.0, 1.4}, 0.5); // above them, not on the floor
+    bed.order = bed.slot = {0, 1, 2};
+    bed.next.resize(3);
+    bed.rebuild_list(0.1);
+    const auto k0 = bed.slot[0], k1 = bed.slot[1], k2 = bed.slot[2];
+    StallGuard guard(3, 100000);
+    using V = StallGuard::Verdict;
+    EXPECT_EQ(guard.record(bed, 0.02, 1e-4, 0, 100), V::wait);
+    EXPECT_EQ(guard.record(bed, 0.02, 1e-4, 0, 200), V::wait);
+    EXPECT_EQ(guard.record(bed, 0.0201, 1e-4, 0, 300), V::lifted);
+    // each lifted by 0.1 to 0.2 of its overlap (about 0.02 Dp), by its own amount
+    for (const auto k : {k0, k1}) {
+        EXPECT_GE(bed.packing.centers[k].z - 0.5, 0.1 * 0.0199) << k;
+        EXPECT_LE(bed.packing.centers[k].z - 0.5, 0.2 * 0.0201) << k;
+    }
+    EXPECT_NE(bed.packing.centers[k0].z, bed.packing.centers[k1].z);
+    EXPECT_EQ(bed.packing.centers[k2].z, 1.4);
+    EXPECT_TRUE(bed.list_stale()); // moved outside a step: the list is rebuilt
+    bed.rebuild_list(0.1);
+    // stalled again with nothing on the floor: jammed
+    EXPECT_EQ(guard.record(bed, 0.02, 1e-4, 0, 400), V::wait);
+    EXPECT_EQ(guard.record(bed, 0.02, 1e-4, 0, 500), V::wait);
+    EXPECT_EQ(guard.record(bed, 0.02, 1e-4, 0, 600), V::jammed);
+
+    // Spheres held fixed (generation index below first_free) are never lifted.
+    SoftBed fixed_bed(Cylinder(1.0));
+    fixed_bed.packing.add({-0.49, 0.0, 0.5}, 0.5);
+    fixed_bed.packing.add({0.49, 0.0, 0.5}, 0.5);
+    fixed_bed.order = fixed_bed.slot = {0, 1};
+    fixed_bed.next.resize(2);
+    fixed_bed.rebuild_list(0.1);
+    EXPECT_EQ(fixed_bed.lift_squeezed_floor_spheres(1e-4, 1), 1u);
+    EXPECT_EQ(fixed_bed.packing.centers[fixed_bed.slot[0]].z, 0.5);
+    EXPECT_GT(fixed_bed.packing.centers[fixed_bed.slot[1]].z, 0.5);
+    // Overlaps within the tolerance are not a squeeze: nothing lifted.
+    EXPECT_EQ(fixed_bed.lift_squeezed_floor_spheres(0.05, 0), 0u);
+
+    // The budget: after `budget` iterations of stall, jammed whatever the records say.
+    StallGuard short_guard(3, 150);
+    EXPECT_EQ(short_guard.record(bed, 0.5, 1e-4, 0, 1000), V::wait);
+    EXPECT_EQ(short_guard.record(bed, 0.3, 1e-4, 0, 1100), V::wait);
+    EXPECT_EQ(short_guard.record(bed, 0.1, 1e-4, 0, 1200), V::jammed);
+}
+
 } // namespace
 } // namespace packbed::detail
 

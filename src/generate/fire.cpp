@@ -64,6 +64,9 @@ constexpr double fire_max_step = 0.01;
 
 constexpr std::size_t sum_block = 1024;
 
+// Mass-centre windows a final stage may go on for once gravity is negligible (StallGuard).
+constexpr std::uint64_t stall_budget = 50;
+
 /// Global sums and maxima of one pass over the spheres.
 struct PassTotals {
     double a = 0.0, b = 0.0;                  // two sums (meaning set by the pass)
@@ -186,6 +189,9 @@ public:
         const Overlaps settled_overlaps = measure_overlaps(m_bed.packing, m_bed.container);
         const double largest = std::max(settled_overlaps.pair, settled_overlaps.wall);
         double factor = largest > 0.0 ? std::min(0.5, 0.5 * p.tolerance / largest) : 0.5;
+        // Gravity negligible and the overlaps still there: spheres pressed flat on the floor
+        // are lifted and the run goes on, or the bed is jammed (detail::StallGuard).
+        detail::StallGuard guard(p.mc_window, stall_budget * p.mc_period * p.mc_window);
         for (bool done = false; !done; factor = 0.5) {
             m_g *= factor;
             ++steps;
@@ -197,13 +203,24 @@ public:
                     done = true;
                     break;
                 }
-                if (m_g < stalled_g)
-                    throw ConvergenceError(fmt::format(
-                        "the fire solver did not reach the tolerance in the final stage at "
-                        "iteration {}: the largest overlaps stay at {:.3g} (pair) and {:.3g} "
-                        "(wall) Dp while gravity fell to {:.3g}",
-                        m_steps, s.pair, s.wall, m_g));
-                if (m_steps % p.mc_period == 0 && m_window.settled())
+                const bool record = m_steps % p.mc_period == 0;
+                if (m_g < stalled_g && record) {
+                    const auto verdict = guard.record(m_bed, std::max(s.pair, s.wall), p.tolerance,
+                                                      m_fixed, m_steps);
+                    if (verdict == detail::StallGuard::Verdict::lifted) {
+                        reset_dynamics();
+                        m_window.clear();
+                        continue;
+                    }
+                    if (verdict == detail::StallGuard::Verdict::jammed)
+                        throw ConvergenceError(fmt::format(
+                            "the fire solver did not reach the tolerance in the final stage at "
+                            "iteration {}: the largest overlaps stay at {:.3g} (pair) and {:.3g} "
+                            "(wall) Dp while gravity fell to {:.3g}: the bed is jammed; another "
+                            "--seed gives another bed",
+                            m_steps, s.pair, s.wall, m_g));
+                }
+                if (record && m_window.settled())
                     break;
             }
         }

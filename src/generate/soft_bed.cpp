@@ -1,5 +1,6 @@
 #include "generate/soft_bed.hpp"
 
+#include <limits>
 #include <numbers>
 #include <type_traits>
 
@@ -133,6 +134,50 @@ void SoftBed::fill_result(SoftSphereResult& result, double diameter) const {
     result.container = container.scaled(diameter);
     result.initial_height = initial_height * diameter;
     result.neighbor_builds = list.builds();
+}
+
+std::size_t SoftBed::lift_squeezed_floor_spheres(double tolerance, std::uint32_t first_free) {
+    const LinearOverlapLaw law{1.0};
+    std::vector<std::pair<std::size_t, double>> squeezed; // sphere, its largest overlap
+    for (std::size_t k = 0; k < packing.size(); ++k) {
+        if (order[k] < first_free || packing.centers[k].z > packing.radii[k])
+            continue;
+        double pair = 0.0, wall = 0.0;
+        contact_move(k, law, pair, wall);
+        if (std::max(pair, wall) > tolerance)
+            squeezed.emplace_back(k, std::max(pair, wall));
+    }
+    for (const auto& [k, overlap] : squeezed) {
+        // splitmix64's finaliser of the generation index: 53 bits, a number in [0, 1)
+        std::uint64_t h = (static_cast<std::uint64_t>(order[k]) + 1) * 0x9E3779B97F4A7C15ull;
+        h = (h ^ (h >> 30)) * 0xBF58476D1CE4E5B9ull;
+        h = (h ^ (h >> 27)) * 0x94D049BB133111EBull;
+        h ^= h >> 31;
+        const double u = static_cast<double>(h >> 11) * 0x1.0p-53;
+        packing.centers[k].z += overlap * (0.1 + 0.1 * u);
+    }
+    if (!squeezed.empty())
+        drift2 = std::numeric_limits<double>::infinity(); // the list rebuilt at the next step
+    return squeezed.size();
+}
+
+StallGuard::Verdict StallGuard::record(SoftBed& bed, double overlap, double tolerance,
+                                       std::uint32_t first_free, std::uint64_t step) {
+    if (!m_started) {
+        m_started = true;
+        m_since = step;
+    }
+    if (step - m_since > m_budget)
+        return Verdict::jammed;
+    m_overlaps.push(overlap);
+    if (!m_overlaps.settled())
+        return Verdict::wait;
+    m_overlaps.clear();
+    if (m_lifts < max_lifts && bed.lift_squeezed_floor_spheres(tolerance, first_free) > 0) {
+        ++m_lifts;
+        return Verdict::lifted;
+    }
+    return Verdict::jammed;
 }
 
 double SoftBed::mass_centre_z(std::uint32_t first) const {

@@ -102,6 +102,34 @@ private:
     std::deque<double> m_values;
 };
 
+struct SoftBed;
+
+/// What the final stage of either solver does once gravity is negligible and the overlaps stay
+/// above the tolerance: it records the largest overlap every mc_period iterations; when the
+/// last `window` records agree within 1 %, spheres pressed flat on the floor are lifted
+/// (SoftBed::lift_squeezed_floor_spheres, up to max_lifts times) and the run goes on; when
+/// none is, or after `budget` iterations of this, the bed is jammed.
+class StallGuard {
+public:
+    enum class Verdict { wait, lifted, jammed };
+    static constexpr int max_lifts = 20;
+
+    StallGuard(std::uint32_t window, std::uint64_t budget)
+        : m_overlaps(window, 1.0)
+        , m_budget(budget) {}
+
+    /// One record at iteration `step` of a stalled stage, `overlap` its largest overlap.
+    Verdict record(SoftBed& bed, double overlap, double tolerance, std::uint32_t first_free,
+                   std::uint64_t step);
+
+private:
+    MassCentreWindow m_overlaps; // the same rule as the mass centre's, on the overlap
+    std::uint64_t m_budget;
+    std::uint64_t m_since = 0;
+    bool m_started = false;
+    int m_lifts = 0;
+};
+
 /// Spheres of one soft-sphere bed in units of Dp, in a container, stored in a spatial order
 /// (renewed at each Verlet-list build) so that neighbours in space are neighbours in memory.
 /// Sphere k of `packing` is sphere order[k] of the generation stage; slot[i] is where sphere
@@ -305,6 +333,19 @@ struct SoftBed {
         add_wall_term(xk, radius[k], law, move, wall);
         return move;
     }
+
+    /// Spheres pressed flat on the floor (issue found by a review, 2026-11-24): the rigid floor
+    /// holds the centres of the spheres resting on it at exactly z = r, so the contacts between
+    /// them push only sideways. A floor layer that gravity squeezed tighter than the floor's
+    /// area allows (12 spheres on the floor of an a = 4 tube: 12 circles need a container 4.03
+    /// times their radius) then stays squeezed, its overlaps far above the tolerance, however
+    /// small gravity gets: no force can lift any of them. This lifts each sphere resting on the
+    /// floor that presses a neighbour or the wall beyond `tolerance` by its own amount, 0.1 to
+    /// 0.2 of its largest overlap (by a hash of its generation index: the same for any number
+    /// of threads), so that the squeezed layer buckles upwards as it would in any real bed.
+    /// Spheres of generation index below `first_free` (held fixed) are not lifted. The list
+    /// must be valid; it is rebuilt at the next step. \return the number of spheres lifted.
+    std::size_t lift_squeezed_floor_spheres(double tolerance, std::uint32_t first_free = 0);
 
     /// \return the spheres in generation order (refreshed at each call), units of Dp.
     const Packing& packing_in_generation_order() const;

@@ -406,6 +406,8 @@ StageRecord SoftSphereGenerator::run_final_stage(const RunControl& control) {
     std::uint32_t steps = 0;
     // Below this Cg, gravity moves a sphere by less than 1e-8 of the tolerance per iteration.
     const double stalled_cg = 1e-8 * p.tolerance;
+    // Mass-centre windows the stage may go on for once Cg is negligible (StallGuard).
+    detail::StallGuard guard(p.mc_window, 50ull * p.mc_period * p.mc_window);
     for (;;) {
         // A new step: Cg halved, held constant until the mass centre settles.
         st.cg *= 0.5;
@@ -420,21 +422,35 @@ StageRecord SoftSphereGenerator::run_final_stage(const RunControl& control) {
                 r.steps = steps;
                 return r;
             }
-            // Gravity has become negligible, yet the overlaps stay above the tolerance: the
-            // iteration is caught in a cycle (seen with in-place updates and Ck >= 0.45).
-            if (st.cg < stalled_cg)
-                throw ConvergenceError(fmt::format(
-                    "diverged in the final stage at iteration {}: the largest overlaps stay at "
-                    "{:.3g} (pair) and {:.3g} (wall) Dp while Cg fell to {:.3g}; lower --ck (now "
-                    "{}) or use --update simultaneous",
-                    st.iterations, s.pair, s.wall, st.cg, p.ck));
+            bool settled = false;
             if (k % p.mc_period == 0) {
                 const double mc = st.mass_centre_z();
                 window.push(mc);
                 st.report(control, "final", s, mc);
-                if (window.settled())
-                    break;
+                settled = window.settled();
             }
+            // Gravity has become negligible, yet the overlaps stay above the tolerance: spheres
+            // pressed flat on the floor are lifted and the iteration goes on, or the bed is
+            // jammed or the iteration caught in a cycle (seen with in-place updates and Ck >=
+            // 0.45; detail::StallGuard).
+            if (st.cg < stalled_cg && k % p.mc_period == 0) {
+                const auto verdict =
+                    guard.record(st, std::max(s.pair, s.wall), p.tolerance, 0, st.iterations);
+                if (verdict == detail::StallGuard::Verdict::lifted) {
+                    window = detail::MassCentreWindow(p.mc_window, mc_tolerance);
+                    continue;
+                }
+                if (verdict == detail::StallGuard::Verdict::jammed)
+                    throw ConvergenceError(fmt::format(
+                        "diverged in the final stage at iteration {}: the largest overlaps stay "
+                        "at {:.3g} (pair) and {:.3g} (wall) Dp while Cg fell to {:.3g}; {}",
+                        st.iterations, s.pair, s.wall, st.cg,
+                        p.update == UpdateOrder::in_place
+                            ? fmt::format("lower --ck (now {}) or use --update simultaneous", p.ck)
+                            : std::string("the bed is jammed; another --seed gives another bed")));
+            }
+            if (settled)
+                break;
         }
     }
 }
