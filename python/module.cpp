@@ -98,7 +98,7 @@ T choice(std::string_view option, const std::string& name,
             return value;
         names += (names.empty() ? "" : ", ") + n;
     }
-    throw InvalidInput(fmt::format("--{} '{}' is not allowed; allowed: {}", option,
+    throw InvalidInput(fmt::format("--{}: '{}' is not allowed; allowed: {}", option,
                                    printable(name.substr(0, 80)), names));
 }
 

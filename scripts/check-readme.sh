@@ -245,8 +245,9 @@ back = summary("results/cluster-bed")
 check(back["particles"] == 1500 and back["engine"]["imported_from"] == "results/cluster-job"
       and max(back["max_overlap_pair"], back["max_overlap_wall"]) < 1e-4,
       "import-lammps brought back the cluster job's 1500 spheres, checked")
-check("#SBATCH --ntasks" in open(os.path.join(repo, "results/cluster-job/README.md")).read(),
-      "the job's README has a Slurm script")
+check("sbatch job.sh" in open(os.path.join(repo, "results/cluster-job/README.md")).read()
+      and "srun lmp -in in.packbed" in open(os.path.join(repo, "results/cluster-job/job.sh")).read(),
+      "the job's README says sbatch job.sh, and job.sh is its Slurm script")
 # The Python example: the module's bed, its profile plotted, its voxel images; the study.
 py = log_of("packbed.voxelize")
 m = re.search(r"500 spheres, centres \(500, 3\) void fraction ([0-9.]+)", py)

@@ -865,15 +865,15 @@ INSTANTIATE_TEST_SUITE_P(
         exact("analyze bed.csv -R 1 --axis 5,0",
               "packbed analyze: bed.csv:2: the sphere at (-5, 0, 0.5) (from --axis and --floor) "
               "sticks out of the container (radius 1, floor z = 0) by 4.5; allowed: up to 0.01 "
-              "(--outside-tolerance, in Dp)"),
+              "(--outside-tolerance times Dp, in the file's units)"),
         exact("analyze bed.csv -R 1 --floor 1",
               "packbed analyze: bed.csv:2: the sphere at (0, 0, -0.5) (from --axis and --floor) "
               "sticks out of the container (radius 1, floor z = 0) by 1; allowed: up to 0.01 "
-              "(--outside-tolerance, in Dp)"),
+              "(--outside-tolerance times Dp, in the file's units)"),
         exact("analyze frames.xyz -R 1 --frames all --floor 1",
               "packbed analyze: frame 1: frames.xyz:3: the sphere at (0, 0, -0.5) (from --axis "
               "and --floor) sticks out of the container (radius 1, floor z = 0) by 1; allowed: "
-              "up to 0.01 (--outside-tolerance, in Dp)"),
+              "up to 0.01 (--outside-tolerance times Dp, in the file's units)"),
         exact("analyze nosize.dump -R 1",
               "packbed analyze: nosize.dump:9: missing column 'r'; needed: x, y, z and r, radius, "
               "d or diameter, or give the diameter (--diameter)"),
@@ -906,7 +906,7 @@ INSTANTIATE_TEST_SUITE_P(
         exact("analyze @D/outside.csv --container-radius 1.5 --out new",
               "packbed analyze: @D/outside.csv:3: the sphere at (1.1, 0, 0.5) sticks out of the "
               "container (radius 1.5, floor z = 0) by 0.1; allowed: up to 0.01 "
-              "(--outside-tolerance, in Dp)")));
+              "(--outside-tolerance times Dp, in the file's units)")));
 
 INSTANTIATE_TEST_SUITE_P(
     Export, CliBadInput,

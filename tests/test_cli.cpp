@@ -654,8 +654,8 @@ TEST(Cli, AnalyzeRefusesASphereOutsideTheContainer) {
     EXPECT_EQ(o.status, 2);
     EXPECT_EQ(o.err, "packbed analyze: " + (d / "bed.csv").string() +
                          ":3: the sphere at (1.1, 0, 0.5) sticks out of the container (radius "
-                         "1.5, floor z = 0) by 0.1; allowed: up to 0.01 (--outside-tolerance, in "
-                         "Dp)\n");
+                         "1.5, floor z = 0) by 0.1; allowed: up to 0.01 (--outside-tolerance "
+                         "times Dp, in the file's units)\n");
     const Outcome m = packbed("analyze " + (d / "bed.csv").string());
     EXPECT_EQ(m.status, 2);
     EXPECT_EQ(m.err,

@@ -403,7 +403,7 @@ TEST(ContainerCli, AnalyzeRefusesASphereInTheRod) {
     EXPECT_EQ(o.err, "packbed analyze: " + (d / "bed.csv").string() +
                          ":3: the sphere at (0.3, 0, 0.5) sticks out of the container "
                          "(annulus:4,1, floor z = 0) by 0.45; allowed: up to 0.005 "
-                         "(--outside-tolerance, in Dp)\n");
+                         "(--outside-tolerance times Dp, in the file's units)\n");
     EXPECT_FALSE(fs::exists(d / "out"));
 }
 
@@ -416,5 +416,5 @@ TEST(ContainerCli, AnalyzeRefusesACentreOutsideThePeriodicCell) {
     EXPECT_EQ(o.err, "packbed analyze: " + (d / "bed.csv").string() +
                          ":3: the sphere at (4.5, 1, 0.5) sticks out of the container "
                          "(periodic:4,4, floor z = 0) by 0.5; allowed: up to 0.01 "
-                         "(--outside-tolerance, in Dp)\n");
+                         "(--outside-tolerance times Dp, in the file's units)\n");
 }

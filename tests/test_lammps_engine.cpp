@@ -67,7 +67,8 @@ std::string finished_log() {
            "PACKBED stage intermediate step 5300 g 0.0002 pair 0.015 wall 0.012 mc 2.5 rounds 2\n"
            "Neighbor list builds = 30\n"
            "PACKBED stage final step 6000 g 5e-07 pair 9e-05 wall 8e-05 mc 2.6 rounds 1\n"
-           "PACKBED done step 6000\n";
+           "PACKBED done step 6000\n"
+           "Total wall time: 0:01:05\n";
 }
 
 /// A dump of spheres (id type x y z radius).
@@ -226,6 +227,7 @@ TEST(LammpsResult, TheBedIsReadBackAndChecked) {
     EXPECT_DOUBLE_EQ(r.stages[1].cg, 0.0002 * p.ck);
     EXPECT_EQ(r.stages[2].iterations, 700u);
     EXPECT_EQ(r.neighbor_builds, 42u);
+    EXPECT_EQ(r.seconds, 65.0); // LAMMPS's own wall time, what import-lammps reports
     EXPECT_EQ(r.max_overlap_pair, 0.0);
 
     // a pair overlapping by 0.001 Dp: LAMMPS's bed fails packbed's own check
@@ -305,6 +307,18 @@ TEST(LammpsResult, ALogNotWrittenByTheJobIsRefusedWithItsLine) {
                   std::string::npos)
             << e.what();
     }
+    // no ERROR line (mpirun refused to start): the last line printed, not a folder's path
+    f.write("log.lammps", "");
+    f.write("screen.txt", "------\nmpirun has detected an attempt to run as root.\n\n  \n");
+    try {
+        lammps_result(p, f.path);
+        FAIL() << "a run that never started passed";
+    } catch (const ConvergenceError& e) {
+        EXPECT_EQ(std::string(e.what()),
+                  "LAMMPS ended without writing the bed (no 'PACKBED done' in its log.lammps); "
+                  "the last it printed: 'mpirun has detected an attempt to run as root.'");
+    }
+    std::filesystem::remove(f.path / "screen.txt");
     // a screen output that is a device (a link to /dev/zero) is not read: the log's words
     f.write("log.lammps", "LAMMPS (7 Jan 2022)\nPACKBED FAILED the bed did not settle within 9 "
                           "iterations\n");

@@ -157,25 +157,7 @@ CLI::Option* add_input_placement(CLI::App& app, InputPlacement& p) {
 
 CLI::Option* add_container_option(CLI::App& app, std::string& text, const std::string& meaning,
                                   const std::vector<std::string_view>& shapes) {
-    const auto takes = [&](std::string_view s) {
-        return std::find(shapes.begin(), shapes.end(), s) != shapes.end();
-    };
-    std::vector<std::string> forms;
-    const double round = 2.0 * limits::max_length, flat = limits::max_length;
-    if (takes("cylinder"))
-        forms.push_back(
-            fmt::format("cylinder:D, a tube of inner diameter D, a number in (0, {:g}]", round));
-    if (takes("box"))
-        forms.push_back(
-            fmt::format("box:LX,LY, walls at x = 0, LX and y = 0, LY, each in (0, {:g}]", flat));
-    if (takes("annulus"))
-        forms.push_back(fmt::format("annulus:D,DI, between a tube of diameter D and a coaxial "
-                                    "rod of diameter DI, 0 < DI < D <= {:g}",
-                                    round));
-    if (takes("periodic"))
-        forms.push_back(
-            fmt::format("periodic:LX,LY, a cell periodic in x and y, each in (0, {:g}]", flat));
-    const std::string allowed = fmt::format("{}", fmt::join(forms, "; or "));
+    const std::string allowed = allowed_containers(shapes);
     std::vector<std::string_view> names;
     for (const auto s : shapes)
         names.push_back(s);

@@ -63,6 +63,7 @@ constexpr std::string_view data = "start.data";
 constexpr std::string_view input = "in.packbed";
 constexpr std::string_view readme = "README.md";
 constexpr std::string_view job = "job.json"; ///< the request, for import_lammps
+constexpr std::string_view slurm = "job.sh"; ///< a Slurm script that runs the job
 constexpr std::string_view log = "log.lammps";
 constexpr std::string_view screen = "screen.txt";
 constexpr std::string_view dump = "bed.dump";

@@ -6,6 +6,7 @@
 
 #include <cstdint>
 #include <limits>
+#include <span>
 #include <string>
 #include <string_view>
 
@@ -41,6 +42,15 @@ struct WholeRange {
 double check_option(std::string_view option, double value, const NumberRange& range);
 /// \copydoc check_option
 std::uint64_t check_option(std::string_view option, long long value, const WholeRange& range);
+
+/// What --container allows, as both front ends word it (the command line's validator and
+/// --help, the library's InvalidInput, so the Python module's ValueError): each of `shapes`
+/// ("cylinder", "box", "annulus", "periodic", as all_shapes in container.hpp) as its SPEC,
+/// what it is and its ranges, joined by "; or ".
+std::string allowed_containers(std::span<const std::string_view> shapes);
+/// The message for a --container SPEC that parse_container refuses, the command line's words:
+/// "--container: 'SPEC' is not allowed; allowed: " and allowed_containers of every shape.
+std::string container_not_allowed(std::string_view option, std::string_view spec);
 
 namespace option_range {
 

@@ -324,6 +324,24 @@ std::optional<StageRecord> stage_line(std::string_view line, double ck) {
     return r;
 }
 
+/// LAMMPS's "Total wall time: H:MM:SS" in seconds; 0 when it is not three whole numbers.
+double wall_time(std::string_view text) {
+    double seconds = 0.0;
+    int parts = 0;
+    for (std::size_t start = 0; start <= text.size() && parts < 3; ++parts) {
+        std::size_t end = text.find(':', start);
+        if (end == std::string_view::npos)
+            end = text.size();
+        unsigned long value = 0;
+        const auto [at, ec] = std::from_chars(text.data() + start, text.data() + end, value);
+        if (ec != std::errc() || at != text.data() + end || value > 1000000000ul)
+            return 0.0;
+        seconds = seconds * 60.0 + static_cast<double>(value);
+        start = end + 1;
+    }
+    return parts == 3 ? seconds : 0.0;
+}
+
 /// A text file LAMMPS wrote, whole; "" when it is not there or not a regular file (a device or
 /// a pipe in a folder from elsewhere is never read). \throws InvalidInput above
 /// limits::max_small_file (a job's log is a few MB at most).
@@ -478,6 +496,8 @@ SoftSphereResult lammps_result(const SoftSphereParameters& parameters,
             done = true;
         } else if (line.rfind("Neighbor list builds = ", 0) == 0) {
             result.neighbor_builds += std::strtoull(line.data() + 23, nullptr, 10);
+        } else if (line.rfind("Total wall time: ", 0) == 0) {
+            result.seconds = wall_time(line.substr(17)); // LAMMPS's own, H:MM:SS
         }
     }
     if (done && result.stages.size() == 3 &&
@@ -493,11 +513,28 @@ SoftSphereResult lammps_result(const SoftSphereParameters& parameters,
         std::string why = lammps_error(screen);
         if (why.empty())
             why = lammps_error(log);
-        throw ConvergenceError(
-            why.empty() ? fmt::format("LAMMPS ended without writing the bed (no 'PACKBED done' "
-                                      "in {})",
-                                      printable((folder / lammps_files::log).string()))
-                        : "LAMMPS: " + why);
+        if (!why.empty())
+            throw ConvergenceError("LAMMPS: " + why);
+        // No ERROR line (mpirun refusing to start, LAMMPS killed): the last words printed. The
+        // folder is named only in words, not by its path: a run's staging folder is gone by
+        // the time the message is read.
+        const std::string& printed = screen.empty() ? log : screen;
+        std::string_view last;
+        for (std::size_t start = 0; start < printed.size();) {
+            std::size_t end = printed.find('\n', start);
+            if (end == std::string::npos)
+                end = printed.size();
+            const std::string_view line(printed.data() + start, end - start);
+            if (line.find_first_not_of(" \t\r") != std::string_view::npos)
+                last = line;
+            start = end + 1;
+        }
+        throw ConvergenceError(fmt::format(
+            "LAMMPS ended without writing the bed (no 'PACKBED done' in its {}){}",
+            lammps_files::log,
+            last.empty()
+                ? std::string("; it printed nothing")
+                : fmt::format("; the last it printed: '{}'", printable(last.substr(0, 200)))));
     }
     ReadOptions options;
     options.format = ParticleFormat::lammps_dump;

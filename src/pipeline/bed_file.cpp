@@ -6,6 +6,7 @@
 
 #include "packbed/error.hpp"
 #include "packbed/files.hpp"
+#include "packbed/option_ranges.hpp"
 #include "packbed/pipeline.hpp"
 #include "packbed/read.hpp"
 #include "packbed/volume.hpp"
@@ -23,9 +24,7 @@ std::optional<Container> container_beside(const std::filesystem::path& particles
 Container container_from_spec(std::string_view option, const std::string& spec) {
     const auto parsed = parse_container(spec);
     if (!parsed)
-        throw InvalidInput(fmt::format("{} '{}' is not allowed; allowed: cylinder:D, box:LX,LY, "
-                                       "annulus:D,DI (0 < DI < D) or periodic:LX,LY, lengths > 0",
-                                       option, printable(spec.substr(0, 80))));
+        throw InvalidInput(container_not_allowed(option, spec));
     return parsed->container();
 }
 
@@ -115,12 +114,13 @@ void check_inside(const Packing& packing, const std::vector<std::size_t>& lines,
         const double out_wall = container.sticks_out(c, r);
         const double below = -(c.z - r);
         if (out_wall > tolerance || below > tolerance)
-            throw InvalidInput(fmt::format(
-                "{}:{}: the sphere at ({}, {}, {}){} sticks out of the container ({}, "
-                "floor z = 0) by {:.4g}; allowed: up to {:.4g} (--outside-tolerance, in Dp)",
-                printable(name), i < lines.size() ? lines[i] : i + 1, c.x, c.y, c.z,
-                shifted ? " (from --axis and --floor)" : "", describe(container),
-                std::max(out_wall, below), tolerance));
+            throw InvalidInput(
+                fmt::format("{}:{}: the sphere at ({}, {}, {}){} sticks out of the container ({}, "
+                            "floor z = 0) by {:.4g}; allowed: up to {:.4g} (--outside-tolerance "
+                            "times Dp, in the file's units)",
+                            printable(name), i < lines.size() ? lines[i] : i + 1, c.x, c.y, c.z,
+                            shifted ? " (from --axis and --floor)" : "", describe(container),
+                            std::max(out_wall, below), tolerance));
     }
 }
 

@@ -10,6 +10,7 @@
 #include "packbed/error.hpp"
 #include "packbed/files.hpp"
 #include "packbed/io.hpp"
+#include "packbed/option_ranges.hpp"
 #include "packbed/pipeline.hpp"
 #include "packbed/summary.hpp"
 
@@ -56,10 +57,7 @@ PreparedGeneration prepare_generation(GenerateRequest request) {
     const std::optional<ContainerSpec> spec =
         request.container.empty() ? std::nullopt : parse_container(request.container);
     if (!request.container.empty() && !spec)
-        throw InvalidInput(fmt::format(
-            "--container '{}' is not allowed; allowed: cylinder:D, box:LX,LY, annulus:D,DI "
-            "(DI < D) or periodic:LX,LY, lengths > 0",
-            printable(request.container.substr(0, 80))));
+        throw InvalidInput(container_not_allowed("--container", request.container));
     if (spec && spec->shape != "cylinder") {
         // Another container, in units of Dp (with --sizes, d32), checked in the user's units.
         const Container in_dp = spec->container().scaled(1.0 / p.diameter);

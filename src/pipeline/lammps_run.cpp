@@ -22,6 +22,32 @@ namespace {
 
 namespace fs = std::filesystem;
 
+/// The Slurm script of a job folder (job.sh). LAMMPS 20220106 is the version the input is
+/// tested with (docs/lammps.md); FIRE 2.0's keywords are in LAMMPS since 2020.
+std::string slurm_script() {
+    return R"(#!/bin/bash
+#SBATCH --job-name=packbed
+#SBATCH --ntasks=64
+#SBATCH --time=04:00:00
+# LAMMPS with the GRANULAR package; tested with 20220106 (Debian 12), newer ones should run it
+module load lammps
+srun lmp -in in.packbed -log log.lammps
+)";
+}
+
+/// `text` with every line indented by 4 spaces (a Markdown code block).
+std::string indented(const std::string& text) {
+    std::string out;
+    for (std::size_t start = 0; start < text.size();) {
+        std::size_t end = text.find('\n', start);
+        if (end == std::string::npos)
+            end = text.size();
+        out += "    " + text.substr(start, end - start) + "\n";
+        start = end + 1;
+    }
+    return out;
+}
+
 /// The README of a job folder: how to run it here or on a cluster, and bring the bed back.
 std::string job_readme(const std::string& command, const LammpsJob& job,
                        const PreparedGeneration& prepared) {
@@ -40,15 +66,10 @@ Here, on this folder's machine:
 
     {command} -in in.packbed
 
-On a cluster with Slurm, with the folder copied there (`sbatch job.sh`):
+On a cluster with Slurm, with the folder copied there: `sbatch job.sh`, this folder's script
+(change its tasks, time and module line to the cluster's):
 
-    #!/bin/bash
-    #SBATCH --job-name=packbed
-    #SBATCH --ntasks=64
-    #SBATCH --time=04:00:00
-    module load lammps        # or however the cluster provides LAMMPS (any version since 2020)
-    srun lmp -in in.packbed -log log.lammps
-
+{slurm}
 LAMMPS writes `log.lammps` and, at the end, the relaxed bed `bed.dump`. A run that fails says
 why in the log, on a line starting with `ERROR` or `PACKBED FAILED`.
 
@@ -61,9 +82,9 @@ the largest overlaps of pairs, walls and floor below {tol} Dp) and writes what `
 generate` writes: particles.csv, particles.vtu, summary.json and the analysis. `job.json` holds
 the options it needs; the bed's lengths come back in the unit of --diameter.
 )",
-        fmt::arg("version", version), fmt::arg("n", p.particles), fmt::arg("seed", p.seed),
-        fmt::arg("types", job.types), fmt::arg("command", command),
-        fmt::arg("tol", p.tolerance * p.smallest_size()));
+        fmt::arg("slurm", indented(slurm_script())), fmt::arg("version", version),
+        fmt::arg("n", p.particles), fmt::arg("seed", p.seed), fmt::arg("types", job.types),
+        fmt::arg("command", command), fmt::arg("tol", p.tolerance * p.smallest_size()));
 }
 
 /// job.json: what import_lammps needs to rebuild the run's parameters: summary.json's
@@ -213,6 +234,7 @@ std::vector<std::string> stage_lammps_job(OutputDirectory& out, const std::strin
     out.stage(at + std::string(lammps_files::data), job.data);
     out.stage(at + std::string(lammps_files::input), job.input);
     out.stage(at + std::string(lammps_files::readme), job_readme(launch, job, prepared));
+    out.stage(at + std::string(lammps_files::slurm), slurm_script());
     out.stage(at + std::string(lammps_files::job),
               job_json(prepared.request, command, style).dump(2) + "\n");
     return command;

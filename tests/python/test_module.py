@@ -503,3 +503,26 @@ def test_analyze_frames_gives_the_command_lines_series(tmp_path):
     for row, e in zip(rows[1:], series["void_fraction"]):
         value = row.split(",")[2]
         assert (value == "" and math.isnan(e)) or float(value) == e
+
+
+@pytest.mark.parametrize(
+    "keywords, options",
+    [
+        ({"solver": "foo"}, ["--solver", "foo"]),
+        ({"update": "foo"}, ["--update", "foo"]),
+        ({"engine": "gromacs"}, ["--engine", "gromacs"]),
+        ({"fractions": "mass"}, ["--fractions", "mass"]),
+        ({"container": "cylinder:-1"}, ["--container", "cylinder:-1"]),
+        ({"container": "sphere:3"}, ["--container", "sphere:3"]),
+    ],
+)
+def test_bad_values_are_worded_as_the_command_line_words_them(keywords, options, tmp_path):
+    # issue 19: ValueError carries the command line's one-line message, word for word (the
+    # command line prefixes "packbed: "; a review found --solver, --update, --container and
+    # the other named choices worded differently, 2026-11-24)
+    run = subprocess.run([PACKBED, "generate", *options, "--out", str(tmp_path / "out")],
+                         capture_output=True, text=True)
+    assert run.returncode == 2
+    with pytest.raises(ValueError) as raised:
+        packbed.generate(**keywords)
+    assert run.stderr == "packbed: " + str(raised.value) + "\n"
