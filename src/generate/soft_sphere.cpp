@@ -431,8 +431,8 @@ StageRecord SoftSphereGenerator::run_final_stage(const RunControl& control) {
             }
             // Gravity has become negligible, yet the overlaps stay above the tolerance: spheres
             // pressed flat on the floor are lifted and the iteration goes on, or the bed is
-            // jammed or the iteration caught in a cycle (seen with in-place updates and Ck >=
-            // 0.45; detail::StallGuard).
+            // jammed or the iteration caught in a cycle (detail::StallGuard). The case once
+            // taken for a cycle (in-place, Ck 0.45, a = 4) was such a floor layer.
             if (st.cg < stalled_cg && k % p.mc_period == 0) {
                 const auto verdict =
                     guard.record(st, std::max(s.pair, s.wall), p.tolerance, 0, st.iterations);
