@@ -72,7 +72,7 @@ TEST(StallGuard, LiftsSpheresSqueezedOnTheFloorOnceThenCallsTheBedJammed) {
     bed.next.resize(3);
     bed.rebuild_list(0.1);
     const auto k0 = bed.slot[0], k1 = bed.slot[1], k2 = bed.slot[2];
-    StallGuard guard(3, 100000);
+    StallGuard guard(3, 100); // budget 50 windows: 15 000 iterations
     using V = StallGuard::Verdict;
     EXPECT_EQ(guard.record(bed, 0.02, 1e-4, 0, 100), V::wait);
     EXPECT_EQ(guard.record(bed, 0.02, 1e-4, 0, 200), V::wait);
@@ -105,7 +105,7 @@ TEST(StallGuard, LiftsSpheresSqueezedOnTheFloorOnceThenCallsTheBedJammed) {
     EXPECT_EQ(fixed_bed.lift_squeezed_floor_spheres(0.05, 0), 0u);
 
     // The budget: after `budget` iterations of stall, jammed whatever the records say.
-    StallGuard short_guard(3, 150);
+    StallGuard short_guard(3, 1); // budget 50 x 3 x 1 = 150 iterations
     EXPECT_EQ(short_guard.record(bed, 0.5, 1e-4, 0, 1000), V::wait);
     EXPECT_EQ(short_guard.record(bed, 0.3, 1e-4, 0, 1100), V::wait);
     EXPECT_EQ(short_guard.record(bed, 0.1, 1e-4, 0, 1200), V::jammed);

@@ -64,9 +64,6 @@ constexpr double fire_max_step = 0.01;
 
 constexpr std::size_t sum_block = 1024;
 
-// Mass-centre windows a final stage may go on for once gravity is negligible (StallGuard).
-constexpr std::uint64_t stall_budget = 50;
-
 /// Global sums and maxima of one pass over the spheres.
 struct PassTotals {
     double a = 0.0, b = 0.0;                  // two sums (meaning set by the pass)
@@ -191,7 +188,7 @@ public:
         double factor = largest > 0.0 ? std::min(0.5, 0.5 * p.tolerance / largest) : 0.5;
         // Gravity negligible and the overlaps still there: spheres pressed flat on the floor
         // are lifted and the run goes on, or the bed is jammed (detail::StallGuard).
-        detail::StallGuard guard(p.mc_window, stall_budget * p.mc_period * p.mc_window);
+        detail::StallGuard guard(p.mc_window, p.mc_period);
         for (bool done = false; !done; factor = 0.5) {
             m_g *= factor;
             ++steps;

@@ -324,6 +324,19 @@ std::optional<StageRecord> stage_line(std::string_view line, double ck) {
     return r;
 }
 
+/// The lines of `text` (without their '\n'), in order.
+std::vector<std::string_view> lines_of(std::string_view text) {
+    std::vector<std::string_view> lines;
+    for (std::size_t start = 0; start < text.size();) {
+        std::size_t end = text.find('\n', start);
+        if (end == std::string_view::npos)
+            end = text.size();
+        lines.push_back(text.substr(start, end - start));
+        start = end + 1;
+    }
+    return lines;
+}
+
 /// LAMMPS's "Total wall time: H:MM:SS" in seconds; 0 when it is not three whole numbers.
 double wall_time(std::string_view text) {
     double seconds = 0.0;
@@ -455,12 +468,7 @@ LammpsJob lammps_job(const SoftSphereParameters& parameters, LammpsPairStyle sty
 }
 
 std::string lammps_error(std::string_view text) {
-    for (std::size_t start = 0; start < text.size();) {
-        std::size_t end = text.find('\n', start);
-        if (end == std::string_view::npos)
-            end = text.size();
-        std::string_view line = text.substr(start, end - start);
-        start = end + 1;
+    for (std::string_view line : lines_of(text)) {
         if (line.rfind("PACKBED FAILED ", 0) == 0)
             return std::string(line.substr(15));
         if (line.rfind("ERROR", 0) == 0) {
@@ -480,12 +488,7 @@ SoftSphereResult lammps_result(const SoftSphereParameters& parameters,
     SoftSphereResult result;
     std::uint64_t before = 0;
     bool done = false;
-    for (std::size_t start = 0; start < log.size();) {
-        std::size_t end = log.find('\n', start);
-        if (end == std::string::npos)
-            end = log.size();
-        const std::string_view line(log.data() + start, end - start);
-        start = end + 1;
+    for (const std::string_view line : lines_of(log)) {
         if (std::optional<StageRecord> stage = stage_line(line, p.ck)) {
             const std::uint64_t step = stage->iterations;
             stage->iterations = step - std::min(step, before);
@@ -520,15 +523,9 @@ SoftSphereResult lammps_result(const SoftSphereParameters& parameters,
         // the time the message is read.
         const std::string& printed = screen.empty() ? log : screen;
         std::string_view last;
-        for (std::size_t start = 0; start < printed.size();) {
-            std::size_t end = printed.find('\n', start);
-            if (end == std::string::npos)
-                end = printed.size();
-            const std::string_view line(printed.data() + start, end - start);
+        for (const std::string_view line : lines_of(printed))
             if (line.find_first_not_of(" \t\r") != std::string_view::npos)
                 last = line;
-            start = end + 1;
-        }
         throw ConvergenceError(fmt::format(
             "LAMMPS ended without writing the bed (no 'PACKBED done' in its {}){}",
             lammps_files::log,

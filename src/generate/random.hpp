@@ -1,7 +1,8 @@
 // Internal: random numbers that are the same bits on every platform. std::mt19937_64 is fully
 // specified by the standard; the distributions of <random> (uniform_real_distribution,
 // normal_distribution, shuffle) are not, so their results differ between standard libraries.
-// The solvers' generation stage (src/generate/soft_bed.hpp) and the sizes (src/generate/sizes.cpp) both draw here.
+// The solvers' generation stage (src/generate/soft_bed.hpp) and the sizes (src/generate/sizes.cpp)
+// both draw here.
 #pragma once
 
 #include <cstdint>
@@ -14,6 +15,17 @@ namespace packbed::portable_random {
 /// A uniform double in [0, 1) from the top 53 bits of one draw.
 inline double uniform01(std::mt19937_64& rng) {
     return static_cast<double>(rng() >> 11) * 0x1.0p-53;
+}
+
+/// A number in [0, 1) from one integer alone, no generator: the top 53 bits of splitmix64's
+/// finaliser of `key` + 1 (Steele, Lea & Flood 2014). For a per-object value that must not
+/// depend on the order objects are visited in.
+inline double hash01(std::uint64_t key) {
+    std::uint64_t h = (key + 1) * 0x9E3779B97F4A7C15ull;
+    h = (h ^ (h >> 30)) * 0xBF58476D1CE4E5B9ull;
+    h = (h ^ (h >> 27)) * 0x94D049BB133111EBull;
+    h ^= h >> 31;
+    return static_cast<double>(h >> 11) * 0x1.0p-53;
 }
 
 /// A uniform integer in [0, bound), bound >= 1, without bias: draws below 2^64 mod bound are

@@ -147,19 +147,16 @@ std::size_t SoftBed::lift_squeezed_floor_spheres(double tolerance, std::uint32_t
         if (std::max(pair, wall) > tolerance)
             squeezed.emplace_back(k, std::max(pair, wall));
     }
-    for (const auto& [k, overlap] : squeezed) {
-        // splitmix64's finaliser of the generation index: 53 bits, a number in [0, 1)
-        std::uint64_t h = (static_cast<std::uint64_t>(order[k]) + 1) * 0x9E3779B97F4A7C15ull;
-        h = (h ^ (h >> 30)) * 0xBF58476D1CE4E5B9ull;
-        h = (h ^ (h >> 27)) * 0x94D049BB133111EBull;
-        h ^= h >> 31;
-        const double u = static_cast<double>(h >> 11) * 0x1.0p-53;
-        packing.centers[k].z += overlap * (0.1 + 0.1 * u);
-    }
+    for (const auto& [k, overlap] : squeezed)
+        packing.centers[k].z += overlap * (0.1 + 0.1 * portable_random::hash01(order[k]));
     if (!squeezed.empty())
         drift2 = std::numeric_limits<double>::infinity(); // the list rebuilt at the next step
     return squeezed.size();
 }
+
+StallGuard::StallGuard(std::uint32_t window, std::uint32_t period)
+    : m_overlaps(window, 1.0)
+    , m_budget(budget_windows * std::uint64_t{window} * period) {}
 
 StallGuard::Verdict StallGuard::record(SoftBed& bed, double overlap, double tolerance,
                                        std::uint32_t first_free, std::uint64_t step) {

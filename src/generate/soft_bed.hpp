@@ -108,15 +108,15 @@ struct SoftBed;
 /// above the tolerance: it records the largest overlap every mc_period iterations; when the
 /// last `window` records agree within 1 %, spheres pressed flat on the floor are lifted
 /// (SoftBed::lift_squeezed_floor_spheres, up to max_lifts times) and the run goes on; when
-/// none is, or after `budget` iterations of this, the bed is jammed.
+/// none is, or after budget_windows mass-centre windows of this, the bed is jammed.
 class StallGuard {
 public:
     enum class Verdict { wait, lifted, jammed };
     static constexpr int max_lifts = 20;
+    static constexpr std::uint64_t budget_windows = 50;
 
-    StallGuard(std::uint32_t window, std::uint64_t budget)
-        : m_overlaps(window, 1.0)
-        , m_budget(budget) {}
+    /// \param window, period the mass-centre rule's mc_window and mc_period
+    StallGuard(std::uint32_t window, std::uint32_t period);
 
     /// One record at iteration `step` of a stalled stage, `overlap` its largest overlap.
     Verdict record(SoftBed& bed, double overlap, double tolerance, std::uint32_t first_free,

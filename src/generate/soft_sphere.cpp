@@ -406,8 +406,7 @@ StageRecord SoftSphereGenerator::run_final_stage(const RunControl& control) {
     std::uint32_t steps = 0;
     // Below this Cg, gravity moves a sphere by less than 1e-8 of the tolerance per iteration.
     const double stalled_cg = 1e-8 * p.tolerance;
-    // Mass-centre windows the stage may go on for once Cg is negligible (StallGuard).
-    detail::StallGuard guard(p.mc_window, 50ull * p.mc_period * p.mc_window);
+    detail::StallGuard guard(p.mc_window, p.mc_period);
     for (;;) {
         // A new step: Cg halved, held constant until the mass centre settles.
         st.cg *= 0.5;
