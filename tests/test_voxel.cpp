@@ -1,6 +1,7 @@
 // Voxel images (issue 19): the closed form of a ball in an orthant, hand-computed voxel cases,
 // the partial-volume sum identity and the same bits for any number of threads.
 #include <cmath>
+#include <cstdint>
 #include <numbers>
 #include <random>
 
@@ -82,6 +83,25 @@ TEST(Voxel, BallInABoxAgreesWithTheQuadratureOfVolumeHpp) {
         worst = std::max(worst, std::abs(ours - exact) / (r * r * r));
     }
     EXPECT_LT(worst, 1e-10);
+}
+
+TEST(Voxel, AnImageOfOver64MiBIsOnHugePageBoundariesAndHoldsItsBall) {
+    // 256^3 float32 voxels are 64 MiB, where the images are aligned to 2 MiB and asked for huge
+    // pages (voxel.hpp): the same exact volumes as anywhere else. A ball of radius 100 h at an
+    // off-grid centre: the image's sum is its volume (4/3 pi 100^3 voxels) to 1e-9.
+    const Packing p = one_sphere({128.3, 127.6, 128.45}, 100.0);
+    const VoxelGrid g = grid_of({0, 0, 0}, 1.0, 256, 256, 256);
+    const Container box(Box(256.0, 256.0));
+    const auto fraction = solid_fraction_image<float>(p, box, g);
+    ASSERT_EQ(fraction.size(), std::size_t{256} * 256 * 256);
+    EXPECT_EQ(reinterpret_cast<std::uintptr_t>(fraction.data()) % (std::size_t{2} << 20), 0u);
+    double total = 0.0;
+    for (const float f : fraction)
+        total += f;
+    EXPECT_NEAR(total / (4.0 / 3.0 * pi * 1e6), 1.0, 1e-9);
+    // the corners of the grid are outside the ball, its centre's voxel wholly inside
+    EXPECT_EQ(fraction[0], 0.0f);
+    EXPECT_EQ(fraction[(std::size_t{128} * 256 + 127) * 256 + 128], 1.0f);
 }
 
 TEST(Voxel, ASphereOnAVoxelCornerFillsItsEightVoxelsEqually) {

@@ -9,6 +9,7 @@
 #include <optional>
 #include <string>
 #include <string_view>
+#include <type_traits>
 #include <utility>
 #include <vector>
 
@@ -42,9 +43,19 @@ VoxelGrid voxel_grid(const Packing& packing, const Container& container, double 
                      const std::optional<std::array<double, 6>>& region = std::nullopt,
                      std::size_t bytes_per_voxel = 1);
 
+namespace detail {
+/// `bytes` of memory for an image; from 64 MiB on aligned to 2 MiB and, with `huge`, advised to
+/// the kernel as transparent huge pages (madvise, Linux). Throws std::bad_alloc.
+void* allocate_image(std::size_t bytes, bool huge);
+void free_image(void* p) noexcept;
+} // namespace detail
+
 /// An allocator whose new elements are left uninitialised (default-initialised): an image's
 /// maker writes every voxel itself, in parallel, so that the pages of a large image are first
 /// touched by all threads at once (2 threads: 1.4-2x faster than one zeroing pass here).
+/// Images of fractions (floating point) are asked for huge pages: their balls add to rows
+/// scattered over the image, a row a page apart, and with 4 KiB pages nearly every row missed
+/// the TLB (docs/performance.md, "Voxel images"). A binary image writes its rows in order.
 template <class T> struct UninitializedAllocator : std::allocator<T> {
     template <class U> struct rebind { using other = UninitializedAllocator<U>; };
     UninitializedAllocator() = default;
@@ -53,6 +64,12 @@ template <class T> struct UninitializedAllocator : std::allocator<T> {
     template <class U, class... Args> void construct(U* p, Args&&... args) {
         ::new (static_cast<void*>(p)) U(std::forward<Args>(args)...);
     }
+    T* allocate(std::size_t n) {
+        if (n > std::size_t(-1) / sizeof(T))
+            throw std::bad_alloc();
+        return static_cast<T*>(detail::allocate_image(n * sizeof(T), std::is_floating_point_v<T>));
+    }
+    void deallocate(T* p, std::size_t) noexcept { detail::free_image(p); }
 };
 
 /// A voxel image's values in C order (VoxelGrid), as the image makers return them.

@@ -3,6 +3,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstdlib>
 #include <cstring>
 #include <fstream>
 #include <limits>
@@ -12,6 +13,7 @@
 #include <fmt/format.h>
 #include <nlohmann/json.hpp>
 #include <omp.h>
+#include <sys/mman.h>
 #if defined(PACKBED_HAVE_MVEC)
 #include <emmintrin.h>
 // glibc's libmvec: atan on two doubles (SSE2), the x86-64 vector ABI's name
@@ -45,8 +47,12 @@ double tangent(double y, double r) {
 }
 
 /// The three tangents whose arctangents H(x, t) holds, given its root r: x / r, t / r and
-/// t x / r.
+/// t x / r, each a product with 1 / r (one division, not three; within 2 ulps of the quotient).
 std::array<double, 3> half_tangents(double x, double t, double r) {
+    if (r > 0.0) {
+        const double inverse = 1.0 / r;
+        return {x * inverse, t * inverse, t * x * inverse};
+    }
     return {tangent(x, r), tangent(t, r), tangent(t * x, r)};
 }
 
@@ -145,20 +151,33 @@ double orthant_volume_positive(double a, double b, double c) {
     return std::max(0.0, upper_antiderivative(b, c) - lower);
 }
 
-/// `x` (an index computed in floating point, maybe infinite) as a whole number clamped to
-/// [-2, n + 1]: beyond the grid it only needs to stay beyond it (no undefined conversion).
-long long index_of(double x, std::size_t n) {
-    return static_cast<long long>(std::clamp(x, -2.0, static_cast<double>(n) + 1.0));
+/// floor(x) and ceil(x) as whole numbers, x first clamped to [-1e15, 1e15] (NaN to -1e15) so
+/// that the conversion is defined. Without a call to glibc's floor and ceil: the baseline
+/// x86-64 build has no rounding instruction, and these run per row of every ball.
+long long floor_whole(double x) {
+    const double v = x > -1e15 ? (x < 1e15 ? x : 1e15) : -1e15;
+    const auto t = static_cast<long long>(v); // toward zero
+    return static_cast<double>(t) > v ? t - 1 : t;
+}
+long long ceil_whole(double x) {
+    const double v = x > -1e15 ? (x < 1e15 ? x : 1e15) : -1e15;
+    const auto t = static_cast<long long>(v);
+    return static_cast<double>(t) < v ? t + 1 : t;
+}
+
+/// `x` (a voxel index) clamped to [-2, n + 1]: beyond the grid it only needs to stay beyond it.
+long long index_of(long long x, std::size_t n) {
+    return std::clamp(x, -2ll, static_cast<long long>(n) + 1);
 }
 
 /// The voxel index range [first, last] whose centres low + (i + 1/2) h lie strictly within
 /// (from, to); empty (first > last) when none does, clipped to [0, n).
 std::pair<long long, long long> centres_within(double from, double to, double low, double h,
                                                std::size_t n) {
-    long long first = index_of(std::ceil((from - low) / h - 0.5), n);
+    long long first = index_of(ceil_whole((from - low) / h - 0.5), n);
     if (low + (static_cast<double>(first) + 0.5) * h <= from)
         ++first;
-    long long last = index_of(std::floor((to - low) / h - 0.5), n);
+    long long last = index_of(floor_whole((to - low) / h - 0.5), n);
     if (low + (static_cast<double>(last) + 0.5) * h >= to)
         --last;
     return {std::max(first, 0ll), std::min(last, static_cast<long long>(n) - 1)};
@@ -167,8 +186,8 @@ std::pair<long long, long long> centres_within(double from, double to, double lo
 /// The voxel index range [first, last] of the voxels that meet [from, to], clipped to [0, n).
 std::pair<long long, long long> voxels_meeting(double from, double to, double low, double h,
                                                std::size_t n) {
-    const auto first = index_of(std::floor((from - low) / h), n);
-    const auto last = index_of(std::floor((to - low) / h), n);
+    const auto first = index_of(floor_whole((from - low) / h), n);
+    const auto last = index_of(floor_whole((to - low) / h), n);
     return {std::max(first, 0ll), std::min(last, static_cast<long long>(n) - 1)};
 }
 
@@ -240,6 +259,31 @@ double centre_of(double low, double h, std::size_t i) {
 }
 
 } // namespace
+
+void* detail::allocate_image(std::size_t bytes, bool huge) {
+    constexpr std::size_t large = std::size_t{64} << 20, huge_page = std::size_t{2} << 20;
+    void* p = nullptr;
+    if (bytes < large) {
+        p = std::malloc(std::max<std::size_t>(bytes, 1));
+    } else {
+        const std::size_t rounded = (bytes + huge_page - 1) / huge_page * huge_page;
+        p = std::aligned_alloc(huge_page, rounded);
+#if defined(MADV_HUGEPAGE)
+        // a hint: where the kernel has no huge pages to give, the image is the same
+        if (p && huge)
+            madvise(p, rounded, MADV_HUGEPAGE);
+#else
+        (void)huge;
+#endif
+    }
+    if (!p)
+        throw std::bad_alloc();
+    return p;
+}
+
+void detail::free_image(void* p) noexcept {
+    std::free(p);
+}
 
 Vec3 VoxelGrid::high() const {
     return {low.x + static_cast<double>(count[0]) * size,
@@ -389,7 +433,6 @@ public:
     /// Measure `ball` in the voxels first..last (inclusive) from now on.
     void start(const Ball& ball, std::array<long long, 3> first, std::array<long long, 3> last) {
         m_first = first;
-        m_radius = ball.r;
         const double centre[3] = {ball.c.x, ball.c.y, ball.c.z};
         const double low[3] = {m_grid.low.x, m_grid.low.y, m_grid.low.z};
         for (int d = 0; d < 3; ++d) {
@@ -408,6 +451,10 @@ public:
             m_coordinate_low[d] = low[d];
             m_centre[d] = centre[d];
         }
+        m_line.resize(m_nodes[2]);
+        m_radius_in_voxels = ball.r / m_grid.size;
+        m_centre_in_voxels =
+            (ball.c.z - (low[2] + static_cast<double>(first[2]) * m_grid.size)) / m_grid.size;
         const std::size_t nx = m_nodes[0], ny = m_nodes[1], nz = m_nodes[2];
         const std::vector<double>&ax = m_offset[0], &by = m_offset[1], &cz = m_offset[2];
         // every voxel's segments along z, the same for all its rows
@@ -512,7 +559,21 @@ public:
                 slots[ranges++] = {static_cast<std::size_t>(from - m_first[2]),
                                    static_cast<std::size_t>(to + 2 - m_first[2])};
         slots[ranges++] = {nz - 1, nz};
-        m_line.resize(nz);
+        double* line = m_line.data();
+        if (count[0] == 1 && count[1] == 1) {
+            // one segment each way (most rows): the four corners in one pass, in the order and
+            // with the signs of the general sum below (the same bits)
+            const auto column = [&](int fx, int fy) {
+                return m_value.data() + (segments[0][0][fx] * m_nodes[1] + segments[1][0][fy]) * nz;
+            };
+            const double *v00 = column(0, 0), *v10 = column(1, 0), *v01 = column(0, 1),
+                         *v11 = column(1, 1);
+            for (int s = 0; s < ranges; ++s)
+#pragma omp simd
+                for (std::size_t z = slots[s].first; z < slots[s].second; ++z)
+                    line[z] = ((v00[z] - v10[z]) - v01[z]) + v11[z];
+            return;
+        }
         for (int s = 0; s < ranges; ++s)
             std::fill(m_line.begin() + static_cast<std::ptrdiff_t>(slots[s].first),
                       m_line.begin() + static_cast<std::ptrdiff_t>(slots[s].second), 0.0);
@@ -523,7 +584,6 @@ public:
                     const double* v = m_value.data() +
                                       (segments[0][sx][fx] * m_nodes[1] + segments[1][sy][fy]) * nz;
                     const double sign = (fx + fy) % 2 == 0 ? 1.0 : -1.0;
-                    double* line = m_line.data();
                     for (int s = 0; s < ranges; ++s)
 #pragma omp simd
                         for (std::size_t z = slots[s].first; z < slots[s].second; ++z)
@@ -548,16 +608,14 @@ private:
     }
 
     /// The grid node slots [first, last) along z within `half` r of the centre, and one more
-    /// each side, clipped to the box's nodes.
+    /// each side, clipped to the box's nodes. In units of h from the box's first node (no
+    /// division per line: the slot beyond each end absorbs the rounding, and a node outside
+    /// the ball holds 0 whether computed or not).
     std::pair<std::size_t, std::size_t> chord_slots(double half) const {
-        const double reach = half * m_radius, h = m_grid.size;
+        const double reach = half * m_radius_in_voxels;
         const auto grid_nodes = static_cast<long long>(m_nodes[2]) - 1;
-        const long long from =
-            static_cast<long long>(std::floor((m_centre[2] - reach - m_coordinate_low[2]) / h)) -
-            m_first[2] - 1;
-        const long long to =
-            static_cast<long long>(std::ceil((m_centre[2] + reach - m_coordinate_low[2]) / h)) -
-            m_first[2] + 2;
+        const long long from = floor_whole(m_centre_in_voxels - reach) - 1;
+        const long long to = ceil_whole(m_centre_in_voxels + reach) + 2;
         return {static_cast<std::size_t>(std::clamp(from, 0ll, grid_nodes)),
                 static_cast<std::size_t>(std::clamp(to, 0ll, grid_nodes))};
     }
@@ -588,7 +646,8 @@ private:
     std::array<std::size_t, 3> m_nodes{};
     double m_coordinate_low[3]{};
     double m_centre[3]{};
-    double m_radius = 0.0;
+    double m_radius_in_voxels = 0.0; // r / h
+    double m_centre_in_voxels = 0.0; // (centre - the box's first node) / h, along z
     std::vector<double> m_offset[3]; // |node - centre| / r per slot and axis
     std::vector<double> m_value;     // per node
     std::vector<double> m_line;      // per node along z: the row's x and y corners summed
@@ -617,9 +676,9 @@ Voxels<Real> solid_fraction_image(const Packing& packing, const Container& conta
     Voxels<Real> image(grid.voxels()); // zeroed block by block below
     const std::vector<Ball> balls = balls_reaching(packing, container, grid);
     // Blocks of planes, each a task: a ball's nodes are computed once per block it meets, so
-    // blocks are as wide as 4 tasks per thread allow, up to 64 planes (the bits do not depend
+    // blocks are as wide as 2 tasks per thread allow, up to 64 planes (the bits do not depend
     // on it: each voxel sums its balls in the same order, from the floor up).
-    const auto tasks = 4 * static_cast<std::size_t>(std::max(1, omp_get_max_threads()));
+    const auto tasks = 2 * static_cast<std::size_t>(std::max(1, omp_get_max_threads()));
     const std::size_t block = std::clamp<std::size_t>(nx / tasks, 1, 64);
     const std::size_t blocks = (nx + block - 1) / block;
     VoxelGrid block_grid = grid;
@@ -632,7 +691,7 @@ Voxels<Real> solid_fraction_image(const Packing& packing, const Container& conta
         largest = std::max(largest, ball.r);
     std::vector<long long> strip(balls.size());
     for (std::size_t n = 0; n < balls.size(); ++n)
-        strip[n] = index_of(std::floor((balls[n].c.y - grid.low.y) / (4.0 * largest)), ny);
+        strip[n] = index_of(floor_whole((balls[n].c.y - grid.low.y) / (4.0 * largest)), ny);
 #pragma omp parallel for schedule(dynamic, 1)
     for (std::size_t b = 0; b < blocks; ++b) {
         const long long i_first = static_cast<long long>(b * block);
@@ -673,6 +732,17 @@ Voxels<Real> solid_fraction_image(const Packing& packing, const Container& conta
                 if (near_x * near_x >= r2)
                     continue;
                 for (long long j = ja; j <= jb; ++j) {
+                    {
+                        // the next row's voxels asked from memory while this row is measured
+                        const Real* next =
+                            j < jb ? plane + static_cast<std::size_t>(j + 1) * nz
+                                   : plane + ny * nz + static_cast<std::size_t>(ja) * nz;
+                        if (j < jb || i < i1)
+                            for (long long k = ka;
+                                 k <= kb + 64 / static_cast<long long>(sizeof(Real));
+                                 k += 64 / static_cast<long long>(sizeof(Real)))
+                                __builtin_prefetch(next + std::min(k, kb), 1, 3);
+                    }
                     const double y0 = grid.low.y + static_cast<double>(j) * h, y1 = y0 + h;
                     const double near_y = std::max({y0 - ball.c.y, ball.c.y - y1, 0.0});
                     const double far_y = std::max(std::abs(y0 - ball.c.y), std::abs(y1 - ball.c.y));
@@ -689,9 +759,9 @@ Voxels<Real> solid_fraction_image(const Packing& packing, const Container& conta
                     if (far_xy < r2) {
                         const double inner = std::sqrt(r2 - far_xy);
                         in0 = std::max(
-                            k0, index_of(std::ceil((ball.c.z - inner - grid.low.z) / h), nz));
+                            k0, index_of(ceil_whole((ball.c.z - inner - grid.low.z) / h), nz));
                         in1 = std::min(
-                            k1, index_of(std::floor((ball.c.z + inner - grid.low.z) / h), nz) - 1);
+                            k1, index_of(floor_whole((ball.c.z + inner - grid.low.z) / h), nz) - 1);
                         if (in0 > in1)
                             in0 = k1 + 1, in1 = k1;
                     }
