@@ -5,6 +5,7 @@ Usage: xvfb-run -a pvbatch tests/check_paraview.py PACKBED SOURCE_DIR
 Exit 77 (reported as skipped by ctest) when pvbatch's Python has no paraview module."""
 import json
 import os
+import shutil
 import subprocess
 import sys
 import tempfile
@@ -63,3 +64,4 @@ assert abs(width - 2 * rt) <= 2 * metres_per_pixel, (width, 2 * rt)
 assert abs(height - top) <= 2 * metres_per_pixel, (height, top)
 assert fill > 0.9, fill
 print("ParaView recipe: spheres of the right size, side-on silhouette matches the container")
+shutil.rmtree(out)  # kept only when a check failed, for a look

@@ -4,6 +4,7 @@ python3-paraview or python3-vtk9, whichever is installed): as many
 points and vertex cells as spheres, a `radius` array, and the same numbers as particles.csv.
 Usage: check_vtu.py PACKBED. Exit 77 (reported as skipped by ctest) when VTK is missing."""
 import csv
+import shutil
 import subprocess
 import sys
 import tempfile
@@ -35,3 +36,4 @@ for i, row in enumerate(rows):
     assert point == (float(row["x"]), float(row["y"]), float(row["z"])), (i, point, row)
     assert radius.GetValue(i) == float(row["r"]) == 0.001, (i, radius.GetValue(i), row["r"])
 print("particles.vtu: 40 vertices, radius array, positions identical to particles.csv")
+shutil.rmtree(out)  # kept only when a check failed, for a look
