@@ -8,6 +8,8 @@
 #include <iterator>
 #include <string>
 
+#include <unistd.h>
+
 #include <fmt/format.h>
 #include <gtest/gtest.h>
 #include <nlohmann/json.hpp>
@@ -21,6 +23,13 @@ namespace fs = std::filesystem;
 using nlohmann::json;
 
 namespace {
+
+/// A scratch file of this process: ctest runs each test in its own process, two at a time, and
+/// a name shared between them let one test read the checkpoint another was writing.
+fs::path scratch_file(const std::string& name) {
+    return fs::temp_directory_path() /
+           ("packbed-test-checkpoint-" + std::to_string(::getpid()) + "-" + name);
+}
 
 /// a = 5, 600 spheres, layers 10 Dp: three layers (as in test_layers.cpp).
 SoftSphereParameters three_layers() {
@@ -44,10 +53,15 @@ const std::string& real_checkpoint() {
                 first = s;
         };
         relax_with_fire(p, control);
-        const fs::path file = fs::temp_directory_path() / "packbed-test-checkpoint-real.ckpt";
+        const fs::path file = scratch_file("real.ckpt");
         write_checkpoint(file, p, first);
-        std::ifstream in(file, std::ios::binary);
-        return std::string(std::istreambuf_iterator<char>(in), std::istreambuf_iterator<char>());
+        std::string read;
+        {
+            std::ifstream in(file, std::ios::binary);
+            read.assign(std::istreambuf_iterator<char>(in), std::istreambuf_iterator<char>());
+        }
+        fs::remove(file);
+        return read;
     }();
     return bytes;
 }
@@ -81,14 +95,16 @@ std::string forged(const std::string& header, const std::string& data) {
 
 /// What reading `bytes` as a checkpoint of three_layers() says: "accepted" or the refusal.
 std::string verdict(const std::string& bytes) {
-    const fs::path file = fs::temp_directory_path() / "packbed-test-checkpoint-case.ckpt";
+    const fs::path file = scratch_file("case.ckpt");
     std::ofstream(file, std::ios::binary) << bytes;
+    std::string said = "accepted";
     try {
         read_checkpoint(file, three_layers());
     } catch (const InvalidInput& e) {
-        return e.what();
+        said = e.what();
     }
-    return "accepted";
+    fs::remove(file);
+    return said;
 }
 
 /// The real checkpoint with one header field changed by `edit`, the hash recomputed.
