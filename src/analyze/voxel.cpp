@@ -160,9 +160,7 @@ long long floor_whole(double x) {
     return static_cast<double>(t) > v ? t - 1 : t;
 }
 long long ceil_whole(double x) {
-    const double v = x > -1e15 ? (x < 1e15 ? x : 1e15) : -1e15;
-    const auto t = static_cast<long long>(v);
-    return static_cast<double>(t) < v ? t + 1 : t;
+    return -floor_whole(-x);
 }
 
 /// `x` (a voxel index) clamped to [-2, n + 1]: beyond the grid it only needs to stay beyond it.
@@ -732,17 +730,13 @@ Voxels<Real> solid_fraction_image(const Packing& packing, const Container& conta
                 if (near_x * near_x >= r2)
                     continue;
                 for (long long j = ja; j <= jb; ++j) {
-                    {
-                        // the next row's voxels asked from memory while this row is measured
-                        const Real* next =
-                            j < jb ? plane + static_cast<std::size_t>(j + 1) * nz
-                                   : plane + ny * nz + static_cast<std::size_t>(ja) * nz;
-                        if (j < jb || i < i1)
-                            for (long long k = ka;
-                                 k <= kb + 64 / static_cast<long long>(sizeof(Real));
-                                 k += 64 / static_cast<long long>(sizeof(Real)))
-                                __builtin_prefetch(next + std::min(k, kb), 1, 3);
-                    }
+                    // the next row's voxels asked from memory while this row is measured
+                    const Real* next = j < jb   ? plane + static_cast<std::size_t>(j + 1) * nz
+                                       : i < i1 ? plane + (ny + static_cast<std::size_t>(ja)) * nz
+                                                : nullptr;
+                    constexpr auto line = static_cast<long long>(64 / sizeof(Real));
+                    for (long long k = ka; next && k <= kb + line; k += line)
+                        __builtin_prefetch(next + std::min(k, kb), 1, 3);
                     const double y0 = grid.low.y + static_cast<double>(j) * h, y1 = y0 + h;
                     const double near_y = std::max({y0 - ball.c.y, ball.c.y - y1, 0.0});
                     const double far_y = std::max(std::abs(y0 - ball.c.y), std::abs(y1 - ball.c.y));
