@@ -80,6 +80,9 @@ try:
         check(0.43 <= e <= 0.44, f"void fraction {e:.4f} in the paper's [0.43, 0.44]")
         check(s["engine"]["name"] == "lammps" and s["engine"]["ranks"] == 2,
               "summary.json records the engine and its 2 ranks")
+        band = (s["parameters"]["overlap_low"], s["parameters"]["overlap_high"])
+        check(band == (0.01, 0.02),
+              f"summary.json records the band LAMMPS ran, its own 1-2 % of Dp ({band})")
         check([st["name"] for st in s["stages"]] == ["initial", "intermediate", "final"]
               and s["iterations"] == sum(st["iterations"] for st in s["stages"]) > 0,
               f"the three stages recorded, their steps summing to {s['iterations']}")

@@ -54,8 +54,10 @@ TEST(Allocations, FireAllocatesPerListBuildNotPerStep) {
     const long used = allocations.load() - before;
     // A list build allocates about ten times (grid, permutation, rows); everything else a
     // bounded number of times per run (2 383 in all for 226 builds and 27 553 steps when
-    // written). Steps outnumber builds about 100 to 1.
-    ASSERT_GT(r.iterations, 50 * r.neighbor_builds);
+    // written; 180 builds and 5 625 steps under fire's second schedule, whose heavier gravity
+    // moves the spheres farther per step). Steps outnumber builds 30 to 1, so that an
+    // allocation per step would exceed the bound below.
+    ASSERT_GT(r.iterations, 25 * r.neighbor_builds);
     EXPECT_LT(used, 20 * static_cast<long>(r.neighbor_builds) + 500)
         << used << " allocations in " << r.iterations << " steps, " << r.neighbor_builds
         << " list builds";

@@ -545,10 +545,10 @@ INSTANTIATE_TEST_SUITE_P(
         exact("generate --overlap-low 0.02 --overlap-high 0.01",
               "packbed generate: overlap-high = 0.01 is not allowed; allowed: overlap-low "
               "(0.02) < overlap-high < 0.5 (Dp)"),
-        // Issue 18: an upper bound under the lower one of the fire solver's schedule (0.01).
+        // Issue 18: an upper bound under the lower one of the fire solver's schedule (0.015).
         exact("generate --overlap-high 0.008",
               "packbed generate: overlap-high = 0.008 is not allowed; allowed: overlap-low "
-              "(0.01) < overlap-high < 0.5 (Dp)"),
+              "(0.015) < overlap-high < 0.5 (Dp)"),
         // Issue 14 item 15: refused after the options are read, with a new --out: not created.
         exact("generate --overlap-low 0.02 --overlap-high 0.01 --out new",
               "packbed generate: overlap-high = 0.01 is not allowed; allowed: overlap-low "

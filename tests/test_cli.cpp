@@ -166,8 +166,8 @@ TEST(Cli, CheckpointResumesToTheSameBytes) {
                             "--layer-height 10 ";
     const std::string checkpoint = (c / "bed.ckpt").string();
     ASSERT_EQ(packbed(bed + "--quiet --out " + a.string()).status, 0);
-    // The second layer ends at step 21 409, the whole run at 30 376.
-    const Outcome stopped = packbed(bed + "--quiet --max-iterations 25000 --checkpoint " +
+    // The second layer ends between steps 11 300 and 11 400, the whole run after 19 200.
+    const Outcome stopped = packbed(bed + "--quiet --max-iterations 15000 --checkpoint " +
                                     checkpoint + " --out " + b.string());
     EXPECT_EQ(stopped.status, 1) << stopped.err;
     ASSERT_TRUE(fs::exists(checkpoint));
@@ -215,7 +215,8 @@ TEST(Cli, CheckpointOfAnotherRunIsRefused) {
     EXPECT_NE(o.err.find(checkpoint + ": not a packbed checkpoint"), std::string::npos) << o.err;
     // Another seed's checkpoint.
     fs::remove(checkpoint);
-    ASSERT_EQ(packbed(bed + " --seed 3 --max-iterations 20000").status, 1);
+    // Its first layer ends after step 7 400, the whole run after 18 300.
+    ASSERT_EQ(packbed(bed + " --seed 3 --max-iterations 15000").status, 1);
     ASSERT_TRUE(fs::exists(checkpoint));
     o = packbed(bed + " --seed 4");
     EXPECT_EQ(o.status, 2);

@@ -116,7 +116,8 @@ TEST(LammpsJob, StartsFromTheFireSolversGenerationStage) {
         EXPECT_NEAR(a[i].density * std::acos(-1.0) / 6.0, 1.0, 1e-15);
     }
     EXPECT_NE(job.data.find("1 atom types"), std::string::npos);
-    // The fire solver's schedule: tolerance, band of eq. (7); gravity's first value from L0.
+    // The fire solver's tolerance, LAMMPS's own band of eq. (7) (lammps_overlap_low, _high:
+    // the band its settle rule was chosen with); gravity's first value from L0.
     EXPECT_EQ(variable(job.input, "tol"), 1e-4);
     EXPECT_EQ(variable(job.input, "low"), 0.01);
     EXPECT_EQ(variable(job.input, "high"), 0.02);

@@ -75,6 +75,16 @@ constexpr std::string_view dump = "bed.dump";
 /// chosen so that its beds match the fire solver's (docs/lammps.md).
 constexpr double lammps_settle = 0.1;
 
+/// The band of eq. (7) LAMMPS settles to unless one is given: 1-2 % of Dp, the band with which
+/// lammps_settle was chosen and the engine checked against the fire solver (docs/lammps.md).
+/// The fire solver's own band has been 1.5-3 % since issue 18's second schedule, which goes with
+/// its mass-centre rule; LAMMPS's rule on the RMS force was not tuned for it.
+constexpr double lammps_overlap_low = 1e-2, lammps_overlap_high = 2e-2;
+
+/// \return `parameters` with the band LAMMPS runs: the one given, else lammps_overlap_low and
+/// lammps_overlap_high (what summary.json reports for an --engine lammps run).
+SoftSphereParameters lammps_parameters(SoftSphereParameters parameters);
+
 /// Write the relaxation of `parameters` for LAMMPS: the generation stage (section 3.1, the
 /// same start as the fire solver's), the energy of fire.cpp in LAMMPS's styles (unit overlap
 /// stiffness as a pair style, the walls and the floor as harmonic wall fixes of the same

@@ -375,10 +375,17 @@ std::string read_text(const std::filesystem::path& path) {
 
 } // namespace
 
+SoftSphereParameters lammps_parameters(SoftSphereParameters parameters) {
+    parameters.overlap_low = parameters.overlap_low.value_or(lammps_overlap_low);
+    parameters.overlap_high = parameters.overlap_high.value_or(lammps_overlap_high);
+    return parameters;
+}
+
 LammpsJob lammps_job(const SoftSphereParameters& parameters, LammpsPairStyle style,
                      std::string_view command) {
-    parameters.validate();
-    const SoftSphereParameters p = detail::in_dp(parameters);
+    const SoftSphereParameters banded = lammps_parameters(parameters);
+    banded.validate();
+    const SoftSphereParameters p = detail::in_dp(banded);
     detail::SoftBed bed(p.container_dp());
     bed.generate(parameters);
     const Packing& start = bed.packing_in_generation_order();

@@ -83,6 +83,8 @@ PreparedGeneration prepare_generation(GenerateRequest request) {
                             request.container, dp, p.diameter, a, p.diameter, 1e4 * p.diameter));
         p.aspect_ratio = a;
     }
+    if (request.engine == Engine::lammps && p.solver == Solver::fire)
+        p = lammps_parameters(p); // its own band unless one is given
     p.validate();
     if (request.engine == Engine::lammps) {
         if (p.solver != Solver::fire)
