@@ -31,7 +31,8 @@ public:
     TerminalProgress(bool enabled, const SoftSphereParameters& parameters, std::string engine = {})
         : m_enabled(enabled)
         , m_time_left(parameters)
-        , m_engine(std::move(engine)) {}
+        , m_engine(std::move(engine))
+        , m_layers_left(parameters) {}
     ~TerminalProgress() { finish(); }
     TerminalProgress(const TerminalProgress&) = delete;
     TerminalProgress& operator=(const TerminalProgress&) = delete;

@@ -25,6 +25,14 @@ namespace packbed {
 /// estimate is ln q / r, r being the least-squares rate of fall of ln q over the last half of
 /// the stage's reports (at least `min_reports`). There is none while q does not fall (Cg still
 /// ramping up, a rearranging bed), and it says nothing about the stages still to come.
+///
+/// One exception: the intermediate stage of the fire solver under its own schedule
+/// (fire_schedule). There q falls fast while the bed lands and then creeps down a slow, noisy
+/// tail that the rule ends where noise first takes q under 1, so a fit of q is up to half the
+/// stage too short mid-stage (docs/performance.md, "Time left"). That stage takes a nearly
+/// fixed number of steps at every width (typical_intermediate_steps), so until it has run that
+/// many the estimate is the steps still to go at the stage's own seconds per step; past them,
+/// the fit.
 class StageTimeLeft {
 public:
     /// \param parameters the run's parameters (tolerance, mc_window, mc_tolerance)
@@ -37,8 +45,25 @@ public:
 
     /// Reports taken into the fit (fewer give no estimate).
     static constexpr std::size_t min_reports = 5;
+    /// Steps of the fire solver's intermediate stage under fire_schedule: measured 9 500-10 200
+    /// for beds from a = 10 to 1e6 spheres (a piece or a layer), 4 300-8 400 for smaller beds
+    /// and other containers (docs/performance.md, "Time left"): the upper end, so that the
+    /// estimate is too long for a small bed (by a fraction of a second) rather than too short
+    /// for a large one.
+    static constexpr std::uint64_t typical_intermediate_steps = 10'000;
+    /// Steps of a whole piece or layer of the fire solver under fire_schedule: the initial
+    /// stage's 100-300, typical_intermediate_steps and the final stage's 900-1 600.
+    static constexpr std::uint64_t typical_piece_steps = 11'300;
+
+    /// \return true when `parameters` are the fire solver's under its own schedule (the
+    /// measured stage lengths above hold).
+    static bool typical_lengths_known(const SoftSphereParameters& parameters);
 
 private:
+    bool m_typical; // typical_lengths_known(parameters)
+    std::uint32_t m_mc_period;
+    std::uint64_t m_stage_first_iteration = 0; // of the stage's first report
+    double m_stage_first_seconds = 0.0;
     double m_tolerance;
     std::size_t m_mc_window;
     double m_mc_fraction;
@@ -51,16 +76,28 @@ private:
 
 /// Estimates how long a fire run in layers (relax_with_fire) still takes: the mean time of the
 /// layers seen from their first report to the next layer's, times the layers still to come,
-/// plus what the current layer has left of that mean. Nothing until one layer is over (a
-/// resumed run starts at a layer's beginning, so its first layer counts too).
+/// plus what the current layer has left of that mean. Until one layer is over (a resumed run
+/// starts at a layer's beginning, so its first layer counts too): under fire_schedule, the
+/// typical steps of the layers still to go (StageTimeLeft::typical_piece_steps, less those the
+/// current layer has run) at the run's seconds per step; otherwise nothing.
 class LayerTimeLeft {
 public:
+    /// No estimate before a layer is over.
+    LayerTimeLeft() = default;
+    /// \param parameters the run's: under fire_schedule the first layer has an estimate too
+    explicit LayerTimeLeft(const SoftSphereParameters& parameters)
+        : m_typical(StageTimeLeft::typical_lengths_known(parameters)) {}
+
     /// Take one progress report made `seconds` after the start of the run. \return the
     /// seconds left in the run, or nothing when there is no estimate yet.
     std::optional<double> update(const Progress& progress, double seconds);
 
 private:
+    bool m_typical = false;
     bool m_started = false;
+    std::uint64_t m_first_iteration = 0; // of the run's first report
+    double m_first_seconds = 0.0;
+    std::uint64_t m_layer_first_iteration = 0; // of the current layer's first report
     std::uint32_t m_layer = 0;
     double m_layer_start = 0.0;
     std::uint32_t m_timed = 0;

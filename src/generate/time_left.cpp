@@ -14,8 +14,17 @@ constexpr double min_fall = 0.1;
 
 } // namespace
 
+bool StageTimeLeft::typical_lengths_known(const SoftSphereParameters& parameters) {
+    const SoftSphereParameters::Schedule s = parameters.schedule();
+    const SoftSphereParameters::Schedule f = SoftSphereParameters::fire_schedule;
+    return parameters.solver == Solver::fire && s.overlap_low == f.overlap_low &&
+           s.overlap_high == f.overlap_high && s.mc_tolerance == f.mc_tolerance;
+}
+
 StageTimeLeft::StageTimeLeft(const SoftSphereParameters& parameters)
-    : m_tolerance(parameters.tolerance)
+    : m_typical(typical_lengths_known(parameters))
+    , m_mc_period(parameters.mc_period)
+    , m_tolerance(parameters.tolerance)
     , m_mc_window(parameters.mc_window)
     , m_mc_fraction(parameters.schedule().mc_tolerance / 100.0) {}
 
@@ -27,6 +36,18 @@ std::optional<double> StageTimeLeft::update(const Progress& progress, double sec
         m_final_start_q =
             std::max(progress.max_overlap_pair, progress.max_overlap_wall) / m_tolerance;
         m_final_start_cg = progress.cg;
+        m_stage_first_iteration = progress.iteration;
+        m_stage_first_seconds = seconds;
+    }
+    // Fire's intermediate stage, within its typical length: the steps still to go at the
+    // stage's seconds per step (the class comment). The reports still feed the fit below.
+    std::optional<double> typical_left;
+    const std::uint64_t run = progress.iteration - m_stage_first_iteration; // since 1st report
+    if (m_typical && m_stage == "intermediate" && run > 0 &&
+        run + m_mc_period < typical_intermediate_steps) {
+        const double per_step = (seconds - m_stage_first_seconds) / static_cast<double>(run);
+        typical_left = static_cast<double>(typical_intermediate_steps - run - m_mc_period) *
+                       std::max(0.0, per_step);
     }
     double q = 0.0;
     if (m_stage == "intermediate") {
@@ -34,7 +55,7 @@ std::optional<double> StageTimeLeft::update(const Progress& progress, double sec
         if (m_mass_centres.size() > m_mc_window)
             m_mass_centres.pop_front();
         if (m_mass_centres.size() < m_mc_window)
-            return std::nullopt;
+            return typical_left;
         const auto [lo, hi] = std::minmax_element(m_mass_centres.begin(), m_mass_centres.end());
         double mean = 0.0;
         for (const double v : m_mass_centres)
@@ -50,7 +71,7 @@ std::optional<double> StageTimeLeft::update(const Progress& progress, double sec
         q = std::max(progress.max_overlap_pair, progress.max_overlap_wall) / m_tolerance;
     }
     if (!(q > 0.0) || !std::isfinite(q))
-        return std::nullopt;
+        return typical_left;
     if (m_history.size() == max_history) {
         std::size_t kept = 0;
         for (std::size_t i = 1; i < m_history.size(); i += 2)
@@ -60,6 +81,8 @@ std::optional<double> StageTimeLeft::update(const Progress& progress, double sec
     m_history.emplace_back(seconds, std::log(q));
     if (q <= 1.0)
         return 0.0;
+    if (typical_left)
+        return typical_left;
 
     // Least-squares slope of ln q against time over the last half of the stage's reports.
     const std::size_t n =
@@ -96,16 +119,30 @@ std::optional<double> LayerTimeLeft::update(const Progress& progress, double sec
             ++m_timed;
             m_timed_seconds += seconds - m_layer_start;
         }
+        if (!m_started) {
+            m_first_iteration = progress.iteration;
+            m_first_seconds = seconds;
+        }
         m_started = true;
         m_layer = progress.layer;
         m_layer_start = seconds;
+        m_layer_first_iteration = progress.iteration;
     }
-    if (m_timed == 0)
-        return std::nullopt;
-    const double mean = m_timed_seconds / m_timed;
     const double to_come = progress.layers > progress.layer + 1
                                ? static_cast<double>(progress.layers - progress.layer - 1)
                                : 0.0;
+    if (m_timed == 0) {
+        // The first layer: the typical steps of the layers still to go (the class comment).
+        const std::uint64_t run = progress.iteration - m_first_iteration;
+        if (!m_typical || run == 0)
+            return std::nullopt;
+        const double per_step =
+            std::max(0.0, (seconds - m_first_seconds) / static_cast<double>(run));
+        const double in_layer = static_cast<double>(progress.iteration - m_layer_first_iteration);
+        const double typical = static_cast<double>(StageTimeLeft::typical_piece_steps);
+        return per_step * (typical * to_come + std::max(0.0, typical - in_layer));
+    }
+    const double mean = m_timed_seconds / m_timed;
     return mean * to_come + std::max(0.0, mean - (seconds - m_layer_start));
 }
 
