@@ -151,7 +151,8 @@ public:
     double sphere_volume(const Vec3& c, double r, double z_low, double z_high) const;
 
     /// The same volume, by ball_volume_in_cylinder (5 times faster) when the planes do not cut
-    /// the ball: what g(r)'s shells use. The two routines agree to 3e-9 relative, not to the bit.
+    /// the ball: what g(r)'s shells and the wall profiles use. The two routines agree to 3e-9
+    /// relative, not to the bit.
     double ball_volume(const Vec3& c, double r, double z_low, double z_high) const;
 
     /// "cylinder:D", the form --container takes (D = 2 Rt, 9 significant digits).

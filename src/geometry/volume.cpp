@@ -24,10 +24,11 @@ double segment_volume(double radius, double t1, double t2) {
     return pi * (radius * radius * (t2 - t1) - (t2 * t2 * t2 - t1 * t1 * t1) / 3.0);
 }
 
-/// x - sin x, by its Taylor series where the direct difference would cancel (x < 0.5).
-double x_minus_sin_x(double x) {
+/// x - sin x given sin x, by its Taylor series where the direct difference would cancel
+/// (x < 0.5).
+double x_minus_sin_x(double x, double sin_x) {
     if (x >= 0.5)
-        return x - std::sin(x);
+        return x - sin_x;
     // x^3/3! - x^5/5! + ... ; the terms after x^17 are below 1e-17 relative for x < 0.5.
     const double x2 = x * x;
     double term = x * x2 / 6.0, sum = 0.0;
@@ -36,6 +37,39 @@ double x_minus_sin_x(double x) {
         term *= -x2 / ((2.0 * k + 2.0) * (2.0 * k + 3.0));
     }
     return sum;
+}
+
+/// The 20-point Gauss-Legendre rule on [0, pi] after the map q = m - h cos u, which turns
+/// square-root end points (a sphere's pole, a circle or slice that starts to cross the wall, a
+/// ball's chord that closes) into smooth functions of u: nodes -cos u_k and weights
+/// w_k sin u_k, so that the integral of f over [m - h, m + h] is
+/// h sum_k weight_k f(m + h node_k). Computed once (lens_integral and ball_volume_in_cylinder;
+/// before, lens_integral took a cosine and a sine at every node of every integral).
+struct MappedRule {
+    static constexpr std::size_t points = 20;
+    std::array<double, points> node{};
+    std::array<double, points> weight{};
+};
+
+const MappedRule& mapped_rule() {
+    static const MappedRule rule = [] {
+        using Gauss = boost::math::quadrature::gauss<double, MappedRule::points>;
+        MappedRule r;
+        std::size_t k = 0;
+        // Gauss holds the non-negative abscissae of the rule on [-1, 1] and their weights.
+        for (std::size_t i = 0; i < Gauss::abscissa().size(); ++i)
+            for (const double sign : {-1.0, 1.0}) {
+                const double x = sign * Gauss::abscissa()[i];
+                if (x == 0.0 && sign > 0.0)
+                    continue; // the middle node of an odd rule once
+                const double u = 0.5 * pi * (1.0 + x);
+                r.node[k] = -std::cos(u);
+                r.weight[k] = 0.5 * pi * Gauss::weights()[i] * std::sin(u);
+                ++k;
+            }
+        return r;
+    }();
+    return rule;
 }
 
 /// \f$\int_{t_1}^{t_2} f(t)\,dt\f$ for a wall-cut piece, by 20-point Gauss-Legendre after
@@ -47,9 +81,12 @@ double x_minus_sin_x(double x) {
 /// measured up to 1.8e-9 when rho = Rc +- 0.01 Dp (the pole's square root just past a piece's
 /// end), so the bound we state is 1e-8.
 template <class F> double lens_integral(F f, double t1, double t2) {
+    const MappedRule& rule = mapped_rule();
     const double mid = 0.5 * (t1 + t2), half = 0.5 * (t2 - t1);
-    return boost::math::quadrature::gauss<double, 20>::integrate(
-        [&](double u) { return f(mid - half * std::cos(u)) * half * std::sin(u); }, 0.0, pi);
+    double sum = 0.0;
+    for (std::size_t k = 0; k < MappedRule::points; ++k)
+        sum += rule.weight[k] * f(mid + half * rule.node[k]);
+    return half * sum;
 }
 
 /// Which part of a slice disk of radius s lies inside the cylinder.
@@ -82,11 +119,12 @@ double disk_intersection_area(double r1, double r2, double distance) {
     // h1 = r1 - d1 = (r2^2 - (d - r1)^2) / (2d), factored so a thin lens keeps its digits.
     const double h1 = (r2 - distance + r1) * (r2 + distance - r1) / (2.0 * distance);
     const double h2 = (r2 - distance) + d1; // r2 - d2 with d2 = distance - d1
+    // sin x = 2 sin(x/2) cos(x/2) = 2 c d / r^2 (c the half chord; c^2 + d^2 = r^2): no sine.
     auto segment = [](double r, double h) {
         const double d = r - h;
         const double half_chord = std::sqrt(std::max(h * (2.0 * r - h), 0.0));
         const double x = 2.0 * std::atan2(half_chord, d);
-        return 0.5 * r * r * x_minus_sin_x(x);
+        return 0.5 * r * r * x_minus_sin_x(x, 2.0 * half_chord * d / (r * r));
     };
     return segment(r1, h1) + segment(r2, h2);
 }
@@ -153,38 +191,6 @@ double sphere_volume_in_cylinder_slab(const Vec3& center, double radius, double 
 }
 
 namespace {
-
-/// The 20-point Gauss-Legendre rule on [0, pi] after the map q = m - h cos u, which turns the
-/// square-root end points of the integrands of ball_volume_in_cylinder (a circle that starts to
-/// cross the wall, a ball's chord that closes) into smooth functions of u: nodes -cos u_k and
-/// weights w_k sin u_k, so that the integral of f over [m - h, m + h] is
-/// h sum_k weight_k f(m + h node_k). Computed once.
-struct MappedRule {
-    static constexpr std::size_t points = 20;
-    std::array<double, points> node{};
-    std::array<double, points> weight{};
-};
-
-const MappedRule& mapped_rule() {
-    static const MappedRule rule = [] {
-        using Gauss = boost::math::quadrature::gauss<double, MappedRule::points>;
-        MappedRule r;
-        std::size_t k = 0;
-        // Gauss holds the non-negative abscissae of the rule on [-1, 1] and their weights.
-        for (std::size_t i = 0; i < Gauss::abscissa().size(); ++i)
-            for (const double sign : {-1.0, 1.0}) {
-                const double x = sign * Gauss::abscissa()[i];
-                if (x == 0.0 && sign > 0.0)
-                    continue; // the middle node of an odd rule once
-                const double u = 0.5 * pi * (1.0 + x);
-                r.node[k] = -std::cos(u);
-                r.weight[k] = 0.5 * pi * Gauss::weights()[i] * std::sin(u);
-                ++k;
-            }
-        return r;
-    }();
-    return rule;
-}
 
 /// Angle of the circle of radius q > 0 around a point at distance rho > 0 from the axis that
 /// lies inside the disk of radius ra: 2 acos(x), x = (rho^2 - ra^2 + q^2) / (2 rho q), with
