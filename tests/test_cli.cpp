@@ -1,14 +1,17 @@
 // The command line, run as a user runs it: outputs, config files, exit statuses, messages.
+#include <signal.h>
 #include <sys/wait.h>
 
 #include <algorithm>
 #include <array>
+#include <chrono>
 #include <cmath>
 #include <cstdio>
 #include <cstdlib>
 #include <filesystem>
 #include <fstream>
 #include <sstream>
+#include <thread>
 #include <vector>
 
 #include <fmt/format.h>
@@ -600,6 +603,64 @@ TEST(Cli, AFailingPlotterLeavesTheRestOfTheOutput) {
     EXPECT_EQ(s["analysis"]["plots"], "gnuplot failed (exit status 3): no plots");
     for (const auto& entry : fs::directory_iterator(d / "out"))
         EXPECT_EQ(entry.path().filename().string().find(".tmp"), std::string::npos);
+}
+
+TEST(Cli, EitherPlotterFailingLeavesNoPlots) {
+    // The plots are drawn by two gnuplots at once (plots-1.gp, plots-2.gp): the second
+    // failing alone discards every plot, and its status is the one reported.
+    const fs::path d = scratch("plotfail2");
+    fs::create_directories(d / "bin");
+    std::ofstream(d / "bin" / "gnuplot")
+        << "#!/bin/sh\n[ \"$1\" = plots-2.gp ] && exit 4\nexit 0\n";
+    fs::permissions(d / "bin" / "gnuplot", fs::perms::owner_all);
+    const std::string cmd = "env -u CI PATH=" + (d / "bin").string() + ":/usr/bin:/bin " +
+                            PACKBED_EXE + " " + small + "--quiet --out " + (d / "out").string();
+    ASSERT_EQ(std::system(cmd.c_str()), 0);
+    EXPECT_TRUE(fs::exists(d / "out" / "radial_void_fraction.csv"));
+    const auto s = nlohmann::json::parse(slurp(d / "out" / "summary.json"));
+    EXPECT_EQ(s["analysis"]["plots"], "gnuplot failed (exit status 4): no plots");
+    for (const auto& entry : fs::directory_iterator(d / "out")) {
+        const std::string name = entry.path().filename().string();
+        EXPECT_TRUE(name.ends_with(".csv") || name.ends_with(".vtu") || name.ends_with(".json"))
+            << name;
+    }
+}
+
+TEST(Cli, AnInterruptStopsBothPlotters) {
+    // Ctrl-C while both gnuplots run: they are one process group, so both are stopped, the
+    // run ends with 130 and nothing is written.
+    const fs::path d = scratch("plotters");
+    fs::create_directories(d / "bin");
+    const fs::path pids = d / "pids";
+    std::ofstream(d / "bin" / "gnuplot")
+        << "#!/bin/sh\necho $$ >> " << pids.string() << "\nexec sleep 60\n";
+    fs::permissions(d / "bin" / "gnuplot", fs::perms::owner_all);
+    const fs::path status = d / "status";
+    const std::string cmd =
+        "env -u CI PATH=" + (d / "bin").string() + ":/usr/bin:/bin " + PACKBED_EXE + " " + small +
+        "--quiet --out " + (d / "out").string() +
+        " & pid=$!; for i in $(seq 300); do [ \"$(wc -l < " + pids.string() +
+        " 2>/dev/null)\" = 2 ] && break; sleep 0.1; done; kill -INT $pid; wait $pid; echo $? > " +
+        status.string();
+    ASSERT_EQ(std::system(("bash -c '" + cmd + "' 2>/dev/null").c_str()), 0);
+    EXPECT_EQ(slurp(status), "130\n");
+    EXPECT_FALSE(fs::exists(d / "out"));
+    std::istringstream started(slurp(pids));
+    int count = 0;
+    for (pid_t pid = 0; started >> pid; ++count) {
+        bool gone = false; // no such process, or a zombie waiting for its new parent
+        for (int i = 0; i < 500 && !gone; ++i) {
+            std::ifstream stat("/proc/" + std::to_string(pid) + "/stat");
+            std::string line;
+            gone = !std::getline(stat, line) || line.find(") Z") != std::string::npos;
+            if (!gone)
+                std::this_thread::sleep_for(std::chrono::milliseconds(10));
+        }
+        EXPECT_TRUE(gone) << "gnuplot " << pid << " still runs";
+        if (!gone)
+            ::kill(pid, SIGKILL);
+    }
+    EXPECT_EQ(count, 2);
 }
 
 TEST(Cli, AnalyzeGivesTheSameResultsFromEveryFormat) {

@@ -402,7 +402,7 @@ std::string stage_cfd_report(OutputDirectory& out, const Report& report) {
             terminal, extension, v["flow"]["reynolds"].get<double>(),
             v["void_fraction"]["band"].get<double>(), 1e3 * g["from_m"].get<double>(),
             1e3 * g["to_m"].get<double>(), curves);
-    return draw_plots(out, {"pressure"}, script);
+    return draw_plots(out, {"pressure"}, {script});
 }
 
 } // namespace packbed

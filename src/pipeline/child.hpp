@@ -22,4 +22,14 @@ namespace packbed {
 int run_program(const std::vector<std::string>& words, const std::filesystem::path& folder,
                 const std::filesystem::path& output, const std::function<bool()>& keep_going = {});
 
+/// Run several programs at once, as run_program runs one: all in one process group (the
+/// first's), so that the interrupt handler and keep_going stop them together; their output
+/// appended to the same `output`. Returns when every one has ended.
+/// \return 0 when all exited with 0; else the first nonzero exit status in the order given;
+/// 127 when one cannot be started (those started are stopped); -1 when stopped or when one was
+/// killed by a signal
+int run_programs(const std::vector<std::vector<std::string>>& commands,
+                 const std::filesystem::path& folder, const std::filesystem::path& output,
+                 const std::function<bool()>& keep_going = {});
+
 } // namespace packbed

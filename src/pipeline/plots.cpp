@@ -26,26 +26,33 @@ std::string datablock(std::string_view name, const std::vector<ProfileBin>& bins
     return out + "EOD\n";
 }
 
-/// Run `gnuplot SCRIPT` in `folder` (run_program), its output dropped. `script` and the files
-/// it writes are named relative to `folder`, so no text of the user's (an output path) ever
-/// reaches gnuplot. \return the exit status; 127 when gnuplot cannot be started.
-int run_gnuplot(const std::filesystem::path& folder, const std::string& script) {
-    const int status = run_program({"gnuplot", script}, folder, "/dev/null");
-    return status < 0 ? 1 : status;
-}
-
 } // namespace
 
 std::string draw_plots(OutputDirectory& out, const std::vector<std::string>& names,
-                       const std::string& script) {
+                       const std::vector<std::string>& scripts) {
+    if (scripts.empty())
+        return "no plot scripts: no plots";
     std::vector<std::filesystem::path> files;
     for (const auto& name : names)
         for (const auto& [extension, terminal] : plot_terminals)
             files.push_back(out.reserve(name + "." + extension));
-    const auto script_path = out.reserve("plots.gp");
-    std::ofstream(script_path) << script;
-    const int status = run_gnuplot(script_path.parent_path(), script_path.filename().string());
-    out.discard("plots.gp");
+    // Each script in a file of ours, run by its own gnuplot in the staging folder: the scripts
+    // and the files they write are named relative to it, so no text of the user's (an output
+    // path) ever reaches gnuplot. Their output is dropped.
+    std::vector<std::string> script_names;
+    std::vector<std::vector<std::string>> commands;
+    std::filesystem::path folder;
+    for (std::size_t k = 0; k < scripts.size(); ++k) {
+        script_names.push_back(fmt::format("plots-{}.gp", k + 1));
+        const auto path = out.reserve(script_names.back());
+        std::ofstream(path) << scripts[k];
+        folder = path.parent_path();
+        commands.push_back({"gnuplot", script_names.back()});
+    }
+    int status = run_programs(commands, folder, "/dev/null");
+    status = status < 0 ? 1 : status;
+    for (const auto& name : script_names)
+        out.discard(name);
     bool all = status == 0;
     for (const auto& file : files)
         all = all && std::filesystem::exists(file) && std::filesystem::file_size(file) > 0;
@@ -191,31 +198,31 @@ std::string stage_plots(OutputDirectory& out, const BedAnalysis& a, const Contai
                           "set title 'Radial distribution of sphere centres, {where}'\n"
                           "{centre_range}plot {centre_curves}\n"
                           "unset label 1\nset autoscale y\n");
-    // The same plots for each terminal.
-    for (const auto& [extension, terminal] : plot_terminals)
-        script += fmt::format(
-            fmt::runtime(
-                "{terminal}\nunset label 1\nset key top right\nset autoscale y\n"
-                "set xlabel '{x_label}'\nset xrange [0:{x_max}]\n" +
-                wall_plots +
-                "set output 'axial_void_fraction.{ext}'\nset xlabel 'height above the floor z/Dp'\n"
-                "set xrange [0:*]\nset ylabel 'axial void fraction'\nset yrange [0:1]\n"
-                "set title 'Axial void fraction; the band measured lies between the dashed lines'\n"
-                "set arrow 1 from {low_d:.6g},0 to {low_d:.6g},1 nohead dt 2\n"
-                "set arrow 2 from {high_d:.6g},0 to {high_d:.6g},1 nohead dt 2\n"
-                "plot $axial using 1:2 with steps lw 1 lc rgb 'black' title 'this bed'\n"
-                "unset arrow 1\nunset arrow 2\nset autoscale y\n"
-                "set output 'pair_correlation.{ext}'\nset xlabel 'centre distance r/Dp'\n"
-                "set xrange [0:*]\nset ylabel 'g(r)'\nset yrange [0:*]\n"
-                "set title 'Pair correlation of centres in the band'\n"
-                "plot $rdf using 1:2 with steps lw 1 lc rgb 'black' title 'this bed', 1 with lines "
-                "dt 2 lc rgb 'grey' notitle\nset autoscale y\n{by_size}"),
-            fmt::arg("terminal", terminal), fmt::arg("ext", extension), fmt::arg("x_max", x_max),
-            fmt::arg("where", where), fmt::arg("x_label", x_label), fmt::arg("low", a.band.z_low),
-            fmt::arg("high", a.band.z_high), fmt::arg("low_d", a.band.z_low / dp),
-            fmt::arg("high_d", a.band.z_high / dp), fmt::arg("curves", curves),
-            fmt::arg("centre_range", centre_range), fmt::arg("bed_curves", bed_curves),
-            fmt::arg("centre_curves", centre_curves),
+    // The same plots for each terminal: the wall plots, then the axial profile, g(r) and the
+    // centres by size, which set every setting the wall plots change.
+    const std::string head = "{terminal}\nunset label 1\nset key top right\nset autoscale y\n";
+    const std::string walls = "set xlabel '{x_label}'\nset xrange [0:{x_max}]\n" + wall_plots;
+    const std::string rest =
+        "set output 'axial_void_fraction.{ext}'\nset xlabel 'height above the floor z/Dp'\n"
+        "set xrange [0:*]\nset ylabel 'axial void fraction'\nset yrange [0:1]\n"
+        "set title 'Axial void fraction; the band measured lies between the dashed lines'\n"
+        "set arrow 1 from {low_d:.6g},0 to {low_d:.6g},1 nohead dt 2\n"
+        "set arrow 2 from {high_d:.6g},0 to {high_d:.6g},1 nohead dt 2\n"
+        "plot $axial using 1:2 with steps lw 1 lc rgb 'black' title 'this bed'\n"
+        "unset arrow 1\nunset arrow 2\nset autoscale y\n"
+        "set output 'pair_correlation.{ext}'\nset xlabel 'centre distance r/Dp'\n"
+        "set xrange [0:*]\nset ylabel 'g(r)'\nset yrange [0:*]\n"
+        "set title 'Pair correlation of centres in the band'\n"
+        "plot $rdf using 1:2 with steps lw 1 lc rgb 'black' title 'this bed', 1 with lines "
+        "dt 2 lc rgb 'grey' notitle\nset autoscale y\n{by_size}";
+    auto commands = [&](const std::string& text, const char* extension, const char* terminal) {
+        return fmt::format(
+            fmt::runtime(text), fmt::arg("terminal", terminal), fmt::arg("ext", extension),
+            fmt::arg("x_max", x_max), fmt::arg("where", where), fmt::arg("x_label", x_label),
+            fmt::arg("low", a.band.z_low), fmt::arg("high", a.band.z_high),
+            fmt::arg("low_d", a.band.z_low / dp), fmt::arg("high_d", a.band.z_high / dp),
+            fmt::arg("curves", curves), fmt::arg("centre_range", centre_range),
+            fmt::arg("bed_curves", bed_curves), fmt::arg("centre_curves", centre_curves),
             fmt::arg("by_size",
                      by_size.empty()
                          ? std::string()
@@ -223,7 +230,16 @@ std::string stage_plots(OutputDirectory& out, const BedAnalysis& a, const Contai
                                        fmt::arg("x_label", x_label), fmt::arg("x_max", x_max),
                                        fmt::arg("centre_top", centre_top),
                                        fmt::arg("where", where))));
-    return draw_plots(out, names, script);
+    };
+    // Two gnuplots at once: a PNG (cairo, compressed) costs four times an SVG, so one draws
+    // the SVGs and the wall plots' PNGs, the other the other PNGs (0.15 s of a 500-sphere
+    // bed's command in one gnuplot; docs/performance.md, "Twelfth session").
+    const auto& [svg, svg_terminal] = plot_terminals[0];
+    const auto& [png, png_terminal] = plot_terminals[1];
+    const std::string first = script + commands(head + walls + rest, svg, svg_terminal) +
+                              commands(head + walls, png, png_terminal);
+    const std::string second = script + commands(head + rest, png, png_terminal);
+    return draw_plots(out, names, {first, second});
 }
 
 void stage_analysis(OutputDirectory& out, const Packing& packing, const Container& container,
