@@ -58,7 +58,8 @@ Command register_export(CLI::App& parent) {
     auto& o = *options;
     CLI::App* app = parent.add_subcommand(
         "export", "Write a bed (ours, a lattice, or one read from CSV, XYZ or a dump) as a "
-                  "LAMMPS or LIGGGHTS data file, or as a surface (STL, OBJ) for meshers");
+                  "LAMMPS or LIGGGHTS data file, as a surface (STL, OBJ) for meshers, or as an "
+                  "OpenFOAM case (blockMesh + snappyHexMesh + simpleFoam)");
     app->option_defaults()->always_capture_default();
     app->add_option("particles", o.particles,
                     "the bed: a table (CSV, ParaView CSV, ;/tab/space separated), XYZ, a "
