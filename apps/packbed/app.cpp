@@ -139,7 +139,8 @@ std::vector<std::string> long_options(const CLI::App& app) {
 } // namespace
 
 int run(int argc, char** argv) {
-    handle_interrupts();
+    block_interrupts(); // a signal from here on waits for handle_interrupts, below
+
     CLI::App app("packbed: packed beds of spheres for CFD and DEM", "packbed");
     const std::vector<Command> commands = build_app(app);
 
@@ -223,6 +224,7 @@ int run(int argc, char** argv) {
             continue;
         const std::string name = command.app->get_name();
         set_command_name(name);
+        handle_interrupts(); // a signal sent while parsing is handled now, naming the command
         try {
             return command.run();
         } catch (const InvalidInput& e) {

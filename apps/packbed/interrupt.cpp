@@ -67,9 +67,14 @@ void wait_for_signals(sigset_t set) {
 
 } // namespace
 
-void handle_interrupts() {
+void block_interrupts() {
     const sigset_t set = handled_signals();
     pthread_sigmask(SIG_BLOCK, &set, nullptr);
+}
+
+void handle_interrupts() {
+    block_interrupts();
+    const sigset_t set = handled_signals();
     // The pipeline's child programs (gnuplot), to stop first.
     set_child_watcher([](pid_t pid) { g_child = pid; });
     std::thread(wait_for_signals, set).detach();

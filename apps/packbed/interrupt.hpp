@@ -10,11 +10,17 @@
 namespace packbed::cli {
 
 /// Block SIGINT, SIGTERM and SIGHUP in the calling thread, and so in every thread it starts
-/// later (OpenMP's), and start the thread that waits for them. When one arrives, that thread
-/// stops the child program being waited on (set_child_watcher), removes every output not yet in
-/// place (cancel_outputs), erases the progress line, prints "packbed COMMAND: interrupted;
-/// nothing was written" and ends the process with status 130. If the outputs were already in
-/// place, it does nothing and the run ends normally. Call once, first thing in main.
+/// later (OpenMP's): one that arrives now waits, pending, for handle_interrupts. Call first
+/// thing in main.
+void block_interrupts();
+
+/// block_interrupts, and start the thread that waits for the signals. When one arrives (or
+/// was pending), that thread stops the child program being waited on (set_child_watcher),
+/// removes every output not yet in place (cancel_outputs), erases the progress line, prints
+/// "packbed COMMAND: interrupted; nothing was written" and ends the process with status 130.
+/// If the outputs were already in place, it does nothing and the run ends normally. Call once,
+/// after set_command_name and before the command runs, so that a signal sent while the
+/// command line is parsed (a slow start under a sanitizer) still names the command.
 void handle_interrupts();
 
 /// Name the subcommand for the message.
