@@ -3,11 +3,13 @@
 // profile"). For each seed, runs the fire solver on a bed of `particles` spheres at aspect ratio
 // `a` in layers of `layer_height` Dp, records the highest settled centre after each layer (the
 // surface the next layer was laid on), then measures the axial void fraction in slabs of 0.25 Dp
-// (exact volumes, analyze_bed, band 2 Dp clear of the ends) and averages it in 1-Dp bins of
-// u = z - (that surface), over the interfaces and seeds, minus each bed's band mean. Prints
-// that mean difference per bin, how many slabs went into it, the scatter of one 1-Dp slab of
-// the band (RMS about the band mean, pooled over the seeds), and steps and void fraction per
-// seed:
+// (exact volumes, analyze_bed, band 2 Dp clear of the ends) and folds the layers onto one: each
+// slab below the last surface goes to the 1-Dp bin of u = z - (the first surface above z - 4),
+// from u = -0.85 layer_height (a relaxed layer's thickness) to +4, the 5 Dp over the floor left
+// out (the floor's own order). Prints, per bin, the mean over interfaces and seeds minus the
+// mean of every folded slab, and the slabs in it; the largest such difference; the scatter of
+// one 1-Dp slab of the band (RMS about the band mean, pooled over the seeds); steps and void
+// fraction per seed:
 //
 //     build/bench/bench_seams 20 60000 1,2,3 [LAYER_HEIGHT]
 #include <algorithm>
@@ -39,8 +41,12 @@ int main(int argc, char** argv) {
     const double layer_height = argc > 4 ? std::atof(argv[4]) : 30.0;
 
     constexpr double slab = 0.25;
-    constexpr int u_low = -8, u_high = 4;       // 1-Dp bins of u in [u_low, u_high)
-    std::map<int, std::pair<double, int>> bins; // bin -> sum of differences, slabs
+    constexpr double floor_order = 5.0; // Dp over the floor left out of the folding
+    const int u_low = -static_cast<int>(0.85 * layer_height);
+    constexpr int u_high = 4;                   // 1-Dp bins of u in [u_low, u_high)
+    std::map<int, std::pair<double, int>> bins; // bin -> sum of void fractions, slabs
+    double folded = 0.0;                        // every folded slab's void fraction, summed
+    int folded_slabs = 0;
     double scatter2 = 0.0;
     int scatter_slabs = 0;
     for (const std::uint64_t seed : seeds) {
@@ -72,17 +78,22 @@ int main(int argc, char** argv) {
             scatter2 += (e - mean) * (e - mean);
             ++scatter_slabs;
         }
-        for (const double top : surfaces)
-            for (const ProfileBin& b : bed.axial_void_fraction) {
-                if (b.low < bed.band.z_low || b.high > bed.band.z_high)
-                    continue;
-                const double u = 0.5 * (b.low + b.high) - top;
-                const int bin = static_cast<int>(std::floor(u));
-                if (bin < u_low || bin >= u_high)
-                    continue;
-                bins[bin].first += b.value - mean;
-                bins[bin].second += 1;
-            }
+        for (const ProfileBin& b : bed.axial_void_fraction) {
+            const double z = 0.5 * (b.low + b.high);
+            if (b.low < std::max(bed.band.z_low, floor_order) || b.high > bed.band.z_high)
+                continue;
+            const auto above = std::find_if(surfaces.begin(), surfaces.end(),
+                                            [&](double s) { return s + u_high > z; });
+            if (above == surfaces.end())
+                continue; // the top layer: its free surface, no interface
+            const int bin = static_cast<int>(std::floor(z - *above));
+            if (bin < u_low || bin >= u_high)
+                continue;
+            bins[bin].first += b.value;
+            bins[bin].second += 1;
+            folded += b.value;
+            ++folded_slabs;
+        }
         std::printf("seed %llu: %zu layers, %llu steps, %.1f s, e = %.4f (band %.1f-%.1f)\n",
                     static_cast<unsigned long long>(seed), surfaces.size() + 1,
                     static_cast<unsigned long long>(result.iterations), seconds, mean,
@@ -90,13 +101,15 @@ int main(int argc, char** argv) {
     }
     std::printf("one 1-Dp slab scatters by %.4f (RMS about the band mean, %d slabs)\n",
                 std::sqrt(scatter2 / std::max(1, scatter_slabs)), scatter_slabs);
-    std::printf("| u (Dp) |");
-    for (int b = u_low; b < u_high; ++b)
-        std::printf(" %+.1f |", b + 0.5);
-    std::printf("\n| e - band mean |");
+    const double folded_mean = folded / std::max(1, folded_slabs);
+    std::printf("mean of the folded slabs: %.4f (%d slabs)\n", folded_mean, folded_slabs);
+    double largest = 0.0;
+    std::printf("| u (Dp) | e - folded mean | slabs |\n|---|---|---|\n");
     for (int b = u_low; b < u_high; ++b) {
         const auto& [sum, n] = bins[b];
-        std::printf(" %+.4f |", n > 0 ? sum / n : 0.0);
+        const double d = n > 0 ? sum / n - folded_mean : 0.0;
+        largest = std::max(largest, std::abs(d));
+        std::printf("| %+.1f | %+.4f | %d |\n", b + 0.5, d, n);
     }
-    std::printf("\n");
+    std::printf("largest |e - folded mean| of a bin: %.4f\n", largest);
 }

@@ -176,7 +176,10 @@ TEST(LayerTimeLeft, FirstLayerByTheTypicalStepsOfALayer) {
     const std::optional<double> left = at(5100);
     ASSERT_TRUE(left);
     const double typical = StageTimeLeft::typical_piece_steps;
-    EXPECT_NEAR(*left, 1e-3 * (2 * typical + typical - 5000), 1e-9);
+    // the bottom layer alone, then two layers each with the one under it, at later_layer_cost
+    // times the bottom layer's seconds per step
+    const double later = LayerTimeLeft::later_layer_cost;
+    EXPECT_NEAR(*left, 1e-3 * (typical - 5000 + later * 2 * typical), 1e-9);
     // Without a typical length (the default constructor), nothing until a layer is over.
     LayerTimeLeft plain;
     Progress p{"intermediate", 5100, 1e-5, 7e-3, 0.0, 12.0};
@@ -185,8 +188,8 @@ TEST(LayerTimeLeft, FirstLayerByTheTypicalStepsOfALayer) {
 }
 
 TEST(LayerTimeLeft, MeanLayerTimeTimesTheLayersToCome) {
-    // Four layers; the first reported from t = 0 to 10 s, the second from t = 10 s. At t = 12 s:
-    // two layers still to come after the current one, 10 s each, and 8 s of the current one.
+    // Four layers; the bottom one reported from t = 0 to 10 s, the second from t = 10 s. A
+    // later layer relaxes the one under it again: later_layer_cost times the bottom one's time.
     LayerTimeLeft estimate;
     auto at = [&](std::uint32_t layer, double seconds) {
         Progress p{"intermediate", 0, 1e-5, 7e-3, 0.0, 12.0};
@@ -196,17 +199,19 @@ TEST(LayerTimeLeft, MeanLayerTimeTimesTheLayersToCome) {
     };
     for (double t = 0.0; t < 10.0; t += 1.0)
         EXPECT_FALSE(at(0, t)) << "no layer over yet at t = " << t;
+    const double later = LayerTimeLeft::later_layer_cost * 10.0;
     ASSERT_TRUE(at(1, 10.0));
     const std::optional<double> left = at(1, 12.0);
     ASSERT_TRUE(left);
-    EXPECT_DOUBLE_EQ(*left, 2 * 10.0 + 8.0);
-    // A layer slower than the mean: nothing left of it, the rest by the mean.
-    EXPECT_DOUBLE_EQ(*at(1, 25.0), 2 * 10.0);
-    // Second layer over after 20 s: mean 15 s, one layer to come plus all of the current one.
-    EXPECT_DOUBLE_EQ(*at(2, 30.0), 15.0 + 15.0);
+    // two later layers still to come after the current one, and what is left of it
+    EXPECT_DOUBLE_EQ(*left, 2 * later + (later - 2.0));
+    // A layer slower than that: nothing left of it, the rest as before.
+    EXPECT_DOUBLE_EQ(*at(1, 10.0 + later + 5.0), 2 * later);
+    // Second layer over after 35 s: the later layers' mean, 35 s, one to come plus the current.
+    EXPECT_DOUBLE_EQ(*at(2, 45.0), 35.0 + 35.0);
     // The last layer: only what is left of it.
-    EXPECT_DOUBLE_EQ(*at(3, 45.0), 15.0);
-    EXPECT_DOUBLE_EQ(*at(3, 70.0), 0.0);
+    EXPECT_DOUBLE_EQ(*at(3, 80.0), 35.0);
+    EXPECT_DOUBLE_EQ(*at(3, 130.0), 0.0);
 }
 
 } // namespace

@@ -74,12 +74,16 @@ private:
     std::vector<std::pair<double, double>> m_history; // (seconds, ln q) in this stage
 };
 
-/// Estimates how long a fire run in layers (relax_with_fire) still takes: the mean time of the
-/// layers seen from their first report to the next layer's, times the layers still to come,
-/// plus what the current layer has left of that mean. Until one layer is over (a resumed run
-/// starts at a layer's beginning, so its first layer counts too): under fire_schedule, the
-/// typical steps of the layers still to go (StageTimeLeft::typical_piece_steps, less those the
-/// current layer has run) at the run's seconds per step; otherwise nothing.
+/// Estimates how long a fire run in layers (relax_with_fire) still takes. The bottom layer
+/// (layer 0) is relaxed alone; every later one together with the layer under it, twice the
+/// spheres: it takes later_layer_cost times as long. Later layers: the mean time of the later
+/// layers seen (from their first report to the next layer's), times the layers still to come,
+/// plus what the current layer has left of that mean; while none is over, later_layer_cost times
+/// the bottom layer's time. Until a layer is over (a resumed run starts at a layer's beginning,
+/// so its first layer counts too): under fire_schedule, the typical steps of the layers still
+/// to go (StageTimeLeft::typical_piece_steps, less those the current layer has run; a later
+/// layer's later_layer_cost times the bottom one's) at the run's seconds per step; otherwise
+/// nothing.
 class LayerTimeLeft {
 public:
     /// No estimate before a layer is over.
@@ -92,9 +96,14 @@ public:
     /// seconds left in the run, or nothing when there is no estimate yet.
     std::optional<double> update(const Progress& progress, double seconds);
 
+    /// A later layer's time over the bottom layer's: 2.1-2.8, 2.4 on average (a = 20, 60 000
+    /// spheres, seed 1, 2 threads; docs/performance.md, "Thirteenth session").
+    static constexpr double later_layer_cost = 2.4;
+
 private:
     bool m_typical = false;
     bool m_started = false;
+    double m_bottom_seconds = 0.0;       // the bottom layer's time, 0 until it is over
     std::uint64_t m_first_iteration = 0; // of the run's first report
     double m_first_seconds = 0.0;
     std::uint64_t m_layer_first_iteration = 0; // of the current layer's first report

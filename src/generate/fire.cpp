@@ -26,7 +26,8 @@
 // A bed taller than twice layer_height is relaxed in layers (relax_with_fire): a tall column
 // under eq. (7) gets a gravity that shrinks as its height grows (the bottom layer carries the
 // whole column), so it falls and settles ever more slowly; a layer gets the gravity of a
-// short bed, and a step costs only the layer's spheres.
+// short bed, and a step costs only the spheres of the layer and the one under it, which is
+// relaxed again so that no part of the bed keeps the loose state of a free surface.
 #include <algorithm>
 #include <chrono>
 #include <cmath>
@@ -418,8 +419,11 @@ std::uint32_t fire_layers(const SoftSphereParameters& p) {
 
 namespace {
 
-// A layer is relaxed with the top layer_band Dp of the bed below it free to move (the loose
-// surface the new layer compacts) and a shell of fixed spheres under that band.
+// A layer is relaxed with the whole layer below it free to move, and the top layer_band Dp of
+// the bed under that layer, above a shell of fixed spheres. Every sphere but the top layer's
+// thus ends its relaxation under a layer's weight, as the bulk of a bed in one piece does: a
+// bed relaxed with a free surface is looser down to 10-20 Dp below it (docs/validation.md,
+// "A tall bed's axial profile"), and a band of 4 Dp left that gradient in every layer.
 constexpr double layer_band = 4.0;
 constexpr double layer_shell = 1.5; // > 1 Dp: no free sphere reaches past the shell
 
@@ -488,12 +492,25 @@ SoftSphereResult relax_with_fire(const SoftSphereParameters& parameters,
         for (std::uint32_t l = first; l < layers; ++l) {
             if (members[l].empty())
                 continue;
-            // the part's spheres: fixed shell, free band, new slice (each in a fixed order)
+            // the part's spheres: fixed shell, free band, new slice (each in a fixed order).
+            // The band: the last layer relaxed (`previous`) and the top layer_band of the
+            // layers under it; nothing is fixed while those hold no sphere.
+            std::uint32_t previous = l;
+            for (std::uint32_t below = 0; below < l; ++below)
+                if (!members[below].empty())
+                    previous = below;
+            bool under = false;
+            double under_top = 0.0; // highest centre under the previous layer
+            for (std::uint32_t below = 0; below < previous; ++below)
+                for (const std::uint32_t i : members[below]) {
+                    under_top = under ? std::max(under_top, position[i].z) : position[i].z;
+                    under = true;
+                }
+            const double datum = under ? under_top - layer_band : 0.0;
             std::vector<std::uint32_t> ids, band;
-            const double datum = on_floor ? 0.0 : top - layer_band;
             for (std::uint32_t below = 0; below < l; ++below) // the settled layers
                 for (const std::uint32_t i : members[below]) {
-                    if (position[i].z > datum)
+                    if (below == previous || position[i].z > datum)
                         band.push_back(i);
                     else if (position[i].z > datum - shell)
                         ids.push_back(i);

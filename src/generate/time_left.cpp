@@ -116,8 +116,12 @@ std::optional<double> StageTimeLeft::update(const Progress& progress, double sec
 std::optional<double> LayerTimeLeft::update(const Progress& progress, double seconds) {
     if (!m_started || progress.layer != m_layer) {
         if (m_started && progress.layer == m_layer + 1) {
-            ++m_timed;
-            m_timed_seconds += seconds - m_layer_start;
+            if (m_layer == 0) {
+                m_bottom_seconds = seconds - m_layer_start;
+            } else {
+                ++m_timed;
+                m_timed_seconds += seconds - m_layer_start;
+            }
         }
         if (!m_started) {
             m_first_iteration = progress.iteration;
@@ -131,8 +135,15 @@ std::optional<double> LayerTimeLeft::update(const Progress& progress, double sec
     const double to_come = progress.layers > progress.layer + 1
                                ? static_cast<double>(progress.layers - progress.layer - 1)
                                : 0.0;
-    if (m_timed == 0) {
-        // The first layer: the typical steps of the layers still to go (the class comment).
+    const bool bottom = progress.layer == 0;
+    double later = 0.0; // a later layer's time
+    if (m_timed > 0) {
+        later = m_timed_seconds / m_timed;
+    } else if (m_bottom_seconds > 0.0) {
+        later = later_layer_cost * m_bottom_seconds;
+    } else {
+        // No layer over yet: the typical steps of the layers still to go (the class comment),
+        // at this layer's seconds per step.
         const std::uint64_t run = progress.iteration - m_first_iteration;
         if (!m_typical || run == 0)
             return std::nullopt;
@@ -140,10 +151,11 @@ std::optional<double> LayerTimeLeft::update(const Progress& progress, double sec
             std::max(0.0, (seconds - m_first_seconds) / static_cast<double>(run));
         const double in_layer = static_cast<double>(progress.iteration - m_layer_first_iteration);
         const double typical = static_cast<double>(StageTimeLeft::typical_piece_steps);
-        return per_step * (typical * to_come + std::max(0.0, typical - in_layer));
+        const double later_per_step = bottom ? later_layer_cost * per_step : per_step;
+        return per_step * std::max(0.0, typical - in_layer) + later_per_step * typical * to_come;
     }
-    const double mean = m_timed_seconds / m_timed;
-    return mean * to_come + std::max(0.0, mean - (seconds - m_layer_start));
+    const double now = bottom ? later / later_layer_cost : later; // the current layer's time
+    return later * to_come + std::max(0.0, now - (seconds - m_layer_start));
 }
 
 } // namespace packbed
