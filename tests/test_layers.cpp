@@ -153,6 +153,30 @@ TEST(FireLayers, EachLayerIsRelaxedAgainUnderTheNext) {
     }
 }
 
+TEST(FireLayers, APeriodicCellInLayersReachesTheTolerance) {
+    // A layer's part lost the periodic wrap of its Verlet list: pairs across the cell's sides
+    // were never listed, the force pass saw no overlap while the exact measure saw those pairs,
+    // and the initial stage of the bottom layer ran until --max-iterations (a hang with the
+    // default 2e8; found 2026-11-24).
+    SoftSphereParameters p;
+    p.container = Container(Periodic(5.0, 5.0));
+    p.particles = 760; // L0 = 760 (pi / 6) / (25 0.53) = 30 Dp: three layers of 10 Dp
+    p.seed = 1;
+    p.solver = Solver::fire;
+    p.layer_height = 10.0;
+    p.max_iterations = 300'000;
+    ASSERT_EQ(fire_layers(p), 3u);
+    const SoftSphereResult res = relax_with_fire(p);
+    // measured here, by the minimum image, on the whole bed
+    const Overlaps o = measure_overlaps(res.packing, res.container);
+    EXPECT_LT(o.pair, 1e-4);
+    for (const Vec3& c : res.packing.centers) {
+        EXPECT_GE(c.x, 0.0);
+        EXPECT_LT(c.x, 5.0);
+        EXPECT_GE(c.z, 0.5 - 1e-12);
+    }
+}
+
 TEST(FireLayers, EmptySlicesAreSkipped) {
     // e0 = 0.999: L0 = 60 (pi / 6) / (pi 1.5^2 0.001) = 4444 Dp, 148 slices of 30 Dp for 60
     // spheres, so most slices hold none; seed 1 leaves the bottom one empty, which crashed the
