@@ -71,9 +71,7 @@ void SoftBed::assign(Packing spheres, double height, double smallest) {
     packing = std::move(spheres);
     initial_height = height;
     ceiling = 4.0 * height + 10.0 * width(container) + 10.0;
-    list = NeighborList{};
-    if (cell) // a new list measures pairs by the minimum image too (a layer's part did not)
-        list.wrap(*cell);
+    new_list();
     velocity.clear();
     drift2 = 0.0;
     reset_order();
