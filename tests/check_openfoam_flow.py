@@ -4,7 +4,7 @@
 reconstructPar) on a generated bed of 30 spheres (a = 3, caps:0.02, d = 1 mm, water at
 Re_p = 1). Asserts
 - simpleFoam converged: "SIMPLE solution converged", every last initial residual of p and U
-  below the case's residualControl (1e-6; RANS 1e-5);
+  below the case's residualControl (1e-6; RANS 1e-5, U 1e-4);
 - mass is conserved: the inlet's and the outlet's volumetric fluxes within 0.1 %, and the
   inlet's flux is the superficial velocity times the tube's cross-section;
 - the pressure gradient over the bed clear of its ends (a straight line fitted to the 9
@@ -19,7 +19,7 @@ Re_p = 1). Asserts
 
 With a RANS model (`check_openfoam_flow.py PACKBED kOmegaSST 100`: --turbulence and
 --reynolds), the same bed at Re_p = 100: simpleFoam ran the model (its log names it, nut is
-not zero), converged to the RANS residuals (1e-5), conserved mass, and the gradient lies
+not zero), converged to the RANS residuals (1e-5, U 1e-4), conserved mass, and the gradient lies
 within 18 % of the measured 0.664 of Eisfeld & Schnitzlein (1.995e5 Pa/m against 3.006e5):
 0.54 to 0.78.
 
@@ -70,13 +70,13 @@ run(os.path.join(case, "Allrun"), cwd=case)
 
 log = open(os.path.join(case, "log.simpleFoam")).read()
 assert "SIMPLE solution converged" in log, log[-3000:]
-# the residualControl of the case's fvSolution: laminar 1e-6; RANS 1e-5 (the
+# the residualControl of the case's fvSolution: laminar 1e-6; RANS 1e-5, U 1e-4 (the
 # first initial residual of each field in the last iteration)
 last = log[log.rfind("\nTime = "):]
 tolerances = {"p": 1e-6, "Ux": 1e-6, "Uy": 1e-6, "Uz": 1e-6}
 if turbulence != "laminar":
     assert f"Selecting RAS turbulence model {turbulence}" in log, log[:3000]
-    tolerances = {"p": 1e-5, "Ux": 1e-5, "Uy": 1e-5, "Uz": 1e-5, "k": 1e-5}
+    tolerances = {"p": 1e-5, "Ux": 1e-4, "Uy": 1e-4, "Uz": 1e-4, "k": 1e-5}
 for field, tolerance in tolerances.items():
     residual = re.search(rf"Solving for {field}, Initial residual = ([0-9.eE+-]+)", last)
     assert residual and float(residual.group(1)) < tolerance, (field, last)

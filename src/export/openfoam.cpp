@@ -463,7 +463,7 @@ void add_flow_files(OpenFoamCase& c, const std::vector<std::string>& walls, doub
             "tolerance 1e-10; relTol 0.1; }\n"
             "}\n\n"
             "SIMPLE\n{\n    nNonOrthogonalCorrectors 1;\n    consistent yes;\n" +
-            (rans ? "    residualControl { p 1e-5; U 1e-5; \"(k|epsilon|omega)\" 1e-5; }\n}\n\n"
+            (rans ? "    residualControl { p 1e-5; U 1e-4; \"(k|epsilon|omega)\" 1e-5; }\n}\n\n"
                     "relaxationFactors { equations { U 0.9; \"(k|epsilon|omega)\" 0.7; } }\n"
                   : "    residualControl { p 1e-6; U 1e-6; }\n}\n\n"
                     "relaxationFactors { equations { U 0.9; } }\n"));
