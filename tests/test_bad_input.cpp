@@ -339,8 +339,9 @@ INSTANTIATE_TEST_SUITE_P(
               "packbed: --config @D/unknown.toml: line 2: unknown key 'warp_speed'; allowed: "
               "aspect-ratio, band-clearance, cg-step, checkpoint, ck, container, diameter, e0, "
               "engine, force, fractions, layer-height, lmp, max-iterations, mc-period, "
-              "mc-tolerance, mc-window, mpi-command, out, overlap-high, overlap-low, particles, "
-              "quiet, ranks, seed, sizes, skin, solver, threads, tolerance, update, write-only"),
+              "mc-tolerance, mc-window, mpi-command, no-analysis, out, overlap-high, overlap-low, "
+              "particles, quiet, ranks, seed, sizes, skin, solver, threads, tolerance, update, "
+              "write-only"),
         exact("generate --config @D/broken.toml",
               "packbed: --config @D/broken.toml: line 1, column 16: Error while parsing value: "
               "could not "

@@ -10,6 +10,7 @@
 #include <cstdlib>
 #include <filesystem>
 #include <fstream>
+#include <set>
 #include <sstream>
 #include <thread>
 #include <vector>
@@ -614,6 +615,28 @@ TEST(Cli, GenerateAlsoWritesTheAnalysis) {
     }
     for (const auto& entry : fs::directory_iterator(d))
         EXPECT_EQ(entry.path().filename().string().find(".tmp"), std::string::npos);
+}
+
+TEST(Cli, GenerateWithNoAnalysisWritesTheSpheresAndTheSummaryOnly) {
+    // A DEM start (docs/generate.md): the same spheres, the summary's void fraction, nothing
+    // else; the whole output is the same bytes for those three files.
+    const fs::path full = scratch("full"), bare = scratch("bare");
+    ASSERT_EQ(packbed(small + "--quiet --out " + full.string()).status, 0);
+    const Outcome o = packbed(small + "--no-analysis --out " + bare.string());
+    ASSERT_EQ(o.status, 0) << o.err;
+    std::set<std::string> names;
+    for (const auto& entry : fs::directory_iterator(bare))
+        names.insert(entry.path().filename().string());
+    EXPECT_EQ(names, (std::set<std::string>{"particles.csv", "particles.vtu", "summary.json"}));
+    EXPECT_EQ(slurp(bare / "particles.csv"), slurp(full / "particles.csv"));
+    EXPECT_EQ(slurp(bare / "particles.vtu"), slurp(full / "particles.vtu"));
+    const auto a = nlohmann::json::parse(slurp(full / "summary.json"));
+    const auto b = nlohmann::json::parse(slurp(bare / "summary.json"));
+    EXPECT_FALSE(b.contains("analysis"));
+    EXPECT_EQ(b["void_fraction"], a["void_fraction"]);
+    EXPECT_GT(b["void_fraction"].get<double>(), 0.3);
+    EXPECT_NE(o.out.find("summary.json)"), std::string::npos) << o.out;
+    EXPECT_EQ(o.out.find("analysis tables"), std::string::npos) << o.out;
 }
 
 TEST(Cli, AFailingPlotterLeavesTheRestOfTheOutput) {

@@ -6,9 +6,11 @@ addition, a solid fraction of 0.2, fixed seed), lets LAMMPS (Debian's `lmp`, GRA
 package, bench/peers/lammps_pour.in) drop them frictionlessly until the kinetic energy per
 sphere is below 1e-6 m g D, and does the same with LIGGGHTS (Debian's `liggghts`,
 bench/peers/liggghts_pour.in: the same model and stopping rule) where it is installed, and
-runs `packbed generate` on the same cylinder and Np with each solver. Prints, for each: wall
-time, void fraction (`packbed analyze`, 1 Dp clear of the ends) and the largest sphere-sphere
-and sphere-wall overlaps in Dp, then the time ratios of each peer to each solver.
+runs `packbed generate` on the same cylinder and Np with each solver, and with fire and
+`--no-analysis` (the spheres and the summary only, as the peers write only a dump). Prints,
+for each: wall time, void fraction (`packbed analyze`, 1 Dp clear of the ends) and the largest
+sphere-sphere and sphere-wall overlaps in Dp, then the time ratios of each peer to each
+solver.
 Installs nothing: run bench/peers/install.sh first (Debian's lammps, liggghts, openmpi-bin).
 
 Usage: bench/peers/pour.py [--packbed build/packbed] [--aspect-ratio 5] [--particles 500]
@@ -155,18 +157,19 @@ def main():
         rows.append((f"LIGGGHTS pour-and-settle ({args.ranks} ranks)", seconds, e,
                      *largest_overlaps(dump, a / 2 * D)))
 
-    for solver in ("paper", "fire"):
-        out = os.path.join(work, f"packbed-{solver}")
+    # The last: the spheres and their summary only, as the peers write only their dump.
+    for solver, extra in (("paper", []), ("fire", []), ("fire", ["--no-analysis"])):
+        out = os.path.join(work, f"packbed-{solver}{'-bare' if extra else ''}")
         start = time.perf_counter()
         subprocess.run([args.packbed, "generate", "--solver", solver, "--aspect-ratio", f"{a:g}",
                         "--particles", str(n), "--seed", str(args.seed), "--quiet", "--force",
-                        "--out", out],
+                        "--out", out] + extra,
                        check=True)
         seconds = time.perf_counter() - start
         with open(os.path.join(out, "summary.json")) as f:
             s = json.load(f)
-        rows.append((f"packbed --solver {solver}", seconds, s["void_fraction"],
-                     s["max_overlap_pair"], s["max_overlap_wall"]))
+        rows.append((" ".join([f"packbed --solver {solver}"] + extra), seconds,
+                     s["void_fraction"], s["max_overlap_pair"], s["max_overlap_wall"]))
 
     print(f"a = {a:g}, Np = {n}, seed {args.seed}")
     print("| program | wall time (s) | void fraction | largest overlap pair (Dp) "
