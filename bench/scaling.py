@@ -108,7 +108,7 @@ def plot(args, rows):
     lines += ["set yrange [0.5:30000]", "set ylabel 'wall time of packbed generate (s)'",
               "plot $targets with points pt 3 ps 2 lc rgb 'black' title 'targets (fire)', "
               + ", ".join(curves(2))]
-    lines += ["set yrange [1e4:1e7]", "set ylabel 'steps (iterations), all layers'",
+    lines += ["set yrange [3e3:1e7]", "set ylabel 'steps (iterations), all layers'",
               "plot " + ", ".join(curves(3)), "unset multiplot"]
     subprocess.run(["gnuplot"], input="\n".join(lines), text=True, check=True)
 

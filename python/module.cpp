@@ -174,7 +174,7 @@ Bed generate(double aspect_ratio, const std::optional<std::string>& container, l
              std::optional<double> overlap_low, std::optional<double> overlap_high,
              double tolerance, long long mc_period, long long mc_window,
              std::optional<double> mc_tolerance, const std::string& update,
-             const std::string& solver, double skin, double layer_height,
+             const std::string& solver, std::optional<double> skin, double layer_height,
              const std::optional<std::filesystem::path>& checkpoint,
              std::optional<long long> max_iterations, double band_clearance,
              std::optional<long long> threads, const py::object& progress,
@@ -204,7 +204,8 @@ Bed generate(double aspect_ratio, const std::optional<std::string>& container, l
         p.mc_tolerance = check_option("mc-tolerance", *mc_tolerance, range::mc_tolerance);
     p.update = choice("update", update, update_orders());
     p.solver = choice("solver", solver, solvers());
-    p.skin = check_option("skin", skin, range::skin);
+    if (skin)
+        p.skin = check_option("skin", *skin, range::skin);
     p.layer_height = check_option("layer-height", layer_height, range::layer_height);
     if (max_iterations)
         p.max_iterations = check_option("max-iterations", *max_iterations, range::max_iterations);
@@ -807,30 +808,29 @@ in the directory `out` (new or empty; force=True replaces a non-empty one whole)
             "The numbers as `packbed analyze` writes them in summary.json (band, void fraction, "
             "coordination, rattlers, wall contacts, options, warnings).");
 
-    m.def("generate", &generate, py::kw_only(),
-          py::arg("aspect_ratio") = SoftSphereParameters{}.aspect_ratio,
-          py::arg("container") = py::none(),
-          py::arg("particles") = SoftSphereParameters{}.particles,
-          py::arg("seed") = SoftSphereParameters{}.seed,
-          py::arg("diameter") = SoftSphereParameters{}.diameter, py::arg("sizes") = "mono",
-          py::arg("fractions") = "volume", py::arg("e0") = SoftSphereParameters{}.e0,
-          py::arg("ck") = SoftSphereParameters{}.ck,
-          py::arg("cg_step") = SoftSphereParameters{}.cg_step, py::arg("overlap_low") = py::none(),
-          py::arg("overlap_high") = py::none(),
-          py::arg("tolerance") = SoftSphereParameters{}.tolerance,
-          py::arg("mc_period") = SoftSphereParameters{}.mc_period,
-          py::arg("mc_window") = SoftSphereParameters{}.mc_window,
-          py::arg("mc_tolerance") = py::none(),
-          py::arg("update") = to_string(SoftSphereParameters{}.update),
-          py::arg("solver") = to_string(SoftSphereParameters{}.solver),
-          py::arg("skin") = SoftSphereParameters{}.skin,
-          py::arg("layer_height") = SoftSphereParameters{}.layer_height,
-          py::arg("checkpoint") = py::none(), py::arg("max_iterations") = py::none(),
-          py::arg("band_clearance") = 1.0, py::arg("threads") = py::none(),
-          py::arg("progress") = py::none(), py::arg("out") = py::none(), py::arg("force") = false,
-          py::arg("engine") = to_string(Engine::packbed), py::arg("ranks") = 1,
-          py::arg("mpi_command") = py::none(), py::arg("lmp") = "lmp",
-          R"(Pack spheres in a container with the soft-sphere algorithm of Salvat et al. (2005).
+    m.def(
+        "generate", &generate, py::kw_only(),
+        py::arg("aspect_ratio") = SoftSphereParameters{}.aspect_ratio,
+        py::arg("container") = py::none(), py::arg("particles") = SoftSphereParameters{}.particles,
+        py::arg("seed") = SoftSphereParameters{}.seed,
+        py::arg("diameter") = SoftSphereParameters{}.diameter, py::arg("sizes") = "mono",
+        py::arg("fractions") = "volume", py::arg("e0") = SoftSphereParameters{}.e0,
+        py::arg("ck") = SoftSphereParameters{}.ck,
+        py::arg("cg_step") = SoftSphereParameters{}.cg_step, py::arg("overlap_low") = py::none(),
+        py::arg("overlap_high") = py::none(),
+        py::arg("tolerance") = SoftSphereParameters{}.tolerance,
+        py::arg("mc_period") = SoftSphereParameters{}.mc_period,
+        py::arg("mc_window") = SoftSphereParameters{}.mc_window,
+        py::arg("mc_tolerance") = py::none(),
+        py::arg("update") = to_string(SoftSphereParameters{}.update),
+        py::arg("solver") = to_string(SoftSphereParameters{}.solver), py::arg("skin") = py::none(),
+        py::arg("layer_height") = SoftSphereParameters{}.layer_height,
+        py::arg("checkpoint") = py::none(), py::arg("max_iterations") = py::none(),
+        py::arg("band_clearance") = 1.0, py::arg("threads") = py::none(),
+        py::arg("progress") = py::none(), py::arg("out") = py::none(), py::arg("force") = false,
+        py::arg("engine") = to_string(Engine::packbed), py::arg("ranks") = 1,
+        py::arg("mpi_command") = py::none(), py::arg("lmp") = "lmp",
+        R"(Pack spheres in a container with the soft-sphere algorithm of Salvat et al. (2005).
 
 The keyword arguments are `packbed generate`'s options in snake_case, with the same defaults
 (`packbed generate --help`, docs/generate.md): aspect_ratio a = D/Dp (or container, a spec

@@ -45,14 +45,15 @@ public:
 
     /// Reports taken into the fit (fewer give no estimate).
     static constexpr std::size_t min_reports = 5;
-    /// Steps of the fire solver's intermediate stage under fire_schedule: measured 9 500-10 200
-    /// for beds from a = 10 to 1e6 spheres (a piece or a layer), 4 300-8 400 for smaller beds
-    /// and other containers (docs/performance.md, "Time left"): the upper end, so that the
-    /// estimate is too long for a small bed (by a fraction of a second) rather than too short
-    /// for a large one.
+    /// Steps of the fire solver's intermediate stage under fire_schedule: measured 7 500-9 200
+    /// for beds of a = 20 and 30 (9 000 and 20 000 spheres, seeds 1-3), about 12 000 for a = 20,
+    /// 1e4 spheres, seed 1, 5 300-10 800 for the layers of a = 20, 60 000 spheres, 4 700-8 800
+    /// for smaller beds (docs/performance.md, "Fourteenth session"; 9 500-10 200 with dt_max
+    /// 0.2): near the upper end, so that the estimate is too long for a small bed (by a
+    /// fraction of a second) rather than too short for a large one.
     static constexpr std::uint64_t typical_intermediate_steps = 10'000;
     /// Steps of a whole piece or layer of the fire solver under fire_schedule: the initial
-    /// stage's 100-300, typical_intermediate_steps and the final stage's 900-1 600.
+    /// stage's 100-500, typical_intermediate_steps and the final stage's 900-1 800.
     static constexpr std::uint64_t typical_piece_steps = 11'300;
 
     /// \return true when `parameters` are the fire solver's under its own schedule (the
@@ -96,9 +97,10 @@ public:
     /// seconds left in the run, or nothing when there is no estimate yet.
     std::optional<double> update(const Progress& progress, double seconds);
 
-    /// A later layer's time over the bottom layer's: 2.1-2.8, 2.4 on average (a = 20, 60 000
-    /// spheres, seed 1, 2 threads; docs/performance.md, "Thirteenth session").
-    static constexpr double later_layer_cost = 2.4;
+    /// A later layer's time over the bottom layer's: 1.7-2.7, 2.0 on average (a = 20, 60 000
+    /// spheres, seed 1, 2 threads; docs/performance.md, "Fourteenth session"; 2.1-2.8 with
+    /// dt_max 0.2, whose longer creep weighed more in the taller parts).
+    static constexpr double later_layer_cost = 2.0;
 
 private:
     bool m_typical = false;

@@ -462,7 +462,7 @@ LammpsJob lammps_job(const SoftSphereParameters& parameters, LammpsPairStyle sty
     replace_all(input, "@G0@", num(g0));
     replace_all(input, "@BOUNDARY@", walls.boundary);
     replace_all(input, "@PAIR@", pair);
-    replace_all(input, "@SKIN@", num(p.skin));
+    replace_all(input, "@SKIN@", num(p.list_skin()));
     replace_all(input, "@GROUPS@", groups);
     replace_all(input, "@WALLS@", walls.walls);
     replace_all(input, "@OVERLAPS@", overlaps);

@@ -104,7 +104,7 @@ void SoftSphereParameters::validate() const {
     require(mc_window >= 2 && mc_window <= 10'000, "mc-window", mc_window, "2 to 10000");
     require(s.mc_tolerance > 0.0 && s.mc_tolerance <= 100.0, "mc-tolerance", s.mc_tolerance,
             "0 < mc-tolerance <= 100 (percent)");
-    require(skin > 0.0 && skin <= 1.0, "skin", skin, "0 < skin <= 1 (Dp)");
+    require(list_skin() > 0.0 && list_skin() <= 1.0, "skin", list_skin(), "0 < skin <= 1 (Dp)");
     require(layer_height == 0.0 || (layer_height >= 10.0 && layer_height <= 1e6), "layer-height",
             layer_height, "0 (one piece) or 10 to 1000000 (Dp)");
     require(max_iterations >= 1, "max-iterations", static_cast<double>(max_iterations), ">= 1");
@@ -166,6 +166,10 @@ SoftSphereParameters::Schedule SoftSphereParameters::schedule() const {
             mc_tolerance.value_or(own.mc_tolerance)};
 }
 
+double SoftSphereParameters::list_skin() const {
+    return skin.value_or(solver == Solver::paper ? paper_skin : fire_skin);
+}
+
 double SoftSphereParameters::smallest_size() const {
     return sizes.empty() ? 1.0 : *std::min_element(sizes.begin(), sizes.end());
 }
@@ -213,7 +217,7 @@ struct SoftSphereGenerator::State : detail::SoftBed {
     /// r_i.
     template <UpdateOrder update> SweepStats sweep(double gravity) {
         if (list_stale())
-            rebuild_list(params.skin);
+            rebuild_list(params.list_skin());
         const detail::LinearOverlapLaw law{params.ck};
         const std::size_t n = packing.size();
         Vec3* const x = packing.centers.data();

@@ -27,7 +27,7 @@ nlohmann::json soft_sphere_parameters_json(const SoftSphereParameters& p) {
             {"mc_tolerance", schedule.mc_tolerance},
             {"update", to_string(p.update)},
             {"solver", to_string(p.solver)},
-            {"skin", p.skin},
+            {"skin", p.list_skin()},
             {"layer_height", p.layer_height},
             {"max_iterations", p.max_iterations}};
 }
