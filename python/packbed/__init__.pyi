@@ -82,7 +82,7 @@ def generate(
     mc_tolerance: Optional[float] = None,
     update: str = "simultaneous",
     solver: str = "fire",
-    skin: float = 0.1,
+    skin: Optional[float] = None,
     layer_height: float = 30.0,
     checkpoint: Optional[str] = None,
     max_iterations: Optional[int] = None,
