@@ -81,8 +81,16 @@ constexpr double lammps_settle = 0.1;
 /// its mass-centre rule; LAMMPS's rule on the RMS force was not tuned for it.
 constexpr double lammps_overlap_low = 1e-2, lammps_overlap_high = 2e-2;
 
-/// \return `parameters` with the band LAMMPS runs: the one given, else lammps_overlap_low and
-/// lammps_overlap_high (what summary.json reports for an --engine lammps run).
+/// LAMMPS's neighbour skin unless one is given, Dp: the 0.1 the engine was checked with. The fire
+/// solver's own skin became 0.2 (cheaper list builds in packbed, 2026-11-25), which bought
+/// LAMMPS nothing measured, and on a periodic 6 x 6 cell of 300 spheres (seed 2) its other
+/// trajectory took 1 956 680 steps in 23 rounds of the final stage instead of 32 360
+/// (docs/lammps.md).
+constexpr double lammps_skin = 0.1;
+
+/// \return `parameters` with the band and skin LAMMPS runs: the ones given, else
+/// lammps_overlap_low, lammps_overlap_high and lammps_skin (what summary.json reports for an
+/// --engine lammps run).
 SoftSphereParameters lammps_parameters(SoftSphereParameters parameters);
 
 /// Write the relaxation of `parameters` for LAMMPS: the generation stage (section 3.1, the

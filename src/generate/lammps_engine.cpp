@@ -378,6 +378,7 @@ std::string read_text(const std::filesystem::path& path) {
 SoftSphereParameters lammps_parameters(SoftSphereParameters parameters) {
     parameters.overlap_low = parameters.overlap_low.value_or(lammps_overlap_low);
     parameters.overlap_high = parameters.overlap_high.value_or(lammps_overlap_high);
+    parameters.skin = parameters.skin.value_or(lammps_skin);
     return parameters;
 }
 
