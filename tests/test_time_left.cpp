@@ -122,8 +122,8 @@ TEST(StageTimeLeft, FireIntermediateStageByItsTypicalLength) {
 TEST(StageTimeLeft, HonestThroughAFireRunsCreep) {
     // A real run (a = 10, 2 250 spheres, 25 Dp, seed 26), timed by its steps (1 ms a step) so
     // that the test does not depend on the machine. Its intermediate stage takes about 10 000
-    // steps, the typical length (seeds 1-29: 4 400-11 100, median 7 000; the estimate is
-    // meant to be long for the shorter ones, as for small beds). With dt_max 0.2, seed 1's stage of
+    // steps, the typical length (seeds 1-29: 4 400-11 100, median 7 000; the estimate is meant
+    // to be long for the shorter ones, as for small beds). With dt_max 0.2, seed 1's stage of
     // 9 500 steps saw the mass-centre spread fall under 3 times the rule's by about step 6 000
     // and then creep; an exponential fit of that spread said 1.5 s where 6.4 s were left at
     // step 3 100 (docs/performance.md, "Time left"). From step 2 000 of the stage to 1 000

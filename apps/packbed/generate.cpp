@@ -310,7 +310,7 @@ Command register_generate(CLI::App& parent) {
         ->check(path_text());
     (void)engine;
     app->add_option("--skin", p.skin,
-                    "Verlet neighbour-list skin, Dp (default: 0.2 for fire, 0.1 for paper)")
+                    "Verlet neighbour-list skin, Dp (default: fire 0.2; paper, LAMMPS 0.1)")
         ->check(real_in(option_range::skin));
     app->add_option("--layer-height", p.layer_height,
                     "fire solver: a bed whose initial height L0 exceeds twice this is relaxed in "

@@ -56,9 +56,10 @@ constexpr double fire_alpha0 = 0.5;
 constexpr double fire_f_alpha = 0.99;
 // Largest step, in units of 1/sqrt(k/m). Stable: the contact network's stiffest mode has
 // omega <= sqrt(2 z) = sqrt(24) for 12 contacts (Gershgorin), and semi-implicit Euler is stable
-// for omega dt < 2 (here 1.47). 0.3 rather than Bitzek et al.'s 10 dt0 = 0.5: 0.3 takes 21-31 %
-// fewer steps than 0.2 at a = 5 and 20 with the same beds, 0.38 made a = 20 beds denser by
-// 0.002-0.003 (docs/performance.md, "Fourteenth session"; docs/validation.md).
+// for omega dt < 2 (here 1.47). 0.3 rather than Bitzek et al.'s 10 dt0 = 0.5: against 0.2 it
+// takes 27, 8 and 11 % fewer steps at a = 5, 10 and 20 (10 seeds each; 25 % on 60 000 spheres
+// in layers) with the same beds, while 0.38 made a = 20 beds denser by 0.002-0.003
+// (docs/performance.md, "Fourteenth session"; docs/validation.md).
 constexpr double fire_dt_max = 0.3;
 constexpr double fire_dt0 = 0.05;
 // FIRE 2.0 (Guenole et al. 2020) keeps dt >= 0.02 dt_max, so that a run of uphill steps
