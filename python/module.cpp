@@ -254,8 +254,7 @@ Bed generate(double aspect_ratio, const std::optional<std::string>& container, l
     GeneratedBed generated = run_interruptible(control, progress, [&] {
         if (request.engine == Engine::lammps)
             return run_lammps_generation(prepared, launcher, control, *directory);
-        return run_generation(prepared, control, omp_get_max_threads(),
-                              directory ? &*directory : nullptr);
+        return run_generation(prepared, control, omp_get_max_threads());
     });
     Bed bed{std::move(generated.result.packing), generated.result.container,
             std::move(generated.summary)};
@@ -544,9 +543,10 @@ py::object hydraulics(std::optional<double> porosity, const std::optional<std::s
 
 py::object cfd_report_of(const std::filesystem::path& case_dir,
                          const std::optional<std::filesystem::path>& out, bool force) {
-    const Report report = cfd_report(case_dir);
+    check_cfd_case(case_dir);
     OutputDirectory directory(out ? *out : case_dir / "cfd-report", "--out", OutputKind::directory,
                               force);
+    const Report report = cfd_report(case_dir);
     const std::string why = stage_cfd_report(directory, report);
     directory.commit();
     std::vector<std::string> warnings = report.warnings;
@@ -683,11 +683,17 @@ PYBIND11_MODULE(_core, m) {
             if (p)
                 std::rethrow_exception(p);
         } catch (const InvalidInput& e) {
-            PyErr_SetString(PyExc_ValueError, e.what());
+            PyErr_SetString(PyExc_ValueError, as_given(e.what()).c_str());
         } catch (const ConvergenceError& e) {
             convergence(e.what());
         } catch (const Cancelled&) {
             PyErr_SetNone(PyExc_KeyboardInterrupt);
+        } catch (const py::builtin_exception& e) { // pybind11's own: as it translates them
+            e.set_error();
+        } catch (const std::bad_alloc&) {
+            PyErr_SetString(PyExc_MemoryError, "out of memory; nothing was written");
+        } catch (const std::exception& e) { // a staged file's name as the user gave it
+            PyErr_SetString(PyExc_RuntimeError, as_given(e.what()).c_str());
         }
     });
 
@@ -731,8 +737,8 @@ string ('cylinder:D', 'box:LX,LY', 'annulus:D,DI', 'periodic:LX,LY'), the floor 
             "The bed's record as a dict: what summary.json holds (for a generated bed the "
             "parameters, the stages, the void fraction, the largest overlaps).")
         .def("__len__", [](const Bed& bed) { return bed.packing.size(); })
-        .def("write", &write_bed, py::arg("out"), py::kw_only(), py::arg("force") = false,
-             py::arg("analysis") = true, py::arg("band_clearance") = 1.0,
+        .def("write", &write_bed, py::call_guard<JobScope>(), py::arg("out"), py::kw_only(),
+             py::arg("force") = false, py::arg("analysis") = true, py::arg("band_clearance") = 1.0,
              R"(Write the bed as `packbed generate` does: particles.csv, particles.vtu, the
 analysis (tables and plots, when the bed is taller than twice band_clearance) and summary.json
 in the directory `out` (new or empty; force=True replaces a non-empty one whole).)");
@@ -809,7 +815,7 @@ in the directory `out` (new or empty; force=True replaces a non-empty one whole)
             "coordination, rattlers, wall contacts, options, warnings).");
 
     m.def(
-        "generate", &generate, py::kw_only(),
+        "generate", &generate, py::call_guard<JobScope>(), py::kw_only(),
         py::arg("aspect_ratio") = SoftSphereParameters{}.aspect_ratio,
         py::arg("container") = py::none(), py::arg("particles") = SoftSphereParameters{}.particles,
         py::arg("seed") = SoftSphereParameters{}.seed,
@@ -852,10 +858,10 @@ for a bad value (the message names the option, the value and what is allowed),
 ConvergenceError when the run does not converge, KeyboardInterrupt on Ctrl-C (nothing is
 written). The GIL is released while it runs.)");
 
-    m.def("read", &read_bed, py::arg("path"), py::kw_only(), py::arg("format") = "auto",
-          py::arg("frame") = -1, py::arg("axis") = py::none(), py::arg("floor") = 0.0,
-          py::arg("diameter") = py::none(), py::arg("container") = py::none(),
-          py::arg("outside_tolerance") = 0.01,
+    m.def("read", &read_bed, py::call_guard<JobScope>(), py::arg("path"), py::kw_only(),
+          py::arg("format") = "auto", py::arg("frame") = -1, py::arg("axis") = py::none(),
+          py::arg("floor") = 0.0, py::arg("diameter") = py::none(),
+          py::arg("container") = py::none(), py::arg("outside_tolerance") = 0.01,
           R"(Read a bed from a file, as `packbed analyze` does: CSV/TSV tables, XYZ, LAMMPS and
 LIGGGHTS dumps and data files, each gzip-compressed or not (format 'auto' detects it).
 
@@ -864,11 +870,12 @@ subtracted from every centre. diameter: of spheres in files without a size colum
 spec string; None: the one summary.json beside the file records, if any. Spheres sticking out of
 the container by more than outside_tolerance Dp raise ValueError, as every bad input does.)");
 
-    m.def("analyze_frames", &analyze_frames, py::arg("path"), py::kw_only(),
-          py::arg("format") = "auto", py::arg("axis") = py::none(), py::arg("floor") = 0.0,
-          py::arg("diameter") = py::none(), py::arg("container") = py::none(),
-          py::arg("outside_tolerance") = 0.01, py::arg("band") = py::none(),
-          py::arg("band_clearance") = 1.0, py::arg("threads") = py::none(),
+    m.def("analyze_frames", &analyze_frames, py::call_guard<JobScope>(), py::arg("path"),
+          py::kw_only(), py::arg("format") = "auto", py::arg("axis") = py::none(),
+          py::arg("floor") = 0.0, py::arg("diameter") = py::none(),
+          py::arg("container") = py::none(), py::arg("outside_tolerance") = 0.01,
+          py::arg("band") = py::none(), py::arg("band_clearance") = 1.0,
+          py::arg("threads") = py::none(),
           R"(The void fraction of every frame of a trajectory (a LAMMPS or LIGGGHTS dump), as
 `packbed analyze --frames all` writes it in void_fraction_series.csv: a dict of numpy arrays
 frame, timestep (NaN where the file has none), void_fraction (NaN where the frame has no
@@ -877,9 +884,10 @@ as a Bed (analyze it for the rest). The band: band = (z_low, z_high), fixed, or 
 Dp clear of each frame's ends. Reading options and container as read(); every frame is checked
 inside the container.)");
 
-    m.def("analyze", &analyze, py::arg("bed"), py::kw_only(), py::arg("container") = py::none(),
-          py::arg("band") = py::none(), py::arg("band_clearance") = 1.0,
-          py::arg("diameter") = py::none(), py::arg("shell_width") = AnalysisOptions{}.shell_width,
+    m.def("analyze", &analyze, py::call_guard<JobScope>(), py::arg("bed"), py::kw_only(),
+          py::arg("container") = py::none(), py::arg("band") = py::none(),
+          py::arg("band_clearance") = 1.0, py::arg("diameter") = py::none(),
+          py::arg("shell_width") = AnalysisOptions{}.shell_width,
           py::arg("slab_height") = AnalysisOptions{}.slab_height,
           py::arg("centre_bin") = AnalysisOptions{}.centre_bin,
           py::arg("contact_tolerance") = AnalysisOptions{}.contact_tolerance,
@@ -893,10 +901,10 @@ coordination, and g(r), in the band band_clearance Dp clear of the floor and the
 diameter (None: the mean sphere diameter). out: a directory to write the tables, plots and
 summary.json to (None: nothing is written). Returns an Analysis with numpy arrays.)");
 
-    m.def("voxelize", &voxelize_bed, py::arg("bed"), py::kw_only(), py::arg("voxel_size"),
-          py::arg("region") = py::none(), py::arg("kind") = "binary", py::arg("dtype") = "float64",
-          py::arg("container") = py::none(), py::arg("threads") = py::none(),
-          py::arg("out") = py::none(),
+    m.def("voxelize", &voxelize_bed, py::call_guard<JobScope>(), py::arg("bed"), py::kw_only(),
+          py::arg("voxel_size"), py::arg("region") = py::none(), py::arg("kind") = "binary",
+          py::arg("dtype") = "float64", py::arg("container") = py::none(),
+          py::arg("threads") = py::none(), py::arg("out") = py::none(),
           R"(A bed as a voxel image, as `packbed voxelize`: a numpy array of shape (nx, ny, nz),
 im[i, j, k] the voxel [x0 + i h, x0 + (i + 1) h] x ... (h = voxel_size).
 
@@ -909,11 +917,12 @@ region: (xlow, ylow, zlow,
 xhigh, yhigh, zhigh); None: the container across and the floor to the bed's top. out: also write
 it to a .npy, .tif or .raw (+ .raw.json) file. The array owns its memory (no copy is made).)");
 
-    m.def("export", &export_bed_to, py::arg("bed"), py::arg("out"), py::kw_only(),
-          py::arg("format") = ExportRequest{}.format, py::arg("container") = py::none(),
-          py::arg("container_height") = py::none(), py::arg("no_container") = false,
-          py::arg("density") = ExportRequest{}.density, py::arg("box") = py::none(),
-          py::arg("fluid_velocity") = py::none(), py::arg("contacts") = ExportRequest{}.contacts,
+    m.def("export", &export_bed_to, py::call_guard<JobScope>(), py::arg("bed"), py::arg("out"),
+          py::kw_only(), py::arg("format") = ExportRequest{}.format,
+          py::arg("container") = py::none(), py::arg("container_height") = py::none(),
+          py::arg("no_container") = false, py::arg("density") = ExportRequest{}.density,
+          py::arg("box") = py::none(), py::arg("fluid_velocity") = py::none(),
+          py::arg("contacts") = ExportRequest{}.contacts,
           py::arg("refine") = ExportRequest{}.refine, py::arg("edge") = py::none(),
           py::arg("cells_per_diameter") = ExportRequest{}.mesh.cells_per_diameter,
           py::arg("particle_level") = ExportRequest{}.mesh.particle_level,
@@ -939,8 +948,9 @@ fluid_velocity, m/s), turbulence ('laminar', 'kEpsilon', 'kOmegaSST'), fluid_den
 1 mm). force: replace a non-empty case directory.
 Returns the command line's report line. Raises ValueError for a bad value.)");
 
-    m.def("hydraulics", &hydraulics, py::kw_only(), py::arg("porosity") = py::none(),
-          py::arg("bed") = py::none(), py::arg("diameter") = py::none(),
+    m.def("hydraulics", &hydraulics, py::call_guard<JobScope>(), py::kw_only(),
+          py::arg("porosity") = py::none(), py::arg("bed") = py::none(),
+          py::arg("diameter") = py::none(),
           py::arg("particle_density") = HydraulicsRequest{}.fluid.particle_density,
           py::arg("fluid_density") = HydraulicsRequest{}.fluid.fluid_density,
           py::arg("viscosity") = HydraulicsRequest{}.fluid.viscosity,
@@ -958,8 +968,8 @@ velocity (m/s; None: the critical one of eq. (1)), aspect_ratio a = D/d or conta
 metres; a = D_h / d) for the wall-corrected pressure drop. Returns a dict; a correlation used
 outside its range gives a UserWarning. Raises ValueError for a bad value.)");
 
-    m.def("cfd_report", &cfd_report_of, py::arg("case"), py::kw_only(), py::arg("out") = py::none(),
-          py::arg("force") = false,
+    m.def("cfd_report", &cfd_report_of, py::call_guard<JobScope>(), py::arg("case"), py::kw_only(),
+          py::arg("out") = py::none(), py::arg("force") = false,
           R"(The pressure drop of a case written by export(..., format='openfoam') and run by its
 Allrun, as `packbed cfd-report CASE --json`: the planes' area-averaged pressures (Pa), the
 gradient of the straight line fitted to them, Ergun's and Eisfeld & Schnitzlein's gradients at
@@ -978,11 +988,11 @@ correlations --json`: a dict with the mean void fractions and the radial profile
 wall in d, from 0 to profile_to in steps of profile_step), each with its formula, source and
 validity range. A correlation used outside its range gives a UserWarning.)");
 
-    m.def("lattice", &lattice, py::kw_only(), py::arg("type") = "diamond",
-          py::arg("region") = "box:10,10,10", py::arg("diameter") = 1.0,
-          py::arg("origin") = py::none(), py::arg("keep") = "whole", py::arg("rotate") = "",
-          py::arg("band_clearance") = 1.0, py::arg("analysis") = true, py::arg("out") = py::none(),
-          py::arg("force") = false,
+    m.def("lattice", &lattice, py::call_guard<JobScope>(), py::kw_only(),
+          py::arg("type") = "diamond", py::arg("region") = "box:10,10,10",
+          py::arg("diameter") = 1.0, py::arg("origin") = py::none(), py::arg("keep") = "whole",
+          py::arg("rotate") = "", py::arg("band_clearance") = 1.0, py::arg("analysis") = true,
+          py::arg("out") = py::none(), py::arg("force") = false,
           R"(A regular packing of touching balls filling a region, as `packbed lattice`: type
 'diamond' (tetrahedral, Tsayger 2013), 'sc', 'bcc', 'fcc' or 'hcp'; region 'box:LX,LY,LZ',
 'cylinder:D,H', 'annulus:D,DI,H' or 'periodic:LX,LY,H'; origin 'x,y,z'; keep 'whole' or

@@ -98,6 +98,80 @@ std::string column(int n) {
     return csv;
 }
 
+/// `n` brackets opened and `n` closed.
+std::string nested(std::size_t n) {
+    return std::string(n, '[') + std::string(n, ']');
+}
+
+/// The inputs of the issue-39 cases (nothing lost): deep nesting in every reader of nested
+/// text, beds and folders whose files an output could replace, and LAMMPS jobs.
+void prepare_nothing_lost(const fs::path& d) {
+    std::string dotted = "a";
+    for (int k = 1; k < 50000; ++k)
+        dotted += ".a";
+    write(d / "dotted.toml", dotted + " = 1\n");
+    write(d / "brackets.toml", "aspect-ratio = " + nested(100000) + "\n");
+    write(d / "header.toml", "[" + dotted.substr(0, 999) + "]\nx = 1\n");
+    write(
+        d / "inline.toml", "a = " + [] {
+            std::string t;
+            for (int k = 0; k < 100; ++k)
+                t += "{b = ";
+            return t + "1" + std::string(100, '}');
+        }() + "\n");
+    // A bed whose summary.json nests 1e5 deep under a key quoted in messages.
+    fs::create_directory(d / "deep");
+    write(d / "deep" / "bed.csv", column(40));
+    write(d / "deep" / "summary.json", "{\"diameter\": " + nested(100000) + "}");
+    // A bed with its summary (a tube of radius 1), a sieve file and a config in folders an
+    // output could replace.
+    fs::create_directory(d / "bed");
+    write(d / "bed" / "particles.csv", column(40));
+    write(d / "bed" / "summary.json", R"({"container": {"shape": "cylinder", "radius": 1}})");
+    fs::create_directory(d / "sz");
+    write(d / "sz" / "sizes.csv", "diameter,cumulative_fraction\n1,0\n1.2,1\n");
+    fs::create_directory(d / "cfg");
+    write(d / "cfg" / "run.toml", "aspect-ratio = 3\nparticles = 30\n");
+    write(d / "cfg" / "lattice.toml", "type = \"sc\"\n");
+    write(d / "cfg" / "out.data.fluid.in", "density = 2500\n"); // a config, a sidecar's name
+    write(d / "cfg" / "layers.toml",
+          "aspect-ratio = 5\nparticles = 3000\nlayer-height = 10\nsolver = \"fire\"\n");
+    // An OpenFOAM case (cfd-report reads it whole) inside a project folder.
+    fs::create_directories(d / "proj" / "case" / "postProcessing");
+    write(d / "proj" / "case" / "packbed.json", "{}");
+    // LAMMPS jobs: one as --write-only writes it, with LAMMPS's files; its variants.
+    const std::string request =
+        R"("request": {"aspect_ratio": 3.0, "band_clearance": 1.0, "cg_step": 1.25e-07, "ck": 0.3, )"
+        R"("container": "", "diameter": 1.0, "e0": 0.47, "fractions": "volume", )"
+        R"("layer_height": 30.0, "max_iterations": 200000000, "mc_period": 100, )"
+        R"("mc_tolerance": 0.05, "mc_window": 10, "overlap_high": 0.03, "overlap_low": 0.015, )"
+        R"("particles": 30, "seed": 1, "sizes": "mono", "skin": 0.2, "solver": "fire", )"
+        R"("tolerance": 0.0001, "update": "simultaneous"})";
+    const auto job = [&](const std::string& name, const std::string& json) {
+        fs::create_directory(d / name);
+        write(d / name / "job.json", json);
+        write(d / name / "log.lammps", "");
+        write(d / name / "bed.dump", "");
+    };
+    job("lmpjob", "{\"command\": [\"lmp\"], \"pair_style\": \"gran/hooke\", " + request + "}");
+    job("style", "{\"command\": [\"lmp\"], \"pair_style\": 5, " + request + "}");
+    job("words", "{\"command\": [\"lmp\", " + nested(100000) + "], " + request + "}");
+    job(
+        "long", "{\"command\": [" +
+                    [] {
+                        std::string words = "\"w\"";
+                        for (int k = 0; k < 1000; ++k)
+                            words += ", \"w\"";
+                        return words;
+                    }() +
+                    "], " + request + "}");
+    job("loop", "{\"command\": [\"lmp\"], " + request + "}");
+    fs::remove(d / "loop" / "log.lammps");
+    fs::create_symlink("log.lammps", d / "loop" / "log.lammps");
+    // A sphere 1e14 diameters up.
+    write(d / "far.csv", "x,y,z,r\n0,0,1,0.5\n0,0,1e14,0.5\n");
+}
+
 /// Fill `d` with every kind of input the cases name (relative names; `@D/...` in the older
 /// cases).
 void prepare(const fs::path& d) {
@@ -106,9 +180,9 @@ void prepare(const fs::path& d) {
     write(d / "broken.toml", "aspect-ratio = = 4\n");
     write(d / "typed.toml", "particles = [1, {a = 2}]\n");
     write(d / "range.toml", "aspect-ratio = 0.5\n");
-    // Larger than limits::max_small_file (64 MiB), sparse: no disk space.
+    // Larger than limits::max_config_file (1 MiB), sparse: no disk space.
     write(d / "big.toml", "");
-    ASSERT_EQ(::truncate((d / "big.toml").c_str(), (64 << 20) + 1), 0);
+    ASSERT_EQ(::truncate((d / "big.toml").c_str(), (1 << 20) + 1), 0);
     // Beds.
     write(d / "plain", "x");
     write(d / "one.csv", "x,y,z,r\n0,0,0,0.5\n");
@@ -160,6 +234,7 @@ void prepare(const fs::path& d) {
     // Issue 14 item 1: a bed in a directory with a newline in its name.
     fs::create_directory(d / "nl\ndir");
     write(d / "nl\ndir" / "bed.csv", column(40));
+    prepare_nothing_lost(d);
 }
 
 /// The running test's scratch folder, private to this process: the same test may run in
@@ -315,7 +390,7 @@ INSTANTIATE_TEST_SUITE_P(
               "packbed: --config /proc/self/mem: cannot be read (an input/output error); " +
                   regular),
         exact("--config big.toml generate",
-              "packbed: --config big.toml: larger than 67108864 bytes; allowed: a file up to "
+              "packbed: --config big.toml: larger than 1048576 bytes; allowed: a file up to "
               "that size"),
         exact(std::vector<std::string>{"--config", "", "generate"},
               "packbed: --config '' is not allowed (an empty path); " + a_path),
@@ -1191,6 +1266,136 @@ INSTANTIATE_TEST_SUITE_P(
 
 // Issue 14 item 1, with characters that are allowed in a path: quotes, $(...), backquotes and
 // semicolons reach no shell and no gnuplot command (the run succeeds, nothing else appears).
+// Issue 39: deep nesting in every reader; an output that is, holds or replaces an input, on
+// every subcommand that reads one (the bed, its summary.json, --config, --sizes, a
+// checkpoint, an OpenFOAM case, a LAMMPS job), its sidecars included; names too long for the
+// file system; bad input that was answered as an internal error (exit 1).
+const std::string too_deep_toml =
+    " nested deeper than 64 levels (tables, dotted keys, arrays); allowed: at most that deep";
+const std::string deep_summary =
+    "deep/summary.json: not a summary.json (nested deeper than 64 levels); allowed: the "
+    "summary.json of packbed generate, lattice or analyze";
+const std::string not_an_input = "; allowed: an output that is not an input";
+const std::string holds = "; allowed: an output directory that does not hold the inputs";
+const std::string job_json = "; allowed: the job.json packbed generate --engine lammps "
+                             "--write-only wrote";
+
+INSTANTIATE_TEST_SUITE_P(
+    NothingLost, CliBadInput,
+    ::testing::Values(
+        // 1. Recursion over user data.
+        exact("generate --config dotted.toml",
+              "packbed: --config dotted.toml: line 1:" + too_deep_toml),
+        exact("--config header.toml generate",
+              "packbed: --config header.toml: line 1:" + too_deep_toml),
+        exact("--config brackets.toml generate",
+              "packbed: --config brackets.toml: line 1:" + too_deep_toml),
+        exact("--config inline.toml generate",
+              "packbed: --config inline.toml: line 1:" + too_deep_toml),
+        exact("analyze deep/bed.csv -o out", "packbed analyze: " + deep_summary),
+        exact("export deep/bed.csv -f stl -o out.stl", "packbed export: " + deep_summary),
+        exact("voxelize deep/bed.csv --voxel-size 0.5 -o out.npy",
+              "packbed voxelize: " + deep_summary),
+        exact("hydraulics --bed deep", "packbed hydraulics: --bed " + deep_summary),
+        exact("import-lammps words -o out",
+              "packbed import-lammps: FOLDER words: job.json is not JSON (nested deeper than 64 "
+              "levels)" +
+                  job_json),
+        // 2. An output that is, holds or replaces an input, and its sidecars.
+        exact("export bed/particles.csv -f stl -o bed/summary.json",
+              "packbed export: the bed's summary bed/summary.json: the output bed/summary.json "
+              "would overwrite it" +
+                  not_an_input),
+        exact("export bed/particles.csv -f stl -o bed/summary",
+              "packbed export: the bed's summary bed/summary.json: the output bed/summary.json "
+              "would overwrite it" +
+                  not_an_input),
+        exact("export bed/particles.csv -f stl-ascii -o bed/particles.csv",
+              "packbed export: the particles file bed/particles.csv: the output "
+              "bed/particles.csv would overwrite it" +
+                  not_an_input),
+        exact("--config cfg/out.data.fluid.in export bed/particles.csv --fluid-velocity 1 -o "
+              "cfg/out.data",
+              "packbed export: --config cfg/out.data.fluid.in: the output cfg/out.data.fluid.in "
+              "would overwrite it" +
+                  not_an_input),
+        exact("export bed/particles.csv -f openfoam -o bed --force",
+              "packbed export: the particles file bed/particles.csv lies in --out bed, which "
+              "--force would replace" +
+                  holds),
+        exact("analyze bed/particles.csv -o bed --force",
+              "packbed analyze: the particles file bed/particles.csv lies in --out bed, which "
+              "--force would replace" +
+                  holds),
+        exact("voxelize bed/particles.csv --voxel-size 0.5 -o bed/summary.json",
+              "packbed voxelize: --out bed/summary.json: the extension is not allowed; allowed: "
+              ".npy, .tif (or .tiff) or .raw (with a .raw.json header)"),
+        exact("voxelize bed/particles.csv --voxel-size 0.5 -o bed/summary",
+              "packbed voxelize: --out bed/summary: the extension is not allowed; allowed: .npy, "
+              ".tif (or .tiff) or .raw (with a .raw.json header)"),
+        exact("generate --sizes file:sz/sizes.csv -n 30 -o sz --force",
+              "packbed generate: --sizes sz/sizes.csv lies in --out sz, which --force would "
+              "replace" +
+                  holds),
+        exact("generate --config cfg/run.toml -o cfg --force",
+              "packbed generate: --config cfg/run.toml lies in --out cfg, which --force would "
+              "replace" +
+                  holds),
+        exact("--config cfg/lattice.toml lattice -o cfg --force",
+              "packbed lattice: --config cfg/lattice.toml lies in --out cfg, which --force would "
+              "replace" +
+                  holds),
+        exact("generate --config cfg/layers.toml --checkpoint cfg/layers.toml -o out",
+              "packbed generate: --checkpoint cfg/layers.toml: it is also --config "
+              "cfg/layers.toml, which this run reads; allowed: a file that is not an input"),
+        exact("generate --config cfg/layers.toml --checkpoint out -o out",
+              "packbed generate: --checkpoint out lies in --out out, which this run writes; "
+              "allowed: a file outside the run's other outputs"),
+        exact("generate --config cfg/layers.toml --checkpoint full/run.ckpt -o full --force",
+              "packbed generate: --checkpoint full/run.ckpt lies in --out full, which this run "
+              "writes; allowed: a file outside the run's other outputs"),
+        exact("cfd-report proj/case -o proj/case --force",
+              "packbed cfd-report: CASE proj/case lies in --out proj/case, which --force would "
+              "replace" +
+                  holds),
+        exact("cfd-report proj/case -o proj --force",
+              "packbed cfd-report: CASE proj/case lies in --out proj, which --force would "
+              "replace" +
+                  holds),
+        exact("import-lammps lmpjob -o lmpjob --force",
+              "packbed import-lammps: FOLDER lmpjob lies in --out lmpjob, which --force would "
+              "replace" +
+                  holds),
+        // 5. Checked before the work: names too long for the file system.
+        exact("generate -n 30 -o " + std::string(300, 'o'),
+              "packbed generate: --out " + std::string(200, 'o') + ": the name '" +
+                  std::string(40, 'o') +
+                  "...' has 300 bytes; allowed: names of at most 255 bytes on this file system"),
+        exact("export two.csv -f stl -o " + std::string(300, 's') + ".stl",
+              "packbed export: --out " + std::string(200, 's') + ": the name '" +
+                  std::string(40, 's') +
+                  "...' has 304 bytes; allowed: names of at most 255 bytes on this file system"),
+        exact("generate --config cfg/layers.toml --checkpoint " + std::string(256, 'c') + " -o out",
+              "packbed generate: --checkpoint " + std::string(200, 'c') + ": the name '" +
+                  std::string(40, 'c') +
+                  "...' has 256 bytes; allowed: names of at most 255 bytes on this file system"),
+        // 8. Bad input that was an internal error.
+        exact("import-lammps style -o out",
+              "packbed import-lammps: FOLDER style: pair_style (gran/hooke or harmonic/cut) in "
+              "job.json is missing or not allowed" +
+                  job_json),
+        exact("import-lammps long -o out",
+              "packbed import-lammps: FOLDER long: command (a list of at most 64 words) in "
+              "job.json is missing or not allowed" +
+                  job_json),
+        exact("import-lammps loop -o out",
+              "packbed import-lammps: FOLDER loop: log.lammps is missing; allowed: a job folder "
+              "after LAMMPS ran in it (README.md there says how)"),
+        exact("export far.csv -R 2 -o far.data",
+              "packbed export: far.csv:3: the sphere at (0, 0, 100000000000000) reaches 1e+14 "
+              "mean diameters from the origin; allowed: at most 1e+06 (the surfaces and walls "
+              "are written in single precision)")));
+
 TEST(CliPaths, QuotesAndShellSyntaxInOutputPathsRunNothing) {
     const fs::path root = scratch();
     const fs::path d = root / "work";

@@ -2,7 +2,8 @@
 // subcommand (generate, lattice, analyze, export), and SIGKILL during output.
 //
 // The points are found from outside, as a user would see them: every run stages its outputs in a
-// hidden folder `.NAME.packbed-PID-XXXXXX` (export's files: `.packbed-PID-XXXXXX`) beside the
+// hidden folder `.NAME.packbed-HOST-PID-XXXXXX` (export's files: `.packbed-HOST-PID-XXXXXX`,
+// HOST the 12 hex digits of the host and PID namespace) beside the
 // output, created before the work. "Early" is once that folder exists while no file with data
 // has appeared in the run's folder (the computation), "output" once one has (a staged file),
 // "gnuplot" while packbed has a gnuplot child (/proc/PID/task/PID/children), and the sweep sends
@@ -16,8 +17,8 @@
 // same files as an uninterrupted run). A run interrupted during its computation or its output
 // (not yet in place) must exit 130. SIGINT goes to packbed's process group, as a terminal's
 // Ctrl-C does (a gnuplot child in that group gets it too). After SIGKILL during output only hidden
-// `.*packbed-PID-*` entries of the killed process may be left, and the next run with the same --out
-// removes them and succeeds.
+// `.*packbed-HOST-PID-*` entries of the killed process may be left, and the next run with the same
+// --out removes them and succeeds.
 //
 // PACKBED_TEST_EXE in the environment runs these tests on another binary (an older build).
 #include <fcntl.h>
@@ -248,16 +249,21 @@ const Reference& reference(const Command& c) {
     return cache.emplace(key, r).first->second;
 }
 
-/// Whether process `pid` has a staging folder in `work` (`.NAME.packbed-PID-XXXXXX` or
-/// `.packbed-PID-XXXXXX`).
+/// Whether `name` is a hidden name that process `pid` staged (`.NAME.packbed-HOST-PID-XXXXXX`
+/// or `.packbed-HOST-PID-XXXXXX`, HOST 12 hex digits).
+bool staged_by(const std::string& name, pid_t pid) {
+    const std::size_t at = name.find("packbed-");
+    const std::string tag = "-" + std::to_string(pid) + "-";
+    return !name.empty() && name[0] == '.' && at != std::string::npos &&
+           name.compare(at + 20, tag.size(), tag) == 0;
+}
+
+/// Whether process `pid` has a staging folder in `work`.
 bool staging_exists(const fs::path& work, pid_t pid) {
-    const std::string tag = "packbed-" + std::to_string(pid) + "-";
     std::error_code ec;
-    for (fs::directory_iterator it(work, ec), end; !ec && it != end; it.increment(ec)) {
-        const std::string name = it->path().filename().string();
-        if (name[0] == '.' && name.find(tag) != std::string::npos)
+    for (fs::directory_iterator it(work, ec), end; !ec && it != end; it.increment(ec))
+        if (staged_by(it->path().filename().string(), pid))
             return true;
-    }
     return false;
 }
 
@@ -483,14 +489,12 @@ void kill_during_output(const Command& c) {
     EXPECT_FALSE(r.end.exited) << "exit " << r.end.status << "; stderr: " << r.end.err;
     EXPECT_EQ(r.end.status, SIGKILL);
     const std::set<std::string> before = lines_of(r.before);
-    const std::string mark = "packbed-" + std::to_string(r.pid) + "-";
     std::size_t left = 0;
     for (const std::string& line : lines_of(r.after)) {
         if (before.count(line) != 0)
             continue;
         ++left;
-        EXPECT_TRUE(line[0] == '.' &&
-                    line.substr(0, line.find('/')).find(mark) != std::string::npos)
+        EXPECT_TRUE(staged_by(line.substr(0, std::min(line.find('/'), line.find(' '))), r.pid))
             << "left after SIGKILL, not a hidden entry of the killed process: " << line;
     }
     for (const std::string& line : before)

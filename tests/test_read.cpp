@@ -276,10 +276,24 @@ TEST(ReadBedSummary, ContainerAndPorosityOrARefusalNamingTheKey) {
     EXPECT_EQ(error("[[[[").substr(0, 30), "summary.json: not a summary.js");
     EXPECT_EQ(error("[1, 2]"), "summary.json: not a summary.json (not a JSON object); allowed: "
                                "the summary.json of packbed generate, lattice or analyze");
-    // Deep nesting is read and refused, not a stack overflow.
-    EXPECT_EQ(error(std::string(100000, '[') + std::string(100000, ']')),
-              "summary.json: not a summary.json (not a JSON object); allowed: the summary.json of "
-              "packbed generate, lattice or analyze");
+    // Deep nesting is refused where it is read, not a stack overflow when a value is shown in a
+    // message, compared or destroyed: at the top, under a key quoted in messages, in an object.
+    const std::string deep = "summary.json: not a summary.json (nested deeper than 64 levels); "
+                             "allowed: the summary.json of packbed generate, lattice or analyze";
+    EXPECT_EQ(error(std::string(100000, '[') + std::string(100000, ']')), deep);
+    EXPECT_EQ(error("{\"diameter\": " + std::string(100000, '[') + std::string(100000, ']') + "}"),
+              deep);
+    std::string objects;
+    for (int k = 0; k < 100000; ++k)
+        objects += "{\"a\":";
+    EXPECT_EQ(error("{\"container\": " + objects + "1" + std::string(100000, '}') + "}"), deep);
+    // 64 levels are read; a value shown in a message is cut short whatever its size.
+    EXPECT_EQ(error("{\"diameter\": " + std::string(63, '[') + std::string(63, ']') + "}"),
+              "summary.json: diameter = " + std::string(40, '[') +
+                  "... is not allowed; allowed: a number in (0, 1e+12]");
+    EXPECT_EQ(error("{\"diameter\": \"" + std::string(1000000, 'x') + "\"}"),
+              "summary.json: diameter = \"" + std::string(39, 'x') +
+                  "... is not allowed; allowed: a number in (0, 1e+12]");
 }
 
 // ---------------------------------------------------------------------------------------------

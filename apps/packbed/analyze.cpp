@@ -92,7 +92,6 @@ int run_analyze(AnalyzeOptions& o) {
 
     const fs::path out_dir = o.out.empty() ? path.parent_path() / "analysis" : fs::path(o.out);
     OutputDirectory out(out_dir, "--out", OutputKind::directory, o.force);
-    out.keep("the particles file", path);
     use_threads(o.threads);
     std::size_t frames = 0;
     if (series) {

@@ -13,6 +13,7 @@
 #include "packbed/error.hpp"
 #include "packbed/files.hpp"
 #include "packbed/limits.hpp"
+#include "packbed/output.hpp"
 #include "packbed/version.hpp"
 #include "toml_config.hpp"
 
@@ -75,7 +76,7 @@ std::vector<Command> build_app(CLI::App& app) {
 namespace {
 
 /// Check the files `--config FILE` names before CLI11 opens them (it would wait for ever on a
-/// FIFO and read a file of any size): regular files of at most limits::max_small_file bytes.
+/// FIFO and read a file of any size): regular files of at most limits::max_config_file bytes.
 /// \return the last one named ("" for none). \throws InvalidInput naming the file otherwise
 std::string check_config_files(int argc, char** argv) {
     std::string name;
@@ -87,7 +88,7 @@ std::string check_config_files(int argc, char** argv) {
             name = arg.substr(9);
         else
             continue;
-        read_small_file("--config", name, limits::max_small_file);
+        read_small_file("--config", name, limits::max_config_file);
     }
     return name;
 }
@@ -140,6 +141,7 @@ std::vector<std::string> long_options(const CLI::App& app) {
 
 int run(int argc, char** argv) {
     block_interrupts(); // a signal from here on waits for handle_interrupts, below
+    const JobScope job; // what the run reads and writes, so that no output replaces an input
 
     CLI::App app("packbed: packed beds of spheres for CFD and DEM", "packbed");
     const std::vector<Command> commands = build_app(app);
@@ -229,15 +231,19 @@ int run(int argc, char** argv) {
             return command.run();
         } catch (const InvalidInput& e) {
             await_interrupt();
-            fmt::print(stderr, "packbed {}: {}\n", name, printable(e.what()));
+            fmt::print(stderr, "packbed {}: {}\n", name, printable(as_given(e.what())));
             return 2;
         } catch (const Cancelled&) {
             await_interrupt();
             fmt::print(stderr, "packbed {}: interrupted; nothing was written\n", name);
             return 130;
+        } catch (const std::bad_alloc&) {
+            await_interrupt();
+            fmt::print(stderr, "packbed {}: out of memory; nothing was written\n", name);
+            return 1;
         } catch (const std::exception& e) {
             await_interrupt();
-            fmt::print(stderr, "packbed {}: {}\n", name, printable(e.what()));
+            fmt::print(stderr, "packbed {}: {}\n", name, printable(as_given(e.what())));
             return 1;
         }
     }

@@ -25,10 +25,11 @@ struct CfdReportOptions {
 
 int run_cfd_report(const CfdReportOptions& o) {
     const std::filesystem::path case_dir(o.case_dir);
-    const Report report = cfd_report(case_dir);
+    check_cfd_case(case_dir);
     const std::filesystem::path out_dir =
         o.out.empty() ? case_dir / "cfd-report" : std::filesystem::path(o.out);
-    OutputDirectory out(out_dir, "--out", OutputKind::directory, o.force);
+    OutputDirectory out(out_dir, "--out", OutputKind::directory, o.force); // before the work
+    const Report report = cfd_report(case_dir);
     const std::string why = stage_cfd_report(out, report);
     out.commit();
     for (const auto& w : report.warnings)

@@ -140,7 +140,7 @@ int run_generate(GenerateOptions& o) {
     RunControl control;
     control.on_progress = [&](const Progress& p) { progress(p); };
     GeneratedBed bed = run_generation(
-        prepared, control, static_cast<int>(o.threads), &out, [&](std::uint32_t layers_done) {
+        prepared, control, static_cast<int>(o.threads), [&](std::uint32_t layers_done) {
             if (!o.quiet)
                 fmt::print(stderr, "packbed generate: resuming from {} after layer {} of {}\n",
                            o.checkpoint, layers_done, fire_layers(params));
@@ -167,7 +167,6 @@ struct ImportOptions {
 
 int run_import(const ImportOptions& o) {
     OutputDirectory out(o.out, "--out", OutputKind::directory, o.force);
-    out.keep("FOLDER", o.folder);
     ImportedLammps imported = import_lammps(o.folder);
     GeneratedBed& bed = imported.bed;
     stage_bed(out, bed.result.packing, bed.result.container,

@@ -7,6 +7,7 @@
 #include <toml++/toml.h>
 
 #include "packbed/files.hpp"
+#include "packbed/limits.hpp"
 
 namespace packbed::cli {
 
@@ -36,14 +37,115 @@ std::string scalar_text(const toml::node& node, const std::string& key, const st
                                        where, line_of(node), key));
 }
 
+/// Skip the string that starts at text[i] (a quote): basic or literal, on one line or on many
+/// (triple quotes). \return the index of its last character; `line` counts its newlines.
+std::size_t skip_string(std::string_view text, std::size_t i, std::size_t& line) {
+    const char quote = text[i];
+    const bool multi = text.substr(i, 3) == std::string(3, quote);
+    const std::string close = multi ? std::string(3, quote) : std::string(1, quote);
+    for (std::size_t k = i + close.size(); k < text.size(); ++k) {
+        if (text[k] == '\n') {
+            ++line;
+            if (!multi)
+                return k - 1; // an unterminated string: toml++ says so
+        } else if (text[k] == '\\' && quote == '"')
+            ++k;
+        else if (text.substr(k, close.size()) == close)
+            return k + close.size() - 1;
+    }
+    return text.size();
+}
+
 } // namespace
+
+std::string toml_nesting_problem(std::string_view text) {
+    // The depth of a value: the parts of its table header, of its dotted key, and of the arrays
+    // and inline tables it lies in (each inline table adds the parts of the keys in it).
+    const std::size_t most = limits::max_toml_nesting;
+    std::size_t line = 1, header = 0, parts = 1, base = 0;
+    bool key = true, in_header = false, started = false;
+    std::vector<std::pair<char, std::size_t>> open; // '[' or '{' and its depth
+    auto too_deep = [&] {
+        return fmt::format("line {}: nested deeper than {} levels (tables, dotted keys, arrays); "
+                           "allowed: at most that deep",
+                           line, most);
+    };
+    for (std::size_t i = 0; i < text.size(); ++i) {
+        const char c = text[i];
+        if (c == '\n') {
+            ++line;
+            if (open.empty() && !in_header) { // a new statement
+                key = true;
+                started = false;
+                parts = 1;
+                base = header;
+            }
+        } else if (c == '#') {
+            while (i + 1 < text.size() && text[i + 1] != '\n')
+                ++i;
+        } else if (c == '"' || c == '\'') {
+            i = skip_string(text, i, line);
+            started = true;
+        } else if (c == '}' || (c == ']' && !in_header)) {
+            if (!open.empty())
+                open.pop_back();
+            key = false;
+        } else if (key || in_header) {
+            if (c == '.' && base + ++parts > most)
+                return too_deep();
+            if (c == '=' && !in_header)
+                key = false;
+            else if (c == '[' && key && open.empty() && !started) {
+                in_header = true;
+                parts = 1;
+                base = 0;
+                if (i + 1 < text.size() && text[i + 1] == '[')
+                    ++i;
+            } else if (c == ']' && in_header) {
+                in_header = false;
+                key = false;
+                header = parts;
+            }
+            if (c != ' ' && c != '\t' && c != '\r')
+                started = true;
+        } else if (c == '[' || c == '{') {
+            const std::size_t depth = (open.empty() ? base + parts : open.back().second) + 1;
+            if (depth > most)
+                return too_deep();
+            open.emplace_back(c, depth);
+            if (c == '{') {
+                key = true;
+                parts = 1;
+                base = depth;
+            }
+        } else if (c == ',' && !open.empty() && open.back().first == '{') {
+            key = true;
+            parts = 1;
+            base = open.back().second;
+        }
+    }
+    return {};
+}
 
 std::vector<CLI::ConfigItem> TomlConfig::from_config(std::istream& input) const {
     const std::string where =
         m_file_name.empty() ? std::string("--config") : "--config " + printable(m_file_name);
+    // Bounded before toml++ reads it: its size (a parser keeps ~60 bytes per value) and its
+    // nesting (toml++ recurses over both).
+    std::string text;
+    char buffer[1 << 14];
+    while (input.read(buffer, sizeof buffer) || input.gcount() > 0) {
+        text.append(buffer, static_cast<std::size_t>(input.gcount()));
+        if (text.size() > limits::max_config_file)
+            throw CLI::ConfigError(fmt::format("{}: larger than {} bytes; allowed: a config file "
+                                               "up to that size",
+                                               where, limits::max_config_file));
+    }
+    if (const std::string problem = toml_nesting_problem(text); !problem.empty())
+        throw CLI::ConfigError(where + ": " + problem);
     toml::table root;
     try {
-        root = toml::parse(input);
+        root = toml::parse(text);
     } catch (const toml::parse_error& e) {
         throw CLI::ConfigError(fmt::format("{}: line {}, column {}: {}", where,
                                            e.source().begin.line, e.source().begin.column,

@@ -3,6 +3,7 @@
 
 #include <set>
 #include <string>
+#include <string_view>
 #include <vector>
 
 #include <CLI/CLI.hpp>
@@ -30,6 +31,12 @@ private:
     const CLI::App* m_root;
     std::string m_file_name;
 };
+
+/// \return "" when `text`, read as TOML, nests at most limits::max_toml_nesting levels deep
+/// (the parts of a table header and of a dotted key, arrays, inline tables); else "line N:
+/// ..." saying where it goes deeper. Strings and comments are skipped; what is not TOML is
+/// left to the parser.
+std::string toml_nesting_problem(std::string_view text);
 
 /// \return the long names (without dashes) of the options of `app` that a config may set.
 std::set<std::string> configurable_names(const CLI::App& app);

@@ -73,7 +73,6 @@ int run_voxelize(VoxelizeOptions& o) {
     const std::filesystem::path target(o.out);
     OutputDirectory out(target.parent_path().empty() ? "." : target.parent_path(), "--out",
                         OutputKind::files);
-    out.keep("the particles file", path);
     use_threads(o.threads);
     const VoxelImage image = voxelize(file.packing, container, o.voxel_size, region, type);
     stage_image(out, target.filename().string(), *format, image);

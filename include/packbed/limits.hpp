@@ -83,8 +83,24 @@ inline constexpr double min_ck = 0.01;
 /// memory a file without newlines can take.
 inline constexpr std::size_t max_line_length = 1 << 20;
 
-/// The largest small text file read whole (summary.json, --config TOML), bytes.
+/// How far from the origin, in mean sphere diameters, a sphere of an exported bed may reach:
+/// surfaces (STL, OBJ) and the walls of a LIGGGHTS input store single precision, which at
+/// 1e6 Dp resolves 0.06 Dp; a sphere 1e14 Dp up put the container's STL outside its box.
+inline constexpr double max_export_reach = 1e6;
+
+/// The largest small text file read whole (summary.json, job.json, packbed.json), bytes.
 inline constexpr std::size_t max_small_file = 64u << 20;
+
+/// The largest --config file, bytes: a TOML parser keeps about 60 bytes per value it reads (a
+/// 60 MB array took 3.8 GB), and a config of every option of a subcommand is under 4 KB.
+inline constexpr std::size_t max_config_file = 1u << 20;
+
+/// How deep the JSON and TOML a user gives may nest (arrays, objects, tables, the parts of a
+/// dotted key): the parsers' trees are copied, printed and destroyed by recursion, so 1e5
+/// nested brackets or a key of 5e4 parts overflowed the stack. packbed's own files nest 4
+/// deep.
+inline constexpr std::size_t max_json_nesting = 64;
+inline constexpr std::size_t max_toml_nesting = 64;
 
 /// The most frames read_particle_frames and for_each_particle_frame read from one file (the
 /// frames of a time series: `packbed analyze --frames all`).

@@ -71,14 +71,13 @@ struct GeneratedBed {
     nlohmann::json summary;
 };
 
-/// Run the solver on a prepared generation. With a checkpoint: `out` (when given) is told to
-/// keep it, the file is checked for writing before the run, a run resumes from it when it
+/// Run the solver on a prepared generation. With a checkpoint: the file is checked for writing
+/// before the run (and becomes an output of the job, JobScope), a run resumes from it when it
 /// exists (`on_resume` is told after which layer) and it is written after every layer.
 /// \param control on_progress, should_stop (on_layer and resume are set here for a checkpoint)
 /// \param threads recorded in the summary
 /// \throws ConvergenceError, Cancelled, InvalidInput (a bad checkpoint)
 GeneratedBed run_generation(const PreparedGeneration& prepared, RunControl control, int threads,
-                            OutputDirectory* out = nullptr,
                             const std::function<void(std::uint32_t layers_done)>& on_resume = {});
 
 /// summary.json of a generated bed: soft_sphere_summary (with `threads`) and, for drawn sizes,
@@ -237,7 +236,7 @@ struct ExportRequest {
     std::filesystem::path out;
     bool force = false;
     std::string source;         ///< the bed's name in headers, reports and messages (its file)
-    std::filesystem::path keep; ///< an input the outputs must not replace ("": none)
+    std::filesystem::path keep; ///< the bed's file: an input of the job (record_input); "": none
     std::optional<Container> container; ///< the bed's; none: no wall treatment, no example
     double container_height = 0.0;      ///< 0: the bed's top + 1 Dp
     bool no_container = false;          ///< surfaces: no container solids; data files: ignore it
@@ -327,6 +326,11 @@ struct PressureFit {
 /// The least-squares line through the planes' (z, p).
 /// \throws InvalidInput for fewer than 2 points, lists of different lengths or one height
 PressureFit fit_pressure(const std::vector<double>& z, const std::vector<double>& p);
+
+/// Check that CASE is a directory, and record it as an input of the job (JobScope): the front
+/// ends call this before they claim cfd-report's output, so that an output that is the case or
+/// holds it is refused before anything is read. \throws InvalidInput naming CASE
+void check_cfd_case(const std::filesystem::path& case_dir);
 
 /// The pressure drop of a case written by export --format openfoam and run by its Allrun:
 /// the planes' area-averaged pressures (postProcessing/pN, times rho: Pa), the gradient -dp/dz

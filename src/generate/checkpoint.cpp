@@ -15,6 +15,7 @@
 #include <fmt/format.h>
 #include <nlohmann/json.hpp>
 
+#include "io/json_input.hpp"
 #include "packbed/error.hpp"
 #include "packbed/files.hpp"
 #include "packbed/limits.hpp"
@@ -142,7 +143,7 @@ public:
             v.get<std::uint64_t>() > high)
             refuse(fmt::format("corrupt checkpoint: {}{} = {} is not allowed; allowed: a whole "
                                "number from {} to {}",
-                               where, key, printable(v.dump().substr(0, 40)), low, high));
+                               where, key, json_excerpt(v, 40), low, high));
         return v.get<std::uint64_t>();
     }
 
@@ -153,7 +154,7 @@ public:
         if (!(value >= low && value <= high))
             refuse(fmt::format("corrupt checkpoint: {}{} = {} is not allowed; allowed: a number "
                                "from {} to {}",
-                               where, key, printable(v.dump().substr(0, 40)), low, high));
+                               where, key, json_excerpt(v, 40), low, high));
         return value;
     }
 
@@ -193,13 +194,11 @@ LayerCheckpoint read_checkpoint(std::istream& in, std::string_view name,
     if (hash_line(header_text, data) != hash)
         field.refuse("corrupt checkpoint: the header and data do not match their hash");
 
-    json header;
-    try {
-        header = json::parse(header_text);
-    } catch (const json::exception& e) {
+    const ParsedJson parsed = parse_json(header_text);
+    if (!parsed.error.empty())
         field.refuse(fmt::format("corrupt checkpoint: the header is not JSON ({})",
-                                 printable(std::string_view(e.what()).substr(0, 120))));
-    }
+                                 std::string_view(parsed.error).substr(0, 120)));
+    const json& header = parsed.value;
     const json& stored = field.at(header, "parameters", "");
     const json wanted = parameters_json(parameters);
     for (const auto& [key, value] : wanted.items()) {
@@ -207,11 +206,10 @@ LayerCheckpoint read_checkpoint(std::istream& in, std::string_view name,
         if (!stored.is_object() || found == stored.end() || *found != value) {
             std::string option = key; // the command line's name
             std::replace(option.begin(), option.end(), '_', '-');
-            field.refuse(fmt::format("it was taken with {} = {}, this run has {}", option,
-                                     !stored.is_object() || found == stored.end()
-                                         ? "(none)"
-                                         : printable(found->dump().substr(0, 40)),
-                                     value.dump()));
+            field.refuse(fmt::format(
+                "it was taken with {} = {}, this run has {}", option,
+                !stored.is_object() || found == stored.end() ? "(none)" : json_excerpt(*found, 40),
+                value.dump()));
         }
     }
 
@@ -243,7 +241,7 @@ LayerCheckpoint read_checkpoint(std::istream& in, std::string_view name,
         if (stage_name != names[k])
             field.refuse(fmt::format("corrupt checkpoint: {}name = {} is not allowed; allowed: "
                                      "\"{}\"",
-                                     where, printable(stage_name.dump().substr(0, 40)), names[k]));
+                                     where, json_excerpt(stage_name, 40), names[k]));
         StageRecord s;
         s.name = names[k];
         s.iterations = field.whole(j, "iterations", 0, checkpoint.iterations, where);
@@ -263,7 +261,7 @@ LayerCheckpoint read_checkpoint(std::istream& in, std::string_view name,
             if (!(z >= -1.0 && z <= z_high))
                 field.refuse(fmt::format("corrupt checkpoint: {}mass_centre_window holds {}; "
                                          "allowed: numbers from -1 to {}",
-                                         where, printable(v.dump().substr(0, 40)), z_high));
+                                         where, json_excerpt(v, 40), z_high));
             s.mass_centre_window.push_back(z);
         }
         stage_iterations += s.iterations;

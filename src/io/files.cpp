@@ -12,6 +12,7 @@
 #include <fmt/format.h>
 
 #include "packbed/error.hpp"
+#include "packbed/output.hpp"
 
 namespace packbed {
 
@@ -109,6 +110,7 @@ std::ifstream open_regular_file(std::string_view input, const std::filesystem::p
     if (!file)
         throw InvalidInput(
             fmt::format("{}: cannot open the file; allowed: a readable regular file", shown));
+    record_input(input, path); // an input of the job: no output may replace it
     return file;
 }
 

@@ -14,9 +14,11 @@
 #include <fmt/format.h>
 #include <nlohmann/json.hpp>
 
+#include "io/json_input.hpp"
 #include "packbed/error.hpp"
 #include "packbed/files.hpp"
 #include "packbed/limits.hpp"
+#include "packbed/output.hpp"
 
 namespace packbed {
 
@@ -900,6 +902,7 @@ ParticleFormat detect(std::istream& file, const fs::path& path, std::uint64_t ma
 
 ParticleFormat detect_particle_format(const std::filesystem::path& path) {
     std::ifstream file = open_regular_file("", path);
+    record_input("the particles file", path);
     return detect(file, path, limits::max_decompressed_bytes);
 }
 
@@ -961,6 +964,7 @@ ParticleFile read_particles(std::istream& input, std::string_view name, Particle
 ParticleFile read_particles(const std::filesystem::path& path, const ReadOptions& options) {
     check_options(options);
     std::ifstream file = open_regular_file("", path);
+    record_input("the particles file", path);
     const ParticleFormat format =
         options.format ? *options.format : detect(file, path, options.max_bytes);
     return read_particles(file, path.native(), format, options);
@@ -987,6 +991,7 @@ void for_each_particle_frame(const std::filesystem::path& path, const ReadOption
                              const std::function<void(ParticleFile&&)>& visit) {
     check_options(options);
     std::ifstream file = open_regular_file("", path);
+    record_input("the particles file", path);
     const ParticleFormat format =
         options.format ? *options.format : detect(file, path, options.max_bytes);
     for_each_particle_frame(file, path.native(), format, options, visit);
@@ -1025,15 +1030,21 @@ std::vector<ParticleFile> read_particle_frames(const std::filesystem::path& path
 
 BedSummary read_bed_summary(std::istream& input, std::string_view name) {
     const std::string shown = printable(name);
-    nlohmann::json json;
-    try {
-        json = nlohmann::json::parse(input);
-    } catch (const nlohmann::json::exception& e) {
+    std::string text;
+    char buffer[1 << 16];
+    while (input.read(buffer, sizeof buffer) || input.gcount() > 0) {
+        text.append(buffer, static_cast<std::size_t>(input.gcount()));
+        if (text.size() > limits::max_small_file)
+            throw InvalidInput(fmt::format("{}: larger than {} bytes; allowed: a summary.json up "
+                                           "to that size",
+                                           shown, limits::max_small_file));
+    }
+    const ParsedJson parsed = parse_json(text);
+    if (!parsed.error.empty())
         throw InvalidInput(fmt::format("{}: not a summary.json ({}); allowed: the summary.json of "
                                        "packbed generate, lattice or analyze",
-                                       shown,
-                                       printable(std::string_view(e.what()).substr(0, 200))));
-    }
+                                       shown, parsed.error));
+    const nlohmann::json& json = parsed.value;
     if (!json.is_object())
         throw InvalidInput(fmt::format("{}: not a summary.json (not a JSON object); allowed: the "
                                        "summary.json of packbed generate, lattice or analyze",
@@ -1050,7 +1061,7 @@ BedSummary read_bed_summary(std::istream& input, std::string_view name) {
         if (!(value > 0.0 && (porosity ? value < 1.0 : value <= high)))
             throw InvalidInput(fmt::format("{}: {} = {} is not allowed; allowed: a number in (0, "
                                            "{:g}{}",
-                                           shown, path, printable(v.dump().substr(0, 40)), high,
+                                           shown, path, json_excerpt(v, 40), high,
                                            porosity ? ")" : "]"));
         return value;
     };
@@ -1072,7 +1083,7 @@ BedSummary read_bed_summary(std::istream& input, std::string_view name) {
                 if (!(box[k] > 0.0 && box[k] <= limits::max_length))
                     throw InvalidInput(fmt::format(
                         "{}: region.size = {} is not allowed; allowed: three numbers in (0, {:g}]",
-                        shown, printable(size->dump().substr(0, 80)), limits::max_length));
+                        shown, json_excerpt(*size, 80), limits::max_length));
             }
             out.box = box;
             out.container = Box(box[0], box[1]);
@@ -1090,8 +1101,8 @@ BedSummary read_bed_summary(std::istream& input, std::string_view name) {
             throw InvalidInput(fmt::format(
                 "{}: container {{shape: annulus}} with radius = {} and inner_radius = {} is not "
                 "allowed; allowed: two numbers with 0 < inner_radius < radius",
-                shown, printable(c->value("radius", nlohmann::json()).dump().substr(0, 40)),
-                printable(c->value("inner_radius", nlohmann::json()).dump().substr(0, 40))));
+                shown, json_excerpt(c->value("radius", nlohmann::json()), 40),
+                json_excerpt(c->value("inner_radius", nlohmann::json()), 40)));
         out.container = Annulus(*out.container_radius, *inner);
     }
     // A box or a periodic cell: container {shape: box or periodic, size: [LX, LY]} (from 0 to
@@ -1106,8 +1117,7 @@ BedSummary read_bed_summary(std::istream& input, std::string_view name) {
               widths[1] <= limits::max_length))
             throw InvalidInput(fmt::format(
                 "{}: container.size = {} is not allowed; allowed: two numbers in (0, {:g}]", shown,
-                printable(size != c->end() ? size->dump().substr(0, 80) : "missing"),
-                limits::max_length));
+                size != c->end() ? json_excerpt(*size, 80) : "missing", limits::max_length));
         if (shape == "box")
             out.container = Box(widths[0], widths[1]);
         else
@@ -1132,6 +1142,7 @@ BedSummary read_bed_summary(std::istream& input, std::string_view name) {
 
 BedSummary read_bed_summary(const std::filesystem::path& path) {
     std::istringstream text(read_small_file("", path, limits::max_small_file));
+    record_input("the bed's summary", path);
     return read_bed_summary(text, path.native());
 }
 

@@ -12,6 +12,7 @@
 #include <nlohmann/json.hpp>
 
 #include "gnuplot.hpp"
+#include "io/json_input.hpp"
 #include "packbed/error.hpp"
 #include "packbed/files.hpp"
 #include "packbed/hydraulics.hpp"
@@ -229,18 +230,23 @@ PressureFit fit_pressure(const std::vector<double>& z, const std::vector<double>
     return fit;
 }
 
-Report cfd_report(const std::filesystem::path& case_dir) {
+void check_cfd_case(const std::filesystem::path& case_dir) {
     check_path("CASE", case_dir);
     std::error_code error;
     if (!fs::is_directory(case_dir, error))
         throw InvalidInput(fmt::format("CASE {} is not a directory; allowed: the directory of a "
                                        "case written by packbed export --format openfoam",
                                        shown(case_dir)));
+    record_input("CASE", case_dir); // read whole: no output may be it or hold it
+}
+
+Report cfd_report(const std::filesystem::path& case_dir) {
+    check_cfd_case(case_dir);
     nlohmann::json json;
     {
         const std::string text =
             read_small_file("CASE", case_dir / "packbed.json", limits::max_small_file);
-        json = nlohmann::json::parse(text, nullptr, false);
+        json = parse_json(text).value; // discarded when not JSON or nested too deep
         if (json.is_discarded() || !json.is_object())
             throw InvalidInput(
                 fmt::format("CASE {}: packbed.json is not a JSON object", shown(case_dir)));

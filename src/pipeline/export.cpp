@@ -2,6 +2,7 @@
 // example settle, or surfaces (STL, OBJ, an OpenFOAM case) with the contacts treated.
 #include <algorithm>
 #include <cctype>
+#include <cmath>
 #include <filesystem>
 #include <fstream>
 #include <memory>
@@ -17,6 +18,7 @@
 #include "packbed/error.hpp"
 #include "packbed/files.hpp"
 #include "packbed/io.hpp"
+#include "packbed/limits.hpp"
 #include "packbed/openfoam.hpp"
 #include "packbed/output.hpp"
 #include "packbed/pipeline.hpp"
@@ -57,7 +59,7 @@ AxisBox parse_box(const std::string& text) {
 
 /// The output file `out_path` and the files `sidecars` beside it, reserved before any work:
 /// the folder is checked, and no output may be the input.
-std::unique_ptr<OutputDirectory> file_output(const ExportRequest& o, const fs::path& out_path,
+std::unique_ptr<OutputDirectory> file_output(const fs::path& out_path,
                                              const std::vector<std::string>& sidecars) {
     if (!out_path.has_filename() || out_path.filename() == "." || out_path.filename() == "..")
         throw InvalidInput(fmt::format("--out {} is not allowed; allowed: a file name",
@@ -65,8 +67,6 @@ std::unique_ptr<OutputDirectory> file_output(const ExportRequest& o, const fs::p
     auto out = std::make_unique<OutputDirectory>(out_path.has_parent_path() ? out_path.parent_path()
                                                                             : fs::path("."),
                                                  "--out", OutputKind::files);
-    if (!o.keep.empty())
-        out->keep("the particles file", o.keep);
     const std::string name = out_path.filename().string();
     out->reserve(name);
     for (const std::string& sidecar : sidecars)
@@ -126,10 +126,8 @@ std::string surface_export(const ExportRequest& o, ExportFormat format, const Pa
     std::unique_ptr<OutputDirectory> out;
     if (format == ExportFormat::openfoam) {
         out = std::make_unique<OutputDirectory>(out_path, "--out", OutputKind::directory, o.force);
-        if (!o.keep.empty())
-            out->keep("the particles file", o.keep);
     } else {
-        out = file_output(o, out_path, {".json"});
+        out = file_output(out_path, {".json"});
     }
     const Contacts contacts = parse_contacts(o.contacts);
     const double dp = packing.mean_diameter();
@@ -328,7 +326,7 @@ std::string data_export(const ExportRequest& o, ExportFormat format, const Packi
             if (!f.empty())
                 sidecars.push_back(f.substr(name.size()));
     }
-    const auto out = file_output(o, out_path, sidecars);
+    const auto out = file_output(out_path, sidecars);
     const std::string program = lammps ? "LAMMPS" : "LIGGGHTS";
     // The title: where the spheres came from, shortened to the file's name (then cut) where
     // the path would make it longer than LAMMPS and LIGGGHTS read.
@@ -501,10 +499,27 @@ bool export_uses_container(const ExportRequest& request) {
 std::string export_bed(const Packing& packing, const std::vector<std::size_t>& lines,
                        const ExportRequest& request) {
     const ExportFormat format = export_format(request.format);
+    if (!request.keep.empty())
+        record_input("the particles file", request.keep);
     if (packing.size() == 0)
         throw InvalidInput(fmt::format("{}: no spheres to export; allowed: a bed with at least "
                                        "one sphere",
                                        printable(request.source)));
+    // Surfaces and LIGGGHTS's walls are written in single precision (7 digits): a sphere far
+    // from the origin, in sphere diameters, would lose its shape and the container its box.
+    const double dp = packing.mean_diameter();
+    for (std::size_t i = 0; i < packing.size(); ++i) {
+        const Vec3& c = packing.centers[i];
+        const double reach =
+            std::max({std::abs(c.x), std::abs(c.y), std::abs(c.z)}) + packing.radii[i];
+        if (!(reach <= limits::max_export_reach * dp))
+            throw InvalidInput(fmt::format(
+                "{}:{}: the sphere at ({}, {}, {}) reaches {:.6g} mean diameters from the "
+                "origin; allowed: at most {:g} (the surfaces and walls are written in single "
+                "precision)",
+                printable(request.source), i < lines.size() ? lines[i] : i + 1, c.x, c.y, c.z,
+                reach / dp, limits::max_export_reach));
+    }
     if (is_surface(format))
         return surface_export(request, format, packing, lines);
     return data_export(request, format, packing, lines);

@@ -111,16 +111,15 @@ PreparedGeneration prepare_generation(GenerateRequest request) {
 }
 
 GeneratedBed run_generation(const PreparedGeneration& prepared, RunControl control, int threads,
-                            OutputDirectory* out,
                             const std::function<void(std::uint32_t)>& on_resume) {
     const SoftSphereParameters& p = prepared.params;
     const std::string& checkpoint = prepared.request.checkpoint;
     std::optional<LayerCheckpoint> resume;
     if (!checkpoint.empty()) {
-        check_writable_file("--checkpoint", checkpoint); // now, not after the first layer
-        if (out)
-            out->keep("--checkpoint", checkpoint);
-        if (std::filesystem::exists(checkpoint)) {
+        // Now, not after the first layer; an output of the job from here on (JobScope).
+        check_writable_file("--checkpoint", checkpoint);
+        std::error_code missing;
+        if (std::filesystem::exists(std::filesystem::symlink_status(checkpoint, missing))) {
             resume = read_checkpoint(checkpoint, p);
             control.resume = &*resume;
             if (on_resume)

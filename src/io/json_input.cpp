@@ -1,0 +1,74 @@
+#include "io/json_input.hpp"
+
+#include <fmt/format.h>
+
+#include "packbed/files.hpp"
+#include "packbed/limits.hpp"
+
+namespace packbed {
+
+namespace {
+
+/// Thrown by the parser's callback past the nesting limit.
+struct TooDeep {};
+
+/// Append `value` to `out` until `out` holds `bytes` bytes (a value nested at most
+/// limits::max_json_nesting deep: the recursion is bounded).
+void excerpt(const nlohmann::json& value, std::size_t bytes, std::string& out) {
+    if (out.size() >= bytes)
+        return;
+    if (value.is_array() || value.is_object()) {
+        out += value.is_array() ? '[' : '{';
+        bool first = true;
+        for (auto it = value.begin(); it != value.end() && out.size() < bytes; ++it) {
+            out += first ? "" : ",";
+            first = false;
+            if (value.is_object())
+                out += nlohmann::json(it.key()).dump() + ":";
+            excerpt(*it, bytes, out);
+        }
+        if (out.size() < bytes)
+            out += value.is_array() ? ']' : '}';
+        return;
+    }
+    if (value.is_string()) {
+        const std::string& s = value.get_ref<const std::string&>();
+        out += nlohmann::json(s.substr(0, bytes)).dump();
+        return;
+    }
+    out += value.dump();
+}
+
+} // namespace
+
+ParsedJson parse_json(std::string_view text) {
+    ParsedJson parsed;
+    try {
+        parsed.value =
+            nlohmann::json::parse(text.begin(), text.end(),
+                                  [](int depth, nlohmann::json::parse_event_t, nlohmann::json&) {
+                                      if (depth > static_cast<int>(limits::max_json_nesting))
+                                          throw TooDeep{};
+                                      return true;
+                                  });
+    } catch (const TooDeep&) {
+        parsed.value = nlohmann::json(nlohmann::json::value_t::discarded);
+        parsed.error = fmt::format("nested deeper than {} levels", limits::max_json_nesting);
+    } catch (const nlohmann::json::exception& e) {
+        parsed.value = nlohmann::json(nlohmann::json::value_t::discarded);
+        parsed.error = printable(std::string_view(e.what()).substr(0, 200));
+    }
+    return parsed;
+}
+
+std::string json_excerpt(const nlohmann::json& value, std::size_t bytes) {
+    std::string out;
+    excerpt(value, bytes + 1, out);
+    if (out.size() > bytes) {
+        out.resize(bytes);
+        out += "...";
+    }
+    return printable(out);
+}
+
+} // namespace packbed
