@@ -454,7 +454,7 @@ Analysis analyze(const Bed& bed, const std::optional<std::string>& container,
             directory->stage(name, text);
         if (const std::string why = stage_plots(*directory, result.analysis, given); !why.empty())
             result.summary["plots"] = why;
-        directory->stage("summary.json", result.summary.dump(2) + "\n");
+        directory->stage("summary.json", json_file_text(result.summary, "summary.json"));
         directory->commit();
     }
     return result;

@@ -157,14 +157,44 @@ def main(exe):
     j = json.load(open(os.path.join(planeless, "packbed.json")))
     del j["openfoam"]["flow"]["pressure_planes"]
     json.dump(j, open(os.path.join(planeless, "packbed.json"), "w"))
+    # No NaN or infinity in a report: fluxes of 0 (an imbalance of 0/0), a pressure whose
+    # product with the density overflows, a density that makes the Reynolds number overflow.
+    still = make_case(work, "still")
+    for name in ("inletFlux", "outletFlux"):
+        table(os.path.join(still, "postProcessing", name, "0", "surfaceFieldValue.dat"),
+              f"patch {name}", ["sum(phi)"], [(20, 0.0)])
+    huge = make_case(work, "huge")
+    table(os.path.join(huge, "postProcessing", "p4", "0", "surfaceFieldValue.dat"), "p4",
+          ["Area", "areaAverage(p)"], [(20, 1e-6, -1e308)])
+    dense = make_case(work, "dense")
+    j = json.load(open(os.path.join(dense, "packbed.json")))
+    j["openfoam"]["flow"]["fluid_density"] = 1e308
+    json.dump(j, open(os.path.join(dense, "packbed.json"), "w"))
+    # packbed.json nested 1e5 deep: refused where it is read, not a stack overflow.
+    deep = make_case(work, "deep")
+    with open(os.path.join(deep, "packbed.json"), "w") as f:
+        f.write('{"diameter": ' + "[" * 100000 + "]" * 100000 + "}")
     for case, words in ((bad, "postProcessing/p3"), (nan, "not a finite number"),
-                        (old, "band_void_fraction"), (planeless, "pressure_planes"), (os.path.join(work, "none"), "not a directory"),
-                        (work, "packbed.json")):
+                        (old, "band_void_fraction"), (planeless, "pressure_planes"),
+                        (os.path.join(work, "none"), "not a directory"), (work, "packbed.json"),
+                        (still, "the inlet's flux sum(phi) is 0"),
+                        (huge, "/planes/4/pressure_Pa is not a finite number"),
+                        (dense, "packbed.json's flow: fluid-density = 1e+308 is not allowed"), (deep, "not a JSON object")):
         out = subprocess.run([exe, "cfd-report", case], capture_output=True, text=True)
         assert out.returncode == 2, (case, out.returncode, out.stderr)
         assert out.stderr.count("\n") == 1 and "CASE" in out.stderr and words in out.stderr, out.stderr
         assert not os.path.exists(os.path.join(case, "cfd-report")), case
         print(f"refused: {out.stderr.strip()}")
+    # The case is an input: an output that is it, or holds it, is refused before anything is
+    # read or written, and the case stays as it was.
+    before = sorted(os.walk(case := make_case(work, "kept")))
+    for out_dir in (case, work):
+        out = subprocess.run([exe, "cfd-report", case, "-o", out_dir, "--force"],
+                             capture_output=True, text=True)
+        assert out.returncode == 2 and out.stderr.count("\n") == 1, out.stderr
+        assert f"CASE {case} lies in --out {out_dir}" in out.stderr, out.stderr
+        print(f"refused: {out.stderr.strip()}")
+    assert sorted(os.walk(case)) == before
     shutil.rmtree(work)
 
 

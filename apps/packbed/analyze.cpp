@@ -128,7 +128,7 @@ int run_analyze(AnalyzeOptions& o) {
         if (!o.quiet)
             fmt::print(stderr, "packbed analyze: {}\n", why);
     }
-    out.stage("summary.json", summary.dump(2) + "\n");
+    out.stage("summary.json", json_file_text(summary, "summary.json"));
     out.commit();
     if (!o.quiet)
         for (const auto& warning : warnings)

@@ -1,5 +1,6 @@
 // Voxel images of a bed (voxel.hpp, docs/voxels.md).
 #include "packbed/voxel.hpp"
+#include "packbed/summary.hpp"
 
 #include <algorithm>
 #include <cmath>
@@ -827,7 +828,7 @@ std::string image_header(const VoxelGrid& grid, VoxelType type) {
                                 "PoreSpy's images"
                               : "the solid fraction of each voxel, exact (the spheres' volume "
                                 "inside it over its volume)";
-    return header.dump(2) + "\n";
+    return json_file_text(header, "the .raw.json header");
 }
 
 namespace {

@@ -1,9 +1,12 @@
 #include "io/json_input.hpp"
 
+#include <cmath>
+
 #include <fmt/format.h>
 
 #include "packbed/files.hpp"
 #include "packbed/limits.hpp"
+#include "packbed/summary.hpp"
 
 namespace packbed {
 
@@ -39,7 +42,47 @@ void excerpt(const nlohmann::json& value, std::size_t bytes, std::string& out) {
     out += value.dump();
 }
 
+template <class Json> std::string non_finite(const Json& value, const std::string& at) {
+    if (value.is_number_float())
+        return std::isfinite(value.template get<double>()) ? std::string() : at.empty() ? "/" : at;
+    if (value.is_object()) {
+        for (auto it = value.begin(); it != value.end(); ++it)
+            if (std::string found = non_finite(*it, at + "/" + it.key()); !found.empty())
+                return found;
+    } else if (value.is_array()) {
+        for (std::size_t k = 0; k < value.size(); ++k)
+            if (std::string found = non_finite(value[k], at + "/" + std::to_string(k));
+                !found.empty())
+                return found;
+    }
+    return {};
+}
+
+template <class Json> std::string file_text(const Json& value, std::string_view name) {
+    if (const std::string at = non_finite(value, ""); !at.empty())
+        throw std::runtime_error(fmt::format("{} would hold a number that is not finite at {}; "
+                                             "nothing was written",
+                                             name, at));
+    return value.dump(2) + "\n";
+}
+
 } // namespace
+
+std::string json_file_text(const nlohmann::json& value, std::string_view name) {
+    return file_text(value, name);
+}
+
+std::string json_file_text(const nlohmann::ordered_json& value, std::string_view name) {
+    return file_text(value, name);
+}
+
+std::string non_finite_at(const nlohmann::json& value) {
+    return non_finite(value, "");
+}
+
+std::string non_finite_at(const nlohmann::ordered_json& value) {
+    return non_finite(value, "");
+}
 
 ParsedJson parse_json(std::string_view text) {
     ParsedJson parsed;

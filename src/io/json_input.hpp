@@ -21,6 +21,13 @@ struct ParsedJson {
 /// Parse `text` as one JSON value nested at most limits::max_json_nesting levels deep.
 ParsedJson parse_json(std::string_view text);
 
+/// \return where `value` holds a number that is not finite (NaN or an infinity, which JSON
+/// cannot hold: nlohmann writes them as null), as a JSON pointer ("/fluxes_m3_s/imbalance"),
+/// or "" when every number is finite. For packbed's own values (the recursion follows their
+/// nesting).
+std::string non_finite_at(const nlohmann::json& value);
+std::string non_finite_at(const nlohmann::ordered_json& value);
+
 /// `value` as JSON text of at most about `bytes` bytes ("..." where it is cut), with control
 /// characters escaped: what a message quotes of a user's value, whatever its size.
 std::string json_excerpt(const nlohmann::json& value, std::size_t bytes = 40);

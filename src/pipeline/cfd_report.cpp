@@ -18,6 +18,7 @@
 #include "packbed/hydraulics.hpp"
 #include "packbed/limits.hpp"
 #include "packbed/pipeline.hpp"
+#include "packbed/summary.hpp"
 
 namespace packbed {
 
@@ -291,6 +292,11 @@ Report cfd_report(const std::filesystem::path& case_dir) {
     const double inlet = column(last_row(case_dir, "inletFlux"), "sum(phi)", case_dir, "inletFlux");
     const double outlet =
         column(last_row(case_dir, "outletFlux"), "sum(phi)", case_dir, "outletFlux");
+    if (!(inlet != 0.0))
+        throw InvalidInput(fmt::format("CASE {}: postProcessing/inletFlux: the inlet's flux "
+                                       "sum(phi) is 0; allowed: a case whose flow ran (a flux "
+                                       "through the inlet)",
+                                       shown(case_dir)));
     const SolverLog log = read_solver_log(case_dir);
 
     // The correlations at the bed's own void fraction between the planes; the particle
@@ -301,20 +307,26 @@ Report cfd_report(const std::filesystem::path& case_dir) {
     fluid.fluid_density = rho;
     fluid.viscosity = mu;
     fluid.particle_density = limits::max_density_kg_m3;
-    const double ergun = ergun_pressure_gradient(band_void, u, fluid);
-    nlohmann::ordered_json correlations = {{"ergun_Pa_m", ergun},
-                                           {"cfd_over_ergun", gradient / ergun}};
-    const ptr aspect = flow / "aspect_ratio";
-    if (json.contains(aspect) && json.at(aspect).is_number()) {
-        const double a = recorded(json, aspect, case_dir);
-        const CorrelationValue es = eisfeld_schnitzlein_pressure_gradient(band_void, u, a, fluid);
-        correlations["aspect_ratio"] = a;
-        correlations["eisfeld_schnitzlein_Pa_m"] = es.value;
-        correlations["cfd_over_eisfeld_schnitzlein"] = gradient / es.value;
-        if (!es.warning.empty())
-            report.warnings.push_back(es.warning);
-    } else {
-        correlations["eisfeld_schnitzlein"] = "no wall (a periodic cell): Ergun only";
+    nlohmann::ordered_json correlations;
+    try { // the correlations' ranges, for values that come from the case's packbed.json
+        const double ergun = ergun_pressure_gradient(band_void, u, fluid);
+        correlations = {{"ergun_Pa_m", ergun}, {"cfd_over_ergun", gradient / ergun}};
+        const ptr aspect = flow / "aspect_ratio";
+        if (json.contains(aspect) && json.at(aspect).is_number()) {
+            const double a = recorded(json, aspect, case_dir);
+            const CorrelationValue es =
+                eisfeld_schnitzlein_pressure_gradient(band_void, u, a, fluid);
+            correlations["aspect_ratio"] = a;
+            correlations["eisfeld_schnitzlein_Pa_m"] = es.value;
+            correlations["cfd_over_eisfeld_schnitzlein"] = gradient / es.value;
+            if (!es.warning.empty())
+                report.warnings.push_back(es.warning);
+        } else {
+            correlations["eisfeld_schnitzlein"] = "no wall (a periodic cell): Ergun only";
+        }
+    } catch (const InvalidInput& e) {
+        throw InvalidInput(
+            fmt::format("CASE {}: packbed.json's flow: {}", shown(case_dir), e.what()));
     }
 
     out["flow"] = {{"superficial_velocity_m_s", u},
@@ -356,6 +368,13 @@ Report cfd_report(const std::filesystem::path& case_dir) {
                                               "log.simpleFoam: the pressures are those of the "
                                               "last iteration written",
                                               shown(case_dir)));
+    // Every value finite, or the case refused: finite numbers read from it can still overflow
+    // in a product (a pressure of -1e308 times the density).
+    if (const std::string at = non_finite_at(out); !at.empty())
+        throw InvalidInput(fmt::format("CASE {}: the report's {} is not a finite number: the "
+                                       "case's pressures, fluxes or packbed.json values are out "
+                                       "of range; allowed: a case as its Allrun ran it",
+                                       shown(case_dir), at));
     report.values = out;
     return report;
 }
@@ -368,7 +387,7 @@ std::string stage_cfd_report(OutputDirectory& out, const Report& report) {
             fmt::format("{},{},{}\n", plane["z_m"].get<double>(),
                         plane["pressure_Pa"].get<double>(), plane["fluid_area_m2"].get<double>());
     out.stage("pressure.csv", table);
-    out.stage("cfd_report.json", v.dump(2) + "\n");
+    out.stage("cfd_report.json", json_file_text(v, "cfd_report.json"));
 
     // The plot: the planes' pressures, the fitted line and the correlations' lines through
     // the planes' mean, against the height in mm.

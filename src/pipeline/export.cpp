@@ -22,6 +22,7 @@
 #include "packbed/openfoam.hpp"
 #include "packbed/output.hpp"
 #include "packbed/pipeline.hpp"
+#include "packbed/summary.hpp"
 #include "packbed/surface.hpp"
 #include "packbed/volume.hpp"
 
@@ -247,7 +248,7 @@ std::string surface_export(const ExportRequest& o, ExportFormat format, const Pa
         if (!foam.rod.empty()) // an annulus' rod
             write_surface(foam.rod, SurfaceFormat::stl_binary,
                           out->reserve("constant/triSurface/rod.stl"));
-        out->stage("packbed.json", report.dump(2) + "\n");
+        out->stage("packbed.json", json_file_text(report, "packbed.json"));
         out->commit();
         return fmt::format("OpenFOAM case in {} ({} spheres, contacts {}{}); run ./Allrun "
                            "there",
@@ -267,7 +268,7 @@ std::string surface_export(const ExportRequest& o, ExportFormat format, const Pa
                   : format == ExportFormat::stl_ascii ? SurfaceFormat::stl_ascii
                                                       : SurfaceFormat::obj,
                   out->reserve(name));
-    out->stage(name + ".json", report.dump(2) + "\n");
+    out->stage(name + ".json", json_file_text(report, name + ".json"));
     out->commit();
     return fmt::format("{} spheres to {} ({} triangles, icosphere level {}, contacts {}){}",
                        packing.size(), out_path.string(), triangles, options.level, o.contacts,

@@ -155,7 +155,7 @@ void stage_bed(OutputDirectory& out, const Packing& packing, const Container& co
     out.stage("particles.vtu", particles_vtu(packing));
     if (analyse)
         stage_analysis(out, packing, container, band_clearance, summary);
-    out.stage("summary.json", summary.dump(2) + "\n");
+    out.stage("summary.json", json_file_text(summary, "summary.json"));
 }
 
 } // namespace packbed
