@@ -168,8 +168,20 @@ Container container_for(const Bed& bed, const std::optional<std::string>& contai
     return *bed.container;
 }
 
-Bed generate(double aspect_ratio, const std::optional<std::string>& container, long long particles,
-             long long seed, double diameter, const std::string& sizes,
+/// A whole number given to the module as a Python object, checked with the command line's
+/// words (check_whole): an int of any size (a seed up to 2^64 - 1), never a bool, a float or a
+/// string (which numpy or pybind11 would convert).
+std::uint64_t whole(const py::handle& value, std::string_view option, const WholeRange& range) {
+    const std::string text = py::str(value);
+    if (!PyLong_Check(value.ptr()) || PyBool_Check(value.ptr()))
+        throw InvalidInput(fmt::format("--{}: '{}' is not allowed; allowed: {}", option,
+                                       printable(std::string_view(text).substr(0, 80)),
+                                       range.allowed()));
+    return check_whole(option, text, range);
+}
+
+Bed generate(std::optional<double> aspect_ratio, const std::optional<std::string>& container,
+             long long particles, const py::object& seed, double diameter, const std::string& sizes,
              const std::string& fractions, double e0, double ck, double cg_step,
              std::optional<double> overlap_low, std::optional<double> overlap_high,
              double tolerance, long long mc_period, long long mc_window,
@@ -184,9 +196,14 @@ Bed generate(double aspect_ratio, const std::optional<std::string>& container, l
     GenerateRequest request;
     SoftSphereParameters& p = request.params;
     namespace range = option_range;
-    p.aspect_ratio = check_option("aspect-ratio", aspect_ratio, range::aspect_ratio);
+    if (aspect_ratio && container) // the command line's words (CLI11's excludes)
+        throw InvalidInput(fmt::format("--aspect-ratio {} and --container {} are both given; "
+                                       "allowed: one of the two",
+                                       *aspect_ratio, printable(container->substr(0, 80))));
+    if (aspect_ratio)
+        p.aspect_ratio = check_option("aspect-ratio", *aspect_ratio, range::aspect_ratio);
     p.particles = check_option("particles", particles, range::particles);
-    p.seed = check_option("seed", seed, range::seed);
+    p.seed = whole(seed, "seed", range::seed);
     p.diameter = check_option("diameter", diameter, range::diameter);
     p.e0 = check_option("e0", e0, range::e0);
     p.ck = check_option("ck", ck, range::ck);
@@ -364,11 +381,32 @@ py::dict analyze_frames(const std::filesystem::path& path, const std::string& fo
     return result;
 }
 
+using Doubles = py::array_t<double, py::array::c_style | py::array::forcecast>;
+
+/// `value` as an array of doubles, refused where numpy's conversion would lose or invent part
+/// of it: a masked array (the mask would be dropped), complex numbers (the imaginary part),
+/// booleans, strings and other objects (not numbers).
+Doubles real_numbers(const py::object& value, std::string_view name) {
+    if (py::module_::import("numpy.ma").attr("isMaskedArray")(value).cast<bool>())
+        throw InvalidInput(fmt::format("{}: a masked array is not allowed; allowed: an array of "
+                                       "numbers (fill or remove the masked values first)",
+                                       name));
+    const py::array array = py::module_::import("numpy").attr("asarray")(value);
+    const char kind = array.dtype().kind();
+    if (kind != 'f' && kind != 'i' && kind != 'u')
+        throw InvalidInput(fmt::format("{}: an array of dtype {} is not allowed; allowed: real "
+                                       "numbers (float or int)",
+                                       name, std::string(py::str(array.dtype()))));
+    return Doubles::ensure(array);
+}
+
 /// A bed from numpy arrays: centres (N x 3) and radii (N), or one diameter for all.
-Bed from_arrays(
-    const py::array_t<double, py::array::c_style | py::array::forcecast>& centers,
-    const std::optional<py::array_t<double, py::array::c_style | py::array::forcecast>>& radii,
-    std::optional<double> diameter, const std::optional<std::string>& container) {
+Bed from_arrays(const py::object& centers_given, const std::optional<py::object>& radii_given,
+                std::optional<double> diameter, const std::optional<std::string>& container) {
+    const Doubles centers = real_numbers(centers_given, "centers");
+    std::optional<Doubles> radii;
+    if (radii_given && !radii_given->is_none())
+        radii = real_numbers(*radii_given, "radii");
     if (centers.ndim() != 2 || centers.shape(1) != 3)
         throw InvalidInput(fmt::format("centers: an array of shape ({}) is not allowed; "
                                        "allowed: shape (N, 3)",
@@ -814,34 +852,34 @@ in the directory `out` (new or empty; force=True replaces a non-empty one whole)
             "The numbers as `packbed analyze` writes them in summary.json (band, void fraction, "
             "coordination, rattlers, wall contacts, options, warnings).");
 
-    m.def(
-        "generate", &generate, py::call_guard<JobScope>(), py::kw_only(),
-        py::arg("aspect_ratio") = SoftSphereParameters{}.aspect_ratio,
-        py::arg("container") = py::none(), py::arg("particles") = SoftSphereParameters{}.particles,
-        py::arg("seed") = SoftSphereParameters{}.seed,
-        py::arg("diameter") = SoftSphereParameters{}.diameter, py::arg("sizes") = "mono",
-        py::arg("fractions") = "volume", py::arg("e0") = SoftSphereParameters{}.e0,
-        py::arg("ck") = SoftSphereParameters{}.ck,
-        py::arg("cg_step") = SoftSphereParameters{}.cg_step, py::arg("overlap_low") = py::none(),
-        py::arg("overlap_high") = py::none(),
-        py::arg("tolerance") = SoftSphereParameters{}.tolerance,
-        py::arg("mc_period") = SoftSphereParameters{}.mc_period,
-        py::arg("mc_window") = SoftSphereParameters{}.mc_window,
-        py::arg("mc_tolerance") = py::none(),
-        py::arg("update") = to_string(SoftSphereParameters{}.update),
-        py::arg("solver") = to_string(SoftSphereParameters{}.solver), py::arg("skin") = py::none(),
-        py::arg("layer_height") = SoftSphereParameters{}.layer_height,
-        py::arg("checkpoint") = py::none(), py::arg("max_iterations") = py::none(),
-        py::arg("band_clearance") = 1.0, py::arg("threads") = py::none(),
-        py::arg("progress") = py::none(), py::arg("out") = py::none(), py::arg("force") = false,
-        py::arg("engine") = to_string(Engine::packbed), py::arg("ranks") = 1,
-        py::arg("mpi_command") = py::none(), py::arg("lmp") = "lmp",
-        R"(Pack spheres in a container with the soft-sphere algorithm of Salvat et al. (2005).
+    m.def("generate", &generate, py::call_guard<JobScope>(), py::kw_only(),
+          py::arg("aspect_ratio") = py::none(), py::arg("container") = py::none(),
+          py::arg("particles") = SoftSphereParameters{}.particles,
+          py::arg("seed") = SoftSphereParameters{}.seed,
+          py::arg("diameter") = SoftSphereParameters{}.diameter, py::arg("sizes") = "mono",
+          py::arg("fractions") = "volume", py::arg("e0") = SoftSphereParameters{}.e0,
+          py::arg("ck") = SoftSphereParameters{}.ck,
+          py::arg("cg_step") = SoftSphereParameters{}.cg_step, py::arg("overlap_low") = py::none(),
+          py::arg("overlap_high") = py::none(),
+          py::arg("tolerance") = SoftSphereParameters{}.tolerance,
+          py::arg("mc_period") = SoftSphereParameters{}.mc_period,
+          py::arg("mc_window") = SoftSphereParameters{}.mc_window,
+          py::arg("mc_tolerance") = py::none(),
+          py::arg("update") = to_string(SoftSphereParameters{}.update),
+          py::arg("solver") = to_string(SoftSphereParameters{}.solver),
+          py::arg("skin") = py::none(),
+          py::arg("layer_height") = SoftSphereParameters{}.layer_height,
+          py::arg("checkpoint") = py::none(), py::arg("max_iterations") = py::none(),
+          py::arg("band_clearance") = 1.0, py::arg("threads") = py::none(),
+          py::arg("progress") = py::none(), py::arg("out") = py::none(), py::arg("force") = false,
+          py::arg("engine") = to_string(Engine::packbed), py::arg("ranks") = 1,
+          py::arg("mpi_command") = py::none(), py::arg("lmp") = "lmp",
+          R"(Pack spheres in a container with the soft-sphere algorithm of Salvat et al. (2005).
 
 The keyword arguments are `packbed generate`'s options in snake_case, with the same defaults
-(`packbed generate --help`, docs/generate.md): aspect_ratio a = D/Dp (or container, a spec
-string such as 'cylinder:0.05', 'box:LX,LY', 'annulus:D,DI', 'periodic:LX,LY' in the unit of
-diameter), particles Np, seed, diameter Dp, sizes (a --sizes spec, docs/sizes.md), fractions
+(`packbed generate --help`, docs/generate.md): aspect_ratio a = D/Dp (None: 5) or container
+(not both; a spec string such as 'cylinder:0.05', 'box:LX,LY', 'annulus:D,DI',
+'periodic:LX,LY' in the unit of diameter), particles Np, seed, diameter Dp, sizes (a --sizes spec, docs/sizes.md), fractions
 ('volume' or 'number'), e0, ck, cg_step, overlap_low, overlap_high, tolerance, mc_period,
 mc_window, mc_tolerance (None: the solver's schedule), update ('in-place' or 'simultaneous'),
 solver ('fire' or 'paper'), skin, layer_height, checkpoint (a file), max_iterations,

@@ -9,6 +9,7 @@
 // hidden entries, types, sizes, link targets and the contents of small files).
 #include <fcntl.h>
 #include <signal.h>
+#include <sys/resource.h>
 #include <sys/stat.h>
 #include <sys/sysmacros.h>
 #include <sys/types.h>
@@ -1391,10 +1392,82 @@ INSTANTIATE_TEST_SUITE_P(
         exact("import-lammps loop -o out",
               "packbed import-lammps: FOLDER loop: log.lammps is missing; allowed: a job folder "
               "after LAMMPS ran in it (README.md there says how)"),
+        // 9. Quiet acceptance: refused with the library's words, as the Python module refuses.
+        exact("export bed/particles.csv -f openfoam --fluid-velocity 0 -o case",
+              "packbed export: --fluid-velocity 0 is not allowed with --format openfoam; "
+              "allowed: the inlet's velocity > 0 m/s, or --reynolds"),
+        exact("export bed/particles.csv -f openfoam --scale 1e-300 -o case",
+              "packbed export: --scale 1e-300 is not allowed for spheres of 1 units: they would "
+              "be 1e-300 m; allowed: a scale that makes them 1e-09 to 10 m"),
+        exact("export bed/particles.csv -f openfoam --scale 1e-9 --reynolds 1e5 -o case",
+              "packbed export: --reynolds 100000 is not allowed with spheres of 1e-09 m: the "
+              "inlet's velocity would be 1.00381e+08 m/s; allowed: a Reynolds number that gives "
+              "at most 10000 m/s (or --scale, --viscosity, --fluid-density)"),
+        exact("export bed/particles.csv -f stl --edge 1e-300 -o s.stl",
+              "packbed export: --edge 1e-300 is not allowed for spheres up to radius 0.5: it "
+              "needs more than icosphere level 7; allowed: at least 0.00410742 (that level's "
+              "edge)"),
+        exact("generate -n 30 -a 3 --band-clearance 1e300",
+              "packbed generate: --band-clearance 1e+300 Dp is not allowed for this bed (at most "
+              "10.3857 Dp tall); allowed: less than half its height"),
         exact("export far.csv -R 2 -o far.data",
               "packbed export: far.csv:3: the sphere at (0, 0, 100000000000000) reaches 1e+14 "
               "mean diameters from the origin; allowed: at most 1e+06 (the surfaces and walls "
               "are written in single precision)")));
+
+// A disk that fills up during the output (a file size limit, RLIMIT_FSIZE, with SIGXFSZ
+// ignored: every write beyond it fails with EFBIG as on a full disk): exit 1, one line naming
+// the output as the user gave it (not the hidden staging folder) with the reason, nothing left.
+TEST(CliDiskFull, OneLineNamingTheOutputAsGivenNothingLeft) {
+    const fs::path root = scratch();
+    const fs::path d = root / "work";
+    write(d / "bed.csv", column(40));
+    const std::string before = listing(d);
+    const std::vector<std::vector<std::string>> runs{
+        {"generate", "-n", "3000", "-a", "5", "-q", "-o", "out"},
+        {"voxelize", "bed.csv", "--container", "cylinder:2", "--voxel-size", "0.01", "-o",
+         "im.raw"},
+        {"export", "bed.csv", "-R", "1", "-f", "stl", "-o", "bed.stl"},
+        {"export", "bed.csv", "-R", "1", "-f", "openfoam", "--refine", "6", "-o", "case"},
+    };
+    const std::vector<std::string> named{"out/particles.csv", "im.raw", "bed.stl",
+                                         "case/constant/triSurface/particles.stl"};
+    for (std::size_t k = 0; k < runs.size(); ++k) {
+        std::vector<std::string> words{exe()};
+        words.insert(words.end(), runs[k].begin(), runs[k].end());
+        std::vector<char*> argv;
+        for (std::string& w : words)
+            argv.push_back(w.data());
+        argv.push_back(nullptr);
+        const std::string err = (root / "io" / "err").string(), dir = d.string();
+        const pid_t pid = ::fork();
+        if (pid == 0) {
+            const rlimit size{64 << 10, 64 << 10};
+            ::signal(SIGXFSZ, SIG_IGN);
+            const int e = ::open(err.c_str(), O_WRONLY | O_CREAT | O_TRUNC, 0644);
+            const int null = ::open("/dev/null", O_RDWR);
+            if (e < 0 || null < 0 || ::chdir(dir.c_str()) != 0 || ::setrlimit(RLIMIT_FSIZE, &size))
+                ::_exit(127);
+            ::dup2(null, STDIN_FILENO);
+            ::dup2(null, STDOUT_FILENO);
+            ::dup2(e, STDERR_FILENO);
+            ::execv(argv[0], argv.data());
+            ::_exit(127);
+        }
+        int status = 0;
+        ::waitpid(pid, &status, 0);
+        const std::string message = slurp(root / "io" / "err");
+        EXPECT_TRUE(WIFEXITED(status) && WEXITSTATUS(status) == 1) << message;
+        EXPECT_EQ(std::count(message.begin(), message.end(), '\n'), 1) << message;
+        EXPECT_NE(message.find("cannot write " + named[k] +
+                               " (File too large); nothing was "
+                               "written"),
+                  std::string::npos)
+            << message;
+        EXPECT_EQ(message.find("packbed-"), std::string::npos) << message;
+        EXPECT_EQ(listing(d), before) << message;
+    }
+}
 
 TEST(CliPaths, QuotesAndShellSyntaxInOutputPathsRunNothing) {
     const fs::path root = scratch();

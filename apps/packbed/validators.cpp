@@ -38,19 +38,8 @@ CLI::Validator real_in(double low, double high, bool low_open, bool high_open) {
 }
 
 CLI::Validator whole_in(const WholeRange& range) {
-    const std::string allowed = range.allowed();
-    return CLI::Validator(
-        [=](std::string& text) -> std::string {
-            unsigned long long value = 0;
-            const char* end = text.data() + text.size();
-            const auto [ptr, ec] = std::from_chars(text.data(), end, value);
-            if (ec != std::errc() || ptr != end)
-                return fmt::format("'{}' is not allowed; allowed: {}", printable(text), allowed);
-            if (value < range.low || value > range.high)
-                return fmt::format("{} is not allowed; allowed: {}", text, allowed);
-            return {};
-        },
-        allowed);
+    return CLI::Validator([=](std::string& text) { return whole_problem(text, range); },
+                          range.allowed());
 }
 
 CLI::Validator whole_in(unsigned long long low, unsigned long long high) {

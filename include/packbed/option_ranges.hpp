@@ -43,6 +43,15 @@ double check_option(std::string_view option, double value, const NumberRange& ra
 /// \copydoc check_option
 std::uint64_t check_option(std::string_view option, long long value, const WholeRange& range);
 
+/// Why `text`, a whole-number option as typed (digits only: no sign, point or exponent), is not
+/// allowed in `range`: "'TEXT' is not allowed; allowed: ..." (quoted: not a whole number from
+/// 0 to 2^64 - 1) or "TEXT is not allowed; allowed: ..." (outside the range); "" when it is.
+std::string whole_problem(std::string_view text, const WholeRange& range);
+/// \return the value of `text` (whole_problem). \throws InvalidInput "--OPTION: " and the
+/// problem: the command line's message, for a value the Python module takes as text (a seed up
+/// to 2^64 - 1, which no C++ integer type of the binding holds signed)
+std::uint64_t check_whole(std::string_view option, std::string_view text, const WholeRange& range);
+
 /// What --container allows, as both front ends word it (the command line's validator and
 /// --help, the library's InvalidInput, so the Python module's ValueError): each of `shapes`
 /// ("cylinder", "box", "annulus", "periodic", as all_shapes in container.hpp) as its SPEC,

@@ -235,8 +235,10 @@ struct ExportRequest {
     /// or the case directory (openfoam: new or empty, or any with `force`)
     std::filesystem::path out;
     bool force = false;
-    std::string source;         ///< the bed's name in headers, reports and messages (its file)
-    std::filesystem::path keep; ///< the bed's file: an input of the job (record_input); "": none
+    std::string source; ///< the bed's name in headers, reports and messages (its file)
+    /// the bed's file: an input of the job (record_input), and the summary.json beside it;
+    /// "": none
+    std::filesystem::path keep;
     std::optional<Container> container; ///< the bed's; none: no wall treatment, no example
     double container_height = 0.0;      ///< 0: the bed's top + 1 Dp
     bool no_container = false;          ///< surfaces: no container solids; data files: ignore it

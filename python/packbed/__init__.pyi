@@ -64,7 +64,7 @@ class Analysis:
 
 def generate(
     *,
-    aspect_ratio: float = 5.0,
+    aspect_ratio: Optional[float] = None,
     container: Optional[str] = None,
     particles: int = 500,
     seed: int = 1,

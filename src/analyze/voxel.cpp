@@ -3,6 +3,7 @@
 #include "packbed/summary.hpp"
 
 #include <algorithm>
+#include <cerrno>
 #include <cmath>
 #include <cstdlib>
 #include <cstring>
@@ -921,13 +922,15 @@ void write_image(const std::filesystem::path& path, ImageFormat format, const Vo
         out << ifds;
         out.flush();
         if (!out)
-            throw std::runtime_error(fmt::format("cannot write {}", printable(path.native())));
+            throw std::runtime_error(fmt::format("cannot write {} ({}); nothing was written",
+                                                 printable(path.native()), std::strerror(errno)));
         return;
     }
     out.write(data, static_cast<std::streamsize>(bytes));
     out.flush();
     if (!out)
-        throw std::runtime_error(fmt::format("cannot write {}", printable(path.native())));
+        throw std::runtime_error(fmt::format("cannot write {} ({}); nothing was written",
+                                             printable(path.native()), std::strerror(errno)));
 }
 
 } // namespace packbed

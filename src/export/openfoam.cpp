@@ -345,9 +345,23 @@ void add_flow_files(OpenFoamCase& c, const std::vector<std::string>& walls, doub
     else
         check_option("reynolds", flow.reynolds, option_range::reynolds);
     const double d = c.scale * diameter; // m
+    // The flow's numbers within the hydraulics' physical ranges (limits.hpp), so that a scale
+    // far from any bed cannot ask simpleFoam for a velocity of 1e294 m/s.
+    if (!(d >= limits::min_particle_diameter_m && d <= limits::max_particle_diameter_m))
+        throw InvalidInput(fmt::format(
+            "--scale {:g} is not allowed for spheres of {:g} units: they would be {:g} m; "
+            "allowed: a scale that makes them {:g} to {:g} m",
+            c.scale, diameter, d, limits::min_particle_diameter_m,
+            limits::max_particle_diameter_m));
     const double nu = flow.viscosity / flow.fluid_density;
     c.velocity = flow.velocity > 0.0 ? flow.velocity : flow.reynolds * nu / d;
     c.reynolds = c.velocity * d / nu;
+    if (!(c.velocity <= limits::max_velocity_m_s))
+        throw InvalidInput(fmt::format(
+            "--reynolds {:g} is not allowed with spheres of {:g} m: the inlet's velocity would be "
+            "{:g} m/s; allowed: a Reynolds number that gives at most {:g} m/s (or --scale, "
+            "--viscosity, --fluid-density)",
+            flow.reynolds, d, c.velocity, limits::max_velocity_m_s));
     const double area = section * c.scale * c.scale; // m^2
     // Planes clear of the bed's ends by 1 Dp (or its middle half when it is lower than 3 Dp).
     double low = diameter, high = bed_top - diameter;

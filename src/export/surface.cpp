@@ -1,6 +1,7 @@
 #include "packbed/surface.hpp"
 
 #include <algorithm>
+#include <cerrno>
 #include <cmath>
 #include <cstring>
 #include <fstream>
@@ -14,6 +15,7 @@
 
 #include "export/mesh_union.hpp"
 #include "packbed/error.hpp"
+#include "packbed/files.hpp"
 #include "packbed/neighbor_list.hpp"
 #include "packbed/volume.hpp"
 #include "require.hpp"
@@ -923,7 +925,8 @@ void write_surface(const std::vector<Solid>& solids, SurfaceFormat format,
                    const std::filesystem::path& path) {
     std::ofstream file(path, std::ios::binary);
     if (!file)
-        throw std::runtime_error(fmt::format("cannot write {}", path.string()));
+        throw std::runtime_error(fmt::format("cannot write {} ({}); nothing was written",
+                                             printable(path.native()), std::strerror(errno)));
     std::string buffer;
     const auto flush = [&](bool force) {
         if (force || buffer.size() > (1u << 20)) {
@@ -994,7 +997,8 @@ void write_surface(const std::vector<Solid>& solids, SurfaceFormat format,
     flush(true);
     file.close();
     if (!file)
-        throw std::runtime_error(fmt::format("writing {} failed", path.string()));
+        throw std::runtime_error(fmt::format("cannot write {} ({}); nothing was written",
+                                             printable(path.native()), std::strerror(errno)));
 }
 
 } // namespace packbed

@@ -144,6 +144,11 @@ std::string surface_export(const ExportRequest& o, ExportFormat format, const Pa
     for (const double r : packing.radii)
         largest = std::max(largest, r);
     options.level = o.edge > 0.0 ? icosphere_level_for_edge(largest, o.edge) : o.refine;
+    if (o.edge > 0.0 && largest * icosphere_edge(options.level) > o.edge)
+        throw InvalidInput(fmt::format(
+            "--edge {:g} is not allowed for spheres up to radius {:g}: it needs more than "
+            "icosphere level {}; allowed: at least {:.6g} (that level's edge)",
+            o.edge, largest, options.level, largest * icosphere_edge(options.level)));
     options.container = container;
     options.write_container = !o.no_container;
     const TreatedBed bed = treat_contacts(packing, contacts, container);
@@ -190,6 +195,9 @@ std::string surface_export(const ExportRequest& o, ExportFormat format, const Pa
 
     if (format == ExportFormat::openfoam) {
         OpenFoamFlowOptions flow = o.flow;
+        if (o.fluid_velocity == 0.0)
+            throw InvalidInput("--fluid-velocity 0 is not allowed with --format openfoam; "
+                               "allowed: the inlet's velocity > 0 m/s, or --reynolds");
         if (o.fluid_velocity > 0.0) // the inlet's, instead of the Reynolds number's
             flow.velocity = o.fluid_velocity;
         std::vector<std::string> models;
@@ -230,12 +238,8 @@ std::string surface_export(const ExportRequest& o, ExportFormat format, const Pa
         for (const auto& [path, text] : foam.files)
             out->stage(path, text);
         {
+            out->stage("Allrun", foam.allrun);
             const fs::path allrun = out->reserve("Allrun");
-            std::ofstream script(allrun, std::ios::binary);
-            script << foam.allrun;
-            script.close();
-            if (!script)
-                throw std::runtime_error(fmt::format("cannot write {}", allrun.string()));
             fs::permissions(allrun,
                             fs::perms::owner_exec | fs::perms::group_exec | fs::perms::others_exec,
                             fs::perm_options::add);
@@ -500,8 +504,13 @@ bool export_uses_container(const ExportRequest& request) {
 std::string export_bed(const Packing& packing, const std::vector<std::size_t>& lines,
                        const ExportRequest& request) {
     const ExportFormat format = export_format(request.format);
-    if (!request.keep.empty())
+    if (!request.keep.empty()) { // the bed's file and the summary.json that gives its container
         record_input("the particles file", request.keep);
+        std::error_code ec;
+        const fs::path summary = request.keep.parent_path() / "summary.json";
+        if (fs::is_regular_file(summary, ec))
+            record_input("the bed's summary", summary);
+    }
     if (packing.size() == 0)
         throw InvalidInput(fmt::format("{}: no spheres to export; allowed: a bed with at least "
                                        "one sphere",

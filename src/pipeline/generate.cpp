@@ -86,6 +86,15 @@ PreparedGeneration prepare_generation(GenerateRequest request) {
     if (request.engine == Engine::lammps && p.solver == Solver::fire)
         p = lammps_parameters(p); // its own band unless one is given
     p.validate();
+    // The void fraction's band, clear of the floor and the top: refused before the run where
+    // no bed of this request can hold one (as analyze refuses it for a bed it reads). The
+    // settled bed is lower than twice the loose height L0 of eq. (6) and two of its largest
+    // spheres; where it settles lower than twice the clearance, summary.json says so.
+    const double tallest = 2.0 * initial_bed_height(p) + 2.0 * p.largest_size();
+    if (!(2.0 * request.band_clearance < tallest))
+        throw InvalidInput(fmt::format("--band-clearance {} Dp is not allowed for this bed (at "
+                                       "most {:.6g} Dp tall); allowed: less than half its height",
+                                       request.band_clearance, tallest));
     if (request.engine == Engine::lammps) {
         if (p.solver != Solver::fire)
             throw InvalidInput("--solver paper is not allowed with --engine lammps; allowed: "

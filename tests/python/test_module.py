@@ -526,3 +526,80 @@ def test_bad_values_are_worded_as_the_command_line_words_them(keywords, options,
     with pytest.raises(ValueError) as raised:
         packbed.generate(**keywords)
     assert run.stderr == "packbed: " + str(raised.value) + "\n"
+
+
+# Issue 39: the module refuses what the command line refuses, with the same words (the
+# command line's line is "packbed: MESSAGE" for a value CLI11 checks, "packbed COMMAND: MESSAGE"
+# for one the library checks).
+@pytest.mark.parametrize(
+    "keywords, options",
+    [
+        ({"seed": -1}, ["--seed", "-1"]),
+        ({"seed": 2**64}, ["--seed", str(2**64)]),
+        ({"seed": 1.5}, ["--seed", "1.5"]),
+        ({"aspect_ratio": 5, "container": "cylinder:8"}, ["-a", "5", "--container", "cylinder:8"]),
+        ({"band_clearance": 1e300, "particles": 30}, ["--band-clearance", "1e300", "-n", "30"]),
+    ],
+)
+def test_the_module_refuses_what_the_command_line_refuses(keywords, options, tmp_path):
+    run = subprocess.run([PACKBED, "generate", *options, "--out", str(tmp_path / "out")],
+                         capture_output=True, text=True)
+    assert run.returncode == 2
+    with pytest.raises(ValueError) as raised:
+        packbed.generate(**keywords)
+    assert run.stderr in (f"packbed: {raised.value}\n", f"packbed generate: {raised.value}\n")
+    assert not (tmp_path / "out").exists()
+
+
+def test_a_seed_up_to_2_to_the_64_gives_the_command_lines_bed(tmp_path):
+    seed = 2**64 - 1
+    status, _, err = cli("generate", "-a", 3, "-n", 30, "-s", seed, "-q", "--no-analysis",
+                         "--out", tmp_path / "cli")
+    assert status == 0, err
+    bed = packbed.generate(aspect_ratio=3, particles=30, seed=seed)
+    assert np.array_equal(bed.centers, read_csv(tmp_path / "cli" / "particles.csv")[:, :3])
+
+
+@pytest.mark.parametrize(
+    "make, words",
+    [
+        (lambda c: np.ma.masked_array(c, mask=np.eye(2, 3, dtype=bool)), "a masked array"),
+        (lambda c: c + 0j, "dtype complex128"),
+        (lambda c: c.astype(str), "dtype <U"),
+        (lambda c: c.astype(bool), "dtype bool"),
+        (lambda c: c.astype(object), "dtype object"),
+    ],
+)
+def test_arrays_numpy_would_change_are_refused(make, words):
+    centers = np.array([[0.0, 0.0, 0.5], [0.0, 0.0, 1.5]])
+    with pytest.raises(ValueError, match=words):
+        packbed.Bed(make(centers), diameter=1.0)
+    with pytest.raises(ValueError, match=words):
+        packbed.Bed(centers, make(np.array([[0.5, 0.5, 0.5], [0.5, 0.5, 0.5]]))[:, 0])
+    assert len(packbed.Bed(centers.astype(np.float32), diameter=1.0)) == 2  # real numbers
+
+
+def test_no_output_replaces_an_input_of_the_call(cli_bed, tmp_path):
+    # The bed's own file, its summary.json as a sidecar, a case written over itself: refused,
+    # nothing changed.
+    shutil.copytree(cli_bed, tmp_path / "bed")
+    before = {p: p.read_bytes() for p in (tmp_path / "bed").iterdir()}
+    bed = packbed.read(tmp_path / "bed" / "particles.csv")
+    with pytest.raises(ValueError, match="would overwrite it"):
+        packbed.export(bed, tmp_path / "bed" / "particles.csv", format="stl")
+    with pytest.raises(ValueError, match="summary.json would overwrite it"):
+        packbed.export(packbed.read(tmp_path / "bed" / "particles.csv"),
+                       tmp_path / "bed" / "summary", format="stl")
+    assert {p: p.read_bytes() for p in (tmp_path / "bed").iterdir()} == before
+
+
+def test_deep_nesting_raises_value_error_not_a_crash(cli_bed, tmp_path):
+    # 1e5 nested brackets in the summary.json read beside a bed: the interpreter survives.
+    (tmp_path / "deep").mkdir()
+    shutil.copy(cli_bed / "particles.csv", tmp_path / "deep")
+    (tmp_path / "deep" / "summary.json").write_text(
+        '{"diameter": ' + "[" * 100000 + "]" * 100000 + "}")
+    with pytest.raises(ValueError, match="nested deeper than 64 levels"):
+        packbed.read(tmp_path / "deep" / "particles.csv")
+    with pytest.raises(ValueError, match="nested deeper than 64 levels"):
+        packbed.hydraulics(bed=str(tmp_path / "deep"))
