@@ -171,6 +171,30 @@ TEST(Checkpoint, EditedFieldsAreRefusedNamingTheField) {
     EXPECT_TRUE(says(with_header([](json& h) { h = json::array(); }), "no field parameters"));
 }
 
+TEST(Checkpoint, DeepNestingInTheHeaderIsRefusedWhereItIsRead) {
+    // 1e5 nested brackets behind a valid hash: refused by the parser, not a stack overflow
+    // when the value is compared with the run's or quoted in the message; 60 deep is read and
+    // quoted within 40 bytes.
+    const Parts parts = split(real_checkpoint());
+    const std::string head = parts.header.substr(0, parts.header.size() - 1);
+    const std::string deep =
+        head + ",\"x\":" + std::string(100000, '[') + std::string(100000, ']') + "}";
+    EXPECT_TRUE(says(verdict(forged(deep, parts.data)),
+                     "corrupt checkpoint: the header is not JSON (nested deeper than 64 levels)"));
+    std::string objects = "{\"parameters\":";
+    for (int k = 0; k < 100000; ++k)
+        objects += "{\"a\":";
+    EXPECT_TRUE(says(verdict(forged(objects + "1" + std::string(100001, '}'), parts.data)),
+                     "nested deeper than 64 levels"));
+    EXPECT_TRUE(says(with_header([](json& h) {
+                         json v = 1;
+                         for (int k = 0; k < 60; ++k)
+                             v = json::array({v});
+                         h["parameters"]["seed"] = v;
+                     }),
+                     "it was taken with seed = " + std::string(40, '[') + "..., this run has 1"));
+}
+
 TEST(Checkpoint, DataOutsideTheContainerOrOfTheWrongSizeIsRefused) {
     const Parts parts = split(real_checkpoint());
     std::string data = parts.data;

@@ -109,6 +109,18 @@ GeneratedBed run_lammps_generation(const PreparedGeneration& prepared,
                                    const LammpsLauncher& launcher, const RunControl& control,
                                    OutputDirectory& out);
 
+/// What the job.json of a LAMMPS job holds (stage_lammps_job wrote it), every value checked.
+struct LammpsJobFile {
+    GenerateRequest request; ///< as the job was asked for (not yet prepare_generation's checks)
+    nlohmann::json command;  ///< the words that run it: at most 64 strings of 4 KiB each
+    std::string pair_style;  ///< "gran/hooke", "harmonic/cut" or "" (not recorded)
+};
+
+/// job.json's `text`, read (its nesting bounded) and checked.
+/// \param folder the job's folder, for messages
+/// \throws InvalidInput naming the folder and the field that is missing or not allowed
+LammpsJobFile read_lammps_job(std::string_view text, std::string_view folder);
+
 /// A bed LAMMPS relaxed in a job folder, brought back.
 struct ImportedLammps {
     PreparedGeneration prepared; ///< the request of the folder's job.json

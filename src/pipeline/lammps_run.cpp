@@ -289,34 +289,24 @@ GeneratedBed run_lammps_generation(const PreparedGeneration& prepared,
                                  "log.lammps, screen.txt, bed.dump"}});
 }
 
-ImportedLammps import_lammps(const fs::path& folder) {
-    check_path("FOLDER", folder);
-    std::error_code error;
-    if (!fs::is_directory(folder, error))
-        throw InvalidInput(fmt::format("FOLDER {} is not a directory; allowed: the folder of a job "
-                                       "written by packbed generate --engine lammps --write-only",
-                                       printable(folder.string())));
-    record_input("FOLDER", folder); // read whole: no output may be it or hold it
-    const fs::path job_path = folder / lammps_files::job;
-    const std::string text = read_small_file("FOLDER", job_path, limits::max_small_file);
+LammpsJobFile read_lammps_job(std::string_view text, std::string_view folder) {
     const ParsedJson parsed = parse_json(text);
     if (!parsed.error.empty())
         throw InvalidInput(fmt::format("FOLDER {}: {} is not JSON ({}); allowed: the job.json "
                                        "packbed generate --engine lammps --write-only wrote",
-                                       printable(folder.string()), lammps_files::job,
-                                       parsed.error));
+                                       printable(folder), lammps_files::job, parsed.error));
     const nlohmann::json& json = parsed.value;
     const auto bad = [&](std::string_view what) {
         return InvalidInput(fmt::format("FOLDER {}: {} in {} is missing or not allowed; "
                                         "allowed: the job.json packbed generate --engine lammps "
                                         "--write-only wrote",
-                                        printable(folder.string()), what, lammps_files::job));
+                                        printable(folder), what, lammps_files::job));
     };
-    if (json.is_discarded() || !json.is_object() || !json.contains("request") ||
-        !json["request"].is_object())
+    if (!json.is_object() || !json.contains("request") || !json["request"].is_object())
         throw bad("the request");
     const nlohmann::json& r = json["request"];
-    GenerateRequest request;
+    LammpsJobFile job;
+    GenerateRequest& request = job.request;
     SoftSphereParameters& p = request.params;
     const auto number = [&](const char* key) {
         if (!r.contains(key) || !r[key].is_number())
@@ -357,38 +347,51 @@ ImportedLammps import_lammps(const fs::path& folder) {
     if (!known)
         throw bad("fractions");
     request.engine = Engine::lammps;
-    for (const std::string_view file : {lammps_files::log, lammps_files::dump})
-        if (!fs::is_regular_file(folder / file, error))
-            throw InvalidInput(fmt::format("FOLDER {}: {} is missing; allowed: a job folder after "
-                                           "LAMMPS ran in it (README.md there says how)",
-                                           printable(folder.string()), file));
     // What the summary records of the job: the words that ran it and the pair style, checked
     // (the job's own values, not copied whole: a job.json is a user's file).
-    nlohmann::json command = nlohmann::json::array();
+    job.command = nlohmann::json::array();
     if (const auto words = json.find("command"); words != json.end()) {
         if (!words->is_array() || words->size() > 64)
             throw bad("command (a list of at most 64 words)");
         for (const nlohmann::json& w : *words) {
             if (!w.is_string() || w.get_ref<const std::string&>().size() > 4096)
                 throw bad("command (a list of at most 64 words)");
-            command.push_back(w);
+            job.command.push_back(w);
         }
     }
-    std::string style;
     if (const auto given = json.find("pair_style"); given != json.end()) {
         for (const LammpsPairStyle s : {LammpsPairStyle::gran_hooke, LammpsPairStyle::harmonic_cut})
             if (given->is_string() && *given == to_string(s))
-                style = to_string(s);
-        if (style.empty())
+                job.pair_style = to_string(s);
+        if (job.pair_style.empty())
             throw bad(fmt::format("pair_style ({} or {})", to_string(LammpsPairStyle::gran_hooke),
                                   to_string(LammpsPairStyle::harmonic_cut)));
     }
-    ImportedLammps imported{prepare_generation(request), {}};
+    return job;
+}
+
+ImportedLammps import_lammps(const fs::path& folder) {
+    check_path("FOLDER", folder);
+    std::error_code error;
+    if (!fs::is_directory(folder, error))
+        throw InvalidInput(fmt::format("FOLDER {} is not a directory; allowed: the folder of a job "
+                                       "written by packbed generate --engine lammps --write-only",
+                                       printable(folder.string())));
+    record_input("FOLDER", folder); // read whole: no output may be it or hold it
+    LammpsJobFile job = read_lammps_job(
+        read_small_file("FOLDER", folder / lammps_files::job, limits::max_small_file),
+        folder.native());
+    for (const std::string_view file : {lammps_files::log, lammps_files::dump})
+        if (!fs::is_regular_file(folder / file, error))
+            throw InvalidInput(fmt::format("FOLDER {}: {} is missing; allowed: a job folder after "
+                                           "LAMMPS ran in it (README.md there says how)",
+                                           printable(folder.string()), file));
+    ImportedLammps imported{prepare_generation(job.request), {}};
     imported.bed = lammps_bed(imported.prepared, lammps_result(imported.prepared.params, folder),
                               {{"name", "lammps"},
                                {"imported_from", printable(folder.string())},
-                               {"command", std::move(command)},
-                               {"pair_style", style}});
+                               {"command", std::move(job.command)},
+                               {"pair_style", job.pair_style}});
     return imported;
 }
 
