@@ -7,7 +7,8 @@ tolerance, no pair overlapping by more than the tolerance, the void fraction in 
 Salvat et al. (2005) report for a = 5 ([0.43, 0.44], section 4.1); run again, the same bytes. Then the failures: a run that
 does not converge (too few iterations) and a LAMMPS error each exit 1 with LAMMPS's or the
 schedule's own message and write nothing; --write-only's job run as its README says and
-brought back by import-lammps; a folder without the run refused (exit 2).
+brought back by import-lammps; a folder without the run refused (exit 2); a bed that jams in
+the final stage stopped by the stage's budget (exit 1).
 
 Usage: check_lammps_engine.py PACKBED. Exits 77 (skipped) without lmp (Debian package lammps) or
 mpirun (openmpi-bin); scripts/install-deps.sh --test installs both.
@@ -138,6 +139,18 @@ try:
           and len(p.stderr.strip().splitlines()) == 1 and not os.path.exists(out),
           f"a run that does not converge: exit 1, one line, nothing written ({p.returncode}: "
           f"{p.stderr.strip()[:200]})")
+
+    # 2b. A bed that jams in the final stage (its overlaps do not fall with gravity): with a
+    # skin of 0.2 this periodic bed took 1 956 680 steps (78 s); the stage's budget (10 times
+    # the 6 883 steps before it) stops it after 75 713 with the schedule's line.
+    out = os.path.join(tmp, "jammed")
+    p = run(["generate", "--engine", "lammps", "--container", "periodic:6,6", "-n", "300", "-s",
+             "2", "--skin", "0.2", "-q", "-o", out])
+    check(p.returncode == 1 and "the bed is jammed" in p.stderr
+          and "after 68830 steps of the final stage" in p.stderr
+          and len(p.stderr.strip().splitlines()) == 1 and not os.path.exists(out),
+          f"a jammed bed: exit 1 within the final stage's budget, one line, nothing written "
+          f"({p.returncode}: {p.stderr.strip()[:200]})")
 
     # 3. A LAMMPS error (a variable given twice, of two styles): LAMMPS's own message.
     wrapper = os.path.join(tmp, "lmp-bad")

@@ -88,6 +88,17 @@ constexpr double lammps_overlap_low = 1e-2, lammps_overlap_high = 2e-2;
 /// (docs/lammps.md).
 constexpr double lammps_skin = 0.1;
 
+/// The final stage's budget in LAMMPS: this many times the steps of the stages before it, and
+/// at least lammps_final_budget_min. A bed whose overlaps do not fall with gravity is jammed
+/// (the fire solver lifts spheres pressed flat on the floor; the engine has no such move), and
+/// a run beyond the budget stops with exit status 1 and a line saying so. The jammed periodic
+/// 6 x 6 bed above (--skin 0.2) stops after 68 830 final steps (10 x its first 6 883; 4.4 s)
+/// instead of running 1 956 680 steps (78 s); the final stages of the beds measured that end
+/// take 0.06-0.2 x the steps before them (a = 5 and 10, seeds 1-3) and 3.1 x (that periodic
+/// bed at the skin of 0.1) (docs/lammps.md).
+constexpr unsigned lammps_final_budget = 10;
+constexpr unsigned lammps_final_budget_min = 50'000;
+
 /// \return `parameters` with the band and skin LAMMPS runs: the ones given, else
 /// lammps_overlap_low, lammps_overlap_high and lammps_skin (what summary.json reports for an
 /// --engine lammps run).

@@ -261,20 +261,25 @@ print "PACKBED FAILED the largest overlap did not reach the band ${low} to ${hig
 quit 1
 
 # 3. final: gravity cut to what leaves half the tolerance, then halved, each value held until
-# the bed settles, until both largest overlaps are below the tolerance.
+# the bed settles, until both largest overlaps are below the tolerance. A bed whose overlaps
+# do not follow gravity down is jammed: the stage has a budget of @JAMMED@ times the steps
+# before it (at least @JAMMEDMIN@), and a run beyond it stops saying so.
 label final
 print "PACKBED stage intermediate step $(step) g $(v_g:%.17g) pair $(v_pair:%.10g) wall $(v_wall:%.10g) mc $(v_mc:%.10g) rounds ${round}"
 fix stop all halt 10 v_below == 1 error continue message no
+variable budget equal $((@JAMMED@*step>@JAMMEDMIN@)*@JAMMED@*step+(@JAMMED@*step<=@JAMMEDMIN@)*@JAMMEDMIN@:%.0f)
+variable finalend equal $((step+v_budget<v_maxsteps)*(step+v_budget)+(step+v_budget>=v_maxsteps)*v_maxsteps:%.0f)
 variable cut equal $(0.5*v_tol/((v_pair>v_wall)*v_pair+(v_pair<=v_wall)*v_wall):%.17g)
 variable cut equal $((v_cut<0.5)*v_cut+(v_cut>=0.5)*0.5:%.17g)
 variable halving loop 60
 label halve
   variable g equal $(v_g*v_cut:%.17g)
 @GRAVITY@
-  minimize 0.0 $(v_settle*v_g*sqrt(count(all)):%.17g) ${maxsteps} @MAXEVAL@
+  minimize 0.0 $(v_settle*v_g*sqrt(count(all)):%.17g) $(v_finalend-step:%.0f) @MAXEVAL@
   run 0 post no
   if "${below} == 1" then "jump SELF done"
   if "$(step) >= ${maxsteps}" then "print 'PACKBED FAILED the final stage did not end within ${maxsteps} iterations'" "quit 1"
+  if "$(step) >= ${finalend}" then "print 'PACKBED FAILED the bed is jammed: the largest overlaps stay at $(v_pair:%.3g) (pair) and $(v_wall:%.3g) (wall) Dp after ${budget} steps of the final stage (@JAMMED@ times the stages before it) while gravity fell to $(v_g:%.3g); another --seed gives another bed, and --engine packbed lifts spheres pressed flat on the floor'" "quit 1"
   variable cut equal 0.5
   next halving
   jump SELF halve
@@ -460,6 +465,8 @@ LammpsJob lammps_job(const SoftSphereParameters& parameters, LammpsPairStyle sty
     replace_all(input, "@SETTLE@", num(lammps_settle));
     replace_all(input, "@MAXSTEPS@", std::to_string(maxsteps));
     replace_all(input, "@MAXEVAL@", "2000000000");
+    replace_all(input, "@JAMMED@", std::to_string(lammps_final_budget));
+    replace_all(input, "@JAMMEDMIN@", std::to_string(lammps_final_budget_min));
     replace_all(input, "@G0@", num(g0));
     replace_all(input, "@BOUNDARY@", walls.boundary);
     replace_all(input, "@PAIR@", pair);
