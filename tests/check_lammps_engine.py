@@ -196,6 +196,16 @@ try:
         pair, wall, floor = largest_overlaps(balls, 2.0)
         check(len(balls) == 150 and max(pair, wall, floor) < 1e-4,
               f"the imported bed: 150 spheres, largest overlap {max(pair, wall, floor):.3g}")
+    # 6. What import-lammps keeps stays in proportion to the log: 6e7 empty lines appended
+    # (60 MB) are read within an address space of 1 GB (a list of the lines took 1.1 GB).
+    with open(os.path.join(job, "log.lammps"), "a") as f:
+        f.write("\n" * 60_000_000)
+    import resource
+    p = subprocess.run([packbed, "import-lammps", job, "-o", os.path.join(tmp, "long-log"), "-q"],
+                       capture_output=True, text=True,
+                       preexec_fn=lambda: resource.setrlimit(resource.RLIMIT_AS, (1 << 30,) * 2))
+    check(p.returncode == 0, f"a log of 60 MB read within 1 GB of address space ({p.returncode}: "
+                             f"{p.stderr.strip()[:200]})")
 finally:
     shutil.rmtree(tmp, ignore_errors=True)
 

@@ -1469,6 +1469,62 @@ TEST(CliDiskFull, OneLineNamingTheOutputAsGivenNothingLeft) {
     }
 }
 
+// Requests within the allowed ranges that do not fit in the memory this process may have
+// (here its address space limited to 1.5 GB, RLIMIT_AS, as `ulimit -v` does): refused at once
+// with exit 2 and the estimate, nothing written; before, each died after minutes with
+// std::bad_alloc.
+TEST(CliMemory, RequestsThatDoNotFitAreRefusedBeforeTheWork) {
+    const fs::path root = scratch();
+    const fs::path d = root / "work";
+    write(d / "bed.csv", column(40));
+    const std::string before = listing(d);
+    const std::vector<std::pair<std::vector<std::string>, std::string>> runs{
+        {{"generate", "-n", "100000000", "-q", "-o", "out"},
+         "packbed generate: --particles 100000000 needs about 37.3 GiB of memory; "},
+        {{"lattice", "--region", "box:500,500,500", "-q", "-o", "out"},
+         "packbed lattice: --region box:500,500,500 (about 8.12e+07 balls) needs about 36.3 GiB "
+         "of memory; "},
+        {{"voxelize", "bed.csv", "--container", "cylinder:2", "--voxel-size", "0.003", "-o",
+          "im.npy"},
+         "packbed voxelize: --voxel-size 0.003 (an image of 5.932e+09 voxels of 1 byte) needs "
+         "about 5.56 GiB of memory; "},
+    };
+    for (const auto& [args, message] : runs) {
+        std::vector<std::string> words{exe()};
+        words.insert(words.end(), args.begin(), args.end());
+        std::vector<char*> argv;
+        for (std::string& w : words)
+            argv.push_back(w.data());
+        argv.push_back(nullptr);
+        const std::string err = (root / "io" / "err").string(), dir = d.string();
+        const auto start = std::chrono::steady_clock::now();
+        const pid_t pid = ::fork();
+        if (pid == 0) {
+            const rlimit size{1500u << 20, 1500u << 20};
+            const int e = ::open(err.c_str(), O_WRONLY | O_CREAT | O_TRUNC, 0644);
+            const int null = ::open("/dev/null", O_RDWR);
+            if (e < 0 || null < 0 || ::chdir(dir.c_str()) != 0 || ::setrlimit(RLIMIT_AS, &size))
+                ::_exit(127);
+            ::dup2(null, STDIN_FILENO);
+            ::dup2(null, STDOUT_FILENO);
+            ::dup2(e, STDERR_FILENO);
+            ::execv(argv[0], argv.data());
+            ::_exit(127);
+        }
+        int status = 0;
+        ::waitpid(pid, &status, 0);
+        const double seconds =
+            std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+        const std::string said = slurp(root / "io" / "err");
+        EXPECT_TRUE(WIFEXITED(status) && WEXITSTATUS(status) == 2) << said;
+        EXPECT_EQ(std::count(said.begin(), said.end(), '\n'), 1) << said;
+        EXPECT_EQ(said.rfind(message, 0), 0u) << said;
+        EXPECT_NE(said.find(" is available here; allowed: "), std::string::npos) << said;
+        EXPECT_LT(seconds, 5.0) << said;
+        EXPECT_EQ(listing(d), before) << said;
+    }
+}
+
 TEST(CliPaths, QuotesAndShellSyntaxInOutputPathsRunNothing) {
     const fs::path root = scratch();
     const fs::path d = root / "work";

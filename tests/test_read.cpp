@@ -1,6 +1,7 @@
 // Reading beds from tables (CSV, ParaView, ;/tab/space separated), XYZ, LAMMPS dumps and data
 // files, plain or gzip-compressed, one frame or all: the same spheres from every format, and
 // each bad file refused with its line and reason.
+#include <sys/resource.h>
 #include <sys/stat.h>
 #include <zlib.h>
 
@@ -509,6 +510,24 @@ TEST(ReadGzip, CorruptTruncatedAndBombsAreRefused) {
               "bed: more than 100000 bytes once decompressed; allowed: a gzip file of at most that "
               "many bytes of text");
     EXPECT_EQ(limits::max_decompressed_bytes, 17179869184u);
+    // What a reader keeps stays in proportion to the file: 1e6 identical rows (10 MB) compress
+    // to about 10 kB, refused once they expand 100 times their compressed bytes; a lattice's
+    // text (its coordinates repeat, about 16 times) is read.
+    std::string rows = "x y z r\n";
+    for (int k = 0; k < 1000000; ++k)
+        rows += "0 0 0 0.5\n";
+    const std::string identical = gzip(rows);
+    EXPECT_LT(identical.size(), 40000u);
+    EXPECT_NE(error_of(identical, ParticleFormat::csv)
+                  .find("bed: expands more than 100 times when decompressed ("),
+              std::string::npos);
+    std::string lattice = "x,y,z,r\n";
+    for (int i = 0; i < 40; ++i)
+        for (int j = 0; j < 40; ++j)
+            for (int k = 0; k < 40; ++k)
+                lattice += std::to_string(i) + ".5," + std::to_string(j) + ".5," +
+                           std::to_string(k) + ".5,0.5\n";
+    EXPECT_EQ(read_text(gzip(lattice), ParticleFormat::csv).packing.size(), 64000u);
     // Plain text has no such limit (its lines and spheres have theirs).
     EXPECT_EQ(read_text(csv + std::string(200000, '\n'), ParticleFormat::csv, small).packing.size(),
               3u);
@@ -785,6 +804,42 @@ TEST(ReadOptionsOffset, AxisAndFloorAreSubtractedFromEveryCentre) {
     nan_floor.floor = std::nan("");
     EXPECT_EQ(error_of("x,y,z,r\n1,2,3,0.5\n", ParticleFormat::csv, nan_floor),
               "floor = nan is not allowed; allowed: a number from -1e+15 to 1e+15");
+}
+
+namespace {
+
+/// 0 when reading `rows` with the address space limited to 80 MB more than this process maps
+/// is refused at the millionth sphere (the message on stderr).
+int read_with_memory_limit(const std::string& rows) {
+    std::ifstream status("/proc/self/status");
+    std::string line;
+    std::uint64_t mapped = 0;
+    while (std::getline(status, line))
+        if (line.starts_with("VmSize:"))
+            mapped = std::stoull(line.substr(7)) * 1024;
+    const rlimit limit{mapped + (80u << 20), mapped + (80u << 20)};
+    ::setrlimit(RLIMIT_AS, &limit);
+    const std::string said = error_of(rows, ParticleFormat::csv);
+    std::fprintf(stderr, "%s\n", said.c_str());
+    return said.find("1048576 spheres read so far, and the next ones need about") !=
+                   std::string::npos
+               ? 0
+               : 1;
+}
+
+} // namespace
+
+// A bed larger than the memory left is refused as it is read, before the vectors that would
+// not fit are made: in a child whose address space is limited (RLIMIT_AS) to 80 MB more than
+// it maps, 1 100 000 spheres (40 bytes each, kept twice while a vector grows) stop at the
+// millionth.
+TEST(ReadParticles, ABedBeyondTheMemoryLeftIsRefusedAsItIsRead) {
+    std::string rows = "x,y,z,r\n";
+    for (int k = 0; k < 1100000; ++k)
+        rows += std::to_string(k) + ",0,0.5,0.5\n";
+    ::testing::GTEST_FLAG(death_test_style) = "threadsafe";
+    EXPECT_EXIT(std::_Exit(read_with_memory_limit(rows)), ::testing::ExitedWithCode(0),
+                "is available here; allowed: a bed that fits in memory");
 }
 
 TEST(ReadParticles, FormatRegistryAndDetection) {

@@ -88,7 +88,7 @@ int run_lammps(GenerateOptions& o, const PreparedGeneration& prepared) {
         return 0;
     }
     OutputDirectory out(o.out, "--out", OutputKind::directory, o.force);
-    TerminalProgress progress(progress_wanted(o.quiet), prepared.params, "LAMMPS");
+    TerminalProgress progress(progress_wanted(o.quiet), prepared.params, prepared.memory, "LAMMPS");
     RunControl control;
     control.on_progress = [&](const Progress& p) { progress(p); };
     GeneratedBed bed = run_lammps_generation(prepared, o.lammps, control, out);
@@ -136,7 +136,7 @@ int run_generate(GenerateOptions& o) {
     OutputDirectory out(o.out, "--out", OutputKind::directory, o.force);
     use_threads(o.threads);
 
-    TerminalProgress progress(progress_wanted(o.quiet), params);
+    TerminalProgress progress(progress_wanted(o.quiet), params, prepared.memory);
     RunControl control;
     control.on_progress = [&](const Progress& p) { progress(p); };
     GeneratedBed bed = run_generation(

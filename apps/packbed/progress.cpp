@@ -10,6 +10,7 @@
 #include <unistd.h>
 
 #include "interrupt.hpp"
+#include "packbed/memory.hpp"
 
 namespace packbed::cli {
 
@@ -65,6 +66,8 @@ void TerminalProgress::operator()(const Progress& p) {
     fields.push_back(
         fmt::format("overlaps {:.1e}/{:.1e} Dp", p.max_overlap_pair, p.max_overlap_wall));
     fields.push_back(fmt::format("it {:>9}", p.iteration));
+    if (m_memory > 0)
+        fields.push_back("memory ~" + memory_text(m_memory));
     fields.push_back(fmt::format("Cg {:.2e}", p.cg));
     fields.push_back(fmt::format("mass centre {:.6f} Dp", p.mass_centre_z));
     // One line that fits the terminal (a wrapped line could not be redrawn in place).

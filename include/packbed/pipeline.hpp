@@ -56,11 +56,12 @@ struct PreparedGeneration {
     GenerateRequest request;
     SoftSphereParameters params;         ///< validated; lengths in Dp
     std::optional<SizeStatistics> drawn; ///< the drawn sizes' statistics (none for `mono`)
+    std::uint64_t memory = 0;            ///< the run's estimated memory (generation_memory)
 };
 
 /// Draw the sizes (a stream of their own: seed XOR 0x9E3779B97F4A7C15), resolve the container
 /// (a = D / Dp for a tube, any other shape in units of Dp) and check everything, the
-/// checkpoint's compatibility included.
+/// checkpoint's compatibility and the memory the run will need (check_memory) included.
 /// \throws InvalidInput naming the option, the value and what is allowed
 PreparedGeneration prepare_generation(GenerateRequest request);
 

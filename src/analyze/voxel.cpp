@@ -25,6 +25,7 @@ extern "C" __m128d _ZGVbN2v_atan(__m128d);
 #include "packbed/error.hpp"
 #include "packbed/files.hpp"
 #include "packbed/limits.hpp"
+#include "packbed/memory.hpp"
 #include "packbed/option_ranges.hpp"
 #include "packbed/volume.hpp"
 
@@ -331,6 +332,11 @@ VoxelGrid voxel_grid(const Packing& packing, const Container& container, double 
                 std::cbrt((box[3] - box[0]) * (box[4] - box[1]) * (box[5] - box[2]) / max_voxels)));
         grid.count[static_cast<std::size_t>(d)] = static_cast<std::size_t>(n);
     }
+    check_memory(fmt::format("--voxel-size {} (an image of {:.4g} voxels of {} byte{})", size,
+                             voxels, bytes_per_voxel, bytes_per_voxel > 1 ? "s" : ""),
+                 static_cast<std::uint64_t>(voxels * static_cast<double>(bytes_per_voxel)) +
+                     generation_memory(packing.size()),
+                 "a larger --voxel-size or a smaller --region, or a machine with more memory");
     return grid;
 }
 

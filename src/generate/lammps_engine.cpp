@@ -329,17 +329,17 @@ std::optional<StageRecord> stage_line(std::string_view line, double ck) {
     return r;
 }
 
-/// The lines of `text` (without their '\n'), in order.
-std::vector<std::string_view> lines_of(std::string_view text) {
-    std::vector<std::string_view> lines;
+/// Call `f` with each line of `text` (without its '\n'), in order, until it returns false; no
+/// list of the lines is kept (a log of 6e7 empty lines made one of 1 GB).
+template <class F> void each_line(std::string_view text, F&& f) {
     for (std::size_t start = 0; start < text.size();) {
         std::size_t end = text.find('\n', start);
         if (end == std::string_view::npos)
             end = text.size();
-        lines.push_back(text.substr(start, end - start));
+        if (!f(text.substr(start, end - start)))
+            return;
         start = end + 1;
     }
-    return lines;
 }
 
 /// LAMMPS's "Total wall time: H:MM:SS" in seconds; 0 when it is not three whole numbers.
@@ -483,17 +483,19 @@ LammpsJob lammps_job(const SoftSphereParameters& parameters, LammpsPairStyle sty
 }
 
 std::string lammps_error(std::string_view text) {
-    for (std::string_view line : lines_of(text)) {
+    std::string error;
+    each_line(text, [&](std::string_view line) {
         if (line.rfind("PACKBED FAILED ", 0) == 0)
-            return std::string(line.substr(15));
-        if (line.rfind("ERROR", 0) == 0) {
+            error = printable(line.substr(15, 1000));
+        else if (line.rfind("ERROR", 0) == 0) {
             // "ERROR on proc 1: Lost atoms: ... (src/thermo.cpp:481)": without the position
             if (const auto open = line.rfind(" (src/"); open != std::string_view::npos)
                 line = line.substr(0, open);
-            return printable(line.substr(0, 300));
+            error = printable(line.substr(0, 300));
         }
-    }
-    return {};
+        return error.empty();
+    });
+    return error;
 }
 
 SoftSphereResult lammps_result(const SoftSphereParameters& parameters,
@@ -503,8 +505,10 @@ SoftSphereResult lammps_result(const SoftSphereParameters& parameters,
     SoftSphereResult result;
     std::uint64_t before = 0;
     bool done = false;
-    for (const std::string_view line : lines_of(log)) {
+    each_line(log, [&](std::string_view line) {
         if (std::optional<StageRecord> stage = stage_line(line, p.ck)) {
+            if (result.stages.size() == 3) // the job prints three
+                throw ConvergenceError("LAMMPS's log has more than the job's 3 stage lines");
             const std::uint64_t step = stage->iterations;
             stage->iterations = step - std::min(step, before);
             before = step;
@@ -517,7 +521,8 @@ SoftSphereResult lammps_result(const SoftSphereParameters& parameters,
         } else if (line.rfind("Total wall time: ", 0) == 0) {
             result.seconds = wall_time(line.substr(17)); // LAMMPS's own, H:MM:SS
         }
-    }
+        return true;
+    });
     if (done && result.stages.size() == 3 &&
         !(result.stages[0].name == "initial" && result.stages[1].name == "intermediate" &&
           result.stages[2].name == "final"))
@@ -538,9 +543,11 @@ SoftSphereResult lammps_result(const SoftSphereParameters& parameters,
         // the time the message is read.
         const std::string& printed = screen.empty() ? log : screen;
         std::string_view last;
-        for (const std::string_view line : lines_of(printed))
+        each_line(printed, [&](std::string_view line) {
             if (line.find_first_not_of(" \t\r") != std::string_view::npos)
                 last = line;
+            return true;
+        });
         throw ConvergenceError(fmt::format(
             "LAMMPS ended without writing the bed (no 'PACKBED done' in its {}){}",
             lammps_files::log,

@@ -13,6 +13,7 @@
 #include "packbed/error.hpp"
 #include "packbed/files.hpp"
 #include "packbed/limits.hpp"
+#include "packbed/memory.hpp"
 #include "packbed/neighbor_list.hpp"
 
 namespace packbed {
@@ -338,6 +339,9 @@ FillPlan plan_fill(const LatticeParameters& p, const UnitCell& cell) {
                         "most {:g} (a larger --diameter or a smaller --region)",
                         region_text(p.region), estimate, to_string(p.type), d,
                         static_cast<double>(limits::max_spheres)));
+    check_memory(fmt::format("--region {} (about {:.3g} balls)", region_text(p.region), estimate),
+                 generation_memory(static_cast<std::uint64_t>(1.2 * estimate)),
+                 "a larger --diameter or a smaller --region, or a machine with more memory");
     // A region thin in some direction holds few balls but may span many cells in another.
     const double ni = i1 - i0 + 1.0, nj = j1 - j0 + 1.0, nk = k1 - k0 + 1.0;
     const double positions = ni * nj * nk * static_cast<double>(cell.balls.size());

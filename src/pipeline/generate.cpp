@@ -10,6 +10,7 @@
 #include "packbed/error.hpp"
 #include "packbed/files.hpp"
 #include "packbed/io.hpp"
+#include "packbed/memory.hpp"
 #include "packbed/option_ranges.hpp"
 #include "packbed/pipeline.hpp"
 #include "packbed/summary.hpp"
@@ -34,8 +35,12 @@ void use_threads(unsigned long long threads) {
 }
 
 PreparedGeneration prepare_generation(GenerateRequest request) {
-    PreparedGeneration prepared{request, request.params, std::nullopt};
+    PreparedGeneration prepared{request, request.params, std::nullopt,
+                                generation_memory(request.params.particles)};
     SoftSphereParameters& p = prepared.params;
+    // Before anything is allocated for it (the sizes drawn below are 8 bytes a sphere).
+    check_memory(fmt::format("--particles {}", p.particles), prepared.memory,
+                 "fewer spheres, or a machine with more memory");
     // Spheres of many sizes (docs/sizes.md): the diameters drawn from --sizes, the reference
     // diameter Dp their Sauter mean d32, each sphere's size in units of it. `mono` draws
     // nothing and changes nothing: the bed of --diameter, bit for bit.
