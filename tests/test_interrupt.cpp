@@ -596,6 +596,110 @@ std::vector<Case> cases() {
     return out;
 }
 
+// Two real packbed processes started together, writing the same output (issue 39): one wins
+// whole, the other exits 2 with one line and leaves nothing; the output holds the winner's
+// files only. An existing empty --out directory (claimed while the files move in), a new one
+// (put in place by one rename that replaces nothing), one replaced with --force (it must still
+// be the directory seen at the start), and export's file with its .json beside it (claimed,
+// and each file must be the one seen at the start). Ten rounds each: the runs end within
+// milliseconds of each other, so their commits meet in some rounds and follow each other in
+// the others.
+TEST(Concurrent, TwoRunsIntoOneOutputOneWinsWhole) {
+    const fs::path root = scratch("both");
+    const fs::path work = root / "work";
+    // Each run's output alone, to compare with.
+    const auto bed = [](int seed, const std::string& out, bool force) {
+        std::vector<std::string> args{
+            "generate",      "-a", "3",  "-n", "40", "-s", std::to_string(seed),
+            "--no-analysis", "-q", "-o", out};
+        if (force)
+            args.push_back("--force");
+        return args;
+    };
+    const auto stl = [](int seed, const std::string& out) {
+        return std::vector<std::string>{"export",   "bed" + std::to_string(seed) + ".csv",
+                                        "-R",       "2",
+                                        "-f",       "stl",
+                                        "--refine", "1",
+                                        "-o",       out};
+    };
+    std::string reference[2];
+    for (int seed : {1, 2}) {
+        const fs::path one = scratch("one-" + std::to_string(seed));
+        const Ended e = wait_end(spawn(bed(seed, "out", false), one), one, Clock::now());
+        ASSERT_EQ(e.status, 0) << e.err;
+        reference[seed - 1] = listing(one / "work" / "out");
+        fs::copy_file(one / "work" / "out" / "particles.csv",
+                      work / ("bed" + std::to_string(seed) + ".csv"));
+    }
+    std::string stl_reference[2];
+    for (int seed : {1, 2}) {
+        const fs::path one = scratch("stl-" + std::to_string(seed));
+        fs::copy_file(work / ("bed" + std::to_string(seed) + ".csv"),
+                      one / "work" / ("bed" + std::to_string(seed) + ".csv"));
+        const Ended e = wait_end(spawn(stl(seed, "bed.stl"), one), one, Clock::now());
+        ASSERT_EQ(e.status, 0) << e.err;
+        stl_reference[seed - 1] = slurp(one / "work" / "bed.stl");
+    }
+    std::map<std::string, int> met, followed; // where the loser found the other's output
+    for (const std::string kind : {"empty", "new", "force", "file"}) {
+        for (int round = 0; round < 10; ++round) {
+            const std::string out = kind + std::to_string(round);
+            if (kind == "empty" || kind == "force")
+                fs::create_directories(work / out);
+            if (kind == "force")
+                std::ofstream(work / out / "old.txt") << "old\n";
+            const fs::path a = scratch("a"), b = scratch("b");
+            fs::remove_all(a / "work");
+            fs::remove_all(b / "work");
+            fs::create_directory_symlink(work, a / "work");
+            fs::create_directory_symlink(work, b / "work");
+            const auto args = [&](int seed) {
+                return kind == "file" ? stl(seed, out + ".stl") : bed(seed, out, kind == "force");
+            };
+            const Clock::time_point start = Clock::now();
+            const pid_t first = spawn(args(1), a), second = spawn(args(2), b);
+            const Ended e[2] = {wait_end(first, a, start), wait_end(second, b, start)};
+            SCOPED_TRACE(kind + " round " + std::to_string(round) + ": " + e[0].err + " | " +
+                         e[1].err);
+            ASSERT_TRUE(e[0].exited && e[1].exited);
+            ASSERT_EQ(std::min(e[0].status, e[1].status), 0);
+            if (kind == "file" && e[0].status == 0 && e[1].status == 0) {
+                // One after the other (the second read the files after the first had put its
+                // own in place): the second replaced both, as cp would; never a mix.
+                const std::string got = slurp(work / (out + ".stl"));
+                ASSERT_TRUE(got == stl_reference[0] || got == stl_reference[1]);
+                const int last = got == stl_reference[0] ? 1 : 2;
+                EXPECT_NE(slurp(work / (out + ".stl.json"))
+                              .find("\"particles\": \"bed" + std::to_string(last) + ".csv\""),
+                          std::string::npos);
+                continue;
+            }
+            ASSERT_EQ(std::max(e[0].status, e[1].status), 2);
+            const int winner = e[0].status == 0 ? 0 : 1;
+            const std::string& lost = e[1 - winner].err;
+            EXPECT_EQ(std::count(lost.begin(), lost.end(), '\n'), 1);
+            EXPECT_TRUE(lost.find("another") != std::string::npos ||
+                        lost.find("exists and is not empty") != std::string::npos);
+            ++(lost.find("another") != std::string::npos ? met : followed)[kind];
+            if (kind == "file") {
+                EXPECT_EQ(slurp(work / (out + ".stl")), stl_reference[winner]);
+                EXPECT_NE(slurp(work / (out + ".stl.json"))
+                              .find("\"particles\": \"bed" + std::to_string(winner + 1) + ".csv\""),
+                          std::string::npos);
+            } else {
+                EXPECT_EQ(listing(work / out), reference[winner]);
+            }
+        }
+    }
+    for (const auto& entry : fs::directory_iterator(work))
+        EXPECT_NE(entry.path().filename().string()[0], '.') << "left behind: " << entry.path();
+    for (const std::string kind : {"empty", "new", "force", "file"})
+        std::printf("%s: in %d rounds the loser found the winner's output when it put its own in "
+                    "place, in %d when it started\n",
+                    kind.c_str(), met[kind], followed[kind]);
+}
+
 INSTANTIATE_TEST_SUITE_P(Runs, Interrupt, ::testing::ValuesIn(cases()),
                          [](const ::testing::TestParamInfo<Case>& param) {
                              std::string what = param.param.what;
