@@ -1,19 +1,41 @@
 #!/usr/bin/env bash
 # Run the README's commands as written, in order, and check what they produce (issue 15).
 # Usage: scripts/check-readme.sh [--fresh]
-#   (default)  in this checkout, which must have no results/ folder yet (CI's checkout is a
-#              fresh clone). The first command's build then finds build/ already built by the
-#              test command, so only its install and run take time.
+#   (default)  in this checkout. The first command's build then finds build/ already built by
+#              the test command, so only its install and run take time. Where results/ exists
+#              (the README's first command ran here before), the commands write to an empty
+#              folder mounted over it in a mount namespace of their own (`unshare --mount`), so
+#              the user's results/ is neither read nor changed; where no such namespace can be
+#              made, it runs as --fresh.
 #   --fresh    in a fresh clone of HEAD in a temporary folder: the first command builds from
 #              nothing (about 5 more minutes on 2 cores).
 # Every ```sh block of README.md runs, except the test command (the one that runs this script).
 # HOME is a temporary folder, so the install of the first command (~/.local) and everything
-# else stays out of the user's files; results/ is removed at the end.
+# else stays out of the user's files; what the commands wrote to results/ is removed at the
+# end.
 set -euo pipefail
 root=$(cd "$(dirname "$0")/.." && pwd)
+if [[ ${1:-} != --fresh && -n ${1:-} ]]; then
+  echo "check-readme: unknown option '$1'; allowed: --fresh" >&2
+  exit 2
+fi
+if [[ ${1:-} != --fresh && -e $root/results && -z ${PACKBED_README_SHADOW:-} ]]; then
+  flags=(--mount --propagation private)
+  ((EUID == 0)) || flags+=(--map-root-user)
+  if [[ -d $root/results && ! -L $root/results ]] && unshare "${flags[@]}" true 2>/dev/null; then
+    echo "check-readme: $root/results exists: the README's commands write to an empty folder" \
+      "mounted over it, which only they see"
+    exec unshare "${flags[@]}" env PACKBED_README_SHADOW=1 "$0" "$@"
+  fi
+  echo "check-readme: $root/results exists and no mount namespace can be made here (or it is" \
+    "not a directory): the commands run in a fresh clone (--fresh)"
+  exec "$0" --fresh
+fi
 work=$(mktemp -d "${TMPDIR:-/tmp}/packbed-readme.XXXXXX")
 repo=$root
+shadowed=0
 cleanup() {
+  if ((shadowed)); then umount "$root/results" 2>/dev/null || true; fi
   rm -rf "$work"
   if [[ $repo == "$root" && ${created_results:-0} == 1 ]]; then rm -rf "$root/results"; fi
 }
@@ -21,16 +43,18 @@ trap cleanup EXIT
 if [[ ${1:-} == --fresh ]]; then
   git clone --quiet "$root" "$work/packbed"
   repo=$work/packbed
-elif [[ -n ${1:-} ]]; then
-  echo "check-readme: unknown option '$1'; allowed: --fresh" >&2
-  exit 2
+elif [[ -n ${PACKBED_README_SHADOW:-} ]]; then
+  # In this process's own mount namespace: an empty folder over the user's results/.
+  mkdir "$work/results"
+  mount --bind "$work/results" "$root/results"
+  shadowed=1
 fi
-if [[ -e $repo/results ]]; then
+if [[ -e $repo/results && $shadowed == 0 ]]; then
   echo "check-readme: $repo/results exists; the README's commands write there. Move it away," \
     "or run scripts/check-readme.sh --fresh" >&2
   exit 2
 fi
-created_results=1
+if ((shadowed == 0)); then created_results=1; fi
 
 # The blocks, one script each, the test command left out.
 mkdir -p "$work/home" "$work/blocks"
