@@ -78,7 +78,8 @@ struct Analysis {
 /// JSON to Python objects, through Python's own json module (exact for every double: both
 /// write and read shortest round-trip text).
 py::object to_python(const nlohmann::json& value) {
-    return py::module_::import("json").attr("loads")(value.dump());
+    return py::module_::import("json").attr("loads")(
+        value.dump(-1, ' ', false, nlohmann::json::error_handler_t::replace));
 }
 
 /// Each of `warnings` as a Python UserWarning (the command line prints them on stderr).

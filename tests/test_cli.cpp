@@ -1593,3 +1593,23 @@ TEST(Cli, ExportedSettlesRunInABox) {
         expect_settled_in_box(d / "bed.data.liggghts.dump");
     }
 }
+
+// A file name that is not UTF-8 (Linux names are bytes) is data: summary.json and export's
+// report record it with U+FFFD where a byte is not UTF-8, still valid JSON; the run does not
+// end as an internal error (nlohmann's dump threw on it, exit 1).
+TEST(Cli, NamesThatAreNotUtf8AreRecordedInValidJson) {
+    const fs::path d = scratch("utf8");
+    const Outcome g = packbed(small + "-q --no-analysis --out " + (d / "bed").string());
+    ASSERT_EQ(g.status, 0) << g.err;
+    fs::copy_file(d / "bed" / "particles.csv", d / "\xff.csv");
+    const Outcome a =
+        packbed("analyze '" + (d / "\xff.csv").string() + "' -R 2 -q --out " + (d / "an").string());
+    EXPECT_EQ(a.status, 0) << a.err;
+    const Outcome e = packbed("export '" + (d / "\xff.csv").string() + "' -R 2 -f stl --out '" +
+                              (d / "\xfe.stl").string() + "'");
+    EXPECT_EQ(e.status, 0) << e.err;
+    for (const fs::path& json : {d / "an" / "summary.json", d / "\xfe.stl.json"}) {
+        const nlohmann::json read = nlohmann::json::parse(slurp(json)); // valid UTF-8 JSON
+        EXPECT_NE(read.dump().find("\xef\xbf\xbd.csv"), std::string::npos) << json;
+    }
+}

@@ -10,6 +10,7 @@
 #include "command.hpp"
 #include "packbed/output.hpp"
 #include "packbed/pipeline.hpp"
+#include "packbed/summary.hpp"
 
 namespace packbed::cli {
 
@@ -38,7 +39,7 @@ int run_cfd_report(const CfdReportOptions& o) {
         fmt::print(stderr, "packbed cfd-report: {}\n", why);
     const nlohmann::json& v = report.values;
     if (o.json) {
-        fmt::print("{}\n", v.dump(2));
+        fmt::print("{}", json_file_text(v, "the report"));
         return 0;
     }
     if (o.quiet)

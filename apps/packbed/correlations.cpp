@@ -7,6 +7,7 @@
 #include "command.hpp"
 #include "packbed/correlations.hpp"
 #include "packbed/pipeline.hpp"
+#include "packbed/summary.hpp"
 
 namespace packbed::cli {
 
@@ -25,7 +26,7 @@ int run_correlations(const CorrelationOptions& o) {
     for (const auto& w : warnings)
         fmt::print(stderr, "packbed correlations: warning: {}\n", w);
     if (o.json) {
-        fmt::print("{}\n", out.dump(2));
+        fmt::print("{}", json_file_text(out, "the report"));
         return 0;
     }
     fmt::print("mean void fraction at a = {}:\n", o.request.aspect_ratio);

@@ -10,6 +10,7 @@
 #include "command.hpp"
 #include "packbed/limits.hpp"
 #include "packbed/pipeline.hpp"
+#include "packbed/summary.hpp"
 
 namespace packbed::cli {
 
@@ -24,7 +25,7 @@ int run_hydraulics(const HydraulicsOptions& o, bool json) {
     for (const auto& w : report.warnings)
         fmt::print(stderr, "packbed hydraulics: warning: {}\n", w);
     if (json) {
-        fmt::print("{}\n", out.dump(2));
+        fmt::print("{}", json_file_text(out, "the report"));
         return 0;
     }
     const auto& fluid = out["fluid_and_particles"];

@@ -209,7 +209,7 @@ LayerCheckpoint read_checkpoint(std::istream& in, std::string_view name,
             field.refuse(fmt::format(
                 "it was taken with {} = {}, this run has {}", option,
                 !stored.is_object() || found == stored.end() ? "(none)" : json_excerpt(*found, 40),
-                value.dump()));
+                json_excerpt(value, 40)));
         }
     }
 

@@ -15,6 +15,12 @@ namespace {
 /// Thrown by the parser's callback past the nesting limit.
 struct TooDeep {};
 
+/// `value` as JSON text, a UTF-8 sequence cut by a substring shown as U+FFFD (dump() throws on
+/// it).
+std::string dumped(const nlohmann::json& value) {
+    return value.dump(-1, ' ', false, nlohmann::json::error_handler_t::replace);
+}
+
 /// Append `value` to `out` until `out` holds `bytes` bytes (a value nested at most
 /// limits::max_json_nesting deep: the recursion is bounded).
 void excerpt(const nlohmann::json& value, std::size_t bytes, std::string& out) {
@@ -27,7 +33,7 @@ void excerpt(const nlohmann::json& value, std::size_t bytes, std::string& out) {
             out += first ? "" : ",";
             first = false;
             if (value.is_object())
-                out += nlohmann::json(it.key()).dump() + ":";
+                out += dumped(nlohmann::json(it.key().substr(0, bytes))) + ":";
             excerpt(*it, bytes, out);
         }
         if (out.size() < bytes)
@@ -36,10 +42,10 @@ void excerpt(const nlohmann::json& value, std::size_t bytes, std::string& out) {
     }
     if (value.is_string()) {
         const std::string& s = value.get_ref<const std::string&>();
-        out += nlohmann::json(s.substr(0, bytes)).dump();
+        out += dumped(nlohmann::json(s.substr(0, bytes)));
         return;
     }
-    out += value.dump();
+    out += dumped(value);
 }
 
 template <class Json> std::string non_finite(const Json& value, const std::string& at) {
@@ -63,7 +69,7 @@ template <class Json> std::string file_text(const Json& value, std::string_view 
         throw std::runtime_error(fmt::format("{} would hold a number that is not finite at {}; "
                                              "nothing was written",
                                              name, at));
-    return value.dump(2) + "\n";
+    return value.dump(2, ' ', false, Json::error_handler_t::replace) + "\n";
 }
 
 } // namespace

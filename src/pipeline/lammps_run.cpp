@@ -237,7 +237,7 @@ std::vector<std::string> stage_lammps_job(OutputDirectory& out, const std::strin
     out.stage(at + std::string(lammps_files::readme), job_readme(launch, job, prepared));
     out.stage(at + std::string(lammps_files::slurm), slurm_script());
     out.stage(at + std::string(lammps_files::job),
-              job_json(prepared.request, command, style).dump(2) + "\n");
+              json_file_text(job_json(prepared.request, command, style), "job.json"));
     return command;
 }
 
