@@ -272,7 +272,7 @@ Bed generate(std::optional<double> aspect_ratio, const std::optional<std::string
     GeneratedBed generated = run_interruptible(control, progress, [&] {
         if (request.engine == Engine::lammps)
             return run_lammps_generation(prepared, launcher, control, *directory);
-        return run_generation(prepared, control, omp_get_max_threads());
+        return run_generation(prepared, control, threads_in_use());
     });
     Bed bed{std::move(generated.result.packing), generated.result.container,
             std::move(generated.summary)};

@@ -242,10 +242,10 @@ std::string drawn_on_terminal(const std::string& args, int columns, const fs::pa
 
 TEST(Cli, ProgressLineFitsAnEightyColumnTerminal) {
     // The paper's schedule on a = 4, 200 spheres: about a second, about ten redraws.
-    for (int columns : {80, 100}) {
+    for (int columns : {80, 100, 160}) {
         const fs::path d = scratch("tty" + std::to_string(columns));
         const std::string tty = drawn_on_terminal(
-            "generate --solver paper -a 4 -n 200 --out " + (d / "out").string(), columns, d);
+            "generate --solver paper -a 4 -n 200 -j 2 --out " + (d / "out").string(), columns, d);
         // Each redraw is "\r\033[K" then the line; the last erases it.
         std::vector<std::string> lines;
         for (std::size_t at = tty.find("\r\033[K"); at != std::string::npos;) {
@@ -260,8 +260,11 @@ TEST(Cli, ProgressLineFitsAnEightyColumnTerminal) {
             EXPECT_LE(lines[i].size(), static_cast<std::size_t>(columns - 1)) << lines[i];
             EXPECT_EQ(lines[i].find('\n'), std::string::npos) << lines[i]; // redrawn in place
             EXPECT_NE(lines[i].find("overlaps "), std::string::npos) << lines[i];
-            if (columns == 100) { // wide enough for the iteration too
+            if (columns >= 100) { // wide enough for the iteration too
                 EXPECT_NE(lines[i].find(" it "), std::string::npos) << lines[i];
+            }
+            if (columns == 160) { // and the threads the run uses and its memory estimate
+                EXPECT_NE(lines[i].find("  2 threads  memory ~32"), std::string::npos) << lines[i];
             }
         }
     }

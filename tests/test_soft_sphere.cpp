@@ -2,12 +2,14 @@
 // small bed, determinism, divergence and parameter errors.
 #include <algorithm>
 #include <cmath>
+#include <cstdlib>
 #include <cstring>
 
 #include <gtest/gtest.h>
 #include <omp.h>
 
 #include "packbed/error.hpp"
+#include "packbed/pipeline.hpp"
 #include "packbed/soft_sphere.hpp"
 #include "packbed/volume.hpp"
 
@@ -556,3 +558,18 @@ INSTANTIATE_TEST_SUITE_P(
                                    [](SoftSphereParameters& p) { p.mc_window = 1; }},
                       BadParameter{"skin = 2 is not allowed; allowed: 0 < skin <= 1",
                                    [](SoftSphereParameters& p) { p.skin = 2; }}));
+
+// The run uses the threads it is given (issue 44): OpenMP's dynamic adjustment stays off, so
+// a parallel region gets every thread asked for, even more than the cores (the adjustment,
+// which packbed turned on, gave at most the cores less the load average; a user's previous run
+// had raised it, so a run started right after another got one thread of two).
+TEST(Threads, ARunGetsTheThreadsItIsGiven) {
+    if (std::getenv("OMP_DYNAMIC") != nullptr)
+        GTEST_SKIP() << "OMP_DYNAMIC is set: OpenMP chooses the team sizes";
+    const int cores = omp_get_num_procs();
+    for (const int asked : {1, 2, cores, cores + 1}) {
+        EXPECT_EQ(use_threads(static_cast<unsigned long long>(asked)), asked);
+        EXPECT_FALSE(omp_get_dynamic());
+        EXPECT_EQ(threads_in_use(), asked);
+    }
+}

@@ -229,8 +229,7 @@ Command register_analyze(CLI::App& parent) {
                     "how far a sphere may stick out of the wall or floor, Dp")
         ->check(real_in(option_range::outside_tolerance));
     app->add_option("-j,--threads", o.threads,
-                    "at most this many threads, fewer while the machine is busy (results do not "
-                    "depend on it)")
+                    "this many threads (results do not depend on it); default: every core")
         ->check(whole_in(option_range::threads));
     app->add_flag("-q,--quiet", o.quiet, "no report on the terminal");
     return {app, [options] { return run_analyze(*options); }};

@@ -88,7 +88,8 @@ int run_lammps(GenerateOptions& o, const PreparedGeneration& prepared) {
         return 0;
     }
     OutputDirectory out(o.out, "--out", OutputKind::directory, o.force);
-    TerminalProgress progress(progress_wanted(o.quiet), prepared.params, prepared.memory, "LAMMPS");
+    TerminalProgress progress(progress_wanted(o.quiet), prepared.params, prepared.memory, 0,
+                              "LAMMPS");
     RunControl control;
     control.on_progress = [&](const Progress& p) { progress(p); };
     GeneratedBed bed = run_lammps_generation(prepared, o.lammps, control, out);
@@ -134,17 +135,16 @@ int run_generate(GenerateOptions& o) {
     const SoftSphereParameters& params = prepared.params;
     // Every check before the run: the output directory, the checkpoint.
     OutputDirectory out(o.out, "--out", OutputKind::directory, o.force);
-    use_threads(o.threads);
+    const int threads = use_threads(o.threads);
 
-    TerminalProgress progress(progress_wanted(o.quiet), params, prepared.memory);
+    TerminalProgress progress(progress_wanted(o.quiet), params, prepared.memory, threads);
     RunControl control;
     control.on_progress = [&](const Progress& p) { progress(p); };
-    GeneratedBed bed = run_generation(
-        prepared, control, static_cast<int>(o.threads), [&](std::uint32_t layers_done) {
-            if (!o.quiet)
-                fmt::print(stderr, "packbed generate: resuming from {} after layer {} of {}\n",
-                           o.checkpoint, layers_done, fire_layers(params));
-        });
+    GeneratedBed bed = run_generation(prepared, control, threads, [&](std::uint32_t layers_done) {
+        if (!o.quiet)
+            fmt::print(stderr, "packbed generate: resuming from {} after layer {} of {}\n",
+                       o.checkpoint, layers_done, fire_layers(params));
+    });
     progress.finish();
     const SoftSphereResult& result = bed.result;
     auto& summary = bed.summary;
@@ -326,8 +326,7 @@ Command register_generate(CLI::App& parent) {
                     "below the bed top, Dp")
         ->check(real_in(option_range::band_clearance));
     app->add_option("-j,--threads", o.threads,
-                    "at most this many threads, fewer while the machine is busy (results do not "
-                    "depend on it)")
+                    "this many threads (results do not depend on it); default: every core")
         ->check(whole_in(option_range::threads));
     app->add_flag("--no-analysis", o.no_analysis,
                   "only the spheres (particles.csv, particles.vtu) and summary.json with the void "

@@ -66,6 +66,8 @@ void TerminalProgress::operator()(const Progress& p) {
     fields.push_back(
         fmt::format("overlaps {:.1e}/{:.1e} Dp", p.max_overlap_pair, p.max_overlap_wall));
     fields.push_back(fmt::format("it {:>9}", p.iteration));
+    if (m_threads > 0)
+        fields.push_back(fmt::format("{} thread{}", m_threads, m_threads > 1 ? "s" : ""));
     if (m_memory > 0)
         fields.push_back("memory ~" + memory_text(m_memory));
     fields.push_back(fmt::format("Cg {:.2e}", p.cg));

@@ -27,15 +27,17 @@ public:
     /// \param enabled when false, every call does nothing
     /// \param parameters the run's, for the estimate of the time left in each stage
     /// \param memory the run's estimated memory (generation_memory), shown; 0: not shown
+    /// \param threads the threads the run uses, shown; 0: not shown (another engine's)
     /// \param engine "" for packbed's solvers, whose time left is estimated; else the engine's
     /// name, shown instead (LAMMPS's settling rule is not the mass-centre rule the estimate
     /// follows)
     TerminalProgress(bool enabled, const SoftSphereParameters& parameters, std::uint64_t memory = 0,
-                     std::string engine = {})
+                     int threads = 0, std::string engine = {})
         : m_enabled(enabled)
         , m_time_left(parameters)
         , m_engine(std::move(engine))
         , m_memory(memory)
+        , m_threads(threads)
         , m_layers_left(parameters) {}
     ~TerminalProgress() { finish(); }
     TerminalProgress(const TerminalProgress&) = delete;
@@ -52,6 +54,7 @@ private:
     StageTimeLeft m_time_left;
     std::string m_engine;
     std::uint64_t m_memory;
+    int m_threads;
     std::chrono::steady_clock::time_point m_start = std::chrono::steady_clock::now();
     std::chrono::steady_clock::time_point m_last{};
     LayerTimeLeft m_layers_left;

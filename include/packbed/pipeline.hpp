@@ -27,12 +27,16 @@
 
 namespace packbed {
 
-/// Run the library's parallel loops on at most `threads` OpenMP threads, fewer while the
-/// machine is busy (OpenMP's dynamic adjustment, which in GCC's libgomp subtracts the load
-/// average from the cores): a thread that waits for a core at every barrier turns seconds
-/// into minutes, and the results do not depend on the number of threads anyway. Setting
-/// OMP_DYNAMIC (e.g. false, for benchmarks) leaves the choice to OpenMP.
-void use_threads(unsigned long long threads);
+/// Run the library's parallel loops on `threads` OpenMP threads, for the whole run (the
+/// results do not depend on the number). OpenMP's dynamic adjustment stays as OpenMP sets it:
+/// off, unless OMP_DYNAMIC says otherwise (it took threads away by the load average, which a
+/// user's previous run had raised). \return the threads a parallel region gets now
+/// (threads_in_use).
+int use_threads(unsigned long long threads);
+
+/// The threads a parallel region of this thread gets now: what summary.json records and the
+/// progress line shows.
+int threads_in_use();
 
 // ---------------------------------------------------------------------------------------------
 // generate: the soft-sphere bed of Salvat et al. (2005)

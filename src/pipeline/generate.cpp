@@ -28,10 +28,19 @@ std::uint64_t sizes_seed(std::uint64_t seed) {
 
 } // namespace
 
-void use_threads(unsigned long long threads) {
+int use_threads(unsigned long long threads) {
     omp_set_num_threads(static_cast<int>(threads));
-    if (std::getenv("OMP_DYNAMIC") == nullptr) // OMP_DYNAMIC=false keeps the count fixed
-        omp_set_dynamic(1);
+    return threads_in_use();
+}
+
+int threads_in_use() {
+    int team = 1;
+#pragma omp parallel
+    {
+#pragma omp single
+        team = omp_get_num_threads();
+    }
+    return team;
 }
 
 PreparedGeneration prepare_generation(GenerateRequest request) {
