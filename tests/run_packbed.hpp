@@ -5,6 +5,7 @@
 
 #include <fcntl.h>
 #include <signal.h>
+#include <sys/resource.h>
 #include <sys/types.h>
 #include <unistd.h>
 
@@ -37,10 +38,18 @@ inline std::string slurp(const std::filesystem::path& path) {
     return s.str();
 }
 
+/// A resource limit for a spawned run (setrlimit): RLIMIT_AS for a machine with little memory,
+/// RLIMIT_FSIZE for a full disk (SIGXFSZ is then ignored, so a write past it fails with EFBIG
+/// as on a full disk instead of killing the run).
+struct Limit {
+    int resource = -1; ///< -1: none
+    rlim_t bytes = 0;
+};
+
 /// Start `packbed ARGS` in `cwd`, its stdout and stderr into the files `io/out` and `io/err`.
 /// \return its pid (also its process group), or -1 when fork fails.
 inline pid_t spawn(const std::vector<std::string>& args, const std::filesystem::path& cwd,
-                   const std::filesystem::path& io) {
+                   const std::filesystem::path& io, Limit limit = {}) {
     std::vector<std::string> words{exe()};
     words.insert(words.end(), args.begin(), args.end());
     std::vector<char*> argv;
@@ -62,6 +71,13 @@ inline pid_t spawn(const std::vector<std::string>& args, const std::filesystem::
         ::sigprocmask(SIG_SETMASK, &none, nullptr);
         for (const int s : {SIGINT, SIGTERM, SIGHUP, SIGPIPE})
             ::signal(s, SIG_DFL);
+        if (limit.resource >= 0) {
+            const rlimit value{limit.bytes, limit.bytes};
+            if (::setrlimit(limit.resource, &value) != 0)
+                ::_exit(127);
+            if (limit.resource == RLIMIT_FSIZE)
+                ::signal(SIGXFSZ, SIG_IGN);
+        }
         const int in = ::open("/dev/null", O_RDONLY);
         const int o = ::open(out.c_str(), O_WRONLY | O_CREAT | O_TRUNC, 0644);
         const int e = ::open(err.c_str(), O_WRONLY | O_CREAT | O_TRUNC, 0644);

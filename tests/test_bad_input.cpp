@@ -1433,27 +1433,7 @@ TEST(CliDiskFull, OneLineNamingTheOutputAsGivenNothingLeft) {
     const std::vector<std::string> named{"out/particles.csv", "im.raw", "bed.stl",
                                          "case/constant/triSurface/particles.stl"};
     for (std::size_t k = 0; k < runs.size(); ++k) {
-        std::vector<std::string> words{exe()};
-        words.insert(words.end(), runs[k].begin(), runs[k].end());
-        std::vector<char*> argv;
-        for (std::string& w : words)
-            argv.push_back(w.data());
-        argv.push_back(nullptr);
-        const std::string err = (root / "io" / "err").string(), dir = d.string();
-        const pid_t pid = ::fork();
-        if (pid == 0) {
-            const rlimit size{64 << 10, 64 << 10};
-            ::signal(SIGXFSZ, SIG_IGN);
-            const int e = ::open(err.c_str(), O_WRONLY | O_CREAT | O_TRUNC, 0644);
-            const int null = ::open("/dev/null", O_RDWR);
-            if (e < 0 || null < 0 || ::chdir(dir.c_str()) != 0 || ::setrlimit(RLIMIT_FSIZE, &size))
-                ::_exit(127);
-            ::dup2(null, STDIN_FILENO);
-            ::dup2(null, STDOUT_FILENO);
-            ::dup2(e, STDERR_FILENO);
-            ::execv(argv[0], argv.data());
-            ::_exit(127);
-        }
+        const pid_t pid = packbed::test::spawn(runs[k], d, root / "io", {RLIMIT_FSIZE, 64 << 10});
         int status = 0;
         ::waitpid(pid, &status, 0);
         const std::string message = slurp(root / "io" / "err");
@@ -1490,27 +1470,8 @@ TEST(CliMemory, RequestsThatDoNotFitAreRefusedBeforeTheWork) {
          "about 5.56 GiB of memory; "},
     };
     for (const auto& [args, message] : runs) {
-        std::vector<std::string> words{exe()};
-        words.insert(words.end(), args.begin(), args.end());
-        std::vector<char*> argv;
-        for (std::string& w : words)
-            argv.push_back(w.data());
-        argv.push_back(nullptr);
-        const std::string err = (root / "io" / "err").string(), dir = d.string();
         const auto start = std::chrono::steady_clock::now();
-        const pid_t pid = ::fork();
-        if (pid == 0) {
-            const rlimit size{1500u << 20, 1500u << 20};
-            const int e = ::open(err.c_str(), O_WRONLY | O_CREAT | O_TRUNC, 0644);
-            const int null = ::open("/dev/null", O_RDWR);
-            if (e < 0 || null < 0 || ::chdir(dir.c_str()) != 0 || ::setrlimit(RLIMIT_AS, &size))
-                ::_exit(127);
-            ::dup2(null, STDIN_FILENO);
-            ::dup2(null, STDOUT_FILENO);
-            ::dup2(e, STDERR_FILENO);
-            ::execv(argv[0], argv.data());
-            ::_exit(127);
-        }
+        const pid_t pid = packbed::test::spawn(args, d, root / "io", {RLIMIT_AS, 1500u << 20});
         int status = 0;
         ::waitpid(pid, &status, 0);
         const double seconds =
