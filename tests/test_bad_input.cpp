@@ -112,6 +112,7 @@ void prepare_nothing_lost(const fs::path& d) {
         dotted += ".a";
     write(d / "dotted.toml", dotted + " = 1\n");
     write(d / "brackets.toml", "aspect-ratio = " + nested(100000) + "\n");
+    write(d / "longkey.toml", std::string(100000, 'k') + " = 1\n");
     write(d / "header.toml", "[" + dotted.substr(0, 999) + "]\nx = 1\n");
     write(
         d / "inline.toml", "a = " + [] {
@@ -1293,6 +1294,9 @@ INSTANTIATE_TEST_SUITE_P(
               "packbed: --config brackets.toml: line 1:" + too_deep_toml),
         exact("--config inline.toml generate",
               "packbed: --config inline.toml: line 1:" + too_deep_toml),
+        naming("--config longkey.toml generate", // a message quotes 80 bytes of a key
+               {"packbed: --config longkey.toml: line 1: unknown key '" + std::string(80, 'k') +
+                "'; allowed: "}),
         exact("analyze deep/bed.csv -o out", "packbed analyze: " + deep_summary),
         exact("export deep/bed.csv -f stl -o out.stl", "packbed export: " + deep_summary),
         exact("voxelize deep/bed.csv --voxel-size 0.5 -o out.npy",

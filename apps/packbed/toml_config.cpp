@@ -149,7 +149,7 @@ std::vector<CLI::ConfigItem> TomlConfig::from_config(std::istream& input) const 
     } catch (const toml::parse_error& e) {
         throw CLI::ConfigError(fmt::format("{}: line {}, column {}: {}", where,
                                            e.source().begin.line, e.source().begin.column,
-                                           e.description()));
+                                           printable(e.description().substr(0, 200))));
     }
     const auto selected = m_root->get_subcommands();
     if (selected.empty())
@@ -163,13 +163,14 @@ std::vector<CLI::ConfigItem> TomlConfig::from_config(std::istream& input) const 
         if (node.is_table())
             throw CLI::ConfigError(
                 fmt::format("{}: {}: unknown table '{}'; allowed: top-level keys or [{}]", where,
-                            line_of(node), printable(raw_key.str()), section));
+                            line_of(node), printable(raw_key.str().substr(0, 80)), section));
         if (!allowed.count(key)) {
             std::string names;
             for (const auto& n : allowed)
                 names += (names.empty() ? "" : ", ") + n;
             throw CLI::ConfigError(fmt::format("{}: {}: unknown key '{}'; allowed: {}", where,
-                                               line_of(node), printable(raw_key.str()), names));
+                                               line_of(node),
+                                               printable(raw_key.str().substr(0, 80)), names));
         }
         CLI::ConfigItem item;
         item.parents = {section};
