@@ -1428,16 +1428,15 @@ TEST(CliDiskFull, OneLineNamingTheOutputAsGivenNothingLeft) {
     write(d / "bed.csv", column(40));
     const std::string before = listing(d);
     const std::vector<std::vector<std::string>> runs{
-        {"generate", "-n", "3000", "-a", "5", "-q", "-o", "out"},
-        {"voxelize", "bed.csv", "--container", "cylinder:2", "--voxel-size", "0.01", "-o",
-         "im.raw"},
-        {"export", "bed.csv", "-R", "1", "-f", "stl", "-o", "bed.stl"},
-        {"export", "bed.csv", "-R", "1", "-f", "openfoam", "--refine", "6", "-o", "case"},
+        {"generate", "-n", "300", "-a", "5", "-q", "-o", "out"},
+        {"voxelize", "bed.csv", "--container", "cylinder:2", "--voxel-size", "0.1", "-o", "im.raw"},
+        {"export", "bed.csv", "-R", "1", "-f", "stl", "--refine", "1", "-o", "bed.stl"},
+        {"export", "bed.csv", "-R", "1", "-f", "openfoam", "--refine", "1", "-o", "case"},
     };
     const std::vector<std::string> named{"out/particles.csv", "im.raw", "bed.stl",
                                          "case/constant/triSurface/particles.stl"};
     for (std::size_t k = 0; k < runs.size(); ++k) {
-        const pid_t pid = packbed::test::spawn(runs[k], d, root / "io", {RLIMIT_FSIZE, 64 << 10});
+        const pid_t pid = packbed::test::spawn(runs[k], d, root / "io", {RLIMIT_FSIZE, 8 << 10});
         int status = 0;
         ::waitpid(pid, &status, 0);
         const std::string message = slurp(root / "io" / "err");

@@ -601,7 +601,7 @@ std::vector<Case> cases() {
 // files only. An existing empty --out directory (claimed while the files move in), a new one
 // (put in place by one rename that replaces nothing), one replaced with --force (it must still
 // be the directory seen at the start), and export's file with its .json beside it (claimed,
-// and each file must be the one seen at the start). Ten rounds each: the runs end within
+// and each file must be the one seen at the start). Five rounds each: the runs end within
 // milliseconds of each other, so their commits meet in some rounds and follow each other in
 // the others.
 TEST(Concurrent, TwoRunsIntoOneOutputOneWinsWhole) {
@@ -643,7 +643,7 @@ TEST(Concurrent, TwoRunsIntoOneOutputOneWinsWhole) {
     }
     std::map<std::string, int> met, followed; // where the loser found the other's output
     for (const std::string kind : {"empty", "new", "force", "file"}) {
-        for (int round = 0; round < 10; ++round) {
+        for (int round = 0; round < 5; ++round) {
             const std::string out = kind + std::to_string(round);
             if (kind == "empty" || kind == "force")
                 fs::create_directories(work / out);
