@@ -29,7 +29,6 @@ def main():
     p.add_argument("--out", default="results/lammps-scaling")
     args = p.parse_args()
     os.makedirs(args.out, exist_ok=True)
-    env = dict(os.environ, OMP_DYNAMIC="false")
     rows = []
     print("| Np | a | engine | threads/ranks | relaxation (s) | whole command (s) | steps "
           "| ns per sphere-step | void fraction |")
@@ -43,7 +42,7 @@ def main():
                          else ["--engine", "lammps", "--ranks", str(count)])
                 t0 = time.monotonic()
                 subprocess.run([args.packbed, "generate", "-a", f"{a:g}", "-n", str(n), "-s", "1",
-                                "-q", "--force", "-o", run] + extra, check=True, env=env)
+                                "-q", "--force", "-o", run] + extra, check=True)
                 with open(os.path.join(run, "command-seconds.txt"), "w") as f:
                     f.write(f"{time.monotonic() - t0:.2f}\n")
             with open(os.path.join(run, "summary.json")) as f:

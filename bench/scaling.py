@@ -13,7 +13,8 @@ Np; the rows of --before, an earlier version's scaling.csv, dashed beside them).
 
 Usage: bench/scaling.py [--packbed build/packbed] [--particles 1000,3000,...]
                         [--aspect-ratio 20] [--large 1000000:50] [--solvers paper,fire]
-                        [--limit 600] [--threads 2] [--out results/scaling]
+                        [--limit 600 | --limit paper:200,fire:1500]
+                        [--threads CORES] [--out results/scaling]
                         [--before OLD/scaling.csv --before-label "(before issue 18)"]
 """
 import argparse
@@ -27,27 +28,27 @@ import time
 
 
 def run_one(args, solver, n, a, out):
+    limit = args.limits[solver]
     summary = os.path.join(out, "summary.json")
     record = os.path.join(out, "scaling.json")
     if os.path.exists(record):
         with open(record) as f:
             old = json.load(f)
-        if old["finished"] or old["wall_s"] >= args.limit:  # a stopped run reruns if given more time
+        if old["finished"] or old["wall_s"] >= limit:  # a stopped run reruns if given more time
             return old
     os.makedirs(out, exist_ok=True)
     cmd = [args.packbed, "generate", "--solver", solver, "--aspect-ratio", f"{a:g}",
            "--particles", str(n), "--seed", "1", "--threads", str(args.threads), "--quiet",
            "--force", "--out", out]
-    env = dict(os.environ, OMP_DYNAMIC="false")  # the threads asked for, whatever the load
     start = time.monotonic()
-    proc = subprocess.Popen(cmd, env=env)
+    proc = subprocess.Popen(cmd)
     status, usage = None, None
     while True:  # os.wait4: the child's own peak memory (ru_maxrss, KiB)
         pid, raw, usage = os.wait4(proc.pid, os.WNOHANG)
         if pid:
             status = os.waitstatus_to_exitcode(raw)
             break
-        if time.monotonic() - start > args.limit:
+        if time.monotonic() - start > limit:
             proc.kill()
             _, _, usage = os.wait4(proc.pid, 0)
             break
@@ -120,15 +121,25 @@ def main():
     p.add_argument("--aspect-ratio", type=float, default=20.0)
     p.add_argument("--large", default="1000000:50", help="Np:a pairs with their own a")
     p.add_argument("--solvers", default="paper,fire")
-    p.add_argument("--limit", type=float, default=600.0, help="seconds per run")
-    p.add_argument("--threads", type=int, default=2)
+    p.add_argument("--limit", default="600",
+                   help="seconds per run: one number, or SOLVER:SECONDS pairs (paper:200,fire:1500)")
+    p.add_argument("--threads", type=int, default=os.cpu_count(),
+                   help="--threads of every run (default: every core, as packbed's own default)")
     p.add_argument("--out", default="results/scaling")
     p.add_argument("--before", help="scaling.csv of an earlier version: drawn dashed beside")
     p.add_argument("--before-label", default="before",
                    help="what the plot's key adds to the earlier version's solver names")
     args = p.parse_args()
-    if args.limit <= 0 or args.threads < 1:
-        sys.exit("scaling.py: --limit must be > 0 and --threads >= 1")
+    try:
+        if ":" in args.limit:
+            args.limits = {k: float(v) for k, v in (i.split(":") for i in args.limit.split(","))}
+        else:
+            args.limits = {s: float(args.limit) for s in args.solvers.split(",")}
+    except ValueError:
+        sys.exit(f"scaling.py: --limit {args.limit!r}: a number or SOLVER:SECONDS pairs")
+    if any(solver not in args.limits or args.limits[solver] <= 0
+           for solver in args.solvers.split(",")) or args.threads < 1:
+        sys.exit("scaling.py: every solver needs a --limit > 0, and --threads >= 1")
     own_a = {int(k): float(v) for k, v in
              (item.split(":") for item in args.large.split(",") if item)}
     rows = []

@@ -546,7 +546,7 @@ TEST(Analysis, SameBitsAsBeforeTheLimits) {
     // for contacts and g(r), one histogram per chunk): the limits change no result. g(r) was
     // then normalised without the container correction: the fingerprints without it are those
     // of that analysis (0x29b494ad52950405 and 0x03a633497bf6adeb with the old g), the whole
-    // ones were retaken with the corrected g. Retaken again (issue 18, twelfth session) when
+    // ones were retaken with the corrected g. Retaken again when
     // the radial profile moved to Container::ball_volume, which agrees with sphere_volume to
     // 3e-9 relative (6e-9 at most in the radial profile of a 500-sphere bed, the other tables
     // the same bits) and small beds were cut into 16 chunks.

@@ -477,8 +477,8 @@ TEST(FinalStage, AFloorLayerSqueezedFlatIsLiftedBothSolvers) {
         EXPECT_LT(r->max_overlap_wall, 1e-4);
         const std::size_t floor = spheres_on_the_floor(*r);
         EXPECT_LE(floor, 11u);
-        EXPECT_GE(floor, 8u); // a floor layer, not an emptied one (fire: 8; 11 before the
-                              // schedule of issue 18's eleventh session)
+        EXPECT_GE(floor, 8u); // a floor layer, not an emptied one (fire: 8; 11 with a
+                              // lighter band of eq. (7), docs/notes/fire-schedule.md)
     }
 }
 

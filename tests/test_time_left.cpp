@@ -126,7 +126,7 @@ TEST(StageTimeLeft, HonestThroughAFireRunsCreep) {
     // to be long for the shorter ones, as for small beds). With dt_max 0.2, seed 1's stage of
     // 9 500 steps saw the mass-centre spread fall under 3 times the rule's by about step 6 000
     // and then creep; an exponential fit of that spread said 1.5 s where 6.4 s were left at
-    // step 3 100 (docs/performance.md, "Time left"). From step 2 000 of the stage to 1 000
+    // step 3 100 (docs/notes/fire-schedule.md). From step 2 000 of the stage to 1 000
     // steps before its end, the estimate must be within -20 % and +50 % (plus 0.5 s) of the
     // truth.
     SoftSphereParameters p;

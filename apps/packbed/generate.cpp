@@ -331,7 +331,7 @@ Command register_generate(CLI::App& parent) {
     app->add_flag("--no-analysis", o.no_analysis,
                   "only the spheres (particles.csv, particles.vtu) and summary.json with the void "
                   "fraction: no profiles, plots or analysis tables (a DEM start; 500 spheres in "
-                  "35-50 % less time, docs/performance.md)");
+                  "40-55 % less time, docs/performance.md)");
     app->add_flag("-q,--quiet", o.quiet, "no progress and no report on the terminal");
     app->fallthrough(); // --config belongs to the top-level app
     app->footer("Options may also come from a TOML file: packbed generate --config FILE.toml "

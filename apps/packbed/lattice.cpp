@@ -110,7 +110,7 @@ Command register_lattice(CLI::App& parent) {
         ->check(real_in(option_range::lattice_band_clearance));
     app->add_flag("--no-analysis", o.no_analysis,
                   "only the balls and their summary: no profiles, plots or analysis (a million "
-                  "balls: 4 s instead of 37 s, docs/performance.md)");
+                  "balls: 1.1 s instead of 5.9 s, docs/performance.md)");
     app->add_flag("-q,--quiet", o.quiet, "no report on the terminal");
     app->fallthrough();
     app->footer("Exit status: 0 success, 2 bad input.");

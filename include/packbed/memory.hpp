@@ -26,7 +26,7 @@ std::string memory_text(std::uint64_t bytes);
 void check_memory(std::string_view what, std::uint64_t bytes, std::string_view allowed);
 
 /// What a generation of `spheres` keeps at its largest (the bed, its neighbour list, the
-/// solver's per-sphere state, the staged CSV and VTU): measured 37 MiB at 1e5 spheres and 268
+/// solver's per-sphere state, the staged CSV and VTU): measured 36 MiB at 1e5 spheres and 257
 /// MiB at 1e6 (a = 20 and 50, docs/performance.md); estimated as 32 MiB + 400 bytes a sphere.
 /// Also a lattice's (95 MiB for 296 353 balls).
 std::uint64_t generation_memory(std::uint64_t spheres);

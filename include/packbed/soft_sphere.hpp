@@ -30,7 +30,7 @@ const std::vector<std::pair<std::string, UpdateOrder>>& update_orders();
 std::string to_string(UpdateOrder order);
 
 /// How the bed is relaxed. Both minimise the same energy (overlap springs, gravity, rigid
-/// floor, elastic wall) and end at the same overlap tolerance; docs/performance.md says when
+/// floor, elastic wall) and end at the same overlap tolerance; docs/generate.md says when
 /// to use which.
 enum class Solver {
     paper, ///< Salvat et al. (2005): eq. (4) iterated, Cg by eq. (7), mass-centre rule
@@ -112,7 +112,7 @@ struct SoftSphereParameters {
 
     /// The Verlet-list skin of each solver when none is given, Dp. Fire's 0.2 spends 11-14 %
     /// less time per step than 0.1 at 1e5 spheres (half the list builds for a few more pairs;
-    /// docs/performance.md, "Fourteenth session"). The paper's solver keeps 0.1: its in-place
+    /// docs/performance.md, "One step"). The paper's solver keeps 0.1: its in-place
     /// update's beds depend on the skin, and its tests pin the first implementation's bits.
     static constexpr double fire_skin = 0.2, paper_skin = 0.1;
     /// \return skin, or the solver's own when unset.

@@ -29,7 +29,7 @@ namespace packbed {
 /// One exception: the intermediate stage of the fire solver under its own schedule
 /// (fire_schedule). There q falls fast while the bed lands and then creeps down a slow, noisy
 /// tail that the rule ends where noise first takes q under 1, so a fit of q is up to half the
-/// stage too short mid-stage (docs/performance.md, "Time left"). That stage takes a nearly
+/// stage too short mid-stage (docs/notes/fire-schedule.md). That stage takes a nearly
 /// fixed number of steps at every width (typical_intermediate_steps), so until it has run that
 /// many the estimate is the steps still to go at the stage's own seconds per step; past them,
 /// the fit.
@@ -48,7 +48,7 @@ public:
     /// Steps of the fire solver's intermediate stage under fire_schedule: measured 7 500-9 200
     /// for beds of a = 20 and 30 (9 000 and 20 000 spheres, seeds 1-3), about 12 000 for a = 20,
     /// 1e4 spheres, seed 1, 5 300-10 800 for the layers of a = 20, 60 000 spheres, 4 700-8 800
-    /// for smaller beds (docs/performance.md, "Fourteenth session"; 9 500-10 200 with dt_max
+    /// for smaller beds (docs/notes/fire-schedule.md; 9 500-10 200 with dt_max
     /// 0.2): near the upper end, so that the estimate is too long for a small bed (by a
     /// fraction of a second) rather than too short for a large one.
     static constexpr std::uint64_t typical_intermediate_steps = 10'000;
@@ -98,7 +98,7 @@ public:
     std::optional<double> update(const Progress& progress, double seconds);
 
     /// A later layer's time over the bottom layer's: 1.7-2.7, 2.0 on average (a = 20, 60 000
-    /// spheres, seed 1, 2 threads; docs/performance.md, "Fourteenth session"; 2.1-2.8 with
+    /// spheres, seed 1, 2 threads; docs/notes/tall-beds.md; 2.1-2.8 with
     /// dt_max 0.2, whose longer creep weighed more in the taller parts).
     static constexpr double later_layer_cost = 2.0;
 

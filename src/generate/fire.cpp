@@ -59,7 +59,7 @@ constexpr double fire_f_alpha = 0.99;
 // for omega dt < 2 (here 1.47). 0.3 rather than Bitzek et al.'s 10 dt0 = 0.5: against 0.2 it
 // takes 27, 8 and 11 % fewer steps at a = 5, 10 and 20 (10 seeds each; 25 % on 60 000 spheres
 // in layers) with the same beds, while 0.38 made a = 20 beds denser by 0.002-0.003
-// (docs/performance.md, "Fourteenth session"; docs/validation.md).
+// (docs/notes/fire-schedule.md; docs/validation.md).
 constexpr double fire_dt_max = 0.3;
 constexpr double fire_dt0 = 0.05;
 // FIRE 2.0 (Guenole et al. 2020) keeps dt >= 0.02 dt_max, so that a run of uphill steps

@@ -360,7 +360,7 @@ struct SoftBed {
 private:
     void reset_order(); // order and slot the identity, scratch sized
     /// An empty Verlet list (built at the next step) that measures pairs by the minimum image
-    /// in a periodic cell. (A layer's part once got a list without it: docs/containers.md.)
+    /// in a periodic cell. (A layer's part once got a list without it: docs/notes/tall-beds.md.)
     void new_list() {
         list = NeighborList{};
         if (cell)

@@ -233,7 +233,7 @@ std::string stage_plots(OutputDirectory& out, const BedAnalysis& a, const Contai
     };
     // Two gnuplots at once: a PNG (cairo, compressed) costs four times an SVG, so one draws
     // the SVGs and the wall plots' PNGs, the other the other PNGs (0.15 s of a 500-sphere
-    // bed's command in one gnuplot; docs/performance.md, "Twelfth session").
+    // bed's command in one gnuplot; docs/notes/analysis.md).
     const auto& [svg, svg_terminal] = plot_terminals[0];
     const auto& [png, png_terminal] = plot_terminals[1];
     const std::string first = script + commands(head + walls + rest, svg, svg_terminal) +
