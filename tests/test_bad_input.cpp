@@ -1181,6 +1181,14 @@ INSTANTIATE_TEST_SUITE_P(
         exact("export two.csv --format stl --contacts shrink:inf",
               "packbed export: --contacts 'shrink:inf' is not allowed; allowed: none, shrink:F, "
               "enlarge:F, caps:H or bridges:D with F, H, D fractions of Dp in (0, 0.5)"),
+        // Numbers as every option reads them (from_chars: no sign, no space, no locale).
+        exact("export two.csv --format stl --contacts caps:+0.01",
+              "packbed export: --contacts 'caps:+0.01' is not allowed; allowed: none, shrink:F, "
+              "enlarge:F, caps:H or bridges:D with F, H, D fractions of Dp in (0, 0.5)"),
+        exact(std::vector<std::string>{"export", "two.csv", "--format", "stl", "--contacts",
+                                       "caps: 0.01"},
+              "packbed export: --contacts 'caps: 0.01' is not allowed; allowed: none, shrink:F, "
+              "enlarge:F, caps:H or bridges:D with F, H, D fractions of Dp in (0, 0.5)"),
         exact(std::vector<std::string>{"export", "two.csv", "--format", "stl", "--contacts", ""},
               "packbed export: --contacts '' is not allowed; allowed: none, shrink:F, "
               "enlarge:F, caps:H or bridges:D with F, H, D fractions of Dp in (0, 0.5)"),

@@ -20,6 +20,7 @@
 #include "packbed/pipeline.hpp"
 #include "packbed/read.hpp"
 #include "packbed/summary.hpp"
+#include "packbed/text.hpp"
 
 namespace packbed::cli {
 
@@ -69,7 +70,7 @@ int run_analyze(AnalyzeOptions& o) {
             read_options.format = value;
     o.placement.apply(read_options);
     const bool series = o.frames == "all";
-    if (const auto b = comma_numbers(o.band); b && b->size() == 2)
+    if (const auto b = parse_finite_list(o.band); b && b->size() == 2)
         o.analysis.band = Band{(*b)[0], (*b)[1]};
     // --container, then --container-radius, then the container summary.json records.
     std::optional<ParticleFile> read;
@@ -197,7 +198,7 @@ Command register_analyze(CLI::App& parent) {
                     "<= the bed's top), instead of --band-clearance")
         ->check(CLI::Validator(
             [](std::string& text) -> std::string {
-                const auto v = comma_numbers(text);
+                const auto v = parse_finite_list(text);
                 if (v && v->size() == 2 && (*v)[0] >= 0.0 && (*v)[0] < (*v)[1] &&
                     (*v)[1] <= limits::max_length)
                     return {};

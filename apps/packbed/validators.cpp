@@ -1,5 +1,4 @@
 #include <algorithm>
-#include <charconv>
 #include <cmath>
 #include <cstdlib>
 #include <string>
@@ -14,6 +13,7 @@
 #include "packbed/files.hpp"
 #include "packbed/limits.hpp"
 #include "packbed/read.hpp"
+#include "packbed/text.hpp"
 
 namespace packbed::cli {
 
@@ -21,12 +21,10 @@ CLI::Validator real_in(const NumberRange& range) {
     const std::string allowed = range.allowed();
     return CLI::Validator(
         [=](std::string& text) -> std::string {
-            double value = 0.0;
-            const char* end = text.data() + text.size();
-            const auto [ptr, ec] = std::from_chars(text.data(), end, value);
-            if (ec != std::errc() || ptr != end || !std::isfinite(value))
+            const auto value = parse_finite(text);
+            if (!value)
                 return fmt::format("'{}' is not allowed; allowed: {}", printable(text), allowed);
-            if (!range.holds(value))
+            if (!range.holds(*value))
                 return fmt::format("{} is not allowed; allowed: {}", text, allowed);
             return {};
         },
@@ -93,10 +91,8 @@ CLI::Validator frame_number() {
         "one before";
     return CLI::Validator(
         [allowed](std::string& text) -> std::string {
-            long long value = 0;
-            const char* end = text.data() + text.size();
-            const auto [ptr, ec] = std::from_chars(text.data(), end, value);
-            if (ec != std::errc() || ptr != end || value == 0)
+            const auto value = parse_whole<long long>(text);
+            if (!value || *value == 0)
                 return fmt::format("'{}' is not allowed; allowed: {}",
                                    printable(text.substr(0, 80)), allowed);
             return {};
@@ -110,7 +106,7 @@ CLI::Validator axis_position() {
                                             -limits::max_length, limits::max_length);
     return CLI::Validator(
         [allowed](std::string& text) -> std::string {
-            const auto v = comma_numbers(text);
+            const auto v = parse_finite_list(text);
             if (!v || v->size() != 2 || !(std::abs((*v)[0]) <= limits::max_length) ||
                 !(std::abs((*v)[1]) <= limits::max_length))
                 return fmt::format("'{}' is not allowed; allowed: {}",
@@ -124,7 +120,7 @@ CLI::Validator axis_position() {
 
 void InputPlacement::apply(ReadOptions& read) const {
     read.frame = frame;
-    if (const auto xy = comma_numbers(axis); xy && xy->size() == 2)
+    if (const auto xy = parse_finite_list(axis); xy && xy->size() == 2)
         read.axis = {(*xy)[0], (*xy)[1]};
     read.floor = floor;
 }

@@ -13,6 +13,7 @@
 #include "packbed/output.hpp"
 #include "packbed/pipeline.hpp"
 #include "packbed/read.hpp"
+#include "packbed/text.hpp"
 #include "packbed/voxel.hpp"
 
 namespace packbed::cli {
@@ -59,7 +60,7 @@ int run_voxelize(VoxelizeOptions& o) {
     const Container& container = *bed.container;
     std::optional<std::array<double, 6>> region;
     if (!o.region.empty()) {
-        const auto v = comma_numbers(o.region);
+        const auto v = parse_finite_list(o.region);
         if (!v || v->size() != 6)
             throw InvalidInput(fmt::format("--region '{}' is not allowed; allowed: XLOW,YLOW,ZLOW,"
                                            "XHIGH,YHIGH,ZHIGH (six numbers, file units)",

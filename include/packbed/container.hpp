@@ -594,10 +594,6 @@ private:
     Shape m_shape;
 };
 
-/// \return the comma-separated finite numbers of `text` ("1,2.5,-3"), or nothing when it is
-/// not exactly that (an empty item, a non-number, NaN or infinity).
-std::optional<std::vector<double>> comma_numbers(std::string_view text);
-
 /// A container as users write it, in length units, the one form every front end takes:
 /// `cylinder:D`, a tube of inner diameter D (the axis is the z axis, the floor z = 0);
 /// `box:LX,LY`, four flat walls at x = 0, LX and y = 0, LY; `annulus:D,DI`, the space between

@@ -11,6 +11,8 @@
 #include <string_view>
 #include <vector>
 
+#include "packbed/text.hpp"
+
 namespace packbed {
 
 /// \return `text` with every control character (bytes below 0x20 and 0x7f) written as an
@@ -39,9 +41,6 @@ std::ifstream open_regular_file(std::string_view input, const std::filesystem::p
 /// \throws InvalidInput when it is not a regular file or holds more than `limit` bytes
 std::string read_small_file(std::string_view input, const std::filesystem::path& path,
                             std::size_t limit);
-
-/// The words of `line` between runs of white space (no empty words).
-std::vector<std::string_view> split_spaces(std::string_view line);
 
 /// What read_line found.
 enum class LineRead {

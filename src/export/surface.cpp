@@ -17,6 +17,7 @@
 #include "packbed/error.hpp"
 #include "packbed/files.hpp"
 #include "packbed/neighbor_list.hpp"
+#include "packbed/text.hpp"
 #include "packbed/volume.hpp"
 #include "require.hpp"
 
@@ -188,8 +189,8 @@ const std::vector<std::pair<std::string, ContactTreatment>>& contact_treatments(
 Contacts parse_contacts(std::string_view text) {
     const std::string allowed = "none, shrink:F, enlarge:F, caps:H or bridges:D with F, H, D "
                                 "fractions of Dp in (0, 0.5)";
-    const auto colon = text.find(':');
-    const std::string_view name = text.substr(0, colon);
+    const KindSpec parts = split_kind(text);
+    const std::string_view name = parts.kind;
     Contacts c;
     bool known = false;
     for (const auto& [n, t] : contact_treatments())
@@ -198,18 +199,16 @@ Contacts parse_contacts(std::string_view text) {
             known = true;
         }
     const auto refuse = [&] {
-        return InvalidInput(
-            fmt::format("--contacts '{}' is not allowed; allowed: {}", text, allowed));
+        return InvalidInput(fmt::format("--contacts '{}' is not allowed; allowed: {}",
+                                        printable(text.substr(0, 80)), allowed));
     };
-    if (!known || (c.treatment == ContactTreatment::none) != (colon == std::string_view::npos))
+    if (!known || (c.treatment == ContactTreatment::none) != !parts.parameters)
         throw refuse();
     if (c.treatment != ContactTreatment::none) {
-        const std::string value(text.substr(colon + 1));
-        char* end = nullptr;
-        c.parameter = std::strtod(value.c_str(), &end);
-        if (value.empty() || end != value.c_str() + value.size() || !(c.parameter > 0.0) ||
-            !(c.parameter < 0.5))
+        const auto value = parse_finite(*parts.parameters);
+        if (!value || !(*value > 0.0) || !(*value < 0.5))
             throw refuse();
+        c.parameter = *value;
     }
     return c;
 }

@@ -14,7 +14,6 @@
 #include "packbed/lammps_engine.hpp"
 
 #include <algorithm>
-#include <charconv>
 #include <cmath>
 #include <fstream>
 #include <numbers>
@@ -30,6 +29,7 @@
 #include "packbed/io.hpp"
 #include "packbed/limits.hpp"
 #include "packbed/read.hpp"
+#include "packbed/text.hpp"
 #include "packbed/version.hpp"
 
 namespace packbed {
@@ -298,13 +298,12 @@ std::optional<StageRecord> stage_line(std::string_view line, double ck) {
     if (w.size() != 15 || w[0] != "PACKBED" || w[1] != "stage")
         return std::nullopt;
     const auto number = [&](std::size_t k) {
-        double value = 0.0;
-        const auto [end, ec] = std::from_chars(w[k].data(), w[k].data() + w[k].size(), value);
-        if (ec != std::errc() || end != w[k].data() + w[k].size() || !std::isfinite(value))
+        const auto value = parse_finite(w[k]);
+        if (!value)
             throw ConvergenceError(fmt::format("LAMMPS's log has a stage line that is not "
                                                "numbers: '{}'",
                                                printable(line.substr(0, 200))));
-        return value;
+        return *value;
     };
     // A count: a whole number from 0 to `largest` (a log edited or cut short may hold any
     // number; converting one beyond the integer's range would be undefined).
@@ -350,11 +349,10 @@ double wall_time(std::string_view text) {
         std::size_t end = text.find(':', start);
         if (end == std::string_view::npos)
             end = text.size();
-        unsigned long value = 0;
-        const auto [at, ec] = std::from_chars(text.data() + start, text.data() + end, value);
-        if (ec != std::errc() || at != text.data() + end || value > 1000000000ul)
+        const auto value = parse_whole<unsigned long>(text.substr(start, end - start));
+        if (!value || *value > 1000000000ul)
             return 0.0;
-        seconds = seconds * 60.0 + static_cast<double>(value);
+        seconds = seconds * 60.0 + static_cast<double>(*value);
         start = end + 1;
     }
     return parts == 3 ? seconds : 0.0;
@@ -517,7 +515,8 @@ SoftSphereResult lammps_result(const SoftSphereParameters& parameters,
         } else if (line.rfind("PACKBED done", 0) == 0) {
             done = true;
         } else if (line.rfind("Neighbor list builds = ", 0) == 0) {
-            result.neighbor_builds += std::strtoull(line.data() + 23, nullptr, 10);
+            result.neighbor_builds +=
+                parse_whole<std::uint64_t>(trim(std::string_view(line).substr(23))).value_or(0);
         } else if (line.rfind("Total wall time: ", 0) == 0) {
             result.seconds = wall_time(line.substr(17)); // LAMMPS's own, H:MM:SS
         }

@@ -15,6 +15,7 @@
 #include "packbed/limits.hpp"
 #include "packbed/memory.hpp"
 #include "packbed/neighbor_list.hpp"
+#include "packbed/text.hpp"
 
 namespace packbed {
 
@@ -450,10 +451,9 @@ LatticeRegion parse_lattice_region(std::string_view text) {
         fmt::format("allowed: box:LX,LY,LZ, cylinder:D,H, annulus:D,DI,H (DI < D) or "
                     "periodic:LX,LY,H with lengths > 0 and at most {:g}",
                     limits::max_length);
-    const std::size_t colon = text.find(':');
-    const std::string_view shape = text.substr(0, colon);
-    const auto values =
-        colon == std::string_view::npos ? std::nullopt : comma_numbers(text.substr(colon + 1));
+    const KindSpec parts = split_kind(text);
+    const std::string_view shape = parts.kind;
+    const auto values = parts.parameters ? parse_finite_list(*parts.parameters) : std::nullopt;
     auto positive = [&] {
         for (const double v : *values)
             if (!(v > 0.0 && v <= limits::max_length))
@@ -474,7 +474,7 @@ LatticeRegion parse_lattice_region(std::string_view text) {
 }
 
 Vec3 parse_lattice_origin(std::string_view text) {
-    const auto xyz = comma_numbers(text);
+    const auto xyz = parse_finite_list(text);
     if (!xyz || xyz->size() != 3)
         throw InvalidInput(
             fmt::format("--origin '{}' is not allowed; allowed: x,y,z (three finite numbers)",
@@ -488,13 +488,13 @@ std::vector<std::pair<char, double>> parse_rotations(std::string_view text) {
         const std::size_t comma = rest.find(',');
         const std::string_view item = rest.substr(0, comma);
         const auto angle =
-            item.size() > 2 && item[1] == ':' ? comma_numbers(item.substr(2)) : std::nullopt;
-        if (!angle || angle->size() != 1 || (item[0] != 'x' && item[0] != 'y' && item[0] != 'z'))
+            item.size() > 2 && item[1] == ':' ? parse_finite(item.substr(2)) : std::nullopt;
+        if (!angle || (item[0] != 'x' && item[0] != 'y' && item[0] != 'z'))
             throw InvalidInput(fmt::format("--rotate '{}' is not allowed; allowed: AXIS:DEGREES "
                                            "pairs separated by commas, AXIS x, y or z (e.g. "
                                            "z:30,x:10)",
                                            printable(text.substr(0, 80))));
-        rotations.emplace_back(item[0], angle->front());
+        rotations.emplace_back(item[0], *angle);
         rest = comma == std::string_view::npos ? std::string_view{} : rest.substr(comma + 1);
     }
     return rotations;

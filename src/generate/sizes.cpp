@@ -3,7 +3,6 @@
 #include <algorithm>
 #include <array>
 #include <bit>
-#include <charconv>
 #include <cmath>
 #include <initializer_list>
 #include <limits>
@@ -13,10 +12,11 @@
 
 #include <fmt/format.h>
 
+#include "generate/random.hpp"
 #include "packbed/error.hpp"
 #include "packbed/files.hpp"
 #include "packbed/limits.hpp"
-#include "generate/random.hpp"
+#include "packbed/text.hpp"
 
 namespace packbed {
 
@@ -280,33 +280,6 @@ std::string allowed_names() {
 // ---------------------------------------------------------------------------------------------
 // Parsing.
 
-std::string_view trim(std::string_view s) {
-    const auto first = s.find_first_not_of(" \t\r");
-    if (first == std::string_view::npos)
-        return {};
-    return s.substr(first, s.find_last_not_of(" \t\r") - first + 1);
-}
-
-std::vector<std::string_view> split(std::string_view text, char separator) {
-    std::vector<std::string_view> parts;
-    for (std::size_t start = 0;;) {
-        const auto end = text.find(separator, start);
-        parts.push_back(text.substr(start, end == std::string_view::npos ? end : end - start));
-        if (end == std::string_view::npos)
-            return parts;
-        start = end + 1;
-    }
-}
-
-/// \return the finite number that is the whole of `text`, or nothing.
-std::optional<double> number(std::string_view text) {
-    double value = 0.0;
-    const auto [ptr, ec] = std::from_chars(text.data(), text.data() + text.size(), value);
-    if (ec != std::errc() || ptr != text.data() + text.size() || !std::isfinite(value))
-        return std::nullopt;
-    return value;
-}
-
 bool in_diameter_range(double d) {
     return d >= limits::min_diameter && d <= limits::max_diameter;
 }
@@ -321,7 +294,7 @@ std::vector<double> parameters(std::string_view spec, std::string_view text, Siz
                                std::initializer_list<std::size_t> counts) {
     std::vector<double> values;
     for (const auto item : split(text, ',')) {
-        const auto v = number(item);
+        const auto v = parse_finite(item);
         if (!v)
             refuse(spec, fmt::format("'{}' is not a number", printable(item.substr(0, 40))),
                    allowed_for(kind));
@@ -356,7 +329,7 @@ SizeDistribution parse_discrete(std::string_view spec, std::string_view text) {
         if (parts.size() != 2)
             refuse(spec, fmt::format("'{}' is not D:F", printable(item.substr(0, 40))),
                    allowed_for(kind));
-        const auto d = number(parts[0]), f = number(parts[1]);
+        const auto d = parse_finite(parts[0]), f = parse_finite(parts[1]);
         if (!d || !f)
             refuse(spec,
                    fmt::format("'{}' is not a number",
@@ -529,7 +502,7 @@ SizeDistribution parse_file(std::string_view spec, std::string_view path_text) {
                    allowed_for(kind));
         std::array<double, 2> values{};
         for (std::size_t i = 0; i < 2; ++i) {
-            const auto v = number(trim(fields[i]));
+            const auto v = parse_finite(trim(fields[i]));
             if (!v)
                 refuse(spec,
                        at(number_of_line, fmt::format("'{}' is not a number",
@@ -659,21 +632,21 @@ std::string to_string(FractionBasis basis) {
 // Parsing.
 
 SizeDistribution parse_sizes(std::string_view spec, double mono_diameter) {
-    const auto colon = spec.find(':');
-    const std::string_view name = spec.substr(0, colon);
-    const std::string_view rest =
-        colon == std::string_view::npos ? std::string_view{} : spec.substr(colon + 1);
+    const KindSpec parts = split_kind(spec);
+    const std::string_view name = parts.kind;
+    const std::optional<std::string_view> parameters = parts.parameters;
+    const std::string_view rest = parameters.value_or(std::string_view{});
     const auto& kinds = size_kinds();
     const auto entry =
         std::find_if(kinds.begin(), kinds.end(), [&](const auto& k) { return k.first == name; });
     if (entry == kinds.end())
         refuse(spec, fmt::format("unknown distribution '{}'", shown(name)), allowed_names());
     const SizeKind kind = entry->second;
-    if (kind != SizeKind::mono && colon == std::string_view::npos)
+    if (kind != SizeKind::mono && !parameters)
         refuse(spec, fmt::format("{} needs its parameters", name), allowed_for(kind));
     switch (kind) {
     case SizeKind::mono: {
-        if (colon != std::string_view::npos)
+        if (parameters)
             refuse(spec, "mono takes no parameters (its diameter is --diameter)",
                    allowed_for(kind));
         if (!in_diameter_range(mono_diameter))

@@ -1,7 +1,6 @@
 #include "packbed/container.hpp"
 
 #include <algorithm>
-#include <charconv>
 #include <cmath>
 #include <numbers>
 #include <type_traits>
@@ -9,6 +8,7 @@
 #include <fmt/format.h>
 
 #include "packbed/limits.hpp"
+#include "packbed/text.hpp"
 #include "packbed/volume.hpp"
 
 namespace packbed {
@@ -273,23 +273,6 @@ double Container::sticks_out(const Vec3& c, double r) const {
     return ask(m_shape, [&](const auto& s) { return s.sticks_out(c, r); });
 }
 
-std::optional<std::vector<double>> comma_numbers(std::string_view text) {
-    std::vector<double> values;
-    while (true) {
-        const std::size_t comma = text.find(',');
-        const std::string_view item = text.substr(0, comma);
-        double value = 0.0;
-        const auto [ptr, ec] = std::from_chars(item.data(), item.data() + item.size(), value);
-        if (item.empty() || ec != std::errc() || ptr != item.data() + item.size() ||
-            !std::isfinite(value))
-            return std::nullopt;
-        values.push_back(value);
-        if (comma == std::string_view::npos)
-            return values;
-        text.remove_prefix(comma + 1);
-    }
-}
-
 Container ContainerSpec::container() const {
     if (shape == "box")
         return Box(lx, ly);
@@ -301,12 +284,12 @@ Container ContainerSpec::container() const {
 }
 
 std::optional<ContainerSpec> parse_container(std::string_view text) {
-    const std::size_t colon = text.find(':');
-    if (colon == std::string_view::npos)
+    const KindSpec parts = split_kind(text);
+    const std::string_view shape = parts.kind;
+    if (!parts.parameters)
         return std::nullopt;
-    const std::string_view shape = text.substr(0, colon);
     const auto known = std::find(all_shapes.begin(), all_shapes.end(), shape);
-    const auto v = comma_numbers(text.substr(colon + 1));
+    const auto v = parse_finite_list(*parts.parameters);
     if (known == all_shapes.end() || !v || v->size() != (shape == "cylinder" ? 1u : 2u))
         return std::nullopt;
     // Every side within max_length of the origin, as the analysis allows.

@@ -134,21 +134,6 @@ std::string read_small_file(std::string_view input, const std::filesystem::path&
     return text;
 }
 
-std::vector<std::string_view> split_spaces(std::string_view line) {
-    std::vector<std::string_view> fields;
-    std::size_t i = 0;
-    while (i < line.size()) {
-        while (i < line.size() && std::isspace(static_cast<unsigned char>(line[i])))
-            ++i;
-        const std::size_t start = i;
-        while (i < line.size() && !std::isspace(static_cast<unsigned char>(line[i])))
-            ++i;
-        if (i > start)
-            fields.push_back(line.substr(start, i - start));
-    }
-    return fields;
-}
-
 LineRead read_line(std::istream& input, std::string& line, std::size_t limit) {
     line.clear();
     std::streambuf* buffer = input.rdbuf();

@@ -10,6 +10,7 @@
 #include <fmt/format.h>
 
 #include "packbed/error.hpp"
+#include "packbed/text.hpp"
 
 namespace packbed {
 
@@ -20,12 +21,12 @@ std::optional<std::uint64_t> proc_kilobytes(const char* path, std::string_view k
     std::ifstream in(path);
     std::string line;
     while (std::getline(in, line))
-        if (line.starts_with(key)) {
-            try {
-                return std::stoull(line.substr(key.size())) * 1024;
-            } catch (const std::exception&) {
+        if (line.starts_with(key)) { // "MemAvailable:   1234 kB"
+            const auto words = split_spaces(std::string_view(line).substr(key.size()));
+            const auto kb = words.empty() ? std::nullopt : parse_whole<std::uint64_t>(words[0]);
+            if (!kb || *kb > std::numeric_limits<std::uint64_t>::max() / 1024)
                 return std::nullopt;
-            }
+            return *kb * 1024;
         }
     return std::nullopt;
 }
@@ -34,13 +35,9 @@ std::optional<std::uint64_t> proc_kilobytes(const char* path, std::string_view k
 std::optional<std::uint64_t> file_number(const std::string& path) {
     std::ifstream in(path);
     std::string word;
-    if (!(in >> word) || word.empty() || word.find_first_not_of("0123456789") != std::string::npos)
+    if (!(in >> word))
         return std::nullopt;
-    try {
-        return std::stoull(word);
-    } catch (const std::exception&) {
-        return std::nullopt;
-    }
+    return parse_whole<std::uint64_t>(word);
 }
 
 /// What this process's cgroup leaves: v2 (the unified hierarchy) or v1's memory controller.

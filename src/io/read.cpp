@@ -5,7 +5,6 @@
 #include <algorithm>
 #include <array>
 #include <cctype>
-#include <charconv>
 #include <cmath>
 #include <fstream>
 #include <sstream>
@@ -20,20 +19,13 @@
 #include "packbed/limits.hpp"
 #include "packbed/memory.hpp"
 #include "packbed/output.hpp"
+#include "packbed/text.hpp"
 
 namespace packbed {
 
 namespace {
 
 namespace fs = std::filesystem;
-
-std::string_view trim(std::string_view s) {
-    while (!s.empty() && std::isspace(static_cast<unsigned char>(s.front())))
-        s.remove_prefix(1);
-    while (!s.empty() && std::isspace(static_cast<unsigned char>(s.back())))
-        s.remove_suffix(1);
-    return s;
-}
 
 std::string lower(std::string_view s) {
     std::string out(s);
@@ -49,9 +41,7 @@ std::string_view before_comment(std::string_view line) {
 
 /// Whether `text` is wholly a number (from_chars' syntax).
 bool is_number(std::string_view text) {
-    double value = 0.0;
-    const auto [ptr, ec] = std::from_chars(text.data(), text.data() + text.size(), value);
-    return !text.empty() && ec == std::errc() && ptr == text.data() + text.size();
+    return parse_number(text).has_value();
 }
 
 /// The fields of one line of a delimited table. `sep` ' ' splits at runs of white space;
@@ -328,19 +318,14 @@ public:
 
     /// A field as a finite double, or a message naming the column and the value.
     double number(std::string_view field, std::string_view column) const {
-        double value = 0.0;
-        const char* end = field.data() + field.size();
-        const auto [ptr, ec] = std::from_chars(field.data(), end, value);
+        const auto value = parse_number(field);
+        if (value && std::isfinite(*value))
+            return *value;
         const std::string shown_column = printable(column.substr(0, 40));
         if (field.empty())
             fail(fmt::format("column '{}' is empty; a number is needed", shown_column));
-        if (ec != std::errc() || ptr != end)
-            fail(fmt::format("column '{}' value '{}' is not a number", shown_column,
-                             printable(field.substr(0, 40))));
-        if (!std::isfinite(value))
-            fail(fmt::format("column '{}' value '{}' is not a finite number", shown_column,
-                             printable(field.substr(0, 40))));
-        return value;
+        fail(fmt::format("column '{}' value '{}' is not {}", shown_column,
+                         printable(field.substr(0, 40)), value ? "a finite number" : "a number"));
     }
 
     /// A count of spheres declared by the file as a size, refused beyond limits::max_spheres.
@@ -586,10 +571,8 @@ BoxMap box_map(const DumpBox& box, const LineReader& in) {
                                    f.size(), triclinic ? " xy xz yz" : "",
                                    triclinic ? "lo hi tilt" : "lo hi"));
         for (std::size_t i = 0; i < want; ++i) {
-            double value = 0.0;
-            const auto [ptr, ec] = std::from_chars(f[i].data(), f[i].data() + f[i].size(), value);
-            if (ec != std::errc() || ptr != f[i].data() + f[i].size() ||
-                !(std::abs(value) <= limits::max_length))
+            const double value = parse_number(f[i]).value_or(std::nan(""));
+            if (!(std::abs(value) <= limits::max_length))
                 in.fail_at(box.lines[static_cast<std::size_t>(k)],
                            fmt::format("box bound '{}' is not allowed; allowed: a number from "
                                        "{:g} to {:g}",
@@ -614,15 +597,6 @@ BoxMap box_map(const DumpBox& box, const LineReader& in) {
     return {{xlo, ylo, zlo}, {xhi - xlo, 0.0, 0.0}, {xy, yhi - ylo, 0.0}, {xz, yz, zhi - zlo}};
 }
 
-/// A whole number (a dump's TIMESTEP).
-std::optional<long long> whole_number(std::string_view text) {
-    long long value = 0;
-    const auto [ptr, ec] = std::from_chars(text.data(), text.data() + text.size(), value);
-    if (text.empty() || ec != std::errc() || ptr != text.data() + text.size())
-        return std::nullopt;
-    return value;
-}
-
 /// LAMMPS/LIGGGHTS text dump: one frame per ITEM: ATOMS section.
 void read_lammps_dump(LineReader& in, const ReadOptions& options, const FrameSink& sink) {
     std::string line;
@@ -641,7 +615,7 @@ void read_lammps_dump(LineReader& in, const ReadOptions& options, const FrameSin
         if (item == "TIMESTEP") {
             if (!in.next(line))
                 in.fail_file("ends after ITEM: TIMESTEP");
-            timestep = whole_number(trim(line));
+            timestep = parse_whole<long long>(trim(line)); // a dump's TIMESTEP
             if (!timestep || *timestep < 0)
                 in.fail(fmt::format("ITEM: TIMESTEP '{}' is not allowed; allowed: a whole number "
                                     ">= 0",

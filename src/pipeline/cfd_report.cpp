@@ -1,6 +1,5 @@
 // `packbed cfd-report`: the pressure gradient of a run OpenFOAM case next to the correlations
 // (pipeline.hpp).
-#include <charconv>
 #include <cmath>
 #include <filesystem>
 #include <map>
@@ -19,6 +18,7 @@
 #include "packbed/limits.hpp"
 #include "packbed/pipeline.hpp"
 #include "packbed/summary.hpp"
+#include "packbed/text.hpp"
 
 namespace packbed {
 
@@ -34,15 +34,6 @@ std::string shown(const fs::path& path) {
     return printable(path.native());
 }
 
-/// A finite number that is all of `text` (from_chars: no locale, no leading '+'), or nothing.
-std::optional<double> number(const std::string& text) {
-    double v = 0.0;
-    const auto [end, error] = std::from_chars(text.data(), text.data() + text.size(), v);
-    if (error == std::errc() && end == text.data() + text.size() && std::isfinite(v))
-        return v;
-    return std::nullopt;
-}
-
 /// The last row of a function object's table, postProcessing/NAME/TIME/surfaceFieldValue.dat
 /// (the latest start time when the run was restarted), as column name -> value; the column
 /// names are those of its last header line ("# Time <tab> area <tab> areaAverage(p)").
@@ -53,7 +44,7 @@ std::map<std::string, double> last_row(const fs::path& case_dir, const std::stri
     fs::path table;
     if (fs::is_directory(folder, error))
         for (const auto& entry : fs::directory_iterator(folder, error)) {
-            const auto t = number(entry.path().filename().string());
+            const auto t = parse_finite(entry.path().filename().string());
             if (t && (!latest || *t > *latest) &&
                 fs::is_regular_file(entry.path() / "surfaceFieldValue.dat", error)) {
                 latest = t;
@@ -91,7 +82,7 @@ std::map<std::string, double> last_row(const fs::path& case_dir, const std::stri
                                        shown(case_dir), shown(table)));
     std::map<std::string, double> out;
     for (std::size_t k = 0; k < row.size(); ++k) {
-        const auto v = number(row[k]);
+        const auto v = parse_finite(row[k]);
         if (!v)
             throw InvalidInput(fmt::format("CASE {}: {}: '{}' in column {} is not a finite number",
                                            shown(case_dir), shown(table), printable(row[k]),
@@ -135,7 +126,7 @@ SolverLog read_solver_log(const fs::path& case_dir) {
             continue; // a long line is nothing we look for
         if (line.starts_with("Time = ")) {
             solved.clear();
-            if (const auto t = number(line.substr(7)))
+            if (const auto t = parse_finite(line.substr(7)))
                 out.iterations = std::lround(*t);
         } else if (line.find("SIMPLE solution converged") != std::string::npos) {
             out.converged = true;
@@ -149,7 +140,7 @@ SolverLog read_solver_log(const fs::path& case_dir) {
             if (!solved.insert(field).second)
                 continue;
             const auto end = line.find(',', equals);
-            if (const auto v = number(line.substr(equals + 19, end - equals - 19)))
+            if (const auto v = parse_finite(line.substr(equals + 19, end - equals - 19)))
                 out.residuals[field] = *v;
         }
     }
@@ -175,7 +166,7 @@ std::optional<double> mesh_volume(const fs::path& case_dir) {
         std::string value(fields.front());
         if (value.back() == '.')
             value.pop_back();
-        out = number(value);
+        out = parse_finite(value);
     }
     return out;
 }

@@ -24,6 +24,7 @@
 #include "packbed/pipeline.hpp"
 #include "packbed/summary.hpp"
 #include "packbed/surface.hpp"
+#include "packbed/text.hpp"
 #include "packbed/volume.hpp"
 
 namespace packbed {
@@ -49,7 +50,7 @@ const std::vector<std::pair<std::string, ExportFormat>>& export_formats() {
 }
 
 AxisBox parse_box(const std::string& text) {
-    const auto v = comma_numbers(text);
+    const auto v = parse_finite_list(text);
     if (!v || v->size() != 6 || !((*v)[0] < (*v)[1] && (*v)[2] < (*v)[3] && (*v)[4] < (*v)[5]))
         throw InvalidInput(
             fmt::format("--box '{}' is not allowed; allowed: xlo,xhi,ylo,yhi,zlo,zhi "

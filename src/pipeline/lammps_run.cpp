@@ -1,5 +1,4 @@
 // generate --engine lammps, --write-only and import-lammps (pipeline.hpp, docs/lammps.md).
-#include <charconv>
 #include <chrono>
 #include <cmath>
 #include <fstream>
@@ -15,6 +14,7 @@
 #include "packbed/limits.hpp"
 #include "packbed/pipeline.hpp"
 #include "packbed/summary.hpp"
+#include "packbed/text.hpp"
 #include "packbed/version.hpp"
 
 namespace packbed {
@@ -152,9 +152,10 @@ private:
             return;
         double v[7];
         for (std::size_t k = 0; k < 7; ++k) {
-            const auto [end, ec] = std::from_chars(w[k].data(), w[k].data() + w[k].size(), v[k]);
-            if (ec != std::errc() || end != w[k].data() + w[k].size() || !std::isfinite(v[k]))
+            const auto value = parse_finite(w[k]);
+            if (!value)
                 return;
+            v[k] = *value;
         }
         if (!(v[0] >= 0.0 && v[0] <= 9007199254740992.0)) // a step, to convert without UB
             return;

@@ -2,7 +2,6 @@
 #include "packbed/option_ranges.hpp"
 
 #include <algorithm>
-#include <charconv>
 #include <cmath>
 #include <vector>
 
@@ -12,6 +11,7 @@
 #include "packbed/container.hpp"
 #include "packbed/error.hpp"
 #include "packbed/files.hpp"
+#include "packbed/text.hpp"
 
 namespace packbed {
 
@@ -47,13 +47,11 @@ std::uint64_t check_option(std::string_view option, long long value, const Whole
 }
 
 std::string whole_problem(std::string_view text, const WholeRange& range) {
-    std::uint64_t value = 0;
-    const char* end = text.data() + text.size();
-    const auto [ptr, ec] = std::from_chars(text.data(), end, value);
-    if (ec != std::errc() || ptr != end || text.empty())
+    const auto value = parse_whole<std::uint64_t>(text);
+    if (!value)
         return fmt::format("'{}' is not allowed; allowed: {}", printable(text.substr(0, 80)),
                            range.allowed());
-    if (value < range.low || value > range.high)
+    if (*value < range.low || *value > range.high)
         return fmt::format("{} is not allowed; allowed: {}", text, range.allowed());
     return {};
 }
@@ -61,9 +59,7 @@ std::string whole_problem(std::string_view text, const WholeRange& range) {
 std::uint64_t check_whole(std::string_view option, std::string_view text, const WholeRange& range) {
     if (const std::string problem = whole_problem(text, range); !problem.empty())
         throw InvalidInput(fmt::format("--{}: {}", option, problem));
-    std::uint64_t value = 0;
-    std::from_chars(text.data(), text.data() + text.size(), value);
-    return value;
+    return *parse_whole<std::uint64_t>(text);
 }
 
 std::string allowed_containers(std::span<const std::string_view> shapes) {
