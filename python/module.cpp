@@ -89,20 +89,6 @@ void warn(const std::vector<std::string>& warnings) {
             throw py::error_already_set();
 }
 
-/// The value of a named choice (update order, solver, ...), or InvalidInput naming them all.
-template <class T>
-T choice(std::string_view option, const std::string& name,
-         const std::vector<std::pair<std::string, T>>& choices) {
-    std::string names;
-    for (const auto& [n, value] : choices) {
-        if (n == name)
-            return value;
-        names += (names.empty() ? "" : ", ") + n;
-    }
-    throw InvalidInput(fmt::format("--{}: '{}' is not allowed; allowed: {}", option,
-                                   printable(name.substr(0, 80)), names));
-}
-
 /// Run `work` without the GIL, checking for Ctrl-C (Python's SIGINT flag) from the calling
 /// thread through `control.should_stop`, which the library calls every mc_period iterations.
 /// A signal turns into KeyboardInterrupt; a progress callback's exception goes through.
@@ -220,19 +206,19 @@ Bed generate(std::optional<double> aspect_ratio, const std::optional<std::string
         static_cast<std::uint32_t>(check_option("mc-window", mc_window, range::mc_window));
     if (mc_tolerance)
         p.mc_tolerance = check_option("mc-tolerance", *mc_tolerance, range::mc_tolerance);
-    p.update = choice("update", update, update_orders());
-    p.solver = choice("solver", solver, solvers());
+    p.update = update_orders().at(update);
+    p.solver = solvers().at(solver);
     if (skin)
         p.skin = check_option("skin", *skin, range::skin);
     p.layer_height = check_option("layer-height", layer_height, range::layer_height);
     if (max_iterations)
         p.max_iterations = check_option("max-iterations", *max_iterations, range::max_iterations);
     request.sizes = sizes;
-    request.fractions = choice("fractions", fractions, fraction_bases());
+    request.fractions = fraction_bases().at(fractions);
     request.container = container.value_or("");
     request.checkpoint = checkpoint ? checkpoint->string() : std::string();
     request.band_clearance = check_option("band-clearance", band_clearance, range::band_clearance);
-    request.engine = choice("engine", engine, engines());
+    request.engine = engines().at(engine);
     LammpsLauncher launcher;
     launcher.ranks = static_cast<std::uint32_t>(check_option("ranks", ranks, range::lammps_ranks));
     launcher.mpi_command = mpi_command.value_or("");
@@ -292,13 +278,7 @@ ReadOptions read_options_of(const std::filesystem::path& path, const std::string
                             const std::optional<std::string>& container, double outside_tolerance) {
     check_path("path", path);
     ReadOptions options;
-    options.format = choice("format", format == "auto" ? "auto" : format, [] {
-        std::vector<std::pair<std::string, std::optional<ParticleFormat>>> formats{
-            {"auto", std::nullopt}};
-        for (const auto& [name, value] : particle_formats())
-            formats.emplace_back(name, value);
-        return formats;
-    }());
+    options.format = particle_formats().at(format);
     if (frame == 0)
         throw InvalidInput("--frame: 0 is not allowed; allowed: a whole number other than 0: 1 "
                            "the first frame, -1 the last");
@@ -504,15 +484,13 @@ Bed lattice(const std::string& type, const std::string& region, double diameter,
             const std::string& rotate, double band_clearance, bool analysis,
             const std::optional<std::filesystem::path>& out, bool force) {
     LatticeParameters p;
-    p.type = choice("type", type, lattice_types());
+    p.type = lattice_types().at(type);
     p.region = parse_lattice_region(region);
     p.diameter = check_option("diameter", diameter, option_range::diameter);
     check_option("band-clearance", band_clearance, option_range::lattice_band_clearance);
     if (origin)
         p.origin = parse_lattice_origin(*origin);
-    p.keep = choice("keep", keep,
-                    std::vector<std::pair<std::string, LatticeKeep>>{
-                        {"whole", LatticeKeep::whole}, {"centres", LatticeKeep::centres}});
+    p.keep = lattice_keeps().at(keep);
     p.rotations = parse_rotations(rotate);
     p.validate();
     std::optional<OutputDirectory> directory;

@@ -846,7 +846,8 @@ TEST(ReadParticles, FormatRegistryAndDetection) {
     std::vector<std::string> names;
     for (const auto& [name, format] : particle_formats())
         names.push_back(name);
-    EXPECT_EQ(names, (std::vector<std::string>{"csv", "xyz", "lammps-dump", "lammps-data"}));
+    EXPECT_EQ(names,
+              (std::vector<std::string>{"auto", "csv", "xyz", "lammps-dump", "lammps-data"}));
     EXPECT_EQ(detect_particle_format(write("a.data", "")), ParticleFormat::lammps_data);
     EXPECT_EQ(detect_particle_format(write("a.dump.gz", "")), ParticleFormat::lammps_dump);
     EXPECT_EQ(detect_particle_format(write("a.XYZ.GZ", "")), ParticleFormat::xyz);

@@ -186,7 +186,7 @@ TEST(SizeRegistry, NamesRoundTrip) {
                                                "file"}));
     EXPECT_EQ(size_syntax(SizeKind::lognormal), "lognormal:MEDIAN,GSD[,MIN,MAX]");
     ASSERT_EQ(fraction_bases().size(), 2u);
-    EXPECT_EQ(fraction_bases()[0].first, "volume"); // the default first
+    EXPECT_EQ(fraction_bases().names().front(), "volume"); // the default first
     EXPECT_EQ(to_string(FractionBasis::number), "number");
 }
 

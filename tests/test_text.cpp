@@ -1,10 +1,21 @@
-// Text from users and files, read one way everywhere (include/packbed/text.hpp).
+// Text from users and files, read one way everywhere (include/packbed/text.hpp), and the
+// named choices (include/packbed/registry.hpp).
+#include <algorithm>
 #include <cmath>
 #include <cstdint>
 #include <limits>
 
 #include <gtest/gtest.h>
 
+#include "packbed/error.hpp"
+#include "packbed/lammps_engine.hpp"
+#include "packbed/lattice.hpp"
+#include "packbed/openfoam.hpp"
+#include "packbed/read.hpp"
+#include "packbed/registry.hpp"
+#include "packbed/sizes.hpp"
+#include "packbed/soft_sphere.hpp"
+#include "packbed/surface.hpp"
 #include "packbed/text.hpp"
 
 using namespace packbed;
@@ -66,4 +77,54 @@ TEST(Text, ASpecIsItsKindAndWhatFollowsTheFirstColon) {
     const KindSpec empty = split_kind("box:");
     EXPECT_EQ(empty.kind, "box");
     EXPECT_EQ(empty.parameters, "");
+}
+
+namespace {
+
+enum class Colour { red, green, blue };
+
+template <class T> void round_trips(const Registry<T>& registry) {
+    std::vector<std::string> seen;
+    for (const auto& [name, value] : registry) {
+        const auto found = registry.find(name);
+        ASSERT_TRUE(found.has_value()) << registry.option() << " " << name;
+        EXPECT_TRUE(*found == value) << registry.option() << " " << name;
+        EXPECT_EQ(registry.name(value), name) << registry.option();
+        EXPECT_EQ(std::count(seen.begin(), seen.end(), name), 0) << registry.option() << name;
+        seen.push_back(name);
+    }
+    EXPECT_EQ(registry.names(), seen);
+    EXPECT_FALSE(registry.find("").has_value());
+}
+
+} // namespace
+
+TEST(Registry, NamesValuesAndTheOneRefusal) {
+    const Registry<Colour> colours("colour", {{"red", Colour::red}, {"green", Colour::green}});
+    EXPECT_EQ(colours.at("green"), Colour::green);
+    EXPECT_EQ(colours.name(Colour::red), "red");
+    EXPECT_EQ(colours.name(Colour::blue), "unknown");
+    EXPECT_FALSE(colours.find("Red").has_value()); // names are exact
+    EXPECT_EQ(colours.allowed(), "red, green");
+    try {
+        colours.at("blue\n");
+        ADD_FAILURE() << "no refusal";
+    } catch (const InvalidInput& e) {
+        EXPECT_STREQ(e.what(), "--colour: 'blue\\n' is not allowed; allowed: red, green");
+    }
+}
+
+TEST(Registry, EveryNamedChoiceOfTheProductRoundTrips) {
+    round_trips(solvers());
+    round_trips(update_orders());
+    round_trips(engines());
+    round_trips(lattice_types());
+    round_trips(lattice_keeps());
+    round_trips(size_kinds());
+    round_trips(fraction_bases());
+    round_trips(contact_treatments());
+    round_trips(turbulence_models());
+    round_trips(particle_formats());
+    EXPECT_EQ(particle_formats().at("auto"), std::nullopt);
+    EXPECT_EQ(solvers().at("fire"), Solver::fire);
 }

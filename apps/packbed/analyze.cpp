@@ -65,9 +65,7 @@ int run_analyze(AnalyzeOptions& o) {
     ReadOptions read_options;
     if (o.diameter > 0.0)
         read_options.radius = 0.5 * o.diameter;
-    for (const auto& [name, value] : particle_formats())
-        if (name == o.format)
-            read_options.format = value;
+    read_options.format = particle_formats().at(o.format);
     o.placement.apply(read_options);
     const bool series = o.frames == "all";
     if (const auto b = parse_finite_list(o.band); b && b->size() == 2)
@@ -171,11 +169,8 @@ Command register_analyze(CLI::App& parent) {
                     "XYZ, a LAMMPS/LIGGGHTS dump or data file; also .gz")
         ->required()
         ->check(path_text());
-    std::vector<std::string> formats{"auto"};
-    for (const auto& entry : particle_formats())
-        formats.push_back(entry.first);
     app->add_option("--format", o.format, "file format; auto: from the extension or first line")
-        ->check(one_of(formats));
+        ->check(one_of(particle_formats().names()));
     CLI::Option* radius =
         app->add_option("-R,--container-radius", o.container_radius,
                         "cylinder radius Rt (file units), shorthand of --container "

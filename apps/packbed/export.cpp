@@ -122,13 +122,10 @@ Command register_export(CLI::App& parent) {
                     "openfoam: the particle Reynolds number rho u d / mu of the inlet's "
                     "superficial velocity u (unless --fluid-velocity)")
         ->check(real_in(option_range::reynolds));
-    std::vector<std::string> models;
-    for (const auto& entry : turbulence_models())
-        models.push_back(entry.first);
     app->add_option("--turbulence", o.request.turbulence,
                     "openfoam: laminar, or a RANS model with wall functions (kEpsilon, "
                     "kOmegaSST; 5 % turbulence intensity at the inlet)")
-        ->check(one_of(models));
+        ->check(one_of(turbulence_models().names()));
     app->add_option("--fluid-density", o.request.flow.fluid_density,
                     "openfoam: the fluid's density, kg/m^3 (default: water at 20 C)")
         ->check(real_in(option_range::density_kg_m3));

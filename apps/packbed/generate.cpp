@@ -107,22 +107,14 @@ int run_lammps(GenerateOptions& o, const PreparedGeneration& prepared) {
 int run_generate(GenerateOptions& o) {
     GenerateRequest request;
     request.params = o.params;
-    for (const auto& [name, value] : update_orders())
-        if (name == o.update)
-            request.params.update = value;
-    for (const auto& [name, value] : solvers())
-        if (name == o.solver)
-            request.params.solver = value;
-    for (const auto& [name, value] : fraction_bases())
-        if (name == o.fractions)
-            request.fractions = value;
+    request.params.update = update_orders().at(o.update);
+    request.params.solver = solvers().at(o.solver);
+    request.fractions = fraction_bases().at(o.fractions);
     request.sizes = o.sizes;
     request.container = o.container;
     request.checkpoint = o.checkpoint;
     request.band_clearance = o.band_clearance;
-    for (const auto& [name, value] : engines())
-        if (name == o.engine)
-            request.engine = value;
+    request.engine = engines().at(o.engine);
     const bool lammps_only = o.lammps.ranks != 1 || !o.lammps.mpi_command.empty() ||
                              o.lammps.lmp != "lmp" || !o.write_only.empty();
     if (request.engine != Engine::lammps && lammps_only)
@@ -232,13 +224,10 @@ Command register_generate(CLI::App& parent) {
                     fmt::format("the spheres' diameters (length units): {}; docs/sizes.md. "
                                 "With sizes, Dp is their Sauter mean d32",
                                 fmt::join(kinds, ", ")));
-    std::vector<std::string> bases;
-    for (const auto& entry : fraction_bases())
-        bases.push_back(entry.first);
     app->add_option("--fractions", o.fractions,
                     "what the fractions and densities of --sizes count: volume (mass, as sieve "
                     "analyses) or number")
-        ->check(one_of(bases));
+        ->check(one_of(fraction_bases().names()));
     add_output_directory(*app, o.out, o.force);
     app->add_option("--e0", p.e0, "initial overall void fraction for L0, eq. (6)")
         ->check(real_in(option_range::e0));
@@ -270,30 +259,21 @@ Command register_generate(CLI::App& parent) {
                                 "(default: {:g} with --solver fire, {:g} paper)",
                                 fire.mc_tolerance, paper.mc_tolerance))
         ->check(real_in(option_range::mc_tolerance));
-    std::vector<std::string> update_names;
-    for (const auto& entry : update_orders())
-        update_names.push_back(entry.first);
     app->add_option("--update", o.update,
                     "in-place: each sphere moves in turn (Gauss-Seidel); simultaneous: all move "
                     "from the old positions (Jacobi, uses --threads)")
-        ->check(one_of(update_names));
-    std::vector<std::string> solver_names;
-    for (const auto& entry : solvers())
-        solver_names.push_back(entry.first);
+        ->check(one_of(update_orders().names()));
     app->add_option("--solver", o.solver,
                     "paper: the iteration of Salvat et al. (2005); fire: the same energy "
                     "minimised with FIRE under its own settling schedule, the paper's beds in "
                     "far fewer iterations (docs/performance.md)")
-        ->check(one_of(solver_names));
-    std::vector<std::string> engine_names;
-    for (const auto& entry : engines())
-        engine_names.push_back(entry.first);
+        ->check(one_of(solvers().names()));
     CLI::Option* engine =
         app->add_option("--engine", o.engine,
                         "packbed: relax here (OpenMP threads); lammps: the fire solver's energy "
                         "and schedule run by LAMMPS (MPI ranks), the bed read back and checked "
                         "(docs/lammps.md)")
-            ->check(one_of(engine_names));
+            ->check(one_of(engines().names()));
     app->add_option("--ranks", o.lammps.ranks,
                     "--engine lammps: MPI ranks, `mpirun -np RANKS lmp` (1: lmp alone)")
         ->check(whole_in(option_range::lammps_ranks));

@@ -34,13 +34,11 @@ struct LatticeOptions {
 };
 
 int run_lattice(LatticeOptions& o) {
-    for (const auto& [name, value] : lattice_types())
-        if (name == o.type)
-            o.params.type = value;
+    o.params.type = lattice_types().at(o.type);
     o.params.region = parse_lattice_region(o.region);
     if (!o.origin.empty())
         o.params.origin = parse_lattice_origin(o.origin);
-    o.params.keep = o.keep == "centres" ? LatticeKeep::centres : LatticeKeep::whole;
+    o.params.keep = lattice_keeps().at(o.keep);
     o.params.rotations = parse_rotations(o.rotate);
     o.params.validate();
     // Every check before the work.
@@ -79,13 +77,10 @@ Command register_lattice(CLI::App& parent) {
         "lattice", "Fill a box or a cylinder with a regular packing of touching balls: "
                    "tetrahedral (diamond, Tsayger 2013), sc, bcc, fcc or hcp");
     app->option_defaults()->always_capture_default();
-    std::vector<std::string> type_names;
-    for (const auto& entry : lattice_types())
-        type_names.push_back(entry.first);
     app->add_option("-t,--type", o.type,
                     "diamond: coordination 4, porosity 0.660; sc: 6, 0.476; bcc: 8, 0.320; "
                     "fcc and hcp: 12, 0.260")
-        ->check(one_of(type_names));
+        ->check(one_of(lattice_types().names()));
     app->add_option("-d,--diameter", o.params.diameter, "ball diameter d; the unit of the outputs")
         ->check(real_in(option_range::diameter));
     app->add_option("-r,--region", o.region,
@@ -103,7 +98,7 @@ Command register_lattice(CLI::App& parent) {
     app->add_option("--keep", o.keep,
                     "whole: only balls wholly inside the region; centres: every ball whose "
                     "centre is inside")
-        ->check(one_of({"whole", "centres"}));
+        ->check(one_of(lattice_keeps().names()));
     add_output_directory(*app, o.out, o.force);
     app->add_option("--band-clearance", o.band_clearance,
                     "the analysis band starts and ends this far from floor and top, d")

@@ -46,9 +46,7 @@ int run_voxelize(VoxelizeOptions& o) {
     ReadOptions read_options;
     if (o.diameter > 0.0)
         read_options.radius = 0.5 * o.diameter;
-    for (const auto& [name, value] : particle_formats())
-        if (name == o.format)
-            read_options.format = value;
+    read_options.format = particle_formats().at(o.format);
     o.placement.apply(read_options);
     const BedInContainer bed =
         read_bed_in_container(path, read_options, o.container, 0.0, o.outside_tolerance);
@@ -103,11 +101,8 @@ Command register_voxelize(CLI::App& parent) {
                     "also .gz)")
         ->required()
         ->check(path_text());
-    std::vector<std::string> formats{"auto"};
-    for (const auto& entry : particle_formats())
-        formats.push_back(entry.first);
     app->add_option("--format", o.format, "file format; auto: from the extension or first line")
-        ->check(one_of(formats));
+        ->check(one_of(particle_formats().names()));
     add_container_option(*app, o.container, "file units; default: summary.json next to the file");
     app->add_option("--voxel-size", o.voxel_size, "the voxels' edge h (file units)")
         ->required()

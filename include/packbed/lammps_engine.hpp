@@ -22,7 +22,7 @@ enum class Engine {
 };
 
 /// The names users pick an engine by ("packbed", "lammps"): the one registry.
-const std::vector<std::pair<std::string, Engine>>& engines();
+const Registry<Engine>& engines();
 /// \return the name of an engine in engines().
 std::string to_string(Engine engine);
 

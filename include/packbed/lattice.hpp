@@ -13,6 +13,7 @@
 
 #include "packbed/container.hpp"
 #include "packbed/packing.hpp"
+#include "packbed/registry.hpp"
 #include "packbed/vec3.hpp"
 
 namespace packbed {
@@ -27,7 +28,7 @@ enum class LatticeType {
 };
 
 /// The names users pick a lattice by ("diamond", "sc", "bcc", "fcc", "hcp"): the one registry.
-const std::vector<std::pair<std::string, LatticeType>>& lattice_types();
+const Registry<LatticeType>& lattice_types();
 /// \return the name of a lattice type in lattice_types().
 std::string to_string(LatticeType type);
 
@@ -96,6 +97,9 @@ enum class LatticeKeep {
              ///< exactly are kept)
     centres, ///< every ball whose centre is inside the region
 };
+
+/// The names users pick by ("whole", "centres"; `--keep`): the one registry.
+const Registry<LatticeKeep>& lattice_keeps();
 
 /// Everything `fill_lattice` needs. Plain value type; lengths in output units.
 struct LatticeParameters {

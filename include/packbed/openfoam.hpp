@@ -23,7 +23,7 @@ struct OpenFoamMeshOptions {
 enum class Turbulence { laminar, k_epsilon, k_omega_sst };
 
 /// The names --turbulence takes, as OpenFOAM names the models: laminar, kEpsilon, kOmegaSST.
-const std::vector<std::pair<std::string, Turbulence>>& turbulence_models();
+const Registry<Turbulence>& turbulence_models();
 
 /// The flow of the runnable case (simpleFoam, steady, incompressible), in SI units: the case
 /// is meshed in the bed's units and Allrun scales it to metres (transformPoints) before the

@@ -18,6 +18,7 @@
 #include "packbed/container.hpp"
 #include "packbed/limits.hpp"
 #include "packbed/packing.hpp"
+#include "packbed/registry.hpp"
 
 namespace packbed {
 
@@ -45,9 +46,9 @@ enum class ParticleFormat {
     lammps_data,
 };
 
-/// The names users pick a format by ("csv", "xyz", "lammps-dump", "lammps-data"): the one
-/// registry.
-const std::vector<std::pair<std::string, ParticleFormat>>& particle_formats();
+/// The names users pick a format by ("auto": from the extension or the first line, "csv",
+/// "xyz", "lammps-dump", "lammps-data"): the one registry.
+const Registry<std::optional<ParticleFormat>>& particle_formats();
 
 /// What a file does not say itself, and which part of it to read.
 struct ReadOptions {

@@ -16,6 +16,8 @@
 #include <utility>
 #include <vector>
 
+#include "packbed/registry.hpp"
+
 namespace packbed {
 
 /// The largest over the smallest diameter a distribution may have: what the solvers support
@@ -42,7 +44,7 @@ enum class SizeKind {
 
 /// The names users pick a size distribution by ("mono", "discrete", "uniform", "normal",
 /// "lognormal", "file"): the one registry.
-const std::vector<std::pair<std::string, SizeKind>>& size_kinds();
+const Registry<SizeKind>& size_kinds();
 /// \return the name of a kind in size_kinds().
 std::string to_string(SizeKind kind);
 /// \return how a spec of `kind` is written, e.g. "uniform:MIN,MAX" (for messages and help).
@@ -56,7 +58,7 @@ enum class FractionBasis {
 };
 
 /// The names users pick a basis by ("volume", "number"; `--fractions`): the one registry.
-const std::vector<std::pair<std::string, FractionBasis>>& fraction_bases();
+const Registry<FractionBasis>& fraction_bases();
 /// \return the name of a basis in fraction_bases().
 std::string to_string(FractionBasis basis);
 

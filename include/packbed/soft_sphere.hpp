@@ -14,6 +14,7 @@
 
 #include "packbed/container.hpp"
 #include "packbed/packing.hpp"
+#include "packbed/registry.hpp"
 
 namespace packbed {
 
@@ -25,7 +26,7 @@ enum class UpdateOrder {
 };
 
 /// The names users pick an update order by ("in-place", "simultaneous"): the one registry.
-const std::vector<std::pair<std::string, UpdateOrder>>& update_orders();
+const Registry<UpdateOrder>& update_orders();
 /// \return the name of an update order in update_orders().
 std::string to_string(UpdateOrder order);
 
@@ -38,7 +39,7 @@ enum class Solver {
 };
 
 /// The names users pick a solver by ("paper", "fire"): the one registry.
-const std::vector<std::pair<std::string, Solver>>& solvers();
+const Registry<Solver>& solvers();
 /// \return the name of a solver in solvers().
 std::string to_string(Solver solver);
 

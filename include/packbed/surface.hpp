@@ -15,6 +15,7 @@
 
 #include "packbed/container.hpp"
 #include "packbed/packing.hpp"
+#include "packbed/registry.hpp"
 #include "packbed/vec3.hpp"
 
 namespace packbed {
@@ -87,7 +88,7 @@ struct Contacts {
 
 /// The names users pick a treatment by ("none", "shrink", "enlarge", "caps", "bridges"): the
 /// one registry.
-const std::vector<std::pair<std::string, ContactTreatment>>& contact_treatments();
+const Registry<ContactTreatment>& contact_treatments();
 
 /// Parse "none", "shrink:F", "enlarge:F", "caps:H" or "bridges:D" (parameter in (0, 0.5)).
 /// \throws InvalidInput naming the text and what is allowed

@@ -271,10 +271,7 @@ Background background(const Box& box, double height, double cell,
 
 /// The name OpenFOAM and --turbulence give `model` (turbulence_models()).
 std::string turbulence_name(Turbulence model) {
-    for (const auto& [name, value] : turbulence_models())
-        if (value == model)
-            return name;
-    return "laminar";
+    return turbulence_models().name(model);
 }
 
 /// The RANS fields of a case (model k-epsilon or k-omega SST), in SI units: at the inlet a
@@ -519,11 +516,11 @@ void add_flow_files(OpenFoamCase& c, const std::vector<std::string>& walls, doub
 
 } // namespace
 
-const std::vector<std::pair<std::string, Turbulence>>& turbulence_models() {
-    static const std::vector<std::pair<std::string, Turbulence>> models{
-        {"laminar", Turbulence::laminar},
-        {"kEpsilon", Turbulence::k_epsilon},
-        {"kOmegaSST", Turbulence::k_omega_sst}};
+const Registry<Turbulence>& turbulence_models() {
+    static const Registry<Turbulence> models("turbulence",
+                                             {{"laminar", Turbulence::laminar},
+                                              {"kEpsilon", Turbulence::k_epsilon},
+                                              {"kOmegaSST", Turbulence::k_omega_sst}});
     return models;
 }
 

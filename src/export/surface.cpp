@@ -176,13 +176,13 @@ TriangleMesh clip_convex(const TriangleMesh& mesh, const HalfSpace& half_space, 
     return out_mesh;
 }
 
-const std::vector<std::pair<std::string, ContactTreatment>>& contact_treatments() {
-    static const std::vector<std::pair<std::string, ContactTreatment>> names{
-        {"none", ContactTreatment::none},
-        {"shrink", ContactTreatment::shrink},
-        {"enlarge", ContactTreatment::enlarge},
-        {"caps", ContactTreatment::caps},
-        {"bridges", ContactTreatment::bridges}};
+const Registry<ContactTreatment>& contact_treatments() {
+    static const Registry<ContactTreatment> names("contacts",
+                                                  {{"none", ContactTreatment::none},
+                                                   {"shrink", ContactTreatment::shrink},
+                                                   {"enlarge", ContactTreatment::enlarge},
+                                                   {"caps", ContactTreatment::caps},
+                                                   {"bridges", ContactTreatment::bridges}});
     return names;
 }
 
@@ -192,12 +192,10 @@ Contacts parse_contacts(std::string_view text) {
     const KindSpec parts = split_kind(text);
     const std::string_view name = parts.kind;
     Contacts c;
-    bool known = false;
-    for (const auto& [n, t] : contact_treatments())
-        if (n == name) {
-            c.treatment = t;
-            known = true;
-        }
+    const std::optional<ContactTreatment> treatment = contact_treatments().find(name);
+    const bool known = treatment.has_value();
+    if (known)
+        c.treatment = *treatment;
     const auto refuse = [&] {
         return InvalidInput(fmt::format("--contacts '{}' is not allowed; allowed: {}",
                                         printable(text.substr(0, 80)), allowed));
@@ -246,10 +244,7 @@ namespace {
 
 /// The name of a treatment in contact_treatments().
 std::string name_of(ContactTreatment treatment) {
-    for (const auto& [name, value] : contact_treatments())
-        if (value == treatment)
-            return name;
-    return "?";
+    return contact_treatments().name(treatment);
 }
 
 /// Where something meets a sphere's surface: a disc about `axis` (unit) of angular radius

@@ -34,17 +34,14 @@
 
 namespace packbed {
 
-const std::vector<std::pair<std::string, Engine>>& engines() {
-    static const std::vector<std::pair<std::string, Engine>> names{{"packbed", Engine::packbed},
-                                                                   {"lammps", Engine::lammps}};
+const Registry<Engine>& engines() {
+    static const Registry<Engine> names("engine",
+                                        {{"packbed", Engine::packbed}, {"lammps", Engine::lammps}});
     return names;
 }
 
 std::string to_string(Engine engine) {
-    for (const auto& [name, value] : engines())
-        if (value == engine)
-            return name;
-    return "unknown";
+    return engines().name(engine);
 }
 
 std::string to_string(LammpsPairStyle style) {

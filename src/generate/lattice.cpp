@@ -90,19 +90,23 @@ void require(bool ok, std::string_view what) {
 
 } // namespace
 
-const std::vector<std::pair<std::string, LatticeType>>& lattice_types() {
-    static const std::vector<std::pair<std::string, LatticeType>> types{
-        {"diamond", LatticeType::diamond}, {"sc", LatticeType::sc},   {"bcc", LatticeType::bcc},
-        {"fcc", LatticeType::fcc},         {"hcp", LatticeType::hcp},
-    };
+const Registry<LatticeType>& lattice_types() {
+    static const Registry<LatticeType> types("type", {{"diamond", LatticeType::diamond},
+                                                      {"sc", LatticeType::sc},
+                                                      {"bcc", LatticeType::bcc},
+                                                      {"fcc", LatticeType::fcc},
+                                                      {"hcp", LatticeType::hcp}});
     return types;
 }
 
 std::string to_string(LatticeType type) {
-    for (const auto& [name, value] : lattice_types())
-        if (value == type)
-            return name;
-    return "unknown";
+    return lattice_types().name(type);
+}
+
+const Registry<LatticeKeep>& lattice_keeps() {
+    static const Registry<LatticeKeep> keeps(
+        "keep", {{"whole", LatticeKeep::whole}, {"centres", LatticeKeep::centres}});
+    return keeps;
 }
 
 UnitCell unit_cell(LatticeType type) {

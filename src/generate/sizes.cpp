@@ -268,12 +268,15 @@ std::string allowed_for(SizeKind kind) {
 
 std::string allowed_names() {
     std::string text;
-    const auto& kinds = size_kinds();
-    for (std::size_t i = 0; i < kinds.size(); ++i)
-        text += std::string(i == 0                  ? ""
-                            : i + 1 == kinds.size() ? " or "
-                                                    : ", ") +
-                std::string(size_syntax(kinds[i].second));
+    const std::size_t count = size_kinds().size();
+    std::size_t i = 0;
+    for (const auto& [name, kind] : size_kinds()) {
+        text += std::string(i == 0           ? ""
+                            : i + 1 == count ? " or "
+                                             : ", ") +
+                std::string(size_syntax(kind));
+        ++i;
+    }
     return text;
 }
 
@@ -582,19 +585,18 @@ SizeDistribution parse_file(std::string_view spec, std::string_view path_text) {
 // ---------------------------------------------------------------------------------------------
 // Registries.
 
-const std::vector<std::pair<std::string, SizeKind>>& size_kinds() {
-    static const std::vector<std::pair<std::string, SizeKind>> names{
-        {"mono", SizeKind::mono},           {"discrete", SizeKind::discrete},
-        {"uniform", SizeKind::uniform},     {"normal", SizeKind::normal},
-        {"lognormal", SizeKind::lognormal}, {"file", SizeKind::file}};
+const Registry<SizeKind>& size_kinds() {
+    static const Registry<SizeKind> names("sizes", {{"mono", SizeKind::mono},
+                                                    {"discrete", SizeKind::discrete},
+                                                    {"uniform", SizeKind::uniform},
+                                                    {"normal", SizeKind::normal},
+                                                    {"lognormal", SizeKind::lognormal},
+                                                    {"file", SizeKind::file}});
     return names;
 }
 
 std::string to_string(SizeKind kind) {
-    for (const auto& [name, value] : size_kinds())
-        if (value == kind)
-            return name;
-    return "unknown";
+    return size_kinds().name(kind);
 }
 
 std::string_view size_syntax(SizeKind kind) {
@@ -615,17 +617,14 @@ std::string_view size_syntax(SizeKind kind) {
     return "unknown";
 }
 
-const std::vector<std::pair<std::string, FractionBasis>>& fraction_bases() {
-    static const std::vector<std::pair<std::string, FractionBasis>> names{
-        {"volume", FractionBasis::volume}, {"number", FractionBasis::number}};
+const Registry<FractionBasis>& fraction_bases() {
+    static const Registry<FractionBasis> names(
+        "fractions", {{"volume", FractionBasis::volume}, {"number", FractionBasis::number}});
     return names;
 }
 
 std::string to_string(FractionBasis basis) {
-    for (const auto& [name, value] : fraction_bases())
-        if (value == basis)
-            return name;
-    return "unknown";
+    return fraction_bases().name(basis);
 }
 
 // ---------------------------------------------------------------------------------------------
@@ -636,12 +635,10 @@ SizeDistribution parse_sizes(std::string_view spec, double mono_diameter) {
     const std::string_view name = parts.kind;
     const std::optional<std::string_view> parameters = parts.parameters;
     const std::string_view rest = parameters.value_or(std::string_view{});
-    const auto& kinds = size_kinds();
-    const auto entry =
-        std::find_if(kinds.begin(), kinds.end(), [&](const auto& k) { return k.first == name; });
-    if (entry == kinds.end())
+    const std::optional<SizeKind> found = size_kinds().find(name);
+    if (!found)
         refuse(spec, fmt::format("unknown distribution '{}'", shown(name)), allowed_names());
-    const SizeKind kind = entry->second;
+    const SizeKind kind = *found;
     if (kind != SizeKind::mono && !parameters)
         refuse(spec, fmt::format("{} needs its parameters", name), allowed_for(kind));
     switch (kind) {

@@ -486,30 +486,25 @@ SoftSphereResult generate_soft_sphere(const SoftSphereParameters& parameters,
     return SoftSphereGenerator(parameters).run(control);
 }
 
-const std::vector<std::pair<std::string, Solver>>& solvers() {
-    static const std::vector<std::pair<std::string, Solver>> names{{"paper", Solver::paper},
-                                                                   {"fire", Solver::fire}};
+const Registry<Solver>& solvers() {
+    static const Registry<Solver> names("solver",
+                                        {{"paper", Solver::paper}, {"fire", Solver::fire}});
     return names;
 }
 
 std::string to_string(Solver solver) {
-    for (const auto& [name, value] : solvers())
-        if (value == solver)
-            return name;
-    return "unknown";
+    return solvers().name(solver);
 }
 
-const std::vector<std::pair<std::string, UpdateOrder>>& update_orders() {
-    static const std::vector<std::pair<std::string, UpdateOrder>> names{
-        {"in-place", UpdateOrder::in_place}, {"simultaneous", UpdateOrder::simultaneous}};
+const Registry<UpdateOrder>& update_orders() {
+    static const Registry<UpdateOrder> names(
+        "update",
+        {{"in-place", UpdateOrder::in_place}, {"simultaneous", UpdateOrder::simultaneous}});
     return names;
 }
 
 std::string to_string(UpdateOrder order) {
-    for (const auto& [name, value] : update_orders())
-        if (value == order)
-            return name;
-    return "unknown";
+    return update_orders().name(order);
 }
 
 } // namespace packbed

@@ -1141,12 +1141,13 @@ BedSummary read_bed_summary(const std::filesystem::path& path) {
     return read_bed_summary(text, path.native());
 }
 
-const std::vector<std::pair<std::string, ParticleFormat>>& particle_formats() {
-    static const std::vector<std::pair<std::string, ParticleFormat>> names{
-        {"csv", ParticleFormat::csv},
-        {"xyz", ParticleFormat::xyz},
-        {"lammps-dump", ParticleFormat::lammps_dump},
-        {"lammps-data", ParticleFormat::lammps_data}};
+const Registry<std::optional<ParticleFormat>>& particle_formats() {
+    static const Registry<std::optional<ParticleFormat>> names(
+        "format", {{"auto", std::nullopt},
+                   {"csv", ParticleFormat::csv},
+                   {"xyz", ParticleFormat::xyz},
+                   {"lammps-dump", ParticleFormat::lammps_dump},
+                   {"lammps-data", ParticleFormat::lammps_data}});
     return names;
 }
 

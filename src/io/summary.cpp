@@ -223,7 +223,7 @@ nlohmann::json lattice_summary(const LatticeParameters& p, const Packing& packin
     summary["generator"] = "lattice";
     summary["type"] = to_string(p.type);
     summary["diameter"] = d;
-    summary["keep"] = p.keep == LatticeKeep::whole ? "whole" : "centres";
+    summary["keep"] = lattice_keeps().name(p.keep);
     const double volume = region_volume(p.region);
     double solid = 0.0;
     if (const auto* box = std::get_if<BoxRegion>(&p.region)) {

@@ -38,14 +38,14 @@ namespace fs = std::filesystem;
 /// surfaces: see packbed/surface.hpp.
 enum class ExportFormat { lammps_data, liggghts_data, stl, stl_ascii, obj, openfoam };
 
-const std::vector<std::pair<std::string, ExportFormat>>& export_formats() {
-    static const std::vector<std::pair<std::string, ExportFormat>> formats{
-        {"lammps-data", ExportFormat::lammps_data},
-        {"liggghts-data", ExportFormat::liggghts_data},
-        {"stl", ExportFormat::stl},
-        {"stl-ascii", ExportFormat::stl_ascii},
-        {"obj", ExportFormat::obj},
-        {"openfoam", ExportFormat::openfoam}};
+const Registry<ExportFormat>& export_formats() {
+    static const Registry<ExportFormat> formats("format",
+                                                {{"lammps-data", ExportFormat::lammps_data},
+                                                 {"liggghts-data", ExportFormat::liggghts_data},
+                                                 {"stl", ExportFormat::stl},
+                                                 {"stl-ascii", ExportFormat::stl_ascii},
+                                                 {"obj", ExportFormat::obj},
+                                                 {"openfoam", ExportFormat::openfoam}});
     return formats;
 }
 
@@ -201,16 +201,12 @@ std::string surface_export(const ExportRequest& o, ExportFormat format, const Pa
                                "allowed: the inlet's velocity > 0 m/s, or --reynolds");
         if (o.fluid_velocity > 0.0) // the inlet's, instead of the Reynolds number's
             flow.velocity = o.fluid_velocity;
-        std::vector<std::string> models;
-        for (const auto& [name, model] : turbulence_models()) {
-            models.push_back(name);
-            if (name == o.turbulence)
-                flow.turbulence = model;
-        }
-        if (std::find(models.begin(), models.end(), o.turbulence) == models.end())
+        const std::optional<Turbulence> model = turbulence_models().find(o.turbulence);
+        if (!model)
             throw InvalidInput(fmt::format("--turbulence '{}' is not allowed; allowed: {}",
                                            printable(o.turbulence.substr(0, 80)),
-                                           fmt::join(models, ", ")));
+                                           turbulence_models().allowed()));
+        flow.turbulence = *model;
         const OpenFoamCase foam =
             openfoam_case(bed, *container, *volumes, o.contacts, dp, options.level, o.mesh, flow);
         const std::optional<double> hydraulic = hydraulic_diameter(container->container);
@@ -456,24 +452,18 @@ std::string data_export(const ExportRequest& o, ExportFormat format, const Packi
 } // namespace
 
 std::vector<std::string> export_format_names() {
-    std::vector<std::string> names;
-    for (const auto& entry : export_formats())
-        names.push_back(entry.first);
-    return names;
+    return export_formats().names();
 }
 
 namespace {
 
 /// The format `name`. \throws InvalidInput naming every format
 ExportFormat export_format(const std::string& name) {
-    const auto& formats = export_formats();
-    const auto found = std::find_if(formats.begin(), formats.end(),
-                                    [&](const auto& entry) { return entry.first == name; });
-    if (found == formats.end())
+    const std::optional<ExportFormat> format = export_formats().find(name);
+    if (!format)
         throw InvalidInput(fmt::format("--format '{}' is not allowed; allowed: {}",
-                                       printable(name.substr(0, 80)),
-                                       fmt::join(export_format_names(), ", ")));
-    return found->second;
+                                       printable(name.substr(0, 80)), export_formats().allowed()));
+    return *format;
 }
 
 bool is_surface(ExportFormat format) {

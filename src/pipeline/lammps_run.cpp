@@ -339,14 +339,10 @@ LammpsJobFile read_lammps_job(std::string_view text, std::string_view folder) {
     request.sizes = word("sizes");
     request.band_clearance = number("band_clearance");
     const std::string fractions = word("fractions");
-    bool known = false;
-    for (const auto& [name, value] : fraction_bases())
-        if (name == fractions) {
-            request.fractions = value;
-            known = true;
-        }
-    if (!known)
+    const std::optional<FractionBasis> basis = fraction_bases().find(fractions);
+    if (!basis)
         throw bad("fractions");
+    request.fractions = *basis;
     request.engine = Engine::lammps;
     // What the summary records of the job: the words that ran it and the pair style, checked
     // (the job's own values, not copied whole: a job.json is a user's file).
