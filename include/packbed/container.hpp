@@ -614,6 +614,15 @@ struct ContainerSpec {
 /// nothing when it is not one.
 std::optional<ContainerSpec> parse_container(std::string_view text);
 
+/// What --container allows, as both front ends word it (the command line's validator and
+/// --help, the library's InvalidInput, so the Python module's ValueError): each of `shapes`
+/// ("cylinder", "box", "annulus", "periodic", as all_shapes in container.hpp) as its SPEC,
+/// what it is and its ranges, joined by "; or ".
+std::string allowed_containers(std::span<const std::string_view> shapes);
+/// The message for a --container SPEC that parse_container refuses, the command line's words:
+/// "--container: 'SPEC' is not allowed; allowed: " and allowed_containers of every shape.
+std::string container_not_allowed(std::string_view option, std::string_view spec);
+
 /// "radius R" for a cylinder, its spec (box:LX,LY, ...) for the others: a container in messages.
 std::string describe(const Container& container);
 

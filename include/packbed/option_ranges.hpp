@@ -6,7 +6,6 @@
 
 #include <cstdint>
 #include <limits>
-#include <span>
 #include <string>
 #include <string_view>
 
@@ -51,15 +50,6 @@ std::string whole_problem(std::string_view text, const WholeRange& range);
 /// problem: the command line's message, for a value the Python module takes as text (a seed up
 /// to 2^64 - 1, which no C++ integer type of the binding holds signed)
 std::uint64_t check_whole(std::string_view option, std::string_view text, const WholeRange& range);
-
-/// What --container allows, as both front ends word it (the command line's validator and
-/// --help, the library's InvalidInput, so the Python module's ValueError): each of `shapes`
-/// ("cylinder", "box", "annulus", "periodic", as all_shapes in container.hpp) as its SPEC,
-/// what it is and its ranges, joined by "; or ".
-std::string allowed_containers(std::span<const std::string_view> shapes);
-/// The message for a --container SPEC that parse_container refuses, the command line's words:
-/// "--container: 'SPEC' is not allowed; allowed: " and allowed_containers of every shape.
-std::string container_not_allowed(std::string_view option, std::string_view spec);
 
 namespace option_range {
 

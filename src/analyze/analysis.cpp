@@ -18,7 +18,7 @@
 #include "packbed/error.hpp"
 #include "packbed/limits.hpp"
 #include "packbed/sizes.hpp"
-#include "parallel.hpp"
+#include "base/parallel.hpp"
 
 namespace packbed {
 

@@ -11,7 +11,7 @@
 
 #include "packbed/error.hpp"
 #include "packbed/limits.hpp"
-#include "require.hpp"
+#include "base/require.hpp"
 
 namespace packbed {
 

@@ -10,7 +10,7 @@
 
 #include "packbed/error.hpp"
 #include "packbed/option_ranges.hpp"
-#include "require.hpp"
+#include "base/require.hpp"
 
 namespace packbed {
 

@@ -19,7 +19,7 @@
 #include "packbed/neighbor_list.hpp"
 #include "packbed/text.hpp"
 #include "packbed/volume.hpp"
-#include "require.hpp"
+#include "base/require.hpp"
 
 namespace packbed {
 

@@ -38,7 +38,7 @@
 #include "generate/soft_bed.hpp"
 #include "packbed/error.hpp"
 #include "packbed/soft_sphere.hpp"
-#include "parallel.hpp"
+#include "base/parallel.hpp"
 
 namespace packbed {
 

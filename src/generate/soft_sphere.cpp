@@ -13,8 +13,8 @@
 #include "packbed/error.hpp"
 #include "packbed/limits.hpp"
 #include "packbed/neighbor_list.hpp"
-#include "parallel.hpp"
-#include "require.hpp"
+#include "base/parallel.hpp"
+#include "base/require.hpp"
 
 namespace packbed {
 

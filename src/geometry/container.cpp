@@ -6,7 +6,9 @@
 #include <type_traits>
 
 #include <fmt/format.h>
+#include <fmt/ranges.h>
 
+#include "packbed/files.hpp"
 #include "packbed/limits.hpp"
 #include "packbed/text.hpp"
 #include "packbed/volume.hpp"
@@ -315,6 +317,33 @@ std::string describe(const Container& container) {
     if (const Cylinder* c = container.cylinder())
         return fmt::format("radius {}", c->radius());
     return container.spec();
+}
+
+std::string allowed_containers(std::span<const std::string_view> shapes) {
+    const auto takes = [&](std::string_view s) {
+        return std::find(shapes.begin(), shapes.end(), s) != shapes.end();
+    };
+    std::vector<std::string> forms;
+    const double round = 2.0 * limits::max_length, flat = limits::max_length;
+    if (takes("cylinder"))
+        forms.push_back(
+            fmt::format("cylinder:D, a tube of inner diameter D, a number in (0, {:g}]", round));
+    if (takes("box"))
+        forms.push_back(
+            fmt::format("box:LX,LY, walls at x = 0, LX and y = 0, LY, each in (0, {:g}]", flat));
+    if (takes("annulus"))
+        forms.push_back(fmt::format("annulus:D,DI, between a tube of diameter D and a coaxial "
+                                    "rod of diameter DI, 0 < DI < D <= {:g}",
+                                    round));
+    if (takes("periodic"))
+        forms.push_back(
+            fmt::format("periodic:LX,LY, a cell periodic in x and y, each in (0, {:g}]", flat));
+    return fmt::format("{}", fmt::join(forms, "; or "));
+}
+
+std::string container_not_allowed(std::string_view option, std::string_view spec) {
+    return fmt::format("{}: '{}' is not allowed; allowed: {}", option,
+                       printable(spec.substr(0, 80)), allowed_containers(all_shapes));
 }
 
 } // namespace packbed

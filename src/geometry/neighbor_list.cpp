@@ -10,7 +10,7 @@
 #include <omp.h>
 
 #include "geometry/cell_grid.hpp"
-#include "parallel.hpp"
+#include "base/parallel.hpp"
 
 namespace packbed {
 

@@ -6,9 +6,7 @@
 #include <vector>
 
 #include <fmt/format.h>
-#include <fmt/ranges.h>
 
-#include "packbed/container.hpp"
 #include "packbed/error.hpp"
 #include "packbed/files.hpp"
 #include "packbed/text.hpp"
@@ -60,33 +58,6 @@ std::uint64_t check_whole(std::string_view option, std::string_view text, const 
     if (const std::string problem = whole_problem(text, range); !problem.empty())
         throw InvalidInput(fmt::format("--{}: {}", option, problem));
     return *parse_whole<std::uint64_t>(text);
-}
-
-std::string allowed_containers(std::span<const std::string_view> shapes) {
-    const auto takes = [&](std::string_view s) {
-        return std::find(shapes.begin(), shapes.end(), s) != shapes.end();
-    };
-    std::vector<std::string> forms;
-    const double round = 2.0 * limits::max_length, flat = limits::max_length;
-    if (takes("cylinder"))
-        forms.push_back(
-            fmt::format("cylinder:D, a tube of inner diameter D, a number in (0, {:g}]", round));
-    if (takes("box"))
-        forms.push_back(
-            fmt::format("box:LX,LY, walls at x = 0, LX and y = 0, LY, each in (0, {:g}]", flat));
-    if (takes("annulus"))
-        forms.push_back(fmt::format("annulus:D,DI, between a tube of diameter D and a coaxial "
-                                    "rod of diameter DI, 0 < DI < D <= {:g}",
-                                    round));
-    if (takes("periodic"))
-        forms.push_back(
-            fmt::format("periodic:LX,LY, a cell periodic in x and y, each in (0, {:g}]", flat));
-    return fmt::format("{}", fmt::join(forms, "; or "));
-}
-
-std::string container_not_allowed(std::string_view option, std::string_view spec) {
-    return fmt::format("{}: '{}' is not allowed; allowed: {}", option,
-                       printable(spec.substr(0, 80)), allowed_containers(all_shapes));
 }
 
 } // namespace packbed
