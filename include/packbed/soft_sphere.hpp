@@ -12,6 +12,8 @@
 #include <utility>
 #include <vector>
 
+#include <nlohmann/json.hpp>
+
 #include "packbed/container.hpp"
 #include "packbed/packing.hpp"
 #include "packbed/registry.hpp"
@@ -288,5 +290,9 @@ std::uint32_t fire_layers(const SoftSphereParameters& parameters);
 /// or relax_with_fire(parameters, control).
 SoftSphereResult generate_soft_sphere(const SoftSphereParameters& parameters,
                                       const RunControl& control = {});
+
+/// Every field of `parameters` as a JSON object (keys: the field names; the update order and
+/// solver by name): the `parameters` of summary.json, and what a checkpoint must match.
+nlohmann::json soft_sphere_parameters_json(const SoftSphereParameters& parameters);
 
 } // namespace packbed

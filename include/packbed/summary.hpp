@@ -4,21 +4,12 @@
 #include <nlohmann/json.hpp>
 
 #include "packbed/analysis.hpp"
+#include "packbed/json_text.hpp"
 #include "packbed/lattice.hpp"
 #include "packbed/sizes.hpp"
 #include "packbed/soft_sphere.hpp"
 
 namespace packbed {
-
-/// `value` as the text of the JSON file `name` (indented by 2, a newline at the end). JSON has
-/// no NaN or infinity (nlohmann writes null): no output may hold one.
-/// \throws std::runtime_error naming the file and the field when a number is not finite
-std::string json_file_text(const nlohmann::json& value, std::string_view name);
-std::string json_file_text(const nlohmann::ordered_json& value, std::string_view name);
-
-/// Every field of `parameters` as a JSON object (keys: the field names; the update order and
-/// solver by name): the `parameters` of summary.json, and what a checkpoint must match.
-nlohmann::json soft_sphere_parameters_json(const SoftSphereParameters& parameters);
 
 /// Everything a user needs to know about a soft-sphere run: inputs, every parameter, the
 /// container, the overall void fraction over the band clear of the ends, the largest overlaps,

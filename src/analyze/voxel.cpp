@@ -1,6 +1,6 @@
 // Voxel images of a bed (voxel.hpp, docs/voxels.md).
 #include "packbed/voxel.hpp"
-#include "packbed/summary.hpp"
+#include "packbed/json_text.hpp"
 
 #include <algorithm>
 #include <cerrno>

@@ -9,12 +9,12 @@
 
 #include <fmt/format.h>
 
+#include "base/parallel.hpp"
+#include "base/require.hpp"
 #include "generate/soft_bed.hpp"
 #include "packbed/error.hpp"
 #include "packbed/limits.hpp"
 #include "packbed/neighbor_list.hpp"
-#include "base/parallel.hpp"
-#include "base/require.hpp"
 
 namespace packbed {
 
@@ -505,6 +505,28 @@ const Registry<UpdateOrder>& update_orders() {
 
 std::string to_string(UpdateOrder order) {
     return update_orders().name(order);
+}
+
+nlohmann::json soft_sphere_parameters_json(const SoftSphereParameters& p) {
+    const SoftSphereParameters::Schedule schedule = p.schedule(); // the values the run used
+    return {{"aspect_ratio", p.aspect_ratio},
+            {"particles", p.particles},
+            {"seed", p.seed},
+            {"diameter", p.diameter},
+            {"e0", p.e0},
+            {"ck", p.ck},
+            {"cg_step", p.cg_step},
+            {"overlap_low", schedule.overlap_low},
+            {"overlap_high", schedule.overlap_high},
+            {"tolerance", p.tolerance},
+            {"mc_period", p.mc_period},
+            {"mc_window", p.mc_window},
+            {"mc_tolerance", schedule.mc_tolerance},
+            {"update", to_string(p.update)},
+            {"solver", to_string(p.solver)},
+            {"skin", p.list_skin()},
+            {"layer_height", p.layer_height},
+            {"max_iterations", p.max_iterations}};
 }
 
 } // namespace packbed

@@ -10,28 +10,6 @@
 
 namespace packbed {
 
-nlohmann::json soft_sphere_parameters_json(const SoftSphereParameters& p) {
-    const SoftSphereParameters::Schedule schedule = p.schedule(); // the values the run used
-    return {{"aspect_ratio", p.aspect_ratio},
-            {"particles", p.particles},
-            {"seed", p.seed},
-            {"diameter", p.diameter},
-            {"e0", p.e0},
-            {"ck", p.ck},
-            {"cg_step", p.cg_step},
-            {"overlap_low", schedule.overlap_low},
-            {"overlap_high", schedule.overlap_high},
-            {"tolerance", p.tolerance},
-            {"mc_period", p.mc_period},
-            {"mc_window", p.mc_window},
-            {"mc_tolerance", schedule.mc_tolerance},
-            {"update", to_string(p.update)},
-            {"solver", to_string(p.solver)},
-            {"skin", p.list_skin()},
-            {"layer_height", p.layer_height},
-            {"max_iterations", p.max_iterations}};
-}
-
 nlohmann::json soft_sphere_summary(const SoftSphereParameters& p, const SoftSphereResult& result,
                                    double band_clearance, int threads) {
     using nlohmann::json;

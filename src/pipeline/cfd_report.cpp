@@ -11,7 +11,7 @@
 #include <nlohmann/json.hpp>
 
 #include "gnuplot.hpp"
-#include "io/json_input.hpp"
+#include "base/json_input.hpp"
 #include "packbed/error.hpp"
 #include "packbed/files.hpp"
 #include "packbed/hydraulics.hpp"

@@ -8,7 +8,7 @@
 #include <fmt/ranges.h>
 
 #include "child.hpp"
-#include "io/json_input.hpp"
+#include "base/json_input.hpp"
 #include "packbed/error.hpp"
 #include "packbed/files.hpp"
 #include "packbed/limits.hpp"

@@ -1,12 +1,12 @@
-#include "io/json_input.hpp"
+#include "base/json_input.hpp"
 
 #include <cmath>
 
 #include <fmt/format.h>
 
 #include "packbed/files.hpp"
+#include "packbed/json_text.hpp"
 #include "packbed/limits.hpp"
-#include "packbed/summary.hpp"
 
 namespace packbed {
 
