@@ -26,7 +26,6 @@ FLOORS = {  # bottom to top; the folders of one floor may include each other
 KNOWN = {
     ("src/generate/lammps_engine.cpp", "packbed/io.hpp"),
     ("src/generate/lammps_engine.cpp", "packbed/read.hpp"),
-    ("src/analyze/analysis_files.cpp", "packbed/io.hpp"),
 }
 
 

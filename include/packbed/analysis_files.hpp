@@ -12,6 +12,28 @@
 
 namespace packbed {
 
+/// The tables of a bed analysis as CSV texts, by file name:
+/// - `radial_void_fraction.csv`: `radial_position,x_from_wall_d,void_fraction`, the shell's
+///   mid-radius (length), x_from_wall_d = (Rt - radial_position) / Dp as in Salvat et al.
+///   (2005), wall first; in a box the first column is `wall_distance`, the shell's middle
+///   distance from the nearest face (Container::profile_position);
+/// - `axial_void_fraction.csv`: `z,z_d,void_fraction`, z the slab's mid-height;
+/// - `radial_centre_distribution.csv`: `radial_position,x_from_wall_d,relative_density` (see
+///   analyze_bed);
+/// - `coordination.csv`: `contacts,spheres`, the histogram of sphere-sphere contacts;
+/// - `pair_correlation.csv`: `distance,distance_d,g`;
+/// - for a bed of more than one size (BedAnalysis::by_size), `size_classes.csv`:
+///   `low,high,spheres,number_fraction,volume_fraction,spheres_in_band,mean_coordination`, and
+///   `centre_distribution_by_size.csv`: the wall profiles' position columns, then one column
+///   `d_D` (a discrete size) or `d_LOW_HIGH` (a bin) per class.
+/// Positions are written to 12 significant digits (bin centres without floating-point noise),
+/// values as computed (shortest round trip). `r` is never a column name here: in particles.csv
+/// it is the sphere's radius.
+/// \param analysis what analyze_bed returned \param container the bed's container
+/// \return (file name, contents) pairs.
+std::vector<std::pair<std::string, std::string>> analysis_tables(const BedAnalysis& analysis,
+                                                                 const Container& container);
+
 /// The names of the tables of one wall's profiles in a container of several walls:
 /// "radial_void_fraction_NAME.csv" and "radial_centre_distribution_NAME.csv".
 /// \param wall the wall's name (WallAnalysis::name: "outer", "inner")

@@ -5,8 +5,6 @@
 
 #include <fmt/format.h>
 
-#include "packbed/io.hpp"
-
 namespace packbed {
 
 std::pair<std::string, std::string> wall_table_names(const std::string& wall) {
@@ -32,6 +30,80 @@ std::string wall_profile_csv(const Container& container, std::size_t wall, doubl
 }
 
 } // namespace
+
+namespace {
+
+/// A CSV of profile bins: `header`, then per bin two positions of its mid-point,
+/// `first(mid)` and `second(mid)`, and the value.
+template <class F, class G>
+std::string profile_csv(std::string_view header, const std::vector<ProfileBin>& bins, F first,
+                        G second) {
+    fmt::memory_buffer out;
+    fmt::format_to(std::back_inserter(out), "{}\n", header);
+    for (const auto& b : bins) {
+        const double mid = 0.5 * (b.low + b.high);
+        // Positions to 12 significant digits: the bin centre of shell 123 of 0.02 Dp is 2.47,
+        // not the 2.4699999999999998 its floating-point sum gives; values as computed.
+        fmt::format_to(std::back_inserter(out), "{:.12g},{:.12g},{}\n", first(mid), second(mid),
+                       b.value);
+    }
+    return fmt::to_string(out);
+}
+
+} // namespace
+
+std::vector<std::pair<std::string, std::string>> analysis_tables(const BedAnalysis& a,
+                                                                 const Container& container) {
+    const double dp = a.diameter;
+    // The wall profiles: the container's position (a cylinder's radial position), then the
+    // distance from the wall in Dp.
+    const std::string position(container.profile_position_name());
+    auto in_dp = [&](double length) { return length / dp; };
+    auto as_is = [](double length) { return length; };
+    auto wall_profile = [&](std::string_view value, const std::vector<ProfileBin>& bins) {
+        return profile_csv(
+            fmt::format("{},x_from_wall_d,{}", position, value), bins,
+            [&](double d) { return container.profile_position(d); }, in_dp);
+    };
+    std::string coordination = "contacts,spheres\n";
+    for (std::size_t k = 0; k < a.coordination.histogram.size(); ++k)
+        coordination += fmt::format("{},{}\n", k, a.coordination.histogram[k]);
+    std::vector<std::pair<std::string, std::string>> by_size;
+    if (!a.by_size.empty()) {
+        // One row per class; then the centre distribution of each class, a column each.
+        std::string classes = "low,high,spheres,number_fraction,volume_fraction,spheres_in_band,"
+                              "mean_coordination\n";
+        std::string header = fmt::format("{},x_from_wall_d", position);
+        for (const SizeClassAnalysis& c : a.by_size) {
+            classes +=
+                fmt::format("{:.12g},{:.12g},{},{},{},{},{}\n", c.low, c.high, c.spheres,
+                            c.number_fraction, c.volume_fraction, c.in_band, c.mean_coordination);
+            header += c.low == c.high ? fmt::format(",d_{:.6g}", c.low)
+                                      : fmt::format(",d_{:.6g}_{:.6g}", c.low, c.high);
+        }
+        std::string centres = header + "\n";
+        const auto& bins = a.by_size.front().centre_distribution;
+        for (std::size_t k = 0; k < bins.size(); ++k) {
+            const double mid = 0.5 * (bins[k].low + bins[k].high);
+            centres += fmt::format("{:.12g},{:.12g}", container.profile_position(mid), mid / dp);
+            for (const SizeClassAnalysis& c : a.by_size)
+                centres += fmt::format(",{}", c.centre_distribution[k].value);
+            centres += "\n";
+        }
+        by_size = {{"size_classes.csv", classes}, {"centre_distribution_by_size.csv", centres}};
+    }
+    std::vector<std::pair<std::string, std::string>> tables{
+        {"radial_void_fraction.csv", wall_profile("void_fraction", a.radial_void_fraction)},
+        {"axial_void_fraction.csv",
+         profile_csv("z,z_d,void_fraction", a.axial_void_fraction, as_is, in_dp)},
+        {"radial_centre_distribution.csv", wall_profile("relative_density", a.centre_distribution)},
+        {"coordination.csv", coordination},
+        {"pair_correlation.csv",
+         profile_csv("distance,distance_d,g", a.pair_correlation, as_is, in_dp)},
+    };
+    tables.insert(tables.end(), by_size.begin(), by_size.end());
+    return tables;
+}
 
 std::vector<std::pair<std::string, std::string>> analysis_files(const BedAnalysis& a,
                                                                 const Container& container) {
