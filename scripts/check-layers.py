@@ -22,11 +22,8 @@ FLOORS = {  # bottom to top; the folders of one floor may include each other
     "pipeline": 4,
     "apps": 5, "python": 5,
 }
-# (including file, included header): crossings the code has today.
-KNOWN = {
-    ("src/generate/lammps_engine.cpp", "packbed/io.hpp"),
-    ("src/generate/lammps_engine.cpp", "packbed/read.hpp"),
-}
+# (including file, included header): crossings allowed for now, each with its reason. None today.
+KNOWN: set = set()
 
 
 def main():
