@@ -19,7 +19,6 @@
 #include <pybind11/stl/filesystem.h>
 
 #include "packbed/analysis.hpp"
-#include "packbed/analysis_files.hpp"
 #include "packbed/bed_checks.hpp"
 #include "packbed/error.hpp"
 #include "packbed/files.hpp"
@@ -463,16 +462,12 @@ Analysis analyze(const Bed& bed, const std::optional<std::string>& container,
     Analysis result{{}, {}, given};
     {
         py::gil_scoped_release released;
-        result.analysis = analyze_bed(bed.packing, given, options);
+        AnalyzeJob job =
+            analyze_job(bed.packing, given, options, directory ? &*directory : nullptr);
+        result.analysis = std::move(job.analysis);
+        result.summary = std::move(job.summary);
     }
-    result.summary = analysis_summary(result.analysis, options);
-    result.summary["warnings"] = analysis_warnings(bed.packing, given, result.analysis);
-    result.summary["container"] = container_summary(given);
     if (directory) {
-        for (const auto& [name, text] : analysis_files(result.analysis, given))
-            directory->stage(name, text);
-        if (const std::string why = stage_plots(*directory, result.analysis, given); !why.empty())
-            result.summary["plots"] = why;
         directory->stage("summary.json", json_file_text(result.summary, "summary.json"));
         directory->commit();
     }

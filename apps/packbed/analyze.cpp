@@ -10,8 +10,6 @@
 
 #include "command.hpp"
 #include "packbed/analysis.hpp"
-#include "packbed/analysis_files.hpp"
-#include "packbed/bed_checks.hpp"
 #include "packbed/error.hpp"
 #include "packbed/files.hpp"
 #include "packbed/io.hpp"
@@ -103,10 +101,9 @@ int run_analyze(AnalyzeOptions& o) {
         read = std::move(frames_read.last);
     }
     const ParticleFile& file = *read;
-    const BedAnalysis analysis = analyze_bed(file.packing, container, o.analysis);
-    const std::vector<std::string> warnings = analysis_warnings(file.packing, container, analysis);
-
-    auto summary = analysis_summary(analysis, o.analysis);
+    const AnalyzeJob job = analyze_job(file.packing, container, o.analysis, &out);
+    const BedAnalysis& analysis = job.analysis;
+    nlohmann::json summary = job.summary;
     summary["particles_file"] = path.string();
     summary["particles"] = file.packing.size();
     summary["frame"] = file.frame;
@@ -118,19 +115,12 @@ int run_analyze(AnalyzeOptions& o) {
     }
     summary["axis"] = {read_options.axis[0], read_options.axis[1]};
     summary["floor"] = read_options.floor;
-    summary["container"] = container_summary(container);
-    summary["warnings"] = warnings;
-    for (const auto& [name, text] : analysis_files(analysis, container))
-        out.stage(name, text);
-    if (const std::string why = stage_plots(out, analysis, container); !why.empty()) {
-        summary["plots"] = why;
-        if (!o.quiet)
-            fmt::print(stderr, "packbed analyze: {}\n", why);
-    }
+    if (summary.contains("plots") && !o.quiet)
+        fmt::print(stderr, "packbed analyze: {}\n", summary["plots"].get<std::string>());
     out.stage("summary.json", json_file_text(summary, "summary.json"));
     out.commit();
     if (!o.quiet)
-        for (const auto& warning : warnings)
+        for (const auto& warning : job.warnings)
             fmt::print(stderr, "packbed analyze: warning: {}\n", warning);
     if (!o.quiet) {
         fmt::print("packbed analyze: {} spheres in {}{}\n", file.packing.size(),

@@ -153,6 +153,26 @@ void stage_bed(OutputDirectory& out, const Packing& packing, const Container& co
 void stage_analysis(OutputDirectory& out, const Packing& packing, const Container& container,
                     double band_clearance, nlohmann::json& summary);
 
+/// What the analyze job gives: the analysis, the warnings about the bed (analysis_warnings) and
+/// its summary: analysis_summary, `warnings`, `container` (container_summary) and, when the
+/// plots were not drawn, `plots` saying why.
+struct AnalyzeJob {
+    BedAnalysis analysis;
+    std::vector<std::string> warnings;
+    nlohmann::json summary;
+};
+
+/// The analyze job of both front ends (`packbed analyze`, `packbed.analyze`): analyze_bed, the
+/// warnings, the summary, and with an output its tables and plots staged (stage_analysis_files).
+/// The caller adds its own keys to the summary, stages summary.json and commits.
+AnalyzeJob analyze_job(const Packing& packing, const Container& container,
+                       const AnalysisOptions& options, OutputDirectory* out);
+
+/// Stage the files of an analysis in `out`: its tables (analysis_files) and its plots
+/// (stage_plots). \return "" when the plots were drawn, or why not.
+std::string stage_analysis_files(OutputDirectory& out, const BedAnalysis& analysis,
+                                 const Container& container);
+
 /// Stage the plots of an analysis, drawn by gnuplot (Debian: gnuplot-nox) when it is installed:
 /// the wall profile (in a cylinder with the de Klerk and Mueller correlations), the centre
 /// distribution (by size class too), the axial profile and g(r), SVG and PNG, in `out`.

@@ -10,6 +10,7 @@
 #include <fmt/format.h>
 
 #include "packbed/analysis_files.hpp"
+#include "packbed/bed_checks.hpp"
 #include "packbed/correlations.hpp"
 #include "packbed/io.hpp"
 #include "packbed/summary.hpp"
@@ -253,10 +254,29 @@ void stage_analysis(OutputDirectory& out, const Packing& packing, const Containe
             std::min(options.rdf_range, std::min(cell->lx(), cell->ly()) / packing.mean_diameter());
     const BedAnalysis analysis = analyze_bed(packing, container, options);
     summary["analysis"] = analysis_summary(analysis, options);
+    if (const std::string why = stage_analysis_files(out, analysis, container); !why.empty())
+        summary["analysis"]["plots"] = why;
+}
+
+std::string stage_analysis_files(OutputDirectory& out, const BedAnalysis& analysis,
+                                 const Container& container) {
     for (const auto& [name, text] : analysis_files(analysis, container))
         out.stage(name, text);
-    if (const std::string why = stage_plots(out, analysis, container); !why.empty())
-        summary["analysis"]["plots"] = why;
+    return stage_plots(out, analysis, container);
+}
+
+AnalyzeJob analyze_job(const Packing& packing, const Container& container,
+                       const AnalysisOptions& options, OutputDirectory* out) {
+    AnalyzeJob job{analyze_bed(packing, container, options), {}, {}};
+    job.warnings = analysis_warnings(packing, container, job.analysis);
+    job.summary = analysis_summary(job.analysis, options);
+    job.summary["warnings"] = job.warnings;
+    job.summary["container"] = container_summary(container);
+    if (out)
+        if (const std::string why = stage_analysis_files(*out, job.analysis, container);
+            !why.empty())
+            job.summary["plots"] = why;
+    return job;
 }
 
 } // namespace packbed
