@@ -107,3 +107,13 @@ TEST(Container, CylinderAndBoxAnswerTheSameQuestions) {
     EXPECT_EQ(b.profile_position_name(), "wall_distance");
     EXPECT_DOUBLE_EQ(b.profile_position(0.5), 0.5);
 }
+
+TEST(Container, EachShapeNamesItselfInMessages) {
+    using namespace packbed;
+    EXPECT_EQ(Container(Cylinder(10.0)).describe(), "a cylinder of radius 10");
+    EXPECT_EQ(Container(Box(6.0, 6.0)).describe(), "a box (box:6,6)");
+    EXPECT_EQ(Container(Annulus(5.0, 1.0)).describe(), "annulus:10,2");
+    EXPECT_EQ(Container(Periodic(8.0, 8.0)).describe(), "periodic:8,8");
+    for (const std::string_view spec : {"cylinder:20", "box:6,6", "annulus:10,2", "periodic:8,8"})
+        EXPECT_FALSE(parse_container(spec)->container().describe().empty()) << spec;
+}

@@ -124,10 +124,7 @@ int run_analyze(AnalyzeOptions& o) {
             fmt::print(stderr, "packbed analyze: warning: {}\n", warning);
     if (!o.quiet) {
         fmt::print("packbed analyze: {} spheres in {}{}\n", file.packing.size(),
-                   container.cylinder()
-                       ? fmt::format("a cylinder of radius {}", container.cylinder()->radius())
-                   : container.box() ? fmt::format("a box ({})", container.spec())
-                                     : container.spec(),
+                   container.describe(),
                    series ? fmt::format(" (frame {} of {}; the void fraction of every frame in "
                                         "void_fraction_series.csv)",
                                         file.frame, frames)

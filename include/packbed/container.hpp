@@ -157,6 +157,8 @@ public:
 
     /// "cylinder:D", the form --container takes (D = 2 Rt, 9 significant digits).
     std::string spec() const;
+    /// How a message names it ("a cylinder of radius 10", "a box (box:6,6)", the spec).
+    std::string describe() const;
     std::string_view name() const { return "cylinder"; }
     Rectangle bounds() const { return {-m_radius, m_radius, -m_radius, m_radius}; }
     /// The wall profiles' first column: the distance from the axis, Rt - d.
@@ -257,6 +259,8 @@ public:
 
     /// "box:LX,LY" (9 significant digits); a box not at the origin adds "@X,Y", its corner.
     std::string spec() const;
+    /// How a message names it ("a cylinder of radius 10", "a box (box:6,6)", the spec).
+    std::string describe() const;
     std::string_view name() const { return "box"; }
     Rectangle bounds() const { return {m_x_low, m_x_high, m_y_low, m_y_high}; }
     /// The wall profiles' first column: the distance from the nearest face itself.
@@ -343,6 +347,8 @@ public:
 
     /// "annulus:D,DI" (9 significant digits).
     std::string spec() const;
+    /// How a message names it ("a cylinder of radius 10", "a box (box:6,6)", the spec).
+    std::string describe() const;
     std::string_view name() const { return "annulus"; }
     Rectangle bounds() const { return {-m_outer, m_outer, -m_outer, m_outer}; }
     std::string_view profile_position_name() const { return "wall_distance"; }
@@ -456,6 +462,8 @@ public:
 
     /// "periodic:LX,LY" (9 significant digits).
     std::string spec() const;
+    /// How a message names it ("a cylinder of radius 10", "a box (box:6,6)", the spec).
+    std::string describe() const;
     std::string_view name() const { return "periodic"; }
     Rectangle bounds() const { return {0.0, m_lx, 0.0, m_ly}; }
     std::string_view profile_position_name() const { return "wall_distance"; }
@@ -517,6 +525,8 @@ public:
     std::string_view name() const;
     /// The --container form: "cylinder:D", "box:LX,LY", "annulus:D,DI", "periodic:LX,LY".
     std::string spec() const;
+    /// How a message names it ("a cylinder of radius 10", "a box (box:6,6)", the spec).
+    std::string describe() const;
 
     /// The wall law of every wall: f(overlap, push) for each wall the sphere (p, radius)
     /// presses into (none in a periodic cell).

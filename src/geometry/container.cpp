@@ -47,6 +47,10 @@ std::string Cylinder::spec() const {
     return fmt::format("cylinder:{:.9g}", 2.0 * m_radius);
 }
 
+std::string Cylinder::describe() const {
+    return fmt::format("a cylinder of radius {}", radius());
+}
+
 double Box::cross_section_area() const {
     return (m_x_high - m_x_low) * (m_y_high - m_y_low);
 }
@@ -86,6 +90,10 @@ std::string Box::spec() const {
     if (m_x_low != 0.0 || m_y_low != 0.0)
         out += fmt::format("@{:.9g},{:.9g}", m_x_low, m_y_low);
     return out;
+}
+
+std::string Box::describe() const {
+    return fmt::format("a box ({})", spec());
 }
 
 double Annulus::cross_section_area() const {
@@ -148,12 +156,20 @@ std::string Annulus::spec() const {
     return fmt::format("annulus:{:.9g},{:.9g}", 2.0 * m_outer, 2.0 * m_inner);
 }
 
+std::string Annulus::describe() const {
+    return spec();
+}
+
 double Periodic::sphere_volume(const Vec3& c, double r, double z_low, double z_high) const {
     return sphere_slab_volume(c.z, r, z_low, z_high);
 }
 
 std::string Periodic::spec() const {
     return fmt::format("periodic:{:.9g},{:.9g}", m_lx, m_ly);
+}
+
+std::string Periodic::describe() const {
+    return spec();
 }
 
 // Every question to the shape: the one place a container's kind is looked at.
@@ -169,6 +185,10 @@ std::string_view Container::name() const {
 
 std::string Container::spec() const {
     return ask(m_shape, [](const auto& s) { return s.spec(); });
+}
+
+std::string Container::describe() const {
+    return ask(m_shape, [](const auto& s) { return s.describe(); });
 }
 
 Container Container::scaled(double factor) const {
