@@ -1,0 +1,38 @@
+#!/usr/bin/env bash
+# The bytes a refactor must keep: ten commands (beds in every container, with sizes, a lattice,
+# surfaces, an analysis, a voxel image) run by PACKBED into OUT, and the md5 of every output
+# (summary.json and other JSON without their timings and version). Run it with the binary
+# before a change and after, and compare: `diff before.md5 after.md5`.
+#
+# Usage: bench/pin_outputs.sh PACKBED OUT > FILE.md5    (OUT is replaced)
+set -euo pipefail
+exe=$(realpath "$1")
+out=$2
+rm -rf "$out"
+mkdir -p "$out"
+cd "$out"
+printf 'diameter,cumulative_fraction\n0.8,0\n1.0,0.5\n1.2,1\n' > sizes.csv
+$exe generate -a 5 -n 500 -s 1 -q -o a5
+$exe generate --container box:6,6 -n 600 -s 1 --sizes lognormal:1,1.2 -q -o box
+$exe generate --container annulus:10,2 -n 800 -s 2 --sizes discrete:1:0.5,1.5:0.5 -q -o ann
+$exe generate -a 6 -n 400 -s 3 --sizes file:sizes.csv -q -o file
+$exe generate --container periodic:6,6 -n 300 -s 2 -q -o per
+$exe lattice --type diamond --region cylinder:8,6 --rotate z:30,x:10 --origin 0.1,0,0.5 -q -o lat
+$exe export a5/particles.csv --format stl --contacts caps:0.01 -q -o a5.stl
+$exe export a5/particles.csv --format stl --contacts shrink:0.02 --box -2,2,-2,2,0,5 -q -o a5box.stl
+$exe analyze a5/particles.csv --band 1,5 -q -o an
+$exe voxelize a5/particles.csv --voxel-size 0.1 -q -o a5.npy
+find . -type f ! -name '*.json' -print0 | sort -z | xargs -0 md5sum
+find . -name '*.json' -print0 | sort -z | while IFS= read -r -d '' f; do
+  python3 - "$f" <<'PY' | md5sum | sed "s|-|$f|"
+import json, sys
+timing = ("seconds", "version", "command_seconds", "wall_seconds", "created")
+def strip(o):
+    if isinstance(o, dict):
+        return {k: strip(v) for k, v in o.items() if k not in timing}
+    if isinstance(o, list):
+        return [strip(v) for v in o]
+    return o
+print(json.dumps(strip(json.load(open(sys.argv[1]))), sort_keys=True))
+PY
+done
