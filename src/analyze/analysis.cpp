@@ -14,11 +14,11 @@
 #include <fmt/format.h>
 #include <omp.h>
 
+#include "base/parallel.hpp"
 #include "geometry/cell_grid.hpp"
 #include "packbed/error.hpp"
 #include "packbed/limits.hpp"
 #include "packbed/sizes.hpp"
-#include "base/parallel.hpp"
 
 namespace packbed {
 

@@ -9,9 +9,9 @@
 #include <fmt/format.h>
 #include <fmt/ranges.h>
 
+#include "base/require.hpp"
 #include "packbed/error.hpp"
 #include "packbed/limits.hpp"
-#include "base/require.hpp"
 
 namespace packbed {
 

@@ -8,9 +8,9 @@
 
 #include <fmt/format.h>
 
+#include "base/require.hpp"
 #include "packbed/error.hpp"
 #include "packbed/option_ranges.hpp"
-#include "base/require.hpp"
 
 namespace packbed {
 

@@ -13,13 +13,13 @@
 
 #include <fmt/format.h>
 
+#include "base/require.hpp"
 #include "export/mesh_union.hpp"
 #include "packbed/error.hpp"
 #include "packbed/files.hpp"
 #include "packbed/neighbor_list.hpp"
 #include "packbed/text.hpp"
 #include "packbed/volume.hpp"
-#include "base/require.hpp"
 
 namespace packbed {
 

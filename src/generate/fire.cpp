@@ -35,10 +35,10 @@
 
 #include <fmt/format.h>
 
+#include "base/parallel.hpp"
 #include "generate/soft_bed.hpp"
 #include "packbed/error.hpp"
 #include "packbed/soft_sphere.hpp"
-#include "base/parallel.hpp"
 
 namespace packbed {
 

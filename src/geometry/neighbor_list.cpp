@@ -9,8 +9,8 @@
 
 #include <omp.h>
 
-#include "geometry/cell_grid.hpp"
 #include "base/parallel.hpp"
+#include "geometry/cell_grid.hpp"
 
 namespace packbed {
 

@@ -10,8 +10,8 @@
 #include <fmt/format.h>
 #include <nlohmann/json.hpp>
 
-#include "gnuplot.hpp"
 #include "base/json_input.hpp"
+#include "gnuplot.hpp"
 #include "packbed/error.hpp"
 #include "packbed/files.hpp"
 #include "packbed/hydraulics.hpp"
