@@ -4,8 +4,8 @@
 Every quoted #include of src/, include/packbed/, apps/ and python/ is checked. A file's floor is
 its folder's (src/base, src/geometry, ...); a public header's is the folder of the source file
 that implements it (include/packbed/x.hpp: src/*/x.cpp; pipeline.hpp: src/pipeline/), or the
-ground floor for a header with no source file (error, limits, packing, registry, vec3). An include of a higher floor is a finding, unless KNOWN lists it: those are
-the crossings the code still has, each to go (a new one fails; one that went must leave KNOWN).
+ground floor for a header with no source file (error, limits, packing, registry, vec3). An
+include of a higher floor is a finding.
 Exit status 0 when clean, 1 with one line per finding.
 
 Usage: scripts/check-layers.py [REPO]
@@ -22,8 +22,6 @@ FLOORS = {  # bottom to top; the folders of one floor may include each other
     "pipeline": 4,
     "apps": 5, "python": 5,
 }
-# (including file, included header): crossings allowed for now, each with its reason. None today.
-KNOWN: set = set()
 
 
 def main():
@@ -39,7 +37,7 @@ def main():
             return name.split("/")[0]
         return floor_of(including.parent.relative_to(repo) / name)
 
-    findings, seen = [], set()
+    findings = []
     files = [p for d in ("src", "include/packbed", "apps", "python")
              for p in (repo / d).rglob("*") if p.suffix in (".cpp", ".hpp")]
     for path in sorted(files):
@@ -52,13 +50,8 @@ def main():
             target = header_floor(m.group(1), path)
             if target not in FLOORS or FLOORS[target] <= FLOORS[own]:
                 continue
-            key = (str(rel), m.group(1))
-            seen.add(key)
-            if key not in KNOWN:
-                findings.append(f"{rel}:{number}: {own} includes {m.group(1)} ({target}), a floor "
-                                f"above it")
-    for key in sorted(KNOWN - seen):
-        findings.append(f"{key[0]}: no longer includes {key[1]}: take it out of KNOWN")
+            findings.append(f"{rel}:{number}: {own} includes {m.group(1)} ({target}), a floor "
+                            f"above it")
     for f in findings:
         print(f)
     return 1 if findings else 0

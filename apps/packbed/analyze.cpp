@@ -101,9 +101,9 @@ int run_analyze(AnalyzeOptions& o) {
         read = std::move(frames_read.last);
     }
     const ParticleFile& file = *read;
-    const AnalyzeJob job = analyze_job(file.packing, container, o.analysis, &out);
+    AnalyzeJob job = analyze_job(file.packing, container, o.analysis, &out);
     const BedAnalysis& analysis = job.analysis;
-    nlohmann::json summary = job.summary;
+    nlohmann::json& summary = job.summary;
     summary["particles_file"] = path.string();
     summary["particles"] = file.packing.size();
     summary["frame"] = file.frame;

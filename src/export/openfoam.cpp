@@ -269,11 +269,6 @@ Background background(const Box& box, double height, double cell,
     return b;
 }
 
-/// The name OpenFOAM and --turbulence give `model` (turbulence_models()).
-std::string turbulence_name(Turbulence model) {
-    return turbulence_models().name(model);
-}
-
 /// The RANS fields of a case (model k-epsilon or k-omega SST), in SI units: at the inlet a
 /// turbulence intensity I = 5 % of the local velocity (k = 3/2 (I u)^2) and a mixing length
 /// l = 0.1 d (epsilon = C_mu^{3/4} k^{3/2} / l, omega = k^{1/2} / (C_mu^{1/4} l), C_mu = 0.09:
@@ -408,7 +403,7 @@ void add_flow_files(OpenFoamCase& c, const std::vector<std::string>& walls, doub
         header("turbulenceProperties", "constant") +
             (rans ? fmt::format("simulationType RAS;\nRAS\n{{\n    RASModel {};\n    turbulence "
                                 "on;\n    printCoeffs on;\n}}\n",
-                                turbulence_name(model))
+                                turbulence_models().name(model))
                   : std::string("simulationType laminar;\n")));
     if (rans)
         add_rans_fields(c, walls, model, d);
@@ -709,7 +704,7 @@ OpenFoamCase openfoam_case(const TreatedBed& bed, const SurfaceContainer& contai
             fmt::arg("e0", bed_void), fmt::arg("e1", volumes.treated_void_fraction),
             fmt::arg("model", flow.turbulence == Turbulence::laminar
                                   ? std::string("laminar")
-                                  : "RANS, " + turbulence_name(flow.turbulence)),
+                                  : "RANS, " + turbulence_models().name(flow.turbulence)),
             fmt::arg("ranks", flow.ranks), fmt::arg("scale", c.scale),
             fmt::arg("dm", c.scale * diameter), fmt::arg("rho", flow.fluid_density),
             fmt::arg("mu", flow.viscosity), fmt::arg("nu", flow.viscosity / flow.fluid_density),

@@ -242,11 +242,6 @@ double half_ball_in_cylinder(double radius, double rho) {
 
 namespace {
 
-/// The name of a treatment in contact_treatments().
-std::string name_of(ContactTreatment treatment) {
-    return contact_treatments().name(treatment);
-}
-
 /// Where something meets a sphere's surface: a disc about `axis` (unit) of angular radius
 /// `angle`. Two footprints of one sphere must not meet for the volumes to be sums of closed
 /// forms.
@@ -264,7 +259,8 @@ void refuse_meeting_footprints(const std::vector<Footprint>& f, std::size_t sphe
                 throw InvalidInput(fmt::format(
                     "--contacts {}:{} gives sphere {} at ({:.6g}, {:.6g}, {:.6g}) two caps, "
                     "lenses or bridge ends that meet; allowed: a smaller parameter",
-                    name_of(contacts.treatment), contacts.parameter, sphere + 1, x.x, x.y, x.z));
+                    contact_treatments().name(contacts.treatment), contacts.parameter, sphere + 1,
+                    x.x, x.y, x.z));
         }
 }
 
@@ -288,8 +284,8 @@ Footprint cut_footprint(const TreatedBody& b, const HalfSpace& h, std::size_t sp
         throw InvalidInput(fmt::format(
             "--contacts {}:{} cuts sphere {} at ({:.6g}, {:.6g}, {:.6g}) beyond its centre; "
             "allowed: a smaller parameter",
-            name_of(contacts.treatment), contacts.parameter, sphere + 1, b.center.x, b.center.y,
-            b.center.z));
+            contact_treatments().name(contacts.treatment), contacts.parameter, sphere + 1,
+            b.center.x, b.center.y, b.center.z));
     return {h.normal, std::acos(std::min(1.0, s / b.radius))};
 }
 
@@ -305,7 +301,7 @@ TreatedBed treat_contacts(const Packing& packing, const Contacts& contacts,
         throw InvalidInput(fmt::format(
             "--contacts {}:{} is not allowed in the periodic cell {}; allowed: caps:H, shrink:F "
             "or none (the unions of enlarge and bridges are not copied across the sides)",
-            name_of(contacts.treatment), contacts.parameter, cell->spec()));
+            contact_treatments().name(contacts.treatment), contacts.parameter, cell->spec()));
     if (cell && n > 0) {
         // The minimum image finds every contact only where no sphere can touch two copies of
         // another, and a sphere crosses at most one side of each pair.
@@ -338,7 +334,7 @@ TreatedBed treat_contacts(const Packing& packing, const Contacts& contacts,
                 "sphere {} at ({:.6g}, {:.6g}, {:.6g}) has its centre on or below the floor "
                 "z = 0; allowed: centres above the floor for --contacts {}",
                 i + 1, packing.centers[i].x, packing.centers[i].y, packing.centers[i].z,
-                name_of(contacts.treatment)));
+                contact_treatments().name(contacts.treatment)));
     const double dp = packing.mean_diameter();
     const double length = contacts.parameter * dp;
 
@@ -404,7 +400,7 @@ TreatedBed treat_contacts(const Packing& packing, const Contacts& contacts,
                     "spheres {} and {} overlap by more than a radius (centres {:.6g} apart); "
                     "allowed: beds whose centres are farther apart than a radius for --contacts "
                     "{}",
-                    i + 1, j + 1, d, name_of(contacts.treatment)));
+                    i + 1, j + 1, d, contact_treatments().name(contacts.treatment)));
             const Vec3 u = r * (1.0 / d);
             if (contacts.treatment == ContactTreatment::caps) {
                 const double si = radii[i] + 0.5 * (gap - length);
