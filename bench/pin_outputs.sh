@@ -1,5 +1,5 @@
 #!/usr/bin/env bash
-# The bytes a refactor must keep: ten commands (beds in every container, with sizes, a lattice,
+# The bytes a refactor must keep: commands (beds in every container, with sizes, a lattice,
 # surfaces, an analysis, a voxel image) run by PACKBED into OUT, and the md5 of every output
 # (summary.json and other JSON without their timings and version). Run it with the binary
 # before a change and after, and compare: `diff before.md5 after.md5`.
@@ -22,6 +22,32 @@ $exe export a5/particles.csv --format stl --contacts caps:0.01 -q -o a5.stl
 $exe export a5/particles.csv --format stl --contacts shrink:0.02 --box -2,2,-2,2,0,5 -q -o a5box.stl
 $exe analyze a5/particles.csv --band 1,5 -q -o an
 $exe voxelize a5/particles.csv --voxel-size 0.1 -q -o a5.npy
+$exe analyze box/particles.csv -q -o anbox
+$exe analyze ann/particles.csv -q -o anann
+$exe analyze per/particles.csv -q -o anper
+$exe export a5/particles.csv --format openfoam -q -o a5foam
+$exe export ann/particles.csv --format openfoam -q -o annfoam
+$exe export per/particles.csv --format openfoam -q -o perfoam
+$exe export box/particles.csv --format stl --contacts caps:0.01 -q -o box.stl
+$exe export ann/particles.csv --format stl --contacts caps:0.01 -q -o ann.stl
+{ $exe export per/particles.csv --format stl -q -o per.stl || echo "exit $?"; } > per.stl.refused 2>&1
+for c in cylinder:0.5 box:0.5,3 annulus:4,3.5 periodic:1.5,3; do
+  { $exe generate --container $c -n 50 -q -o small || echo "exit $?"; } > "fit_${c%%:*}.refused" 2>&1
+done
+$exe export a5/particles.csv --format liggghts-data -q -o a5.data
+$exe export box/particles.csv -q -o box.data
+$exe export ann/particles.csv -q -o ann.data
+$exe export per/particles.csv -q -o per.data
+$exe generate -a 5 -n 200 -s 1 --engine lammps --write-only lmp_cyl -q -o lc
+$exe generate --container box:5,5 -n 200 -s 1 --engine lammps --write-only lmp_box -q -o lb
+$exe generate --container annulus:8,2 -n 200 -s 1 --engine lammps --write-only lmp_ann -q -o la
+$exe generate --container periodic:5,5 -n 200 -s 1 --engine lammps --write-only lmp_per -q -o lp
+$exe lattice --type fcc --region box:6,6,6 -q -o latbox
+$exe voxelize per/particles.csv --voxel-size 0.2 -q -o per.npy
+$exe voxelize ann/particles.csv --voxel-size 0.2 -q -o ann.npy
+for c in cylinder:0.05 box:0.05,0.04 annulus:0.05,0.01 periodic:0.05,0.05; do
+  { $exe hydraulics --container $c -d 0.003 --porosity 0.4 || echo "exit $?"; } > "hyd_${c%%:*}.txt" 2>&1
+done
 find . -type f ! -name '*.json' -print0 | sort -z | xargs -0 md5sum
 find . -name '*.json' -print0 | sort -z | while IFS= read -r -d '' f; do
   python3 - "$f" <<'PY' | md5sum | sed "s|-|$f|"

@@ -301,7 +301,7 @@ Bed file_bed(const std::filesystem::path& path, ParticleFile&& file,
     bed.summary["particles"] = bed.packing.size();
     bed.summary["frame"] = file.frame;
     if (bed.container)
-        bed.summary["container"] = container_summary(*bed.container);
+        bed.summary["container"] = bed.container->summary_json();
     return bed;
 }
 
@@ -428,7 +428,7 @@ Bed from_arrays(const py::object& centers_given, const std::optional<py::object>
         bed.container = container_from_spec("--container", *container);
         check_inside(bed.packing, {}, "centers", *bed.container,
                      0.01 * (n > 0 ? bed.packing.mean_diameter() : 0.0), false);
-        bed.summary["container"] = container_summary(*bed.container);
+        bed.summary["container"] = bed.container->summary_json();
     }
     bed.summary["particles"] = n;
     return bed;

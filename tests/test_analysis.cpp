@@ -348,7 +348,7 @@ TEST(PairRegion, ABandFromFloorToTopIsClippedToWhereCentresCanBe) {
     const BedAnalysis a = analyze_bed(p, Cylinder(1.5), o);
     EXPECT_EQ(a.band.z_low, 0.0);
     EXPECT_EQ(a.band.z_high, 8.0);
-    EXPECT_DOUBLE_EQ(a.pair_region.container.cylinder()->radius(), 1.0);
+    EXPECT_DOUBLE_EQ(a.pair_region.container.tube_diameter().value() * 0.5, 1.0);
     EXPECT_DOUBLE_EQ(a.pair_region.band.z_low, 0.5);
     EXPECT_DOUBLE_EQ(a.pair_region.band.z_high, 7.5);
     // The nearest pairs are at contact (distance 1: the bin [1, 1.02)), none closer.
@@ -430,7 +430,7 @@ TEST(PairCorrelation, IdealGasInANarrowCylinderGivesOneAtEveryDistance) {
     o.slab_height = 1.0;
     o.centre_bin = 0.5;
     const BedAnalysis a = analyze_bed(p, Cylinder(rt), o);
-    EXPECT_DOUBLE_EQ(a.pair_region.container.cylinder()->radius(), 2.0);
+    EXPECT_DOUBLE_EQ(a.pair_region.container.tube_diameter().value() * 0.5, 2.0);
     EXPECT_EQ(a.pair_region.band.z_low, a.band.z_low);
     EXPECT_EQ(a.pair_region.band.z_high, a.band.z_high);
     ASSERT_EQ(a.pair_correlation.size(), 30u);
@@ -460,11 +460,11 @@ TEST(PairCorrelation, GeneratedBedAtAspectRatio5TendsToOne) {
     parameters.particles = 300;
     parameters.seed = 1;
     const SoftSphereResult bed = generate_soft_sphere(parameters);
-    const double rt = bed.container.cylinder()->radius();
+    const double rt = bed.container.tube_diameter().value() * 0.5;
     AnalysisOptions o;
     o.rdf_bin = 0.1;
     const BedAnalysis a = analyze_bed(bed.packing, bed.container, o);
-    EXPECT_NEAR(a.pair_region.container.cylinder()->radius(), 2.0, 1e-12);
+    EXPECT_NEAR(a.pair_region.container.tube_diameter().value() * 0.5, 2.0, 1e-12);
     const PairCounts counts = count_pairs(bed.packing, a.band.z_low, a.band.z_high, 3.0, 0.1);
     const std::vector<double> old = uncorrected_g(bed.packing, a, rt, counts);
     double sum = 0.0, sum_old = 0.0;

@@ -152,7 +152,7 @@ TEST(ContainerWalls, PeriodicCellHasNoWall) {
     EXPECT_TRUE(std::isinf(p.wall_distance({1.0, 1.0, 1.0})));
     EXPECT_TRUE(p.profile_walls().empty());
     // The minimum image: 7.5 apart in x is 0.5 the other way.
-    const Periodic& cell = *p.periodic();
+    const Periods cell = *p.periods();
     expect_vec(cell.separation({7.75, 1.0, 0.0}, {0.25, 1.0, 0.0}), {0.5, 0.0, 0.0});
     expect_vec(cell.wrapped({-0.5, 6.5, 2.0}), {7.5, 0.5, 2.0});
     // "Sticks out": the centre outside [0, 8] x [0, 6], the radius not counted.
@@ -343,7 +343,7 @@ TEST(ContainerAnalysis, PeriodicCellNarrowerThanTheRangeIsRefused) {
 TEST(ContainerSummary, AnnulusAndPeriodicRoundTrip) {
     for (const Container& c : {Container(Annulus(5.0, 1.25)), Container(Periodic(8.0, 6.5))}) {
         nlohmann::json json;
-        json["container"] = container_summary(c);
+        json["container"] = c.summary_json();
         std::istringstream text(json.dump());
         const BedSummary s = read_bed_summary(text, "summary.json");
         ASSERT_TRUE(s.container) << c.spec();
@@ -378,7 +378,7 @@ TEST(ContainerCli, AnalyzeFindsTheAnnulusBesideTheFile) {
             }
     csv.close();
     nlohmann::json summary;
-    summary["container"] = container_summary(Annulus(4.0, 1.0));
+    summary["container"] = Container(Annulus(4.0, 1.0)).summary_json();
     std::ofstream(d / "summary.json") << summary.dump();
     const Outcome o =
         run_packbed("analyze " + (d / "particles.csv").string() + " --out " + (d / "out").string());

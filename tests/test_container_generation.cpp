@@ -30,7 +30,7 @@ struct Worst {
 Worst worst_of(const SoftSphereResult& r) {
     Worst w;
     const Packing& p = r.packing;
-    const Periodic* cell = r.container.periodic();
+    const std::optional<Periods> cell = r.container.periods();
     for (std::size_t i = 0; i < p.size(); ++i) {
         for (std::size_t j = i + 1; j < p.size(); ++j) {
             double nearest = norm(p.centers[j] - p.centers[i]);
@@ -92,9 +92,9 @@ TEST_P(EveryContainer, EndsWithEveryOverlapBelowTheTolerance) {
     const auto band = band_clear_of_ends(r.packing, 2.0 * 2.0);
     ASSERT_TRUE(band);
     const double e = void_fraction(r.packing, r.container, band->z_low, band->z_high);
-    EXPECT_GT(e, r.container.periodic() ? 0.2595 : 0.34);
+    EXPECT_GT(e, r.container.periods() ? 0.2595 : 0.34);
     EXPECT_LT(e, 0.47);
-    if (const Periodic* cell = r.container.periodic())
+    if (const std::optional<Periods> cell = r.container.periods())
         for (const Vec3& x : r.packing.centers) { // centres written in the cell
             EXPECT_GE(x.x, 0.0);
             EXPECT_LT(x.x, cell->lx());
@@ -132,7 +132,7 @@ TEST(ContainerGeneration, EveryStartingCentreIsWhereASphereFits) {
         }
         // 2 000 draws reach the ends of the range to within a few hundredths.
         const Rectangle b = c.bounds();
-        const double margin = c.periodic() ? 0.0 : 0.5;
+        const double margin = c.periods() ? 0.0 : 0.5;
         EXPECT_NEAR(x_low, b.x_low + margin, 0.03) << c.spec();
         EXPECT_NEAR(x_high, b.x_high - margin, 0.03) << c.spec();
     }

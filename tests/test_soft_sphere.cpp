@@ -165,7 +165,7 @@ TEST(SoftSphere, SmallBedConvergesInsideTheContainer) {
     const SoftSphereResult res = generate_soft_sphere(p);
     EXPECT_LT(res.max_overlap_pair, 1e-4);
     EXPECT_LT(res.max_overlap_wall, 1e-4);
-    EXPECT_DOUBLE_EQ(res.container.cylinder()->radius(), 4.0);
+    EXPECT_DOUBLE_EQ(res.container.tube_diameter().value() * 0.5, 4.0);
     ASSERT_EQ(res.stages.size(), 3u);
     EXPECT_EQ(res.stages[0].iterations + res.stages[1].iterations + res.stages[2].iterations,
               res.iterations);

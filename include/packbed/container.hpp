@@ -19,6 +19,8 @@
 #include <variant>
 #include <vector>
 
+#include <nlohmann/json_fwd.hpp>
+
 #include "packbed/vec3.hpp"
 
 namespace packbed {
@@ -43,6 +45,76 @@ struct Rectangle {
 struct WallPlane {
     Vec3 normal;
     double offset = 0.0;
+};
+
+/// Periodicity in x and y, a boundary of the cell [0, LX) x [0, LY) rather than a wall: a
+/// sphere leaving one side comes back through the opposite one, and two spheres touch through
+/// the sides by the minimum image (their nearest copies). What the searches, the solvers and
+/// the exports ask of a periodic container (Container::periods). Immutable.
+class Periods {
+public:
+    /// \param lx,ly the periods (length, > 0)
+    Periods(double lx, double ly)
+        : m_lx(lx)
+        , m_ly(ly) {}
+
+    double lx() const { return m_lx; }
+    double ly() const { return m_ly; }
+
+    /// \return p moved by whole periods into [0, LX) x [0, LY) (z unchanged).
+    Vec3 wrapped(const Vec3& p) const {
+        return {p.x - m_lx * std::floor(p.x / m_lx), p.y - m_ly * std::floor(p.y / m_ly), p.z};
+    }
+    /// \return the separation b - a between the nearest copies of a and b (minimum image),
+    /// for |b - a| within one period and a half on each side: whole periods are taken off
+    /// each of x and y while it exceeds half a period. -separation(a, b) == separation(b, a)
+    /// to the bit.
+    Vec3 separation(const Vec3& a, const Vec3& b) const {
+        Vec3 d = b - a;
+        const double hx = 0.5 * m_lx, hy = 0.5 * m_ly;
+        if (d.x > hx)
+            d.x -= m_lx;
+        else if (d.x < -hx)
+            d.x += m_lx;
+        if (d.y > hy)
+            d.y -= m_ly;
+        else if (d.y < -hy)
+            d.y += m_ly;
+        return d;
+    }
+
+private:
+    double m_lx, m_ly;
+};
+
+/// The hydraulic diameter 4 A / P of a container's cross-section (A its area, P its wetted
+/// perimeter), with the formula in its spec's letters ("D - DI"); none for a container with
+/// no wall, `formula` then says why ("is a periodic cell, it has no wall").
+struct HydraulicDiameter {
+    std::optional<double> value;
+    std::string_view formula;
+};
+
+/// The length whose hundredth is the least margin of a data file's box beyond the container's
+/// side (io.hpp's container_box_margin: max(Dp / 2, length / 100)), how the box's note words
+/// that hundredth ("Rt/100") and names the container ("radius 5", or the spec); a length of 0
+/// where the box is the container itself (a periodic cell).
+struct BoxMargin {
+    double length = 0.0;
+    std::string_view words;
+    std::string container;
+};
+
+/// A container's side as the LAMMPS engine's input writes it (docs/lammps.md): the x and y
+/// boundary ("f f", or "p p" for a periodic cell), the data file's box in x and y (the side
+/// and a margin of twice the set-back), the regions and harmonic wall fixes of each size
+/// (type t + 1 of diameter diameters[t], each wall set back by `setback` and reaching the
+/// radius and the set-back) and atom-style formulas of each wall's overlap (v_r the radius).
+struct LammpsSide {
+    std::string boundary = "f f";
+    Rectangle box;
+    std::string walls;
+    std::vector<std::string> overlaps;
 };
 
 /// What every shape of `Container` answers (a part of it: the rest is in the class comments).
@@ -111,8 +183,13 @@ public:
     }
 
     /// The wall law as Box::wall_contacts has it: f(overlap, push) when the sphere presses
-    /// into the wall (wall_contact's overlap > 0).
+    /// into the wall (wall_contact's overlap > 0). Spheres clearly inside (centre closer to
+    /// the axis than Rt - r - 1e-9 (Rt + 1)) skip the square root: the margin exceeds the
+    /// rounding of wall_contact by far, so the answer is the same.
     template <class F> void wall_contacts(const Vec3& p, double radius, F&& f) const {
+        const double inner = m_radius - radius - 1e-9 * (m_radius + 1.0);
+        if (inner > 0.0 && p.x * p.x + p.y * p.y < inner * inner)
+            return;
         if (const WallContact w = wall_contact(p, radius); w.overlap > 0.0)
             f(w.overlap, w.push);
     }
@@ -159,7 +236,20 @@ public:
     std::string spec() const;
     /// How a message names it ("a cylinder of radius 10", "a box (box:6,6)", the spec).
     std::string describe() const;
+    /// The questions of the other stages, answered in container.cpp (see Container).
+    std::optional<double> tube_diameter() const;
+    std::optional<Periods> periods() const;
+    HydraulicDiameter hydraulic_diameter() const;
+    BoxMargin box_margin() const;
+    std::string fit_problem(double largest) const;
+    double fill_height(double solid, double e0) const;
+    Vec3 uniform_point(double radius, double u, double v) const;
+    std::vector<std::pair<double, double>> search_lines() const;
+    nlohmann::json summary_json() const;
+    nlohmann::ordered_json export_json(double height) const;
+    LammpsSide lammps_side(std::span<const double> diameters, double setback) const;
     std::string_view name() const { return "cylinder"; }
+    std::string_view axis() const { return "z through x = y = 0"; }
     Rectangle bounds() const { return {-m_radius, m_radius, -m_radius, m_radius}; }
     /// The wall profiles' first column: the distance from the axis, Rt - d.
     std::string_view profile_position_name() const { return "radial_position"; }
@@ -261,7 +351,20 @@ public:
     std::string spec() const;
     /// How a message names it ("a cylinder of radius 10", "a box (box:6,6)", the spec).
     std::string describe() const;
+    /// The questions of the other stages, answered in container.cpp (see Container).
+    std::optional<double> tube_diameter() const;
+    std::optional<Periods> periods() const;
+    HydraulicDiameter hydraulic_diameter() const;
+    BoxMargin box_margin() const;
+    std::string fit_problem(double largest) const;
+    double fill_height(double solid, double e0) const;
+    Vec3 uniform_point(double radius, double u, double v) const;
+    std::vector<std::pair<double, double>> search_lines() const;
+    nlohmann::json summary_json() const;
+    nlohmann::ordered_json export_json(double height) const;
+    LammpsSide lammps_side(std::span<const double> diameters, double setback) const;
     std::string_view name() const { return "box"; }
+    std::string_view axis() const { return ""; }
     Rectangle bounds() const { return {m_x_low, m_x_high, m_y_low, m_y_high}; }
     /// The wall profiles' first column: the distance from the nearest face itself.
     std::string_view profile_position_name() const { return "wall_distance"; }
@@ -349,7 +452,20 @@ public:
     std::string spec() const;
     /// How a message names it ("a cylinder of radius 10", "a box (box:6,6)", the spec).
     std::string describe() const;
+    /// The questions of the other stages, answered in container.cpp (see Container).
+    std::optional<double> tube_diameter() const;
+    std::optional<Periods> periods() const;
+    HydraulicDiameter hydraulic_diameter() const;
+    BoxMargin box_margin() const;
+    std::string fit_problem(double largest) const;
+    double fill_height(double solid, double e0) const;
+    Vec3 uniform_point(double radius, double u, double v) const;
+    std::vector<std::pair<double, double>> search_lines() const;
+    nlohmann::json summary_json() const;
+    nlohmann::ordered_json export_json(double height) const;
+    LammpsSide lammps_side(std::span<const double> diameters, double setback) const;
     std::string_view name() const { return "annulus"; }
+    std::string_view axis() const { return "z through x = y = 0"; }
     Rectangle bounds() const { return {-m_outer, m_outer, -m_outer, m_outer}; }
     std::string_view profile_position_name() const { return "wall_distance"; }
     double profile_position(double d) const { return d; }
@@ -405,42 +521,18 @@ private:
 /// "none": wall_distance is +infinity, depth 0 (no wall profile), no wall contacts. A sphere
 /// cut by a side of the cell has its missing part inside through the opposite side, so its
 /// volume in the cell is its whole volume between the heights. Immutable after construction.
-class Periodic {
+class Periodic : public Periods {
 public:
     /// \param lx,ly the cell's periods (length, > 0)
     Periodic(double lx, double ly)
-        : m_lx(lx)
-        , m_ly(ly) {}
-
-    double lx() const { return m_lx; }
-    double ly() const { return m_ly; }
+        : Periods(lx, ly) {}
 
     /// \return true for every point above the floor: each is a copy of one in the cell.
     bool contains(const Vec3& p) const { return p.z >= 0.0; }
     /// No wall: f is never called.
     template <class F> void wall_contacts(const Vec3&, double, F&&) const {}
-
-    /// \return p moved by whole periods into [0, LX) x [0, LY) (z unchanged).
-    Vec3 wrapped(const Vec3& p) const {
-        return {p.x - m_lx * std::floor(p.x / m_lx), p.y - m_ly * std::floor(p.y / m_ly), p.z};
-    }
-    /// \return the separation b - a between the nearest copies of a and b (minimum image),
-    /// for |b - a| within one period and a half on each side: whole periods are taken off
-    /// each of x and y while it exceeds half a period. -separation(a, b) == separation(b, a)
-    /// to the bit.
-    Vec3 separation(const Vec3& a, const Vec3& b) const {
-        Vec3 d = b - a;
-        const double hx = 0.5 * m_lx, hy = 0.5 * m_ly;
-        if (d.x > hx)
-            d.x -= m_lx;
-        else if (d.x < -hx)
-            d.x += m_lx;
-        if (d.y > hy)
-            d.y -= m_ly;
-        else if (d.y < -hy)
-            d.y += m_ly;
-        return d;
-    }
+    /// The cell's periods.
+    std::optional<Periods> periods() const { return Periods(*this); }
 
     double wall_distance(const Vec3&) const { return std::numeric_limits<double>::infinity(); }
     std::pair<double, double> wall_distances(const Vec3&, double) const {
@@ -450,7 +542,7 @@ public:
     double depth() const { return 0.0; }
     std::vector<WallPlane> walls_within(const Vec3&, double, double) const { return {}; }
     /// \return the cross-section, LX LY.
-    double cross_section_area() const { return m_lx * m_ly; }
+    double cross_section_area() const { return lx() * ly(); }
     double shell_area(double, double) const { return 0.0; }
     Periodic shrunk(double) const { return *this; }
     /// The whole sphere between z_low and z_high (spherical segments): the parts beyond a
@@ -464,8 +556,20 @@ public:
     std::string spec() const;
     /// How a message names it ("a cylinder of radius 10", "a box (box:6,6)", the spec).
     std::string describe() const;
+    /// The questions of the other stages, answered in container.cpp (see Container).
+    std::optional<double> tube_diameter() const;
+    HydraulicDiameter hydraulic_diameter() const;
+    BoxMargin box_margin() const;
+    std::string fit_problem(double largest) const;
+    double fill_height(double solid, double e0) const;
+    Vec3 uniform_point(double radius, double u, double v) const;
+    std::vector<std::pair<double, double>> search_lines() const;
+    nlohmann::json summary_json() const;
+    nlohmann::ordered_json export_json(double height) const;
+    LammpsSide lammps_side(std::span<const double> diameters, double setback) const;
     std::string_view name() const { return "periodic"; }
-    Rectangle bounds() const { return {0.0, m_lx, 0.0, m_ly}; }
+    std::string_view axis() const { return ""; }
+    Rectangle bounds() const { return {0.0, lx(), 0.0, ly()}; }
     std::string_view profile_position_name() const { return "wall_distance"; }
     double profile_position(double d) const { return d; }
 
@@ -484,11 +588,8 @@ public:
     /// \return how far the centre of the sphere lies outside the cell [0, LX] x [0, LY] (0
     /// inside; the radius does not count: a sphere across a side is inside through the other).
     double sticks_out(const Vec3& c, double) const {
-        return std::max({0.0, -c.x, c.x - m_lx, -c.y, c.y - m_ly});
+        return std::max({0.0, -c.x, c.x - lx(), -c.y, c.y - ly()});
     }
-
-private:
-    double m_lx, m_ly;
 };
 
 static_assert(ContainerShape<Cylinder> && ContainerShape<Box> && ContainerShape<Annulus> &&
@@ -511,15 +612,8 @@ public:
     Container(const Periodic& periodic) // NOLINT(google-explicit-constructor)
         : m_shape(periodic) {}
 
+    /// The shape itself, for the container's own files and for tests.
     const Shape& shape() const { return m_shape; }
-    /// \return the cylinder, or nullptr for another shape.
-    const Cylinder* cylinder() const { return std::get_if<Cylinder>(&m_shape); }
-    /// \return the box, or nullptr for another shape.
-    const Box* box() const { return std::get_if<Box>(&m_shape); }
-    /// \return the annulus, or nullptr for another shape.
-    const Annulus* annulus() const { return std::get_if<Annulus>(&m_shape); }
-    /// \return the periodic cell, or nullptr for another shape.
-    const Periodic* periodic() const { return std::get_if<Periodic>(&m_shape); }
 
     /// "cylinder", "box", "annulus" or "periodic".
     std::string_view name() const;
@@ -599,6 +693,41 @@ public:
     /// all): beyond the nearest wall (the cylinder, a box face, the tube or the rod), or, in a
     /// periodic cell, how far its centre lies outside [0, LX] x [0, LY].
     double sticks_out(const Vec3& c, double r) const;
+
+    /// The diameter D of a tube, where the published correlations for tubes apply as written
+    /// at the aspect ratio a = D / Dp (the paper's eq. (6), Dixon's and de Klerk's void
+    /// fractions, the radial profiles, the wall correction of pressure drops); nothing for
+    /// another shape, which a front end then names by its spec.
+    std::optional<double> tube_diameter() const;
+    /// The periods of a container periodic in x and y (a boundary, not a wall: pairs by the
+    /// minimum image, centres wrapped into the cell); nothing for one with side walls.
+    std::optional<Periods> periods() const;
+    /// The hydraulic diameter 4 A / P and its formula (none without a wall).
+    HydraulicDiameter hydraulic_diameter() const;
+    /// The length that sets a data file's box margin beyond the side, and its words.
+    BoxMargin box_margin() const;
+    /// Why a bed of spheres of diameter up to `largest` (lengths in Dp) cannot be packed in
+    /// the container ("widths from 1 Dp ... to 10000 Dp": what is allowed), empty if it can.
+    std::string fit_problem(double largest) const;
+    /// The height of a bed of spheres whose diameters cubed (in Dp) add to `solid`, at void
+    /// fraction e0: (pi / 6) solid / (A (1 - e0)); the paper's eq. (6) for a tube.
+    double fill_height(double solid, double e0) const;
+    /// A point of the floor uniform over the part of the cross-section a centre of radius
+    /// `radius` reaches, from two uniform numbers u, v in [0, 1).
+    Vec3 uniform_point(double radius, double u, double v) const;
+    /// Eight vertical lines (x, y) inside the container, off its symmetries, along which to
+    /// search for a point of the fluid far from every surface (the OpenFOAM case's
+    /// locationInMesh).
+    std::vector<std::pair<double, double>> search_lines() const;
+    /// The axis of a container of revolution in summary.json's words ("z through x = y = 0"),
+    /// empty for a prism.
+    std::string_view axis() const;
+    /// The container in summary.json: its shape, its lengths and spec.
+    nlohmann::json summary_json() const;
+    /// The container in an export's packbed.json: its shape, lengths and `height`.
+    nlohmann::ordered_json export_json(double height) const;
+    /// The side's walls in the LAMMPS engine's input, one fix per size.
+    LammpsSide lammps_side(std::span<const double> diameters, double setback) const;
 
 private:
     Shape m_shape;

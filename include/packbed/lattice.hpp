@@ -141,7 +141,7 @@ struct LatticeContacts {
 LatticeContacts lattice_contacts(const Packing& packing, double tolerance = 1e-9);
 /// The same in a periodic cell: distances by the minimum image (Periodic::separation), the
 /// cell at least 2 d wide.
-LatticeContacts lattice_contacts(const Packing& packing, const Periodic& cell,
+LatticeContacts lattice_contacts(const Packing& packing, const Periods& cell,
                                  double tolerance = 1e-9);
 
 /// \return the region of `text`: `box:LX,LY,LZ`, `cylinder:D,H`, `annulus:D,DI,H` (0 < DI < D)

@@ -41,7 +41,7 @@ public:
     /// (the search sees the centres moved into the cell; a pair is listed once even where two
     /// of its copies are within the cut). For forces by the minimum image, the cell must be at
     /// least twice the largest r_i + r_j wide, so that a touching pair has one nearest copy.
-    void wrap(const Periodic& cell) { m_cell = cell; }
+    void wrap(const Periods& cell) { m_cell = cell; }
 
     /// \return true when some sphere has moved more than skin/2 since the last build (or
     /// there was no build yet, or the number of spheres changed).
@@ -97,7 +97,7 @@ private:
     std::vector<std::uint32_t> m_owner;   // first sphere of each pair
     std::vector<std::uint32_t> m_pair_of; // pair number of each entry of m_neighbors
     std::vector<Vec3> m_reference;        // positions at the last build
-    std::optional<Periodic> m_cell;       // periodic in x and y (wrap())
+    std::optional<Periods> m_cell;        // periodic in x and y (wrap())
     double m_skin = 0.0;
     std::size_t m_builds = 0;
 };

@@ -154,7 +154,7 @@ void stage_analysis(OutputDirectory& out, const Packing& packing, const Containe
                     double band_clearance, nlohmann::json& summary);
 
 /// What the analyze job gives: the analysis, the warnings about the bed (analysis_warnings) and
-/// its summary: analysis_summary, `warnings`, `container` (container_summary) and, when the
+/// its summary: analysis_summary, `warnings`, `container` (Container::summary_json) and, when the
 /// plots were not drawn, `plots` saying why.
 struct AnalyzeJob {
     BedAnalysis analysis;

@@ -37,11 +37,6 @@ nlohmann::json analysis_summary(const BedAnalysis& analysis, const AnalysisOptio
 /// fractions.
 nlohmann::json size_statistics_summary(const SizeStatistics& statistics);
 
-/// The container as summary.json records it: {shape: cylinder, radius}, {shape: box, size:
-/// [LX, LY], spec}, {shape: annulus, radius, inner_radius, spec} or {shape: periodic, size:
-/// [LX, LY], periodic: "x and y", spec}; read_bed_summary reads each back.
-nlohmann::json container_summary(const Container& container);
-
 /// The record of a lattice (`packbed lattice`): its parameters, the number of balls, the
 /// lattice's exact porosity and coordination, the porosity measured in the region (the balls'
 /// volume inside it over its volume, balls cut by the walls included: sphere_volume_in_box,

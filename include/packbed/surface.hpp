@@ -188,7 +188,7 @@ double lens_volume(double r1, double r2, double distance);
 /// with it, so that the bodies and copies cut by the cell are periodic. The bodies come first,
 /// as given (their centres in the cell, as treat_contacts leaves them), then the copies.
 /// \throws std::logic_error for bridges or a union (treat_contacts refuses them in a cell).
-TreatedBed periodic_images(const TreatedBed& bed, const Periodic& cell);
+TreatedBed periodic_images(const TreatedBed& bed, const Periods& cell);
 
 /// The surface: solid "particles" (every treated body tessellated: the icosphere scaled and
 /// clipped by its cuts, vertices on the sphere, so each polyhedron lies inside its body; each

@@ -277,7 +277,7 @@ struct SearchPoints {
     SearchPoints(const Packing& packing, const Container& container, double cut)
         : n(packing.size())
         , points(packing.centers.data()) {
-        if (const Periodic* cell = container.periodic()) {
+        if (const std::optional<Periods> cell = container.periods()) {
             detail::periodic_images(*cell, packing.centers, cut, images, owner);
             points = images.data();
         }
@@ -547,8 +547,8 @@ void check_input(const Packing& packing, const Container& container, const Analy
                             "coordinates within {:g} of the origin and a radius > 0 up to {:g}",
                             i + 1, c.x, c.y, c.z, r, far, far));
     }
-    if (const Cylinder* cylinder = container.cylinder()) {
-        const double rt = cylinder->radius();
+    if (const std::optional<double> tube = container.tube_diameter()) {
+        const double rt = 0.5 * *tube;
         if (!(rt > 0.0 && rt <= far))
             throw InvalidInput(fmt::format("--container-radius = {} is not allowed; "
                                            "allowed: > 0 and at most {:g}",
@@ -632,7 +632,7 @@ std::size_t radial_bins(const Packing& packing, const Container& container, doub
     const double budget = bin_budget(packing.size());
     if (bins <= budget)
         return static_cast<std::size_t>(bins);
-    if (!container.cylinder())
+    if (!container.tube_diameter())
         throw InvalidInput(fmt::format(
             "--container {} needs {:.3g} {} of {} {} Dp (Dp = {:.6g}) from the wall to the "
             "middle for the {}; allowed: at most {:.3g} ({}); a smaller container or a larger {}",
@@ -734,7 +734,7 @@ BedAnalysis analyze_bed(const Packing& packing, const Container& container,
                                        "{} Dp for g(r); allowed: at most {:.3g} ({})",
                                        options.rdf_range, rdf_bins, options.rdf_bin, budget,
                                        budget_reason(packing.size())));
-    if (const Periodic* cell = container.periodic()) {
+    if (const std::optional<Periods> cell = container.periods()) {
         // The searches find every copy within their distance among the copies one period
         // away (detail::periodic_images): the distance must not exceed a period.
         const double period = std::min(cell->lx(), cell->ly());

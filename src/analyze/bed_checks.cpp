@@ -32,10 +32,10 @@ std::vector<std::string> analysis_warnings(const Packing& packing, const Contain
             "poured? See axial_void_fraction.csv, and set the band with --band ZLOW,ZHIGH",
             lower, band.z_low, middle, upper, band.z_high));
     // Dixon's correlation is for cylinders: a box or a lattice has no such reference.
-    const Cylinder* cylinder = container.cylinder();
-    const double aspect_ratio = cylinder ? 2.0 * cylinder->radius() / a.diameter : 0.0;
+    const std::optional<double> tube = container.tube_diameter();
+    const double aspect_ratio = tube ? *tube / a.diameter : 0.0;
     for (const auto& c : mean_void_fraction_correlations())
-        if (cylinder && c.name == "dixon-1988") {
+        if (tube && c.name == "dixon-1988") {
             const double dixon = c(aspect_ratio).value;
             if (a.void_fraction > dixon + limits.max_above_dixon)
                 out.push_back(fmt::format(

@@ -188,15 +188,7 @@ double ergun_permeability(double e, double d) {
 }
 
 std::optional<double> hydraulic_diameter(const Container& container) {
-    if (const Cylinder* c = container.cylinder())
-        return 2.0 * c->radius();
-    if (const Annulus* a = container.annulus()) // 4 pi (R^2 - Ri^2) / (2 pi (R + Ri))
-        return 2.0 * (a->outer_radius() - a->inner_radius());
-    if (const Box* b = container.box()) {
-        const double lx = b->x_high() - b->x_low(), ly = b->y_high() - b->y_low();
-        return 4.0 * lx * ly / (2.0 * (lx + ly));
-    }
-    return std::nullopt; // a periodic cell: no wall
+    return container.hydraulic_diameter().value;
 }
 
 } // namespace packbed

@@ -203,7 +203,7 @@ struct Ball {
 std::vector<Ball> balls_reaching(const Packing& packing, const Container& container,
                                  const VoxelGrid& grid) {
     const Vec3 high = grid.high();
-    const Periodic* cell = container.periodic();
+    const std::optional<Periods> cell = container.periods();
     std::vector<Ball> balls;
     balls.reserve(packing.size());
     for (std::size_t n = 0; n < packing.size(); ++n) {

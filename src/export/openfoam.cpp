@@ -25,9 +25,9 @@ std::string header(const std::string& object, const std::string& location,
                        type, location, object);
 }
 
-/// The fluid point farthest from every surface among candidates on eight vertical lines
-/// (irrational fractions of the half-widths of the container's bounds from their middle, so
-/// that no candidate lies on a cell face), every 0.05 Dp in height. Distances to a body are
+/// The fluid point farthest from every surface among candidates on the container's eight
+/// vertical search lines (Container::search_lines: off every cell face), every 0.05 Dp in
+/// height. Distances to a body are
 /// taken to its sphere (bodies lie inside their spheres, so the clearance is never
 /// overstated), to the wall by Container::wall_distance.
 std::pair<Vec3, double> farthest_fluid_point(const std::vector<TreatedBody>& bodies,
@@ -41,32 +41,9 @@ std::pair<Vec3, double> farthest_fluid_point(const std::vector<TreatedBody>& bod
     double largest = 0.0;
     for (const TreatedBody& b : bodies)
         largest = std::max(largest, b.radius);
-    const Rectangle bounds = container.container.bounds();
-    const double x_mid = 0.5 * (bounds.x_low + bounds.x_high);
-    const double y_mid = 0.5 * (bounds.y_low + bounds.y_high);
-    const double x_half = 0.5 * (bounds.x_high - bounds.x_low);
-    const double y_half = 0.5 * (bounds.y_high - bounds.y_low);
+    const std::vector<std::pair<double, double>> lines = container.container.search_lines();
     Vec3 best{};
     double best_clearance = -1.0;
-    constexpr double fractions[8][2] = {{0.0123, 0.0371},  {0.3137, 0.1291},   {-0.2719, 0.2213},
-                                        {0.1409, -0.4129}, {-0.5231, -0.0917}, {0.6143, 0.2753},
-                                        {-0.1733, 0.6571}, {0.4421, -0.5309}};
-    std::vector<std::pair<double, double>> lines;
-    if (const Annulus* a = container.container.annulus()) {
-        // The middle of the bounds is in the rod: lines across the gap instead, at fractions
-        // of it from the rod and generic angles (radians).
-        constexpr double across[8][2] = {{0.5123, 0.1371}, {0.3137, 1.2291}, {0.6719, 2.0213},
-                                         {0.4409, 2.9129}, {0.5731, 3.7917}, {0.3843, 4.4753},
-                                         {0.6233, 5.2571}, {0.4621, 5.9309}};
-        const double gap = a->outer_radius() - a->inner_radius();
-        for (const auto& f : across) {
-            const double rho = a->inner_radius() + f[0] * gap;
-            lines.emplace_back(rho * std::cos(f[1]), rho * std::sin(f[1]));
-        }
-    } else {
-        for (const auto& f : fractions)
-            lines.emplace_back(x_mid + f[0] * x_half, y_mid + f[1] * y_half);
-    }
     const double step = 0.05 * dp;
     for (double z = 0.01237 * dp; z < container.height; z += step)
         for (const auto& [x, y] : lines) {
@@ -540,7 +517,7 @@ OpenFoamCase openfoam_case(const TreatedBed& bed, const SurfaceContainer& contai
         c.cell_size, back.wall_surface ? std::max(options.particle_level, options.wall_level)
                                        : options.particle_level);
     // In a periodic cell the fluid point keeps clear of the copies across the sides too.
-    const Periodic* cell = container.container.periodic();
+    const std::optional<Periods> cell = container.container.periods();
     const TreatedBed imaged = cell ? periodic_images(bed, *cell) : TreatedBed{};
     const std::vector<TreatedBody>& bodies = cell ? imaged.bodies : bed.bodies;
     std::tie(c.location_in_mesh, c.clearance) = farthest_fluid_point(bodies, container, diameter);

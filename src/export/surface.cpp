@@ -295,13 +295,14 @@ TreatedBed treat_contacts(const Packing& packing, const Contacts& contacts,
                           const std::optional<SurfaceContainer>& container) {
     const std::size_t n = packing.size();
     // In a periodic cell the centres moved into the cell, and pairs by the minimum image.
-    const Periodic* cell = container ? container->container.periodic() : nullptr;
+    const std::optional<Periods> cell = container ? container->container.periods() : std::nullopt;
     if (cell && (contacts.treatment == ContactTreatment::enlarge ||
                  contacts.treatment == ContactTreatment::bridges))
         throw InvalidInput(fmt::format(
             "--contacts {}:{} is not allowed in the periodic cell {}; allowed: caps:H, shrink:F "
             "or none (the unions of enlarge and bridges are not copied across the sides)",
-            contact_treatments().name(contacts.treatment), contacts.parameter, cell->spec()));
+            contact_treatments().name(contacts.treatment), contacts.parameter,
+            container->container.spec()));
     if (cell && n > 0) {
         // The minimum image finds every contact only where no sphere can touch two copies of
         // another, and a sphere crosses at most one side of each pair.
@@ -310,7 +311,7 @@ TreatedBed treat_contacts(const Packing& packing, const Contacts& contacts,
             throw InvalidInput(fmt::format(
                 "--container {} is not allowed for spheres of diameter up to {}; allowed: "
                 "periods at least twice the largest diameter, {} (the minimum image)",
-                cell->spec(), widest, 2.0 * widest));
+                container->container.spec(), widest, 2.0 * widest));
     }
     std::vector<Vec3> wrapped;
     if (cell)
@@ -452,7 +453,7 @@ TreatmentVolumes treatment_volumes(const Packing& packing, const TreatedBed& bed
         if (n == 0)
             return sum;
         NeighborList list;
-        const Periodic* cell = container.container.periodic();
+        const std::optional<Periods> cell = container.container.periods();
         if (cell)
             list.wrap(*cell);
         list.build(packing.centers, radii, 1e-9 * packing.mean_diameter());
@@ -750,7 +751,7 @@ TriangleMesh bridge_prism(const Vec3& a, const Vec3& b, double rho, int sides) {
 
 } // namespace
 
-TreatedBed periodic_images(const TreatedBed& bed, const Periodic& cell) {
+TreatedBed periodic_images(const TreatedBed& bed, const Periods& cell) {
     if (!bed.bridges.empty() || bed.unite)
         throw std::logic_error("periodic_images: bridges and unions are not copied");
     TreatedBed out = bed;
@@ -784,7 +785,8 @@ TreatedBed periodic_images(const TreatedBed& bed, const Periodic& cell) {
 
 std::vector<Solid> bed_surface(const TreatedBed& given, const SurfaceOptions& options) {
     // A periodic cell: every body cut by a side and its copies across the sides.
-    const Periodic* cell = options.container ? options.container->container.periodic() : nullptr;
+    const std::optional<Periods> cell =
+        options.container ? options.container->container.periods() : std::nullopt;
     const TreatedBed imaged = cell ? periodic_images(given, *cell) : TreatedBed{};
     const TreatedBed& bed = cell ? imaged : given;
     const std::vector<TreatedBody>& bodies = bed.bodies;

@@ -257,8 +257,8 @@ std::string region_text(const LatticeRegion& region) {
 struct FillPlan {
     Vec3 lo, hi, origin;
     double reach2 = 0.0;
-    double inner2 = -1.0;           // an annulus: the smallest squared distance from the axis
-    std::optional<Periodic> period; // a periodic cell: one period of cells, moved into it
+    double inner2 = -1.0;          // an annulus: the smallest squared distance from the axis
+    std::optional<Periods> period; // a periodic cell: one period of cells, moved into it
     bool is_box = true;
     bool empty = false; // the region is thinner than a ball: nothing to keep
     Rotation rotation;
@@ -281,7 +281,7 @@ FillPlan plan_fill(const LatticeParameters& p, const UnitCell& cell) {
         f.lo = {0.0, 0.0, margin};
         f.hi = {periodic->lx, periodic->ly, periodic->height - margin};
         f.origin = p.origin.value_or(Vec3{r, r, r});
-        f.period = Periodic(periodic->lx, periodic->ly);
+        f.period = Periods(periodic->lx, periodic->ly);
     } else if (f.is_box) {
         const Vec3 size = std::get<BoxRegion>(p.region).size;
         f.lo = {margin, margin, margin};
@@ -423,11 +423,11 @@ Packing fill_lattice(const LatticeParameters& p) {
 }
 
 LatticeContacts lattice_contacts(const Packing& packing, double tolerance) {
-    return lattice_contacts(packing, Periodic(0.0, 0.0), tolerance);
+    return lattice_contacts(packing, Periods(0.0, 0.0), tolerance);
 }
 
-LatticeContacts lattice_contacts(const Packing& packing, const Periodic& cell, double tolerance) {
-    const bool periodic = cell.lx() > 0.0; // Periodic(0, 0): not periodic
+LatticeContacts lattice_contacts(const Packing& packing, const Periods& cell, double tolerance) {
+    const bool periodic = cell.lx() > 0.0; // Periods(0, 0): not periodic
     LatticeContacts out;
     out.contacts.assign(packing.size(), 0);
     out.closest = std::numeric_limits<double>::infinity();

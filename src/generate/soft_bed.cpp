@@ -14,35 +14,6 @@ double width(const Container& container) {
     return std::max(b.x_high - b.x_low, b.y_high - b.y_low);
 }
 
-/// A point uniform over the part of the cross-section a centre of radius `radius` reaches,
-/// from two uniform numbers u, v in [0, 1) (section 3.1 for the cylinder: r = (Rt - r_i)
-/// u^(1/2), theta = 2 pi v). An annulus: rho^2 uniform between (Ri + r_i)^2 and (R - r_i)^2;
-/// a box: each coordinate uniform between the faces less r_i; a periodic cell: anywhere.
-Vec3 uniform_point(const Container& container, double radius, double u, double v) {
-    return std::visit(
-        [&](const auto& shape) -> Vec3 {
-            using S = std::decay_t<decltype(shape)>;
-            if constexpr (std::is_same_v<S, Cylinder>) {
-                const double r = (shape.radius() - radius) * std::sqrt(u);
-                const double theta = 2.0 * std::numbers::pi * v;
-                return {r * std::cos(theta), r * std::sin(theta), 0.0};
-            } else if constexpr (std::is_same_v<S, Annulus>) {
-                const double a = shape.inner_radius() + radius, b = shape.outer_radius() - radius;
-                const double r = std::sqrt(a * a + (b * b - a * a) * u);
-                const double theta = 2.0 * std::numbers::pi * v;
-                return {r * std::cos(theta), r * std::sin(theta), 0.0};
-            } else if constexpr (std::is_same_v<S, Box>) {
-                return {
-                    shape.x_low() + radius + (shape.x_high() - shape.x_low() - 2.0 * radius) * u,
-                    shape.y_low() + radius + (shape.y_high() - shape.y_low() - 2.0 * radius) * v,
-                    0.0};
-            } else {
-                return {shape.lx() * u, shape.ly() * v, 0.0};
-            }
-        },
-        container.shape());
-}
-
 } // namespace
 
 void SoftBed::generate(const SoftSphereParameters& params) {
@@ -59,7 +30,7 @@ void SoftBed::generate(const SoftSphereParameters& params) {
         const double radius = params.sizes.empty() ? 0.5 : 0.5 * params.sizes[i];
         const double u = uniform01(rng);
         const double v = uniform01(rng);
-        Vec3 p = uniform_point(container, radius, u, v);
+        Vec3 p = container.uniform_point(radius, u, v);
         p.z = initial_height * uniform01(rng) + radius;
         packing.add(p, radius);
     }

@@ -137,10 +137,8 @@ private:
 /// a bit of a result.
 struct SoftBed {
     Container container;
-    /// The container's shape where the hot loops look at it: the cylinder's wall law inlines
-    /// with its fast path; a periodic cell measures pairs by the minimum image.
-    std::optional<Cylinder> cylinder;
-    std::optional<Periodic> cell;
+    /// The container's periods, where it has them: pairs by the minimum image.
+    std::optional<Periods> cell;
     Packing packing;
     std::vector<std::uint32_t> order;
     std::vector<std::uint32_t> slot;
@@ -156,10 +154,7 @@ struct SoftBed {
 
     explicit SoftBed(const Container& c)
         : container(c) {
-        if (const Cylinder* cyl = c.cylinder())
-            cylinder = *cyl;
-        if (const Periodic* p = c.periodic())
-            cell = *p;
+        cell = c.periods();
         new_list();
     }
 
@@ -204,24 +199,10 @@ struct SoftBed {
     void rebuild_list(double skin);
 
     /// Add the wall term of eq. (4) for a sphere at `xk` of radius `r` to `move`; track the
-    /// largest wall overlap. Spheres clearly inside (centre closer to the axis than
-    /// Rt - r - 1e-9 (Rt + 1)) skip the square root: the margin exceeds the rounding of
-    /// Cylinder::wall_contact by far, so the result is the same bits.
-    /// Another container: each wall the sphere presses adds its own term (Container::
-    /// wall_contacts).
+    /// largest wall overlap: each wall the sphere presses adds its own term
+    /// (Container::wall_contacts).
     void add_wall_term(const Vec3& xk, double r, const LinearOverlapLaw& law, Vec3& move,
                        double& wall) const {
-        if (cylinder) [[likely]] {
-            const double inner = cylinder->radius() - r - 1e-9 * (cylinder->radius() + 1.0);
-            if (inner > 0.0 && xk.x * xk.x + xk.y * xk.y < inner * inner)
-                return;
-            const WallContact w = cylinder->wall_contact(xk, r);
-            if (w.overlap > 0.0) {
-                wall = std::max(wall, w.overlap);
-                move += w.push * (law.ck * w.overlap);
-            }
-            return;
-        }
         container.wall_contacts(xk, r, [&](double overlap, const Vec3& push) {
             wall = std::max(wall, overlap);
             move += push * (law.ck * overlap);

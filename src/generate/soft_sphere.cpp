@@ -33,50 +33,18 @@ struct SweepStats {
 } // namespace
 
 std::string container_fit_problem(const Container& container, double largest) {
-    constexpr double widest = 1e4; // as the cylinder's aspect ratio
-    return std::visit(
-        [&](const auto& shape) -> std::string {
-            using S = std::decay_t<decltype(shape)>;
-            if constexpr (std::is_same_v<S, Cylinder>) {
-                const double a = 2.0 * shape.radius();
-                if (!(a >= largest && a <= widest))
-                    return fmt::format("a tube diameter from {:.6g} Dp (the largest sphere) to "
-                                       "{:g} Dp",
-                                       largest, widest);
-            } else if constexpr (std::is_same_v<S, Annulus>) {
-                const double outer = 2.0 * shape.outer_radius(), inner = 2.0 * shape.inner_radius();
-                if (!(outer <= widest && inner >= 0.0 && outer - inner >= 2.0 * largest))
-                    return fmt::format("D up to {:g} Dp and DI <= D - {:.6g} Dp: the gap between "
-                                       "rod and tube, (D - DI) / 2, at least the largest sphere "
-                                       "({:.6g} Dp)",
-                                       widest, 2.0 * largest, largest);
-            } else {
-                // A box holds a sphere across; a periodic cell two, so that two spheres in
-                // contact have one nearest copy (the minimum image).
-                constexpr bool periodic = std::is_same_v<S, Periodic>;
-                const double least = (periodic ? 2.0 : 1.0) * largest;
-                const Rectangle b = shape.bounds();
-                const double lx = b.x_high - b.x_low, ly = b.y_high - b.y_low;
-                if (!(lx >= least && ly >= least && lx <= widest && ly <= widest))
-                    return fmt::format("widths from {:.6g} Dp ({}) to {:g} Dp", least,
-                                       periodic ? "twice the largest sphere, for the minimum image"
-                                                : "the largest sphere",
-                                       widest);
-            }
-            return {};
-        },
-        container.shape());
+    return container.fit_problem(largest);
 }
 
 void SoftSphereParameters::validate() const {
-    if (container && !container->cylinder()) {
+    if (container && !container->tube_diameter()) {
         const std::string problem = container_fit_problem(*container, largest_size());
         if (!problem.empty())
             throw InvalidInput(fmt::format("--container {} (in units of Dp) is not allowed; "
                                            "allowed: {}",
                                            container->spec(), problem));
     } else {
-        const double a = container ? 2.0 * container->cylinder()->radius() : aspect_ratio;
+        const double a = container ? *container->tube_diameter() : aspect_ratio;
         require(std::isfinite(a) && a >= 1.0 && a <= 1e4, "aspect-ratio", a,
                 "1 <= a <= 10000 (a < 1: one sphere does not fit)");
     }
@@ -116,16 +84,16 @@ void SoftSphereParameters::validate() const {
                                        sizes.size(), particles));
     const auto [smallest, largest] = std::minmax_element(sizes.begin(), sizes.end());
     const Container shape = container_dp();
-    const Cylinder* const tube = shape.cylinder();
+    const std::optional<double> tube = shape.tube_diameter();
     // Written to fail on NaN: every comparison with NaN is false. Another container's fit to
     // the largest sphere was checked above.
     for (const double d : sizes)
-        if (!(d > 0.0 && (!tube || d < 2.0 * tube->radius())))
+        if (!(d > 0.0 && (!tube || d < *tube)))
             throw InvalidInput(
                 tube ? fmt::format("--sizes: a diameter of {:.6g} Dp is not allowed in a tube of "
                                    "a = {:.6g}; allowed: diameters > 0 and below the tube's (a "
                                    "Dp, Dp = {:.6g} the reference diameter)",
-                                   d, 2.0 * tube->radius(), diameter)
+                                   d, *tube, diameter)
                      : fmt::format("--sizes: a diameter of {:.6g} Dp is not allowed; allowed: "
                                    "diameters > 0",
                                    d));
@@ -141,23 +109,12 @@ double initial_bed_height(std::uint64_t particles, double aspect_ratio, double e
 }
 
 double initial_bed_height(const SoftSphereParameters& p) {
-    const Container container = p.container_dp();
-    if (const Cylinder* c = container.cylinder()) {
-        // The paper's eq. (6) with a = 2 Rt / Dp.
-        const double a = p.container ? 2.0 * c->radius() : p.aspect_ratio;
-        if (p.sizes.empty())
-            return initial_bed_height(p.particles, a, p.e0);
-        double solid = 0.0; // sum of (d_i / Dp)^3, in generation order
-        for (const double d : p.sizes)
-            solid += d * d * d;
-        return 2.0 / 3.0 * solid / (a * a * (1.0 - p.e0));
-    }
-    double solid = 0.0;
+    double solid = 0.0; // sum of (d_i / Dp)^3, in generation order
     if (p.sizes.empty())
         solid = static_cast<double>(p.particles);
     for (const double d : p.sizes)
         solid += d * d * d;
-    return std::numbers::pi / 6.0 * solid / (container.cross_section_area() * (1.0 - p.e0));
+    return p.container_dp().fill_height(solid, p.e0);
 }
 
 SoftSphereParameters::Schedule SoftSphereParameters::schedule() const {
@@ -185,7 +142,7 @@ Container SoftSphereParameters::container_dp() const {
 Overlaps measure_overlaps(const Packing& packing, const Container& container) {
     Overlaps out;
     NeighborList list;
-    const Periodic* const cell = container.periodic();
+    const std::optional<Periods> cell = container.periods();
     if (cell)
         list.wrap(*cell);
     list.build(packing.centers, packing.radii, 0.0);

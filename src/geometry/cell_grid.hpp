@@ -135,7 +135,7 @@ struct CellGrid {
 /// standing for its sphere (`owner[k]` is the sphere of point n + k). A search from a sphere's
 /// own point then finds every copy of every sphere within `cut` of it, for cut up to the
 /// smaller period (NeighborList::wrap, the analysis' contacts and g(r) in a periodic cell).
-inline void periodic_images(const Periodic& cell, std::span<const Vec3> centers, double cut,
+inline void periodic_images(const Periods& cell, std::span<const Vec3> centers, double cut,
                             std::vector<Vec3>& points, std::vector<std::uint32_t>& owner) {
     const std::size_t n = centers.size();
     points.resize(n);

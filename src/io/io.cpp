@@ -115,7 +115,7 @@ namespace {
 void require_container(const Container& container) {
     const Rectangle b = container.bounds();
     const bool sized =
-        container.periodic() ? container.cross_section_area() > 0.0 : container.depth() > 0.0;
+        container.periods() ? container.cross_section_area() > 0.0 : container.depth() > 0.0;
     if (!(std::isfinite(b.x_low) && std::isfinite(b.x_high) && std::isfinite(b.y_low) &&
           std::isfinite(b.y_high) && sized))
         throw InvalidInput(fmt::format("the container {} is not allowed; allowed: a cylinder, a "
@@ -126,11 +126,7 @@ void require_container(const Container& container) {
 } // namespace
 
 double container_box_margin(const Container& container, double diameter) {
-    if (const Annulus* a = container.annulus())
-        return container_box_margin(diameter, a->outer_radius());
-    if (container.periodic())
-        return 0.5 * diameter;
-    return container_box_margin(diameter, container.depth());
+    return container_box_margin(diameter, container.box_margin().length);
 }
 
 AxisBox container_box(const Container& container, double height, double diameter) {
@@ -139,7 +135,7 @@ AxisBox container_box(const Container& container, double height, double diameter
     require_positive("diameter", diameter);
     const double m = container_box_margin(container, diameter);
     const Rectangle b = container.bounds();
-    if (container.periodic()) // x and y: the cell itself, its periods
+    if (container.periods()) // x and y: the cell itself, its periods
         return {{b.x_low, b.y_low, -m}, {b.x_high, b.y_high, height + m}};
     return {{b.x_low - m, b.y_low - m, -m}, {b.x_high + m, b.y_high + m, height + m}};
 }

@@ -17,16 +17,16 @@ nlohmann::json soft_sphere_summary(const SoftSphereParameters& p, const SoftSphe
     json summary;
     summary["version"] = std::string(version);
     summary["generator"] = "soft-sphere (Salvat et al. 2005)";
-    if (result.container.cylinder())
+    if (result.container.tube_diameter())
         summary["aspect_ratio"] = p.aspect_ratio; // another container has none: its spec
     summary["particles"] = p.particles;
     summary["seed"] = p.seed;
     summary["diameter"] = d;
-    summary["container"] = container_summary(result.container);
+    summary["container"] = result.container.summary_json();
     summary["container"]["height"] = bed_top(result.packing);
     summary["container"]["bottom"] = 0.0;
-    if (!result.container.box() && !result.container.periodic())
-        summary["container"]["axis"] = "z through x = y = 0";
+    if (const std::string_view axis = result.container.axis(); !axis.empty())
+        summary["container"]["axis"] = axis;
 
     const auto band = band_clear_of_ends(result.packing, band_clearance * d);
     if (band) {
@@ -172,25 +172,6 @@ nlohmann::json size_statistics_summary(const SizeStatistics& s) {
             {"classes", classes}};
 }
 
-nlohmann::json container_summary(const Container& container) {
-    if (const Cylinder* c = container.cylinder())
-        return {{"shape", "cylinder"}, {"radius", c->radius()}};
-    if (const Annulus* a = container.annulus())
-        return {{"shape", "annulus"},
-                {"radius", a->outer_radius()},
-                {"inner_radius", a->inner_radius()},
-                {"spec", container.spec()}};
-    if (const Periodic* p = container.periodic())
-        return {{"shape", "periodic"},
-                {"size", {p->lx(), p->ly()}},
-                {"periodic", "x and y"},
-                {"spec", container.spec()}};
-    const Rectangle b = container.bounds();
-    return {{"shape", container.name()},
-            {"size", {b.x_high - b.x_low, b.y_high - b.y_low}},
-            {"spec", container.spec()}};
-}
-
 nlohmann::json lattice_summary(const LatticeParameters& p, const Packing& packing) {
     using nlohmann::json;
     const UnitCell cell = unit_cell(p.type);
@@ -206,7 +187,7 @@ nlohmann::json lattice_summary(const LatticeParameters& p, const Packing& packin
     double solid = 0.0;
     if (const auto* box = std::get_if<BoxRegion>(&p.region)) {
         summary["region"] = {{"shape", "box"}, {"size", {box->size.x, box->size.y, box->size.z}}};
-        summary["container"] = container_summary(Box(box->size.x, box->size.y));
+        summary["container"] = Container(Box(box->size.x, box->size.y)).summary_json();
         double sum = 0.0;
         for (const Vec3& centre : packing.centers)
             sum += sphere_volume_in_box(centre, r, Vec3{}, box->size);
@@ -217,7 +198,7 @@ nlohmann::json lattice_summary(const LatticeParameters& p, const Packing& packin
                              {"inner_diameter", a->inner_diameter},
                              {"height", a->height}};
         const Container container = region_container(p.region);
-        summary["container"] = container_summary(container);
+        summary["container"] = container.summary_json();
         double sum = 0.0;
         for (const Vec3& centre : packing.centers)
             sum += container.sphere_volume(centre, r, 0.0, a->height);
@@ -228,7 +209,7 @@ nlohmann::json lattice_summary(const LatticeParameters& p, const Packing& packin
         summary["region"] = {{"shape", "periodic"},
                              {"size", {periodic->lx, periodic->ly, periodic->height}}};
         const Container container = region_container(p.region);
-        summary["container"] = container_summary(container);
+        summary["container"] = container.summary_json();
         const Vec3 edges = unit_cell(p.type).edges * d;
         summary["periods"] = {std::round(periodic->lx / edges.x),
                               std::round(periodic->ly / edges.y)};
@@ -261,7 +242,7 @@ nlohmann::json lattice_summary(const LatticeParameters& p, const Packing& packin
     summary["porosity_region"] = 1.0 - solid / volume;
     const auto* period = std::get_if<PeriodicRegion>(&p.region);
     const LatticeContacts contacts =
-        period ? lattice_contacts(packing, Periodic(period->lx, period->ly))
+        period ? lattice_contacts(packing, Periods(period->lx, period->ly))
                : lattice_contacts(packing);
     std::vector<std::uint64_t> histogram;
     double total = 0.0;

@@ -105,18 +105,7 @@ std::optional<SurfaceContainer> bed_container(const ExportRequest& o, const Pack
 
 /// The container in packbed.json: its shape, size and height.
 nlohmann::ordered_json container_json(const SurfaceContainer& container) {
-    if (const Cylinder* c = container.container.cylinder())
-        return {{"shape", "cylinder"}, {"radius", c->radius()}, {"height", container.height}};
-    if (const Annulus* a = container.container.annulus())
-        return {{"shape", "annulus"},
-                {"radius", a->outer_radius()},
-                {"inner_radius", a->inner_radius()},
-                {"height", container.height}};
-    const Rectangle b = container.container.bounds();
-    return {{"shape", container.container.name()},
-            {"size", {b.x_high - b.x_low, b.y_high - b.y_low}},
-            {"corner", {b.x_low, b.y_low}},
-            {"height", container.height}};
+    return container.container.export_json(container.height);
 }
 
 /// STL, OBJ or an OpenFOAM case: treat the contacts, tessellate, write the surfaces and the
@@ -134,7 +123,7 @@ std::string surface_export(const ExportRequest& o, ExportFormat format, const Pa
     const Contacts contacts = parse_contacts(o.contacts);
     const double dp = packing.mean_diameter();
     const std::optional<SurfaceContainer> container = bed_container(o, packing, lines);
-    if (container && container->container.periodic() && format != ExportFormat::openfoam)
+    if (container && container->container.periods() && format != ExportFormat::openfoam)
         throw InvalidInput(fmt::format(
             "--container {} is not allowed with --format {}; allowed: cylinder:D, box:LX,LY or "
             "annulus:D,DI (a periodic cell has no closed surface: it is exported as an openfoam "
@@ -306,12 +295,12 @@ std::string data_export(const ExportRequest& o, ExportFormat format, const Packi
     std::vector<std::string> sidecars;
     if (o.fluid_velocity >= 0.0)
         sidecars.push_back(".fluid.in");
-    if (given_box && container && container->container.periodic())
+    if (given_box && container && container->container.periods())
         throw InvalidInput(fmt::format("--box {} is not allowed with the periodic cell {}; "
                                        "allowed: no --box (the data file's box is the cell, its "
                                        "periods), or --no-container",
                                        printable(o.box), container->container.spec()));
-    const DemFiles dem = dem_files(name, format, container && container->container.periodic());
+    const DemFiles dem = dem_files(name, format, container && container->container.periods());
     if (container) {
         // The inputs name the files as single words.
         const bool word = !name.empty() && std::all_of(name.begin(), name.end(), [](char c) {
@@ -352,7 +341,7 @@ std::string data_export(const ExportRequest& o, ExportFormat format, const Packi
     // A periodic cell: every centre moved by whole periods into the cell (the data file's box).
     Packing wrapped = packing;
     if (container)
-        if (const Periodic* cell = container->container.periodic())
+        if (const std::optional<Periods> cell = container->container.periods())
             for (Vec3& c : wrapped.centers)
                 c = cell->wrapped(c);
     AxisBox box = bounding_box(wrapped);
@@ -366,20 +355,16 @@ std::string data_export(const ExportRequest& o, ExportFormat format, const Packi
         box = container_box(c, container->height, dp);
         // The cylinder's margin rule in Rt; a box's in its depth, half the narrower width; an
         // annulus' in its tube's radius; a periodic cell's box is the cell in x and y.
-        const Cylinder* cylinder = c.cylinder();
-        if (c.periodic())
+        const BoxMargin margin = c.box_margin();
+        if (c.periods())
             box_note = fmt::format("box: the periodic cell {0} (boundary p p f), z from -{2:.9g} "
                                    "to the height {1:.9g} + {2:.9g} (Dp/2)",
                                    c.spec(), container->height, container_box_margin(c, dp));
         else
-            box_note =
-                fmt::format("box: the container ({}, height {:.9g}) and a margin of {:.9g} "
-                            "(the larger of Dp/2 and {}) on every side",
-                            cylinder ? fmt::format("radius {:.9g}", cylinder->radius()) : c.spec(),
-                            container->height, container_box_margin(c, dp),
-                            cylinder      ? "Rt/100"
-                            : c.annulus() ? "the tube's radius/100"
-                                          : "a hundredth of half the narrower width");
+            box_note = fmt::format("box: the container ({}, height {:.9g}) and a margin of {:.9g} "
+                                   "(the larger of Dp/2 and {}) on every side",
+                                   margin.container, container->height, container_box_margin(c, dp),
+                                   margin.words);
     }
     out->stage(name, lammps_data(wrapped, o.density, box, comment,
                                  box_note.empty() ? std::vector<std::string>{}
@@ -415,7 +400,7 @@ std::string data_export(const ExportRequest& o, ExportFormat format, const Packi
                 side.mesh.append(solid.mesh);
         bool inside = true;
         // (A periodic cell writes no STL: its box is the cell, the floor a plane.)
-        if (container->container.periodic())
+        if (container->container.periods())
             side.mesh = bottom.mesh = {};
         for (const Solid* k : {&side, &bottom})
             for (const Vec3& v : k->mesh.vertices) {

@@ -102,68 +102,16 @@ ContainerScript container_script(const Container& c, const std::vector<double>& 
                                  double top) {
     ContainerScript s;
     const double m = 2.0 * wall_setback; // the box's margin beyond a wall
-    s.box.lo.z = -m;
-    s.box.hi.z = top + m;
-    s.boundary = "f f m";
+    const LammpsSide side = c.lammps_side(diameters, wall_setback);
+    s.boundary = side.boundary + " m";
+    s.box.lo = {side.box.x_low, side.box.y_low, -m};
+    s.box.hi = {side.box.x_high, side.box.y_high, top + m};
+    s.walls = side.walls;
+    s.overlaps = side.overlaps;
     const auto per_type = [&](auto&& line) {
         for (std::size_t t = 0; t < diameters.size(); ++t)
             s.walls += line(t + 1, 0.5 * diameters[t] + wall_setback);
     };
-    if (const Cylinder* cyl = c.cylinder()) {
-        const double r = cyl->radius();
-        s.box.lo = {-r - m, -r - m, s.box.lo.z};
-        s.box.hi = {r + m, r + m, s.box.hi.z};
-        s.walls += fmt::format("region tube cylinder z 0 0 {} INF INF side in units box\n",
-                               num(r + wall_setback));
-        per_type([](std::size_t t, double reach) {
-            return fmt::format("fix side{0} size{0} wall/region tube harmonic 0.5 1.0 {1}\n"
-                               "fix_modify side{0} energy yes\n",
-                               t, num(reach));
-        });
-        s.overlaps.push_back(fmt::format("v_r+sqrt(x*x+y*y)-{}", num(r)));
-    } else if (const Annulus* ann = c.annulus()) {
-        const double r = ann->outer_radius(), ri = ann->inner_radius();
-        s.box.lo = {-r - m, -r - m, s.box.lo.z};
-        s.box.hi = {r + m, r + m, s.box.hi.z};
-        // the rod set back by less than its radius
-        const double rod_setback = std::min(wall_setback, 0.5 * ri);
-        s.walls += fmt::format("region tube cylinder z 0 0 {} INF INF side in units box\n",
-                               num(r + wall_setback));
-        if (ri > 0.0)
-            s.walls += fmt::format("region rod cylinder z 0 0 {} INF INF side out units box\n",
-                                   num(ri - rod_setback));
-        for (std::size_t t = 0; t < diameters.size(); ++t) {
-            const double radius = 0.5 * diameters[t];
-            s.walls += fmt::format("fix side{0} size{0} wall/region tube harmonic 0.5 1.0 {1}\n"
-                                   "fix_modify side{0} energy yes\n",
-                                   t + 1, num(radius + wall_setback));
-            if (ri > 0.0)
-                s.walls += fmt::format("fix rod{0} size{0} wall/region rod harmonic 0.5 1.0 {1}\n"
-                                       "fix_modify rod{0} energy yes\n",
-                                       t + 1, num(radius + rod_setback));
-        }
-        s.overlaps.push_back(fmt::format("v_r+sqrt(x*x+y*y)-{}", num(r)));
-        if (ri > 0.0)
-            s.overlaps.push_back(fmt::format("v_r+{}-sqrt(x*x+y*y)", num(ri)));
-    } else if (const Box* box = c.box()) {
-        s.box.lo = {box->x_low() - m, box->y_low() - m, s.box.lo.z};
-        s.box.hi = {box->x_high() + m, box->y_high() + m, s.box.hi.z};
-        per_type([&](std::size_t t, double reach) {
-            return fmt::format(
-                "fix side{0} size{0} wall/harmonic xlo {1} 0.5 1.0 {5} xhi {2} 0.5 1.0 {5} ylo "
-                "{3} 0.5 1.0 {5} yhi {4} 0.5 1.0 {5} units box\nfix_modify side{0} energy yes\n",
-                t, num(box->x_low() - wall_setback), num(box->x_high() + wall_setback),
-                num(box->y_low() - wall_setback), num(box->y_high() + wall_setback), num(reach));
-        });
-        s.overlaps.push_back(fmt::format("v_r+{}-x", num(box->x_low())));
-        s.overlaps.push_back(fmt::format("v_r+x-{}", num(box->x_high())));
-        s.overlaps.push_back(fmt::format("v_r+{}-y", num(box->y_low())));
-        s.overlaps.push_back(fmt::format("v_r+y-{}", num(box->y_high())));
-    } else if (const Periodic* cell = c.periodic()) {
-        s.boundary = "p p m";
-        s.box.lo = {0.0, 0.0, s.box.lo.z};
-        s.box.hi = {cell->lx(), cell->ly(), s.box.hi.z};
-    }
     per_type([](std::size_t t, double reach) {
         return fmt::format("fix floor{0} size{0} wall/harmonic zlo {1} 0.5 1.0 {2} units box\n"
                            "fix_modify floor{0} energy yes\n",
@@ -571,7 +519,7 @@ SoftSphereResult lammps_result(const SoftSphereParameters& parameters,
         bed.radii[i] = want;
         floor = std::max(floor, want - bed.centers[i].z);
     }
-    if (const Periodic* cell = container.periodic())
+    if (const std::optional<Periods> cell = container.periods())
         for (Vec3& c : bed.centers)
             c = cell->wrapped(c);
     const Overlaps overlaps = measure_overlaps(bed, container);

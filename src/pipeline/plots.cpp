@@ -70,8 +70,8 @@ std::string stage_plots(OutputDirectory& out, const BedAnalysis& a, const Contai
     const double dp = a.diameter;
     // The correlations of the radial profile are for cylinders, at their aspect ratio.
     // (for one size: a mixture's profile is not what they describe).
-    const Cylinder* cylinder = a.by_size.empty() ? container.cylinder() : nullptr;
-    const double aspect_ratio = cylinder ? 2.0 * cylinder->radius() / dp : 0.0;
+    const std::optional<double> tube = a.by_size.empty() ? container.tube_diameter() : std::nullopt;
+    const double aspect_ratio = tube ? *tube / dp : 0.0;
     const double x_max = container.depth() / dp;
     // Profiles against the distance from the wall, z and the centre distance, all over Dp.
     // A container of one wall draws "this bed"; an annulus a curve per wall; a periodic cell
@@ -97,14 +97,14 @@ std::string stage_plots(OutputDirectory& out, const BedAnalysis& a, const Contai
     }
     script +=
         datablock("axial", a.axial_void_fraction, dp) + datablock("rdf", a.pair_correlation, dp);
-    const std::string where = cylinder ? fmt::format("a = {:.4g}", aspect_ratio)
-                                       : fmt::format("{} (Dp = {:.4g})", container.spec(), dp);
-    const std::string x_label = cylinder             ? "distance from the wall (Rt - r)/Dp"
+    const std::string where = tube ? fmt::format("a = {:.4g}", aspect_ratio)
+                                   : fmt::format("{} (Dp = {:.4g})", container.spec(), dp);
+    const std::string x_label = tube                 ? "distance from the wall (Rt - r)/Dp"
                                 : a.walls.size() > 1 ? "distance from each wall d/Dp"
                                                      : "distance from the nearest wall d/Dp";
     std::string curves;
     for (const auto& c : radial_void_fraction_correlations()) {
-        if (!cylinder)
+        if (!tube)
             break;
         script += fmt::format("${} << EOD\n", c.name.substr(0, c.name.find('-')));
         for (double z = 0.0; z <= x_max + 1e-12; z += 0.01)
@@ -249,7 +249,7 @@ void stage_analysis(OutputDirectory& out, const Packing& packing, const Containe
     options.band_clearance = band_clearance;
     // A periodic cell: g(r) no farther than the smaller period (analyze_bed refuses a longer
     // range, which `analyze --rdf-range` may ask for; here nobody asked).
-    if (const Periodic* cell = container.periodic(); cell && !packing.radii.empty())
+    if (const std::optional<Periods> cell = container.periods(); cell && !packing.radii.empty())
         options.rdf_range =
             std::min(options.rdf_range, std::min(cell->lx(), cell->ly()) / packing.mean_diameter());
     const BedAnalysis analysis = analyze_bed(packing, container, options);
@@ -271,7 +271,7 @@ AnalyzeJob analyze_job(const Packing& packing, const Container& container,
     job.warnings = analysis_warnings(packing, container, job.analysis);
     job.summary = analysis_summary(job.analysis, options);
     job.summary["warnings"] = job.warnings;
-    job.summary["container"] = container_summary(container);
+    job.summary["container"] = container.summary_json();
     if (out)
         if (const std::string why = stage_analysis_files(*out, job.analysis, container);
             !why.empty())

@@ -48,7 +48,7 @@ BedFacts bed_facts(const std::string& bed) {
     }
     const std::string shown = printable(path.native());
     std::optional<Container> container;
-    if (const auto& c = summary.container; c && !c->cylinder())
+    if (const auto& c = summary.container; c && !c->tube_diameter())
         container = c;
     if (!summary.porosity)
         throw InvalidInput(fmt::format("--bed {}: no lattice.porosity or void_fraction; give "
@@ -146,29 +146,29 @@ Report hydraulics_report(const HydraulicsRequest& o) {
             }
         }
     }
-    std::optional<double> hydraulic; // an annulus' or a box's D_h = 4 A / P, metres
-    std::string wall_correction;     // a periodic cell: why there is none
-    if (spec && spec->shape == "cylinder") {
+    std::optional<double> hydraulic; // D_h = 4 A / P of a container other than a tube, metres
+    std::string wall_correction;     // a container without a wall: why there is none
+    const HydraulicDiameter dh = container ? container->hydraulic_diameter() : HydraulicDiameter{};
+    if (const std::optional<double> tube = container ? container->tube_diameter() : std::nullopt) {
         // a = D / d, both in metres, once d is known (given, the default, or the bed's).
-        aspect_ratio = spec->diameter / f.diameter;
+        aspect_ratio = *tube / f.diameter;
         if (!(aspect_ratio >= 1.0 && aspect_ratio <= limits::max_tube_aspect_ratio))
             throw InvalidInput(fmt::format(
                 "--container {}: the tube's diameter over the particle diameter ({} m) is a = "
                 "{:.6g}; allowed: a from 1 to {:g}",
                 o.container, f.diameter, aspect_ratio, limits::max_tube_aspect_ratio));
         aspect_ratio_from = fmt::format("--container {} over the particle diameter", o.container);
-    } else if (container && container->periodic()) {
+    } else if (container && !dh.value) {
         aspect_ratio = 0.0;
-        wall_correction = fmt::format("none: {} is a periodic cell, it has no wall (Ergun, no "
-                                      "wall correction)",
-                                      container_from);
+        wall_correction =
+            fmt::format("none: {} {} (Ergun, no wall correction)", container_from, dh.formula);
     } else if (container) {
-        // An annulus or a box: a = D_h / d with the hydraulic diameter 4 A / P.
-        hydraulic = hydraulic_diameter(*container);
+        // Another container: a = D_h / d with the hydraulic diameter 4 A / P.
+        hydraulic = dh.value;
         aspect_ratio = *hydraulic / bed_diameter.value_or(f.diameter);
         if (bed_diameter) // in metres, at the particle diameter used
             hydraulic = aspect_ratio * f.diameter;
-        const std::string formula = container->annulus() ? "D - DI" : "2 LX LY / (LX + LY)";
+        const std::string_view formula = dh.formula;
         if (!(aspect_ratio >= 1.0 && aspect_ratio <= limits::max_tube_aspect_ratio))
             throw InvalidInput(fmt::format(
                 "{}: the hydraulic diameter {} = {} m over the particle diameter ({} m) is a = "
