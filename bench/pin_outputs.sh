@@ -45,6 +45,10 @@ $exe generate --container periodic:5,5 -n 200 -s 1 --engine lammps --write-only 
 $exe lattice --type fcc --region box:6,6,6 -q -o latbox
 $exe voxelize per/particles.csv --voxel-size 0.2 -q -o per.npy
 $exe voxelize ann/particles.csv --voxel-size 0.2 -q -o ann.npy
+for c in generate lattice hydraulics export analyze correlations voxelize cfd-report import-lammps; do
+  $exe $c --help
+done > help.txt
+{ $exe generate --container cone:1,2 || echo "exit $?"; } > unknown_shape.refused 2>&1
 for c in cylinder:0.05 box:0.05,0.04 annulus:0.05,0.01 periodic:0.05,0.05; do
   { $exe hydraulics --container $c -d 0.003 --porosity 0.4 || echo "exit $?"; } > "hyd_${c%%:*}.txt" 2>&1
 done

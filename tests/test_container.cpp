@@ -115,5 +115,5 @@ TEST(Container, EachShapeNamesItselfInMessages) {
     EXPECT_EQ(Container(Annulus(5.0, 1.0)).describe(), "annulus:10,2");
     EXPECT_EQ(Container(Periodic(8.0, 8.0)).describe(), "periodic:8,8");
     for (const std::string_view spec : {"cylinder:20", "box:6,6", "annulus:10,2", "periodic:8,8"})
-        EXPECT_FALSE(parse_container(spec)->container().describe().empty()) << spec;
+        EXPECT_FALSE(parse_container(spec)->describe().empty()) << spec;
 }

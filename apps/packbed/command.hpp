@@ -64,7 +64,7 @@ struct InputPlacement {
 /// \return the --frame option (for excludes)
 CLI::Option* add_input_placement(CLI::App& app, InputPlacement& placement);
 
-/// `--container SPEC` (ContainerSpec, parse_container).
+/// `--container SPEC` (parse_container).
 /// Add `--container SPEC` to `app`, bound to `text` ("" when not given), checked by
 /// parse_container. \param meaning what lengths are measured in and what it replaces, for
 /// --help \param shapes the shapes the subcommand takes

@@ -151,7 +151,7 @@ CLI::Option* add_container_option(CLI::App& app, std::string& text, const std::s
         ->check(CLI::Validator(
             [allowed, shapes](std::string& value) -> std::string {
                 if (const auto spec = parse_container(value);
-                    spec && std::find(shapes.begin(), shapes.end(), spec->shape) != shapes.end())
+                    spec && std::find(shapes.begin(), shapes.end(), spec->name()) != shapes.end())
                     return {};
                 return fmt::format("'{}' is not allowed; allowed: {}",
                                    printable(value.substr(0, 80)), allowed);

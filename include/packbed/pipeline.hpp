@@ -48,9 +48,9 @@ struct GenerateRequest {
     SoftSphereParameters params;
     std::string sizes = "mono";                      ///< a --sizes spec (docs/sizes.md)
     FractionBasis fractions = FractionBasis::volume; ///< what the sizes' fractions count
-    std::string container;                           ///< a ContainerSpec text; "": aspect_ratio
-    std::string checkpoint;                          ///< --checkpoint file; "": none
-    double band_clearance = 1.0;                     ///< of the void-fraction band, Dp
+    std::string container;           ///< a --container SPEC (parse_container); "": aspect_ratio
+    std::string checkpoint;          ///< --checkpoint file; "": none
+    double band_clearance = 1.0;     ///< of the void-fraction band, Dp
     Engine engine = Engine::packbed; ///< who relaxes the bed (Engine::lammps: the fire solver's)
 };
 
@@ -331,7 +331,7 @@ struct HydraulicsRequest {
     double aspect_ratio = 0.0;       ///< 0: no wall-corrected pressure drop (or from `bed`)
     bool diameter_given = false;     ///< fluid.diameter was given (not the default)
     bool aspect_ratio_given = false; ///< aspect_ratio was given
-    std::string container;           ///< a ContainerSpec in metres, instead of aspect_ratio
+    std::string container;           ///< a --container SPEC in metres, instead of aspect_ratio
 };
 
 /// The onset of fluidization (Tsayger 2013, eq. (1)) and the fluid velocity for a DEM start,

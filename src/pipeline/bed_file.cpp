@@ -25,7 +25,7 @@ Container container_from_spec(std::string_view option, const std::string& spec) 
     const auto parsed = parse_container(spec);
     if (!parsed)
         throw InvalidInput(container_not_allowed(option, spec));
-    return parsed->container();
+    return *parsed;
 }
 
 std::optional<Container> find_container(const std::filesystem::path& particles,

@@ -68,13 +68,14 @@ PreparedGeneration prepare_generation(GenerateRequest request) {
                                            "checkpoint does not record the sizes yet)",
                                            printable(request.checkpoint), request.sizes));
     }
-    const std::optional<ContainerSpec> spec =
+    const std::optional<Container> spec =
         request.container.empty() ? std::nullopt : parse_container(request.container);
     if (!request.container.empty() && !spec)
         throw InvalidInput(container_not_allowed("--container", request.container));
-    if (spec && spec->shape != "cylinder") {
+    const std::optional<double> tube = spec ? spec->tube_diameter() : std::nullopt;
+    if (spec && !tube) {
         // Another container, in units of Dp (with --sizes, d32), checked in the user's units.
-        const Container in_dp = spec->container().scaled(1.0 / p.diameter);
+        const Container in_dp = spec->scaled(1.0 / p.diameter);
         const std::string problem = container_fit_problem(in_dp, p.largest_size());
         if (!problem.empty())
             throw InvalidInput(fmt::format(
@@ -88,7 +89,7 @@ PreparedGeneration prepare_generation(GenerateRequest request) {
                                            printable(request.checkpoint), request.container));
     } else if (spec) {
         // a = D / Dp, both in the unit of --diameter (with --sizes, Dp is d32).
-        const double a = spec->diameter / p.diameter;
+        const double a = *tube / p.diameter;
         const std::string_view dp = prepared.drawn ? "the sizes' Sauter mean d32" : "--diameter";
         if (!(a >= 1.0 && a <= 1e4))
             throw InvalidInput(

@@ -99,7 +99,7 @@ Report hydraulics_report(const HydraulicsRequest& o) {
     // A container from --bed is in the bed's length unit: a = D_h / the bed's diameter.
     std::optional<double> bed_diameter;
     if (spec)
-        container = spec->container();
+        container = spec;
     double e = o.porosity;
     std::string origin = "given";
     std::string diameter_from = o.diameter_given ? "given" : "the default";

@@ -1,0 +1,161 @@
+// What a container answers, the types of its answers: each shape (cylinder.hpp, box.hpp,
+// annulus.hpp, periodic.hpp) is a small class answering every question generation, analysis
+// and export ask of a container (the ContainerShape concept and the class comments);
+// `Container` (container.hpp) holds one and hands each question to it. voro++'s vocabulary:
+// contains(), the overlap of a sphere with the wall and the wall normal. Every container has a
+// rigid flat floor at z = 0 and an open top.
+#pragma once
+
+#include <algorithm>
+#include <array>
+#include <cmath>
+#include <concepts>
+#include <cstddef>
+#include <limits>
+#include <optional>
+#include <span>
+#include <string>
+#include <string_view>
+#include <utility>
+#include <variant>
+#include <vector>
+
+#include <nlohmann/json_fwd.hpp>
+
+#include "packbed/vec3.hpp"
+
+namespace packbed {
+
+/// How deep a sphere presses into a deformable wall and which way the wall pushes back.
+struct WallContact {
+    double overlap = 0.0; ///< penetration depth (length); <= 0 means no contact
+    Vec3 push; ///< unit vector along which the wall pushes the sphere (into the container)
+};
+
+/// The rectangle [x_low, x_high] x [y_low, y_high] a container's cross-section lies in.
+struct Rectangle {
+    double x_low = 0.0;
+    double x_high = 0.0;
+    double y_low = 0.0;
+    double y_high = 0.0;
+};
+
+/// A plane tangent to a container's lateral wall from inside: the points x with
+/// dot(normal, x) <= offset are on the container's side of it (normal of unit length, pointing
+/// out of the container, horizontal).
+struct WallPlane {
+    Vec3 normal;
+    double offset = 0.0;
+};
+
+/// Periodicity in x and y, a boundary of the cell [0, LX) x [0, LY) rather than a wall: a
+/// sphere leaving one side comes back through the opposite one, and two spheres touch through
+/// the sides by the minimum image (their nearest copies). What the searches, the solvers and
+/// the exports ask of a periodic container (Container::periods). Immutable.
+class Periods {
+public:
+    /// \param lx,ly the periods (length, > 0)
+    Periods(double lx, double ly)
+        : m_lx(lx)
+        , m_ly(ly) {}
+
+    double lx() const { return m_lx; }
+    double ly() const { return m_ly; }
+
+    /// \return p moved by whole periods into [0, LX) x [0, LY) (z unchanged).
+    Vec3 wrapped(const Vec3& p) const {
+        return {p.x - m_lx * std::floor(p.x / m_lx), p.y - m_ly * std::floor(p.y / m_ly), p.z};
+    }
+    /// \return the separation b - a between the nearest copies of a and b (minimum image),
+    /// for |b - a| within one period and a half on each side: whole periods are taken off
+    /// each of x and y while it exceeds half a period. -separation(a, b) == separation(b, a)
+    /// to the bit.
+    Vec3 separation(const Vec3& a, const Vec3& b) const {
+        Vec3 d = b - a;
+        const double hx = 0.5 * m_lx, hy = 0.5 * m_ly;
+        if (d.x > hx)
+            d.x -= m_lx;
+        else if (d.x < -hx)
+            d.x += m_lx;
+        if (d.y > hy)
+            d.y -= m_ly;
+        else if (d.y < -hy)
+            d.y += m_ly;
+        return d;
+    }
+
+private:
+    double m_lx, m_ly;
+};
+
+/// The hydraulic diameter 4 A / P of a container's cross-section (A its area, P its wetted
+/// perimeter), with the formula in its spec's letters ("D - DI"); none for a container with
+/// no wall, `formula` then says why ("is a periodic cell, it has no wall").
+struct HydraulicDiameter {
+    std::optional<double> value;
+    std::string_view formula;
+};
+
+/// The length whose hundredth is the least margin of a data file's box beyond the container's
+/// side (io.hpp's container_box_margin: max(Dp / 2, length / 100)), how the box's note words
+/// that hundredth ("Rt/100") and names the container ("radius 5", or the spec); a length of 0
+/// where the box is the container itself (a periodic cell).
+struct BoxMargin {
+    double length = 0.0;
+    std::string_view words;
+    std::string container;
+};
+
+/// A container's side as the LAMMPS engine's input writes it (docs/lammps.md): the x and y
+/// boundary ("f f", or "p p" for a periodic cell), the data file's box in x and y (the side
+/// and a margin of twice the set-back), the regions and harmonic wall fixes of each size
+/// (type t + 1 of diameter diameters[t], each wall set back by `setback` and reaching the
+/// radius and the set-back) and atom-style formulas of each wall's overlap (v_r the radius).
+struct LammpsSide {
+    std::string boundary = "f f";
+    Rectangle box;
+    std::string walls;
+    std::vector<std::string> overlaps;
+};
+
+/// What every shape of `Container` answers (a part of it: the rest is in the class comments).
+/// The wall law calls back f(overlap, push) once per wall a sphere presses into.
+template <class C>
+concept ContainerShape = requires(const C& c, const Vec3& p, double radius) {
+    c.wall_contacts(p, radius, [](double, const Vec3&) {});
+    { c.contains(p) } -> std::same_as<bool>;
+    { c.wall_distance(p) } -> std::same_as<double>;
+    { c.sphere_volume(p, radius, 0.0, 1.0) } -> std::same_as<double>;
+    { c.cross_section_area() } -> std::same_as<double>;
+    { c.spec() } -> std::same_as<std::string>;
+    { C::kind } -> std::convertible_to<std::string_view>;
+    { C::allowed() } -> std::same_as<std::string>;
+    { c.scaled(1.0) } -> std::same_as<C>;
+};
+
+/// The per-wall questions of the analysis (Container::profile_walls) for a shape whose
+/// profiles are measured from one wall, "wall": its nearest-wall questions as they are (a box's
+/// four faces count as one wall, the nearest; a corner counts with the nearer face).
+template <class Shape> class OneProfileWall {
+public:
+    std::span<const std::string_view> profile_walls() const { return one_wall; }
+    double wall_distance_from(std::size_t, const Vec3& p) const { return self().wall_distance(p); }
+    std::pair<double, double> wall_distances_from(std::size_t, const Vec3& c, double r) const {
+        return self().wall_distances(c, r);
+    }
+    Shape shrunk_from(std::size_t, double d) const { return self().shrunk(d); }
+    double shell_area_from(std::size_t, double d_low, double d_high) const {
+        return self().shell_area(d_low, d_high);
+    }
+    std::size_t nearest_wall(const Vec3&) const { return 0; }
+    std::string_view profile_position_name_from(std::size_t) const {
+        return self().profile_position_name();
+    }
+    double profile_position_from(std::size_t, double d) const { return self().profile_position(d); }
+
+private:
+    static constexpr std::array<std::string_view, 1> one_wall{"wall"};
+    const Shape& self() const { return static_cast<const Shape&>(*this); }
+};
+
+} // namespace packbed

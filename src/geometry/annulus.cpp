@@ -1,0 +1,182 @@
+#include "packbed/annulus.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <numbers>
+
+#include <fmt/format.h>
+#include <nlohmann/json.hpp>
+
+#include "geometry/shape_text.hpp"
+#include "packbed/limits.hpp"
+#include "packbed/volume.hpp"
+
+namespace packbed {
+
+double Annulus::cross_section_area() const {
+    return std::numbers::pi * (m_outer * m_outer - m_inner * m_inner);
+}
+
+Annulus Annulus::shrunk(double d) const {
+    const double mid = 0.5 * (m_outer + m_inner);
+    return Annulus(std::max(m_outer - d, mid), std::min(m_inner + d, mid));
+}
+
+double Annulus::shell_area(double d_low, double d_high) const {
+    return shrunk(d_low).cross_section_area() - shrunk(d_high).cross_section_area();
+}
+
+double Annulus::sphere_volume(const Vec3& c, double r, double z_low, double z_high) const {
+    if (!(m_outer > m_inner))
+        return 0.0;
+    const double rod =
+        m_inner > 0.0 ? sphere_volume_in_cylinder_slab(c, r, m_inner, z_low, z_high) : 0.0;
+    return sphere_volume_in_cylinder_slab(c, r, m_outer, z_low, z_high) - rod;
+}
+
+double Annulus::ball_volume(const Vec3& c, double r, double z_low, double z_high) const {
+    if (!(r > 0.0 && m_outer > m_inner))
+        return 0.0;
+    if (!(r <= c.z - z_low && r <= z_high - c.z))
+        return sphere_volume(c, r, z_low, z_high);
+    const double rho = std::hypot(c.x, c.y);
+    const double rod = m_inner > 0.0 ? ball_volume_in_cylinder(rho, r, m_inner) : 0.0;
+    return ball_volume_in_cylinder(rho, r, m_outer) - rod;
+}
+
+std::vector<WallPlane> Annulus::walls_within(const Vec3& c, double r, double gap) const {
+    const double rho = std::hypot(c.x, c.y);
+    std::vector<WallPlane> planes;
+    if (!(rho > 0.0))
+        return planes;
+    const Vec3 out{c.x / rho, c.y / rho, 0.0};
+    if (m_outer - rho - r < gap)
+        planes.push_back({out, m_outer});
+    if (rho - r - m_inner < gap)
+        planes.push_back({out * -1.0, -m_inner});
+    return planes;
+}
+
+Annulus Annulus::shrunk_from(std::size_t wall, double d) const {
+    const double mid = 0.5 * (m_outer + m_inner);
+    if (wall == 0)
+        return Annulus(std::max(m_outer - d, mid), m_inner);
+    return Annulus(m_outer, std::min(m_inner + d, mid));
+}
+
+double Annulus::shell_area_from(std::size_t wall, double d_low, double d_high) const {
+    return shrunk_from(wall, d_low).cross_section_area() -
+           shrunk_from(wall, d_high).cross_section_area();
+}
+
+std::string Annulus::spec() const {
+    return fmt::format("annulus:{:.9g},{:.9g}", 2.0 * m_outer, 2.0 * m_inner);
+}
+
+std::string Annulus::describe() const {
+    return spec();
+}
+
+std::optional<double> Annulus::tube_diameter() const {
+    return std::nullopt;
+}
+
+std::optional<Periods> Annulus::periods() const {
+    return std::nullopt;
+}
+
+/// 4 pi (R^2 - Ri^2) / (2 pi (R + Ri)) = 2 (R - Ri).
+HydraulicDiameter Annulus::hydraulic_diameter() const {
+    return {2.0 * (m_outer - m_inner), "D - DI"};
+}
+
+BoxMargin Annulus::box_margin() const {
+    return {m_outer, "the tube's radius/100", spec()};
+}
+
+std::string Annulus::fit_problem(double largest) const {
+    const double outer = 2.0 * m_outer, inner = 2.0 * m_inner;
+    if (!(outer <= detail::widest && inner >= 0.0 && outer - inner >= 2.0 * largest))
+        return fmt::format("D up to {:g} Dp and DI <= D - {:.6g} Dp: the gap between rod and "
+                           "tube, (D - DI) / 2, at least the largest sphere ({:.6g} Dp)",
+                           detail::widest, 2.0 * largest, largest);
+    return {};
+}
+
+double Annulus::fill_height(double solid, double e0) const {
+    return detail::prism_fill_height(cross_section_area(), solid, e0);
+}
+
+/// rho^2 uniform between (Ri + r_i)^2 and (R - r_i)^2.
+Vec3 Annulus::uniform_point(double radius, double u, double v) const {
+    return detail::ring_point(m_inner + radius, m_outer - radius, u, v);
+}
+
+/// The middle of the bounds is in the rod: lines across the gap instead, at fractions of it
+/// from the rod and generic angles (radians).
+std::vector<std::pair<double, double>> Annulus::search_lines() const {
+    constexpr double across[8][2] = {{0.5123, 0.1371}, {0.3137, 1.2291}, {0.6719, 2.0213},
+                                     {0.4409, 2.9129}, {0.5731, 3.7917}, {0.3843, 4.4753},
+                                     {0.6233, 5.2571}, {0.4621, 5.9309}};
+    const double gap = m_outer - m_inner;
+    std::vector<std::pair<double, double>> lines;
+    for (const auto& f : across) {
+        const double rho = m_inner + f[0] * gap;
+        lines.emplace_back(rho * std::cos(f[1]), rho * std::sin(f[1]));
+    }
+    return lines;
+}
+
+nlohmann::json Annulus::summary_json() const {
+    return {{"shape", "annulus"}, {"radius", m_outer}, {"inner_radius", m_inner}, {"spec", spec()}};
+}
+
+nlohmann::ordered_json Annulus::export_json(double height) const {
+    return {
+        {"shape", "annulus"}, {"radius", m_outer}, {"inner_radius", m_inner}, {"height", height}};
+}
+
+/// The tube as the cylinder's region, the rod (side out) set back by less than its radius.
+LammpsSide Annulus::lammps_side(std::span<const double> diameters, double setback) const {
+    const double r = m_outer, ri = m_inner, m = 2.0 * setback;
+    LammpsSide s;
+    s.box = {-r - m, r + m, -r - m, r + m};
+    const double rod_setback = std::min(setback, 0.5 * ri);
+    s.walls = fmt::format("region tube cylinder z 0 0 {} INF INF side in units box\n",
+                          detail::num(r + setback));
+    if (ri > 0.0)
+        s.walls += fmt::format("region rod cylinder z 0 0 {} INF INF side out units box\n",
+                               detail::num(ri - rod_setback));
+    for (std::size_t t = 0; t < diameters.size(); ++t) {
+        const double radius = 0.5 * diameters[t];
+        s.walls += fmt::format("fix side{0} size{0} wall/region tube harmonic 0.5 1.0 {1}\n"
+                               "fix_modify side{0} energy yes\n",
+                               t + 1, detail::num(radius + setback));
+        if (ri > 0.0)
+            s.walls += fmt::format("fix rod{0} size{0} wall/region rod harmonic 0.5 1.0 {1}\n"
+                                   "fix_modify rod{0} energy yes\n",
+                                   t + 1, detail::num(radius + rod_setback));
+    }
+    s.overlaps.push_back(fmt::format("v_r+sqrt(x*x+y*y)-{}", detail::num(r)));
+    if (ri > 0.0)
+        s.overlaps.push_back(fmt::format("v_r+{}-sqrt(x*x+y*y)", detail::num(ri)));
+    return s;
+}
+
+std::optional<Annulus> Annulus::from_numbers(std::span<const double> v) {
+    if (v.size() != 2 || !detail::lengths_in(v, 2.0 * limits::max_length) || !(v[1] < v[0]))
+        return std::nullopt;
+    return Annulus(0.5 * v[0], 0.5 * v[1]);
+}
+
+std::string Annulus::allowed() {
+    return fmt::format("annulus:D,DI, between a tube of diameter D and a coaxial rod of "
+                       "diameter DI, 0 < DI < D <= {:g}",
+                       2.0 * limits::max_length);
+}
+
+Annulus Annulus::scaled(double factor) const {
+    return Annulus(m_outer * factor, m_inner * factor);
+}
+
+} // namespace packbed

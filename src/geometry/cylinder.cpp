@@ -1,0 +1,132 @@
+#include "packbed/cylinder.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <numbers>
+
+#include <fmt/format.h>
+#include <nlohmann/json.hpp>
+
+#include "geometry/shape_text.hpp"
+#include "packbed/limits.hpp"
+#include "packbed/volume.hpp"
+
+namespace packbed {
+
+double Cylinder::cross_section_area() const {
+    return std::numbers::pi * m_radius * m_radius;
+}
+
+double Cylinder::shell_area(double d_low, double d_high) const {
+    const double a = std::max(m_radius - d_low, 0.0), b = std::max(m_radius - d_high, 0.0);
+    return std::numbers::pi * (a * a - b * b);
+}
+
+double Cylinder::sphere_volume(const Vec3& c, double r, double z_low, double z_high) const {
+    return m_radius > 0.0 ? sphere_volume_in_cylinder_slab(c, r, m_radius, z_low, z_high) : 0.0;
+}
+
+double Cylinder::ball_volume(const Vec3& c, double r, double z_low, double z_high) const {
+    if (!(r > 0.0 && m_radius > 0.0))
+        return 0.0;
+    if (r <= c.z - z_low && r <= z_high - c.z)
+        return ball_volume_in_cylinder(std::hypot(c.x, c.y), r, m_radius);
+    return sphere_volume_in_cylinder_slab(c, r, m_radius, z_low, z_high);
+}
+
+std::vector<WallPlane> Cylinder::walls_within(const Vec3& c, double r, double gap) const {
+    const double rho = std::hypot(c.x, c.y);
+    if (m_radius - rho - r < gap && rho > 0.0)
+        return {WallPlane{{c.x / rho, c.y / rho, 0.0}, m_radius}};
+    return {};
+}
+
+std::string Cylinder::spec() const {
+    return fmt::format("cylinder:{:.9g}", 2.0 * m_radius);
+}
+
+std::string Cylinder::describe() const {
+    return fmt::format("a cylinder of radius {}", radius());
+}
+
+std::optional<double> Cylinder::tube_diameter() const {
+    return 2.0 * m_radius;
+}
+
+std::optional<Periods> Cylinder::periods() const {
+    return std::nullopt;
+}
+
+HydraulicDiameter Cylinder::hydraulic_diameter() const {
+    return {2.0 * m_radius, "D"};
+}
+
+BoxMargin Cylinder::box_margin() const {
+    return {m_radius, "Rt/100", fmt::format("radius {:.9g}", m_radius)};
+}
+
+std::string Cylinder::fit_problem(double largest) const {
+    const double a = 2.0 * m_radius;
+    if (!(a >= largest && a <= detail::widest))
+        return fmt::format("a tube diameter from {:.6g} Dp (the largest sphere) to {:g} Dp",
+                           largest, detail::widest);
+    return {};
+}
+
+/// The paper's eq. (6), L0 = (2 / 3) N / (a^2 (1 - e0)), with sum (d_i / Dp)^3 for N.
+double Cylinder::fill_height(double solid, double e0) const {
+    const double a = 2.0 * m_radius;
+    return 2.0 / 3.0 * solid / (a * a * (1.0 - e0));
+}
+
+/// Section 3.1: r = (Rt - r_i) u^(1/2), theta = 2 pi v.
+Vec3 Cylinder::uniform_point(double radius, double u, double v) const {
+    const double r = (m_radius - radius) * std::sqrt(u);
+    const double theta = 2.0 * std::numbers::pi * v;
+    return {r * std::cos(theta), r * std::sin(theta), 0.0};
+}
+
+std::vector<std::pair<double, double>> Cylinder::search_lines() const {
+    return detail::lines_in(bounds());
+}
+
+nlohmann::json Cylinder::summary_json() const {
+    return {{"shape", "cylinder"}, {"radius", m_radius}};
+}
+
+nlohmann::ordered_json Cylinder::export_json(double height) const {
+    return {{"shape", "cylinder"}, {"radius", m_radius}, {"height", height}};
+}
+
+/// A cylinder region set back beyond the wall, pushing towards the axis.
+LammpsSide Cylinder::lammps_side(std::span<const double> diameters, double setback) const {
+    const double r = m_radius, m = 2.0 * setback;
+    LammpsSide s;
+    s.box = {-r - m, r + m, -r - m, r + m};
+    s.walls = fmt::format("region tube cylinder z 0 0 {} INF INF side in units box\n",
+                          detail::num(r + setback));
+    s.walls += detail::per_type(diameters, setback, [](std::size_t t, double reach) {
+        return fmt::format("fix side{0} size{0} wall/region tube harmonic 0.5 1.0 {1}\n"
+                           "fix_modify side{0} energy yes\n",
+                           t, detail::num(reach));
+    });
+    s.overlaps.push_back(fmt::format("v_r+sqrt(x*x+y*y)-{}", detail::num(r)));
+    return s;
+}
+
+std::optional<Cylinder> Cylinder::from_numbers(std::span<const double> v) {
+    if (v.size() != 1 || !(v[0] > 0.0 && v[0] <= 2.0 * limits::max_length))
+        return std::nullopt;
+    return Cylinder(0.5 * v[0]);
+}
+
+std::string Cylinder::allowed() {
+    return fmt::format("cylinder:D, a tube of inner diameter D, a number in (0, {:g}]",
+                       2.0 * limits::max_length);
+}
+
+Cylinder Cylinder::scaled(double factor) const {
+    return Cylinder(m_radius * factor);
+}
+
+} // namespace packbed
