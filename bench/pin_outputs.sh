@@ -28,6 +28,7 @@ $exe analyze per/particles.csv -q -o anper
 $exe export a5/particles.csv --format openfoam -q -o a5foam
 $exe export ann/particles.csv --format openfoam -q -o annfoam
 $exe export per/particles.csv --format openfoam -q -o perfoam
+$exe export box/particles.csv --format openfoam -q -o boxfoam
 $exe export box/particles.csv --format stl --contacts caps:0.01 -q -o box.stl
 $exe export ann/particles.csv --format stl --contacts caps:0.01 -q -o ann.stl
 { $exe export per/particles.csv --format stl -q -o per.stl || echo "exit $?"; } > per.stl.refused 2>&1

@@ -113,7 +113,7 @@ bool has_lmp() {
 
 TEST(ContainerExport, AnnulusSolidsAreNamedClosedOutwardAndClearOfTheSpace) {
     const double R = 3.0, Ri = 1.0, H = 2.0;
-    const std::vector<Solid> solids = container_solids(Container(Annulus(R, Ri)), 0.0, H, 0.25);
+    const std::vector<Solid> solids = Container(Annulus(R, Ri)).solids(0.0, H, 0.25);
     ASSERT_EQ(solids.size(), 4u);
     EXPECT_EQ(solids[0].name, "wall");
     EXPECT_EQ(solids[1].name, "rod");
@@ -175,7 +175,7 @@ TEST(ContainerExport, AnnulusSolidsAreNamedClosedOutwardAndClearOfTheSpace) {
 }
 
 TEST(ContainerExport, PeriodicCellHasOnlyAFloorAndATop) {
-    const std::vector<Solid> solids = container_solids(Container(Periodic(4.0, 2.0)), 0.0, 3.0, 1);
+    const std::vector<Solid> solids = Container(Periodic(4.0, 2.0)).solids(0.0, 3.0, 1);
     ASSERT_EQ(solids.size(), 2u);
     EXPECT_EQ(solids[0].name, "bottom");
     EXPECT_EQ(solids[1].name, "top");

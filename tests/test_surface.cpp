@@ -671,7 +671,7 @@ TEST(SurfaceBox, ContainerSolidsAreTheBoxClosedOutwardAndWatertight) {
     // The box [1, 2] x [-1, 0.5] from z = 0 to 3, triangles about 0.3 wide: 4, 5 and 10 cells
     // along x, y, z (1.5 / 0.3 is 5 to the last bits). Issue 17: one named solid per face.
     const Box b(1.0, 2.0, -1.0, 0.5);
-    const auto solids = container_solids(b, 0.0, 3.0, 0.3);
+    const auto solids = b.solids(0.0, 3.0, 0.3);
     ASSERT_EQ(solids.size(), 6u);
     std::vector<std::string> names;
     std::vector<const TriangleMesh*> meshes;
@@ -727,13 +727,13 @@ TEST(SurfaceBox, ContainerSolidsAreTheBoxClosedOutwardAndWatertight) {
         }
     EXPECT_NEAR(area, 2.0 * (1.0 + 1.5) * 3.0, 1e-12);
     // Through Container, the same solids; a cylinder's through Container are its own.
-    const auto again = container_solids(Container(b), 0.0, 3.0, 0.3);
+    const auto again = Container(b).solids(0.0, 3.0, 0.3);
     for (std::size_t k = 0; k < 6; ++k)
         EXPECT_EQ(again[k].mesh.vertices, solids[k].mesh.vertices);
-    const auto tube = container_solids(Container(Cylinder(2.0)), 0.0, 3.0, 0.3);
+    const auto tube = Container(Cylinder(2.0)).solids(0.0, 3.0, 0.3);
     EXPECT_EQ(tube[0].mesh.vertices,
-              container_solids(Cylinder(2.0), 0.0, 3.0, 0.3)[0].mesh.vertices);
+              Cylinder(2.0).solids(0.0, 3.0, 0.3)[0].mesh.vertices);
     // A side shorter than the edge is one cell.
-    for (const Solid& s : container_solids(Box(0.1, 0.1), 0.0, 0.1, 1.0))
+    for (const Solid& s : Box(0.1, 0.1).solids(0.0, 0.1, 1.0))
         EXPECT_EQ(s.mesh.triangles.size(), 2u) << s.name;
 }

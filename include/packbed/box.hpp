@@ -114,6 +114,10 @@ public:
     nlohmann::json summary_json() const;
     nlohmann::ordered_json export_json(double height) const;
     LammpsSide lammps_side(std::span<const double> diameters, double setback) const;
+    std::vector<Solid> solids(double z_low, double z_high, double edge) const;
+    DemSettleWall settle_wall(double height, std::string_view contact) const;
+    OpenFoamBackground openfoam_background(double height, double cell,
+                                           const OpenFoamMeshOptions& options) const;
     /// --container's word for the shape, "box:LX,LY" its SPEC.
     static constexpr std::string_view kind = "box";
     std::string_view name() const { return kind; }

@@ -153,6 +153,20 @@ public:
     nlohmann::ordered_json export_json(double height) const;
     /// The side's walls in the LAMMPS engine's input, one fix per size.
     LammpsSide lammps_side(std::span<const double> diameters, double setback) const;
+    /// The container between z_low and z_high as closed, outward solids of triangles about
+    /// `edge` (> 0) wide: "wall" (a cylinder's or an annulus' tube: a prism circumscribed
+    /// about it, so that no sphere inside meets it; an annulus adds "rod", a prism inscribed
+    /// in the rod; a box's four faces are "x_low", "x_high", "y_low", "y_high" instead, each a
+    /// grid of ceil(length / edge) cells, at most 4096, rims shared so the STL is watertight),
+    /// "bottom" and "top"; a periodic cell only "bottom" and "top".
+    std::vector<Solid> solids(double z_low, double z_high, double edge) const;
+    /// The side in an export's DEM settle inputs, `contact` the LAMMPS wall's contact model.
+    DemSettleWall settle_wall(double height, std::string_view contact) const;
+    /// The background mesh of an OpenFOAM case in the container up to `height`, cells of
+    /// `cell`: a box one cell beyond a tube sideways (snappyHexMesh cuts the wall out of it),
+    /// or the box or cell itself with its sides as patches.
+    OpenFoamBackground openfoam_background(double height, double cell,
+                                           const OpenFoamMeshOptions& options) const;
 
 private:
     Shape m_shape;

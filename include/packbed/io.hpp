@@ -62,7 +62,7 @@ double container_box_margin(double diameter, double container_radius);
 /// The default box of a DEM data file for a bed in a known container (a cylinder of radius Rt
 /// about the z axis, floor z = 0, top at `height`): x, y in [-Rt - m, Rt + m], z in
 /// [-m, height + m] with m = container_box_margin(diameter, Rt). It holds the container, its
-/// STL (container_solids) and the fluid region above the bed up to `height`.
+/// STL (Container::solids) and the fluid region above the bed up to `height`.
 /// \throws InvalidInput when a value is not finite and > 0
 AxisBox container_box(double container_radius, double height, double diameter);
 
@@ -102,7 +102,7 @@ struct DemMaterial {
 /// inputs are run there).
 struct DemSettle {
     std::string data_file;  ///< the data file's name (lammps_data)
-    std::string wall_stl;   ///< LIGGGHTS: the container's side, STL (container_solids)
+    std::string wall_stl;   ///< LIGGGHTS: the container's side, STL (Container::solids)
     std::string bottom_stl; ///< LIGGGHTS: the container's floor, STL
     std::string dump;       ///< the dump the run writes (first and last step)
     /// The container (LAMMPS: the region, a cylinder or a block); a cylinder of radius 0, the

@@ -12,13 +12,6 @@
 
 namespace packbed {
 
-/// Mesh resolution, tied to the mean particle diameter Dp.
-struct OpenFoamMeshOptions {
-    int cells_per_diameter = 4; ///< background (blockMesh) cells per Dp, >= 1
-    int particle_level = 2;     ///< snappyHexMesh refinement level at the particles, 0 to 8
-    int wall_level = 1;         ///< ... at a cylinder's wall, 0 to 8 (a box's is not refined)
-};
-
 /// The flow model of the case: laminar, or a RANS model with wall functions.
 enum class Turbulence { laminar, k_epsilon, k_omega_sst };
 

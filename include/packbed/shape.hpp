@@ -22,6 +22,7 @@
 
 #include <nlohmann/json_fwd.hpp>
 
+#include "packbed/mesh.hpp"
 #include "packbed/vec3.hpp"
 
 namespace packbed {
@@ -116,6 +117,36 @@ struct LammpsSide {
     Rectangle box;
     std::string walls;
     std::vector<std::string> overlaps;
+};
+
+/// What an export's DEM settle inputs (LAMMPS and LIGGGHTS, docs/dem.md) say of the
+/// container's side: the words of their head, the LAMMPS regions and wall fixes, the side's STL.
+struct DemSettleWall {
+    std::string words;        // the head's "the container is the ..., and the data file's box
+                              // holds it" (two comment lines)
+    std::string lammps;       // LAMMPS: the comment, the region(s) and the fix(es) of the side
+    std::string liggghts_stl; // LIGGGHTS: what the side's STL is ("": none, periodic)
+    std::string boundary = "f f f";
+};
+
+/// Mesh resolution, tied to the mean particle diameter Dp.
+struct OpenFoamMeshOptions {
+    int cells_per_diameter = 4; ///< background (blockMesh) cells per Dp, >= 1
+    int particle_level = 2;     ///< snappyHexMesh refinement level at the particles, 0 to 8
+    int wall_level = 1;         ///< ... at a cylinder's wall, 0 to 8 (a box's is not refined)
+};
+
+/// The background mesh of an OpenFOAM case (export --format openfoam, docs/surfaces.md) about
+/// a container and what the case's README says of it.
+struct OpenFoamBackground {
+    std::string block_mesh;     // blockMeshDict after its header
+    bool wall_surface = false;  // the wall is cut out of the background by snappyHexMesh
+    bool rod_surface = false;   // an annulus' rod too (rod.stl, patch rod)
+    std::string where;          // README: "a cylinder of radius R"
+    std::string surfaces;       // README: the wall's surface, after particles.stl's line
+    std::string patches;        // README: after the patches' list
+    std::string cells;          // README: the background cells and the levels
+    int boundary_skewness = 20; // snappyHexMesh's maxBoundarySkewness
 };
 
 /// What every shape of `Container` answers (a part of it: the rest is in the class comments).

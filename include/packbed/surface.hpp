@@ -14,23 +14,12 @@
 #include <vector>
 
 #include "packbed/container.hpp"
+#include "packbed/mesh.hpp"
 #include "packbed/packing.hpp"
 #include "packbed/registry.hpp"
 #include "packbed/vec3.hpp"
 
 namespace packbed {
-
-/// A triangle mesh: triangles index `vertices` counter-clockwise seen from outside (the
-/// right-hand normal points out of the body).
-struct TriangleMesh {
-    std::vector<Vec3> vertices;
-    std::vector<std::array<std::uint32_t, 3>> triangles;
-
-    /// Append another mesh (its indices shifted).
-    void append(const TriangleMesh& other);
-    /// \return the enclosed volume by the divergence theorem (closed, outward mesh: > 0).
-    double volume() const;
-};
 
 /// The unit sphere as a subdivided icosahedron: `level` times each triangle split in four, new
 /// vertices pushed onto the sphere; 20 * 4^level triangles, every vertex on the sphere (so the
@@ -106,12 +95,6 @@ struct SurfaceOptions {
     int level = 3;                             ///< icosphere level of each sphere (see icosphere)
     std::optional<SurfaceContainer> container; ///< the container whose solids are written
     bool write_container = true; ///< add the container's solids ("wall", "bottom", "top")
-};
-
-/// A named closed part of the surface (an STL solid, an OBJ group).
-struct Solid {
-    std::string name;
-    TriangleMesh mesh;
 };
 
 /// Each sphere's body after the treatment, as exact geometry: the sphere (radius after
@@ -196,39 +179,9 @@ TreatedBed periodic_images(const TreatedBed& bed, const Periods& cell);
 /// CGAL's corefinement), and
 /// where the options ask for it the container as "wall" (a prism circumscribed about the
 /// cylinder, so that no sphere inside the cylinder meets it; a box's four faces are "x_low",
-/// "x_high", "y_low", "y_high" instead), "bottom" and "top" (container_solids). In a periodic
+/// "x_high", "y_low", "y_high" instead), "bottom" and "top" (Container::solids). In a periodic
 /// cell the particles include the copies of periodic_images.
 std::vector<Solid> bed_surface(const TreatedBed& bed, const SurfaceOptions& options);
-
-/// The container as solids "wall" (a prism circumscribed about the cylinder, sides about
-/// `edge` long, between z_low and z_high), "bottom" and "top" (fans from the axis); the three
-/// together are closed and outward. \param edge > 0
-std::vector<Solid> container_solids(const Cylinder& cylinder, double z_low, double z_high,
-                                    double edge);
-
-/// A box as six solids, one per face: "x_low", "x_high", "y_low", "y_high" (the sides at
-/// x_low, x_high, y_low, y_high), "bottom" and "top", each face a grid of ceil(length / edge)
-/// cells a side (at least one, at most 4096) split into two triangles: triangles about `edge`
-/// wide, every vertex of a face's rim shared with the face next to it (at the same
-/// coordinates, so the STL is watertight too); the six together are closed and outward, and
-/// lie on the box's faces. \param edge > 0
-std::vector<Solid> container_solids(const Box& box, double z_low, double z_high, double edge);
-
-/// An annulus as solids "wall" (the tube: a prism circumscribed about it, as a cylinder's),
-/// "rod" (a prism inscribed in the rod, its corners on it, so that it lies inside the rod),
-/// "bottom" and "top" (strips between the two rings); the tube and the rod have the same
-/// sides and rows (the tube's), and the four together are closed and outward (the rod's
-/// normals point towards the axis, out of the fluid). \param edge > 0
-std::vector<Solid> container_solids(const Annulus& annulus, double z_low, double z_high,
-                                    double edge);
-
-/// A periodic cell as solids "bottom" and "top" only (the box [0, LX] x [0, LY]'s, see the box
-/// overload): it has no side wall.
-std::vector<Solid> container_solids(const Periodic& cell, double z_low, double z_high, double edge);
-
-/// The solids of any shape (the overloads above).
-std::vector<Solid> container_solids(const Container& container, double z_low, double z_high,
-                                    double edge);
 
 /// The three formats.
 enum class SurfaceFormat { stl_binary, stl_ascii, obj };

@@ -9,6 +9,7 @@
 #include <fmt/format.h>
 
 #include "base/require.hpp"
+#include "geometry/shape_text.hpp"
 #include "packbed/error.hpp"
 #include "packbed/option_ranges.hpp"
 
@@ -69,181 +70,6 @@ std::pair<Vec3, double> farthest_fluid_point(const std::vector<TreatedBody>& bod
             }
         }
     return {best, best_clearance};
-}
-
-/// The background mesh of one shape and what the README says of it.
-struct Background {
-    std::string block_mesh;     // blockMeshDict after its header
-    bool wall_surface = false;  // the wall is cut out of the background by snappyHexMesh
-    bool rod_surface = false;   // an annulus' rod too (rod.stl, patch rod)
-    std::string where;          // README: "a cylinder of radius R"
-    std::string surfaces;       // README: the wall's surface, after particles.stl's line
-    std::string patches;        // README: after the patches' list
-    std::string cells;          // README: the background cells and the levels
-    int boundary_skewness = 20; // snappyHexMesh's maxBoundarySkewness
-};
-
-/// The cell size of level `level` of cells of `cell`.
-double refined(double cell, int level) {
-    return cell / std::ldexp(1.0, level);
-}
-
-/// The blockMeshDict of a box one cell beyond a tube of radius `rt` sideways, 0 to height in
-/// z, its sides `outside`; `about` names what it holds in its first comment.
-std::string box_about_tube(double rt, const std::string& about, double height, double cell,
-                           const OpenFoamMeshOptions& options) {
-    const int n_side = static_cast<int>(std::ceil(2.0 * rt / cell)) + 2;
-    const double half = 0.5 * n_side * cell;
-    const int n_z = std::max(1, static_cast<int>(std::ceil(height / cell)));
-    return fmt::format(
-        "// Box around {about}, height {h}); cells of {cell} (Dp / {cpd}).\n"
-        "scale 1;\n\nvertices\n(\n"
-        "    ({lo} {lo} 0) ({hi} {lo} 0) ({hi} {hi} 0) ({lo} {hi} 0)\n"
-        "    ({lo} {lo} {h}) ({hi} {lo} {h}) ({hi} {hi} {h}) ({lo} {hi} {h})\n);\n\n"
-        "blocks\n(\n    hex (0 1 2 3 4 5 6 7) ({n} {n} {nz}) simpleGrading (1 1 1)\n);\n\n"
-        "edges\n(\n);\n\nboundary\n(\n"
-        "    inlet\n    {{\n        type patch;\n        faces ((0 3 2 1));\n    }}\n"
-        "    outlet\n    {{\n        type patch;\n        faces ((4 5 6 7));\n    }}\n"
-        "    outside // outside the wall: no cells remain on it after snappyHexMesh\n"
-        "    {{\n        type patch;\n"
-        "        faces ((0 1 5 4) (1 2 6 5) (2 3 7 6) (3 0 4 7));\n    }}\n);\n",
-        fmt::arg("about", about), fmt::arg("h", height), fmt::arg("cell", cell),
-        fmt::arg("cpd", options.cells_per_diameter), fmt::arg("lo", -half), fmt::arg("hi", half),
-        fmt::arg("n", n_side), fmt::arg("nz", n_z));
-}
-
-/// A cylinder: a box one cell beyond it sideways, exactly 0 to height in z; snappyHexMesh
-/// cuts the wall (wall.stl) out of it, and the box's sides (`outside`) keep no faces.
-Background background(const Cylinder& cylinder, double height, double cell,
-                      const OpenFoamMeshOptions& options) {
-    const double rt = cylinder.radius();
-    Background b;
-    b.block_mesh =
-        box_about_tube(rt, fmt::format("the cylinder (radius {}", rt), height, cell, options);
-    b.wall_surface = true;
-    b.where = fmt::format("a cylinder of radius {}", rt);
-    b.surfaces = "; `wall.stl`: the cylinder wall, open, reaching half a cell beyond both ends "
-                 "(patch `wall`)";
-    b.patches = ", `wall`; `outside` keeps no faces";
-    b.cells = fmt::format("Background cells of {} (Dp / {}); refinement level {} at the "
-                          "particles (cells of {}), {} at the wall (cells of {})",
-                          cell, options.cells_per_diameter, options.particle_level,
-                          refined(cell, options.particle_level), options.wall_level,
-                          refined(cell, options.wall_level));
-    return b;
-}
-
-/// An annulus: the cylinder's background about its tube (a box one cell beyond the tube
-/// sideways, 0 to height in z); snappyHexMesh cuts the tube (wall.stl) and the rod (rod.stl,
-/// patch `rod`) out of it, both refined to the wall level.
-Background background(const Annulus& annulus, double height, double cell,
-                      const OpenFoamMeshOptions& options) {
-    Background b;
-    b.block_mesh = box_about_tube(annulus.outer_radius(),
-                                  fmt::format("the annulus (tube radius {}, rod radius {}",
-                                              annulus.outer_radius(), annulus.inner_radius()),
-                                  height, cell, options);
-    b.wall_surface = true;
-    b.rod_surface = true;
-    b.where = fmt::format("the annulus between a tube of radius {} and a coaxial rod of radius {}",
-                          annulus.outer_radius(), annulus.inner_radius());
-    b.surfaces = "; `wall.stl`: the tube, open, reaching half a cell beyond both ends (patch "
-                 "`wall`); `rod.stl`: the rod, likewise (patch `rod`)";
-    b.patches = ", `wall`, `rod`; `outside` keeps no faces";
-    b.cells = fmt::format("Background cells of {} (Dp / {}); refinement level {} at the "
-                          "particles (cells of {}), {} at the tube and the rod (cells of {})",
-                          cell, options.cells_per_diameter, options.particle_level,
-                          refined(cell, options.particle_level), options.wall_level,
-                          refined(cell, options.wall_level));
-    return b;
-}
-
-/// A periodic cell: the background is the cell itself, [0, LX] x [0, LY] x [0, height], cells
-/// as a box's, its x sides and its y sides pairs of `cyclic` patches (x_low/x_high,
-/// y_low/y_high); particles.stl holds the bodies cut by a side and their copies across it
-/// (periodic_images), so the geometry the sides cut is periodic. No wall.
-Background background(const Periodic& cell, double height, double size,
-                      const OpenFoamMeshOptions& options) {
-    const auto cells = [size](double length) {
-        return std::max(1, static_cast<int>(std::ceil(length / size * (1.0 - 1e-12))));
-    };
-    const double x1 = cell.lx(), y1 = cell.ly();
-    const int nx = cells(x1), ny = cells(y1), nz = cells(height);
-    Background b;
-    b.block_mesh = fmt::format(
-        "// The periodic cell x 0 to {x1}, y 0 to {y1}, z 0 to {h}: its sides are cyclic pairs.\n"
-        "// Cells of at most {cell} (Dp / {cpd}) along each axis.\n"
-        "scale 1;\n\nvertices\n(\n"
-        "    (0 0 0) ({x1} 0 0) ({x1} {y1} 0) (0 {y1} 0)\n"
-        "    (0 0 {h}) ({x1} 0 {h}) ({x1} {y1} {h}) (0 {y1} {h})\n);\n\n"
-        "blocks\n(\n    hex (0 1 2 3 4 5 6 7) ({nx} {ny} {nz}) simpleGrading (1 1 1)\n);\n\n"
-        "edges\n(\n);\n\nboundary\n(\n"
-        "    inlet\n    {{\n        type patch;\n        faces ((0 3 2 1));\n    }}\n"
-        "    outlet\n    {{\n        type patch;\n        faces ((4 5 6 7));\n    }}\n"
-        "    x_low\n    {{\n        type cyclic;\n        neighbourPatch x_high;\n"
-        "        faces ((3 0 4 7));\n    }}\n"
-        "    x_high\n    {{\n        type cyclic;\n        neighbourPatch x_low;\n"
-        "        faces ((1 2 6 5));\n    }}\n"
-        "    y_low\n    {{\n        type cyclic;\n        neighbourPatch y_high;\n"
-        "        faces ((0 1 5 4));\n    }}\n"
-        "    y_high\n    {{\n        type cyclic;\n        neighbourPatch y_low;\n"
-        "        faces ((2 3 7 6));\n    }}\n);\n",
-        fmt::arg("x1", x1), fmt::arg("y1", y1), fmt::arg("h", height), fmt::arg("cell", size),
-        fmt::arg("cpd", options.cells_per_diameter), fmt::arg("nx", nx), fmt::arg("ny", ny),
-        fmt::arg("nz", nz));
-    b.where = fmt::format("the periodic cell x 0 to {}, y 0 to {}", x1, y1);
-    b.surfaces = " with the copies across the sides of those a side cuts. No wall: the cell's "
-                 "sides are the background mesh's own faces, cyclic pairs";
-    b.patches = ", `x_low` and `x_high`, `y_low` and `y_high` (cyclic pairs); no wall";
-    // checkMesh's own limit: with 20, two faces of the particles at skewness 4.4 failed it
-    // in the test's cell (docs/surfaces.md).
-    b.boundary_skewness = 4;
-    b.cells = fmt::format(
-        "Background cells of {} x {} x {} ({} x {} x {} cells: at most Dp / {} = {}); "
-        "refinement level {} at the particles (cells of {}); --wall-level does not apply",
-        x1 / nx, y1 / ny, height / nz, nx, ny, nz, options.cells_per_diameter, size,
-        options.particle_level, refined(size, options.particle_level));
-    return b;
-}
-
-/// A box: the background is the box itself, [x_low, x_high] x [y_low, y_high] x [0, height],
-/// ceil(length / cell) cells along each axis (the quotient's last bits forgiven), so that no
-/// cell is longer than `cell`; its four sides are the patch `wall` (type wall). No wall
-/// surface, and so no wall refinement.
-Background background(const Box& box, double height, double cell,
-                      const OpenFoamMeshOptions& options) {
-    const auto cells = [cell](double length) {
-        return std::max(1, static_cast<int>(std::ceil(length / cell * (1.0 - 1e-12))));
-    };
-    const double x0 = box.x_low(), x1 = box.x_high(), y0 = box.y_low(), y1 = box.y_high();
-    const int nx = cells(x1 - x0), ny = cells(y1 - y0), nz = cells(height);
-    Background b;
-    b.block_mesh = fmt::format(
-        "// The box x {x0} to {x1}, y {y0} to {y1}, z 0 to {h}: its sides are the wall.\n"
-        "// Cells of at most {cell} (Dp / {cpd}) along each axis.\n"
-        "scale 1;\n\nvertices\n(\n"
-        "    ({x0} {y0} 0) ({x1} {y0} 0) ({x1} {y1} 0) ({x0} {y1} 0)\n"
-        "    ({x0} {y0} {h}) ({x1} {y0} {h}) ({x1} {y1} {h}) ({x0} {y1} {h})\n);\n\n"
-        "blocks\n(\n    hex (0 1 2 3 4 5 6 7) ({nx} {ny} {nz}) simpleGrading (1 1 1)\n);\n\n"
-        "edges\n(\n);\n\nboundary\n(\n"
-        "    inlet\n    {{\n        type patch;\n        faces ((0 3 2 1));\n    }}\n"
-        "    outlet\n    {{\n        type patch;\n        faces ((4 5 6 7));\n    }}\n"
-        "    wall\n    {{\n        type wall;\n"
-        "        faces ((0 1 5 4) (1 2 6 5) (2 3 7 6) (3 0 4 7));\n    }}\n);\n",
-        fmt::arg("x0", x0), fmt::arg("x1", x1), fmt::arg("y0", y0), fmt::arg("y1", y1),
-        fmt::arg("h", height), fmt::arg("cell", cell), fmt::arg("cpd", options.cells_per_diameter),
-        fmt::arg("nx", nx), fmt::arg("ny", ny), fmt::arg("nz", nz));
-    b.where = fmt::format("the box x {} to {}, y {} to {}", x0, x1, y0, y1);
-    b.surfaces = ". No `wall.stl`: the box's four sides are the background mesh's own faces "
-                 "(patch `wall`, type wall)";
-    b.patches = ", `wall`";
-    b.cells = fmt::format(
-        "Background cells of {} x {} x {} ({} x {} x {} cells: at most Dp / {} = {}); "
-        "refinement level {} at the particles (cells of {}); the wall keeps the background "
-        "cells (--wall-level is for a cylinder's wall)",
-        (x1 - x0) / nx, (y1 - y0) / ny, height / nz, nx, ny, nz, options.cells_per_diameter, cell,
-        options.particle_level, refined(cell, options.particle_level));
-    return b;
 }
 
 /// The RANS fields of a case (model k-epsilon or k-omega SST), in SI units: at the inlet a
@@ -510,10 +336,9 @@ OpenFoamCase openfoam_case(const TreatedBed& bed, const SurfaceContainer& contai
     const double height = container.height;
     c.cell_size = diameter / options.cells_per_diameter;
     c.fluid_volume = volumes.container_volume - volumes.treated_solid;
-    const Background back = std::visit(
-        [&](const auto& shape) { return background(shape, height, c.cell_size, options); },
-        container.container.shape());
-    const double finest = refined(
+    const OpenFoamBackground back =
+        container.container.openfoam_background(height, c.cell_size, options);
+    const double finest = detail::refined(
         c.cell_size, back.wall_surface ? std::max(options.particle_level, options.wall_level)
                                        : options.particle_level);
     // In a periodic cell the fluid point keeps clear of the copies across the sides too.
@@ -544,9 +369,9 @@ OpenFoamCase openfoam_case(const TreatedBed& bed, const SurfaceContainer& contai
         largest = std::max(largest, b.radius);
     if (back.wall_surface) {
         // The wall, open, half a background cell beyond both ends of the box.
-        std::vector<Solid> walls =
-            container_solids(container.container, -0.5 * c.cell_size, height + 0.5 * c.cell_size,
-                             std::min(largest * icosphere_edge(level), 0.5 * c.cell_size));
+        std::vector<Solid> walls = container.container.solids(
+            -0.5 * c.cell_size, height + 0.5 * c.cell_size,
+            std::min(largest * icosphere_edge(level), 0.5 * c.cell_size));
         c.wall.push_back(std::move(walls[0]));
         if (back.rod_surface) // an annulus: solids wall, rod, bottom, top
             c.rod.push_back(std::move(walls[1]));

@@ -179,4 +179,106 @@ Annulus Annulus::scaled(double factor) const {
     return Annulus(m_outer * factor, m_inner * factor);
 }
 
+std::vector<Solid> Annulus::solids(double z_low, double z_high, double edge) const {
+    // The tube as a cylinder's wall (a prism circumscribed about it, outside it), the rod as
+    // a prism inscribed in it (its corners on the rod, its faces inside it: no sphere outside
+    // the rod meets it), with the tube's sides and rows, so that the rings of the two share
+    // their angles and the bottom and the top are strips of quads between them.
+    const double ri = m_inner;
+    const detail::PrismGrid grid(m_outer, z_low, z_high, edge);
+    const int rows = grid.rows;
+    const double corner = grid.corner;
+    const auto s = static_cast<std::uint32_t>(grid.sides);
+    auto ring_point = [&](double radius, int row, std::uint32_t k) {
+        return grid.point(radius, row, k);
+    };
+    Solid wall{"wall", {}}, rod{"rod", {}}, bottom{"bottom", {}}, top{"top", {}};
+    for (int row = 0; row <= rows; ++row)
+        for (std::uint32_t k = 0; k < s; ++k) {
+            wall.mesh.vertices.push_back(ring_point(corner, row, k));
+            rod.mesh.vertices.push_back(ring_point(ri, row, k));
+        }
+    for (std::uint32_t row = 0; row < static_cast<std::uint32_t>(rows); ++row)
+        for (std::uint32_t k = 0; k < s; ++k) {
+            const std::uint32_t j = (k + row % 2) % s, j1 = (j + 1) % s;
+            const std::uint32_t a = row * s + k, b = row * s + (k + 1) % s;
+            // The tube's normals point away from the axis, the rod's towards it: out of the
+            // fluid, as the bottom's (-z) and the top's (+z).
+            wall.mesh.triangles.push_back({a, b, (row + 1) * s + j});
+            wall.mesh.triangles.push_back({(row + 1) * s + j, b, (row + 1) * s + j1});
+            rod.mesh.triangles.push_back({a, (row + 1) * s + j, b});
+            rod.mesh.triangles.push_back({(row + 1) * s + j, (row + 1) * s + j1, b});
+        }
+    // Bottom and top: vertices 0..s-1 on the tube's ring, s..2s-1 on the rod's.
+    for (Solid* face : {&bottom, &top}) {
+        const int row = face == &bottom ? 0 : rows;
+        for (std::uint32_t k = 0; k < s; ++k)
+            face->mesh.vertices.push_back(ring_point(corner, row, k));
+        for (std::uint32_t k = 0; k < s; ++k)
+            face->mesh.vertices.push_back(ring_point(ri, row, k));
+        for (std::uint32_t k = 0; k < s; ++k) {
+            const std::uint32_t k1 = (k + 1) % s;
+            if (face == &top) { // counter-clockwise seen from above: normal +z
+                face->mesh.triangles.push_back({k, k1, s + k1});
+                face->mesh.triangles.push_back({k, s + k1, s + k});
+            } else {
+                face->mesh.triangles.push_back({k, s + k1, k1});
+                face->mesh.triangles.push_back({k, s + k, s + k1});
+            }
+        }
+    }
+    std::vector<Solid> solids;
+    solids.push_back(std::move(wall));
+    solids.push_back(std::move(rod));
+    solids.push_back(std::move(bottom));
+    solids.push_back(std::move(top));
+    return solids;
+}
+
+DemSettleWall Annulus::settle_wall(double height, std::string_view contact) const {
+    // Two regions, two wall fixes: the tube's inside and the rod's outside (side out), each
+    // open at the floor and the top (cylinder faces 1 and 2).
+    return {fmt::format("annulus between a tube\n# of radius {:.9g} and a coaxial rod of radius "
+                        "{:.9g} about the z axis, from the floor z = 0 to\n# z = {:.9g}, and the "
+                        "data file's box holds it",
+                        outer_radius(), inner_radius(), height),
+            fmt::format("# The container: the tube as a cylinder region (side in) and the rod as "
+                        "another\n# (side out), each its own wall (LAMMPS 2022 has no STL walls "
+                        "for granular fixes;\n# the LIGGGHTS input uses packbed's STL), the floor "
+                        "as the plane z = 0.\n"
+                        "region          tube cylinder z 0 0 {} 0 {} side in open 1 open 2 "
+                        "units box\n"
+                        "region          rod cylinder z 0 0 {} 0 {} side out open 1 open 2 "
+                        "units box\n",
+                        outer_radius(), height, inner_radius(), height) +
+                detail::region_wall("side", contact, "tube") +
+                detail::region_wall("side_rod", contact, "rod"),
+            "the tube's prism and the rod's"};
+}
+
+/// An annulus: the cylinder's background about its tube (a box one cell beyond the tube
+/// sideways, 0 to height in z); snappyHexMesh cuts the tube (wall.stl) and the rod (rod.stl,
+/// patch `rod`) out of it, both refined to the wall level.
+OpenFoamBackground Annulus::openfoam_background(double height, double cell,
+                                                const OpenFoamMeshOptions& options) const {
+    OpenFoamBackground b;
+    b.block_mesh = detail::box_about_tube(
+        outer_radius(),
+        fmt::format("the annulus (tube radius {}, rod radius {}", outer_radius(), inner_radius()),
+        height, cell, options);
+    b.wall_surface = true;
+    b.rod_surface = true;
+    b.where = fmt::format("the annulus between a tube of radius {} and a coaxial rod of radius {}",
+                          outer_radius(), inner_radius());
+    b.surfaces = "; `wall.stl`: the tube, open, reaching half a cell beyond both ends (patch "
+                 "`wall`); `rod.stl`: the rod, likewise (patch `rod`)";
+    b.patches = ", `wall`, `rod`; `outside` keeps no faces";
+    b.cells = fmt::format("Background cells of {} (Dp / {}); refinement level {} at the "
+                          "particles (cells of {}), {} at the tube and the rod (cells of {})",
+                          cell, options.cells_per_diameter, options.particle_level,
+                          detail::refined(cell, options.particle_level), options.wall_level,
+                          detail::refined(cell, options.wall_level));
+    return b;
+}
+
 } // namespace packbed

@@ -67,6 +67,20 @@ nlohmann::ordered_json Container::export_json(double height) const {
     return ask(m_shape, [&](const auto& s) { return s.export_json(height); });
 }
 
+std::vector<Solid> Container::solids(double z_low, double z_high, double edge) const {
+    return ask(m_shape, [&](const auto& s) { return s.solids(z_low, z_high, edge); });
+}
+
+DemSettleWall Container::settle_wall(double height, std::string_view contact) const {
+    return ask(m_shape, [&](const auto& s) { return s.settle_wall(height, contact); });
+}
+
+OpenFoamBackground Container::openfoam_background(double height, double cell,
+                                                  const OpenFoamMeshOptions& options) const {
+    return ask(m_shape,
+               [&](const auto& s) { return s.openfoam_background(height, cell, options); });
+}
+
 LammpsSide Container::lammps_side(std::span<const double> diameters, double setback) const {
     return ask(m_shape, [&](const auto& s) { return s.lammps_side(diameters, setback); });
 }

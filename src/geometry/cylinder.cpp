@@ -129,4 +129,80 @@ Cylinder Cylinder::scaled(double factor) const {
     return Cylinder(m_radius * factor);
 }
 
+std::vector<Solid> Cylinder::solids(double z_low, double z_high, double edge) const {
+    // A prism circumscribed about the cylinder: its faces are tangent to the cylinder from
+    // outside, with sides about `edge` long.
+    // The wall in rows about as tall as a side is wide, every other row turned by half a
+    // side, so that no two triangles are coplanar (the bottom and top are fans from the
+    // axis). Each wall triangle projects onto the plane between a chord at distance Rt from
+    // the axis and the circle through the corners: the wall stays outside the cylinder.
+    const detail::PrismGrid grid(m_radius, z_low, z_high, edge);
+    const int rows = grid.rows;
+    const auto s = static_cast<std::uint32_t>(grid.sides);
+    auto ring_point = [&](int row, std::uint32_t k) { return grid.point(grid.corner, row, k); };
+    Solid wall{"wall", {}}, bottom{"bottom", {}}, top{"top", {}};
+    for (int row = 0; row <= rows; ++row)
+        for (std::uint32_t k = 0; k < s; ++k)
+            wall.mesh.vertices.push_back(ring_point(row, k));
+    for (std::uint32_t k = 0; k < s; ++k) {
+        bottom.mesh.vertices.push_back(ring_point(0, k));
+        top.mesh.vertices.push_back(ring_point(rows, k));
+    }
+    bottom.mesh.vertices.push_back({0.0, 0.0, z_low});
+    top.mesh.vertices.push_back({0.0, 0.0, z_high});
+    for (std::uint32_t row = 0; row < static_cast<std::uint32_t>(rows); ++row)
+        for (std::uint32_t k = 0; k < s; ++k) {
+            // The upper vertex between lower k and k + 1, and the next one.
+            const std::uint32_t j = (k + row % 2) % s, j1 = (j + 1) % s;
+            const std::uint32_t a = row * s + k, b = row * s + (k + 1) % s;
+            wall.mesh.triangles.push_back({a, b, (row + 1) * s + j});
+            wall.mesh.triangles.push_back({(row + 1) * s + j, b, (row + 1) * s + j1});
+        }
+    for (std::uint32_t k = 0; k < s; ++k) {
+        const std::uint32_t k1 = (k + 1) % s;
+        bottom.mesh.triangles.push_back({s, k1, k});
+        top.mesh.triangles.push_back({s, k, k1});
+    }
+    std::vector<Solid> solids;
+    solids.push_back(std::move(wall));
+    solids.push_back(std::move(bottom));
+    solids.push_back(std::move(top));
+    return solids;
+}
+
+DemSettleWall Cylinder::settle_wall(double height, std::string_view contact) const {
+    return {fmt::format("cylinder of radius\n# {:.9g} about the z axis from the floor z = 0 to "
+                        "z = {:.9g}, and the data file's\n# box holds it",
+                        radius(), height),
+            fmt::format("# The container: its side as a cylinder region (LAMMPS 2022 has no STL "
+                        "walls for\n# granular fixes; the LIGGGHTS input uses packbed's STL), its "
+                        "floor as the plane z = 0.\n"
+                        "region          container cylinder z 0 0 {} 0 {} side in open 1 open 2 "
+                        "units box\n",
+                        radius(), height) +
+                detail::region_wall("side", contact, "container"),
+            "a prism about the cylinder"};
+}
+
+/// A cylinder: a box one cell beyond it sideways, exactly 0 to height in z; snappyHexMesh
+/// cuts the wall (wall.stl) out of it, and the box's sides (`outside`) keep no faces.
+OpenFoamBackground Cylinder::openfoam_background(double height, double cell,
+                                                 const OpenFoamMeshOptions& options) const {
+    const double rt = radius();
+    OpenFoamBackground b;
+    b.block_mesh = detail::box_about_tube(rt, fmt::format("the cylinder (radius {}", rt), height,
+                                          cell, options);
+    b.wall_surface = true;
+    b.where = fmt::format("a cylinder of radius {}", rt);
+    b.surfaces = "; `wall.stl`: the cylinder wall, open, reaching half a cell beyond both ends "
+                 "(patch `wall`)";
+    b.patches = ", `wall`; `outside` keeps no faces";
+    b.cells = fmt::format("Background cells of {} (Dp / {}); refinement level {} at the "
+                          "particles (cells of {}), {} at the wall (cells of {})",
+                          cell, options.cells_per_diameter, options.particle_level,
+                          detail::refined(cell, options.particle_level), options.wall_level,
+                          detail::refined(cell, options.wall_level));
+    return b;
+}
+
 } // namespace packbed

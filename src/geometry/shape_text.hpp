@@ -2,7 +2,9 @@
 // LAMMPS numbers. Internal to src/geometry/.
 #pragma once
 
+#include <algorithm>
 #include <cmath>
+#include <cstdint>
 #include <numbers>
 #include <span>
 #include <string>
@@ -13,6 +15,7 @@
 #include <fmt/format.h>
 #include <nlohmann/json.hpp>
 
+#include "packbed/mesh.hpp"
 #include "packbed/shape.hpp"
 
 namespace packbed::detail {
@@ -90,6 +93,68 @@ std::string per_type(std::span<const double> diameters, double setback, F&& line
     for (std::size_t t = 0; t < diameters.size(); ++t)
         out += line(t + 1, 0.5 * diameters[t] + setback);
     return out;
+}
+
+/// The rings of a prism circumscribed about a cylinder of radius `rt` (its faces tangent to
+/// it from outside) between z_low and z_high: `sides` of about `edge` (48 to 100 000), the
+/// corners at rt / cos(pi / sides), in `rows` about as tall as a side is wide (1 to 4 096).
+struct PrismGrid {
+    int sides, rows;
+    double corner, z_low, z_high;
+    PrismGrid(double rt, double low, double high, double edge)
+        : sides(std::clamp(static_cast<int>(std::ceil(2.0 * std::numbers::pi * rt / edge)), 48,
+                           100000))
+        , rows(0)
+        , corner(rt / std::cos(std::numbers::pi / sides))
+        , z_low(low)
+        , z_high(high) {
+        rows = std::clamp(static_cast<int>(std::ceil(
+                              (high - low) / (2.0 * corner * std::sin(std::numbers::pi / sides)))),
+                          1, 4096);
+    }
+    /// Point k of ring `row` at distance `radius` from the axis, every other row turned by
+    /// half a side.
+    Vec3 point(double radius, int row, std::uint32_t k) const {
+        const double angle = 2.0 * std::numbers::pi * (k + 0.5 * (row % 2)) / sides;
+        return Vec3{radius * std::cos(angle), radius * std::sin(angle),
+                    row == rows ? z_high : z_low + (z_high - z_low) * row / rows};
+    }
+};
+
+/// The LAMMPS wall fix on region `region`, with the contact model's words.
+inline std::string region_wall(std::string_view fix, std::string_view contact,
+                               std::string_view region) {
+    return fmt::format("fix             {} all wall/gran/region granular {} region {}\n", fix,
+                       contact, region);
+}
+
+/// The cell size of level `level` of cells of `cell`.
+inline double refined(double cell, int level) {
+    return cell / std::ldexp(1.0, level);
+}
+
+/// The blockMeshDict of a box one cell beyond a tube of radius `rt` sideways, 0 to height in
+/// z, its sides `outside`; `about` names what it holds in its first comment.
+inline std::string box_about_tube(double rt, const std::string& about, double height, double cell,
+                                  const OpenFoamMeshOptions& options) {
+    const int n_side = static_cast<int>(std::ceil(2.0 * rt / cell)) + 2;
+    const double half = 0.5 * n_side * cell;
+    const int n_z = std::max(1, static_cast<int>(std::ceil(height / cell)));
+    return fmt::format(
+        "// Box around {about}, height {h}); cells of {cell} (Dp / {cpd}).\n"
+        "scale 1;\n\nvertices\n(\n"
+        "    ({lo} {lo} 0) ({hi} {lo} 0) ({hi} {hi} 0) ({lo} {hi} 0)\n"
+        "    ({lo} {lo} {h}) ({hi} {lo} {h}) ({hi} {hi} {h}) ({lo} {hi} {h})\n);\n\n"
+        "blocks\n(\n    hex (0 1 2 3 4 5 6 7) ({n} {n} {nz}) simpleGrading (1 1 1)\n);\n\n"
+        "edges\n(\n);\n\nboundary\n(\n"
+        "    inlet\n    {{\n        type patch;\n        faces ((0 3 2 1));\n    }}\n"
+        "    outlet\n    {{\n        type patch;\n        faces ((4 5 6 7));\n    }}\n"
+        "    outside // outside the wall: no cells remain on it after snappyHexMesh\n"
+        "    {{\n        type patch;\n"
+        "        faces ((0 1 5 4) (1 2 6 5) (2 3 7 6) (3 0 4 7));\n    }}\n);\n",
+        fmt::arg("about", about), fmt::arg("h", height), fmt::arg("cell", cell),
+        fmt::arg("cpd", options.cells_per_diameter), fmt::arg("lo", -half), fmt::arg("hi", half),
+        fmt::arg("n", n_side), fmt::arg("nz", n_z));
 }
 
 } // namespace packbed::detail

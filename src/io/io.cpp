@@ -200,84 +200,8 @@ SettleNumbers settle_numbers(const DemSettle& s) {
     return n;
 }
 
-/// What the settle inputs say of the container's side, by shape.
-struct SettleWall {
-    std::string words;        // the head's "the container is the ..., and the data file's box
-                              // holds it" (two comment lines)
-    std::string lammps;       // LAMMPS: the comment, the region(s) and the fix(es) of the side
-    std::string liggghts_stl; // LIGGGHTS: what the side's STL is ("": none, periodic)
-    std::string boundary = "f f f";
-};
-
-/// The LAMMPS wall fix on region `region`, with the contact model's words.
-std::string region_wall(std::string_view fix, std::string_view contact, std::string_view region) {
-    return fmt::format("fix             {} all wall/gran/region granular {} region {}\n", fix,
-                       contact, region);
-}
-
-SettleWall settle_wall(const Cylinder& c, double height, std::string_view contact) {
-    return {fmt::format("cylinder of radius\n# {:.9g} about the z axis from the floor z = 0 to "
-                        "z = {:.9g}, and the data file's\n# box holds it",
-                        c.radius(), height),
-            fmt::format("# The container: its side as a cylinder region (LAMMPS 2022 has no STL "
-                        "walls for\n# granular fixes; the LIGGGHTS input uses packbed's STL), its "
-                        "floor as the plane z = 0.\n"
-                        "region          container cylinder z 0 0 {} 0 {} side in open 1 open 2 "
-                        "units box\n",
-                        c.radius(), height) +
-                region_wall("side", contact, "container"),
-            "a prism about the cylinder"};
-}
-
-SettleWall settle_wall(const Box& b, double height, std::string_view contact) {
-    // Block faces 1 to 6 are xlo, xhi, ylo, yhi, zlo, zhi: the floor and the top open.
-    return {fmt::format("box x in [{:.9g}, {:.9g}], y in\n# [{:.9g}, {:.9g}] from the floor z = 0 "
-                        "to z = {:.9g}, and the data file's box\n# holds it",
-                        b.x_low(), b.x_high(), b.y_low(), b.y_high(), height),
-            fmt::format("# The container: its four sides as a block region open at the floor and "
-                        "the top\n# (LAMMPS 2022 has no STL walls for granular fixes; the "
-                        "LIGGGHTS input uses packbed's\n# STL), its floor as the plane z = 0.\n"
-                        "region          container block {} {} {} {} 0 {} side in open 5 open 6 "
-                        "units box\n",
-                        b.x_low(), b.x_high(), b.y_low(), b.y_high(), height) +
-                region_wall("side", contact, "container"),
-            "the box's four faces"};
-}
-
-SettleWall settle_wall(const Annulus& a, double height, std::string_view contact) {
-    // Two regions, two wall fixes: the tube's inside and the rod's outside (side out), each
-    // open at the floor and the top (cylinder faces 1 and 2).
-    return {fmt::format("annulus between a tube\n# of radius {:.9g} and a coaxial rod of radius "
-                        "{:.9g} about the z axis, from the floor z = 0 to\n# z = {:.9g}, and the "
-                        "data file's box holds it",
-                        a.outer_radius(), a.inner_radius(), height),
-            fmt::format("# The container: the tube as a cylinder region (side in) and the rod as "
-                        "another\n# (side out), each its own wall (LAMMPS 2022 has no STL walls "
-                        "for granular fixes;\n# the LIGGGHTS input uses packbed's STL), the floor "
-                        "as the plane z = 0.\n"
-                        "region          tube cylinder z 0 0 {} 0 {} side in open 1 open 2 "
-                        "units box\n"
-                        "region          rod cylinder z 0 0 {} 0 {} side out open 1 open 2 "
-                        "units box\n",
-                        a.outer_radius(), height, a.inner_radius(), height) +
-                region_wall("side", contact, "tube") + region_wall("side_rod", contact, "rod"),
-            "the tube's prism and the rod's"};
-}
-
-SettleWall settle_wall(const Periodic& p, double height, std::string_view) {
-    return {fmt::format("cell periodic in x in\n# [0, {:.9g}) and y in [0, {:.9g}) (boundary p p "
-                        "f, no side wall), from the floor z = 0 to\n# z = {:.9g}; the data "
-                        "file's box is the cell in x and y",
-                        p.lx(), p.ly(), height),
-            "# The container: a cell periodic in x and y (boundary p p f): no side wall; the "
-            "floor as\n# the plane z = 0.\n",
-            "", "p p f"};
-}
-
-SettleWall settle_wall(const DemSettle& s, std::string_view contact = "") {
-    return std::visit(
-        [&](const auto& shape) { return settle_wall(shape, s.container_height, contact); },
-        s.container.shape());
+DemSettleWall settle_wall(const DemSettle& s, std::string_view contact = "") {
+    return s.container.settle_wall(s.container_height, contact);
 }
 
 /// The comment block and the variables both inputs start with.
@@ -337,7 +261,7 @@ std::string lammps_settle_input(const DemSettle& s) {
     const SettleNumbers n = settle_numbers(s);
     const std::string contact = "hertz/material ${youngs} ${restitution} ${poisson} tangential "
                                 "mindlin NULL 1.0 ${friction} damping tsuji";
-    const SettleWall wall = settle_wall(s, contact);
+    const DemSettleWall wall = settle_wall(s, contact);
     return settle_head(s, n, "LAMMPS (2022, GRANULAR package)",
                        fmt::format("lmp -in {}.lammps.in", s.data_file)) +
            fmt::format(
@@ -361,7 +285,7 @@ std::string lammps_settle_input(const DemSettle& s) {
 
 std::string liggghts_settle_input(const DemSettle& s) {
     const SettleNumbers n = settle_numbers(s);
-    const SettleWall wall = settle_wall(s);
+    const DemSettleWall wall = settle_wall(s);
     const bool stl = !wall.liggghts_stl.empty(); // a periodic cell: no STL, a plane floor
     if (stl) {
         require_input_word("the wall STL", s.wall_stl);

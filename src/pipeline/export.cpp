@@ -391,7 +391,7 @@ std::string data_export(const ExportRequest& o, ExportFormat format, const Packi
         // The container's side (every solid but the floor and the top: an annulus' tube and
         // rod in one) and floor as LIGGGHTS walls, triangles about 1 Dp wide.
         const std::vector<Solid> solids =
-            container_solids(container->container, 0.0, container->height, dp);
+            container->container.solids(0.0, container->height, dp);
         Solid side{"wall", {}}, bottom{"bottom", {}};
         for (const Solid& solid : solids)
             if (solid.name == "bottom")

@@ -1,0 +1,27 @@
+#include "packbed/mesh.hpp"
+
+namespace packbed {
+
+namespace {
+
+Vec3 cross(const Vec3& a, const Vec3& b) {
+    return {a.y * b.z - a.z * b.y, a.z * b.x - a.x * b.z, a.x * b.y - a.y * b.x};
+}
+
+} // namespace
+
+void TriangleMesh::append(const TriangleMesh& other) {
+    const auto shift = static_cast<std::uint32_t>(vertices.size());
+    vertices.insert(vertices.end(), other.vertices.begin(), other.vertices.end());
+    for (const auto& t : other.triangles)
+        triangles.push_back({t[0] + shift, t[1] + shift, t[2] + shift});
+}
+
+double TriangleMesh::volume() const {
+    double six_v = 0.0;
+    for (const auto& t : triangles)
+        six_v += dot(vertices[t[0]], cross(vertices[t[1]], vertices[t[2]]));
+    return six_v / 6.0;
+}
+
+} // namespace packbed
