@@ -14,7 +14,7 @@ LatticeParameters million(LatticeType type) {
     p.type = type;
     const double per_volume = (1.0 - unit_cell(type).porosity) / (3.14159265358979 / 6.0);
     const double side = std::cbrt(1e6 / per_volume) + 1.0;
-    p.region = BoxRegion{{side, side, side}};
+    p.region = LatticeRegion{packbed::Box(side, side), side};
     return p;
 }
 
@@ -39,9 +39,6 @@ void BM_LatticeContacts(benchmark::State& state) {
 
 } // namespace
 
-BENCHMARK(BM_FillLattice)
-    ->DenseRange(0, 4)
-    ->Unit(benchmark::kMillisecond)
-    ->UseRealTime();
+BENCHMARK(BM_FillLattice)->DenseRange(0, 4)->Unit(benchmark::kMillisecond)->UseRealTime();
 BENCHMARK(BM_LatticeContacts)->Unit(benchmark::kMillisecond)->UseRealTime();
 BENCHMARK_MAIN();

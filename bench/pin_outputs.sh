@@ -44,6 +44,10 @@ $exe generate --container box:5,5 -n 200 -s 1 --engine lammps --write-only lmp_b
 $exe generate --container annulus:8,2 -n 200 -s 1 --engine lammps --write-only lmp_ann -q -o la
 $exe generate --container periodic:5,5 -n 200 -s 1 --engine lammps --write-only lmp_per -q -o lp
 $exe lattice --type fcc --region box:6,6,6 -q -o latbox
+$exe lattice --type sc --region annulus:8,2,4 --keep centres -q -o latann
+$exe lattice --type sc --region periodic:4,4,3 -q -o latper
+{ $exe lattice --type fcc --region periodic:4,4,3 || echo "exit $?"; } > latper.refused 2>&1
+{ $exe lattice --region cylinder:4 || echo "exit $?"; } > latcyl.refused 2>&1
 $exe voxelize per/particles.csv --voxel-size 0.2 -q -o per.npy
 $exe voxelize ann/particles.csv --voxel-size 0.2 -q -o ann.npy
 for c in generate lattice hydraulics export analyze correlations voxelize cfd-report import-lammps; do

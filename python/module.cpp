@@ -491,12 +491,12 @@ Bed lattice(const std::string& type, const std::string& region, double diameter,
     std::optional<OutputDirectory> directory;
     if (out)
         directory.emplace(*out, "--out", OutputKind::directory, force);
-    Bed bed{fill_lattice(p), region_container(p.region), nlohmann::json()};
+    Bed bed{fill_lattice(p), p.region.container, nlohmann::json()};
     bed.summary = lattice_summary(p, bed.packing);
     if (directory) {
         stage_bed(*directory, bed.packing, *bed.container, band_clearance,
                   analysis && !bed.packing.centers.empty() &&
-                      region_height(p.region) > 2.0 * band_clearance * p.diameter,
+                      p.region.height > 2.0 * band_clearance * p.diameter,
                   bed.summary);
         directory->commit();
     }

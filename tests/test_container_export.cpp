@@ -389,7 +389,7 @@ TEST(ContainerExport, ScLatticeInAnAnnulusKeepsTheBallsBetweenRodAndTube) {
     LatticeParameters p;
     p.type = LatticeType::sc;
     p.diameter = 1.0;
-    p.region = AnnulusRegion{6.0, 2.0, 1.0};
+    p.region = LatticeRegion{Annulus(0.5 * 6.0, 0.5 * 2.0), 1.0};
     const Packing packing = fill_lattice(p);
     // One layer at z = 0.5 of the integer points with 1.5 <= rho <= 2.5: (+-2, 0), (0, +-2),
     // (+-2, +-1), (+-1, +-2).
@@ -422,7 +422,7 @@ TEST(ContainerExport, FccLatticeInAPeriodicCellRepeatsAcrossIt) {
     p.type = LatticeType::fcc;
     p.diameter = 1.0;
     const double period = std::sqrt(2.0);
-    p.region = PeriodicRegion{2.0 * period, 2.0 * period, 2.0 * period};
+    p.region = LatticeRegion{Periodic(2.0 * period, 2.0 * period), 2.0 * period};
     const Packing packing = fill_lattice(p);
     // Three layers (z = 0.5, 0.5 + 1/sqrt 2, 0.5 + sqrt 2) of 8 balls each.
     ASSERT_EQ(packing.size(), 24u);
@@ -445,7 +445,7 @@ TEST(ContainerExport, FccLatticeInAPeriodicCellRepeatsAcrossIt) {
 TEST(ContainerExport, PeriodicLatticeRefusals) {
     LatticeParameters p;
     p.type = LatticeType::fcc;
-    p.region = PeriodicRegion{3.0, 3.0, 3.0};
+    p.region = LatticeRegion{Periodic(3.0, 3.0), 3.0};
     try {
         fill_lattice(p);
         FAIL() << "no exception";
@@ -455,7 +455,7 @@ TEST(ContainerExport, PeriodicLatticeRefusals) {
                                "1.4142135623730951 (x) and 1.4142135623730951 (y), each at least "
                                "2 d, e.g. periodic:2.8284271247461903,2.8284271247461903,3");
     }
-    p.region = PeriodicRegion{2.0 * std::sqrt(2.0), 2.0 * std::sqrt(2.0), 3.0};
+    p.region = LatticeRegion{Periodic(2.0 * std::sqrt(2.0), 2.0 * std::sqrt(2.0)), 3.0};
     p.rotations = {{'z', 10.0}};
     try {
         fill_lattice(p);

@@ -38,7 +38,7 @@ TEST(Lattice, TsaygersWorkedExampleBallE) {
     LatticeParameters p;
     p.type = LatticeType::diamond;
     p.diameter = 2.0;
-    p.region = BoxRegion{{40.0, 40.0, 40.0}};
+    p.region = LatticeRegion{Box(40.0, 40.0), 40.0};
     p.origin = Vec3{0.0, 0.0, 0.0};
     p.keep = LatticeKeep::centres;
     const Packing bed = fill_lattice(p);
@@ -65,7 +65,7 @@ TEST_P(EveryLattice, InteriorBallsHaveExactlyTheirCoordinationAndNoneIsCloser) {
     const UnitCell cell = unit_cell(GetParam());
     LatticeParameters p;
     p.type = GetParam();
-    p.region = BoxRegion{{8.0, 8.0, 8.0}};
+    p.region = LatticeRegion{Box(8.0, 8.0), 8.0};
     const Packing bed = fill_lattice(p);
     ASSERT_GT(bed.size(), 200u);
     const LatticeContacts contacts = lattice_contacts(bed);
@@ -91,7 +91,7 @@ TEST_P(EveryLattice, LargeBoxPorosityTendsToTheLattices) {
     for (const double side : {10.3, 20.3, 40.3}) {
         LatticeParameters p;
         p.type = GetParam();
-        p.region = BoxRegion{{side, side, side}};
+        p.region = LatticeRegion{Box(side, side), side};
         const Packing bed = fill_lattice(p);
         const double porosity =
             1.0 - static_cast<double>(bed.size()) * pi / 6.0 / (side * side * side);
@@ -112,7 +112,8 @@ INSTANTIATE_TEST_SUITE_P(Types, EveryLattice,
 TEST(Lattice, WholeBallsStayInsideTheCylinderAndTouchingOnesAreKept) {
     LatticeParameters p;
     p.type = LatticeType::sc;
-    p.region = CylinderRegion{5.0, 4.0}; // radius 2.5: centres up to 2.0 from the axis
+    p.region =
+        LatticeRegion{Cylinder(0.5 * 5.0), 4.0}; // radius 2.5: centres up to 2.0 from the axis
     const Packing bed = fill_lattice(p);
     double widest = 0.0;
     for (const Vec3& c : bed.centers) {
@@ -128,7 +129,7 @@ TEST(Lattice, WholeBallsStayInsideTheCylinderAndTouchingOnesAreKept) {
 TEST(Lattice, CentresOptionKeepsBallsCutByTheWalls) {
     LatticeParameters p;
     p.type = LatticeType::sc;
-    p.region = BoxRegion{{3.0, 3.0, 3.0}};
+    p.region = LatticeRegion{Box(3.0, 3.0), 3.0};
     p.origin = Vec3{0.0, 0.0, 0.0};
     EXPECT_EQ(fill_lattice(p).size(), 8u); // 1 and 2 along each axis: whole balls
     p.keep = LatticeKeep::centres;
@@ -138,7 +139,7 @@ TEST(Lattice, CentresOptionKeepsBallsCutByTheWalls) {
 TEST(Lattice, RotatedLatticesKeepTheirContactsAndStayInside) {
     LatticeParameters p;
     p.type = LatticeType::diamond;
-    p.region = BoxRegion{{9.0, 9.0, 9.0}};
+    p.region = LatticeRegion{Box(9.0, 9.0), 9.0};
     p.origin = Vec3{4.5, 4.5, 4.5};
     p.rotations = {{'z', 30.0}, {'x', 20.0}};
     const Packing bed = fill_lattice(p);
@@ -173,7 +174,7 @@ TEST(Lattice, AQuarterTurnMapsTheCubicLatticesOntoThemselves) {
     for (const LatticeType type : {LatticeType::sc, LatticeType::bcc, LatticeType::fcc}) {
         LatticeParameters p;
         p.type = type;
-        p.region = BoxRegion{{7.3, 7.3, 7.3}};
+        p.region = LatticeRegion{Box(7.3, 7.3), 7.3};
         p.origin = Vec3{3.65, 3.65, 3.65}; // the box centre: the turn maps the box onto itself
         const std::size_t plain = fill_lattice(p).size();
         for (const char axis : {'x', 'y', 'z'}) {
@@ -193,7 +194,8 @@ TEST(Lattice, BoxOfWholeCellsWithCutBallsHasTheLatticesPorosity) {
         LatticeParameters p;
         p.type = type;
         p.diameter = 2.0;
-        p.region = BoxRegion{cell.edges * (3.0 * p.diameter)};
+        const Vec3 size = cell.edges * (3.0 * p.diameter);
+        p.region = LatticeRegion{Box(size.x, size.y), size.z};
         p.origin = Vec3{0.0, 0.0, 0.0};
         p.keep = LatticeKeep::centres;
         const auto summary = lattice_summary(p, fill_lattice(p));
@@ -214,7 +216,7 @@ std::string message_of(const LatticeParameters& p) {
 
 TEST(Lattice, BadParametersNameTheValue) {
     LatticeParameters p;
-    p.region = BoxRegion{{10.0, -1.0, 10.0}};
+    p.region = LatticeRegion{Box(10.0, -1.0), 10.0};
     try {
         fill_lattice(p);
         FAIL() << "a negative box side was accepted";
@@ -223,17 +225,17 @@ TEST(Lattice, BadParametersNameTheValue) {
                                "and at most 1e+15");
     }
     // The real limit, not "> 0" alone.
-    p.region = BoxRegion{{1e16, 10.0, 10.0}};
+    p.region = LatticeRegion{Box(1e16, 10.0), 10.0};
     EXPECT_EQ(message_of(p), "--region box:1e+16,10,10 is not allowed; allowed: three lengths > 0 "
                              "and at most 1e+15");
-    p.region = CylinderRegion{10.0, 2e15};
+    p.region = LatticeRegion{Cylinder(0.5 * 10.0), 2e15};
     EXPECT_EQ(message_of(p),
               "--region cylinder:10,2000000000000000 is not allowed; allowed: diameter and "
               "height > 0 and at most 1e+15");
-    p.region = BoxRegion{{1e4, 1e4, 1e4}};
+    p.region = LatticeRegion{Box(1e4, 1e4), 1e4};
     p.diameter = 1.0;
     EXPECT_THROW(fill_lattice(p), InvalidInput); // about 3e11 balls
-    p.region = CylinderRegion{10.0, 10.0};
+    p.region = LatticeRegion{Cylinder(0.5 * 10.0), 10.0};
     p.diameter = 0.0;
     EXPECT_THROW(fill_lattice(p), InvalidInput);
 }
@@ -268,13 +270,13 @@ TEST(Lattice, LongThinRegionIsRefusedByTheCellsItSpans) {
     LatticeParameters p;
     p.type = LatticeType::sc;
     p.keep = LatticeKeep::centres;
-    p.region = BoxRegion{{1e11, 0.001, 0.001}};
+    p.region = LatticeRegion{Box(1e11, 0.001), 0.001};
     EXPECT_EQ(message_of(p),
               "--region box:100000000000,0.001,0.001 is not allowed with sc balls of diameter 1: "
               "filling it would try 1.6e+12 ball positions (1e+11 x 4 x 4 cells, 1 per cell); "
               "allowed: at most 1e+09 (a larger diameter or a smaller region)");
     // The same thin region at a length the limit allows: one row of balls, centres at x = k + 1/2.
-    p.region = BoxRegion{{1e5, 1.0, 1.0}};
+    p.region = LatticeRegion{Box(1e5, 1.0), 1.0};
     const Packing row = fill_lattice(p);
     ASSERT_EQ(row.size(), 100000u);
     EXPECT_EQ(row.centers.back().x, 99999.5);

@@ -208,7 +208,7 @@ TEST(Voxel, ALatticesPoreImageHasItsPorosity) {
     // to rounding
     LatticeParameters p;
     p.type = LatticeType::sc;
-    p.region = BoxRegion{{4.0, 4.0, 4.0}};
+    p.region = LatticeRegion{Box(4.0, 4.0), 4.0};
     const Packing balls = fill_lattice(p);
     const Container box(Box(4.0, 4.0));
     const VoxelImage binary = voxelize(balls, box, 0.025, std::nullopt, VoxelType::boolean);

@@ -47,8 +47,8 @@ int run_lattice(LatticeOptions& o) {
     const Packing packing = fill_lattice(o.params);
     auto summary = lattice_summary(o.params, packing);
     // A lattice is a bed: the same analysis as `generate` in its container, when tall enough.
-    const Container container = region_container(o.params.region);
-    const double height = region_height(o.params.region);
+    const Container& container = o.params.region.container;
+    const double height = o.params.region.height;
     stage_bed(out, packing, container, o.band_clearance,
               !o.no_analysis && !packing.centers.empty() &&
                   height > 2.0 * o.band_clearance * o.params.diameter,

@@ -160,6 +160,18 @@ public:
     /// grid of ceil(length / edge) cells, at most 4096, rims shared so the STL is watertight),
     /// "bottom" and "top"; a periodic cell only "bottom" and "top".
     std::vector<Solid> solids(double z_low, double z_high, double edge) const;
+    /// \return true when the shape is one its spec allows (from_numbers of its numbers).
+    bool well_formed() const;
+    /// The numbers of the spec, in order (a cylinder's D; a box's LX, LY).
+    std::vector<double> spec_numbers() const;
+    /// The volume from the floor up to `height`.
+    double prism_volume(double height) const;
+    /// A lattice region of the container up to `height` in summary.json.
+    nlohmann::json region_json(double height) const;
+    /// What a lattice region of this shape allows (--region's refusal).
+    std::string region_allowed() const;
+    /// Where the centres at least `margin` inside the side lie (a lattice's fill).
+    FillWindow fill_window(double margin) const;
     /// The side in an export's DEM settle inputs, `contact` the LAMMPS wall's contact model.
     DemSettleWall settle_wall(double height, std::string_view contact) const;
     /// The background mesh of an OpenFOAM case in the container up to `height`, cells of

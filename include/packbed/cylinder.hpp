@@ -119,6 +119,17 @@ public:
     static std::optional<Cylinder> from_numbers(std::span<const double> numbers);
     /// Its SPEC, what it is and its ranges, as --container's help and refusals word them.
     static std::string allowed();
+    /// The numbers of its SPEC, in order (D): from_numbers(spec_numbers()) is the same shape.
+    std::vector<double> spec_numbers() const;
+    /// Its volume from the floor up to `height`: pi D^2 H / 4.
+    double prism_volume(double height) const;
+    /// A lattice region of it up to `height` in the lattice's summary.json: {shape, diameter,
+    /// height}.
+    nlohmann::json region_json(double height) const;
+    /// What a lattice region of the shape allows, in --region's refusals.
+    static std::string region_allowed();
+    /// Where the centres at least `margin` inside its side lie (a lattice's fill).
+    FillWindow fill_window(double margin) const;
     /// \return the same cylinder with every length times `factor` (> 0).
     Cylinder scaled(double factor) const;
     std::string_view axis() const { return "z through x = y = 0"; }

@@ -54,42 +54,23 @@ struct UnitCell {
 /// The porosity is \f$1 - n \frac{\pi}{6} / V_{cell}\f$, n balls per cell.
 UnitCell unit_cell(LatticeType type);
 
-/// A box \f$[0, L_x] \times [0, L_y] \times [0, L_z]\f$ (lengths in output units, > 0).
-struct BoxRegion {
-    Vec3 size;
+/// A region a lattice fills: a container (its cross-section, the floor z = 0) up to `height`
+/// (lengths in output units). In a periodic cell the lattice must repeat across it: LX and LY
+/// whole multiples (to 1e-9 relative) of the unit cell's edges along x and y, at least 2 d (so
+/// that each touching pair has one nearest copy), and no rotation; every ball of one period is
+/// kept once, moved into the cell.
+struct LatticeRegion {
+    Container container = Box(10.0, 10.0);
+    double height = 10.0;
 };
-/// A cylinder with the z axis as axis, from z = 0 to z = height (lengths in output units).
-struct CylinderRegion {
-    double diameter = 0.0;
-    double height = 0.0;
-};
-/// The annulus between a tube of diameter `diameter` and a coaxial rod of diameter
-/// `inner_diameter` < diameter about the z axis, from z = 0 to z = height.
-struct AnnulusRegion {
-    double diameter = 0.0;
-    double inner_diameter = 0.0;
-    double height = 0.0;
-};
-/// A cell periodic in x and y, [0, LX) x [0, LY), from z = 0 to z = height, with no side wall.
-/// The lattice must repeat across it: LX and LY whole multiples (to 1e-9 relative) of the
-/// unit cell's edges along x and y, at least 2 d (so that each touching pair has one nearest
-/// copy), and no rotation; every ball of one period is kept once, moved into the cell.
-struct PeriodicRegion {
-    double lx = 0.0;
-    double ly = 0.0;
-    double height = 0.0;
-};
-using LatticeRegion = std::variant<BoxRegion, CylinderRegion, AnnulusRegion, PeriodicRegion>;
 
-/// \return the volume of a region: LX LY LZ, pi D^2 H / 4, pi (D^2 - DI^2) H / 4, LX LY H.
+/// \return the volume of a region (Container::prism_volume): LX LY H, pi D^2 H / 4,
+/// pi (D^2 - DI^2) H / 4.
 double region_volume(const LatticeRegion& region);
 
-/// \return the container of a region (its cross-section; the floor z = 0): Box(LX, LY),
-/// Cylinder(D / 2), Annulus(D / 2, DI / 2), Periodic(LX, LY).
-Container region_container(const LatticeRegion& region);
-
-/// \return the height of a region (a box's LZ).
-double region_height(const LatticeRegion& region);
+/// \return the region as --region writes it: the container's kind, its numbers and the height
+/// ("box:10,10,10", "cylinder:8,6"), shortest round-trip numbers.
+std::string region_text(const LatticeRegion& region);
 
 /// Which balls fill a region.
 enum class LatticeKeep {
@@ -105,7 +86,7 @@ const Registry<LatticeKeep>& lattice_keeps();
 struct LatticeParameters {
     LatticeType type = LatticeType::diamond;
     double diameter = 1.0; ///< ball diameter d, 1e-12 to 1e12
-    LatticeRegion region = BoxRegion{{10.0, 10.0, 10.0}};
+    LatticeRegion region;
     /// Where the first ball of cell (0, 0, 0) lies (ball A of Table 1 for the diamond
     /// packing); by default d/2 from each wall at the low corner of a box or a periodic cell,
     /// on the axis d/2 above the floor of a cylinder or an annulus. At most 1e6 d from the region
@@ -144,8 +125,9 @@ LatticeContacts lattice_contacts(const Packing& packing, double tolerance = 1e-9
 LatticeContacts lattice_contacts(const Packing& packing, const Periods& cell,
                                  double tolerance = 1e-9);
 
-/// \return the region of `text`: `box:LX,LY,LZ`, `cylinder:D,H`, `annulus:D,DI,H` (0 < DI < D)
-/// or `periodic:LX,LY,H`, lengths in (0, limits::max_length].
+/// \return the region of `text`: a container's spec with the height after its numbers
+/// (`box:LX,LY,LZ`, `cylinder:D,H`, `annulus:D,DI,H` (0 < DI < D) or `periodic:LX,LY,H`),
+/// lengths in (0, limits::max_length].
 /// \throws InvalidInput "--region '...' is not allowed; allowed: ..."
 LatticeRegion parse_lattice_region(std::string_view text);
 

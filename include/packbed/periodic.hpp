@@ -80,6 +80,17 @@ public:
     static std::optional<Periodic> from_numbers(std::span<const double> numbers);
     /// Its SPEC, what it is and its ranges, as --container's help and refusals word them.
     static std::string allowed();
+    /// The numbers of its SPEC, in order (LX,LY): from_numbers(spec_numbers()) is the same shape.
+    std::vector<double> spec_numbers() const;
+    /// Its volume from the floor up to `height`: LX LY H.
+    double prism_volume(double height) const;
+    /// A lattice region of it up to `height` in the lattice's summary.json: {shape, size: [LX, LY,
+    /// H]}.
+    nlohmann::json region_json(double height) const;
+    /// What a lattice region of the shape allows, in --region's refusals.
+    static std::string region_allowed();
+    /// Where the centres at least `margin` inside its side lie (a lattice's fill).
+    FillWindow fill_window(double margin) const;
     /// \return the same periodic with every length times `factor` (> 0).
     Periodic scaled(double factor) const;
     std::string_view axis() const { return ""; }

@@ -149,6 +149,15 @@ struct OpenFoamBackground {
     int boundary_skewness = 20; // snappyHexMesh's maxBoundarySkewness
 };
 
+/// Where a lattice's kept centres lie in the cross-section (lattice.hpp's fill): the
+/// rectangle, and for a round container the largest and smallest squared distance from the
+/// axis (none: -1).
+struct FillWindow {
+    Rectangle box;
+    double reach2 = -1.0;
+    double inner2 = -1.0;
+};
+
 /// What every shape of `Container` answers (a part of it: the rest is in the class comments).
 /// The wall law calls back f(overlap, push) once per wall a sphere presses into.
 template <class C>

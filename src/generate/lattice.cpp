@@ -9,6 +9,7 @@
 #include <type_traits>
 
 #include <fmt/format.h>
+#include <fmt/ranges.h>
 
 #include "packbed/error.hpp"
 #include "packbed/files.hpp"
@@ -142,36 +143,12 @@ UnitCell unit_cell(LatticeType type) {
 }
 
 double region_volume(const LatticeRegion& region) {
-    if (const auto* box = std::get_if<BoxRegion>(&region))
-        return box->size.x * box->size.y * box->size.z;
-    if (const auto* a = std::get_if<AnnulusRegion>(&region))
-        return pi / 4.0 * (a->diameter * a->diameter - a->inner_diameter * a->inner_diameter) *
-               a->height;
-    if (const auto* cell = std::get_if<PeriodicRegion>(&region))
-        return cell->lx * cell->ly * cell->height;
-    const auto& c = std::get<CylinderRegion>(region);
-    return pi / 4.0 * c.diameter * c.diameter * c.height;
+    return region.container.prism_volume(region.height);
 }
 
-Container region_container(const LatticeRegion& region) {
-    if (const auto* box = std::get_if<BoxRegion>(&region))
-        return Box(box->size.x, box->size.y);
-    if (const auto* a = std::get_if<AnnulusRegion>(&region))
-        return Annulus(0.5 * a->diameter, 0.5 * a->inner_diameter);
-    if (const auto* cell = std::get_if<PeriodicRegion>(&region))
-        return Periodic(cell->lx, cell->ly);
-    return Cylinder(0.5 * std::get<CylinderRegion>(region).diameter);
-}
-
-double region_height(const LatticeRegion& region) {
-    return std::visit(
-        [](const auto& r) {
-            if constexpr (std::is_same_v<std::decay_t<decltype(r)>, BoxRegion>)
-                return r.size.z;
-            else
-                return r.height;
-        },
-        region);
+std::string region_text(const LatticeRegion& region) {
+    return fmt::format("{}:{},{}", region.container.name(),
+                       fmt::join(region.container.spec_numbers(), ","), region.height);
 }
 
 namespace {
@@ -185,50 +162,36 @@ void check_values(const LatticeParameters& p) {
     auto length_ok = [](double v) {
         return std::isfinite(v) && v > 0.0 && v <= limits::max_length;
     };
-    if (const auto* box = std::get_if<BoxRegion>(&p.region)) {
-        require(length_ok(box->size.x) && length_ok(box->size.y) && length_ok(box->size.z),
-                fmt::format("--region box:{},{},{} is not allowed; allowed: three lengths > 0 and "
-                            "at most {:g}",
-                            box->size.x, box->size.y, box->size.z, limits::max_length));
-    } else if (const auto* a = std::get_if<AnnulusRegion>(&p.region)) {
-        require(length_ok(a->diameter) && length_ok(a->inner_diameter) && length_ok(a->height) &&
-                    a->inner_diameter < a->diameter,
-                fmt::format("--region annulus:{},{},{} is not allowed; allowed: diameters "
-                            "0 < DI < D and a height > 0, each at most {:g}",
-                            a->diameter, a->inner_diameter, a->height, limits::max_length));
-    } else if (const auto* cell = std::get_if<PeriodicRegion>(&p.region)) {
-        require(length_ok(cell->lx) && length_ok(cell->ly) && length_ok(cell->height),
-                fmt::format("--region periodic:{},{},{} is not allowed; allowed: three lengths "
-                            "> 0 and at most {:g}",
-                            cell->lx, cell->ly, cell->height, limits::max_length));
+    const Container& container = p.region.container;
+    const std::vector<double> numbers = container.spec_numbers();
+    require(std::all_of(numbers.begin(), numbers.end(), length_ok) && length_ok(p.region.height) &&
+                container.well_formed(),
+            fmt::format("--region {} is not allowed; allowed: {}", region_text(p.region),
+                        container.region_allowed()));
+    if (const std::optional<Periods> cell = container.periods()) {
+        const std::string region = region_text(p.region);
         require(p.rotations.empty(),
-                fmt::format("--rotate is not allowed with --region periodic:{},{},{}; allowed: no "
-                            "rotation (the lattice must repeat across the periodic cell)",
-                            cell->lx, cell->ly, cell->height));
+                fmt::format("--rotate is not allowed with --region {}; allowed: no rotation (the "
+                            "lattice must repeat across the periodic cell)",
+                            region));
         // The lattice repeats across the cell: whole periods along x and y, at least 2 d.
         const Vec3 edges = unit_cell(p.type).edges * p.diameter;
         const auto periods = [](double length, double edge) {
             const double q = length / edge;
             return std::abs(q - std::round(q)) <= 1e-9 * std::max(1.0, q) ? std::round(q) : 0.0;
         };
-        const double nx = periods(cell->lx, edges.x), ny = periods(cell->ly, edges.y);
+        const double nx = periods(cell->lx(), edges.x), ny = periods(cell->ly(), edges.y);
         const auto suggest = [](double length, double edge, double least) {
             return std::max(std::ceil(least / edge - 1e-9), std::round(length / edge)) * edge;
         };
-        require(nx >= 1.0 && ny >= 1.0 && cell->lx >= 2.0 * p.diameter &&
-                    cell->ly >= 2.0 * p.diameter,
-                fmt::format("--region periodic:{},{},{} is not allowed with the {} lattice of "
-                            "--diameter {}; allowed: LX and LY whole multiples of its periods "
-                            "{} (x) and {} (y), each at least 2 d, e.g. periodic:{},{},{}",
-                            cell->lx, cell->ly, cell->height, to_string(p.type), p.diameter,
-                            edges.x, edges.y, suggest(cell->lx, edges.x, 2.0 * p.diameter),
-                            suggest(cell->ly, edges.y, 2.0 * p.diameter), cell->height));
-    } else {
-        const auto& c = std::get<CylinderRegion>(p.region);
-        require(length_ok(c.diameter) && length_ok(c.height),
-                fmt::format("--region cylinder:{},{} is not allowed; allowed: diameter and "
-                            "height > 0 and at most {:g}",
-                            c.diameter, c.height, limits::max_length));
+        require(nx >= 1.0 && ny >= 1.0 && cell->lx() >= 2.0 * p.diameter &&
+                    cell->ly() >= 2.0 * p.diameter,
+                fmt::format("--region {} is not allowed with the {} lattice of --diameter {}; "
+                            "allowed: LX and LY whole multiples of its periods {} (x) and {} (y), "
+                            "each at least 2 d, e.g. {}:{},{},{}",
+                            region, to_string(p.type), p.diameter, edges.x, edges.y,
+                            container.name(), suggest(cell->lx(), edges.x, 2.0 * p.diameter),
+                            suggest(cell->ly(), edges.y, 2.0 * p.diameter), p.region.height));
     }
     for (const auto& [axis, degrees] : p.rotations)
         require((axis == 'x' || axis == 'y' || axis == 'z') && std::isfinite(degrees),
@@ -239,17 +202,6 @@ void check_values(const LatticeParameters& p) {
         require(is_finite(*p.origin),
                 fmt::format("origin = {},{},{} is not allowed; allowed: finite coordinates",
                             p.origin->x, p.origin->y, p.origin->z));
-}
-
-std::string region_text(const LatticeRegion& region) {
-    if (const auto* box = std::get_if<BoxRegion>(&region))
-        return fmt::format("box:{},{},{}", box->size.x, box->size.y, box->size.z);
-    if (const auto* a = std::get_if<AnnulusRegion>(&region))
-        return fmt::format("annulus:{},{},{}", a->diameter, a->inner_diameter, a->height);
-    if (const auto* cell = std::get_if<PeriodicRegion>(&region))
-        return fmt::format("periodic:{},{},{}", cell->lx, cell->ly, cell->height);
-    const auto& c = std::get<CylinderRegion>(region);
-    return fmt::format("cylinder:{},{}", c.diameter, c.height);
 }
 
 /// Where fill_lattice looks: the box the kept centres lie in (and, for a cylinder, their
@@ -274,37 +226,18 @@ FillPlan plan_fill(const LatticeParameters& p, const UnitCell& cell) {
     const Vec3 edges = cell.edges * d;
     const bool whole = p.keep == LatticeKeep::whole;
     const double slack = 1e-9 * d; // balls touching a wall exactly stay in
-    f.is_box = std::holds_alternative<BoxRegion>(p.region) ||
-               std::holds_alternative<PeriodicRegion>(p.region);
     const double margin = whole ? r - slack : -slack;
-    if (const auto* periodic = std::get_if<PeriodicRegion>(&p.region)) {
-        f.lo = {0.0, 0.0, margin};
-        f.hi = {periodic->lx, periodic->ly, periodic->height - margin};
-        f.origin = p.origin.value_or(Vec3{r, r, r});
-        f.period = Periods(periodic->lx, periodic->ly);
-    } else if (f.is_box) {
-        const Vec3 size = std::get<BoxRegion>(p.region).size;
-        f.lo = {margin, margin, margin};
-        f.hi = size - f.lo;
-        f.origin = p.origin.value_or(Vec3{r, r, r});
-    } else if (const auto* a = std::get_if<AnnulusRegion>(&p.region)) {
-        const double reach = 0.5 * a->diameter - margin;
-        const double inner = 0.5 * a->inner_diameter + margin;
-        f.reach2 = reach * reach;
-        f.inner2 = inner * inner;
-        f.lo = {-reach, -reach, margin};
-        f.hi = {reach, reach, a->height - margin};
-        f.origin = p.origin.value_or(Vec3{0.0, 0.0, r});
-        if (!(inner <= reach))
-            f.hi.x = f.lo.x - 1.0; // thinner than a ball: empty below
-    } else {
-        const auto& c = std::get<CylinderRegion>(p.region);
-        const double reach = 0.5 * c.diameter - margin;
-        f.reach2 = reach * reach;
-        f.lo = {-reach, -reach, margin};
-        f.hi = {reach, reach, c.height - margin};
-        f.origin = p.origin.value_or(Vec3{0.0, 0.0, r});
-    }
+    const Container& container = p.region.container;
+    f.period = container.periods();
+    // A periodic cell keeps every centre in x and y (moved into it by whole periods).
+    const FillWindow w = container.fill_window(f.period ? 0.0 : margin);
+    f.reach2 = w.reach2;
+    f.inner2 = w.inner2;
+    f.is_box = w.reach2 < 0.0;
+    f.lo = {w.box.x_low, w.box.y_low, margin};
+    f.hi = {w.box.x_high, w.box.y_high, p.region.height - margin};
+    // d/2 from each wall at the low corner of a prism, on the axis of a round container.
+    f.origin = p.origin.value_or(container.axis().empty() ? Vec3{r, r, r} : Vec3{0.0, 0.0, r});
     if (!(f.hi.x >= f.lo.x && f.hi.y >= f.lo.y && f.hi.z >= f.lo.z)) {
         f.empty = true;
         return f;
@@ -455,24 +388,16 @@ LatticeRegion parse_lattice_region(std::string_view text) {
         fmt::format("allowed: box:LX,LY,LZ, cylinder:D,H, annulus:D,DI,H (DI < D) or "
                     "periodic:LX,LY,H with lengths > 0 and at most {:g}",
                     limits::max_length);
+    // The container's spec and the height after its numbers, every length at most max_length.
     const KindSpec parts = split_kind(text);
-    const std::string_view shape = parts.kind;
     const auto values = parts.parameters ? parse_finite_list(*parts.parameters) : std::nullopt;
-    auto positive = [&] {
-        for (const double v : *values)
-            if (!(v > 0.0 && v <= limits::max_length))
-                return false;
-        return true;
-    };
-    if (values && shape == "box" && values->size() == 3 && positive())
-        return BoxRegion{{(*values)[0], (*values)[1], (*values)[2]}};
-    if (values && shape == "cylinder" && values->size() == 2 && positive())
-        return CylinderRegion{(*values)[0], (*values)[1]};
-    if (values && shape == "annulus" && values->size() == 3 && positive() &&
-        (*values)[1] < (*values)[0])
-        return AnnulusRegion{(*values)[0], (*values)[1], (*values)[2]};
-    if (values && shape == "periodic" && values->size() == 3 && positive())
-        return PeriodicRegion{(*values)[0], (*values)[1], (*values)[2]};
+    if (values && values->size() >= 2 && std::all_of(values->begin(), values->end(), [](double v) {
+            return v > 0.0 && v <= limits::max_length;
+        })) {
+        const std::string_view spec = text.substr(0, text.rfind(','));
+        if (const std::optional<Container> container = parse_container(spec))
+            return {*container, values->back()};
+    }
     throw InvalidInput(
         fmt::format("--region '{}' is not allowed; {}", printable(text.substr(0, 80)), allowed));
 }

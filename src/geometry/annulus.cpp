@@ -281,4 +281,35 @@ OpenFoamBackground Annulus::openfoam_background(double height, double cell,
     return b;
 }
 
+std::vector<double> Annulus::spec_numbers() const {
+    return {2.0 * m_outer, 2.0 * m_inner};
+}
+
+double Annulus::prism_volume(double height) const {
+    const double d = 2.0 * m_outer, di = 2.0 * m_inner;
+    return std::numbers::pi / 4.0 * (d * d - di * di) * height;
+}
+
+nlohmann::json Annulus::region_json(double height) const {
+    return {{"shape", "annulus"},
+            {"diameter", 2.0 * m_outer},
+            {"inner_diameter", 2.0 * m_inner},
+            {"height", height}};
+}
+
+std::string Annulus::region_allowed() {
+    return fmt::format("diameters 0 < DI < D and a height > 0, each at most {:g}",
+                       limits::max_length);
+}
+
+/// The centres between Ri + margin and R - margin from the axis (none when the gap is
+/// thinner than twice the margin).
+FillWindow Annulus::fill_window(double margin) const {
+    const double reach = m_outer - margin, inner = m_inner + margin;
+    FillWindow w{{-reach, reach, -reach, reach}, reach * reach, inner * inner};
+    if (!(inner <= reach))
+        w.box.x_high = w.box.x_low - 1.0;
+    return w;
+}
+
 } // namespace packbed

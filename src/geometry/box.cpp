@@ -259,4 +259,25 @@ OpenFoamBackground Box::openfoam_background(double height, double cell,
     return b;
 }
 
+std::vector<double> Box::spec_numbers() const {
+    return {m_x_high - m_x_low, m_y_high - m_y_low};
+}
+
+double Box::prism_volume(double height) const {
+    return (m_x_high - m_x_low) * (m_y_high - m_y_low) * height;
+}
+
+nlohmann::json Box::region_json(double height) const {
+    return {{"shape", "box"}, {"size", {m_x_high - m_x_low, m_y_high - m_y_low, height}}};
+}
+
+std::string Box::region_allowed() {
+    return fmt::format("three lengths > 0 and at most {:g}", limits::max_length);
+}
+
+/// The box less `margin` on every side.
+FillWindow Box::fill_window(double margin) const {
+    return {{m_x_low + margin, m_x_high - margin, m_y_low + margin, m_y_high - margin}};
+}
+
 } // namespace packbed

@@ -81,6 +81,32 @@ OpenFoamBackground Container::openfoam_background(double height, double cell,
                [&](const auto& s) { return s.openfoam_background(height, cell, options); });
 }
 
+bool Container::well_formed() const {
+    return ask(m_shape, [](const auto& s) {
+        return std::decay_t<decltype(s)>::from_numbers(s.spec_numbers()).has_value();
+    });
+}
+
+std::vector<double> Container::spec_numbers() const {
+    return ask(m_shape, [](const auto& s) { return s.spec_numbers(); });
+}
+
+double Container::prism_volume(double height) const {
+    return ask(m_shape, [&](const auto& s) { return s.prism_volume(height); });
+}
+
+nlohmann::json Container::region_json(double height) const {
+    return ask(m_shape, [&](const auto& s) { return s.region_json(height); });
+}
+
+std::string Container::region_allowed() const {
+    return ask(m_shape, [](const auto& s) { return s.region_allowed(); });
+}
+
+FillWindow Container::fill_window(double margin) const {
+    return ask(m_shape, [&](const auto& s) { return s.fill_window(margin); });
+}
+
 LammpsSide Container::lammps_side(std::span<const double> diameters, double setback) const {
     return ask(m_shape, [&](const auto& s) { return s.lammps_side(diameters, setback); });
 }

@@ -205,4 +205,27 @@ OpenFoamBackground Cylinder::openfoam_background(double height, double cell,
     return b;
 }
 
+std::vector<double> Cylinder::spec_numbers() const {
+    return {2.0 * m_radius};
+}
+
+double Cylinder::prism_volume(double height) const {
+    const double d = 2.0 * m_radius;
+    return std::numbers::pi / 4.0 * d * d * height;
+}
+
+nlohmann::json Cylinder::region_json(double height) const {
+    return {{"shape", "cylinder"}, {"diameter", 2.0 * m_radius}, {"height", height}};
+}
+
+std::string Cylinder::region_allowed() {
+    return fmt::format("diameter and height > 0 and at most {:g}", limits::max_length);
+}
+
+/// The centres within Rt - margin of the axis.
+FillWindow Cylinder::fill_window(double margin) const {
+    const double reach = m_radius - margin;
+    return {{-reach, reach, -reach, reach}, reach * reach, -1.0};
+}
+
 } // namespace packbed

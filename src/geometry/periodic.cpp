@@ -152,4 +152,25 @@ OpenFoamBackground Periodic::openfoam_background(double height, double size,
     return b;
 }
 
+std::vector<double> Periodic::spec_numbers() const {
+    return {lx(), ly()};
+}
+
+double Periodic::prism_volume(double height) const {
+    return lx() * ly() * height;
+}
+
+nlohmann::json Periodic::region_json(double height) const {
+    return {{"shape", "periodic"}, {"size", {lx(), ly(), height}}};
+}
+
+std::string Periodic::region_allowed() {
+    return fmt::format("three lengths > 0 and at most {:g}", limits::max_length);
+}
+
+/// The whole cell: a centre outside it is moved in by whole periods.
+FillWindow Periodic::fill_window(double) const {
+    return {bounds()};
+}
+
 } // namespace packbed

@@ -184,52 +184,23 @@ nlohmann::json lattice_summary(const LatticeParameters& p, const Packing& packin
     summary["diameter"] = d;
     summary["keep"] = lattice_keeps().name(p.keep);
     const double volume = region_volume(p.region);
-    double solid = 0.0;
-    if (const auto* box = std::get_if<BoxRegion>(&p.region)) {
-        summary["region"] = {{"shape", "box"}, {"size", {box->size.x, box->size.y, box->size.z}}};
-        summary["container"] = Container(Box(box->size.x, box->size.y)).summary_json();
-        double sum = 0.0;
-        for (const Vec3& centre : packing.centers)
-            sum += sphere_volume_in_box(centre, r, Vec3{}, box->size);
-        solid = sum;
-    } else if (const auto* a = std::get_if<AnnulusRegion>(&p.region)) {
-        summary["region"] = {{"shape", "annulus"},
-                             {"diameter", a->diameter},
-                             {"inner_diameter", a->inner_diameter},
-                             {"height", a->height}};
-        const Container container = region_container(p.region);
-        summary["container"] = container.summary_json();
-        double sum = 0.0;
-        for (const Vec3& centre : packing.centers)
-            sum += container.sphere_volume(centre, r, 0.0, a->height);
-        solid = sum;
-    } else if (const auto* periodic = std::get_if<PeriodicRegion>(&p.region)) {
-        // The cell is the container (analyze reads it): no side wall, so each ball counts
-        // whole between the floor and the top (Periodic::sphere_volume).
-        summary["region"] = {{"shape", "periodic"},
-                             {"size", {periodic->lx, periodic->ly, periodic->height}}};
-        const Container container = region_container(p.region);
-        summary["container"] = container.summary_json();
+    // A periodic cell is the container (analyze reads it): no side wall, so each ball counts
+    // whole between the floor and the top (Periodic::sphere_volume).
+    const Container& container = p.region.container;
+    const double height = p.region.height;
+    summary["region"] = container.region_json(height);
+    summary["container"] = container.summary_json();
+    const std::optional<Periods> period = container.periods();
+    if (period) {
         const Vec3 edges = unit_cell(p.type).edges * d;
-        summary["periods"] = {std::round(periodic->lx / edges.x),
-                              std::round(periodic->ly / edges.y)};
-        double sum = 0.0;
-        for (const Vec3& centre : packing.centers)
-            sum += container.sphere_volume(centre, r, 0.0, periodic->height);
-        solid = sum;
-    } else {
-        const auto& c = std::get<CylinderRegion>(p.region);
-        summary["region"] = {{"shape", "cylinder"}, {"diameter", c.diameter}, {"height", c.height}};
-        summary["container"] = {{"shape", "cylinder"}, {"radius", 0.5 * c.diameter}};
-        double sum = 0.0;
-        for (const Vec3& centre : packing.centers)
-            sum += sphere_volume_in_cylinder_slab(centre, r, 0.5 * c.diameter, 0.0, c.height);
-        solid = sum;
+        summary["periods"] = {std::round(period->lx() / edges.x),
+                              std::round(period->ly() / edges.y)};
     }
-    const Vec3 origin = p.origin.value_or(std::holds_alternative<BoxRegion>(p.region) ||
-                                                  std::holds_alternative<PeriodicRegion>(p.region)
-                                              ? Vec3{r, r, r}
-                                              : Vec3{0.0, 0.0, r});
+    double solid = 0.0;
+    for (const Vec3& centre : packing.centers)
+        solid += container.sphere_volume(centre, r, 0.0, height);
+    const Vec3 origin =
+        p.origin.value_or(container.axis().empty() ? Vec3{r, r, r} : Vec3{0.0, 0.0, r});
     summary["origin"] = {origin.x, origin.y, origin.z};
     summary["rotations"] = json::array();
     for (const auto& [axis, degrees] : p.rotations)
@@ -240,10 +211,8 @@ nlohmann::json lattice_summary(const LatticeParameters& p, const Packing& packin
                           {"cell_edges", {cell.edges.x * d, cell.edges.y * d, cell.edges.z * d}},
                           {"balls_per_cell", cell.balls.size()}};
     summary["porosity_region"] = 1.0 - solid / volume;
-    const auto* period = std::get_if<PeriodicRegion>(&p.region);
     const LatticeContacts contacts =
-        period ? lattice_contacts(packing, Periods(period->lx, period->ly))
-               : lattice_contacts(packing);
+        period ? lattice_contacts(packing, *period) : lattice_contacts(packing);
     std::vector<std::uint64_t> histogram;
     double total = 0.0;
     for (const std::uint32_t k : contacts.contacts) {
