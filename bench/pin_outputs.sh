@@ -1,6 +1,7 @@
 #!/usr/bin/env bash
-# The bytes a refactor must keep: commands (beds in every container, with sizes, a lattice,
-# surfaces, an analysis, a voxel image) run by PACKBED into OUT, and the md5 of every output
+# The bytes a refactor must keep: 53 commands (beds in every container, with sizes, lattices,
+# surfaces, OpenFOAM cases, data files, LAMMPS jobs, analyses, voxel images, hydraulics, help
+# texts and refusals) run by PACKBED into OUT, and the md5 of every output
 # (summary.json and other JSON without their timings and version). Run it with the binary
 # before a change and after, and compare: `diff before.md5 after.md5`.
 #

@@ -49,8 +49,14 @@ public:
 
     /// The wall law of every wall: f(overlap, push) for each wall the sphere (p, radius)
     /// presses into (none in a periodic cell).
-    template <class F> void wall_contacts(const Vec3& p, double radius, F&& f) const {
-        std::visit([&](const auto& s) { s.wall_contacts(p, radius, f); }, m_shape);
+    /// The first shape (the paper's cylinder) is asked without the visit, inlined: this is the
+    /// solvers' innermost call (docs/notes/iteration-kernels.md, "The wall term").
+    template <class F>
+    [[gnu::always_inline]] void wall_contacts(const Vec3& p, double radius, F&& f) const {
+        if (const auto* first = std::get_if<0>(&m_shape)) [[likely]]
+            first->wall_contacts(p, radius, f);
+        else
+            other_wall_contacts(p, radius, f);
     }
     /// \return the largest overlap of the sphere (p, radius) with a wall, 0 when it touches none.
     double wall_overlap(const Vec3& p, double radius) const {
@@ -181,6 +187,12 @@ public:
                                            const OpenFoamMeshOptions& options) const;
 
 private:
+    /// wall_contacts of the shapes after the first, out of the solvers' loops.
+    template <class F>
+    [[gnu::noinline]] void other_wall_contacts(const Vec3& p, double radius, F& f) const {
+        std::visit([&](const auto& s) { s.wall_contacts(p, radius, f); }, m_shape);
+    }
+
     Shape m_shape;
 };
 

@@ -45,7 +45,8 @@ public:
     /// into the wall (wall_contact's overlap > 0). Spheres clearly inside (centre closer to
     /// the axis than Rt - r - 1e-9 (Rt + 1)) skip the square root: the margin exceeds the
     /// rounding of wall_contact by far, so the answer is the same.
-    template <class F> void wall_contacts(const Vec3& p, double radius, F&& f) const {
+    template <class F>
+    [[gnu::always_inline]] void wall_contacts(const Vec3& p, double radius, F&& f) const {
         const double inner = m_radius - radius - 1e-9 * (m_radius + 1.0);
         if (inner > 0.0 && p.x * p.x + p.y * p.y < inner * inner)
             return;

@@ -230,12 +230,12 @@ FillPlan plan_fill(const LatticeParameters& p, const UnitCell& cell) {
     const Container& container = p.region.container;
     f.period = container.periods();
     // A periodic cell keeps every centre in x and y (moved into it by whole periods).
-    const FillWindow w = container.fill_window(f.period ? 0.0 : margin);
-    f.reach2 = w.reach2;
-    f.inner2 = w.inner2;
-    f.is_box = w.reach2 < 0.0;
-    f.lo = {w.box.x_low, w.box.y_low, margin};
-    f.hi = {w.box.x_high, w.box.y_high, p.region.height - margin};
+    const FillWindow window = container.fill_window(f.period ? 0.0 : margin);
+    f.reach2 = window.reach2;
+    f.inner2 = window.inner2;
+    f.is_box = window.reach2 < 0.0;
+    f.lo = {window.box.x_low, window.box.y_low, margin};
+    f.hi = {window.box.x_high, window.box.y_high, p.region.height - margin};
     // d/2 from each wall at the low corner of a prism, on the axis of a round container.
     f.origin = p.origin.value_or(container.axis().empty() ? Vec3{r, r, r} : Vec3{0.0, 0.0, r});
     if (!(f.hi.x >= f.lo.x && f.hi.y >= f.lo.y && f.hi.z >= f.lo.z)) {

@@ -201,12 +201,14 @@ struct SoftBed {
     /// Add the wall term of eq. (4) for a sphere at `xk` of radius `r` to `move`; track the
     /// largest wall overlap: each wall the sphere presses adds its own term
     /// (Container::wall_contacts).
-    void add_wall_term(const Vec3& xk, double r, const LinearOverlapLaw& law, Vec3& move,
-                       double& wall) const {
-        container.wall_contacts(xk, r, [&](double overlap, const Vec3& push) {
-            wall = std::max(wall, overlap);
-            move += push * (law.ck * overlap);
-        });
+    [[gnu::always_inline]] void add_wall_term(const Vec3& xk, double r, const LinearOverlapLaw& law,
+                                              Vec3& move, double& wall) const {
+        // Inlined, as Container::wall_contacts' fast path (docs/notes/iteration-kernels.md).
+        container.wall_contacts(
+            xk, r, [&](double overlap, const Vec3& push) __attribute__((always_inline)) {
+                wall = std::max(wall, overlap);
+                move += push * (law.ck * overlap);
+            });
     }
 
     /// \return law-weighted sum of the pair and wall terms of sphere k (the move of eq. (4)
