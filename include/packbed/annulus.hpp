@@ -89,43 +89,10 @@ public:
     std::string spec() const;
     /// How a message names it ("a cylinder of radius 10", "a box (box:6,6)", the spec).
     std::string describe() const;
-    /// The questions of the other stages, answered in container.cpp (see Container).
-    std::optional<double> tube_diameter() const;
-    std::optional<Periods> periods() const;
-    HydraulicDiameter hydraulic_diameter() const;
-    BoxMargin box_margin() const;
-    std::string fit_problem(double largest) const;
-    double fill_height(double solid, double e0) const;
-    Vec3 uniform_point(double radius, double u, double v) const;
-    std::vector<std::pair<double, double>> search_lines() const;
-    nlohmann::json summary_json() const;
-    nlohmann::ordered_json export_json(double height) const;
-    LammpsSide lammps_side(std::span<const double> diameters, double setback) const;
-    std::vector<Solid> solids(double z_low, double z_high, double edge) const;
-    DemSettleWall settle_wall(double height, std::string_view contact) const;
-    OpenFoamBackground openfoam_background(double height, double cell,
-                                           const OpenFoamMeshOptions& options) const;
     /// --container's word for the shape, "annulus:D,DI" its SPEC.
     static constexpr std::string_view kind = "annulus";
     std::string_view name() const { return kind; }
-    /// The annulus of its SPEC's numbers (D,DI), or nothing when they are not one (0 < DI < D <= 2
-    /// max_length).
-    static std::optional<Annulus> from_numbers(std::span<const double> numbers);
-    /// Its SPEC, what it is and its ranges, as --container's help and refusals word them.
-    static std::string allowed();
-    /// The numbers of its SPEC, in order (D,DI): from_numbers(spec_numbers()) is the same shape.
-    std::vector<double> spec_numbers() const;
-    /// Its volume from the floor up to `height`: pi (D^2 - DI^2) H / 4.
-    double prism_volume(double height) const;
-    /// A lattice region of it up to `height` in the lattice's summary.json: {shape, diameter,
-    /// inner_diameter, height}.
-    nlohmann::json region_json(double height) const;
-    /// What a lattice region of the shape allows, in --region's refusals.
-    static std::string region_allowed();
-    /// Where the centres at least `margin` inside its side lie (a lattice's fill).
-    FillWindow fill_window(double margin) const;
-    /// \return the same annulus with every length times `factor` (> 0).
-    Annulus scaled(double factor) const;
+    PACKBED_SHAPE_ANSWERS(Annulus);
     std::string_view axis() const { return "z through x = y = 0"; }
     Rectangle bounds() const { return {-m_outer, m_outer, -m_outer, m_outer}; }
     std::string_view profile_position_name() const { return "wall_distance"; }

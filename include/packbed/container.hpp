@@ -138,7 +138,10 @@ public:
     /// The length that sets a data file's box margin beyond the side, and its words.
     BoxMargin box_margin() const;
     /// Why a bed of spheres of diameter up to `largest` (lengths in Dp) cannot be packed in
-    /// the container ("widths from 1 Dp ... to 10000 Dp": what is allowed), empty if it can.
+    /// the container, empty if it can: a tube or a box at least one sphere wide each way, a
+    /// periodic cell two (the minimum image), an annulus whose gap (D - DI) / 2 holds one
+    /// sphere; no width above 10^4 Dp. The answer is what is allowed, for a message naming
+    /// the container.
     std::string fit_problem(double largest) const;
     /// The height of a bed of spheres whose diameters cubed (in Dp) add to `solid`, at void
     /// fraction e0: (pi / 6) solid / (A (1 - e0)); the paper's eq. (6) for a tube.

@@ -96,43 +96,10 @@ public:
     std::string spec() const;
     /// How a message names it ("a cylinder of radius 10", "a box (box:6,6)", the spec).
     std::string describe() const;
-    /// The questions of the other stages, answered in container.cpp (see Container).
-    std::optional<double> tube_diameter() const;
-    std::optional<Periods> periods() const;
-    HydraulicDiameter hydraulic_diameter() const;
-    BoxMargin box_margin() const;
-    std::string fit_problem(double largest) const;
-    double fill_height(double solid, double e0) const;
-    Vec3 uniform_point(double radius, double u, double v) const;
-    std::vector<std::pair<double, double>> search_lines() const;
-    nlohmann::json summary_json() const;
-    nlohmann::ordered_json export_json(double height) const;
-    LammpsSide lammps_side(std::span<const double> diameters, double setback) const;
-    std::vector<Solid> solids(double z_low, double z_high, double edge) const;
-    DemSettleWall settle_wall(double height, std::string_view contact) const;
-    OpenFoamBackground openfoam_background(double height, double cell,
-                                           const OpenFoamMeshOptions& options) const;
     /// --container's word for the shape, "cylinder:D" its SPEC.
     static constexpr std::string_view kind = "cylinder";
     std::string_view name() const { return kind; }
-    /// The cylinder of its SPEC's numbers (D), or nothing when they are not one (D in (0, 2
-    /// max_length]).
-    static std::optional<Cylinder> from_numbers(std::span<const double> numbers);
-    /// Its SPEC, what it is and its ranges, as --container's help and refusals word them.
-    static std::string allowed();
-    /// The numbers of its SPEC, in order (D): from_numbers(spec_numbers()) is the same shape.
-    std::vector<double> spec_numbers() const;
-    /// Its volume from the floor up to `height`: pi D^2 H / 4.
-    double prism_volume(double height) const;
-    /// A lattice region of it up to `height` in the lattice's summary.json: {shape, diameter,
-    /// height}.
-    nlohmann::json region_json(double height) const;
-    /// What a lattice region of the shape allows, in --region's refusals.
-    static std::string region_allowed();
-    /// Where the centres at least `margin` inside its side lie (a lattice's fill).
-    FillWindow fill_window(double margin) const;
-    /// \return the same cylinder with every length times `factor` (> 0).
-    Cylinder scaled(double factor) const;
+    PACKBED_SHAPE_ANSWERS(Cylinder);
     std::string_view axis() const { return "z through x = y = 0"; }
     Rectangle bounds() const { return {-m_radius, m_radius, -m_radius, m_radius}; }
     /// The wall profiles' first column: the distance from the axis, Rt - d.

@@ -32,8 +32,6 @@ public:
     bool contains(const Vec3& p) const { return p.z >= 0.0; }
     /// No wall: f is never called.
     template <class F> void wall_contacts(const Vec3&, double, F&&) const {}
-    /// The cell's periods.
-    std::optional<Periods> periods() const { return Periods(*this); }
 
     double wall_distance(const Vec3&) const { return std::numeric_limits<double>::infinity(); }
     std::pair<double, double> wall_distances(const Vec3&, double) const {
@@ -57,42 +55,10 @@ public:
     std::string spec() const;
     /// How a message names it ("a cylinder of radius 10", "a box (box:6,6)", the spec).
     std::string describe() const;
-    /// The questions of the other stages, answered in container.cpp (see Container).
-    std::optional<double> tube_diameter() const;
-    HydraulicDiameter hydraulic_diameter() const;
-    BoxMargin box_margin() const;
-    std::string fit_problem(double largest) const;
-    double fill_height(double solid, double e0) const;
-    Vec3 uniform_point(double radius, double u, double v) const;
-    std::vector<std::pair<double, double>> search_lines() const;
-    nlohmann::json summary_json() const;
-    nlohmann::ordered_json export_json(double height) const;
-    LammpsSide lammps_side(std::span<const double> diameters, double setback) const;
-    std::vector<Solid> solids(double z_low, double z_high, double edge) const;
-    DemSettleWall settle_wall(double height, std::string_view contact) const;
-    OpenFoamBackground openfoam_background(double height, double cell,
-                                           const OpenFoamMeshOptions& options) const;
     /// --container's word for the shape, "periodic:LX,LY" its SPEC.
     static constexpr std::string_view kind = "periodic";
     std::string_view name() const { return kind; }
-    /// The periodic of its SPEC's numbers (LX,LY), or nothing when they are not one (each in (0,
-    /// max_length]).
-    static std::optional<Periodic> from_numbers(std::span<const double> numbers);
-    /// Its SPEC, what it is and its ranges, as --container's help and refusals word them.
-    static std::string allowed();
-    /// The numbers of its SPEC, in order (LX,LY): from_numbers(spec_numbers()) is the same shape.
-    std::vector<double> spec_numbers() const;
-    /// Its volume from the floor up to `height`: LX LY H.
-    double prism_volume(double height) const;
-    /// A lattice region of it up to `height` in the lattice's summary.json: {shape, size: [LX, LY,
-    /// H]}.
-    nlohmann::json region_json(double height) const;
-    /// What a lattice region of the shape allows, in --region's refusals.
-    static std::string region_allowed();
-    /// Where the centres at least `margin` inside its side lie (a lattice's fill).
-    FillWindow fill_window(double margin) const;
-    /// \return the same periodic with every length times `factor` (> 0).
-    Periodic scaled(double factor) const;
+    PACKBED_SHAPE_ANSWERS(Periodic);
     std::string_view axis() const { return ""; }
     Rectangle bounds() const { return {0.0, lx(), 0.0, ly()}; }
     std::string_view profile_position_name() const { return "wall_distance"; }

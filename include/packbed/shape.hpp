@@ -158,6 +158,36 @@ struct FillWindow {
     double inner2 = -1.0;
 };
 
+/// The answers every shape gives beyond the questions above, declared once (`Container`
+/// documents each, and each shape's source file defines them) so that the shapes' headers do
+/// not repeat the list: the SPEC's numbers read (`from_numbers`: the shape, or nothing when the
+/// numbers are not one) and given back (`spec_numbers`), what --container and --region allow,
+/// scaling, and what generation, analysis and export ask. `S` is the shape's class.
+#define PACKBED_SHAPE_ANSWERS(S)                                                                   \
+    static std::optional<S> from_numbers(std::span<const double> numbers);                         \
+    static std::string allowed();                                                                  \
+    static std::string region_allowed();                                                           \
+    std::vector<double> spec_numbers() const;                                                      \
+    S scaled(double factor) const;                                                                 \
+    std::optional<double> tube_diameter() const;                                                   \
+    std::optional<Periods> periods() const;                                                        \
+    HydraulicDiameter hydraulic_diameter() const;                                                  \
+    BoxMargin box_margin() const;                                                                  \
+    std::string fit_problem(double largest) const;                                                 \
+    double fill_height(double solid, double e0) const;                                             \
+    Vec3 uniform_point(double radius, double u, double v) const;                                   \
+    std::vector<std::pair<double, double>> search_lines() const;                                   \
+    nlohmann::json summary_json() const;                                                           \
+    nlohmann::ordered_json export_json(double height) const;                                       \
+    LammpsSide lammps_side(std::span<const double> diameters, double setback) const;               \
+    std::vector<Solid> solids(double z_low, double z_high, double edge) const;                     \
+    DemSettleWall settle_wall(double height, std::string_view contact) const;                      \
+    OpenFoamBackground openfoam_background(double height, double cell,                             \
+                                           const OpenFoamMeshOptions& options) const;              \
+    double prism_volume(double height) const;                                                      \
+    nlohmann::json region_json(double height) const;                                               \
+    FillWindow fill_window(double margin) const
+
 /// What every shape of `Container` answers (a part of it: the rest is in the class comments).
 /// The wall law calls back f(overlap, push) once per wall a sphere presses into.
 template <class C>

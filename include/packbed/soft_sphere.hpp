@@ -134,13 +134,6 @@ struct SoftSphereParameters {
     void validate() const;
 };
 
-/// Whether spheres up to `largest` across fit the container for generation: a box at least
-/// one sphere wide each way, a periodic cell two (the minimum image), an annulus whose gap
-/// (D - DI) / 2 holds one sphere, a tube one sphere wide; no width above 10^4.
-/// \param container in units of Dp \param largest the largest diameter, Dp
-/// \return "" when they fit, else what is allowed (for a message naming the container).
-std::string container_fit_problem(const Container& container, double largest);
-
 /// The state at the end of one stage (section 3).
 struct StageRecord {
     std::string name;                       ///< "initial", "intermediate" or "final"

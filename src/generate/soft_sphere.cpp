@@ -32,13 +32,9 @@ struct SweepStats {
 
 } // namespace
 
-std::string container_fit_problem(const Container& container, double largest) {
-    return container.fit_problem(largest);
-}
-
 void SoftSphereParameters::validate() const {
     if (container && !container->tube_diameter()) {
-        const std::string problem = container_fit_problem(*container, largest_size());
+        const std::string problem = container->fit_problem(largest_size());
         if (!problem.empty())
             throw InvalidInput(fmt::format("--container {} (in units of Dp) is not allowed; "
                                            "allowed: {}",

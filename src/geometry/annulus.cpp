@@ -163,6 +163,7 @@ LammpsSide Annulus::lammps_side(std::span<const double> diameters, double setbac
     return s;
 }
 
+/// 0 < DI < D <= 2 max_length.
 std::optional<Annulus> Annulus::from_numbers(std::span<const double> v) {
     if (v.size() != 2 || !detail::lengths_in(v, 2.0 * limits::max_length) || !(v[1] < v[0]))
         return std::nullopt;
@@ -273,11 +274,7 @@ OpenFoamBackground Annulus::openfoam_background(double height, double cell,
     b.surfaces = "; `wall.stl`: the tube, open, reaching half a cell beyond both ends (patch "
                  "`wall`); `rod.stl`: the rod, likewise (patch `rod`)";
     b.patches = ", `wall`, `rod`; `outside` keeps no faces";
-    b.cells = fmt::format("Background cells of {} (Dp / {}); refinement level {} at the "
-                          "particles (cells of {}), {} at the tube and the rod (cells of {})",
-                          cell, options.cells_per_diameter, options.particle_level,
-                          detail::refined(cell, options.particle_level), options.wall_level,
-                          detail::refined(cell, options.wall_level));
+    b.cells = detail::tube_cells(cell, options, "the tube and the rod");
     return b;
 }
 
@@ -285,11 +282,13 @@ std::vector<double> Annulus::spec_numbers() const {
     return {2.0 * m_outer, 2.0 * m_inner};
 }
 
+/// pi (D^2 - DI^2) H / 4.
 double Annulus::prism_volume(double height) const {
     const double d = 2.0 * m_outer, di = 2.0 * m_inner;
     return std::numbers::pi / 4.0 * (d * d - di * di) * height;
 }
 
+/// {shape, diameter, inner_diameter, height}.
 nlohmann::json Annulus::region_json(double height) const {
     return {{"shape", "annulus"},
             {"diameter", 2.0 * m_outer},

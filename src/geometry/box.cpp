@@ -120,6 +120,7 @@ LammpsSide Box::lammps_side(std::span<const double> diameters, double setback) c
     return s;
 }
 
+/// LX, LY each in (0, max_length].
 std::optional<Box> Box::from_numbers(std::span<const double> v) {
     if (v.size() != 2 || !detail::lengths_in(v, limits::max_length))
         return std::nullopt;
@@ -263,10 +264,12 @@ std::vector<double> Box::spec_numbers() const {
     return {m_x_high - m_x_low, m_y_high - m_y_low};
 }
 
+/// LX LY H.
 double Box::prism_volume(double height) const {
     return (m_x_high - m_x_low) * (m_y_high - m_y_low) * height;
 }
 
+/// {shape, size: [LX, LY, H]}.
 nlohmann::json Box::region_json(double height) const {
     return {{"shape", "box"}, {"size", {m_x_high - m_x_low, m_y_high - m_y_low, height}}};
 }

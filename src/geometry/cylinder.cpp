@@ -114,6 +114,7 @@ LammpsSide Cylinder::lammps_side(std::span<const double> diameters, double setba
     return s;
 }
 
+/// D in (0, 2 max_length].
 std::optional<Cylinder> Cylinder::from_numbers(std::span<const double> v) {
     if (v.size() != 1 || !(v[0] > 0.0 && v[0] <= 2.0 * limits::max_length))
         return std::nullopt;
@@ -197,11 +198,7 @@ OpenFoamBackground Cylinder::openfoam_background(double height, double cell,
     b.surfaces = "; `wall.stl`: the cylinder wall, open, reaching half a cell beyond both ends "
                  "(patch `wall`)";
     b.patches = ", `wall`; `outside` keeps no faces";
-    b.cells = fmt::format("Background cells of {} (Dp / {}); refinement level {} at the "
-                          "particles (cells of {}), {} at the wall (cells of {})",
-                          cell, options.cells_per_diameter, options.particle_level,
-                          detail::refined(cell, options.particle_level), options.wall_level,
-                          detail::refined(cell, options.wall_level));
+    b.cells = detail::tube_cells(cell, options, "the wall");
     return b;
 }
 
@@ -209,11 +206,13 @@ std::vector<double> Cylinder::spec_numbers() const {
     return {2.0 * m_radius};
 }
 
+/// pi D^2 H / 4.
 double Cylinder::prism_volume(double height) const {
     const double d = 2.0 * m_radius;
     return std::numbers::pi / 4.0 * d * d * height;
 }
 
+/// {shape, diameter, height}.
 nlohmann::json Cylinder::region_json(double height) const {
     return {{"shape", "cylinder"}, {"diameter", 2.0 * m_radius}, {"height", height}};
 }

@@ -72,6 +72,7 @@ LammpsSide Periodic::lammps_side(std::span<const double>, double) const {
     return {"p p", bounds(), "", {}};
 }
 
+/// LX, LY each in (0, max_length].
 std::optional<Periodic> Periodic::from_numbers(std::span<const double> v) {
     if (v.size() != 2 || !detail::lengths_in(v, limits::max_length))
         return std::nullopt;
@@ -156,10 +157,12 @@ std::vector<double> Periodic::spec_numbers() const {
     return {lx(), ly()};
 }
 
+/// LX LY H.
 double Periodic::prism_volume(double height) const {
     return lx() * ly() * height;
 }
 
+/// {shape, size: [LX, LY, H]}.
 nlohmann::json Periodic::region_json(double height) const {
     return {{"shape", "periodic"}, {"size", {lx(), ly(), height}}};
 }
@@ -171,6 +174,11 @@ std::string Periodic::region_allowed() {
 /// The whole cell: a centre outside it is moved in by whole periods.
 FillWindow Periodic::fill_window(double) const {
     return {bounds()};
+}
+
+/// The cell's periods.
+std::optional<Periods> Periodic::periods() const {
+    return Periods(*this);
 }
 
 } // namespace packbed

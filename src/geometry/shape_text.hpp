@@ -157,4 +157,15 @@ inline std::string box_about_tube(double rt, const std::string& about, double he
         fmt::arg("n", n_side), fmt::arg("nz", n_z));
 }
 
+/// The README's words on the cells of a background about a tube: the background cells and
+/// the refinement levels at the particles and at `walls` (snappyHexMesh's wall level).
+inline std::string tube_cells(double cell, const OpenFoamMeshOptions& options,
+                              std::string_view walls) {
+    return fmt::format("Background cells of {} (Dp / {}); refinement level {} at the particles "
+                       "(cells of {}), {} at {} (cells of {})",
+                       cell, options.cells_per_diameter, options.particle_level,
+                       refined(cell, options.particle_level), options.wall_level, walls,
+                       refined(cell, options.wall_level));
+}
+
 } // namespace packbed::detail

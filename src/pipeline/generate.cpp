@@ -76,7 +76,7 @@ PreparedGeneration prepare_generation(GenerateRequest request) {
     if (spec && !tube) {
         // Another container, in units of Dp (with --sizes, d32), checked in the user's units.
         const Container in_dp = spec->scaled(1.0 / p.diameter);
-        const std::string problem = container_fit_problem(in_dp, p.largest_size());
+        const std::string problem = in_dp.fit_problem(p.largest_size());
         if (!problem.empty())
             throw InvalidInput(fmt::format(
                 "--container {} is not allowed with Dp = {:.6g}{}; allowed: {}", request.container,
