@@ -126,7 +126,7 @@ void BM_IterationSizes(benchmark::State& state) {
 
 /// The containers of BM_IterationContainers (issue 17): the cost per sphere-step of the same
 /// number of spheres in each, of about the same cross-section (a = 20: 314 Dp^2).
-enum class Shape { cylinder = 0, annulus = 1, box = 2, periodic = 3 };
+enum class Shape { cylinder = 0, annulus = 1, box = 2, periodic = 3, cone = 4 };
 
 void BM_IterationContainers(benchmark::State& state) {
     const auto particles = state.range(0);
@@ -144,6 +144,8 @@ void BM_IterationContainers(benchmark::State& state) {
             p.container = packbed::Box(17.7, 17.7);
         else if (shape == Shape::periodic)
             p.container = packbed::Periodic(17.7, 17.7);
+        else if (shape == Shape::cone) // radius 8 at the floor, 10.4 at L0 = 73 Dp
+            p.container = packbed::Cone(8.0, 12.0, 120.0);
         bed = std::make_unique<SoftSphereGenerator>(p);
         bed->run_initial_stage();
     }
@@ -155,6 +157,7 @@ void BM_IterationContainers(benchmark::State& state) {
     state.SetLabel(shape == Shape::cylinder  ? "cylinder a = 20"
                    : shape == Shape::annulus ? "annulus 21.2, 6"
                    : shape == Shape::box     ? "box 17.7 x 17.7"
+                   : shape == Shape::cone    ? "cone 16, 24, 120"
                                              : "periodic 17.7 x 17.7");
 }
 
@@ -166,6 +169,7 @@ BENCHMARK(BM_IterationContainers)
     ->Args({20000, static_cast<int>(Shape::annulus), 2})
     ->Args({20000, static_cast<int>(Shape::box), 2})
     ->Args({20000, static_cast<int>(Shape::periodic), 2})
+    ->Args({20000, static_cast<int>(Shape::cone), 2})
     ->UseRealTime();
 
 BENCHMARK(BM_IterationSizes)

@@ -98,19 +98,25 @@ try:
         check(same, "the same seed on the same ranks gives the same bytes")
 
     # 1b. The other containers map onto LAMMPS: a box's four walls, a periodic cell's
-    # boundaries (the floor its one wall), an annulus's rod; and two sizes as two types.
+    # boundaries (the floor its one wall), an annulus's rod, a cone's slanted wall (LAMMPS's
+    # region cone); and two sizes as two types.
     for spec, inside in (
             ("box:6,5", lambda x, y, r: min(x - r, 6 - x - r, y - r, 5 - y - r)),
             ("periodic:6,6", lambda x, y, r: min(x, 6 - x, y, 6 - y) + r),
             ("annulus:8,2", lambda x, y, r: min(4 - math.hypot(x, y) - r,
-                                                math.hypot(x, y) - r - 1))):
+                                                math.hypot(x, y) - r - 1)),
+            # a hopper, Rb = 2.5 widening to 4.5 at z = 20: (R(z) - rho) cos - r with
+            # cos = 20 / sqrt(404)
+            ("cone:5,9,20", None)):
         out = os.path.join(tmp, spec.split(":")[0])
         p = run(["generate", "--engine", "lammps", "--container", spec, "-n", "300", "-s", "2",
                  "-q", "-o", out])
         ok = p.returncode == 0
         if ok:
             balls = spheres(os.path.join(out, "particles.csv"))
-            gap = min(inside(x, y, r) for x, y, z, r in balls)
+            gap = min(inside(x, y, r) if inside else
+                      (2.5 + 0.1 * z - math.hypot(x, y)) * 20 / math.sqrt(404) - r
+                      for x, y, z, r in balls)
             floor = max(r - z for x, y, z, r in balls)
             s = json.load(open(os.path.join(out, "summary.json")))
             ok = (len(balls) == 300 and gap > -1e-4 and floor < 1e-4

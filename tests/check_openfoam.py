@@ -26,36 +26,20 @@ import math
 import os
 import re
 import shutil
-import subprocess
 import sys
 import tempfile
 
-from openfoam_env import openfoam_env
+from openfoam_env import mesh_case, openfoam_or_skip, runner
 
 exe = sys.argv[1]
-if not all(shutil.which(p) for p in ("blockMesh", "snappyHexMesh", "checkMesh")):
-    print("blockMesh, snappyHexMesh or checkMesh (Debian package openfoam) is missing: skipped")
-    sys.exit(77)
-env = openfoam_env()
+env = openfoam_or_skip()
 work = tempfile.mkdtemp(prefix="packbed-foam-")
-
-
-def run(*args, cwd=work):
-    r = subprocess.run(args, cwd=cwd, env=env, capture_output=True, text=True)
-    assert r.returncode == 0, (args, r.stdout[-3000:], r.stderr[-3000:])
-    return r.stdout
+run = runner(env, work)
 
 
 def mesh(case):
-    """blockMesh, snappyHexMesh, checkMesh in `case`: checkMesh's output, its patches (name ->
-    faces) and the mesh's total volume."""
-    run("blockMesh", cwd=case)
-    run("snappyHexMesh", "-overwrite", cwd=case)
-    out = run("checkMesh", cwd=case)
-    assert "Mesh OK." in out, out[-3000:]
-    patches = dict(re.findall(r"^\s+(\w+)\s+(\d+)\s+\d+\s+(?:ok|multiply)", out, re.M))
-    volume = float(re.search(r"Total volume = ([0-9.eE+-]+?)\.?\s", out).group(1))
-    return out, {k: int(v) for k, v in patches.items()}, volume
+    """blockMesh, snappyHexMesh, checkMesh in `case` (mesh_case)."""
+    return mesh_case(run, case)
 
 
 # 1. The cylinder.

@@ -20,7 +20,7 @@ import shutil
 import sys
 import tempfile
 
-from openfoam_env import cap, openfoam_or_skip, runner
+from openfoam_env import cap, mesh_case, openfoam_or_skip, runner
 
 exe = sys.argv[1]
 env = openfoam_or_skip()
@@ -47,16 +47,10 @@ for stl in ("particles.stl", "wall.stl", "rod.stl"):
 x, y, z = report["openfoam"]["location_in_mesh"]
 assert 1.0 < math.hypot(x, y) < 3.0 and 0 < z < 2, (x, y, z)
 
-run("blockMesh", cwd=case)
-run("snappyHexMesh", "-overwrite", cwd=case)
-out = run("checkMesh", cwd=case)
-assert "Mesh OK." in out, out[-3000:]
-patches = {k: int(v) for k, v in
-           re.findall(r"^\s+(\w+)\s+(\d+)\s+\d+\s+(?:ok|multiply)", out, re.M)}
+out, patches, volume = mesh_case(run, case)
 for name in ("inlet", "outlet", "wall", "rod", "particles"):
     assert patches.get(name, 0) > 0, (name, patches)
 assert patches.get("outside", 0) == 0, patches
-volume = float(re.search(r"Total volume = ([0-9.eE+-]+?)\.?\s", out).group(1))
 error = volume / exact - 1.0
 print(f"annulus: mesh volume {volume:.6g} against the exact fluid volume {exact:.6g}: "
       f"{error:+.2%}; patches {patches}")

@@ -25,7 +25,7 @@ import struct
 import sys
 import tempfile
 
-from openfoam_env import cap, openfoam_or_skip, runner
+from openfoam_env import cap, mesh_case, openfoam_or_skip, runner
 
 exe = sys.argv[1]
 env = openfoam_or_skip()
@@ -82,12 +82,7 @@ assert parts == 18 + 14, parts
 for got, want in zip(low[:2] + high[:2], (-0.175, -0.775, 3.775, 3.175)):
     assert abs(got - want) < 1e-5, (low, high)
 
-run("blockMesh", cwd=case)
-run("snappyHexMesh", "-overwrite", cwd=case)
-out = run("checkMesh", cwd=case)
-assert "Mesh OK." in out, out[-3000:]
-patches = {k: int(v) for k, v in
-           re.findall(r"^\s+(\w+)\s+(\d+)\s+\d+\s+(?:ok|multiply)", out, re.M)}
+out, patches, volume = mesh_case(run, case)
 assert set(patches) == {"inlet", "outlet", "particles", "x_low", "x_high", "y_low", "y_high"}, \
     patches
 for name in patches:
@@ -99,7 +94,6 @@ for side, other in (("x_low", "x_high"), ("x_high", "x_low"), ("y_low", "y_high"
     entry = re.search(side + r"\s*\{([^}]*)\}", boundary).group(1)
     assert re.search(r"type\s+cyclic;", entry) and re.search(r"neighbourPatch\s+" + other, entry), \
         (side, entry)
-volume = float(re.search(r"Total volume = ([0-9.eE+-]+?)\.?\s", out).group(1))
 error = volume / exact - 1.0
 print(f"periodic: {parts} bodies and copies; mesh volume {volume:.6g} against the exact fluid "
       f"volume {exact:.6g}: {error:+.2%}; patches {patches}")

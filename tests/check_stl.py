@@ -2,8 +2,8 @@
 """The STL files of `packbed export` checked by real checkers from Debian: admesh (closed, every
 edge shared by two facets, consistent orientation, no degenerate facet, one part per body) and
 OpenFOAM's surfaceCheck (closed, not self-intersecting), for a generated bed, a lattice in a
-cylinder and a simple cubic lattice in a box (issue 17: 3 x 3 x 2 balls, 16 of them touching
-one or two faces of the box, the lower 9 the floor), with every treatment. For caps and shrink admesh must also leave every stored normal as it is; the
+cylinder, a simple cubic lattice in a box (issue 17: 3 x 3 x 2 balls, 16 of them touching
+one or two faces of the box, the lower 9 the floor) and a bed in a cone, with every treatment. For caps and shrink admesh must also leave every stored normal as it is; the
 unions of enlarge and bridges (CGAL's corefinement) keep small triangles whose single-precision
 normal admesh recomputes differently, so there only orientation is checked.
 Two untreated spheres overlapping by 0.045 Dp must be reported as self-intersecting: the
@@ -58,7 +58,10 @@ n_lattice = sum(1 for _ in open(os.path.join(work, "lattice", "particles.csv")))
 run(exe, "lattice", "--type", "sc", "--region", "box:3,3,2", "--quiet", "--out", "boxed")
 n_boxed = sum(1 for _ in open(os.path.join(work, "boxed", "particles.csv"))) - 1
 assert n_boxed == 18, n_boxed  # 3 x 3 x 2 balls of diameter 1
-for bed, spheres in (("bed", 30), ("lattice", n_lattice), ("boxed", n_boxed)):
+# A hopper: the prism about its slanted wall closes with the floor and the top.
+run(exe, "generate", "--solver", "fire", "--container", "cone:2.5,4.5,12", "--particles", "30",
+    "--seed", "1", "--quiet", "--out", "coned")
+for bed, spheres in (("bed", 30), ("lattice", n_lattice), ("boxed", n_boxed), ("coned", 30)):
     for contacts in ("caps:0.02", "shrink:0.01", "enlarge:0.01", "bridges:0.2"):
         stl = f"{bed}-{contacts.split(':')[0]}.stl"
         run(exe, "export", f"{bed}/particles.csv", "--format", "stl", "--contacts", contacts,

@@ -40,3 +40,16 @@ def cap(r, s):
     import math
     c = r - s
     return math.pi * c * c * (3 * r - c) / 3
+
+
+def mesh_case(run, case):
+    """blockMesh, snappyHexMesh, checkMesh in `case` by run (runner's): asserts "Mesh OK.";
+    checkMesh's output, its patches (name -> faces) and the mesh's total volume."""
+    import re
+    run("blockMesh", cwd=case)
+    run("snappyHexMesh", "-overwrite", cwd=case)
+    out = run("checkMesh", cwd=case)
+    assert "Mesh OK." in out, out[-3000:]
+    patches = dict(re.findall(r"^\s+(\w+)\s+(\d+)\s+\d+\s+(?:ok|multiply)", out, re.M))
+    volume = float(re.search(r"Total volume = ([0-9.eE+-]+?)\.?\s", out).group(1))
+    return out, {k: int(v) for k, v in patches.items()}, volume

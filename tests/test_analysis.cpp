@@ -702,20 +702,21 @@ TEST(BoxAnalysis, SimpleCubicLatticeInABoxHasTheLatticePorosityAndFramesThatAddU
     // The frames' solid adds up to the band's: 64 spheres.
     double solid = 0.0;
     for (const auto& b : a.radial_void_fraction)
-        solid += (1.0 - b.value) * box.shell_area(b.low, b.high) * 4.0;
+        solid += (1.0 - b.value) * box.shell_area(b.low, b.high, 0.0, 1.0) * 4.0;
     EXPECT_NEAR(solid, 64.0 * ball(0.5), 1e-8);
     // The frame [0, 0.1] touches the 12 spheres of each layer next to a face: a cap of height
     // 0.1 from each of the 8 not in a corner, two from each of the 4 in a corner (their parts
     // within 0.1 of both faces would lie beyond (0.1, 0.1), 0.4 sqrt 2 > 0.5 from the centre:
     // none). Per layer (unit height) 16 caps, exactly.
     const double cap = pi * 0.01 * (1.5 - 0.1) / 3.0;
-    const double layer = (1.0 - a.radial_void_fraction[0].value) * box.shell_area(0.0, 0.1);
+    const double layer =
+        (1.0 - a.radial_void_fraction[0].value) * box.shell_area(0.0, 0.1, 0.0, 1.0);
     EXPECT_NEAR(layer, 16.0 * cap, 1e-13);
     // Centres at 0.5 (12 of 16 per layer) and 1.5 (4) from the nearest face, nowhere else;
     // the relative density times the frame areas adds up to the cross-section.
     double area = 0.0;
     for (const auto& b : a.centre_distribution) {
-        area += b.value * box.shell_area(b.low, b.high);
+        area += b.value * box.shell_area(b.low, b.high, 0.0, 1.0);
         const bool holds = (b.low <= 0.5 && 0.5 < b.high) || (b.low <= 1.5 && 1.5 < b.high);
         if (!holds) {
             EXPECT_EQ(b.value, 0.0) << b.low;
@@ -744,7 +745,8 @@ TEST(BoxAnalysis, SphereTouchingAFlatWallFillsTheFirstFrameWithACap) {
     const Container box = Box(10.0, 10.0);
     const BedAnalysis a = analyze_bed(p, box, o);
     const double cap = pi * w * w * (1.5 - w) / 3.0;
-    const double first = (1.0 - a.radial_void_fraction[0].value) * box.shell_area(0.0, w) * 2.0;
+    const double first =
+        (1.0 - a.radial_void_fraction[0].value) * box.shell_area(0.0, w, 0.0, 1.0) * 2.0;
     EXPECT_NEAR(first, cap, 1e-14);
     EXPECT_EQ(a.coordination.wall_contacts, 1u);
 }
@@ -788,7 +790,7 @@ TEST(SizeClasses, BinaryBedIsMeasuredPerSize) {
     for (const auto& [c, at] : {std::pair{&small, 2.0}, std::pair{&large, 1.0}}) {
         double area = 0.0;
         for (const ProfileBin& b : c->centre_distribution) {
-            area += b.value * box.shell_area(b.low, b.high);
+            area += b.value * box.shell_area(b.low, b.high, 0.0, 1.0);
             if (!(b.low <= at && at < b.high)) {
                 EXPECT_EQ(b.value, 0.0) << b.low;
             }

@@ -1115,7 +1115,9 @@ INSTANTIATE_TEST_SUITE_P(
               "inner diameter D, a number in (0, 2e+15]; or box:LX,LY, walls at x = 0, LX and y = "
               "0, LY, each in (0, 1e+15]; or annulus:D,DI, between a tube of diameter D and a "
               "coaxial rod of diameter DI, 0 < DI < D <= 2e+15; or periodic:LX,LY, a cell "
-              "periodic in x and y, each in (0, 1e+15]"),
+              "periodic in x and y, each in (0, 1e+15]; or cone:DB,DT,H, a frustum of floor "
+              "diameter DB at z = 0 and diameter DT at z = H, DB and DT in (0, 2e+15], H in (0, "
+              "1e+15]"),
         exact(std::vector<std::string>{"export", "two.csv", "-R", "2", "--out", "a b.data"},
               "packbed export: --out a b.data: the file name 'a b.data' is not allowed with the "
               "example DEM input, which names it; allowed: letters, digits, '.', '_', '-' and '+' "

@@ -408,7 +408,9 @@ TEST(Cli, TheContainerIsGivenTheSameWayToEverySubcommand) {
         "allowed: cylinder:D, a tube of inner diameter D, a number in (0, 2e+15]; or box:LX,LY, "
         "walls at x = 0, LX and y = 0, LY, each in (0, 1e+15]; or annulus:D,DI, between a tube "
         "of diameter D and a coaxial rod of diameter DI, 0 < DI < D <= 2e+15; or "
-        "periodic:LX,LY, a cell periodic in x and y, each in (0, 1e+15]\n";
+        "periodic:LX,LY, a cell periodic in x and y, each in (0, 1e+15]; or cone:DB,DT,H, a "
+        "frustum of floor diameter DB at z = 0 and diameter DT at z = H, DB and DT in (0, 2e+15], "
+        "H in (0, 1e+15]\n";
     const Outcome cone = packbed("generate --container cone:1,2");
     EXPECT_EQ(cone.status, 2);
     EXPECT_EQ(cone.err, "packbed: --container: 'cone:1,2' is not allowed; " + every);

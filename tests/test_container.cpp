@@ -85,9 +85,9 @@ TEST(Container, CylinderAndBoxAnswerTheSameQuestions) {
     EXPECT_EQ(c.spec(), "cylinder:4");
     EXPECT_EQ(b.spec(), "box:4,4");
     EXPECT_EQ(b.shrunk(0.5).spec(), "box:3,3@0.5,0.5");
-    EXPECT_DOUBLE_EQ(c.cross_section_area(), 4.0 * pi);
-    EXPECT_DOUBLE_EQ(c.shell_area(0.0, 1.0), pi * (4.0 - 1.0));
-    EXPECT_DOUBLE_EQ(c.shrunk(0.5).depth(), 1.5);
+    EXPECT_DOUBLE_EQ(c.cross_section_area(0.0, 1.0), 4.0 * pi);
+    EXPECT_DOUBLE_EQ(c.shell_area(0.0, 1.0, 0.0, 1.0), pi * (4.0 - 1.0));
+    EXPECT_DOUBLE_EQ(c.shrunk(0.5).depth(0.0, 1.0), 1.5);
     EXPECT_DOUBLE_EQ(c.wall_distance({0.6, 0.8, 1.0}), 1.0);
     EXPECT_DOUBLE_EQ(b.wall_distance({0.6, 0.8, 1.0}), 0.6);
     // A sphere of radius 0.5 wholly inside, then the half of one centred on a face.

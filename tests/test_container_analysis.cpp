@@ -115,9 +115,9 @@ TEST(ContainerWalls, AnnulusWallLawInsideAndDistances) {
     EXPECT_EQ(a.nearest_wall({1.5, 0.0, 0.0}), 0u);
     EXPECT_EQ(a.nearest_wall({1.25, 0.0, 0.0}), 0u); // the middle goes with the tube
     // Each wall's part, up to the middle 1.25: areas pi (2^2 - 1.25^2) and pi (1.25^2 - 0.5^2).
-    EXPECT_NEAR(a.shell_area_from(0, 0.0, 10.0), pi * (4.0 - 1.5625), 1e-14);
-    EXPECT_NEAR(a.shell_area_from(1, 0.0, 10.0), pi * (1.5625 - 0.25), 1e-14);
-    EXPECT_NEAR(a.shell_area_from(0, 0.25, 0.5), pi * (1.75 * 1.75 - 1.5 * 1.5), 1e-14);
+    EXPECT_NEAR(a.shell_area_from(0, 0.0, 10.0, 0.0, 1.0), pi * (4.0 - 1.5625), 1e-14);
+    EXPECT_NEAR(a.shell_area_from(1, 0.0, 10.0, 0.0, 1.0), pi * (1.5625 - 0.25), 1e-14);
+    EXPECT_NEAR(a.shell_area_from(0, 0.25, 0.5, 0.0, 1.0), pi * (1.75 * 1.75 - 1.5 * 1.5), 1e-14);
     EXPECT_DOUBLE_EQ(a.profile_position_from(0, 0.25), 1.75);
     EXPECT_DOUBLE_EQ(a.profile_position_from(1, 0.25), 0.75);
     // Sticking out: into the rod by 0.5 - (0.6 - 0.3) = 0.2.
@@ -140,7 +140,7 @@ TEST(ContainerWalls, BoxCornerPressesTwoFaces) {
     ASSERT_EQ(b.profile_walls().size(), 1u);
     EXPECT_EQ(b.profile_walls()[0], "wall");
     EXPECT_DOUBLE_EQ(b.wall_distance_from(0, {0.5, 1.0, 0.0}), 0.5);
-    EXPECT_DOUBLE_EQ(b.shell_area_from(0, 0.0, 0.5), 6.0 - 1.0 * 2.0);
+    EXPECT_DOUBLE_EQ(b.shell_area_from(0, 0.0, 0.5, 0.0, 1.0), 6.0 - 1.0 * 2.0);
     EXPECT_NEAR(b.sticks_out({0.1, 1.0, 1.0}, 0.3), 0.2, 1e-15);
 }
 
@@ -211,7 +211,7 @@ TEST(ContainerAnalysis, AnnulusMeasuresEachWallOnItsOwn) {
         // Each wall's shells hold exactly its own sphere, and nothing lies in the third.
         double solid = 0.0;
         for (std::size_t k = 0; k < e.size(); ++k)
-            solid += (1.0 - e[k].value) * annulus.shell_area_from(w, e[k].low, e[k].high);
+            solid += (1.0 - e[k].value) * annulus.shell_area_from(w, e[k].low, e[k].high, 0.0, 1.0);
         EXPECT_NEAR(solid, sphere, 1e-12) << w;
         EXPECT_DOUBLE_EQ(e[2].value, 1.0) << w;
         EXPECT_DOUBLE_EQ(e[2].high, 1.5);

@@ -551,7 +551,8 @@ TEST(ContainerExportCli, LatticeInAPeriodicCell) {
     EXPECT_EQ(
         stl.err,
         fmt::format("packbed export: --container {} is not allowed with --format stl; allowed: "
-                    "cylinder:D, box:LX,LY or annulus:D,DI (a periodic cell has no closed "
+                    "cylinder:D, box:LX,LY, annulus:D,DI or cone:DB,DT,H (a periodic cell has "
+                    "no closed "
                     "surface: it is exported as an openfoam case with cyclic sides, or by "
                     "lammps-data and liggghts-data)\n",
                     s["container"]["spec"].get<std::string>()));
@@ -648,32 +649,41 @@ TEST(ContainerExportCli, HydraulicsOfAnAnnulusABoxAndAPeriodicCell) {
               "0.5; allowed: a from 1 to 10000\n");
 }
 
-TEST(ContainerExportCli, LammpsSettlesAnAnnulusBedBetweenRodAndTube) {
-    if (!has_lmp())
-        GTEST_SKIP() << "lmp (Debian package lammps) is not installed";
-    // A diamond lattice of 3 mm balls in the annulus D = 24 mm, DI = 6 mm, 12 mm tall: under
-    // gravity it collapses against both walls.
-    const fs::path d = scratch("ring") / "bed";
-    ASSERT_EQ(run_packbed("lattice --type diamond --region annulus:0.024,0.006,0.012 --diameter "
-                          "0.003 -q --out " +
-                          d.string())
-                  .status,
-              0);
+namespace {
+
+/// A diamond lattice of 3 mm balls in `region` (in folder d), exported as a LAMMPS data file and
+/// settled by its example input in lmp (2000 steps): the last frame of the dump, each ball (x, y,
+/// z, r); no ball lost on the way (the test fails otherwise).
+std::vector<std::array<double, 4>> settled_lattice(const fs::path& d, const std::string& region) {
+    const Outcome l = run_packbed("lattice --type diamond --region " + region +
+                                  " --diameter 0.003 -q --out " + d.string());
+    EXPECT_EQ(l.status, 0) << l.err;
     const std::size_t balls = spheres_of(d / "particles.csv").size();
-    ASSERT_GT(balls, 10u);
     const Outcome e = run_packbed("export " + (d / "particles.csv").string() + " -q --out " +
                                   (d / "bed.data").string());
-    ASSERT_EQ(e.status, 0) << e.err;
+    EXPECT_EQ(e.status, 0) << e.err;
     const std::string cmd =
         "cd " + d.string() + " && lmp -in bed.data.lammps.in -log none > lmp.out 2>&1";
-    ASSERT_EQ(std::system(cmd.c_str()), 0) << slurp(d / "lmp.out");
+    EXPECT_EQ(std::system(cmd.c_str()), 0) << slurp(d / "lmp.out");
     const std::string log = slurp(d / "lmp.out");
     EXPECT_EQ(log.find("Lost"), std::string::npos) << log;
     EXPECT_NE(log.find(fmt::format("packbed settle: {} atoms after 2000 steps", balls)),
               std::string::npos)
         << log;
-    const auto last = last_dump_frame(slurp(d / "bed.data.lammps.dump"));
-    ASSERT_EQ(last.size(), balls);
+    auto last = last_dump_frame(slurp(d / "bed.data.lammps.dump"));
+    EXPECT_EQ(last.size(), balls);
+    return last;
+}
+
+} // namespace
+
+TEST(ContainerExportCli, LammpsSettlesAnAnnulusBedBetweenRodAndTube) {
+    if (!has_lmp())
+        GTEST_SKIP() << "lmp (Debian package lammps) is not installed";
+    // A diamond lattice of 3 mm balls in the annulus D = 24 mm, DI = 6 mm, 12 mm tall: under
+    // gravity it collapses against both walls.
+    const auto last = settled_lattice(scratch("ring") / "bed", "annulus:0.024,0.006,0.012");
+    ASSERT_GT(last.size(), 10u);
     const double tolerance = 0.01 * 0.003;
     std::size_t at_rod = 0, at_tube = 0;
     for (const auto& s : last) {
@@ -688,10 +698,35 @@ TEST(ContainerExportCli, LammpsSettlesAnAnnulusBedBetweenRodAndTube) {
     EXPECT_GT(at_tube, 0u);
 }
 
+TEST(ContainerExportCli, LammpsSettlesAConeBedAgainstTheSlantedWall) {
+    if (!has_lmp())
+        GTEST_SKIP() << "lmp (Debian package lammps) is not installed";
+    // A diamond lattice of 3 mm balls in a hopper, floor diameter 18 mm widening to 30 mm at
+    // z = 24 mm, 12 mm of it: LAMMPS's cone region (the settle input's wall) holds the bed
+    // as it collapses, every ball inside the slanted wall, R(z) = 9 + 0.25 z mm, distances
+    // along its normal (cos = 24 / sqrt(24^2 + 6^2)).
+    const fs::path d = scratch("cone") / "bed";
+    const auto last = settled_lattice(d, "cone:0.018,0.030,0.024,0.012");
+    ASSERT_GT(last.size(), 10u);
+    EXPECT_NE(slurp(d / "bed.data.lammps.in").find("region          container cone z 0 0 0.009 "),
+              std::string::npos);
+    const double tolerance = 0.01 * 0.003, cos = 24.0 / std::hypot(24.0, 6.0);
+    std::size_t at_wall = 0;
+    for (const auto& s : last) {
+        const double from_wall = cos * (0.009 + 0.25 * s[2] - std::hypot(s[0], s[1])) - s[3];
+        EXPECT_GE(from_wall, -tolerance);
+        EXPECT_GE(s[2] - s[3], -tolerance);
+        at_wall += from_wall < tolerance ? 1 : 0;
+    }
+    EXPECT_GT(at_wall, 0u); // the slanted wall holds spheres
+}
+
 TEST(ContainerExportCli, LatticeRegionsRefusedWithOneLine) {
     const fs::path d = scratch("bad");
-    const std::string allowed = "allowed: box:LX,LY,LZ, cylinder:D,H, annulus:D,DI,H (DI < D) or "
-                                "periodic:LX,LY,H with lengths > 0 and at most 1e+15\n";
+    const std::string allowed =
+        "allowed: a container's spec and the region's height after its numbers, "
+        "cylinder:D,HEIGHT, box:LX,LY,HEIGHT, annulus:D,DI,HEIGHT, periodic:LX,LY,HEIGHT, "
+        "cone:DB,DT,H,HEIGHT, with lengths > 0 and at most 1e+15\n";
     for (const std::string region : {"annulus:2,6,1", "annulus:6,2", "periodic:4,4"}) {
         const Outcome o = run_packbed("lattice --region " + region + " --out " + d.string());
         EXPECT_EQ(o.status, 2);
@@ -715,10 +750,11 @@ TEST(ContainerExportCli, LatticeRegionsRefusedWithOneLine) {
     EXPECT_TRUE(fs::is_empty(d));
 }
 
-TEST(ContainerExportCli, LiggghtsSettlesAnAnnulusAndAPeriodicBed) {
+TEST(ContainerExportCli, LiggghtsSettlesAnAnnulusAConeAndAPeriodicBed) {
     if (std::system("command -v liggghts >/dev/null 2>&1") != 0)
         GTEST_SKIP() << "liggghts (Debian package liggghts) is not installed";
-    for (const std::string region : {"annulus:0.024,0.006,0.012", "periodic:0.012,0.012,0.009"}) {
+    for (const std::string region : {"annulus:0.024,0.006,0.012", "cone:0.018,0.030,0.024,0.012",
+                                     "periodic:0.012,0.012,0.009"}) {
         const fs::path d = scratch(region.substr(0, 7)) / "bed";
         ASSERT_EQ(run_packbed("lattice --type " + std::string(region[0] == 'a' ? "diamond" : "sc") +
                               " --region " + region + " --diameter 0.003 -q --out " + d.string())
@@ -729,7 +765,7 @@ TEST(ContainerExportCli, LiggghtsSettlesAnAnnulusAndAPeriodicBed) {
                               " --format liggghts-data -q --out " + (d / "bed.data").string())
                       .status,
                   0);
-        EXPECT_EQ(fs::exists(d / "bed.data.wall.stl"), region[0] == 'a');
+        EXPECT_EQ(fs::exists(d / "bed.data.wall.stl"), region[0] != 'p');
         const std::string cmd =
             "cd " + d.string() + " && liggghts -in bed.data.liggghts.in -log none > lig.out 2>&1";
         ASSERT_EQ(std::system(cmd.c_str()), 0) << slurp(d / "lig.out");
@@ -737,6 +773,10 @@ TEST(ContainerExportCli, LiggghtsSettlesAnAnnulusAndAPeriodicBed) {
                       .find(fmt::format("packbed settle: {} atoms after 2000 steps", balls)),
                   std::string::npos)
             << slurp(d / "lig.out");
+        if (region[0] == 'c') // inside the cone's prism: R(z) = 9 + 0.25 z mm at its sides
+            for (const auto& s : last_dump_frame(slurp(d / "bed.data.liggghts.dump")))
+                EXPECT_LE(std::hypot(s[0], s[1]) + s[3] * std::hypot(24.0, 6.0) / 24.0,
+                          (0.009 + 0.25 * s[2]) / std::cos(pi / 48.0) + 0.01 * 0.003);
         if (region[0] != 'a')
             continue;
         // Between the rod and the tube's prism (corners at R / cos(pi / 48) at most).

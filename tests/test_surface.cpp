@@ -731,8 +731,7 @@ TEST(SurfaceBox, ContainerSolidsAreTheBoxClosedOutwardAndWatertight) {
     for (std::size_t k = 0; k < 6; ++k)
         EXPECT_EQ(again[k].mesh.vertices, solids[k].mesh.vertices);
     const auto tube = Container(Cylinder(2.0)).solids(0.0, 3.0, 0.3);
-    EXPECT_EQ(tube[0].mesh.vertices,
-              Cylinder(2.0).solids(0.0, 3.0, 0.3)[0].mesh.vertices);
+    EXPECT_EQ(tube[0].mesh.vertices, Cylinder(2.0).solids(0.0, 3.0, 0.3)[0].mesh.vertices);
     // A side shorter than the edge is one cell.
     for (const Solid& s : Box(0.1, 0.1).solids(0.0, 0.1, 1.0))
         EXPECT_EQ(s.mesh.triangles.size(), 2u) << s.name;

@@ -113,9 +113,9 @@ Command register_hydraulics(CLI::App& parent) {
                         "pressure drop (shorthand of --container)")
             ->check(real_in(option_range::tube_aspect_ratio));
     add_container_option(*app, o.container,
-                         "metres: a = D_h / d with the hydraulic diameter D_h = 4 A / P (D, "
-                         "annulus D - DI, box 2 LX LY / (LX + LY)); a periodic cell has no wall; "
-                         "instead of --aspect-ratio")
+                         fmt::format("metres: a = D_h / d with the hydraulic diameter D_h = "
+                                     "4 A / P ({}); instead of --aspect-ratio",
+                                     hydraulic_formulas()))
         ->excludes(aspect);
     app->add_flag("--json", *json, "print everything as JSON");
     app->fallthrough();

@@ -91,8 +91,13 @@ public:
     std::string describe() const;
     /// --container's word for the shape, "annulus:D,DI" its SPEC.
     static constexpr std::string_view kind = "annulus";
+    /// The SPEC in letters, as messages list it.
+    static constexpr std::string_view form = "annulus:D,DI";
+    /// The hydraulic diameter 4 A / P in the SPEC's letters ("": none).
+    static constexpr std::string_view hydraulic_formula = "D - DI";
     std::string_view name() const { return kind; }
     PACKBED_SHAPE_ANSWERS(Annulus);
+    PACKBED_PRISM_HEIGHTS
     std::string_view axis() const { return "z through x = y = 0"; }
     Rectangle bounds() const { return {-m_outer, m_outer, -m_outer, m_outer}; }
     std::string_view profile_position_name() const { return "wall_distance"; }
@@ -122,7 +127,7 @@ public:
     Annulus shrunk_from(std::size_t wall, double d) const;
     /// \return the area between the distances d_low <= d_high from wall `wall` (up to the
     /// middle): shrunk_from(wall, d_low) less shrunk_from(wall, d_high).
-    double shell_area_from(std::size_t wall, double d_low, double d_high) const;
+    double shell_area_from(std::size_t wall, double d_low, double d_high, double, double) const;
     /// \return the wall nearer to p: 1 (inner) when rho - Ri < R - rho, else 0 (outer).
     std::size_t nearest_wall(const Vec3& p) const {
         const double rho = std::hypot(p.x, p.y);

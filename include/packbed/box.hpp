@@ -104,8 +104,13 @@ public:
     std::string describe() const;
     /// --container's word for the shape, "box:LX,LY" its SPEC.
     static constexpr std::string_view kind = "box";
+    /// The SPEC in letters, as messages list it.
+    static constexpr std::string_view form = "box:LX,LY";
+    /// The hydraulic diameter 4 A / P in the SPEC's letters ("": none).
+    static constexpr std::string_view hydraulic_formula = "2 LX LY / (LX + LY)";
     std::string_view name() const { return kind; }
     PACKBED_SHAPE_ANSWERS(Box);
+    PACKBED_PRISM_HEIGHTS
     std::string_view axis() const { return ""; }
     Rectangle bounds() const { return {m_x_low, m_x_high, m_y_low, m_y_high}; }
     /// The wall profiles' first column: the distance from the nearest face itself.

@@ -17,6 +17,7 @@
 
 #include "packbed/annulus.hpp"
 #include "packbed/box.hpp"
+#include "packbed/cone.hpp"
 #include "packbed/cylinder.hpp"
 #include "packbed/periodic.hpp"
 #include "packbed/shape.hpp"
@@ -30,7 +31,7 @@ namespace packbed {
 class Container {
 public:
     /// Every shape, in the order --help lists them: the one line that registers a shape.
-    using Shape = std::variant<Cylinder, Box, Annulus, Periodic>;
+    using Shape = std::variant<Cylinder, Box, Annulus, Periodic, Cone>;
 
     template <class S>
     requires ContainerShape<S>
@@ -73,14 +74,17 @@ public:
     double wall_distance(const Vec3& p) const;
     /// Nearest and farthest distance from the wall of the points of a sphere.
     std::pair<double, double> wall_distances(const Vec3& c, double r) const;
-    /// The largest distance from the wall inside.
-    double depth() const;
+    /// The largest distance from the wall inside at the heights from z_low to z_high.
+    double depth(double z_low, double z_high) const;
     /// The wall within `gap` of the sphere (c, r) as tangent planes (the cylinder's at the
     /// nearest point, each box face that near): where the contact treatments cut.
     std::vector<WallPlane> walls_within(const Vec3& c, double r, double gap) const;
-    double cross_section_area() const;
-    /// Area of the cross-section between two distances from the wall.
-    double shell_area(double d_low, double d_high) const;
+    /// The area of the cross-section, its mean over the heights from z_low to z_high (the
+    /// same at every height but in a cone; at z_low when z_high <= z_low).
+    double cross_section_area(double z_low, double z_high) const;
+    /// Area of the cross-section between two distances from the wall, its mean over the
+    /// heights from z_low to z_high.
+    double shell_area(double d_low, double d_high, double z_low, double z_high) const;
     /// The points at least d from the wall, as a container of the same shape.
     Container shrunk(double d) const;
     /// Exact volume of a sphere inside the container between two heights.
@@ -111,9 +115,10 @@ public:
     /// \return the points at least d from wall `wall` within that wall's part of the
     /// cross-section (up to the depth); for a container of one wall, shrunk(d).
     Container shrunk_from(std::size_t wall, double d) const;
-    /// \return the area between the distances d_low <= d_high from wall `wall`; for a
-    /// container of one wall, shell_area(d_low, d_high).
-    double shell_area_from(std::size_t wall, double d_low, double d_high) const;
+    /// \return the area between the distances d_low <= d_high from wall `wall`, its mean over
+    /// the heights from z_low to z_high; for a container of one wall, shell_area.
+    double shell_area_from(std::size_t wall, double d_low, double d_high, double z_low,
+                           double z_high) const;
     /// \return the wall whose part of the cross-section holds p (the nearer wall; the first
     /// on a tie).
     std::size_t nearest_wall(const Vec3& p) const;
@@ -146,9 +151,12 @@ public:
     /// The height of a bed of spheres whose diameters cubed (in Dp) add to `solid`, at void
     /// fraction e0: (pi / 6) solid / (A (1 - e0)); the paper's eq. (6) for a tube.
     double fill_height(double solid, double e0) const;
-    /// A point of the floor uniform over the part of the cross-section a centre of radius
-    /// `radius` reaches, from two uniform numbers u, v in [0, 1).
-    Vec3 uniform_point(double radius, double u, double v) const;
+    /// A point at height z uniform over the part of the cross-section there that a centre of
+    /// radius `radius` reaches, from two uniform numbers u, v in [0, 1).
+    Vec3 uniform_point(double radius, double u, double v, double z) const;
+    /// The height where the container ends (a cone's H: a bed must stay below it); nothing
+    /// for a prism, open at the top.
+    std::optional<double> top() const;
     /// Eight vertical lines (x, y) inside the container, off its symmetries, along which to
     /// search for a point of the fluid far from every surface (the OpenFOAM case's
     /// locationInMesh).
@@ -179,8 +187,9 @@ public:
     nlohmann::json region_json(double height) const;
     /// What a lattice region of this shape allows (--region's refusal).
     std::string region_allowed() const;
-    /// Where the centres at least `margin` inside the side lie (a lattice's fill).
-    FillWindow fill_window(double margin) const;
+    /// Where the centres at least `margin` inside the side lie, from the floor up to
+    /// `height` (a lattice's fill).
+    FillWindow fill_window(double margin, double height) const;
     /// The side in an export's DEM settle inputs, `contact` the LAMMPS wall's contact model.
     DemSettleWall settle_wall(double height, std::string_view contact) const;
     /// The background mesh of an OpenFOAM case in the container up to `height`, cells of
@@ -224,10 +233,27 @@ namespace detail {
 template <class... S> std::vector<std::string_view> kinds_of(const std::variant<S...>*) {
     return {S::kind...};
 }
+template <class... S> std::vector<std::string_view> forms_of(const std::variant<S...>*) {
+    return {S::form...};
+}
+template <class... S>
+std::vector<std::pair<std::string_view, std::string_view>>
+hydraulic_formulas_of(const std::variant<S...>*) {
+    return {{S::kind, S::hydraulic_formula}...};
+}
 } // namespace detail
 
 /// The shapes parse_container takes, by kind, in Container::Shape's order.
 inline const std::vector<std::string_view> all_shapes =
     detail::kinds_of(static_cast<const Container::Shape*>(nullptr));
+/// Their SPECs in letters ("cylinder:D", "box:LX,LY", ...), in the same order.
+inline const std::vector<std::string_view> all_forms =
+    detail::forms_of(static_cast<const Container::Shape*>(nullptr));
+
+/// The shapes' hydraulic diameters in words: "cylinder D, box 2 LX LY / (LX + LY), annulus D -
+/// DI; none in periodic, cone" (each shape's hydraulic_formula).
+std::string hydraulic_formulas();
+/// The forms of all_forms but `kind`'s, joined by ", " and " or ".
+std::string forms_but(std::string_view kind);
 
 } // namespace packbed

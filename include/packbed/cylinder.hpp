@@ -98,8 +98,13 @@ public:
     std::string describe() const;
     /// --container's word for the shape, "cylinder:D" its SPEC.
     static constexpr std::string_view kind = "cylinder";
+    /// The SPEC in letters, as messages list it.
+    static constexpr std::string_view form = "cylinder:D";
+    /// The hydraulic diameter 4 A / P in the SPEC's letters ("": none).
+    static constexpr std::string_view hydraulic_formula = "D";
     std::string_view name() const { return kind; }
     PACKBED_SHAPE_ANSWERS(Cylinder);
+    PACKBED_PRISM_HEIGHTS
     std::string_view axis() const { return "z through x = y = 0"; }
     Rectangle bounds() const { return {-m_radius, m_radius, -m_radius, m_radius}; }
     /// The wall profiles' first column: the distance from the axis, Rt - d.

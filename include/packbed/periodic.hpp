@@ -57,8 +57,13 @@ public:
     std::string describe() const;
     /// --container's word for the shape, "periodic:LX,LY" its SPEC.
     static constexpr std::string_view kind = "periodic";
+    /// The SPEC in letters, as messages list it.
+    static constexpr std::string_view form = "periodic:LX,LY";
+    /// The hydraulic diameter 4 A / P in the SPEC's letters ("": none).
+    static constexpr std::string_view hydraulic_formula = "";
     std::string_view name() const { return kind; }
     PACKBED_SHAPE_ANSWERS(Periodic);
+    PACKBED_PRISM_HEIGHTS
     std::string_view axis() const { return ""; }
     Rectangle bounds() const { return {0.0, lx(), 0.0, ly()}; }
     std::string_view profile_position_name() const { return "wall_distance"; }
@@ -72,7 +77,7 @@ public:
         return wall_distances(c, r);
     }
     Periodic shrunk_from(std::size_t, double) const { return *this; }
-    double shell_area_from(std::size_t, double, double) const { return 0.0; }
+    double shell_area_from(std::size_t, double, double, double, double) const { return 0.0; }
     std::size_t nearest_wall(const Vec3&) const { return 0; }
     std::string_view profile_position_name_from(std::size_t) const { return "wall_distance"; }
     double profile_position_from(std::size_t, double d) const { return d; }

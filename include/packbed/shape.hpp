@@ -43,7 +43,7 @@ struct Rectangle {
 
 /// A plane tangent to a container's lateral wall from inside: the points x with
 /// dot(normal, x) <= offset are on the container's side of it (normal of unit length, pointing
-/// out of the container, horizontal).
+/// out of the container; horizontal but for a cone's slanted wall).
 struct WallPlane {
     Vec3 normal;
     double offset = 0.0;
@@ -151,11 +151,14 @@ struct OpenFoamBackground {
 
 /// Where a lattice's kept centres lie in the cross-section (lattice.hpp's fill): the
 /// rectangle, and for a round container the largest and smallest squared distance from the
-/// axis (none: -1).
+/// axis (none: -1); where these only bound them (a cone, whose cross-section changes with
+/// height), `by_distance`: a centre is kept where its distance from the wall is at least the
+/// margin.
 struct FillWindow {
     Rectangle box;
     double reach2 = -1.0;
     double inner2 = -1.0;
+    bool by_distance = false;
 };
 
 /// The answers every shape gives beyond the questions above, declared once (`Container`
@@ -175,7 +178,8 @@ struct FillWindow {
     BoxMargin box_margin() const;                                                                  \
     std::string fit_problem(double largest) const;                                                 \
     double fill_height(double solid, double e0) const;                                             \
-    Vec3 uniform_point(double radius, double u, double v) const;                                   \
+    Vec3 uniform_point(double radius, double u, double v, double z) const;                         \
+    std::optional<double> top() const;                                                             \
     std::vector<std::pair<double, double>> search_lines() const;                                   \
     nlohmann::json summary_json() const;                                                           \
     nlohmann::ordered_json export_json(double height) const;                                       \
@@ -186,7 +190,21 @@ struct FillWindow {
                                            const OpenFoamMeshOptions& options) const;              \
     double prism_volume(double height) const;                                                      \
     nlohmann::json region_json(double height) const;                                               \
-    FillWindow fill_window(double margin) const
+    FillWindow fill_window(double margin, double height) const
+
+/// The answers at a height of a prism (a cross-section the same at every height): its area,
+/// the area between two distances from the wall and its depth, over the heights z_low to
+/// z_high as everywhere (a cone's change with height, cone.hpp).
+#define PACKBED_PRISM_HEIGHTS                                                                      \
+    double cross_section_area(double, double) const {                                              \
+        return cross_section_area();                                                               \
+    }                                                                                              \
+    double shell_area(double d_low, double d_high, double, double) const {                         \
+        return shell_area(d_low, d_high);                                                          \
+    }                                                                                              \
+    double depth(double, double) const {                                                           \
+        return depth();                                                                            \
+    }
 
 /// What every shape of `Container` answers (a part of it: the rest is in the class comments).
 /// The wall law calls back f(overlap, push) once per wall a sphere presses into.
@@ -196,9 +214,13 @@ concept ContainerShape = requires(const C& c, const Vec3& p, double radius) {
     { c.contains(p) } -> std::same_as<bool>;
     { c.wall_distance(p) } -> std::same_as<double>;
     { c.sphere_volume(p, radius, 0.0, 1.0) } -> std::same_as<double>;
-    { c.cross_section_area() } -> std::same_as<double>;
+    { c.cross_section_area(0.0, 1.0) } -> std::same_as<double>;
+    { c.shell_area(0.0, 1.0, 0.0, 1.0) } -> std::same_as<double>;
+    { c.depth(0.0, 1.0) } -> std::same_as<double>;
     { c.spec() } -> std::same_as<std::string>;
     { C::kind } -> std::convertible_to<std::string_view>;
+    { C::form } -> std::convertible_to<std::string_view>;
+    { C::hydraulic_formula } -> std::convertible_to<std::string_view>;
     { C::allowed() } -> std::same_as<std::string>;
     { c.scaled(1.0) } -> std::same_as<C>;
 };
@@ -214,8 +236,9 @@ public:
         return self().wall_distances(c, r);
     }
     Shape shrunk_from(std::size_t, double d) const { return self().shrunk(d); }
-    double shell_area_from(std::size_t, double d_low, double d_high) const {
-        return self().shell_area(d_low, d_high);
+    double shell_area_from(std::size_t, double d_low, double d_high, double z_low,
+                           double z_high) const {
+        return self().shell_area(d_low, d_high, z_low, z_high);
     }
     std::size_t nearest_wall(const Vec3&) const { return 0; }
     std::string_view profile_position_name_from(std::size_t) const {

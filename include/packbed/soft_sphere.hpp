@@ -132,6 +132,8 @@ struct SoftSphereParameters {
     /// Check every value and their combinations.
     /// \throws InvalidInput naming the parameter, its value and the allowed range.
     void validate() const;
+    /// \throws InvalidInput when the container ends below the bed's initial height.
+    void check_top() const;
 };
 
 /// The state at the end of one stage (section 3).

@@ -128,12 +128,12 @@ std::vector<ProfileBin> wall_void_fraction(const Packing& packing, const Contain
             }
         });
     const double height = band.z_high - band.z_low;
-    const double depth = container.depth();
+    const double depth = container.depth(band.z_low, band.z_high);
     std::vector<ProfileBin> out(shells);
     for (std::size_t k = 0; k < shells; ++k) {
         const double lo = distance(k), hi = distance(k + 1);
-        out[k] = {lo, std::min(hi, depth),
-                  1.0 - solid[k] / (container.shell_area_from(wall, lo, hi) * height)};
+        const double area = container.shell_area_from(wall, lo, hi, band.z_low, band.z_high);
+        out[k] = {lo, std::min(hi, depth), 1.0 - solid[k] / (area * height)};
     }
     return out;
 }
@@ -212,7 +212,7 @@ std::vector<ProfileBin> axial_void_fraction(const Packing& packing, const Contai
     std::vector<ProfileBin> out(slabs);
     for (std::size_t k = 0; k < slabs; ++k) {
         const double lo = static_cast<double>(k) * height, hi = lo + height;
-        out[k] = {lo, hi, 1.0 - solid[k] / (container.cross_section_area() * height)};
+        out[k] = {lo, hi, 1.0 - solid[k] / (container.cross_section_area(lo, hi) * height)};
     }
     return out;
 }
@@ -243,12 +243,13 @@ std::vector<ProfileBin> centre_distribution(const Packing& packing, const Contai
             std::clamp(std::floor(from_wall / width), 0.0, static_cast<double>(bins - 1)));
         count[k] += 1.0;
     }
-    const double mean_density = total / container.cross_section_area();
-    const double depth = container.depth();
+    const double mean_density = total / container.cross_section_area(band.z_low, band.z_high);
+    const double depth = container.depth(band.z_low, band.z_high);
     std::vector<ProfileBin> out(bins);
     for (std::size_t k = 0; k < bins; ++k) {
         const double lo = static_cast<double>(k) * width, hi = static_cast<double>(k + 1) * width;
-        const double density = count[k] / container.shell_area_from(wall, lo, hi);
+        const double density =
+            count[k] / container.shell_area_from(wall, lo, hi, band.z_low, band.z_high);
         out[k] = {lo, std::min(hi, depth), total > 0.0 ? density / mean_density : 0.0};
     }
     return out;
@@ -520,7 +521,7 @@ std::vector<ProfileBin> pair_correlation(const Packing& packing, const Band& ban
     // The density of the other centres in the region: an ideal gas of `in` points in it puts
     // (in - 1) V_i / |region| of them in the shell around each.
     const double height = region.band.z_high - region.band.z_low;
-    const double area = region.container.cross_section_area();
+    const double area = region.container.cross_section_area(region.band.z_low, region.band.z_high);
     const double density = area > 0.0 && height > 0.0 ? (in - 1.0) / (area * height) : 0.0;
     std::vector<ProfileBin> out(bins);
     for (std::size_t k = 0; k < bins; ++k) {
@@ -555,7 +556,7 @@ void check_input(const Packing& packing, const Container& container, const Analy
                                            rt, far));
     } else {
         const Rectangle b = container.bounds();
-        if (!(container.cross_section_area() > 0.0 && std::abs(b.x_low) <= far &&
+        if (!(container.cross_section_area(0.0, 0.0) > 0.0 && std::abs(b.x_low) <= far &&
               std::abs(b.x_high) <= far && std::abs(b.y_low) <= far && std::abs(b.y_high) <= far))
             throw InvalidInput(fmt::format("--container {} is not allowed; allowed: widths > 0, "
                                            "sides within {:g} of the origin",
@@ -626,9 +627,11 @@ std::size_t axial_slabs(const Packing& packing, double height, double slab, doub
 }
 
 /// The number of bins of `width` Dp from the wall to the container's depth, checked.
-std::size_t radial_bins(const Packing& packing, const Container& container, double width, double dp,
-                        std::string_view option, std::string_view noun, std::string_view profile) {
-    const double bins = bins_over(container.depth(), width * dp);
+std::size_t radial_bins(const Packing& packing, const Container& container, const Band& band,
+                        double width, double dp, std::string_view option, std::string_view noun,
+                        std::string_view profile) {
+    const double depth = container.depth(band.z_low, band.z_high);
+    const double bins = bins_over(depth, width * dp);
     const double budget = bin_budget(packing.size());
     if (bins <= budget)
         return static_cast<std::size_t>(bins);
@@ -638,7 +641,7 @@ std::size_t radial_bins(const Packing& packing, const Container& container, doub
             "middle for the {}; allowed: at most {:.3g} ({}); a smaller container or a larger {}",
             container.spec(), bins, noun, option, width, dp, profile, budget,
             budget_reason(packing.size()), option));
-    const double rt = container.depth();
+    const double rt = depth;
     double reach = 0.0; // how far the spheres reach from the axis
     for (std::size_t i = 0; i < packing.size(); ++i)
         reach = std::max(reach,
@@ -718,13 +721,13 @@ BedAnalysis analyze_bed(const Packing& packing, const Container& container,
     // Every bin count and the work of the pair searches, checked before any of it is done.
     // A periodic cell has no wall to measure profiles from.
     const bool walled = !container.profile_walls().empty();
-    const std::size_t shells = walled ? radial_bins(packing, container, options.shell_width, dp,
-                                                    "--shell-width", "shells", "radial profile")
+    const std::size_t shells = walled ? radial_bins(packing, container, *band, options.shell_width,
+                                                    dp, "--shell-width", "shells", "radial profile")
                                       : 0;
-    const std::size_t centre_bins = walled
-                                        ? radial_bins(packing, container, options.centre_bin, dp,
-                                                      "--centre-bin", "bins", "centre distribution")
-                                        : 0;
+    const std::size_t centre_bins =
+        walled ? radial_bins(packing, container, *band, options.centre_bin, dp, "--centre-bin",
+                             "bins", "centre distribution")
+               : 0;
     const std::size_t slabs = axial_slabs(packing, bed_top(packing), options.slab_height, dp);
     const double rdf_range = options.rdf_range * dp, rdf_bin = options.rdf_bin * dp;
     const double rdf_bins = bins_over(rdf_range, rdf_bin);

@@ -447,8 +447,8 @@ OpenFoamCase openfoam_case(const TreatedBed& bed, const SurfaceContainer& contai
     double bed_top = 0.0;
     for (const TreatedBody& b : bed.bodies)
         bed_top = std::max(bed_top, b.center.z + b.radius);
-    add_flow_files(c, walls, std::min(bed_top, height), container.container.cross_section_area(),
-                   diameter, flow);
+    add_flow_files(c, walls, std::min(bed_top, height),
+                   container.container.cross_section_area(0.0, 0.0), diameter, flow);
     c.files.emplace_back("case.foam", ""); // what ParaView opens the case by
 
     const double bed_void = volumes.untouched_void_fraction;

@@ -432,7 +432,8 @@ TreatedBed treat_contacts(const Packing& packing, const Contacts& contacts,
 TreatmentVolumes treatment_volumes(const Packing& packing, const TreatedBed& bed,
                                    const SurfaceContainer& container) {
     TreatmentVolumes v;
-    v.container_volume = container.container.cross_section_area() * container.height;
+    v.container_volume =
+        container.container.cross_section_area(0.0, container.height) * container.height;
     const std::size_t n = packing.size();
     const auto lenses = [&](const std::vector<double>& radii) {
         double sum = 0.0;
@@ -653,9 +654,11 @@ std::vector<Solid> bed_surface(const TreatedBed& given, const SurfaceOptions& op
 
     if (options.container && options.write_container) {
         const Container& container = options.container->container;
-        for (Solid& s : container.solids(
-                 0.0, options.container->height,
-                 largest > 0.0 ? edge : container.depth() * icosphere_edge(options.level)))
+        for (Solid& s :
+             container.solids(0.0, options.container->height,
+                              largest > 0.0 ? edge
+                                            : container.depth(0.0, options.container->height) *
+                                                  icosphere_edge(options.level)))
             solids.push_back(std::move(s));
     }
     return solids;

@@ -209,7 +209,9 @@ void check_values(const LatticeParameters& p) {
 struct FillPlan {
     Vec3 lo, hi, origin;
     double reach2 = 0.0;
-    double inner2 = -1.0;          // an annulus: the smallest squared distance from the axis
+    double inner2 = -1.0;     // an annulus: the smallest squared distance from the axis
+    bool by_distance = false; // a cone: keep centres at least `margin` from the wall
+    double margin = 0.0;
     std::optional<Periods> period; // a periodic cell: one period of cells, moved into it
     bool is_box = true;
     bool empty = false; // the region is thinner than a ball: nothing to keep
@@ -230,7 +232,9 @@ FillPlan plan_fill(const LatticeParameters& p, const UnitCell& cell) {
     const Container& container = p.region.container;
     f.period = container.periods();
     // A periodic cell keeps every centre in x and y (moved into it by whole periods).
-    const FillWindow window = container.fill_window(f.period ? 0.0 : margin);
+    const FillWindow window = container.fill_window(f.period ? 0.0 : margin, p.region.height);
+    f.by_distance = window.by_distance;
+    f.margin = margin;
     f.reach2 = window.reach2;
     f.inner2 = window.inner2;
     f.is_box = window.reach2 < 0.0;
@@ -341,6 +345,8 @@ Packing fill_lattice(const LatticeParameters& p) {
                     if (!f.is_box &&
                         (c.x * c.x + c.y * c.y > f.reach2 || c.x * c.x + c.y * c.y < f.inner2))
                         continue;
+                    if (f.by_distance && !(p.region.container.wall_distance(c) >= f.margin))
+                        continue;
                     packing.add(c, r);
                 }
     require(packing.size() <= limits::max_spheres,
@@ -384,10 +390,10 @@ LatticeContacts lattice_contacts(const Packing& packing, const Periods& cell, do
 }
 
 LatticeRegion parse_lattice_region(std::string_view text) {
-    const std::string allowed =
-        fmt::format("allowed: box:LX,LY,LZ, cylinder:D,H, annulus:D,DI,H (DI < D) or "
-                    "periodic:LX,LY,H with lengths > 0 and at most {:g}",
-                    limits::max_length);
+    const std::string allowed = fmt::format(
+        "allowed: a container's spec and the region's height after its numbers, {},HEIGHT, "
+        "with lengths > 0 and at most {:g}",
+        fmt::join(all_forms, ",HEIGHT, "), limits::max_length);
     // The container's spec and the height after its numbers, every length at most max_length.
     const KindSpec parts = split_kind(text);
     const auto values = parts.parameters ? parse_finite_list(*parts.parameters) : std::nullopt;

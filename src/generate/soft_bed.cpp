@@ -25,14 +25,14 @@ void SoftBed::generate(const SoftSphereParameters& params) {
     packing.radii.reserve(params.particles);
     // Section 3.1 with each sphere's own radius r_i: r = (Rt - r_i) Rnd^(1/2), theta = 2 pi
     // Rnd, z = L0 Rnd + r_i (the paper's Dp/2 is the radius), and the same over the other
-    // containers' cross-sections (uniform_point). The same random numbers whatever the sizes.
+    // containers' cross-sections at that height (uniform_point). The same random numbers
+    // whatever the sizes.
     for (std::uint64_t i = 0; i < params.particles; ++i) {
         const double radius = params.sizes.empty() ? 0.5 : 0.5 * params.sizes[i];
         const double u = uniform01(rng);
         const double v = uniform01(rng);
-        Vec3 p = container.uniform_point(radius, u, v);
-        p.z = initial_height * uniform01(rng) + radius;
-        packing.add(p, radius);
+        const double z = initial_height * uniform01(rng) + radius;
+        packing.add(container.uniform_point(radius, u, v, z), radius);
     }
     reset_order();
 }

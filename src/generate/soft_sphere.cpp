@@ -73,7 +73,7 @@ void SoftSphereParameters::validate() const {
             layer_height, "0 (one piece) or 10 to 1000000 (Dp)");
     require(max_iterations >= 1, "max-iterations", static_cast<double>(max_iterations), ">= 1");
     if (sizes.empty())
-        return;
+        return check_top();
     if (sizes.size() != particles)
         throw InvalidInput(fmt::format("--sizes gives {} diameters for {} particles; allowed: one "
                                        "per particle",
@@ -98,6 +98,24 @@ void SoftSphereParameters::validate() const {
             "--sizes: the largest diameter is {:.6g} times the smallest; allowed: at most {:g} "
             "(the size ratio the solvers are tested for)",
             *largest / *smallest, max_size_ratio));
+    check_top();
+}
+
+/// A container that ends (a cone) holds the initial bed below its top: the paper's L0 and
+/// the largest sphere.
+void SoftSphereParameters::check_top() const {
+    const Container shape = container_dp();
+    const std::optional<double> top = shape.top();
+    if (!top)
+        return;
+    const double height = initial_bed_height(*this) + largest_size();
+    if (!(height <= *top))
+        throw InvalidInput(fmt::format(
+            "--particles {} is not allowed in --container {} (in units of Dp): the bed's "
+            "initial height, eq. (6) at e0 = {:g}, is about {:.6g} Dp with the largest sphere; "
+            "allowed: a bed below the container's top at {:.6g} Dp (fewer particles or a "
+            "taller container)",
+            particles, shape.spec(), e0, height, *top));
 }
 
 double initial_bed_height(std::uint64_t particles, double aspect_ratio, double e0) {

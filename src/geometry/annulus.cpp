@@ -64,7 +64,8 @@ Annulus Annulus::shrunk_from(std::size_t wall, double d) const {
     return Annulus(m_outer, std::min(m_inner + d, mid));
 }
 
-double Annulus::shell_area_from(std::size_t wall, double d_low, double d_high) const {
+double Annulus::shell_area_from(std::size_t wall, double d_low, double d_high, double,
+                                double) const {
     return shrunk_from(wall, d_low).cross_section_area() -
            shrunk_from(wall, d_high).cross_section_area();
 }
@@ -87,7 +88,7 @@ std::optional<Periods> Annulus::periods() const {
 
 /// 4 pi (R^2 - Ri^2) / (2 pi (R + Ri)) = 2 (R - Ri).
 HydraulicDiameter Annulus::hydraulic_diameter() const {
-    return {2.0 * (m_outer - m_inner), "D - DI"};
+    return {2.0 * (m_outer - m_inner), hydraulic_formula};
 }
 
 BoxMargin Annulus::box_margin() const {
@@ -108,8 +109,12 @@ double Annulus::fill_height(double solid, double e0) const {
 }
 
 /// rho^2 uniform between (Ri + r_i)^2 and (R - r_i)^2.
-Vec3 Annulus::uniform_point(double radius, double u, double v) const {
-    return detail::ring_point(m_inner + radius, m_outer - radius, u, v);
+Vec3 Annulus::uniform_point(double radius, double u, double v, double z) const {
+    return detail::ring_point(m_inner + radius, m_outer - radius, u, v, z);
+}
+
+std::optional<double> Annulus::top() const {
+    return std::nullopt;
 }
 
 /// The middle of the bounds is in the rod: lines across the gap instead, at fractions of it
@@ -193,23 +198,13 @@ std::vector<Solid> Annulus::solids(double z_low, double z_high, double edge) con
     auto ring_point = [&](double radius, int row, std::uint32_t k) {
         return grid.point(radius, row, k);
     };
-    Solid wall{"wall", {}}, rod{"rod", {}}, bottom{"bottom", {}}, top{"top", {}};
-    for (int row = 0; row <= rows; ++row)
-        for (std::uint32_t k = 0; k < s; ++k) {
-            wall.mesh.vertices.push_back(ring_point(corner, row, k));
-            rod.mesh.vertices.push_back(ring_point(ri, row, k));
-        }
-    for (std::uint32_t row = 0; row < static_cast<std::uint32_t>(rows); ++row)
-        for (std::uint32_t k = 0; k < s; ++k) {
-            const std::uint32_t j = (k + row % 2) % s, j1 = (j + 1) % s;
-            const std::uint32_t a = row * s + k, b = row * s + (k + 1) % s;
-            // The tube's normals point away from the axis, the rod's towards it: out of the
-            // fluid, as the bottom's (-z) and the top's (+z).
-            wall.mesh.triangles.push_back({a, b, (row + 1) * s + j});
-            wall.mesh.triangles.push_back({(row + 1) * s + j, b, (row + 1) * s + j1});
-            rod.mesh.triangles.push_back({a, (row + 1) * s + j, b});
-            rod.mesh.triangles.push_back({(row + 1) * s + j, (row + 1) * s + j1, b});
-        }
+    // The tube's normals point away from the axis, the rod's towards it: out of the fluid, as
+    // the bottom's (-z) and the top's (+z).
+    Solid wall{"wall", detail::ring_wall(
+                           grid, [&](int) { return corner; }, true)};
+    Solid rod{"rod", detail::ring_wall(
+                         grid, [&](int) { return ri; }, false)};
+    Solid bottom{"bottom", {}}, top{"top", {}};
     // Bottom and top: vertices 0..s-1 on the tube's ring, s..2s-1 on the rod's.
     for (Solid* face : {&bottom, &top}) {
         const int row = face == &bottom ? 0 : rows;
@@ -303,7 +298,7 @@ std::string Annulus::region_allowed() {
 
 /// The centres between Ri + margin and R - margin from the axis (none when the gap is
 /// thinner than twice the margin).
-FillWindow Annulus::fill_window(double margin) const {
+FillWindow Annulus::fill_window(double margin, double) const {
     const double reach = m_outer - margin, inner = m_inner + margin;
     FillWindow w{{-reach, reach, -reach, reach}, reach * reach, inner * inner};
     if (!(inner <= reach))

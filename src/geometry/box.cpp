@@ -68,7 +68,7 @@ std::optional<Periods> Box::periods() const {
 
 HydraulicDiameter Box::hydraulic_diameter() const {
     const double lx = m_x_high - m_x_low, ly = m_y_high - m_y_low;
-    return {4.0 * lx * ly / (2.0 * (lx + ly)), "2 LX LY / (LX + LY)"};
+    return {4.0 * lx * ly / (2.0 * (lx + ly)), hydraulic_formula};
 }
 
 BoxMargin Box::box_margin() const {
@@ -84,9 +84,13 @@ double Box::fill_height(double solid, double e0) const {
 }
 
 /// Each coordinate uniform between the faces less r_i.
-Vec3 Box::uniform_point(double radius, double u, double v) const {
+Vec3 Box::uniform_point(double radius, double u, double v, double z) const {
     return {m_x_low + radius + (m_x_high - m_x_low - 2.0 * radius) * u,
-            m_y_low + radius + (m_y_high - m_y_low - 2.0 * radius) * v, 0.0};
+            m_y_low + radius + (m_y_high - m_y_low - 2.0 * radius) * v, z};
+}
+
+std::optional<double> Box::top() const {
+    return std::nullopt;
 }
 
 std::vector<std::pair<double, double>> Box::search_lines() const {
@@ -279,7 +283,7 @@ std::string Box::region_allowed() {
 }
 
 /// The box less `margin` on every side.
-FillWindow Box::fill_window(double margin) const {
+FillWindow Box::fill_window(double margin, double) const {
     return {{m_x_low + margin, m_x_high - margin, m_y_low + margin, m_y_high - margin}};
 }
 

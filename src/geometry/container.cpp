@@ -51,8 +51,12 @@ double Container::fill_height(double solid, double e0) const {
     return ask(m_shape, [&](const auto& s) { return s.fill_height(solid, e0); });
 }
 
-Vec3 Container::uniform_point(double radius, double u, double v) const {
-    return ask(m_shape, [&](const auto& s) { return s.uniform_point(radius, u, v); });
+Vec3 Container::uniform_point(double radius, double u, double v, double z) const {
+    return ask(m_shape, [&](const auto& s) { return s.uniform_point(radius, u, v, z); });
+}
+
+std::optional<double> Container::top() const {
+    return ask(m_shape, [](const auto& s) { return s.top(); });
 }
 
 std::vector<std::pair<double, double>> Container::search_lines() const {
@@ -103,8 +107,8 @@ std::string Container::region_allowed() const {
     return ask(m_shape, [](const auto& s) { return s.region_allowed(); });
 }
 
-FillWindow Container::fill_window(double margin) const {
-    return ask(m_shape, [&](const auto& s) { return s.fill_window(margin); });
+FillWindow Container::fill_window(double margin, double height) const {
+    return ask(m_shape, [&](const auto& s) { return s.fill_window(margin, height); });
 }
 
 LammpsSide Container::lammps_side(std::span<const double> diameters, double setback) const {
@@ -139,20 +143,20 @@ std::pair<double, double> Container::wall_distances(const Vec3& c, double r) con
     return ask(m_shape, [&](const auto& s) { return s.wall_distances(c, r); });
 }
 
-double Container::depth() const {
-    return ask(m_shape, [](const auto& s) { return s.depth(); });
+double Container::depth(double z_low, double z_high) const {
+    return ask(m_shape, [&](const auto& s) { return s.depth(z_low, z_high); });
 }
 
 std::vector<WallPlane> Container::walls_within(const Vec3& c, double r, double gap) const {
     return ask(m_shape, [&](const auto& s) { return s.walls_within(c, r, gap); });
 }
 
-double Container::cross_section_area() const {
-    return ask(m_shape, [](const auto& s) { return s.cross_section_area(); });
+double Container::cross_section_area(double z_low, double z_high) const {
+    return ask(m_shape, [&](const auto& s) { return s.cross_section_area(z_low, z_high); });
 }
 
-double Container::shell_area(double d_low, double d_high) const {
-    return ask(m_shape, [&](const auto& s) { return s.shell_area(d_low, d_high); });
+double Container::shell_area(double d_low, double d_high, double z_low, double z_high) const {
+    return ask(m_shape, [&](const auto& s) { return s.shell_area(d_low, d_high, z_low, z_high); });
 }
 
 Container Container::shrunk(double d) const {
@@ -196,8 +200,11 @@ Container Container::shrunk_from(std::size_t wall, double d) const {
     return ask(m_shape, [&](const auto& s) { return Container(s.shrunk_from(wall, d)); });
 }
 
-double Container::shell_area_from(std::size_t wall, double d_low, double d_high) const {
-    return ask(m_shape, [&](const auto& s) { return s.shell_area_from(wall, d_low, d_high); });
+double Container::shell_area_from(std::size_t wall, double d_low, double d_high, double z_low,
+                                  double z_high) const {
+    return ask(m_shape, [&](const auto& s) {
+        return s.shell_area_from(wall, d_low, d_high, z_low, z_high);
+    });
 }
 
 std::size_t Container::nearest_wall(const Vec3& p) const {
@@ -267,6 +274,28 @@ std::string allowed_containers(std::span<const std::string_view> shapes) {
     const std::vector<std::string> forms =
         allowed_of(static_cast<const Container::Shape*>(nullptr), shapes);
     return fmt::format("{}", fmt::join(forms, "; or "));
+}
+
+std::string hydraulic_formulas() {
+    std::vector<std::string> with, none;
+    for (const auto& [kind, formula] :
+         detail::hydraulic_formulas_of(static_cast<const Container::Shape*>(nullptr))) {
+        if (formula.empty())
+            none.emplace_back(kind);
+        else
+            with.push_back(fmt::format("{} {}", kind, formula));
+    }
+    return fmt::format("{}; none in {}", fmt::join(with, ", "), fmt::join(none, ", "));
+}
+
+std::string forms_but(std::string_view kind) {
+    std::vector<std::string_view> forms;
+    for (std::size_t k = 0; k < all_shapes.size(); ++k)
+        if (all_shapes[k] != kind)
+            forms.push_back(all_forms[k]);
+    if (forms.size() < 2)
+        return fmt::format("{}", fmt::join(forms, ""));
+    return fmt::format("{} or {}", fmt::join(forms.begin(), forms.end() - 1, ", "), forms.back());
 }
 
 std::string container_not_allowed(std::string_view option, std::string_view spec) {

@@ -58,7 +58,7 @@ std::optional<Periods> Cylinder::periods() const {
 }
 
 HydraulicDiameter Cylinder::hydraulic_diameter() const {
-    return {2.0 * m_radius, "D"};
+    return {2.0 * m_radius, hydraulic_formula};
 }
 
 BoxMargin Cylinder::box_margin() const {
@@ -80,10 +80,12 @@ double Cylinder::fill_height(double solid, double e0) const {
 }
 
 /// Section 3.1: r = (Rt - r_i) u^(1/2), theta = 2 pi v.
-Vec3 Cylinder::uniform_point(double radius, double u, double v) const {
-    const double r = (m_radius - radius) * std::sqrt(u);
-    const double theta = 2.0 * std::numbers::pi * v;
-    return {r * std::cos(theta), r * std::sin(theta), 0.0};
+Vec3 Cylinder::uniform_point(double radius, double u, double v, double z) const {
+    return detail::disk_point(m_radius - radius, u, v, z);
+}
+
+std::optional<double> Cylinder::top() const {
+    return std::nullopt;
 }
 
 std::vector<std::pair<double, double>> Cylinder::search_lines() const {
@@ -131,44 +133,8 @@ Cylinder Cylinder::scaled(double factor) const {
 }
 
 std::vector<Solid> Cylinder::solids(double z_low, double z_high, double edge) const {
-    // A prism circumscribed about the cylinder: its faces are tangent to the cylinder from
-    // outside, with sides about `edge` long.
-    // The wall in rows about as tall as a side is wide, every other row turned by half a
-    // side, so that no two triangles are coplanar (the bottom and top are fans from the
-    // axis). Each wall triangle projects onto the plane between a chord at distance Rt from
-    // the axis and the circle through the corners: the wall stays outside the cylinder.
     const detail::PrismGrid grid(m_radius, z_low, z_high, edge);
-    const int rows = grid.rows;
-    const auto s = static_cast<std::uint32_t>(grid.sides);
-    auto ring_point = [&](int row, std::uint32_t k) { return grid.point(grid.corner, row, k); };
-    Solid wall{"wall", {}}, bottom{"bottom", {}}, top{"top", {}};
-    for (int row = 0; row <= rows; ++row)
-        for (std::uint32_t k = 0; k < s; ++k)
-            wall.mesh.vertices.push_back(ring_point(row, k));
-    for (std::uint32_t k = 0; k < s; ++k) {
-        bottom.mesh.vertices.push_back(ring_point(0, k));
-        top.mesh.vertices.push_back(ring_point(rows, k));
-    }
-    bottom.mesh.vertices.push_back({0.0, 0.0, z_low});
-    top.mesh.vertices.push_back({0.0, 0.0, z_high});
-    for (std::uint32_t row = 0; row < static_cast<std::uint32_t>(rows); ++row)
-        for (std::uint32_t k = 0; k < s; ++k) {
-            // The upper vertex between lower k and k + 1, and the next one.
-            const std::uint32_t j = (k + row % 2) % s, j1 = (j + 1) % s;
-            const std::uint32_t a = row * s + k, b = row * s + (k + 1) % s;
-            wall.mesh.triangles.push_back({a, b, (row + 1) * s + j});
-            wall.mesh.triangles.push_back({(row + 1) * s + j, b, (row + 1) * s + j1});
-        }
-    for (std::uint32_t k = 0; k < s; ++k) {
-        const std::uint32_t k1 = (k + 1) % s;
-        bottom.mesh.triangles.push_back({s, k1, k});
-        top.mesh.triangles.push_back({s, k, k1});
-    }
-    std::vector<Solid> solids;
-    solids.push_back(std::move(wall));
-    solids.push_back(std::move(bottom));
-    solids.push_back(std::move(top));
-    return solids;
+    return detail::tube_solids(grid, [&](int) { return grid.corner; });
 }
 
 DemSettleWall Cylinder::settle_wall(double height, std::string_view contact) const {
@@ -222,7 +188,7 @@ std::string Cylinder::region_allowed() {
 }
 
 /// The centres within Rt - margin of the axis.
-FillWindow Cylinder::fill_window(double margin) const {
+FillWindow Cylinder::fill_window(double margin, double) const {
     const double reach = m_radius - margin;
     return {{-reach, reach, -reach, reach}, reach * reach, -1.0};
 }

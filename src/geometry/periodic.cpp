@@ -49,8 +49,12 @@ double Periodic::fill_height(double solid, double e0) const {
 }
 
 /// Anywhere in the cell.
-Vec3 Periodic::uniform_point(double, double u, double v) const {
-    return {lx() * u, ly() * v, 0.0};
+Vec3 Periodic::uniform_point(double, double u, double v, double z) const {
+    return {lx() * u, ly() * v, z};
+}
+
+std::optional<double> Periodic::top() const {
+    return std::nullopt;
 }
 
 std::vector<std::pair<double, double>> Periodic::search_lines() const {
@@ -172,7 +176,7 @@ std::string Periodic::region_allowed() {
 }
 
 /// The whole cell: a centre outside it is moved in by whole periods.
-FillWindow Periodic::fill_window(double) const {
+FillWindow Periodic::fill_window(double, double) const {
     return {bounds()};
 }
 

@@ -59,12 +59,20 @@ inline std::vector<std::pair<double, double>> lines_in(const Rectangle& b) {
     return lines;
 }
 
-/// A point at distance sqrt(a^2 + (b^2 - a^2) u) from the axis and angle 2 pi v: uniform
-/// over the ring between the radii a and b (section 3.1 of the paper for a = 0).
-inline Vec3 ring_point(double a, double b, double u, double v) {
+/// A point at distance sqrt(a^2 + (b^2 - a^2) u) from the axis and angle 2 pi v, at height
+/// z: uniform over the ring between the radii a and b.
+inline Vec3 ring_point(double a, double b, double u, double v, double z) {
     const double r = std::sqrt(a * a + (b * b - a * a) * u);
     const double theta = 2.0 * std::numbers::pi * v;
-    return {r * std::cos(theta), r * std::sin(theta), 0.0};
+    return {r * std::cos(theta), r * std::sin(theta), z};
+}
+
+/// Section 3.1 of the paper: a point at distance reach u^(1/2) from the axis and angle 2 pi
+/// v, at height z: uniform over the disk of radius `reach`.
+inline Vec3 disk_point(double reach, double u, double v, double z) {
+    const double r = reach * std::sqrt(u);
+    const double theta = 2.0 * std::numbers::pi * v;
+    return {r * std::cos(theta), r * std::sin(theta), z};
 }
 
 /// A prism's summary: {shape, size [LX, LY], spec}.
@@ -116,10 +124,69 @@ struct PrismGrid {
     /// half a side.
     Vec3 point(double radius, int row, std::uint32_t k) const {
         const double angle = 2.0 * std::numbers::pi * (k + 0.5 * (row % 2)) / sides;
-        return Vec3{radius * std::cos(angle), radius * std::sin(angle),
-                    row == rows ? z_high : z_low + (z_high - z_low) * row / rows};
+        return Vec3{radius * std::cos(angle), radius * std::sin(angle), height(row)};
+    }
+    /// The height of ring `row`.
+    double height(int row) const {
+        return row == rows ? z_high : z_low + (z_high - z_low) * row / rows;
     }
 };
+
+/// The wall through the rings of `grid`, ring `row` at the distance corner(row) from the axis,
+/// its normals away from the axis (`outward`) or towards it. The wall in rows about as tall as
+/// a side is wide, every other row turned by half a side, so that no two triangles are
+/// coplanar; vertex k of ring `row` is vertex row * sides + k.
+template <class Corner>
+TriangleMesh ring_wall(const PrismGrid& grid, Corner&& corner, bool outward) {
+    const int rows = grid.rows;
+    const auto s = static_cast<std::uint32_t>(grid.sides);
+    TriangleMesh mesh;
+    for (int row = 0; row <= rows; ++row)
+        for (std::uint32_t k = 0; k < s; ++k)
+            mesh.vertices.push_back(grid.point(corner(row), row, k));
+    for (std::uint32_t row = 0; row < static_cast<std::uint32_t>(rows); ++row)
+        for (std::uint32_t k = 0; k < s; ++k) {
+            // The upper vertex between lower k and k + 1, and the next one.
+            const std::uint32_t j = (k + row % 2) % s, j1 = (j + 1) % s;
+            const std::uint32_t a = row * s + k, b = row * s + (k + 1) % s;
+            const std::uint32_t up = (row + 1) * s + j, up1 = (row + 1) * s + j1;
+            if (outward) {
+                mesh.triangles.push_back({a, b, up});
+                mesh.triangles.push_back({up, b, up1});
+            } else {
+                mesh.triangles.push_back({a, up, b});
+                mesh.triangles.push_back({up, up1, b});
+            }
+        }
+    return mesh;
+}
+
+/// A tube's "wall", "bottom" and "top" on the rings of `grid` (ring_wall, outward): a prism
+/// circumscribed about a cylinder (corner the grid's), or about a cone (R(z) / cos(pi / sides)
+/// at each ring's height); the bottom and top are fans from the axis. Each wall triangle's
+/// points at a height lie on a chord at least R(z) from the axis (the chord between the two
+/// rows' corners has its middle at (1 - t) R_row + t R_next / cos(pi / sides) >= R(z)): the
+/// wall stays outside the tube.
+template <class Corner> std::vector<Solid> tube_solids(const PrismGrid& grid, Corner&& corner) {
+    const auto s = static_cast<std::uint32_t>(grid.sides);
+    Solid wall{"wall", ring_wall(grid, corner, true)}, bottom{"bottom", {}}, top{"top", {}};
+    for (std::uint32_t k = 0; k < s; ++k) {
+        bottom.mesh.vertices.push_back(grid.point(corner(0), 0, k));
+        top.mesh.vertices.push_back(grid.point(corner(grid.rows), grid.rows, k));
+    }
+    bottom.mesh.vertices.push_back({0.0, 0.0, grid.z_low});
+    top.mesh.vertices.push_back({0.0, 0.0, grid.z_high});
+    for (std::uint32_t k = 0; k < s; ++k) {
+        const std::uint32_t k1 = (k + 1) % s;
+        bottom.mesh.triangles.push_back({s, k1, k});
+        top.mesh.triangles.push_back({s, k, k1});
+    }
+    std::vector<Solid> solids;
+    solids.push_back(std::move(wall));
+    solids.push_back(std::move(bottom));
+    solids.push_back(std::move(top));
+    return solids;
+}
 
 /// The LAMMPS wall fix on region `region`, with the contact model's words.
 inline std::string region_wall(std::string_view fix, std::string_view contact,

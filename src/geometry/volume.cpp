@@ -4,6 +4,7 @@
 #include <array>
 #include <cmath>
 #include <numbers>
+#include <span>
 #include <vector>
 
 #include <boost/math/quadrature/gauss.hpp>
@@ -102,6 +103,44 @@ Slice classify(double s, double rho, double cylinder_radius) {
     return Slice::lens;
 }
 
+/// The volume of a sphere of radius `radius` (its slices' radii slice_radius(t), t the height
+/// from its centre) inside a wall of revolution (its radius wall_radius(t)) whose axis is rho
+/// from the centre, over the pieces between the sorted heights `cuts`, in each of which the
+/// slice keeps one regime: inside the wall (spherical segments), outside, covering the wall's
+/// disk (covers(t1, t2): the wall's own volume) or a lens (lens_integral).
+template <class SliceRadius, class WallRadius, class Covers>
+double volume_over_pieces(std::span<double> cuts, double radius, double rho,
+                          SliceRadius slice_radius, WallRadius wall_radius, Covers covers) {
+    for (std::size_t i = 1; i < cuts.size(); ++i) // insertion sort of at most 8 values
+        for (std::size_t j = i; j > 0 && cuts[j] < cuts[j - 1]; --j)
+            std::swap(cuts[j], cuts[j - 1]);
+    double volume = 0.0;
+    for (std::size_t k = 0; k + 1 < cuts.size(); ++k) {
+        const double t1 = cuts[k], t2 = cuts[k + 1];
+        if (t2 <= t1)
+            continue;
+        const double mid = 0.5 * (t1 + t2);
+        switch (classify(slice_radius(mid), rho, wall_radius(mid))) {
+        case Slice::inside:
+            volume += segment_volume(radius, t1, t2);
+            break;
+        case Slice::outside:
+            break;
+        case Slice::covers:
+            volume += covers(t1, t2);
+            break;
+        case Slice::lens:
+            volume += lens_integral(
+                [&](double t) {
+                    return disk_intersection_area(slice_radius(t), wall_radius(t), rho);
+                },
+                t1, t2);
+            break;
+        }
+    }
+    return volume;
+}
+
 } // namespace
 
 double disk_intersection_area(double r1, double r2, double distance) {
@@ -160,34 +199,73 @@ double sphere_volume_in_cylinder_slab(const Vec3& center, double radius, double 
                 cuts[ncuts++] = c;
     }
     cuts[ncuts++] = t_high;
-    for (std::size_t i = 1; i < ncuts; ++i) // insertion sort of at most 7 values
-        for (std::size_t j = i; j > 0 && cuts[j] < cuts[j - 1]; --j)
-            std::swap(cuts[j], cuts[j - 1]);
+    return volume_over_pieces(
+        std::span(cuts.data(), ncuts), radius, rho, slice_radius,
+        [&](double) { return cylinder_radius; },
+        [&](double t1, double t2) { return pi * cylinder_radius * cylinder_radius * (t2 - t1); });
+}
 
-    double volume = 0.0;
-    for (std::size_t k = 0; k + 1 < ncuts; ++k) {
-        const double t1 = cuts[k], t2 = cuts[k + 1];
-        if (t2 <= t1)
-            continue;
-        switch (classify(slice_radius(0.5 * (t1 + t2)), rho, cylinder_radius)) {
-        case Slice::inside:
-            volume += segment_volume(radius, t1, t2);
-            break;
-        case Slice::outside:
-            break;
-        case Slice::covers:
-            volume += pi * cylinder_radius * cylinder_radius * (t2 - t1);
-            break;
-        case Slice::lens:
-            volume += lens_integral(
-                [&](double t) {
-                    return disk_intersection_area(slice_radius(t), cylinder_radius, rho);
-                },
-                t1, t2);
-            break;
-        }
+double frustum_volume(double rb, double slope, double z_low, double z_high) {
+    if (!(z_high > z_low))
+        return 0.0;
+    // Only the heights where R(z) >= 0: cut at the apex z = -Rb / k.
+    if (slope != 0.0) {
+        const double apex = -rb / slope;
+        if (slope > 0.0)
+            z_low = std::max(z_low, apex);
+        else
+            z_high = std::min(z_high, apex);
+    } else if (rb < 0.0) {
+        return 0.0;
     }
-    return volume;
+    if (!(z_high > z_low))
+        return 0.0;
+    const double r1 = std::max(rb + slope * z_low, 0.0), r2 = std::max(rb + slope * z_high, 0.0);
+    return pi / 3.0 * (z_high - z_low) * (r1 * r1 + r1 * r2 + r2 * r2);
+}
+
+double sphere_volume_in_cone_slab(const Vec3& center, double radius, double rb, double slope,
+                                  double z_low, double z_high) {
+    // Work in t = z - center.z, as for the cylinder; the wall's radius at t is
+    // R(t) = Rc + k t, Rc = R(center.z), and none (0) beyond the apex.
+    const double t_low = std::max(z_low - center.z, -radius);
+    const double t_high = std::min(z_high - center.z, radius);
+    if (!(t_low < t_high))
+        return 0.0;
+    const double rho = std::hypot(center.x, center.y);
+    const double rc = rb + slope * center.z;
+    auto wall_radius = [&](double t) { return std::max(rc + slope * t, 0.0); };
+    auto slice_radius = [&](double t) { return std::sqrt(std::max(radius * radius - t * t, 0.0)); };
+
+    // Break [t_low, t_high] where the slice changes regime, s(t) = |rho - R(t)| and
+    // s(t) = rho + R(t): with s^2 = r^2 - t^2 and R linear, each is the quadratic
+    // (1 + B^2) t^2 + 2 A B t + A^2 - r^2 = 0 (A = rho -+ Rc, B = -+k). Also at the equator
+    // (the densest nodes where the slice is largest) and at the apex, where R(t) has its kink.
+    std::array<double, 8> cuts{};
+    std::size_t ncuts = 0;
+    cuts[ncuts++] = t_low;
+    auto cut = [&](double t) {
+        if (t > t_low && t < t_high)
+            cuts[ncuts++] = t;
+    };
+    cut(0.0);
+    if (slope != 0.0)
+        cut(-rc / slope);
+    for (const auto& [a, b] : {std::pair{rho - rc, -slope}, std::pair{rho + rc, slope}}) {
+        const double q = 1.0 + b * b;
+        const double disc = radius * radius * q - a * a;
+        if (disc <= 0.0)
+            continue;
+        const double root = std::sqrt(disc);
+        cut((-a * b - root) / q);
+        cut((-a * b + root) / q);
+    }
+    cuts[ncuts++] = t_high;
+    return volume_over_pieces(std::span(cuts.data(), ncuts), radius, rho, slice_radius, wall_radius,
+                              [&](double t1, double t2) {
+                                  // the wall's disk inside the slice: the frustum itself
+                                  return frustum_volume(rc, slope, t1, t2);
+                              });
 }
 
 namespace {
@@ -241,7 +319,7 @@ double void_fraction(const Packing& packing, const Container& container, double 
     double solid = 0.0;
     for (std::size_t i = 0; i < packing.size(); ++i)
         solid += container.sphere_volume(packing.centers[i], packing.radii[i], z_low, z_high);
-    return 1.0 - solid / (container.cross_section_area() * (z_high - z_low));
+    return 1.0 - solid / (container.cross_section_area(z_low, z_high) * (z_high - z_low));
 }
 
 double bed_top(const Packing& packing) {

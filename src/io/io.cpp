@@ -114,12 +114,12 @@ namespace {
 /// cell, which has no wall and so no depth: an area > 0).
 void require_container(const Container& container) {
     const Rectangle b = container.bounds();
-    const bool sized =
-        container.periods() ? container.cross_section_area() > 0.0 : container.depth() > 0.0;
+    const bool sized = container.periods() ? container.cross_section_area(0.0, 0.0) > 0.0
+                                           : container.depth(0.0, 0.0) > 0.0;
     if (!(std::isfinite(b.x_low) && std::isfinite(b.x_high) && std::isfinite(b.y_low) &&
           std::isfinite(b.y_high) && sized))
-        throw InvalidInput(fmt::format("the container {} is not allowed; allowed: a cylinder, a "
-                                       "box, an annulus or a periodic cell of finite size > 0",
+        throw InvalidInput(fmt::format("the container {} is not allowed; allowed: a container "
+                                       "of finite size > 0",
                                        container.spec()));
 }
 

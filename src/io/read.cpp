@@ -1118,6 +1118,22 @@ BedSummary read_bed_summary(std::istream& input, std::string_view name) {
         else
             out.container = Periodic(widths[0], widths[1]);
     }
+    // Any other shape (a cone): container {shape, spec}, its spec's numbers the shortest text
+    // of each (Container::spec), so they read back to the bit.
+    if (!out.container && shape.is_string()) {
+        const auto spec = c->find("spec");
+        const std::optional<Container> parsed = spec != c->end() && spec->is_string()
+                                                    ? parse_container(spec->get<std::string>())
+                                                    : std::nullopt;
+        if (!parsed || parsed->name() != shape.get<std::string>())
+            throw InvalidInput(fmt::format(
+                "{}: container {{shape: {}}} with spec = {} is not allowed; allowed: a spec of "
+                "that shape, {}",
+                shown, json_excerpt(shape, 40),
+                spec != c->end() ? json_excerpt(*spec, 80) : "missing",
+                allowed_containers(all_shapes)));
+        out.container = *parsed;
+    }
     if (json.contains("lattice")) {
         out.porosity = number(json["lattice"], "porosity", "lattice.porosity", 1.0);
         const auto type = json.find("type");

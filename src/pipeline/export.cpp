@@ -125,10 +125,10 @@ std::string surface_export(const ExportRequest& o, ExportFormat format, const Pa
     const std::optional<SurfaceContainer> container = bed_container(o, packing, lines);
     if (container && container->container.periods() && format != ExportFormat::openfoam)
         throw InvalidInput(fmt::format(
-            "--container {} is not allowed with --format {}; allowed: cylinder:D, box:LX,LY or "
-            "annulus:D,DI (a periodic cell has no closed surface: it is exported as an openfoam "
-            "case with cyclic sides, or by lammps-data and liggghts-data)",
-            container->container.spec(), o.format));
+            "--container {} is not allowed with --format {}; allowed: {} (a periodic cell has no "
+            "closed surface: it is exported as an openfoam case with cyclic sides, or by "
+            "lammps-data and liggghts-data)",
+            container->container.spec(), o.format, forms_but(container->container.name())));
     SurfaceOptions options;
     double largest = 0.0;
     for (const double r : packing.radii)
@@ -390,8 +390,7 @@ std::string data_export(const ExportRequest& o, ExportFormat format, const Packi
         settle.density = o.density;
         // The container's side (every solid but the floor and the top: an annulus' tube and
         // rod in one) and floor as LIGGGHTS walls, triangles about 1 Dp wide.
-        const std::vector<Solid> solids =
-            container->container.solids(0.0, container->height, dp);
+        const std::vector<Solid> solids = container->container.solids(0.0, container->height, dp);
         Solid side{"wall", {}}, bottom{"bottom", {}};
         for (const Solid& solid : solids)
             if (solid.name == "bottom")

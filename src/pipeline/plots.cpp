@@ -72,7 +72,7 @@ std::string stage_plots(OutputDirectory& out, const BedAnalysis& a, const Contai
     // (for one size: a mixture's profile is not what they describe).
     const std::optional<double> tube = a.by_size.empty() ? container.tube_diameter() : std::nullopt;
     const double aspect_ratio = tube ? *tube / dp : 0.0;
-    const double x_max = container.depth() / dp;
+    const double x_max = container.depth(a.band.z_low, a.band.z_high) / dp;
     // Profiles against the distance from the wall, z and the centre distance, all over Dp.
     // A container of one wall draws "this bed"; an annulus a curve per wall; a periodic cell
     // has no wall plots.
@@ -158,7 +158,8 @@ std::string stage_plots(OutputDirectory& out, const BedAnalysis& a, const Contai
             for (const SizeClassAnalysis& c : a.by_size) {
                 double centres = 0.0, area = 0.0;
                 for (std::size_t j = k; j < end; ++j) {
-                    const double shell = container.shell_area(bins[j].low, bins[j].high);
+                    const double shell = container.shell_area(bins[j].low, bins[j].high,
+                                                              a.band.z_low, a.band.z_high);
                     centres += c.centre_distribution[j].value * shell;
                     area += shell;
                 }

@@ -95,6 +95,25 @@ def test_analyze_gives_the_command_lines_numbers(bed, cli_bed, tmp_path):
     assert b.container == "cylinder:4"
 
 
+def test_a_cone_gives_the_command_lines_bed_and_analysis(tmp_path):
+    # A hopper, cone:4,7,30: the module's bed is the command line's, byte for byte, and the
+    # bed read back from its files is measured in the same cone (summary.json's spec).
+    out = tmp_path / "cli"
+    status, _, err = cli("generate", "--container", "cone:4,7,30", "-n", 200, "-s", 3, "-q",
+                         "--out", out)
+    assert status == 0, err
+    bed = packbed.generate(container="cone:4,7,30", particles=200, seed=3)
+    assert bed.container == "cone:4,7,30"
+    bed.write(tmp_path / "py")
+    for name in ["particles.csv", "radial_void_fraction.csv"]:
+        assert (tmp_path / "py" / name).read_bytes() == (out / name).read_bytes(), name
+    back = packbed.read(str(out / "particles.csv"))
+    assert back.container == "cone:4,7,30"
+    a = packbed.analyze(back)
+    assert a.void_fraction == json.loads((out / "summary.json").read_text())["void_fraction"]
+    assert 0.34 < a.void_fraction < 0.47
+
+
 def test_a_lattice_in_a_box_has_its_exact_porosity():
     # 4 x 4 x 4 simple cubic cells of unit balls: 64 balls, porosity 1 - pi/6, 6 contacts each
     lattice = packbed.lattice(type="sc", region="box:4,4,4")

@@ -1,0 +1,264 @@
+#include "packbed/cone.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <limits>
+#include <numbers>
+
+#include <fmt/format.h>
+#include <nlohmann/json.hpp>
+
+#include "geometry/shape_text.hpp"
+#include "packbed/limits.hpp"
+#include "packbed/volume.hpp"
+
+namespace packbed {
+
+/// The wall's angle theta from the vertical from the slant height L = hypot(H, Rt - Rb):
+/// cos theta = H / L, sin theta = (Rt - Rb) / L (exactly 1 and 0 when Rb = Rt).
+Cone::Cone(double floor_radius, double top_radius, double height)
+    : Cone(floor_radius, top_radius, height, height / std::hypot(height, top_radius - floor_radius),
+           (top_radius - floor_radius) / std::hypot(height, top_radius - floor_radius)) {}
+
+Cone::Cone(double floor_radius, double top_radius, double height, double cos_theta,
+           double sin_theta)
+    : m_rb(floor_radius)
+    , m_rt(top_radius)
+    , m_h(height)
+    , m_slope((top_radius - floor_radius) / height)
+    , m_cos(cos_theta)
+    , m_sin(sin_theta)
+    , m_inv_cos(1.0 / cos_theta)
+    , m_reach(std::max(floor_radius, top_radius)) {}
+
+std::vector<WallPlane> Cone::walls_within(const Vec3& c, double r, double gap) const {
+    const double rho = std::hypot(c.x, c.y);
+    if (wall_distance(c) - r < gap && rho > 0.0)
+        return {WallPlane{{m_cos * c.x / rho, m_cos * c.y / rho, -m_sin}, m_cos * m_rb}};
+    return {};
+}
+
+double Cone::cross_section_area(double z_low, double z_high) const {
+    if (!(z_high > z_low)) {
+        const double r = std::max(radius_at(z_low), 0.0);
+        return std::numbers::pi * r * r;
+    }
+    return frustum_volume(m_rb, m_slope, z_low, z_high) / (z_high - z_low);
+}
+
+double Cone::shell_area(double d_low, double d_high, double z_low, double z_high) const {
+    return shrunk(d_low).cross_section_area(z_low, z_high) -
+           shrunk(d_high).cross_section_area(z_low, z_high);
+}
+
+/// The wall moved d along its normal: every radius d / cos theta smaller, the same slope.
+Cone Cone::shrunk(double d) const {
+    const double in = d / m_cos;
+    Cone c(m_rb - in, m_rt - in, m_h, m_cos, m_sin);
+    c.m_slope = m_slope;
+    return c;
+}
+
+double Cone::sphere_volume(const Vec3& c, double r, double z_low, double z_high) const {
+    return r > 0.0 ? sphere_volume_in_cone_slab(c, r, m_rb, m_slope, z_low, z_high) : 0.0;
+}
+
+std::string Cone::spec() const {
+    return fmt::format("cone:{},{},{}", 2.0 * m_rb, 2.0 * m_rt, m_h);
+}
+
+std::string Cone::describe() const {
+    return fmt::format("a cone ({})", spec());
+}
+
+std::optional<double> Cone::tube_diameter() const {
+    return std::nullopt;
+}
+
+std::optional<Periods> Cone::periods() const {
+    return std::nullopt;
+}
+
+HydraulicDiameter Cone::hydraulic_diameter() const {
+    return {std::nullopt, "is a cone, its cross-section changes with height"};
+}
+
+BoxMargin Cone::box_margin() const {
+    return {m_reach, "a hundredth of its widest radius", spec()};
+}
+
+std::string Cone::fit_problem(double largest) const {
+    const double low = 2.0 * std::min(m_rb, m_rt), high = 2.0 * m_reach;
+    if (!(low >= largest && high <= detail::widest))
+        return fmt::format("floor and top diameters from {:.6g} Dp (the largest sphere) to {:g} "
+                           "Dp",
+                           largest, detail::widest);
+    return {};
+}
+
+/// The height L where the frustum holds (pi / 6) solid / (1 - e0): the paper's eq. (6) when
+/// Rb = Rt (to the bit), else the root of V(L) = pi L (Rb^2 + Rb R(L) + R(L)^2) / 3 by
+/// bisection (V grows with L up to the apex; +infinity when even the cone up to its apex
+/// holds less).
+double Cone::fill_height(double solid, double e0) const {
+    if (m_slope == 0.0) {
+        const double a = 2.0 * m_rb;
+        return 2.0 / 3.0 * solid / (a * a * (1.0 - e0));
+    }
+    const double volume = std::numbers::pi / 6.0 * solid / (1.0 - e0);
+    double low = 0.0;
+    double high = m_slope > 0.0 ? volume / (std::numbers::pi * m_rb * m_rb) : -m_rb / m_slope;
+    if (frustum_volume(m_rb, m_slope, 0.0, high) < volume)
+        return std::numeric_limits<double>::infinity();
+    for (int k = 0; k < 200 && high - low > 1e-12 * high; ++k) {
+        const double mid = 0.5 * (low + high);
+        (frustum_volume(m_rb, m_slope, 0.0, mid) < volume ? low : high) = mid;
+    }
+    return high;
+}
+
+/// Section 3.1 of the paper over the disk at height z that a centre reaches: r = (R(z) - r_i /
+/// cos theta) u^(1/2), theta = 2 pi v.
+Vec3 Cone::uniform_point(double radius, double u, double v, double z) const {
+    return detail::disk_point(std::max(radius_at(z) - radius / m_cos, 0.0), u, v, z);
+}
+
+std::optional<double> Cone::top() const {
+    return m_h;
+}
+
+/// In the square of the narrower end: inside the cone at every height from the floor to H.
+std::vector<std::pair<double, double>> Cone::search_lines() const {
+    const double r = std::min(m_rb, m_rt);
+    return detail::lines_in({-r, r, -r, r});
+}
+
+nlohmann::json Cone::summary_json() const {
+    return {{"shape", "cone"},
+            {"floor_diameter", 2.0 * m_rb},
+            {"top_diameter", 2.0 * m_rt},
+            {"cone_height", m_h},
+            {"spec", spec()}};
+}
+
+nlohmann::ordered_json Cone::export_json(double height) const {
+    return {{"shape", "cone"},
+            {"floor_diameter", 2.0 * m_rb},
+            {"top_diameter", 2.0 * m_rt},
+            {"cone_height", m_h},
+            {"height", height}};
+}
+
+/// A cone region (LAMMPS `region cone`, its ends open) set back beyond the wall along its
+/// normal (every radius setback / cos theta larger), from 2 set-backs below the floor to
+/// twice H (or the set-back cone's apex, for a cone that narrows): LAMMPS stops a run where a
+/// sphere leaves the region, so it reaches beyond every sphere. The overlap of a sphere of
+/// radius v_r: v_r + cos theta (rho - R(z)).
+LammpsSide Cone::lammps_side(std::span<const double> diameters, double setback) const {
+    const double m = 2.0 * setback, out = setback / m_cos;
+    const double lo = -m;
+    const double hi = m_slope < 0.0 ? std::min(2.0 * m_h, -(m_rb + out) / m_slope) : 2.0 * m_h;
+    const double r_lo = m_rb + out + m_slope * lo, r_hi = std::max(m_rb + out + m_slope * hi, 0.0);
+    LammpsSide s;
+    const double r = m_reach + out + m;
+    s.box = {-r, r, -r, r};
+    s.walls = fmt::format("region tube cone z 0 0 {} {} {} {} side in open 1 open 2 units box\n",
+                          detail::num(r_lo), detail::num(r_hi), detail::num(lo), detail::num(hi));
+    s.walls += detail::per_type(diameters, setback, [](std::size_t t, double reach) {
+        return fmt::format("fix side{0} size{0} wall/region tube harmonic 0.5 1.0 {1}\n"
+                           "fix_modify side{0} energy yes\n",
+                           t, detail::num(reach));
+    });
+    s.overlaps.push_back(fmt::format("v_r+{}*(sqrt(x*x+y*y)-({}+({})*z))", detail::num(m_cos),
+                                     detail::num(m_rb), detail::num(m_slope)));
+    return s;
+}
+
+/// DB and DT in (0, 2 max_length], H in (0, max_length].
+std::optional<Cone> Cone::from_numbers(std::span<const double> v) {
+    if (v.size() != 3 || !detail::lengths_in(v.first(2), 2.0 * limits::max_length) ||
+        !detail::lengths_in(v.last(1), limits::max_length))
+        return std::nullopt;
+    return Cone(0.5 * v[0], 0.5 * v[1], v[2]);
+}
+
+std::string Cone::allowed() {
+    return fmt::format("cone:DB,DT,H, a frustum of floor diameter DB at z = 0 and diameter DT at "
+                       "z = H, DB and DT in (0, {:g}], H in (0, {:g}]",
+                       2.0 * limits::max_length, limits::max_length);
+}
+
+Cone Cone::scaled(double factor) const {
+    return Cone(m_rb * factor, m_rt * factor, m_h * factor);
+}
+
+/// The wall: a prism circumscribed about the cone, each ring about the circle at its height.
+std::vector<Solid> Cone::solids(double z_low, double z_high, double edge) const {
+    const double widest = std::max({radius_at(z_low), radius_at(z_high), 0.0});
+    const detail::PrismGrid grid(widest, z_low, z_high, edge);
+    const double outside = 1.0 / std::cos(std::numbers::pi / grid.sides);
+    return detail::tube_solids(
+        grid, [&](int row) { return std::max(radius_at(grid.height(row)), 0.0) * outside; });
+}
+
+DemSettleWall Cone::settle_wall(double height, std::string_view contact) const {
+    return {fmt::format("cone of floor radius\n# {:.9g} and radius {:.9g} at z = {:.9g} about "
+                        "the z axis, from the floor z = 0 to z = {:.9g},\n# and the data file's "
+                        "box holds it",
+                        m_rb, m_rt, m_h, height),
+            fmt::format("# The container: its side as a cone region (LAMMPS 2022 has no STL walls "
+                        "for\n# granular fixes; the LIGGGHTS input uses packbed's STL), its floor "
+                        "as the plane z = 0.\n"
+                        "region          container cone z 0 0 {} {} 0 {} side in open 1 open 2 "
+                        "units box\n",
+                        m_rb, std::max(radius_at(height), 0.0), height) +
+                detail::region_wall("side", contact, "container"),
+            "a prism about the cone"};
+}
+
+/// A box one cell beyond the cone's widest circle sideways, 0 to height in z; snappyHexMesh
+/// cuts the wall (wall.stl) out of it, as for a cylinder.
+OpenFoamBackground Cone::openfoam_background(double height, double cell,
+                                             const OpenFoamMeshOptions& options) const {
+    const double widest = std::max({radius_at(0.0), radius_at(height), 0.0});
+    OpenFoamBackground b;
+    b.block_mesh =
+        detail::box_about_tube(widest, fmt::format("the cone ({}", spec()), height, cell, options);
+    b.wall_surface = true;
+    b.where = describe();
+    b.surfaces = "; `wall.stl`: the cone's wall, open, reaching half a cell beyond both ends "
+                 "(patch `wall`)";
+    b.patches = ", `wall`; `outside` keeps no faces";
+    b.cells = detail::tube_cells(cell, options, "the wall");
+    return b;
+}
+
+std::vector<double> Cone::spec_numbers() const {
+    return {2.0 * m_rb, 2.0 * m_rt, m_h};
+}
+
+/// The frustum from the floor up to `height`.
+double Cone::prism_volume(double height) const {
+    return frustum_volume(m_rb, m_slope, 0.0, height);
+}
+
+nlohmann::json Cone::region_json(double height) const {
+    return {{"shape", "cone"},
+            {"floor_diameter", 2.0 * m_rb},
+            {"top_diameter", 2.0 * m_rt},
+            {"cone_height", m_h},
+            {"height", height}};
+}
+
+std::string Cone::region_allowed() {
+    return fmt::format("diameters and heights > 0 and at most {:g}", limits::max_length);
+}
+
+/// The square of the widest circle up to `height`, each centre kept by its distance from the
+/// wall.
+FillWindow Cone::fill_window(double, double height) const {
+    const double reach = std::max({radius_at(0.0), radius_at(height), 0.0});
+    return {{-reach, reach, -reach, reach}, reach * reach, -1.0, true};
+}
+
+} // namespace packbed
