@@ -1110,6 +1110,10 @@ INSTANTIATE_TEST_SUITE_P(
         exact("export two.csv --format lammps-data --container box:3,0.5 --out x.data",
               "packbed export: two.csv:2: the sphere centre (0, 0, 1) is outside the container "
               "(box:3,0.5, floor z = 0); allowed: centres inside it"),
+        exact("export two.csv --format stl --container cone:10,2,5 --container-height 20 --out "
+              "c.stl",
+              "packbed export: --container-height 20 is not allowed with --container cone:10,2,5: "
+              "the container has no cross-section there; allowed: a height where it has one"),
         exact("export two.csv --format openfoam --container box:0,2 --out c",
               "packbed: --container: 'box:0,2' is not allowed; allowed: cylinder:D, a tube of "
               "inner diameter D, a number in (0, 2e+15]; or box:LX,LY, walls at x = 0, LX and y = "

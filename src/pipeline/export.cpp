@@ -100,6 +100,12 @@ std::optional<SurfaceContainer> bed_container(const ExportRequest& o, const Pack
                             printable(o.source), i < lines.size() ? lines[i] : i + 1, c.x, c.y, c.z,
                             describe(given)));
     }
+    // A cone narrowing to its apex below the height would end in a point.
+    if (!(given.cross_section_area(height, height) > 0.0))
+        throw InvalidInput(fmt::format("--container-height {} is not allowed with --container {}: "
+                                       "the container has no cross-section there; allowed: a "
+                                       "height where it has one",
+                                       height, given.spec()));
     return SurfaceContainer{given, height};
 }
 
