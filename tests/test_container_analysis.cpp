@@ -357,9 +357,9 @@ TEST(ContainerSummary, AnnulusAndPeriodicRoundTrip) {
         read_bed_summary(bad, "s.json");
         FAIL() << "no exception";
     } catch (const InvalidInput& e) {
-        EXPECT_STREQ(e.what(), "s.json: container {shape: annulus} with radius = 1 and "
-                               "inner_radius = 2 is not allowed; allowed: two numbers with 0 < "
-                               "inner_radius < radius");
+        EXPECT_STREQ(e.what(), "s.json: container {\"inner_radius\":2,\"radius\":1,\"shape\":"
+                               "\"annulus\"} is not allowed; allowed: annulus: radius and "
+                               "inner_radius with 0 < inner_radius < radius <= 1e+15");
     }
 }
 

@@ -12,6 +12,9 @@
 
 #include <gtest/gtest.h>
 
+#include <nlohmann/json.hpp>
+
+#include "packbed/container.hpp"
 #include "packbed/error.hpp"
 #include "packbed/io.hpp"
 #include "packbed/read.hpp"
@@ -248,15 +251,28 @@ TEST(ReadBedSummary, ContainerAndPorosityOrARefusalNamingTheKey) {
     EXPECT_EQ(bed.porosity, 0.41);
     EXPECT_EQ(bed.porosity_source, "the overall void fraction");
     EXPECT_FALSE(bed.diameter);
-    EXPECT_FALSE(bed.box);
-    // A lattice in a box: its region, no container.
+    ASSERT_TRUE(bed.container);
+    EXPECT_EQ(bed.container->spec(), "cylinder:5");
+    // A lattice in a box: its region, no container record.
     const BedSummary boxed = read(R"({"region": {"shape": "box", "size": [4, 5, 6.5]}})");
-    ASSERT_TRUE(boxed.box);
-    EXPECT_EQ(*boxed.box, (std::array<double, 3>{4.0, 5.0, 6.5}));
+    ASSERT_TRUE(boxed.container);
+    EXPECT_EQ(boxed.container->spec(), "box:4,5");
     EXPECT_FALSE(boxed.container_radius);
     EXPECT_EQ(error(R"({"region": {"shape": "box", "size": [4, -5, 6]}})"),
-              "summary.json: region.size = [4,-5,6] is not allowed; allowed: three numbers in (0, "
-              "1e+15]");
+              "summary.json: region {\"shape\":\"box\",\"size\":[4,-5,6]} is not allowed; "
+              "allowed: box: size, two numbers in (0, 1e+15] (three in a lattice's region)");
+    // Every shape reads back what it records, to the bit; an unknown one is refused.
+    for (const char* spec :
+         {"cylinder:2.5", "box:3,4.5", "annulus:10,2", "periodic:6,6", "cone:6.1,14.3,40.7"}) {
+        const Container c = *parse_container(spec);
+        const nlohmann::json record = {{"container", c.summary_json()}};
+        const BedSummary back = read(record.dump());
+        ASSERT_TRUE(back.container) << spec;
+        EXPECT_EQ(back.container->spec_numbers(), c.spec_numbers()) << spec;
+    }
+    EXPECT_EQ(error(R"({"container": {"shape": "sphere", "radius": 2}})"),
+              "summary.json: container {\"radius\":2,\"shape\":\"sphere\"} is not allowed; "
+              "allowed: a shape of cylinder, box, annulus, periodic, cone");
     const BedSummary lattice =
         read(R"({"type": "diamond", "diameter": 0.002, "lattice": {"porosity": 0.66}})");
     EXPECT_EQ(lattice.diameter, 0.002);

@@ -217,6 +217,16 @@ private:
 /// is not one.
 std::optional<Container> parse_container(std::string_view text);
 
+/// A container as summary.json records it (its `container`, or a lattice's `region`) read
+/// back: the shape `record.shape` names reads its own lengths (from_record); a record with a
+/// radius and no shape is a cylinder. When it is not one, `container` is empty and `allowed`
+/// says what it must be.
+struct ContainerRecord {
+    std::optional<Container> container;
+    std::string allowed;
+};
+ContainerRecord container_from_record(const nlohmann::json& record);
+
 /// What --container allows, as both front ends word it (the command line's validator and
 /// --help, the library's InvalidInput, so the Python module's ValueError): each of `shapes`
 /// ("cylinder", "box", "annulus", "periodic", as all_shapes in container.hpp) as its SPEC,

@@ -129,13 +129,9 @@ std::vector<ParticleFile> read_particle_frames(std::istream& input, std::string_
 struct BedSummary {
     /// container.radius (length), when present (an annulus's: its outer radius)
     std::optional<double> container_radius;
-    /// the container: a cylinder of container.radius; an annulus (container {shape: annulus,
-    /// radius, inner_radius}); a box or a periodic cell (container {shape: box or periodic,
-    /// size: [LX, LY]}, x in [0, LX], y in [0, LY]); or the box of a lattice in a box
-    /// (region.size), when one is present
+    /// the container, when the summary records one (container_from_record of its `container`,
+    /// else of a lattice's `region`)
     std::optional<Container> container;
-    /// region.size of a lattice in a box, from 0 to L along each axis (length), when present
-    std::optional<std::array<double, 3>> box;
     std::optional<double> diameter; ///< the spheres' diameter (length), when present
     /// the bed has spheres of several sizes (a `sizes` record, packbed generate --sizes):
     /// `diameter` is their Sauter mean d32

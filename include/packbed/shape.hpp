@@ -164,10 +164,14 @@ struct FillWindow {
 /// The answers every shape gives beyond the questions above, declared once (`Container`
 /// documents each, and each shape's source file defines them) so that the shapes' headers do
 /// not repeat the list: the SPEC's numbers read (`from_numbers`: the shape, or nothing when the
-/// numbers are not one) and given back (`spec_numbers`), what --container and --region allow,
+/// numbers are not one) and given back (`spec_numbers`), read back from summary.json
+/// (`from_record`: the shape's summary_json or region_json, nothing when its lengths are not
+/// one; `record_allowed`: what they must be), what --container and --region allow,
 /// scaling, and what generation, analysis and export ask. `S` is the shape's class.
 #define PACKBED_SHAPE_ANSWERS(S)                                                                   \
     static std::optional<S> from_numbers(std::span<const double> numbers);                         \
+    static std::optional<S> from_record(const nlohmann::json& record);                             \
+    static std::string record_allowed();                                                           \
     static std::string allowed();                                                                  \
     static std::string region_allowed();                                                           \
     std::vector<double> spec_numbers() const;                                                      \

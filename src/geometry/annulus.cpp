@@ -168,6 +168,21 @@ LammpsSide Annulus::lammps_side(std::span<const double> diameters, double setbac
     return s;
 }
 
+/// {radius, inner_radius} (summary.json) or {diameter, inner_diameter} (a lattice's region),
+/// 0 < inner_radius < radius <= max_length.
+std::optional<Annulus> Annulus::from_record(const nlohmann::json& record) {
+    const double r = detail::record_radius(record, "radius", "diameter");
+    const double ri = detail::record_radius(record, "inner_radius", "inner_diameter");
+    if (!(ri > 0.0 && ri < r && r <= limits::max_length))
+        return std::nullopt;
+    return Annulus(r, ri);
+}
+
+std::string Annulus::record_allowed() {
+    return fmt::format("radius and inner_radius with 0 < inner_radius < radius <= {:g}",
+                       limits::max_length);
+}
+
 /// 0 < DI < D <= 2 max_length.
 std::optional<Annulus> Annulus::from_numbers(std::span<const double> v) {
     if (v.size() != 2 || !detail::lengths_in(v, 2.0 * limits::max_length) || !(v[1] < v[0]))

@@ -131,6 +131,19 @@ std::optional<Box> Box::from_numbers(std::span<const double> v) {
     return Box(v[0], v[1]);
 }
 
+/// {size: [LX, LY]} (summary.json, from 0 to LX and LY) or a lattice region's [LX, LY, LZ].
+std::optional<Box> Box::from_record(const nlohmann::json& record) {
+    const auto [lx, ly] = detail::record_widths(record, limits::max_length);
+    if (std::isnan(lx))
+        return std::nullopt;
+    return Box(lx, ly);
+}
+
+std::string Box::record_allowed() {
+    return fmt::format("size, two numbers in (0, {:g}] (three in a lattice's region)",
+                       limits::max_length);
+}
+
 std::string Box::allowed() {
     return fmt::format("box:LX,LY, walls at x = 0, LX and y = 0, LY, each in (0, {:g}]",
                        limits::max_length);

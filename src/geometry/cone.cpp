@@ -182,6 +182,19 @@ std::optional<Cone> Cone::from_numbers(std::span<const double> v) {
     return Cone(0.5 * v[0], 0.5 * v[1], v[2]);
 }
 
+/// {floor_diameter, top_diameter, cone_height} (summary.json and a lattice's region), as
+/// from_numbers takes them.
+std::optional<Cone> Cone::from_record(const nlohmann::json& record) {
+    const std::array<double, 3> numbers{detail::record_number(record, "floor_diameter"),
+                                        detail::record_number(record, "top_diameter"),
+                                        detail::record_number(record, "cone_height")};
+    return from_numbers(numbers);
+}
+
+std::string Cone::record_allowed() {
+    return "floor_diameter, top_diameter and cone_height as " + allowed();
+}
+
 std::string Cone::allowed() {
     return fmt::format("cone:DB,DT,H, a frustum of floor diameter DB at z = 0 and diameter DT at "
                        "z = H, DB and DT in (0, {:g}], H in (0, {:g}]",

@@ -240,6 +240,21 @@ std::optional<Container> parse_shape(std::string_view kind, std::span<const doub
     }
 }
 
+/// The record of the shape of kind `kind` among Container::Shape's alternatives from I on.
+template <std::size_t I = 0>
+ContainerRecord record_shape(std::string_view kind, const nlohmann::json& record) {
+    if constexpr (I == std::variant_size_v<Container::Shape>) {
+        return {std::nullopt, fmt::format("a shape of {}", fmt::join(all_shapes, ", "))};
+    } else {
+        using S = std::variant_alternative_t<I, Container::Shape>;
+        if (kind != S::kind)
+            return record_shape<I + 1>(kind, record);
+        if (const std::optional<S> shape = S::from_record(record))
+            return {Container(*shape), {}};
+        return {std::nullopt, fmt::format("{}: {}", S::kind, S::record_allowed())};
+    }
+}
+
 template <class... S>
 std::vector<std::string> allowed_of(const std::variant<S...>*,
                                     std::span<const std::string_view> shapes) {
@@ -262,6 +277,15 @@ std::optional<Container> parse_container(std::string_view text) {
     if (!numbers)
         return std::nullopt;
     return parse_shape(parts.kind, *numbers);
+}
+
+ContainerRecord container_from_record(const nlohmann::json& record) {
+    const auto shape = record.find("shape");
+    if (shape == record.end() && record.contains("radius"))
+        return record_shape(Cylinder::kind, record);
+    if (shape == record.end() || !shape->is_string())
+        return {std::nullopt, fmt::format("a shape of {}", fmt::join(all_shapes, ", "))};
+    return record_shape(shape->get<std::string>(), record);
 }
 
 std::string describe(const Container& container) {

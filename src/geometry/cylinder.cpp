@@ -123,6 +123,18 @@ std::optional<Cylinder> Cylinder::from_numbers(std::span<const double> v) {
     return Cylinder(0.5 * v[0]);
 }
 
+/// {radius} (summary.json), {diameter} (a lattice's region): the radius in (0, max_length].
+std::optional<Cylinder> Cylinder::from_record(const nlohmann::json& record) {
+    const double r = detail::record_radius(record, "radius", "diameter");
+    if (!(r > 0.0 && r <= limits::max_length))
+        return std::nullopt;
+    return Cylinder(r);
+}
+
+std::string Cylinder::record_allowed() {
+    return fmt::format("radius, a number in (0, {:g}]", limits::max_length);
+}
+
 std::string Cylinder::allowed() {
     return fmt::format("cylinder:D, a tube of inner diameter D, a number in (0, {:g}]",
                        2.0 * limits::max_length);

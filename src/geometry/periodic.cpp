@@ -83,6 +83,19 @@ std::optional<Periodic> Periodic::from_numbers(std::span<const double> v) {
     return Periodic(v[0], v[1]);
 }
 
+/// {size: [LX, LY]} (summary.json) or a lattice region's [LX, LY, LZ].
+std::optional<Periodic> Periodic::from_record(const nlohmann::json& record) {
+    const auto [lx, ly] = detail::record_widths(record, limits::max_length);
+    if (std::isnan(lx))
+        return std::nullopt;
+    return Periodic(lx, ly);
+}
+
+std::string Periodic::record_allowed() {
+    return fmt::format("size, two numbers in (0, {:g}] (three in a lattice's region)",
+                       limits::max_length);
+}
+
 std::string Periodic::allowed() {
     return fmt::format("periodic:LX,LY, a cell periodic in x and y, each in (0, {:g}]",
                        limits::max_length);

@@ -3,6 +3,7 @@
 #pragma once
 
 #include <algorithm>
+#include <array>
 #include <cmath>
 #include <cstdint>
 #include <numbers>
@@ -35,6 +36,35 @@ inline bool lengths_in(std::span<const double> v, double largest) {
 /// fraction e0: (pi / 6) solid / (A (1 - e0)).
 inline double prism_fill_height(double area, double solid, double e0) {
     return std::numbers::pi / 6.0 * solid / (area * (1.0 - e0));
+}
+
+/// record[key] when it is a number, else NaN (which every range check refuses).
+inline double record_number(const nlohmann::json& record, const char* key) {
+    const auto it = record.find(key);
+    return it != record.end() && it->is_number() ? it->get<double>() : std::nan("");
+}
+
+/// record[key] when it is a number, else record[half_of] / 2 (a diameter for a radius), else NaN.
+inline double record_radius(const nlohmann::json& record, const char* key, const char* half_of) {
+    const double r = record_number(record, key);
+    return std::isnan(r) ? 0.5 * record_number(record, half_of) : r;
+}
+
+/// The first two numbers of record.size (a prism's [LX, LY] or a lattice region's [LX, LY,
+/// LZ]; any third in (0, largest]), or NaN where they are not numbers in (0, largest].
+inline std::array<double, 2> record_widths(const nlohmann::json& record, double largest) {
+    std::array<double, 2> widths{std::nan(""), std::nan("")};
+    const auto size = record.find("size");
+    if (size == record.end() || !size->is_array() || size->size() < 2 || size->size() > 3)
+        return widths;
+    for (std::size_t k = 0; k < size->size(); ++k) {
+        const double v = (*size)[k].is_number() ? (*size)[k].get<double>() : std::nan("");
+        if (!(v > 0.0 && v <= largest))
+            return {std::nan(""), std::nan("")};
+        if (k < 2)
+            widths[k] = v;
+    }
+    return widths;
 }
 
 /// A box's or a periodic cell's fit: widths from `least` to `widest` Dp.

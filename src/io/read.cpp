@@ -1065,74 +1065,19 @@ BedSummary read_bed_summary(std::istream& input, std::string_view name) {
             number(json["container"], "radius", "container.radius", limits::max_length);
     out.diameter = number(json, "diameter", "diameter", limits::max_diameter);
     out.sauter_mean = json.contains("sizes") && json["sizes"].is_object();
-    // A lattice in a box records region {shape: box, size: [LX, LY, LZ]} and no container.
-    if (const auto region = json.find("region");
-        region != json.end() && region->is_object() &&
-        region->value("shape", nlohmann::json()) == "box") {
-        const auto size = region->find("size");
-        if (size != region->end() && size->is_array() && size->size() == 3) {
-            std::array<double, 3> box{};
-            for (std::size_t k = 0; k < 3; ++k) {
-                const auto& v = (*size)[k];
-                box[k] = v.is_number() ? v.get<double>() : std::nan("");
-                if (!(box[k] > 0.0 && box[k] <= limits::max_length))
-                    throw InvalidInput(fmt::format(
-                        "{}: region.size = {} is not allowed; allowed: three numbers in (0, {:g}]",
-                        shown, json_excerpt(*size, 80), limits::max_length));
-            }
-            out.box = box;
-            out.container = Box(box[0], box[1]);
-        }
-    }
-    const auto c = json.find("container");
-    const nlohmann::json shape =
-        c != json.end() && c->is_object() ? c->value("shape", nlohmann::json()) : nlohmann::json();
-    if (out.container_radius)
-        out.container = Cylinder(*out.container_radius);
-    // An annulus: container {shape: annulus, radius: R, inner_radius: Ri}, 0 < Ri < R.
-    if (shape == "annulus") {
-        const auto inner = number(*c, "inner_radius", "container.inner_radius", limits::max_length);
-        if (!out.container_radius || !inner || !(*inner < *out.container_radius))
-            throw InvalidInput(fmt::format(
-                "{}: container {{shape: annulus}} with radius = {} and inner_radius = {} is not "
-                "allowed; allowed: two numbers with 0 < inner_radius < radius",
-                shown, json_excerpt(c->value("radius", nlohmann::json()), 40),
-                json_excerpt(c->value("inner_radius", nlohmann::json()), 40)));
-        out.container = Annulus(*out.container_radius, *inner);
-    }
-    // A box or a periodic cell: container {shape: box or periodic, size: [LX, LY]} (from 0 to
-    // LX and LY).
-    if (shape == "box" || shape == "periodic") {
-        const auto size = c->find("size");
-        std::array<double, 2> widths{std::nan(""), std::nan("")};
-        if (size != c->end() && size->is_array() && size->size() == 2)
-            for (std::size_t k = 0; k < 2; ++k)
-                widths[k] = (*size)[k].is_number() ? (*size)[k].get<double>() : std::nan("");
-        if (!(widths[0] > 0.0 && widths[0] <= limits::max_length && widths[1] > 0.0 &&
-              widths[1] <= limits::max_length))
-            throw InvalidInput(fmt::format(
-                "{}: container.size = {} is not allowed; allowed: two numbers in (0, {:g}]", shown,
-                size != c->end() ? json_excerpt(*size, 80) : "missing", limits::max_length));
-        if (shape == "box")
-            out.container = Box(widths[0], widths[1]);
-        else
-            out.container = Periodic(widths[0], widths[1]);
-    }
-    // Any other shape (a cone): container {shape, spec}, its spec's numbers the shortest text
-    // of each (Container::spec), so they read back to the bit.
-    if (!out.container && shape.is_string()) {
-        const auto spec = c->find("spec");
-        const std::optional<Container> parsed = spec != c->end() && spec->is_string()
-                                                    ? parse_container(spec->get<std::string>())
-                                                    : std::nullopt;
-        if (!parsed || parsed->name() != shape.get<std::string>())
-            throw InvalidInput(fmt::format(
-                "{}: container {{shape: {}}} with spec = {} is not allowed; allowed: a spec of "
-                "that shape, {}",
-                shown, json_excerpt(shape, 40),
-                spec != c->end() ? json_excerpt(*spec, 80) : "missing",
-                allowed_containers(all_shapes)));
-        out.container = *parsed;
+    // The container, read back by its shape (Container::summary_json's record; a lattice
+    // without a container record: its region's, region_json).
+    for (const char* key : {"container", "region"}) {
+        const auto record = json.find(key);
+        if (record == json.end() || !record->is_object() ||
+            (!record->contains("shape") && !record->contains("radius")))
+            continue;
+        const ContainerRecord read = container_from_record(*record);
+        if (!read.container)
+            throw InvalidInput(fmt::format("{}: {} {} is not allowed; allowed: {}", shown, key,
+                                           json_excerpt(*record, 80), read.allowed));
+        out.container = read.container;
+        break;
     }
     if (json.contains("lattice")) {
         out.porosity = number(json["lattice"], "porosity", "lattice.porosity", 1.0);
