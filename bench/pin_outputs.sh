@@ -1,5 +1,5 @@
 #!/usr/bin/env bash
-# The bytes a refactor must keep: 53 commands (beds in every container, with sizes, lattices,
+# The bytes a refactor must keep: 62 commands (beds in every container, with sizes, lattices,
 # surfaces, OpenFOAM cases, data files, LAMMPS jobs, analyses, voxel images, hydraulics, help
 # texts and refusals) run by PACKBED into OUT, and the md5 of every output
 # (summary.json and other JSON without their timings and version). Run it with the binary
@@ -55,6 +55,16 @@ for c in generate lattice hydraulics export analyze correlations voxelize cfd-re
   $exe $c --help
 done > help.txt
 { $exe generate --container cone:1,2 || echo "exit $?"; } > unknown_shape.refused 2>&1
+# The cone: both solvers, its analysis, a lattice, its surfaces, case, data file and LAMMPS job.
+$exe generate --container cone:6,10,30 -n 400 -s 1 -q -o cone
+$exe generate --container cone:10,6,30 -n 300 -s 1 --solver paper -q -o conep
+$exe analyze cone/particles.csv --band 1,6 -q -o ancone
+$exe lattice --type diamond --region cone:8,12,20,6 -q -o latcone
+$exe export cone/particles.csv --format stl --contacts caps:0.01 -q -o cone.stl
+$exe export cone/particles.csv --format openfoam -q -o conefoam
+$exe export cone/particles.csv -q -o cone.data
+$exe generate --container cone:6,10,30 -n 200 -s 1 --engine lammps --write-only lmp_cone -q -o lco
+{ $exe generate --container cone:4,8,10 -n 400 || echo "exit $?"; } > cone_top.refused 2>&1
 for c in cylinder:0.05 box:0.05,0.04 annulus:0.05,0.01 periodic:0.05,0.05; do
   { $exe hydraulics --container $c -d 0.003 --porosity 0.4 || echo "exit $?"; } > "hyd_${c%%:*}.txt" 2>&1
 done

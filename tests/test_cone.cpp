@@ -345,13 +345,13 @@ TEST(Cone, SpecReadsBackToTheBitAndBadSpecsAreRefused) {
     for (const char* bad : {"cone:1,2", "cone:1,2,0", "cone:0,2,3", "cone:1,-2,3", "cone:1,2,3,4",
                             "cone:1,2,nan", "cone:1,2,2e15"})
         EXPECT_FALSE(parse_container(bad)) << bad;
-    // summary.json's container reads back as the same cone.
+    // summary.json's container reads back as the same cone; lengths that are not one are refused.
     nlohmann::json summary = {{"container", c->summary_json()}};
     std::istringstream in(summary.dump());
     const BedSummary s = read_bed_summary(in, "summary.json");
     ASSERT_TRUE(s.container);
     EXPECT_EQ(s.container->spec_numbers(), c->spec_numbers());
-    summary["container"]["spec"] = "cylinder:4";
+    summary["container"]["floor_diameter"] = -1.0;
     std::istringstream wrong(summary.dump());
     EXPECT_THROW(read_bed_summary(wrong, "summary.json"), InvalidInput);
 }

@@ -1,6 +1,6 @@
 // Containers: the walls a bed is packed against. `Container` is the one place the rest of the
 // library asks about a container; it holds one shape (cylinder.hpp, box.hpp, annulus.hpp,
-// periodic.hpp: shape.hpp says what each answers) and hands every question to it, one
+// periodic.hpp, cone.hpp: shape.hpp says what each answers) and hands every question to it, one
 // std::visit each, so that the compiler lists what a new shape must answer.
 #pragma once
 
@@ -41,9 +41,10 @@ public:
     /// The shape itself, for the container's own files and for tests.
     const Shape& shape() const { return m_shape; }
 
-    /// "cylinder", "box", "annulus" or "periodic".
+    /// The shape's kind: "cylinder", "box", "annulus", "periodic" or "cone".
     std::string_view name() const;
-    /// The --container form: "cylinder:D", "box:LX,LY", "annulus:D,DI", "periodic:LX,LY".
+    /// The --container form: "cylinder:D", "box:LX,LY", "annulus:D,DI", "periodic:LX,LY",
+    /// "cone:DB,DT,H".
     std::string spec() const;
     /// How a message names it ("a cylinder of radius 10", "a box (box:6,6)", the spec).
     std::string describe() const;
@@ -213,8 +214,8 @@ private:
 /// `from_numbers` takes (`cylinder:D`, a tube of inner diameter D about the z axis; `box:LX,LY`,
 /// four flat walls at x = 0, LX and y = 0, LY; `annulus:D,DI`, the space between the tube of
 /// diameter D and a coaxial rod of diameter DI < D; `periodic:LX,LY`, a cell periodic in x and
-/// y; every length in (0, limits::max_length], diameters up to twice that), or nothing when it
-/// is not one.
+/// y; `cone:DB,DT,H`, a frustum of floor diameter DB and diameter DT at z = H; every length in
+/// (0, limits::max_length], diameters up to twice that), or nothing when it is not one.
 std::optional<Container> parse_container(std::string_view text);
 
 /// A container as summary.json records it (its `container`, or a lattice's `region`) read
@@ -229,7 +230,7 @@ ContainerRecord container_from_record(const nlohmann::json& record);
 
 /// What --container allows, as both front ends word it (the command line's validator and
 /// --help, the library's InvalidInput, so the Python module's ValueError): each of `shapes`
-/// ("cylinder", "box", "annulus", "periodic", as all_shapes in container.hpp) as its SPEC,
+/// (kinds as all_shapes below has them) as its SPEC,
 /// what it is and its ranges, joined by "; or ".
 std::string allowed_containers(std::span<const std::string_view> shapes);
 /// The message for a --container SPEC that parse_container refuses, the command line's words:

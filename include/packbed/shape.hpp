@@ -1,6 +1,6 @@
 // What a container answers, the types of its answers: each shape (cylinder.hpp, box.hpp,
-// annulus.hpp, periodic.hpp) is a small class answering every question generation, analysis
-// and export ask of a container (the ContainerShape concept and the class comments);
+// annulus.hpp, periodic.hpp, cone.hpp) is a small class answering every question generation,
+// analysis and export ask of a container (the ContainerShape concept and the class comments);
 // `Container` (container.hpp) holds one and hands each question to it. voro++'s vocabulary:
 // contains(), the overlap of a sphere with the wall and the wall normal. Every container has a
 // rigid flat floor at z = 0 and an open top.

@@ -111,11 +111,18 @@ void SoftSphereParameters::check_top() const {
     const double height = initial_bed_height(*this) + largest_size();
     if (!(height <= *top))
         throw InvalidInput(fmt::format(
-            "--particles {} is not allowed in --container {} (in units of Dp): the bed's "
-            "initial height, eq. (6) at e0 = {:g}, is about {:.6g} Dp with the largest sphere; "
-            "allowed: a bed below the container's top at {:.6g} Dp (fewer particles or a "
-            "taller container)",
-            particles, shape.spec(), e0, height, *top));
+            "--particles {} is not allowed in --container {} (in units of Dp): {}; allowed: a "
+            "bed below the container's top at {:.6g} Dp (fewer particles or a taller "
+            "container)",
+            particles, shape.spec(),
+            std::isfinite(height)
+                ? fmt::format("the bed's initial height, eq. (6) at e0 = {:g}, is about {:.6g} "
+                              "Dp with the largest sphere",
+                              e0, height)
+                : fmt::format("the container holds less than the bed's initial volume at e0 = "
+                              "{:g}, eq. (6)",
+                              e0),
+            *top));
 }
 
 double initial_bed_height(std::uint64_t particles, double aspect_ratio, double e0) {
