@@ -85,15 +85,11 @@ std::optional<Periodic> Periodic::from_numbers(std::span<const double> v) {
 
 /// {size: [LX, LY]} (summary.json) or a lattice region's [LX, LY, LZ].
 std::optional<Periodic> Periodic::from_record(const nlohmann::json& record) {
-    const auto [lx, ly] = detail::record_widths(record, limits::max_length);
-    if (std::isnan(lx))
-        return std::nullopt;
-    return Periodic(lx, ly);
+    return from_numbers(detail::record_widths(record, limits::max_length));
 }
 
 std::string Periodic::record_allowed() {
-    return fmt::format("size, two numbers in (0, {:g}] (three in a lattice's region)",
-                       limits::max_length);
+    return detail::widths_record_allowed();
 }
 
 std::string Periodic::allowed() {

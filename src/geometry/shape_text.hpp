@@ -16,6 +16,7 @@
 #include <fmt/format.h>
 #include <nlohmann/json.hpp>
 
+#include "packbed/limits.hpp"
 #include "packbed/mesh.hpp"
 #include "packbed/shape.hpp"
 
@@ -65,6 +66,12 @@ inline std::array<double, 2> record_widths(const nlohmann::json& record, double 
             widths[k] = v;
     }
     return widths;
+}
+
+/// What record_widths takes.
+inline std::string widths_record_allowed() {
+    return fmt::format("size, two numbers in (0, {:g}] (three in a lattice's region)",
+                       limits::max_length);
 }
 
 /// A box's or a periodic cell's fit: widths from `least` to `widest` Dp.
