@@ -102,7 +102,7 @@ TEST(Cone, WithEqualDiametersItIsTheCylinderToTheBit) {
     }
     for (const Solver solver : {Solver::paper, Solver::fire}) {
         SoftSphereParameters p;
-        p.particles = 300;
+        p.particles = 150;
         p.seed = 5;
         p.solver = solver;
         p.container = cone;
@@ -123,10 +123,10 @@ TEST(Cone, BedsWithBothSolversEndInsideTheSlantedWall) {
     // A hopper (widening upwards) and a cone narrowing upwards; every pair and every wall by
     // brute force below 1e-4 Dp, every centre inside, the bed denser than the start (e0 =
     // 0.47) and looser than the densest packing.
-    for (const Cone& cone : {Cone(2.5, 5.0, 30.0), Cone(5.0, 3.0, 30.0)})
+    for (const Cone& cone : {Cone(2.0, 4.0, 30.0), Cone(3.5, 2.5, 30.0)})
         for (const Solver solver : {Solver::paper, Solver::fire}) {
             SoftSphereParameters p;
-            p.particles = 350;
+            p.particles = 220;
             p.seed = 7;
             p.solver = solver;
             p.container = cone;
