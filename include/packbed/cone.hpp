@@ -48,11 +48,7 @@ public:
     /// down the wall of a cone that narrows. \return the overlap (<= 0: no contact) and the
     /// push (zero vector on the axis).
     WallContact wall_contact(const Vec3& p, double radius) const {
-        const double r = std::sqrt(p.x * p.x + p.y * p.y);
-        const double overlap = (m_cos * r + radius) - m_cos * radius_at(p.z);
-        if (overlap <= 0.0 || r == 0.0)
-            return {overlap, {}};
-        return {overlap, {-m_cos * p.x / r, -m_cos * p.y / r, m_sin}};
+        return contact_at(p, radius, radius_at(p.z));
     }
 
     /// The wall law: f(overlap, push) when the sphere presses into the wall. Spheres clearly
@@ -60,10 +56,11 @@ public:
     /// Inlined as the cylinder's is: this is the solvers' innermost call.
     template <class F>
     [[gnu::always_inline]] void wall_contacts(const Vec3& p, double radius, F&& f) const {
-        const double inner = radius_at(p.z) - radius * m_inv_cos - 1e-9 * (m_reach + 1.0);
+        const double wall = radius_at(p.z);
+        const double inner = wall - radius * m_inv_cos - 1e-9 * (m_reach + 1.0);
         if (inner > 0.0 && p.x * p.x + p.y * p.y < inner * inner)
             return;
-        if (const WallContact w = wall_contact(p, radius); w.overlap > 0.0)
+        if (const WallContact w = contact_at(p, radius, wall); w.overlap > 0.0)
             f(w.overlap, w.push);
     }
 
@@ -127,7 +124,16 @@ public:
     double sticks_out(const Vec3& c, double r) const { return -wall_distances(c, r).first; }
 
 private:
-    Cone(double floor_radius, double top_radius, double height, double cos_theta, double sin_theta);
+    Cone(double floor_radius, double top_radius, double height, double slope, double cos_theta,
+         double sin_theta);
+    /// wall_contact with the wall's radius at the sphere's height, `wall` = R(p.z).
+    WallContact contact_at(const Vec3& p, double radius, double wall) const {
+        const double r = std::sqrt(p.x * p.x + p.y * p.y);
+        const double overlap = (m_cos * r + radius) - m_cos * wall;
+        if (overlap <= 0.0 || r == 0.0)
+            return {overlap, {}};
+        return {overlap, {-m_cos * p.x / r, -m_cos * p.y / r, m_sin}};
+    }
 
     double m_rb, m_rt, m_h;
     double m_slope; // k = (Rt - Rb) / H

@@ -17,15 +17,16 @@ namespace packbed {
 /// The wall's angle theta from the vertical from the slant height L = hypot(H, Rt - Rb):
 /// cos theta = H / L, sin theta = (Rt - Rb) / L (exactly 1 and 0 when Rb = Rt).
 Cone::Cone(double floor_radius, double top_radius, double height)
-    : Cone(floor_radius, top_radius, height, height / std::hypot(height, top_radius - floor_radius),
+    : Cone(floor_radius, top_radius, height, (top_radius - floor_radius) / height,
+           height / std::hypot(height, top_radius - floor_radius),
            (top_radius - floor_radius) / std::hypot(height, top_radius - floor_radius)) {}
 
-Cone::Cone(double floor_radius, double top_radius, double height, double cos_theta,
+Cone::Cone(double floor_radius, double top_radius, double height, double slope, double cos_theta,
            double sin_theta)
     : m_rb(floor_radius)
     , m_rt(top_radius)
     , m_h(height)
-    , m_slope((top_radius - floor_radius) / height)
+    , m_slope(slope)
     , m_cos(cos_theta)
     , m_sin(sin_theta)
     , m_inv_cos(1.0 / cos_theta)
@@ -54,9 +55,7 @@ double Cone::shell_area(double d_low, double d_high, double z_low, double z_high
 /// The wall moved d along its normal: every radius d / cos theta smaller, the same slope.
 Cone Cone::shrunk(double d) const {
     const double in = d / m_cos;
-    Cone c(m_rb - in, m_rt - in, m_h, m_cos, m_sin);
-    c.m_slope = m_slope;
-    return c;
+    return Cone(m_rb - in, m_rt - in, m_h, m_slope, m_cos, m_sin);
 }
 
 double Cone::sphere_volume(const Vec3& c, double r, double z_low, double z_high) const {
