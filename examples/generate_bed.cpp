@@ -3,7 +3,7 @@
 #include <cstdio>
 
 #include "packbed/soft_sphere.hpp"
-#include "packbed/volume.hpp"
+#include "packbed/bed_volume.hpp"
 
 int main() {
     // The bed: a = 4, 150 spheres of 3 mm, seed 7.

@@ -20,15 +20,16 @@
 
 #include "packbed/analysis.hpp"
 #include "packbed/bed_checks.hpp"
+#include "packbed/bed_volume.hpp"
 #include "packbed/error.hpp"
 #include "packbed/files.hpp"
+#include "packbed/json_text.hpp"
 #include "packbed/lattice.hpp"
 #include "packbed/limits.hpp"
 #include "packbed/option_ranges.hpp"
 #include "packbed/output.hpp"
 #include "packbed/pipeline.hpp"
 #include "packbed/read.hpp"
-#include "packbed/summary.hpp"
 #include "packbed/version.hpp"
 #include "packbed/volume.hpp"
 #include "packbed/voxel.hpp"
@@ -109,16 +110,7 @@ auto run_interruptible(RunControl& control, const py::object& progress, Work&& w
             if (callback_error)
                 return;
             try {
-                py::dict report;
-                report["stage"] = std::string(p.stage);
-                report["iteration"] = p.iteration;
-                report["cg"] = p.cg;
-                report["max_overlap_pair"] = p.max_overlap_pair;
-                report["max_overlap_wall"] = p.max_overlap_wall;
-                report["mass_centre_z"] = p.mass_centre_z;
-                report["layer"] = p.layer;
-                report["layers"] = p.layers;
-                progress(report);
+                progress(to_python(progress_json(p)));
             } catch (py::error_already_set& e) {
                 callback_error.emplace(std::move(e));
             }
@@ -149,8 +141,9 @@ Container container_for(const Bed& bed, const std::optional<std::string>& contai
     if (container)
         return container_from_spec("--container", *container);
     if (!bed.container)
-        throw InvalidInput("--container is needed: this bed has no container (give container="
-                           "'cylinder:D', 'box:LX,LY', 'annulus:D,DI' or 'periodic:LX,LY')");
+        throw InvalidInput(
+            fmt::format("--container is needed: this bed has no container (give container= {})",
+                        forms_but("")));
     return *bed.container;
 }
 
@@ -218,17 +211,11 @@ Bed generate(std::optional<double> aspect_ratio, const std::optional<std::string
     request.checkpoint = checkpoint ? checkpoint->string() : std::string();
     request.band_clearance = check_option("band-clearance", band_clearance, range::band_clearance);
     request.engine = engines().at(engine);
-    LammpsLauncher launcher;
-    launcher.ranks = static_cast<std::uint32_t>(check_option("ranks", ranks, range::lammps_ranks));
-    launcher.mpi_command = mpi_command.value_or("");
-    launcher.lmp = lmp;
-    if (request.engine != Engine::lammps && (ranks != 1 || mpi_command.has_value() || lmp != "lmp"))
-        throw InvalidInput(fmt::format("ranks, mpi_command and lmp are not allowed with engine "
-                                       "'{}'; allowed: with engine 'lammps'",
-                                       engine));
+    request.launcher.ranks =
+        static_cast<std::uint32_t>(check_option("ranks", ranks, range::lammps_ranks));
+    request.launcher.mpi_command = mpi_command.value_or("");
+    request.launcher.lmp = lmp;
     const PreparedGeneration prepared = prepare_generation(request);
-    if (request.engine == Engine::lammps)
-        lammps_launch(launcher); // mpi_command and lmp checked before anything is written
     // The LAMMPS engine runs in a folder: `out`'s staging folder, or a temporary one removed
     // with what LAMMPS wrote there (the directory is never committed).
     std::filesystem::path scratch;
@@ -255,9 +242,7 @@ Bed generate(std::optional<double> aspect_ratio, const std::optional<std::string
     set_threads(threads);
     RunControl control;
     GeneratedBed generated = run_interruptible(control, progress, [&] {
-        if (request.engine == Engine::lammps)
-            return run_lammps_generation(prepared, launcher, control, *directory);
-        return run_generation(prepared, control, threads_in_use());
+        return generate_bed(prepared, control, threads_in_use(), directory ? &*directory : nullptr);
     });
     Bed bed{std::move(generated.result.packing), generated.result.container,
             std::move(generated.summary)};
@@ -713,7 +698,8 @@ PYBIND11_MODULE(_core, m) {
 
 Build one from arrays: Bed(centers, radii=None, diameter=None, container=None), with centers
 of shape (N, 3), and either radii (N) or one diameter for every sphere; container a spec
-string ('cylinder:D', 'box:LX,LY', 'annulus:D,DI', 'periodic:LX,LY'), the floor at z = 0.)")
+string ('cylinder:D', 'box:LX,LY', 'cone:DB,DT,H', ...: docs/containers.md), the floor at
+z = 0.)")
         .def(py::init(&from_arrays), py::arg("centers"), py::arg("radii") = py::none(),
              py::kw_only(), py::arg("diameter") = py::none(), py::arg("container") = py::none())
         .def_property_readonly(
@@ -852,8 +838,8 @@ in the directory `out` (new or empty; force=True replaces a non-empty one whole)
 
 The keyword arguments are `packbed generate`'s options in snake_case, with the same defaults
 (`packbed generate --help`, docs/generate.md): aspect_ratio a = D/Dp (None: 5) or container
-(not both; a spec string such as 'cylinder:0.05', 'box:LX,LY', 'annulus:D,DI',
-'periodic:LX,LY' in the unit of diameter), particles Np, seed, diameter Dp, sizes (a --sizes spec, docs/sizes.md), fractions
+(not both; a spec string such as 'cylinder:0.05', 'box:LX,LY' or 'cone:DB,DT,H' in the
+unit of diameter, docs/containers.md), particles Np, seed, diameter Dp, sizes (a --sizes spec, docs/sizes.md), fractions
 ('volume' or 'number'), e0, ck, cg_step, overlap_low, overlap_high, tolerance, mc_period,
 mc_window, mc_tolerance (None: the solver's schedule), update ('in-place' or 'simultaneous'),
 solver ('fire' or 'paper'), skin, layer_height, checkpoint (a file), max_iterations,
@@ -1007,6 +993,6 @@ validity range. A correlation used outside its range gives a UserWarning.)");
           py::arg("out") = py::none(), py::arg("force") = false,
           R"(A regular packing of touching balls filling a region, as `packbed lattice`: type
 'diamond' (tetrahedral, Tsayger 2013), 'sc', 'bcc', 'fcc' or 'hcp'; region 'box:LX,LY,LZ',
-'cylinder:D,H', 'annulus:D,DI,H' or 'periodic:LX,LY,H'; origin 'x,y,z'; keep 'whole' or
+'cylinder:D,H', 'cone:DB,DT,H,HEIGHT' (a container's spec and the height); origin 'x,y,z'; keep 'whole' or
 'centres'; rotate 'AXIS:DEGREES,...'. out: a directory to write what the command writes.)");
 }

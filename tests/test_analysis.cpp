@@ -15,6 +15,7 @@
 #include "packbed/analysis.hpp"
 #include "packbed/error.hpp"
 #include "packbed/soft_sphere.hpp"
+#include "packbed/bed_volume.hpp"
 #include "packbed/volume.hpp"
 
 using namespace packbed;

@@ -19,6 +19,7 @@
 #include "packbed/lattice.hpp"
 #include "packbed/read.hpp"
 #include "packbed/soft_sphere.hpp"
+#include "packbed/bed_volume.hpp"
 #include "packbed/volume.hpp"
 
 using namespace packbed;

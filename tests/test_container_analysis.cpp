@@ -24,7 +24,7 @@
 #include "packbed/container.hpp"
 #include "packbed/error.hpp"
 #include "packbed/read.hpp"
-#include "packbed/summary.hpp"
+#include "packbed/json_text.hpp"
 
 #include "run_packbed.hpp"
 

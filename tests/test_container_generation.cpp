@@ -13,6 +13,7 @@
 
 #include "packbed/error.hpp"
 #include "packbed/soft_sphere.hpp"
+#include "packbed/bed_volume.hpp"
 #include "packbed/volume.hpp"
 
 using namespace packbed;

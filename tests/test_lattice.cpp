@@ -7,7 +7,7 @@
 
 #include "packbed/error.hpp"
 #include "packbed/lattice.hpp"
-#include "packbed/summary.hpp"
+#include "packbed/json_text.hpp"
 
 namespace packbed {
 namespace {

@@ -11,6 +11,7 @@
 #include "packbed/error.hpp"
 #include "packbed/pipeline.hpp"
 #include "packbed/soft_sphere.hpp"
+#include "packbed/bed_volume.hpp"
 #include "packbed/volume.hpp"
 
 using namespace packbed;

@@ -10,6 +10,7 @@
 #include <gtest/gtest.h>
 
 #include "packbed/error.hpp"
+#include "packbed/bed_volume.hpp"
 #include "packbed/volume.hpp"
 
 using namespace packbed;

@@ -13,11 +13,11 @@
 #include "packbed/error.hpp"
 #include "packbed/files.hpp"
 #include "packbed/io.hpp"
+#include "packbed/json_text.hpp"
 #include "packbed/limits.hpp"
 #include "packbed/output.hpp"
 #include "packbed/pipeline.hpp"
 #include "packbed/read.hpp"
-#include "packbed/summary.hpp"
 #include "packbed/text.hpp"
 
 namespace packbed::cli {
@@ -211,9 +211,7 @@ Command register_analyze(CLI::App& parent) {
     app->add_option("--outside-tolerance", o.outside_tolerance,
                     "how far a sphere may stick out of the wall or floor, Dp")
         ->check(real_in(option_range::outside_tolerance));
-    app->add_option("-j,--threads", o.threads,
-                    "this many threads (results do not depend on it); default: every core")
-        ->check(whole_in(option_range::threads));
+    add_threads_option(*app, o.threads);
     app->add_flag("-q,--quiet", o.quiet, "no report on the terminal");
     return {app, [options] { return run_analyze(*options); }};
 }

@@ -60,6 +60,10 @@ struct InputPlacement {
     void apply(ReadOptions& read) const;
 };
 
+/// Add -j,--threads to `app`, bound to `threads` (its default: every core), the same words in
+/// every subcommand that runs in parallel.
+void add_threads_option(CLI::App& app, unsigned long long& threads);
+
 /// Add --frame, --axis and --floor to `app`, bound to `placement`.
 /// \return the --frame option (for excludes)
 CLI::Option* add_input_placement(CLI::App& app, InputPlacement& placement);

@@ -6,8 +6,8 @@
 
 #include "command.hpp"
 #include "packbed/correlations.hpp"
+#include "packbed/json_text.hpp"
 #include "packbed/pipeline.hpp"
-#include "packbed/summary.hpp"
 
 namespace packbed::cli {
 

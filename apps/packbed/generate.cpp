@@ -12,13 +12,13 @@
 #include "packbed/analysis.hpp"
 #include "packbed/error.hpp"
 #include "packbed/io.hpp"
+#include "packbed/json_text.hpp"
 #include "packbed/lammps_engine.hpp"
 #include "packbed/limits.hpp"
 #include "packbed/output.hpp"
 #include "packbed/pipeline.hpp"
 #include "packbed/sizes.hpp"
 #include "packbed/soft_sphere.hpp"
-#include "packbed/summary.hpp"
 #include "progress.hpp"
 
 namespace packbed::cli {
@@ -71,36 +71,18 @@ void report_bed(const PreparedGeneration& prepared, const GeneratedBed& bed,
                out.path().string(), analysed ? " and the analysis tables" : "", more);
 }
 
-/// --engine lammps: the job written (--write-only) or run by LAMMPS and read back.
-int run_lammps(GenerateOptions& o, const PreparedGeneration& prepared) {
-    lammps_launch(o.lammps); // --mpi-command and --lmp checked before anything is written
-    if (!o.write_only.empty()) {
-        OutputDirectory out(o.write_only, "--write-only", OutputKind::directory, o.force);
-        const std::vector<std::string> command =
-            stage_lammps_job(out, "", prepared, o.lammps, LammpsPairStyle::gran_hooke);
-        out.commit();
-        if (!o.quiet)
-            fmt::print("packbed generate: the LAMMPS job for {} spheres is in {}/; run it there "
-                       "with `{} -in in.packbed` (README.md has a cluster's script), then "
-                       "`packbed import-lammps {}`\n",
-                       prepared.params.particles, out.path().string(),
-                       fmt::join(command.begin(), command.end() - 4, " "), out.path().string());
-        return 0;
-    }
-    OutputDirectory out(o.out, "--out", OutputKind::directory, o.force);
-    TerminalProgress progress(progress_wanted(o.quiet), prepared.params, prepared.memory, 0,
-                              "LAMMPS");
-    RunControl control;
-    control.on_progress = [&](const Progress& p) { progress(p); };
-    GeneratedBed bed = run_lammps_generation(prepared, o.lammps, control, out);
-    progress.finish();
-    const bool analyse = !o.no_analysis && bed.summary["void_fraction"].is_number();
-    stage_bed(out, bed.result.packing, bed.result.container, o.band_clearance, analyse,
-              bed.summary);
+/// --engine lammps --write-only: the LAMMPS job staged in its own folder, not run.
+int write_lammps_job(const GenerateOptions& o, const PreparedGeneration& prepared) {
+    OutputDirectory out(o.write_only, "--write-only", OutputKind::directory, o.force);
+    const std::vector<std::string> command =
+        stage_lammps_job(out, "", prepared, o.lammps, LammpsPairStyle::gran_hooke);
     out.commit();
     if (!o.quiet)
-        report_bed(prepared, bed, out, "generate", " (LAMMPS)",
-                   "; lammps/: the job and LAMMPS's log", analyse);
+        fmt::print("packbed generate: the LAMMPS job for {} spheres is in {}/; run it there "
+                   "with `{} -in in.packbed` (README.md has a cluster's script), then "
+                   "`packbed import-lammps {}`\n",
+                   prepared.params.particles, out.path().string(),
+                   fmt::join(command.begin(), command.end() - 4, " "), out.path().string());
     return 0;
 }
 
@@ -115,38 +97,37 @@ int run_generate(GenerateOptions& o) {
     request.checkpoint = o.checkpoint;
     request.band_clearance = o.band_clearance;
     request.engine = engines().at(o.engine);
-    const bool lammps_only = o.lammps.ranks != 1 || !o.lammps.mpi_command.empty() ||
-                             o.lammps.lmp != "lmp" || !o.write_only.empty();
-    if (request.engine != Engine::lammps && lammps_only)
-        throw InvalidInput(fmt::format("--ranks, --mpi-command, --lmp and --write-only are not "
-                                       "allowed with --engine {}; allowed: with --engine lammps",
-                                       o.engine));
+    request.launcher = o.lammps;
+    request.write_only = !o.write_only.empty();
     const PreparedGeneration prepared = prepare_generation(request);
-    if (request.engine == Engine::lammps)
-        return run_lammps(o, prepared);
+    if (request.write_only)
+        return write_lammps_job(o, prepared);
     const SoftSphereParameters& params = prepared.params;
+    const bool lammps = request.engine == Engine::lammps;
     // Every check before the run: the output directory, the checkpoint.
     OutputDirectory out(o.out, "--out", OutputKind::directory, o.force);
-    const int threads = use_threads(o.threads);
+    const int threads = lammps ? 0 : use_threads(o.threads);
 
-    TerminalProgress progress(progress_wanted(o.quiet), params, prepared.memory, threads);
+    TerminalProgress progress(progress_wanted(o.quiet), params, prepared.memory, threads,
+                              lammps ? "LAMMPS" : "");
     RunControl control;
     control.on_progress = [&](const Progress& p) { progress(p); };
-    GeneratedBed bed = run_generation(prepared, control, threads, [&](std::uint32_t layers_done) {
-        if (!o.quiet)
-            fmt::print(stderr, "packbed generate: resuming from {} after layer {} of {}\n",
-                       o.checkpoint, layers_done, fire_layers(params));
-    });
+    GeneratedBed bed =
+        generate_bed(prepared, control, threads, &out, [&](std::uint32_t layers_done) {
+            if (!o.quiet)
+                fmt::print(stderr, "packbed generate: resuming from {} after layer {} of {}\n",
+                           o.checkpoint, layers_done, fire_layers(params));
+        });
     progress.finish();
-    const SoftSphereResult& result = bed.result;
-    auto& summary = bed.summary;
     // The same analysis as `packbed analyze`, when the bed is tall enough for the band and
     // not declined.
-    const bool analyse = !o.no_analysis && summary["void_fraction"].is_number();
-    stage_bed(out, result.packing, result.container, o.band_clearance, analyse, summary);
+    const bool analyse = !o.no_analysis && bed.summary["void_fraction"].is_number();
+    stage_bed(out, bed.result.packing, bed.result.container, o.band_clearance, analyse,
+              bed.summary);
     out.commit();
     if (!o.quiet)
-        report_bed(prepared, bed, out, "generate", "", "", analyse);
+        report_bed(prepared, bed, out, "generate", lammps ? " (LAMMPS)" : "",
+                   lammps ? "; lammps/: the job and LAMMPS's log" : "", analyse);
     return 0;
 }
 
@@ -305,9 +286,7 @@ Command register_generate(CLI::App& parent) {
                     "the void fraction is measured between this distance above the floor and "
                     "below the bed top, Dp")
         ->check(real_in(option_range::band_clearance));
-    app->add_option("-j,--threads", o.threads,
-                    "this many threads (results do not depend on it); default: every core")
-        ->check(whole_in(option_range::threads));
+    add_threads_option(*app, o.threads);
     app->add_flag("--no-analysis", o.no_analysis,
                   "only the spheres (particles.csv, particles.vtu) and summary.json with the void "
                   "fraction: no profiles, plots or analysis tables (a DEM start; 500 spheres in "

@@ -8,9 +8,9 @@
 #include <nlohmann/json.hpp>
 
 #include "command.hpp"
+#include "packbed/json_text.hpp"
 #include "packbed/limits.hpp"
 #include "packbed/pipeline.hpp"
-#include "packbed/summary.hpp"
 
 namespace packbed::cli {
 

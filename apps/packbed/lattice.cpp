@@ -6,14 +6,16 @@
 #include <vector>
 
 #include <fmt/format.h>
+#include <fmt/ranges.h>
 
 #include "command.hpp"
+#include "packbed/container.hpp"
 #include "packbed/error.hpp"
 #include "packbed/io.hpp"
+#include "packbed/json_text.hpp"
 #include "packbed/lattice.hpp"
 #include "packbed/limits.hpp"
 #include "packbed/pipeline.hpp"
-#include "packbed/summary.hpp"
 
 namespace packbed::cli {
 
@@ -74,7 +76,7 @@ Command register_lattice(CLI::App& parent) {
     auto options = std::make_shared<LatticeOptions>();
     auto& o = *options;
     CLI::App* app = parent.add_subcommand(
-        "lattice", "Fill a box or a cylinder with a regular packing of touching balls: "
+        "lattice", "Fill a container's region with a regular packing of touching balls: "
                    "tetrahedral (diamond, Tsayger 2013), sc, bcc, fcc or hcp");
     app->option_defaults()->always_capture_default();
     app->add_option("-t,--type", o.type,
@@ -84,10 +86,11 @@ Command register_lattice(CLI::App& parent) {
     app->add_option("-d,--diameter", o.params.diameter, "ball diameter d; the unit of the outputs")
         ->check(real_in(option_range::diameter));
     app->add_option("-r,--region", o.region,
-                    "box:LX,LY,LZ (from 0 to L along each axis), cylinder:D,H (z axis, from "
-                    "z = 0 to H), annulus:D,DI,H (between a tube of diameter D and a coaxial rod "
-                    "of diameter DI) or periodic:LX,LY,H (a cell periodic in x and y: LX, LY "
-                    "whole multiples of the lattice's periods, no --rotate), lengths up to 1e15");
+                    fmt::format("a container's spec and the region's height after its "
+                                "numbers ({},HEIGHT; docs/containers.md), the floor at z = 0; "
+                                "periodic: LX, LY whole multiples of the lattice's periods, no "
+                                "--rotate; lengths up to 1e15",
+                                fmt::join(all_forms, ",HEIGHT, ")));
     app->add_option("--origin", o.origin,
                     "x,y,z of the first ball of cell (0,0,0) (ball A of Tsayger's Table 1), "
                     "within 1e6 d of the region; default: d/2 from each wall at the low corner "

@@ -125,6 +125,12 @@ void InputPlacement::apply(ReadOptions& read) const {
     read.floor = floor;
 }
 
+void add_threads_option(CLI::App& app, unsigned long long& threads) {
+    app.add_option("-j,--threads", threads,
+                   "this many threads (results do not depend on it); default: every core")
+        ->check(whole_in(option_range::threads));
+}
+
 CLI::Option* add_input_placement(CLI::App& app, InputPlacement& p) {
     CLI::Option* frame = app.add_option("--frame", p.frame,
                                         "which frame of a file of several (XYZ, dumps): 1 the "

@@ -131,9 +131,7 @@ Command register_voxelize(CLI::App& parent) {
     app->add_option("--outside-tolerance", o.outside_tolerance,
                     "how far a sphere may stick out of the wall or floor, Dp")
         ->check(real_in(option_range::outside_tolerance));
-    app->add_option("-j,--threads", o.threads,
-                    "this many threads (results do not depend on it); default: every core")
-        ->check(whole_in(option_range::threads));
+    add_threads_option(*app, o.threads);
     app->add_flag("-q,--quiet", o.quiet, "no report on the terminal");
     return {app, [options] { return run_voxelize(*options); }};
 }

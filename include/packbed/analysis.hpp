@@ -10,6 +10,7 @@
 #include <string>
 #include <vector>
 
+#include "packbed/bed_volume.hpp"
 #include "packbed/container.hpp"
 #include "packbed/packing.hpp"
 #include "packbed/sizes.hpp"

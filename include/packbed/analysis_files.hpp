@@ -7,6 +7,8 @@
 #include <utility>
 #include <vector>
 
+#include <nlohmann/json.hpp>
+
 #include "packbed/analysis.hpp"
 #include "packbed/container.hpp"
 
@@ -50,5 +52,12 @@ std::pair<std::string, std::string> wall_table_names(const std::string& wall);
 /// \param analysis what analyze_bed measured in `container`
 std::vector<std::pair<std::string, std::string>> analysis_files(const BedAnalysis& analysis,
                                                                 const Container& container);
+
+/// The numbers of a bed analysis (the tables go to CSV files, see analysis_files): band,
+/// overall void fraction, coordination (mean with and without rattlers, rattlers, wall contacts),
+/// the reference diameter, the options used and the files. An annulus adds `walls`, each wall's
+/// name, wall contacts and tables (wall_contacts counts the spheres touching either); a
+/// periodic cell has `walls` empty, no wall_contacts, and `no_walls` saying why.
+nlohmann::json analysis_summary(const BedAnalysis& analysis, const AnalysisOptions& options);
 
 } // namespace packbed

@@ -38,6 +38,10 @@ public:
     Container(const S& shape) // NOLINT(google-explicit-constructor): a cylinder is a container
         : m_shape(shape) {}
 
+    /// The front ends' shorthand of a tube (--aspect-ratio a in units of Dp,
+    /// --container-radius R): the cylinder of inner diameter `diameter` about the z axis.
+    static Container tube(double diameter);
+
     /// The shape itself, for the container's own files and for tests.
     const Shape& shape() const { return m_shape; }
 

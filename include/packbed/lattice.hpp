@@ -11,6 +11,8 @@
 #include <variant>
 #include <vector>
 
+#include <nlohmann/json.hpp>
+
 #include "packbed/container.hpp"
 #include "packbed/packing.hpp"
 #include "packbed/registry.hpp"
@@ -137,5 +139,12 @@ Vec3 parse_lattice_origin(std::string_view text);
 /// \return the rotations of `text`, "AXIS:DEGREES" pairs separated by commas ("z:30,x:10"),
 /// in order; none for "". \throws InvalidInput naming --rotate
 std::vector<std::pair<char, double>> parse_rotations(std::string_view text);
+
+/// The record of a lattice (`packbed lattice`): its parameters, the number of balls, the
+/// lattice's exact porosity and coordination, the porosity measured in the region (the balls'
+/// volume inside it over its volume, balls cut by the walls included: sphere_volume_in_box,
+/// sphere_volume_in_cylinder_slab) and the contacts found (within 1e-9 d).
+/// Lengths in output units.
+nlohmann::json lattice_summary(const LatticeParameters& parameters, const Packing& packing);
 
 } // namespace packbed

@@ -1,19 +1,29 @@
-// The data model: a set of spheres, one array per property.
+// The data model: a set of particles, one array per property.
 #pragma once
 
 #include <cstddef>
+#include <cstdint>
 #include <vector>
 
+#include "packbed/quaternion.hpp"
 #include "packbed/vec3.hpp"
 
 namespace packbed {
 
-/// A set of spheres: centre and radius per sphere (radii are per particle so that a
-/// particle-size distribution needs no new data model). Lengths are in the caller's units.
-/// Not synchronised: share read-only between threads, or give each thread its own.
+/// A set of particles, HOOMD-blue's particle data: a position and a size per particle (a
+/// sphere's centre and radius: a size distribution needs no new data model), an orientation
+/// where the shape has one and a type pointing into a table of shapes (particle_shape.hpp:
+/// ShapedBed). Every bed today is of spheres: `orientations` and `types` are empty (one type,
+/// the sphere, and no orientation), and what copies a part of a bed keeps them empty.
+/// Lengths are in the caller's units. Not synchronised: share read-only between threads, or
+/// give each thread its own.
 struct Packing {
-    std::vector<Vec3> centers; ///< sphere centres
-    std::vector<double> radii; ///< sphere radii, > 0, same length as `centers`
+    std::vector<Vec3> centers; ///< positions: sphere centres
+    std::vector<double> radii; ///< sizes: sphere radii, > 0, same length as `centers`
+    /// one per particle where the shape has an orientation; empty: none
+    std::vector<Quaternion> orientations;
+    /// one per particle, an index into the bed's table of shapes; empty: every particle type 0
+    std::vector<std::uint32_t> types;
 
     /// \return the number of spheres.
     std::size_t size() const { return centers.size(); }

@@ -52,6 +52,8 @@ struct GenerateRequest {
     std::string checkpoint;          ///< --checkpoint file; "": none
     double band_clearance = 1.0;     ///< of the void-fraction band, Dp
     Engine engine = Engine::packbed; ///< who relaxes the bed (Engine::lammps: the fire solver's)
+    LammpsLauncher launcher;         ///< Engine::lammps: how LAMMPS is started
+    bool write_only = false; ///< Engine::lammps: the job only staged (stage_lammps_job), not run
 };
 
 /// A request with its sizes drawn and its container resolved into the solver's parameters,
@@ -64,8 +66,9 @@ struct PreparedGeneration {
 };
 
 /// Draw the sizes (a stream of their own: seed XOR 0x9E3779B97F4A7C15), resolve the container
-/// (a = D / Dp for a tube, any other shape in units of Dp) and check everything, the
-/// checkpoint's compatibility and the memory the run will need (check_memory) included.
+/// (a = D / Dp for a tube, any other shape in units of Dp) and check everything: the launcher
+/// only with the LAMMPS engine (and its words, lammps_launch), the checkpoint's compatibility
+/// and the memory the run will need (check_memory) included.
 /// \throws InvalidInput naming the option, the value and what is allowed
 PreparedGeneration prepare_generation(GenerateRequest request);
 
@@ -84,6 +87,16 @@ struct GeneratedBed {
 /// \throws ConvergenceError, Cancelled, InvalidInput (a bad checkpoint)
 GeneratedBed run_generation(const PreparedGeneration& prepared, RunControl control, int threads,
                             const std::function<void(std::uint32_t layers_done)>& on_resume = {});
+
+/// The generate job of every front end: the prepared bed relaxed by its engine, here
+/// (run_generation) or by LAMMPS (run_lammps_generation).
+/// \param threads Engine::packbed: recorded in the summary (use_threads set them)
+/// \param folder Engine::lammps: the output in whose lammps/ folder LAMMPS runs (required)
+/// \param on_resume Engine::packbed with a checkpoint: told after which layer the run resumes
+/// \throws ConvergenceError, Cancelled, InvalidInput
+GeneratedBed generate_bed(const PreparedGeneration& prepared, RunControl control, int threads,
+                          OutputDirectory* folder,
+                          const std::function<void(std::uint32_t layers_done)>& on_resume = {});
 
 /// summary.json of a generated bed: soft_sphere_summary (with `threads`) and, for drawn sizes,
 /// their spec and statistics.

@@ -16,6 +16,8 @@
 #include <utility>
 #include <vector>
 
+#include <nlohmann/json.hpp>
+
 #include "packbed/registry.hpp"
 
 namespace packbed {
@@ -207,5 +209,11 @@ struct SizeStatistics {
 /// \throws InvalidInput when a diameter is not a finite number > 0
 SizeStatistics size_statistics(std::span<const double> diameters,
                                std::size_t bins = default_size_bins);
+
+/// The statistics of a bed's sizes as summary.json records them: count, d10, d50, d90 (by
+/// volume), the Sauter mean d32, d43, the number mean and standard deviation, the smallest
+/// and largest diameter and their ratio, and each class's range, count and number and volume
+/// fractions.
+nlohmann::json size_statistics_summary(const SizeStatistics& statistics);
 
 } // namespace packbed

@@ -3,6 +3,7 @@
 // Mono-sized spheres in a cylinder: generation, initial, intermediate and final stages (section 3).
 #pragma once
 
+#include <algorithm>
 #include <cstdint>
 #include <functional>
 #include <memory>
@@ -15,7 +16,9 @@
 #include <nlohmann/json.hpp>
 
 #include "packbed/container.hpp"
+#include "packbed/neighbor_list.hpp"
 #include "packbed/packing.hpp"
+#include "packbed/particle_shape.hpp"
 #include "packbed/registry.hpp"
 
 namespace packbed {
@@ -160,6 +163,9 @@ struct Progress {
     std::uint32_t layers = 1; ///< fire solver: number of layers (1: the bed in one piece)
 };
 
+/// A progress report as a record: its fields by name (what Python's progress callback gets).
+nlohmann::json progress_json(const Progress& progress);
+
 /// The state of a fire run in layers (relax_with_fire) after `layers_done` whole layers:
 /// enough to resume it and end with the same bits as a run that was never stopped.
 struct LayerCheckpoint {
@@ -205,8 +211,34 @@ struct Overlaps {
     double wall = 0.0; ///< largest sphere-wall overlap (0 if none)
 };
 
-/// \return the largest overlaps of `packing` in `container` (lengths in the packing's units):
-/// pairs by the minimum image in a periodic cell, each wall of the container.
+/// \return the largest overlaps of a bed's particles in `container` (lengths in the bed's
+/// units): each pair the neighbour list of their bounding radii finds (by the minimum image in a
+/// periodic cell), its ParticleShape::pair_overlap, and each particle's wall_overlap.
+template <ParticleShape S>
+Overlaps measure_overlaps(const ShapedBed<S>& bed, const Container& container) {
+    Overlaps out;
+    NeighborList list;
+    const std::optional<Periods> cell = container.periods();
+    if (cell)
+        list.wrap(*cell);
+    const std::vector<double> bounding = bed.bounding_radii();
+    const std::vector<Vec3>& centers = bed.particles().centers;
+    list.build(centers, bounding, 0.0);
+    for (std::size_t i = 0; i < bed.size(); ++i) {
+        const S& shape = bed.shape(i);
+        const Placement p = bed.placement(i);
+        for (const auto j : list.neighbors_of(i)) {
+            const Vec3 ij =
+                cell ? cell->separation(centers[i], centers[j]) : centers[j] - centers[i];
+            out.pair =
+                std::max(out.pair, shape.pair_overlap(p, bed.shape(j), bed.placement(j), ij).depth);
+        }
+        out.wall = std::max(out.wall, shape.wall_overlap(container, p));
+    }
+    return out;
+}
+
+/// The largest overlaps of a packing of spheres (spheres(packing), sphere_shape.hpp).
 Overlaps measure_overlaps(const Packing& packing, const Container& container);
 
 /// Initial bed height, eq. (6): \f$L_0 = \frac{2}{3}\frac{D_p N_p}{a^2 (1 - \varepsilon_0)}\f$.
@@ -289,5 +321,18 @@ SoftSphereResult generate_soft_sphere(const SoftSphereParameters& parameters,
 /// Every field of `parameters` as a JSON object (keys: the field names; the update order and
 /// solver by name): the `parameters` of summary.json, and what a checkpoint must match.
 nlohmann::json soft_sphere_parameters_json(const SoftSphereParameters& parameters);
+
+/// Everything a user needs to know about a soft-sphere run: inputs, every parameter, the
+/// container, the overall void fraction over the band clear of the ends, the largest overlaps,
+/// the stages, the time and the version. Lengths in output units unless a key says "_dp".
+/// \param parameters the parameters of the run
+/// \param result what SoftSphereGenerator::run returned
+/// \param band_clearance distance of the void-fraction band from the floor and the top, in Dp
+/// (>= 0); when the bed is too short for it, `void_fraction` is null and a note says why
+/// \param threads number of threads used (recorded only)
+/// \return the JSON object.
+nlohmann::json soft_sphere_summary(const SoftSphereParameters& parameters,
+                                   const SoftSphereResult& result, double band_clearance,
+                                   int threads);
 
 } // namespace packbed

@@ -1,14 +1,11 @@
-// Exact volumes of spheres cut by a cylinder or a cone and by horizontal planes, and the overall
-// void fraction they give. "Exact" means closed forms where the cut is by planes only, and a
-// converged quadrature of the circle-circle lens area where the cylinder wall cuts the sphere
+// Exact volumes of spheres cut by a cylinder or a cone and by horizontal planes (a bed's void
+// fraction from them: bed_volume.hpp). "Exact" means closed forms where the cut is by planes only,
+// and a converged quadrature of the circle-circle lens area where the cylinder wall cuts the sphere
 // (20-point Gauss-Legendre in a variable that smooths the end points; relative error of a
 // wall-cut volume below 1e-8): never random sampling.
 #pragma once
 
-#include <optional>
-
 #include "packbed/container.hpp"
-#include "packbed/packing.hpp"
 #include "packbed/vec3.hpp"
 
 namespace packbed {
@@ -83,32 +80,5 @@ double disk_rectangle_area(double radius, double x_low, double x_high, double y_
 /// (voxel.hpp) is the closed form, exact to rounding.
 /// \param center,radius the sphere (radius > 0) \param low,high the box corners (low <= high)
 double sphere_volume_in_box(const Vec3& center, double radius, const Vec3& low, const Vec3& high);
-
-/// Overall void fraction of a bed in a container between two heights:
-/// \f$\varepsilon = 1 - \sum_i V_i / (A (z_{high} - z_{low}))\f$, with A the container's
-/// cross-section and V_i the exact volume of sphere i inside it and the slab
-/// (Container::sphere_volume).
-/// Overlaps between spheres are counted twice; at the generator's 1e-4 Dp tolerance that is
-/// below 1e-8 per contact in units of a sphere volume.
-/// \param packing the spheres \param container the container
-/// \param z_low,z_high the band (z_low < z_high, else InvalidInput)
-/// \return the void fraction in [0, 1] (it can go below 0 only for heavily overlapping input).
-double void_fraction(const Packing& packing, const Container& container, double z_low,
-                     double z_high);
-
-/// A horizontal band [z_low, z_high] of a bed.
-struct Band {
-    double z_low = 0.0;  ///< lower height (length)
-    double z_high = 0.0; ///< upper height (length)
-};
-
-/// The band that keeps `clearance` away from the floor (z = 0) and from the top of the bed
-/// (the highest sphere top, max z_i + r_i).
-/// \param packing the spheres \param clearance distance from each end (length, >= 0)
-/// \return the band, or nothing when the bed is not taller than 2 clearance.
-std::optional<Band> band_clear_of_ends(const Packing& packing, double clearance);
-
-/// \return the height of the highest sphere top, max z_i + r_i (0 for no spheres).
-double bed_top(const Packing& packing);
 
 } // namespace packbed

@@ -19,6 +19,7 @@
 #include "packbed/error.hpp"
 #include "packbed/limits.hpp"
 #include "packbed/sizes.hpp"
+#include "packbed/sphere_shape.hpp"
 
 namespace packbed {
 
@@ -96,37 +97,34 @@ std::vector<double> histogram_over_spheres(std::size_t n, std::size_t bins, F&& 
 /// [k w, (k+1) w] (wall first; the last ends at the container's depth); exact volumes: each
 /// sphere's part in a shell is the difference of its volumes inside the container shrunk from
 /// that wall by the shell's two distances (Container::shrunk_from).
-std::vector<ProfileBin> wall_void_fraction(const Packing& packing, const Container& container,
+template <ParticleShape S>
+std::vector<ProfileBin> wall_void_fraction(const ShapedBed<S>& bed, const Container& container,
                                            std::size_t wall, double width, const Band& band,
                                            std::size_t shells) {
     auto distance = [&](std::size_t k) { return static_cast<double>(k) * width; };
     const double last_shell = static_cast<double>(shells - 1);
-    const auto solid =
-        histogram_over_spheres(packing.size(), shells, [&](std::size_t i, double* row) {
-            const Vec3& c = packing.centers[i];
-            const double radius = packing.radii[i];
-            // Shells that can hold part of the sphere: from its nearest to its farthest
-            // distance from the wall (clamped in double, before the casts).
-            const auto [nearest, farthest] = container.wall_distances_from(wall, c, radius);
-            const double first = std::max(std::floor(nearest / width), 0.0);
-            if (first > last_shell)
-                return;
-            const auto k_first = static_cast<std::size_t>(first);
-            const auto k_last = static_cast<std::size_t>(
-                std::min(last_shell, std::max(std::ceil(farthest / width), 0.0)));
-            // ball_volume: the band's planes cut few spheres, and a sphere they do not cut
-            // is one integral over its radius (a fifth of the cost of slices along z).
-            auto inside = [&](std::size_t k) {
-                return container.shrunk_from(wall, distance(k))
-                    .ball_volume(c, radius, band.z_low, band.z_high);
-            };
-            double outer_volume = inside(k_first);
-            for (std::size_t k = k_first; k <= k_last; ++k) {
-                const double inner_volume = inside(k + 1);
-                row[k] += outer_volume - inner_volume;
-                outer_volume = inner_volume;
-            }
-        });
+    const auto solid = histogram_over_spheres(bed.size(), shells, [&](std::size_t i, double* row) {
+        const S& shape = bed.shape(i);
+        const Placement p = bed.placement(i);
+        // Shells that can hold part of the particle: from its nearest to its farthest
+        // distance from the wall (clamped in double, before the casts).
+        const auto [nearest, farthest] = shape.wall_extent(container, wall, p);
+        const double first = std::max(std::floor(nearest / width), 0.0);
+        if (first > last_shell)
+            return;
+        const auto k_first = static_cast<std::size_t>(first);
+        const auto k_last = static_cast<std::size_t>(
+            std::min(last_shell, std::max(std::ceil(farthest / width), 0.0)));
+        auto inside = [&](std::size_t k) {
+            return shape.volume_from_wall(container, wall, distance(k), p, band.z_low, band.z_high);
+        };
+        double outer_volume = inside(k_first);
+        for (std::size_t k = k_first; k <= k_last; ++k) {
+            const double inner_volume = inside(k + 1);
+            row[k] += outer_volume - inner_volume;
+            outer_volume = inner_volume;
+        }
+    });
     const double height = band.z_high - band.z_low;
     const double depth = container.depth(band.z_low, band.z_high);
     std::vector<ProfileBin> out(shells);
@@ -141,8 +139,10 @@ std::vector<ProfileBin> wall_void_fraction(const Packing& packing, const Contain
 /// e(z) over `slabs` slabs [k h, (k+1) h] from the floor to the top of the bed; exact volumes.
 /// The spheres are taken in order of height, so each chunk touches a short run of slabs and
 /// keeps a partial row for that run only: memory O(N) however tall the bed.
-std::vector<ProfileBin> axial_void_fraction(const Packing& packing, const Container& container,
+template <ParticleShape S>
+std::vector<ProfileBin> axial_void_fraction(const ShapedBed<S>& bed, const Container& container,
                                             double height, std::size_t slabs) {
+    const Packing& packing = bed.particles();
     const std::size_t n = packing.size();
     std::vector<std::uint32_t> order(n);
     for (std::size_t i = 0; i < n; ++i)
@@ -153,12 +153,13 @@ std::vector<ProfileBin> axial_void_fraction(const Packing& packing, const Contai
     });
     const double last_slab = static_cast<double>(slabs - 1);
     auto slab_range = [&](std::size_t i) {
-        const Vec3& c = packing.centers[i];
-        const double r = packing.radii[i];
+        const Placement p = bed.placement(i);
+        const double low = bed.shape(i).support(p, Vec3{0.0, 0.0, -1.0}).z;
+        const double high = bed.shape(i).support(p, Vec3{0.0, 0.0, 1.0}).z;
         const auto first =
-            static_cast<std::size_t>(std::clamp(std::floor((c.z - r) / height), 0.0, last_slab));
+            static_cast<std::size_t>(std::clamp(std::floor(low / height), 0.0, last_slab));
         const auto last =
-            static_cast<std::size_t>(std::clamp(std::floor((c.z + r) / height), 0.0, last_slab));
+            static_cast<std::size_t>(std::clamp(std::floor(high / height), 0.0, last_slab));
         return std::pair{std::min(first, last), last};
     };
     // The run of slabs of each chunk first (no allocation in the parallel loops), then the
@@ -198,8 +199,8 @@ std::vector<ProfileBin> axial_void_fraction(const Packing& packing, const Contai
                     const std::size_t i = order[s];
                     const auto [k_first, k_last] = slab_range(i);
                     for (std::size_t k = k_first; k <= k_last; ++k)
-                        row[k - row_start[c]] += container.sphere_volume(
-                            packing.centers[i], packing.radii[i], static_cast<double>(k) * height,
+                        row[k - row_start[c]] += bed.shape(i).volume_in(
+                            container, bed.placement(i), static_cast<double>(k) * height,
                             static_cast<double>(k + 1) * height);
                 }
             });
@@ -783,14 +784,15 @@ BedAnalysis analyze_bed(const Packing& packing, const Container& container,
             limits::pair_checks_per_sphere, rdf_grid.edge, mean_diameter, rdf_grid.largest_cell,
             rdf_grid.edge));
 
-    out.void_fraction = void_fraction(packing, container, band->z_low, band->z_high);
-    out.axial_void_fraction =
-        axial_void_fraction(packing, container, options.slab_height * dp, slabs);
+    // The volumes through the particles' shape (particle_shape.hpp): spheres.
+    const ShapedBed<SphereShape> bed = spheres(packing);
+    out.void_fraction = void_fraction(bed, container, band->z_low, band->z_high);
+    out.axial_void_fraction = axial_void_fraction(bed, container, options.slab_height * dp, slabs);
     std::vector<std::uint32_t> per_sphere;
     out.coordination = coordination(packing, container, contacts, *band, per_sphere, out.walls);
     for (std::size_t w = 0; w < out.walls.size(); ++w) {
         out.walls[w].void_fraction =
-            wall_void_fraction(packing, container, w, options.shell_width * dp, *band, shells);
+            wall_void_fraction(bed, container, w, options.shell_width * dp, *band, shells);
         out.walls[w].centre_distribution =
             centre_distribution(packing, container, w, options.centre_bin * dp, *band, centre_bins,
                                 [](std::size_t) { return true; });

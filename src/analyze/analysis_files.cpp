@@ -130,4 +130,77 @@ std::vector<std::pair<std::string, std::string>> analysis_files(const BedAnalysi
     return tables;
 }
 
+nlohmann::json analysis_summary(const BedAnalysis& a, const AnalysisOptions& o) {
+    const auto& c = a.coordination;
+    nlohmann::json summary = {
+        {"diameter", a.diameter},
+        {"void_fraction", a.void_fraction},
+        {"void_fraction_band", {a.band.z_low, a.band.z_high}},
+        {"coordination",
+         {{"mean", c.mean},
+          {"mean_without_rattlers", c.mean_without_rattlers},
+          {"rattlers", c.rattlers},
+          {"spheres", c.spheres},
+          {"contact_tolerance", o.contact_tolerance},
+          {"histogram", c.histogram}}},
+        {"wall_contacts", c.wall_contacts},
+        {"wall_contacts_in_band", c.wall_contacts_in_band},
+        {"options",
+         {{"band_clearance", o.band_clearance},
+          {"shell_width", o.shell_width},
+          {"slab_height", o.slab_height},
+          {"centre_bin", o.centre_bin},
+          {"contact_tolerance", o.contact_tolerance},
+          {"rdf_range", o.rdf_range},
+          {"rdf_bin", o.rdf_bin},
+          {"units", "Dp"}}},
+        {"files",
+         {"radial_void_fraction.csv", "axial_void_fraction.csv", "radial_centre_distribution.csv",
+          "coordination.csv", "pair_correlation.csv"}}};
+    if (!a.by_size.empty()) {
+        nlohmann::json classes = nlohmann::json::array();
+        for (const SizeClassAnalysis& k : a.by_size)
+            classes.push_back({{"low", k.low},
+                               {"high", k.high},
+                               {"spheres", k.spheres},
+                               {"number_fraction", k.number_fraction},
+                               {"volume_fraction", k.volume_fraction},
+                               {"spheres_in_band", k.in_band},
+                               {"mean_coordination", k.mean_coordination}});
+        summary["by_size"] = classes;
+        summary["sizes"] = size_statistics_summary(a.sizes);
+        summary["files"].push_back("size_classes.csv");
+        if (a.walls.size() == 1)
+            summary["files"].push_back("centre_distribution_by_size.csv");
+    }
+    if (a.walls.size() == 1) // a cylinder or a box: the wall profiles are the files above
+        return summary;
+    // Several walls (an annulus): each wall's contacts and tables; none (a periodic cell):
+    // said so, with no wall contacts and no table against a wall.
+    nlohmann::json files = nlohmann::json::array();
+    nlohmann::json walls = nlohmann::json::array();
+    for (const WallAnalysis& wall : a.walls) {
+        const auto [void_name, centre_name] = wall_table_names(wall.name);
+        walls.push_back({{"name", wall.name},
+                         {"wall_contacts", wall.wall_contacts},
+                         {"wall_contacts_in_band", wall.wall_contacts_in_band},
+                         {"files", {void_name, centre_name}}});
+        files.push_back(void_name);
+        files.push_back(centre_name);
+    }
+    for (const auto& name : summary["files"])
+        if (name != "radial_void_fraction.csv" && name != "radial_centre_distribution.csv")
+            files.push_back(name);
+    summary["files"] = files;
+    summary["walls"] = walls;
+    if (a.walls.empty()) {
+        summary.erase("wall_contacts");
+        summary.erase("wall_contacts_in_band");
+        summary["no_walls"] = "a periodic cell has no side walls: no wall profile, centre "
+                              "distribution or wall contacts; the axial profile, the contacts "
+                              "and g(r) count every copy of a sphere (minimum image)";
+    }
+    return summary;
+}
+
 } // namespace packbed

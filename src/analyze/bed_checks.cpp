@@ -4,6 +4,7 @@
 
 #include <fmt/format.h>
 
+#include "packbed/bed_volume.hpp"
 #include "packbed/correlations.hpp"
 #include "packbed/volume.hpp"
 

@@ -22,6 +22,7 @@
 extern "C" __m128d _ZGVbN2v_atan(__m128d);
 #endif
 
+#include "packbed/bed_volume.hpp"
 #include "packbed/error.hpp"
 #include "packbed/files.hpp"
 #include "packbed/limits.hpp"

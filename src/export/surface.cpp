@@ -8,7 +8,6 @@
 #include <numbers>
 #include <span>
 #include <stdexcept>
-#include <tuple>
 #include <unordered_map>
 
 #include <fmt/format.h>
@@ -18,6 +17,7 @@
 #include "packbed/error.hpp"
 #include "packbed/files.hpp"
 #include "packbed/neighbor_list.hpp"
+#include "packbed/sphere_shape.hpp"
 #include "packbed/text.hpp"
 #include "packbed/volume.hpp"
 
@@ -563,19 +563,8 @@ std::vector<Solid> bed_surface(const TreatedBed& given, const SurfaceOptions& op
     const TreatedBed imaged = cell ? periodic_images(given, *cell) : TreatedBed{};
     const TreatedBed& bed = cell ? imaged : given;
     const std::vector<TreatedBody>& bodies = bed.bodies;
-    // The icosphere turned by a generic rotation (angles 1, 2 and 3 radians about z, y and x):
-    // contact directions along the axes or lattice vectors then never pass through a vertex,
-    // so two touching spheres do not meet at a shared point of both tessellations.
-    TriangleMesh unit = icosphere(options.level);
-    for (Vec3& v : unit.vertices) {
-        const auto turn = [](double a, double b, double angle) {
-            return std::pair{a * std::cos(angle) - b * std::sin(angle),
-                             a * std::sin(angle) + b * std::cos(angle)};
-        };
-        std::tie(v.x, v.y) = turn(v.x, v.y, 1.0);
-        std::tie(v.z, v.x) = turn(v.z, v.x, 2.0);
-        std::tie(v.y, v.z) = turn(v.y, v.z, 3.0);
-    }
+    const SphereShape sphere;
+    const TriangleMesh unit = sphere.unit_surface(options.level);
     double largest = 0.0;
     for (const TreatedBody& b : bodies)
         largest = std::max(largest, b.radius);
@@ -583,8 +572,7 @@ std::vector<Solid> bed_surface(const TreatedBed& given, const SurfaceOptions& op
     const double snap = 0.02 * edge;
     const auto body_mesh = [&](std::size_t i) {
         TriangleMesh m = unit;
-        for (Vec3& v : m.vertices)
-            v = bodies[i].center + v * bodies[i].radius;
+        place_surface<SphereShape>(m, {bodies[i].center, {}, bodies[i].radius});
         for (const HalfSpace& h : bodies[i].cuts)
             m = clip_convex(m, h, snap);
         return m;

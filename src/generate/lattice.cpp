@@ -17,6 +17,7 @@
 #include "packbed/memory.hpp"
 #include "packbed/neighbor_list.hpp"
 #include "packbed/text.hpp"
+#include "packbed/version.hpp"
 
 namespace packbed {
 
@@ -433,6 +434,64 @@ std::vector<std::pair<char, double>> parse_rotations(std::string_view text) {
         rest = comma == std::string_view::npos ? std::string_view{} : rest.substr(comma + 1);
     }
     return rotations;
+}
+
+nlohmann::json lattice_summary(const LatticeParameters& p, const Packing& packing) {
+    using nlohmann::json;
+    const UnitCell cell = unit_cell(p.type);
+    const double d = p.diameter;
+    const double r = 0.5 * d;
+    json summary;
+    summary["version"] = std::string(version);
+    summary["generator"] = "lattice";
+    summary["type"] = to_string(p.type);
+    summary["diameter"] = d;
+    summary["keep"] = lattice_keeps().name(p.keep);
+    const double volume = region_volume(p.region);
+    // A periodic cell is the container (analyze reads it): no side wall, so each ball counts
+    // whole between the floor and the top (Periodic::sphere_volume).
+    const Container& container = p.region.container;
+    const double height = p.region.height;
+    summary["region"] = container.region_json(height);
+    summary["container"] = container.summary_json();
+    const std::optional<Periods> period = container.periods();
+    if (period) {
+        const Vec3 edges = unit_cell(p.type).edges * d;
+        summary["periods"] = {std::round(period->lx() / edges.x),
+                              std::round(period->ly() / edges.y)};
+    }
+    double solid = 0.0;
+    for (const Vec3& centre : packing.centers)
+        solid += container.sphere_volume(centre, r, 0.0, height);
+    const Vec3 origin =
+        p.origin.value_or(container.axis().empty() ? Vec3{r, r, r} : Vec3{0.0, 0.0, r});
+    summary["origin"] = {origin.x, origin.y, origin.z};
+    summary["rotations"] = json::array();
+    for (const auto& [axis, degrees] : p.rotations)
+        summary["rotations"].push_back({{"axis", std::string(1, axis)}, {"degrees", degrees}});
+    summary["balls"] = packing.size();
+    summary["lattice"] = {{"porosity", cell.porosity},
+                          {"coordination", cell.coordination},
+                          {"cell_edges", {cell.edges.x * d, cell.edges.y * d, cell.edges.z * d}},
+                          {"balls_per_cell", cell.balls.size()}};
+    summary["porosity_region"] = 1.0 - solid / volume;
+    const LatticeContacts contacts =
+        period ? lattice_contacts(packing, *period) : lattice_contacts(packing);
+    std::vector<std::uint64_t> histogram;
+    double total = 0.0;
+    for (const std::uint32_t k : contacts.contacts) {
+        if (histogram.size() <= k)
+            histogram.resize(k + 1, 0);
+        ++histogram[k];
+        total += k;
+    }
+    summary["contacts"] = {
+        {"tolerance_d", 1e-9},
+        {"mean", packing.size() ? total / static_cast<double>(packing.size()) : 0.0},
+        {"histogram", histogram},
+        {"closest_distance_d",
+         std::isfinite(contacts.closest) ? json(contacts.closest) : json(nullptr)}};
+    return summary;
 }
 
 } // namespace packbed

@@ -48,17 +48,24 @@ std::string allowed_for(SizeKind kind) {
         return fmt::format("uniform:MIN,MAX with {:g} <= MIN < MAX <= {:g} and MAX <= {:g} MIN", lo,
                            hi, ratio);
     case SizeKind::normal:
-        return fmt::format("normal:MEAN,SD or normal:MEAN,SD,MIN,MAX with MEAN from {:g} to {:g}, "
-                           "SD > 0, {:g} <= MIN < MAX <= {:g}, MAX <= {:g} MIN, MIN < MEAN + 8 SD "
-                           "and MAX > MEAN - 8 SD (by default MIN = MEAN - 3 SD, at least MAX / "
-                           "{:g}, and MAX = MEAN + 3 SD)",
-                           lo, hi, lo, hi, ratio, ratio);
-    case SizeKind::lognormal:
-        return fmt::format("lognormal:MEDIAN,GSD or lognormal:MEDIAN,GSD,MIN,MAX with MEDIAN from "
-                           "{:g} to {:g}, GSD > 1, {:g} <= MIN < MAX <= {:g}, MAX <= {:g} MIN, "
-                           "MIN < MEDIAN GSD^8 and MAX > MEDIAN / GSD^8 (by default MEDIAN / GSD^3 "
-                           "to MEDIAN GSD^3, narrowed to MAX = {:g} MIN)",
-                           lo, hi, lo, hi, ratio, ratio);
+    case SizeKind::lognormal: {
+        // A two-parameter law cut to [MIN, MAX]: its spec, its centre's range, its spread, the
+        // cut's bounds, and where the cut may lie against the law's tails.
+        const bool normal = kind == SizeKind::normal;
+        const std::string_view name = normal ? "normal" : "lognormal";
+        const std::string_view centre = normal ? "MEAN" : "MEDIAN";
+        const std::string_view spread = normal ? "SD" : "GSD";
+        const std::string tails =
+            normal ? fmt::format("MIN < MEAN + 8 SD and MAX > MEAN - 8 SD (by default MIN = "
+                                 "MEAN - 3 SD, at least MAX / {:g}, and MAX = MEAN + 3 SD)",
+                                 ratio)
+                   : fmt::format("MIN < MEDIAN GSD^8 and MAX > MEDIAN / GSD^8 (by default "
+                                 "MEDIAN / GSD^3 to MEDIAN GSD^3, narrowed to MAX = {:g} MIN)",
+                                 ratio);
+        return fmt::format("{0}:{1},{2} or {0}:{1},{2},MIN,MAX with {1} from {3:g} to {4:g}, {2} "
+                           "{5}, {3:g} <= MIN < MAX <= {4:g}, MAX <= {6:g} MIN, {7}",
+                           name, centre, spread, lo, hi, normal ? "> 0" : "> 1", ratio, tails);
+    }
     case SizeKind::file:
         return fmt::format("file:PATH, a CSV of diameter,cumulative_fraction rows (fraction "
                            "passing; a header line may come first, # starts a comment): 2 to {} "

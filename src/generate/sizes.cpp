@@ -464,4 +464,26 @@ SizeStatistics size_statistics(std::span<const double> diameters, std::size_t bi
     return s;
 }
 
+nlohmann::json size_statistics_summary(const SizeStatistics& s) {
+    nlohmann::json classes = nlohmann::json::array();
+    for (const SizeClass& c : s.classes)
+        classes.push_back({{"low", c.low},
+                           {"high", c.high},
+                           {"count", c.count},
+                           {"number_fraction", c.number_fraction},
+                           {"volume_fraction", c.volume_fraction}});
+    return {{"count", s.count},
+            {"d10", s.d10},
+            {"d50", s.d50},
+            {"d90", s.d90},
+            {"sauter_mean_d32", s.sauter_mean},
+            {"volume_mean_d43", s.volume_mean},
+            {"number_mean", s.number_mean},
+            {"number_sd", s.number_sd},
+            {"smallest", s.smallest},
+            {"largest", s.largest},
+            {"size_ratio", s.size_ratio},
+            {"classes", classes}};
+}
+
 } // namespace packbed

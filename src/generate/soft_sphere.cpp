@@ -12,9 +12,12 @@
 #include "base/parallel.hpp"
 #include "base/require.hpp"
 #include "generate/soft_bed.hpp"
+#include "packbed/bed_volume.hpp"
 #include "packbed/error.hpp"
 #include "packbed/limits.hpp"
 #include "packbed/neighbor_list.hpp"
+#include "packbed/sphere_shape.hpp"
+#include "packbed/version.hpp"
 
 namespace packbed {
 
@@ -157,26 +160,22 @@ double SoftSphereParameters::largest_size() const {
 }
 
 Container SoftSphereParameters::container_dp() const {
-    return container ? *container : Container(Cylinder(0.5 * aspect_ratio));
+    return container ? *container : Container::tube(aspect_ratio);
+}
+
+nlohmann::json progress_json(const Progress& p) {
+    return {{"stage", p.stage},
+            {"iteration", p.iteration},
+            {"cg", p.cg},
+            {"max_overlap_pair", p.max_overlap_pair},
+            {"max_overlap_wall", p.max_overlap_wall},
+            {"mass_centre_z", p.mass_centre_z},
+            {"layer", p.layer},
+            {"layers", p.layers}};
 }
 
 Overlaps measure_overlaps(const Packing& packing, const Container& container) {
-    Overlaps out;
-    NeighborList list;
-    const std::optional<Periods> cell = container.periods();
-    if (cell)
-        list.wrap(*cell);
-    list.build(packing.centers, packing.radii, 0.0);
-    for (std::size_t i = 0; i < packing.size(); ++i) {
-        for (const auto j : list.neighbors_of(i)) {
-            const double sum = packing.radii[i] + packing.radii[j];
-            const Vec3 rij = cell ? cell->separation(packing.centers[i], packing.centers[j])
-                                  : packing.centers[j] - packing.centers[i];
-            out.pair = std::max(out.pair, sum - norm(rij));
-        }
-        out.wall = std::max(out.wall, container.wall_overlap(packing.centers[i], packing.radii[i]));
-    }
-    return out;
+    return measure_overlaps(spheres(packing), container);
 }
 
 struct SoftSphereGenerator::State : detail::SoftBed {
@@ -505,6 +504,73 @@ nlohmann::json soft_sphere_parameters_json(const SoftSphereParameters& p) {
             {"skin", p.list_skin()},
             {"layer_height", p.layer_height},
             {"max_iterations", p.max_iterations}};
+}
+
+nlohmann::json soft_sphere_summary(const SoftSphereParameters& p, const SoftSphereResult& result,
+                                   double band_clearance, int threads) {
+    using nlohmann::json;
+    const double d = p.diameter;
+    json summary;
+    summary["version"] = std::string(version);
+    summary["generator"] = "soft-sphere (Salvat et al. 2005)";
+    if (result.container.tube_diameter())
+        summary["aspect_ratio"] = p.aspect_ratio; // another container has none: its spec
+    summary["particles"] = p.particles;
+    summary["seed"] = p.seed;
+    summary["diameter"] = d;
+    summary["container"] = result.container.summary_json();
+    summary["container"]["height"] = bed_top(result.packing);
+    summary["container"]["bottom"] = 0.0;
+    if (const std::string_view axis = result.container.axis(); !axis.empty())
+        summary["container"]["axis"] = axis;
+
+    const auto band = band_clear_of_ends(result.packing, band_clearance * d);
+    if (band) {
+        summary["void_fraction"] =
+            void_fraction(result.packing, result.container, band->z_low, band->z_high);
+        summary["void_fraction_band"] = {band->z_low, band->z_high};
+    } else {
+        summary["void_fraction"] = nullptr;
+        summary["void_fraction_band"] = nullptr;
+        summary["void_fraction_note"] =
+            "the bed is not taller than twice the band clearance; lower --band-clearance";
+    }
+    summary["band_clearance"] = band_clearance;
+    summary["max_overlap_pair"] = result.max_overlap_pair;
+    summary["max_overlap_wall"] = result.max_overlap_wall;
+    summary["iterations"] = result.iterations;
+    summary["initial_height"] = result.initial_height;
+    summary["neighbor_list_builds"] = result.neighbor_builds;
+    summary["layers"] = result.layers;
+    json stages = json::array();
+    for (const auto& s : result.stages)
+        stages.push_back({{"name", s.name},
+                          {"iterations", s.iterations},
+                          {"steps", s.steps},
+                          {"cg", s.cg},
+                          {"max_overlap_pair", s.max_overlap_pair},
+                          {"max_overlap_wall", s.max_overlap_wall},
+                          {"mass_centre_z", s.mass_centre_z * d}});
+    summary["stages"] = stages;
+    summary["parameters"] = soft_sphere_parameters_json(p);
+    summary["parameters"].erase("aspect_ratio"); // these four are at the top level
+    summary["parameters"].erase("particles");
+    summary["parameters"].erase("seed");
+    summary["parameters"].erase("diameter");
+    summary["parameters"]["band_clearance"] = band_clearance;
+    summary["parameters"]["threads"] = threads;
+    summary["units"] = {{"length", "diameter units as given by --diameter"},
+                        {"max_overlap_pair", "Dp"},
+                        {"max_overlap_wall", "Dp"},
+                        {"overlap_low", "Dp"},
+                        {"overlap_high", "Dp"},
+                        {"tolerance", "Dp"},
+                        {"mc_tolerance", "percent"},
+                        {"skin", "Dp"},
+                        {"layer_height", "Dp"},
+                        {"band_clearance", "Dp"}};
+    summary["seconds"] = result.seconds;
+    return summary;
 }
 
 } // namespace packbed

@@ -127,6 +127,10 @@ std::string Container::describe() const {
     return ask(m_shape, [](const auto& s) { return s.describe(); });
 }
 
+Container Container::tube(double diameter) {
+    return Cylinder(0.5 * diameter);
+}
+
 Container Container::scaled(double factor) const {
     return ask(m_shape, [&](const auto& s) -> Container { return s.scaled(factor); });
 }

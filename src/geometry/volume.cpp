@@ -9,9 +9,6 @@
 
 #include <boost/math/quadrature/gauss.hpp>
 #include <boost/math/quadrature/tanh_sinh.hpp>
-#include <fmt/format.h>
-
-#include "packbed/error.hpp"
 
 namespace packbed {
 
@@ -308,32 +305,6 @@ double ball_volume_in_cylinder(double rho, double r, double ra) {
         volume += half * sum;
     }
     return volume;
-}
-
-double void_fraction(const Packing& packing, const Container& container, double z_low,
-                     double z_high) {
-    if (!(z_high > z_low))
-        throw InvalidInput(fmt::format(
-            "void fraction: band [{}, {}] is empty; the upper height must exceed the lower", z_low,
-            z_high));
-    double solid = 0.0;
-    for (std::size_t i = 0; i < packing.size(); ++i)
-        solid += container.sphere_volume(packing.centers[i], packing.radii[i], z_low, z_high);
-    return 1.0 - solid / (container.cross_section_area(z_low, z_high) * (z_high - z_low));
-}
-
-double bed_top(const Packing& packing) {
-    double top = 0.0;
-    for (std::size_t i = 0; i < packing.size(); ++i)
-        top = std::max(top, packing.centers[i].z + packing.radii[i]);
-    return top;
-}
-
-std::optional<Band> band_clear_of_ends(const Packing& packing, double clearance) {
-    const Band band{clearance, bed_top(packing) - clearance};
-    if (!(band.z_high > band.z_low))
-        return std::nullopt;
-    return band;
 }
 
 namespace {

@@ -255,6 +255,21 @@ std::string settle_run(const DemSettle& s, const SettleNumbers& n) {
         std::max(1, s.steps / 4), s.steps, s.dump, n.time_step);
 }
 
+/// The box of a settle input: SI units, the atom style, the boundary, how velocities reach the
+/// ghost atoms (the granular pair styles need them), the data file and the neighbour list.
+std::string settle_box(std::string_view atom_style, std::string_view boundary,
+                       std::string_view communication, const DemSettle& s, const SettleNumbers& n) {
+    return fmt::format("units           si\n"
+                       "atom_style      {}\n"
+                       "atom_modify     map array\n"
+                       "boundary        {}\n"
+                       "{}"
+                       "read_data       {}\n\n"
+                       "neighbor        {} bin\n"
+                       "neigh_modify    delay 0\n",
+                       atom_style, boundary, communication, s.data_file, n.skin);
+}
+
 } // namespace
 
 std::string lammps_settle_input(const DemSettle& s) {
@@ -264,22 +279,15 @@ std::string lammps_settle_input(const DemSettle& s) {
     const DemSettleWall wall = settle_wall(s, contact);
     return settle_head(s, n, "LAMMPS (2022, GRANULAR package)",
                        fmt::format("lmp -in {}.lammps.in", s.data_file)) +
+           settle_box("sphere", wall.boundary, "comm_modify     vel yes\n", s, n) +
            fmt::format(
-               "units           si\n"
-               "atom_style      sphere\n"
-               "atom_modify     map array\n"
-               "boundary        {4}\n"
-               "comm_modify     vel yes\n"
-               "read_data       {0}\n\n"
-               "neighbor        {1} bin\n"
-               "neigh_modify    delay 0\n"
                "# Hertz contacts with the material's E, nu, restitution (Tsuji damping) and "
                "friction.\n"
                "pair_style      granular\n"
-               "pair_coeff      * * {2}\n"
-               "{3}"
-               "fix             floor all wall/gran granular {2} zplane 0.0 NULL\n",
-               s.data_file, n.skin, contact, wall.lammps, wall.boundary) +
+               "pair_coeff      * * {0}\n"
+               "{1}"
+               "fix             floor all wall/gran granular {0} zplane 0.0 NULL\n",
+               contact, wall.lammps) +
            settle_run(s, n);
 }
 
@@ -305,16 +313,9 @@ std::string liggghts_settle_input(const DemSettle& s) {
                           "primitive type 1 zplane 0.0\n");
     return settle_head(s, n, "LIGGGHTS 3.8",
                        fmt::format("liggghts -in {}.liggghts.in", s.data_file)) +
+           settle_box("granular", wall.boundary,
+                      "newton          off\ncommunicate     single vel yes\n", s, n) +
            fmt::format(
-               "units           si\n"
-               "atom_style      granular\n"
-               "atom_modify     map array\n"
-               "boundary        {5}\n"
-               "newton          off\n"
-               "communicate     single vel yes\n"
-               "read_data       {0}\n\n"
-               "neighbor        {1} bin\n"
-               "neigh_modify    delay 0\n"
                "fix             m1 all property/global youngsModulus peratomtype ${{youngs}}\n"
                "fix             m2 all property/global poissonsRatio peratomtype ${{poisson}}\n"
                "fix             m3 all property/global coefficientRestitution peratomtypepair 1 "
@@ -323,10 +324,10 @@ std::string liggghts_settle_input(const DemSettle& s) {
                "${{friction}}\n"
                "pair_style      gran model hertz tangential history\n"
                "pair_coeff      * *\n"
-               "{2}"
+               "{0}"
                "# Warns if dt exceeds a quarter of the Rayleigh or Hertz time.\n"
-               "fix             dt_check all check/timestep/gran {4} 0.25 0.25\n",
-               s.data_file, n.skin, container, "", std::max(1, s.steps / 2), wall.boundary) +
+               "fix             dt_check all check/timestep/gran {1} 0.25 0.25\n",
+               container, std::max(1, s.steps / 2)) +
            settle_run(s, n);
 }
 

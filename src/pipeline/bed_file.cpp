@@ -9,6 +9,7 @@
 #include "packbed/option_ranges.hpp"
 #include "packbed/pipeline.hpp"
 #include "packbed/read.hpp"
+#include "packbed/bed_volume.hpp"
 #include "packbed/volume.hpp"
 
 namespace packbed {
@@ -33,7 +34,7 @@ std::optional<Container> find_container(const std::filesystem::path& particles,
     if (!container.empty())
         return container_from_spec("--container", container);
     if (cylinder_radius > 0.0)
-        return Cylinder(cylinder_radius);
+        return Container::tube(2.0 * cylinder_radius);
     return container_beside(particles);
 }
 

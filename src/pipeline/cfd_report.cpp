@@ -17,7 +17,7 @@
 #include "packbed/hydraulics.hpp"
 #include "packbed/limits.hpp"
 #include "packbed/pipeline.hpp"
-#include "packbed/summary.hpp"
+#include "packbed/json_text.hpp"
 #include "packbed/text.hpp"
 
 namespace packbed {

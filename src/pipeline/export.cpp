@@ -22,9 +22,10 @@
 #include "packbed/openfoam.hpp"
 #include "packbed/output.hpp"
 #include "packbed/pipeline.hpp"
-#include "packbed/summary.hpp"
+#include "packbed/json_text.hpp"
 #include "packbed/surface.hpp"
 #include "packbed/text.hpp"
+#include "packbed/bed_volume.hpp"
 #include "packbed/volume.hpp"
 
 namespace packbed {

@@ -1,6 +1,7 @@
 // A soft-sphere bed from a request to its files (pipeline.hpp).
 #include <cstdlib>
 #include <filesystem>
+#include <stdexcept>
 
 #include <omp.h>
 
@@ -13,7 +14,7 @@
 #include "packbed/memory.hpp"
 #include "packbed/option_ranges.hpp"
 #include "packbed/pipeline.hpp"
-#include "packbed/summary.hpp"
+#include "packbed/json_text.hpp"
 
 namespace packbed {
 
@@ -44,6 +45,12 @@ int threads_in_use() {
 }
 
 PreparedGeneration prepare_generation(GenerateRequest request) {
+    const LammpsLauncher& launcher = request.launcher;
+    if (request.engine != Engine::lammps && (launcher.ranks != 1 || !launcher.mpi_command.empty() ||
+                                             launcher.lmp != "lmp" || request.write_only))
+        throw InvalidInput(fmt::format("--ranks, --mpi-command, --lmp and --write-only are not "
+                                       "allowed with --engine {}; allowed: with --engine lammps",
+                                       to_string(request.engine)));
     PreparedGeneration prepared{request, request.params, std::nullopt,
                                 generation_memory(request.params.particles)};
     SoftSphereParameters& p = prepared.params;
@@ -131,7 +138,19 @@ PreparedGeneration prepare_generation(GenerateRequest request) {
                 p.solver == Solver::fire ? "in one piece" : "paper mode", initial_bed_height(p),
                 p.layer_height));
     }
+    if (request.engine == Engine::lammps)
+        lammps_launch(launcher); // --mpi-command and --lmp checked before anything is written
     return prepared;
+}
+
+GeneratedBed generate_bed(const PreparedGeneration& prepared, RunControl control, int threads,
+                          OutputDirectory* folder,
+                          const std::function<void(std::uint32_t)>& on_resume) {
+    if (prepared.request.engine == Engine::packbed)
+        return run_generation(prepared, std::move(control), threads, on_resume);
+    if (folder == nullptr)
+        throw std::logic_error("generate_bed: the LAMMPS engine runs in an output folder");
+    return run_lammps_generation(prepared, prepared.request.launcher, control, *folder);
 }
 
 GeneratedBed run_generation(const PreparedGeneration& prepared, RunControl control, int threads,

@@ -13,7 +13,7 @@
 #include "packbed/files.hpp"
 #include "packbed/limits.hpp"
 #include "packbed/pipeline.hpp"
-#include "packbed/summary.hpp"
+#include "packbed/json_text.hpp"
 #include "packbed/text.hpp"
 #include "packbed/version.hpp"
 

@@ -13,7 +13,7 @@
 #include "packbed/bed_checks.hpp"
 #include "packbed/correlations.hpp"
 #include "packbed/io.hpp"
-#include "packbed/summary.hpp"
+#include "packbed/json_text.hpp"
 
 namespace packbed {
 
