@@ -142,4 +142,22 @@ private:
     double m_reach;   // max(Rb, Rt)
 };
 
+/// Volume of the cone x^2 + y^2 <= R(z)^2, R(z) = rb + slope z (none where R(z) < 0), between
+/// the heights z_low and z_high: \f$\frac{\pi}{3} h (R_1^2 + R_1 R_2 + R_2^2)\f$ (the frustum,
+/// R_1 and R_2 the radii at its ends, cut at the apex); 0 when z_high <= z_low.
+double frustum_volume(double rb, double slope, double z_low, double z_high);
+
+/// Volume of the part of a sphere inside the cone x^2 + y^2 <= R(z)^2, R(z) = rb + slope z,
+/// and between the planes z = z_low and z = z_high: as sphere_volume_in_cylinder_slab, with
+/// the wall's radius linear in z. The slice at each height is the lens of two disks
+/// (disk_intersection_area), integrated over z by the same mapped 20-point Gauss-Legendre rule
+/// on the pieces between the heights where the slice's circle touches the wall's (the roots
+/// of two quadratics), the equator and the apex; planes-only and wall-only pieces in closed
+/// form. Relative error below 1e-8 (measured against tanh-sinh at 1e-14 over random cones
+/// and spheres: at most 2.7e-9, test_cone).
+/// \param center,radius the sphere (radius > 0) \param rb the wall's radius at z = 0 (may be
+/// negative: a cone whose apex is above the floor) \param slope dR/dz
+double sphere_volume_in_cone_slab(const Vec3& center, double radius, double rb, double slope,
+                                  double z_low, double z_high);
+
 } // namespace packbed

@@ -35,7 +35,8 @@ AxisBox bounding_box(const Packing& packing);
 /// The spheres as a LAMMPS data file for `atom_style sphere` (LIGGGHTS: `atom_style
 /// granular`, the same columns): header with the atom count, one atom type and the box
 /// bounds, then `Atoms # sphere` rows `id type diameter density x y z` (ids from 1 in packing
-/// order, type 1). Numbers in shortest round-trip form.
+/// order, type 1), each particle's DEM spheres (ParticleShape::dem_spheres: a sphere is one
+/// atom). Numbers in shortest round-trip form.
 /// \param density particle density (mass per volume, in the units the DEM run uses; > 0)
 /// \param box must hold every centre (LAMMPS drops atoms outside a fixed box)
 /// \param comment first line of the file (no newline)

@@ -1,6 +1,7 @@
 #include "packbed/cone.hpp"
 
 #include <algorithm>
+#include <array>
 #include <cmath>
 #include <limits>
 #include <numbers>
@@ -9,6 +10,7 @@
 #include <nlohmann/json.hpp>
 
 #include "geometry/shape_text.hpp"
+#include "geometry/volume_pieces.hpp"
 #include "packbed/limits.hpp"
 #include "packbed/volume.hpp"
 
@@ -271,6 +273,75 @@ std::string Cone::region_allowed() {
 FillWindow Cone::fill_window(double, double height) const {
     const double reach = std::max({radius_at(0.0), radius_at(height), 0.0});
     return {{-reach, reach, -reach, reach}, reach * reach, -1.0, true};
+}
+
+// The cone's exact volumes: the frustum in closed form, a sphere's part by the pieces of
+// volume_pieces.hpp (shared with the cylinder's sphere_volume_in_cylinder_slab).
+
+using detail::pi;
+using detail::volume_over_pieces;
+
+double frustum_volume(double rb, double slope, double z_low, double z_high) {
+    if (!(z_high > z_low))
+        return 0.0;
+    // Only the heights where R(z) >= 0: cut at the apex z = -Rb / k.
+    if (slope != 0.0) {
+        const double apex = -rb / slope;
+        if (slope > 0.0)
+            z_low = std::max(z_low, apex);
+        else
+            z_high = std::min(z_high, apex);
+    } else if (rb < 0.0) {
+        return 0.0;
+    }
+    if (!(z_high > z_low))
+        return 0.0;
+    const double r1 = std::max(rb + slope * z_low, 0.0), r2 = std::max(rb + slope * z_high, 0.0);
+    return pi / 3.0 * (z_high - z_low) * (r1 * r1 + r1 * r2 + r2 * r2);
+}
+
+double sphere_volume_in_cone_slab(const Vec3& center, double radius, double rb, double slope,
+                                  double z_low, double z_high) {
+    // Work in t = z - center.z, as for the cylinder; the wall's radius at t is
+    // R(t) = Rc + k t, Rc = R(center.z), and none (0) beyond the apex.
+    const double t_low = std::max(z_low - center.z, -radius);
+    const double t_high = std::min(z_high - center.z, radius);
+    if (!(t_low < t_high))
+        return 0.0;
+    const double rho = std::hypot(center.x, center.y);
+    const double rc = rb + slope * center.z;
+    auto wall_radius = [&](double t) { return std::max(rc + slope * t, 0.0); };
+    auto slice_radius = [&](double t) { return std::sqrt(std::max(radius * radius - t * t, 0.0)); };
+
+    // Break [t_low, t_high] where the slice changes regime, s(t) = |rho - R(t)| and
+    // s(t) = rho + R(t): with s^2 = r^2 - t^2 and R linear, each is the quadratic
+    // (1 + B^2) t^2 + 2 A B t + A^2 - r^2 = 0 (A = rho -+ Rc, B = -+k). Also at the equator
+    // (the densest nodes where the slice is largest) and at the apex, where R(t) has its kink.
+    std::array<double, 8> cuts{};
+    std::size_t ncuts = 0;
+    cuts[ncuts++] = t_low;
+    auto cut = [&](double t) {
+        if (t > t_low && t < t_high)
+            cuts[ncuts++] = t;
+    };
+    cut(0.0);
+    if (slope != 0.0)
+        cut(-rc / slope);
+    for (const auto& [a, b] : {std::pair{rho - rc, -slope}, std::pair{rho + rc, slope}}) {
+        const double q = 1.0 + b * b;
+        const double disc = radius * radius * q - a * a;
+        if (disc <= 0.0)
+            continue;
+        const double root = std::sqrt(disc);
+        cut((-a * b - root) / q);
+        cut((-a * b + root) / q);
+    }
+    cuts[ncuts++] = t_high;
+    return volume_over_pieces(std::span(cuts.data(), ncuts), radius, rho, slice_radius, wall_radius,
+                              [&](double t1, double t2) {
+                                  // the wall's disk inside the slice: the frustum itself
+                                  return frustum_volume(rc, slope, t1, t2);
+                              });
 }
 
 } // namespace packbed

@@ -9,6 +9,7 @@
 #include <fmt/format.h>
 
 #include "packbed/error.hpp"
+#include "packbed/sphere_shape.hpp"
 
 namespace packbed {
 
@@ -68,19 +69,24 @@ std::string lammps_data(const Packing& packing, double density, const AxisBox& b
                 "allowed: a box holding every centre",
                 i + 1, c.x, c.y, c.z, box.lo.x, box.hi.x, box.lo.y, box.hi.y, box.lo.z, box.hi.z));
     }
+    // Each particle as its DEM spheres (ParticleShape::dem_spheres: a sphere is one atom).
+    const ShapedBed<SphereShape> bed = spheres(packing);
+    std::size_t atoms = 0;
+    for (std::size_t i = 0; i < bed.size(); ++i)
+        atoms += bed.shape(i).dem_spheres(bed.placement(i)).size();
     fmt::memory_buffer out;
     const std::uint32_t ntypes = types.empty() ? 1u : *std::max_element(types.begin(), types.end());
-    fmt::format_to(std::back_inserter(out), "{}\n\n{} atoms\n{} atom types\n\n", header,
-                   packing.size(), ntypes);
+    fmt::format_to(std::back_inserter(out), "{}\n\n{} atoms\n{} atom types\n\n", header, atoms,
+                   ntypes);
     fmt::format_to(std::back_inserter(out), "{} {} xlo xhi\n{} {} ylo yhi\n{} {} zlo zhi\n\n",
                    box.lo.x, box.hi.x, box.lo.y, box.hi.y, box.lo.z, box.hi.z);
     fmt::format_to(std::back_inserter(out), "Atoms # sphere\n\n");
-    for (std::size_t i = 0; i < packing.size(); ++i) {
-        const Vec3 c = packing.centers[i];
-        fmt::format_to(std::back_inserter(out), "{} {} {} {} {} {} {}\n", i + 1,
-                       types.empty() ? 1u : types[i], 2.0 * packing.radii[i], density, c.x, c.y,
-                       c.z);
-    }
+    std::size_t id = 0;
+    for (std::size_t i = 0; i < bed.size(); ++i)
+        for (const DemSphere& a : bed.shape(i).dem_spheres(bed.placement(i)))
+            fmt::format_to(std::back_inserter(out), "{} {} {} {} {} {} {}\n", ++id,
+                           types.empty() ? 1u : types[i], 2.0 * a.radius, density, a.centre.x,
+                           a.centre.y, a.centre.z);
     return fmt::to_string(out);
 }
 

@@ -244,6 +244,22 @@ std::string stage_plots(OutputDirectory& out, const BedAnalysis& a, const Contai
     return draw_plots(out, names, {first, second});
 }
 
+namespace {
+
+/// The record of an analysis (analysis_summary) and, with an output, its files staged there and
+/// `plots` saying why the plots were not drawn (when they were not): what every analysis job
+/// writes.
+nlohmann::json analysis_record(const BedAnalysis& analysis, const AnalysisOptions& options,
+                               const Container& container, OutputDirectory* out) {
+    nlohmann::json record = analysis_summary(analysis, options);
+    if (out)
+        if (const std::string why = stage_analysis_files(*out, analysis, container); !why.empty())
+            record["plots"] = why;
+    return record;
+}
+
+} // namespace
+
 void stage_analysis(OutputDirectory& out, const Packing& packing, const Container& container,
                     double band_clearance, nlohmann::json& summary) {
     AnalysisOptions options;
@@ -253,10 +269,8 @@ void stage_analysis(OutputDirectory& out, const Packing& packing, const Containe
     if (const std::optional<Periods> cell = container.periods(); cell && !packing.radii.empty())
         options.rdf_range =
             std::min(options.rdf_range, std::min(cell->lx(), cell->ly()) / packing.mean_diameter());
-    const BedAnalysis analysis = analyze_bed(packing, container, options);
-    summary["analysis"] = analysis_summary(analysis, options);
-    if (const std::string why = stage_analysis_files(out, analysis, container); !why.empty())
-        summary["analysis"]["plots"] = why;
+    summary["analysis"] =
+        analysis_record(analyze_bed(packing, container, options), options, container, &out);
 }
 
 std::string stage_analysis_files(OutputDirectory& out, const BedAnalysis& analysis,
@@ -270,13 +284,9 @@ AnalyzeJob analyze_job(const Packing& packing, const Container& container,
                        const AnalysisOptions& options, OutputDirectory* out) {
     AnalyzeJob job{analyze_bed(packing, container, options), {}, {}};
     job.warnings = analysis_warnings(packing, container, job.analysis);
-    job.summary = analysis_summary(job.analysis, options);
+    job.summary = analysis_record(job.analysis, options, container, out);
     job.summary["warnings"] = job.warnings;
     job.summary["container"] = container.summary_json();
-    if (out)
-        if (const std::string why = stage_analysis_files(*out, job.analysis, container);
-            !why.empty())
-            job.summary["plots"] = why;
     return job;
 }
 
