@@ -32,7 +32,7 @@ SoftSphereGenerator& relaxed_bed(std::int64_t particles, UpdateOrder order) {
     if (!bed) {
         SoftSphereParameters p;
         p.particles = static_cast<std::uint64_t>(particles);
-        p.aspect_ratio = aspect_ratio_for(particles);
+        p.container = packbed::Container::tube(aspect_ratio_for(particles));
         p.update = order;
         bed = std::make_unique<SoftSphereGenerator>(p);
         bed->run_initial_stage();
@@ -109,7 +109,7 @@ void BM_IterationSizes(benchmark::State& state) {
     if (!bed) {
         SoftSphereParameters p;
         p.particles = static_cast<std::uint64_t>(particles);
-        p.aspect_ratio = 20.0;
+        p.container = packbed::Container::tube(20.0);
         p.sizes = sizes_of(mix, p.particles);
         bed = std::make_unique<SoftSphereGenerator>(p);
         bed->run_initial_stage();
@@ -137,7 +137,7 @@ void BM_IterationContainers(benchmark::State& state) {
     if (!bed) {
         SoftSphereParameters p;
         p.particles = static_cast<std::uint64_t>(particles);
-        p.aspect_ratio = 20.0;
+        p.container = packbed::Container::tube(20.0);
         if (shape == Shape::annulus) // pi (10.6^2 - 3^2) = 324.7 Dp^2
             p.container = packbed::Annulus(10.6, 3.0);
         else if (shape == Shape::box)

@@ -51,7 +51,7 @@ int main(int argc, char** argv) {
     int scatter_slabs = 0;
     for (const std::uint64_t seed : seeds) {
         SoftSphereParameters p;
-        p.aspect_ratio = a;
+        p.container = packbed::Container::tube(a);
         p.particles = particles;
         p.seed = seed;
         p.layer_height = layer_height;

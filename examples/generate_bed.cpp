@@ -2,13 +2,13 @@
 // Build: part of the project (PACKBED_BUILD_EXAMPLES); run: build/examples/generate_bed
 #include <cstdio>
 
-#include "packbed/soft_sphere.hpp"
 #include "packbed/bed_volume.hpp"
+#include "packbed/soft_sphere.hpp"
 
 int main() {
     // The bed: a = 4, 150 spheres of 3 mm, seed 7.
     packbed::SoftSphereParameters params;
-    params.aspect_ratio = 4.0;
+    params.container = packbed::Container::tube(4.0);
     params.particles = 150;
     params.diameter = 0.003;
     params.seed = 7;

@@ -17,7 +17,7 @@ namespace {
 
 packbed::SoftSphereParameters seed_parameters() {
     packbed::SoftSphereParameters p;
-    p.aspect_ratio = 3;
+    p.container = packbed::Container::tube(3);
     p.particles = 200;
     p.solver = packbed::Solver::fire;
     p.layer_height = 10;

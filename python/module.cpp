@@ -180,7 +180,7 @@ Bed generate(std::optional<double> aspect_ratio, const std::optional<std::string
                                        "allowed: one of the two",
                                        *aspect_ratio, printable(container->substr(0, 80))));
     if (aspect_ratio)
-        p.aspect_ratio = check_option("aspect-ratio", *aspect_ratio, range::aspect_ratio);
+        request.aspect_ratio = check_option("aspect-ratio", *aspect_ratio, range::aspect_ratio);
     p.particles = check_option("particles", particles, range::particles);
     p.seed = whole(seed, "seed", range::seed);
     p.diameter = check_option("diameter", diameter, range::diameter);

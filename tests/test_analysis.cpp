@@ -13,9 +13,9 @@
 #include <omp.h>
 
 #include "packbed/analysis.hpp"
+#include "packbed/bed_volume.hpp"
 #include "packbed/error.hpp"
 #include "packbed/soft_sphere.hpp"
-#include "packbed/bed_volume.hpp"
 #include "packbed/volume.hpp"
 
 using namespace packbed;
@@ -457,7 +457,7 @@ TEST(PairCorrelation, GeneratedBedAtAspectRatio5TendsToOne) {
     // dt_max 0.3 and skin 0.2 1.068 1.051 1.057 0.971 0.891, mean 1.008); the uncorrected
     // normalisation gave about 0.5 there. The first peak stays at contact.
     SoftSphereParameters parameters;
-    parameters.aspect_ratio = 5.0;
+    parameters.container = Container::tube(5.0);
     parameters.particles = 300;
     parameters.seed = 1;
     const SoftSphereResult bed = generate_soft_sphere(parameters);

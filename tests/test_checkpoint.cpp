@@ -34,7 +34,7 @@ fs::path scratch_file(const std::string& name) {
 /// a = 5, 600 spheres, layers 10 Dp: three layers (as in test_layers.cpp).
 SoftSphereParameters three_layers() {
     SoftSphereParameters p;
-    p.aspect_ratio = 5.0;
+    p.container = Container::tube(5.0);
     p.particles = 600;
     p.seed = 1;
     p.solver = Solver::fire;

@@ -8,10 +8,10 @@
 
 #include <gtest/gtest.h>
 
+#include "packbed/bed_volume.hpp"
 #include "packbed/checkpoint.hpp"
 #include "packbed/error.hpp"
 #include "packbed/soft_sphere.hpp"
-#include "packbed/bed_volume.hpp"
 #include "packbed/volume.hpp"
 
 using namespace packbed;
@@ -22,7 +22,7 @@ namespace {
 /// a = 5, 600 spheres, layers 10 Dp: L0 = 30.2 Dp, three layers of about 200 spheres.
 SoftSphereParameters three_layers() {
     SoftSphereParameters p;
-    p.aspect_ratio = 5.0;
+    p.container = Container::tube(5.0);
     p.particles = 600;
     p.seed = 1;
     p.solver = Solver::fire;
@@ -64,15 +64,15 @@ TEST(FireLayers, CountFollowsTheInitialHeight) {
     p.solver = Solver::fire;
     // The paper's case, L0 = 25.2 Dp, and the a = 10 validation beds (28.3 Dp): one piece.
     EXPECT_EQ(fire_layers(p), 1u);
-    p.aspect_ratio = 10.0;
+    p.container = Container::tube(10.0);
     p.particles = 2250;
     EXPECT_EQ(fire_layers(p), 1u);
     // a = 20, 30 000 spheres: L0 = 2/3 30000 / (400 x 0.53) = 94.3 Dp, floor(94.3 / 30) = 3.
-    p.aspect_ratio = 20.0;
+    p.container = Container::tube(20.0);
     p.particles = 30000;
     EXPECT_EQ(fire_layers(p), 3u);
     // a = 50, a million: L0 = 503.1 Dp, 16 layers.
-    p.aspect_ratio = 50.0;
+    p.container = Container::tube(50.0);
     p.particles = 1000000;
     EXPECT_EQ(fire_layers(p), 16u);
     p.layer_height = 0.0; // one piece on request
@@ -183,7 +183,7 @@ TEST(FireLayers, EmptySlicesAreSkipped) {
     // spheres, so most slices hold none; seed 1 leaves the bottom one empty, which crashed the
     // solver (a list built over no sphere).
     SoftSphereParameters p;
-    p.aspect_ratio = 3.0;
+    p.container = Container::tube(3.0);
     p.particles = 60;
     p.e0 = 0.999;
     p.seed = 1;

@@ -8,10 +8,10 @@
 #include <gtest/gtest.h>
 #include <omp.h>
 
+#include "packbed/bed_volume.hpp"
 #include "packbed/error.hpp"
 #include "packbed/pipeline.hpp"
 #include "packbed/soft_sphere.hpp"
-#include "packbed/bed_volume.hpp"
 #include "packbed/volume.hpp"
 
 using namespace packbed;
@@ -21,7 +21,7 @@ namespace {
 SoftSphereParameters small_bed(std::uint64_t seed = 1) {
     SoftSphereParameters p;
     p.solver = Solver::paper; // this file tests the paper's schedule (the default is fire)
-    p.aspect_ratio = 3.0;
+    p.container = Container::tube(3.0);
     p.particles = 40;
     p.seed = seed;
     return p;
@@ -84,10 +84,10 @@ TEST(InitialHeight, Equation6) {
 TEST(GenerationStage, CentresFollowTheSpecifiedDistribution) {
     SoftSphereParameters p = small_bed();
     p.particles = 4000;
-    p.aspect_ratio = 6.0;
+    p.container = Container::tube(6.0);
     const SoftSphereGenerator gen(p);
     const Packing& bed = gen.packing_dp();
-    const double l0 = initial_bed_height(p.particles, p.aspect_ratio, p.e0);
+    const double l0 = initial_bed_height(p.particles, *p.aspect_ratio(), p.e0);
     const double reach = 3.0 - 0.5; // Rt - Dp/2
     std::size_t inner_half_area = 0;
     for (std::size_t i = 0; i < bed.size(); ++i) {
@@ -159,7 +159,7 @@ TEST(FinalStage, HalvesCgEachStepAndEndsBelowTheTolerance) {
 TEST(SoftSphere, SmallBedConvergesInsideTheContainer) {
     SoftSphereParameters p;
     p.solver = Solver::paper; // this file tests the paper's schedule (the default is fire)
-    p.aspect_ratio = 4.0;
+    p.container = Container::tube(4.0);
     p.particles = 150;
     p.seed = 1;
     p.diameter = 2.0; // outputs scale with the diameter
@@ -189,7 +189,7 @@ TEST(FireSolver, ReachesThePapersToleranceAndDensityInFarFewerIterations) {
     // 542 515 iterations for e = 0.4329 (docs/validation.md); FIRE minimises the same energy.
     SoftSphereParameters p;
     p.solver = Solver::paper; // this file tests the paper's schedule (the default is fire)
-    p.aspect_ratio = 5.0;
+    p.container = Container::tube(5.0);
     p.particles = 562;
     p.seed = 1;
     p.solver = Solver::fire;
@@ -242,7 +242,7 @@ TEST(FireSolver, OwnScheduleEndsAtThePapersDensityInFewerStepsThanThePapersSched
     // fire's schedule ends as dense as the paper's beds in under half the steps (9 037 against
     // 29 659 when this test was written).
     SoftSphereParameters p;
-    p.aspect_ratio = 5.0;
+    p.container = Container::tube(5.0);
     p.particles = 562;
     p.seed = 1;
     const SoftSphereResult own = relax_with_fire(p);
@@ -267,7 +267,7 @@ TEST(FireSolver, TrajectoryIsIndependentOfThreadCount) {
     // largest overlaps every 100 steps, for 3 000 steps, must agree to the bit.
     SoftSphereParameters p;
     p.solver = Solver::paper; // this file tests the paper's schedule (the default is fire)
-    p.aspect_ratio = 10.0;
+    p.container = Container::tube(10.0);
     p.particles = 1200;
     p.seed = 4;
     p.solver = Solver::fire;
@@ -297,7 +297,7 @@ TEST(SoftSphere, SimultaneousUpdateIsIndependentOfThreadCount) {
     // the random start, with gravity, include several neighbour-list rebuilds.
     SoftSphereParameters p;
     p.solver = Solver::paper; // this file tests the paper's schedule (the default is fire)
-    p.aspect_ratio = 10.0;
+    p.container = Container::tube(10.0);
     p.particles = 3000;
     p.seed = 3;
     p.update = UpdateOrder::simultaneous;
@@ -320,14 +320,14 @@ TEST(SoftSphere, OptimisationsLeaveEveryBitOfTheResult) {
     // order and tracking moves inside the iteration must not change a bit (issue 5, item 1).
     SoftSphereParameters p;
     p.solver = Solver::paper; // this file tests the paper's schedule (the default is fire)
-    p.aspect_ratio = 3.0;
+    p.container = Container::tube(3.0);
     p.particles = 60;
     p.seed = 7;
     const SoftSphereResult simultaneous = generate_soft_sphere(p);
     EXPECT_EQ(simultaneous.iterations, 24616u);
     EXPECT_EQ(fingerprint(simultaneous.packing), 0xa55e7fbf640c9029ull);
 
-    p.aspect_ratio = 4.0;
+    p.container = Container::tube(4.0);
     p.particles = 150;
     p.seed = 3;
     p.update = UpdateOrder::in_place;
@@ -335,7 +335,7 @@ TEST(SoftSphere, OptimisationsLeaveEveryBitOfTheResult) {
     EXPECT_EQ(in_place.iterations, 124659u);
     EXPECT_EQ(fingerprint(in_place.packing), 0xac085a510b520477ull);
 
-    p.aspect_ratio = 12.0;
+    p.container = Container::tube(12.0);
     p.particles = 3000; // parallel iteration, several rebuilds
     p.seed = 2;
     p.update = UpdateOrder::simultaneous;
@@ -372,7 +372,7 @@ TEST(SoftSphere, BinaryBedEndsBelowTheToleranceOfEachPairsSmallerSphere) {
     // sphere inside and on or above the floor, the sizes as given.
     const double d32 = 460.0 / 340.0;
     SoftSphereParameters p;
-    p.aspect_ratio = 7.0;
+    p.container = Container::tube(7.0);
     p.particles = 250;
     p.seed = 3;
     p.diameter = d32; // output units: the small sphere's diameter is 1
@@ -415,7 +415,7 @@ TEST(SoftSphere, SizesAreCheckedWithTheirMessages) {
                                "at most 10 (the size ratio the solvers are tested for)");
     }
     p.sizes = {1.0, 5.5, 1.0};
-    p.aspect_ratio = 5.0;
+    p.container = Container::tube(5.0);
     try {
         p.validate();
         FAIL();
@@ -432,7 +432,7 @@ TEST(SoftSphere, SizesAreCheckedWithTheirMessages) {
 
 TEST(SoftSphere, DivergenceStopsWithStageIterationAndParameter) {
     SoftSphereParameters p = small_bed();
-    p.aspect_ratio = 4.0;
+    p.container = Container::tube(4.0);
     p.particles = 150;
     p.ck = 0.99; // a pair still converges, a crowded start does not:
     p.e0 = 0.1;  // the first iterations throw a sphere 2 Dp through the wall
@@ -461,13 +461,13 @@ TEST(FinalStage, AFloorLayerSqueezedFlatIsLiftedBothSolvers) {
     // in-place case was once taken for a cycle of the iteration. The final stage now lifts
     // them (SoftBed::lift_squeezed_floor_spheres), and the floor keeps at most 11.
     SoftSphereParameters fire;
-    fire.aspect_ratio = 4.0;
+    fire.container = Container::tube(4.0);
     fire.particles = 200;
     fire.seed = 2;
     const SoftSphereResult a = generate_soft_sphere(fire);
     SoftSphereParameters paper;
     paper.solver = Solver::paper;
-    paper.aspect_ratio = 4.0;
+    paper.container = Container::tube(4.0);
     paper.particles = 150;
     paper.seed = 2;
     paper.ck = 0.45;
@@ -532,33 +532,33 @@ TEST_P(SoftSphereParameterErrors, MessageNamesParameterValueAndRange) {
 
 INSTANTIATE_TEST_SUITE_P(
     Cases, SoftSphereParameterErrors,
-    ::testing::Values(BadParameter{"aspect-ratio = 0.5 is not allowed; allowed: 1 <= a <= 10000",
-                                   [](SoftSphereParameters& p) { p.aspect_ratio = 0.5; }},
-                      BadParameter{"particles = 0 is not allowed; allowed: 1 to 100000000",
-                                   [](SoftSphereParameters& p) { p.particles = 0; }},
-                      BadParameter{"diameter = -1 is not allowed; allowed: 1e-12 to 1e12",
-                                   [](SoftSphereParameters& p) { p.diameter = -1; }},
-                      BadParameter{"e0 = 1 is not allowed; allowed: 0 < e0 < 1",
-                                   [](SoftSphereParameters& p) { p.e0 = 1.0; }},
-                      BadParameter{"ck = 1.5 is not allowed; allowed: 0.01 <= ck < 1",
-                                   [](SoftSphereParameters& p) { p.ck = 1.5; }},
-                      BadParameter{"ck = 1e-300 is not allowed; allowed: 0.01 <= ck < 1",
-                                   [](SoftSphereParameters& p) { p.ck = 1e-300; }},
-                      BadParameter{"tolerance = 1e-16 is not allowed; allowed: 1e-12 <= "
-                                   "tolerance <= 0.01",
-                                   [](SoftSphereParameters& p) { p.tolerance = 1e-16; }},
-                      BadParameter{"cg-step = 0.001 is not allowed; allowed: 0 < cg-step <= 5e-6",
-                                   [](SoftSphereParameters& p) { p.cg_step = 1e-3; }},
-                      BadParameter{
-                          "overlap-high = 0.004 is not allowed; allowed: overlap-low (0.005) < "
-                          "overlap-high < 0.5",
-                          [](SoftSphereParameters& p) { p.overlap_high = 0.004; }},
-                      BadParameter{"tolerance = 0 is not allowed",
-                                   [](SoftSphereParameters& p) { p.tolerance = 0; }},
-                      BadParameter{"mc-window = 1 is not allowed; allowed: 2 to 10000",
-                                   [](SoftSphereParameters& p) { p.mc_window = 1; }},
-                      BadParameter{"skin = 2 is not allowed; allowed: 0 < skin <= 1",
-                                   [](SoftSphereParameters& p) { p.skin = 2; }}));
+    ::testing::Values(
+        BadParameter{"aspect-ratio = 0.5 is not allowed; allowed: 1 <= a <= 10000",
+                     [](SoftSphereParameters& p) { p.container = Container::tube(0.5); }},
+        BadParameter{"particles = 0 is not allowed; allowed: 1 to 100000000",
+                     [](SoftSphereParameters& p) { p.particles = 0; }},
+        BadParameter{"diameter = -1 is not allowed; allowed: 1e-12 to 1e12",
+                     [](SoftSphereParameters& p) { p.diameter = -1; }},
+        BadParameter{"e0 = 1 is not allowed; allowed: 0 < e0 < 1",
+                     [](SoftSphereParameters& p) { p.e0 = 1.0; }},
+        BadParameter{"ck = 1.5 is not allowed; allowed: 0.01 <= ck < 1",
+                     [](SoftSphereParameters& p) { p.ck = 1.5; }},
+        BadParameter{"ck = 1e-300 is not allowed; allowed: 0.01 <= ck < 1",
+                     [](SoftSphereParameters& p) { p.ck = 1e-300; }},
+        BadParameter{"tolerance = 1e-16 is not allowed; allowed: 1e-12 <= "
+                     "tolerance <= 0.01",
+                     [](SoftSphereParameters& p) { p.tolerance = 1e-16; }},
+        BadParameter{"cg-step = 0.001 is not allowed; allowed: 0 < cg-step <= 5e-6",
+                     [](SoftSphereParameters& p) { p.cg_step = 1e-3; }},
+        BadParameter{"overlap-high = 0.004 is not allowed; allowed: overlap-low (0.005) < "
+                     "overlap-high < 0.5",
+                     [](SoftSphereParameters& p) { p.overlap_high = 0.004; }},
+        BadParameter{"tolerance = 0 is not allowed",
+                     [](SoftSphereParameters& p) { p.tolerance = 0; }},
+        BadParameter{"mc-window = 1 is not allowed; allowed: 2 to 10000",
+                     [](SoftSphereParameters& p) { p.mc_window = 1; }},
+        BadParameter{"skin = 2 is not allowed; allowed: 0 < skin <= 1",
+                     [](SoftSphereParameters& p) { p.skin = 2; }}));
 
 // The run uses the threads it is given (issue 44): OpenMP's dynamic adjustment stays off, so
 // a parallel region gets every thread asked for, even more than the cores (the adjustment,

@@ -130,7 +130,7 @@ TEST(StageTimeLeft, HonestThroughAFireRunsCreep) {
     // steps before its end, the estimate must be within -20 % and +50 % (plus 0.5 s) of the
     // truth.
     SoftSphereParameters p;
-    p.aspect_ratio = 10.0;
+    p.container = Container::tube(10.0);
     p.particles = 2250;
     p.seed = 26;
     std::vector<Progress> reports;

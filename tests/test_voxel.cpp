@@ -171,7 +171,7 @@ TEST(Voxel, PartialVolumesSumToTheSolidVolumeInTheRegion) {
     // h^3 equals the sum of each sphere's exact volume in the region to 1e-9 relative
     SoftSphereParameters params;
     params.particles = 300;
-    params.aspect_ratio = 5;
+    params.container = Container::tube(5);
     params.seed = 4;
     const SoftSphereResult bed = generate_soft_sphere(params);
     const std::array<double, 6> region{-2.2, -1.9, 0.7, 2.1, 2.3, 4.9};

@@ -30,8 +30,9 @@ struct GenerateOptions {
     std::string update = to_string(SoftSphereParameters{}.update);
     std::string solver = to_string(SoftSphereParameters{}.solver);
     std::string out = "packbed-out";
-    std::string checkpoint; // empty: none
-    std::string container;  // --container cylinder:D, instead of --aspect-ratio
+    std::string checkpoint;    // empty: none
+    double aspect_ratio = 5.0; // -a: the shorthand of a tube
+    std::string container;     // --container cylinder:D, instead of --aspect-ratio
     std::string sizes = "mono";
     std::string fractions = to_string(FractionBasis::volume);
     double band_clearance = 1.0;
@@ -54,8 +55,8 @@ void report_bed(const PreparedGeneration& prepared, const GeneratedBed& bed,
     const auto& summary = bed.summary;
     fmt::print("packbed {}: {} spheres, {}, seed {}{}: {} iterations, {:.2f} s\n", command,
                params.particles,
-               params.container ? result.container.spec()
-                                : fmt::format("a = {}", params.aspect_ratio),
+               params.aspect_ratio() ? fmt::format("a = {}", *params.aspect_ratio())
+                                     : result.container.spec(),
                params.seed, engine, result.iterations, result.seconds);
     fmt::print("largest overlaps: sphere-sphere {:.3e} Dp, sphere-wall {:.3e} Dp\n",
                result.max_overlap_pair, result.max_overlap_wall);
@@ -93,6 +94,7 @@ int run_generate(GenerateOptions& o) {
     request.params.solver = solvers().at(o.solver);
     request.fractions = fraction_bases().at(o.fractions);
     request.sizes = o.sizes;
+    request.aspect_ratio = o.aspect_ratio;
     request.container = o.container;
     request.checkpoint = o.checkpoint;
     request.band_clearance = o.band_clearance;
@@ -183,7 +185,7 @@ Command register_generate(CLI::App& parent) {
     app->option_defaults()->always_capture_default();
 
     CLI::Option* aspect =
-        app->add_option("-a,--aspect-ratio", p.aspect_ratio,
+        app->add_option("-a,--aspect-ratio", o.aspect_ratio,
                         "a = 2 Rt / Dp, tube over sphere diameter (shorthand of --container)")
             ->check(real_in(option_range::aspect_ratio));
     add_container_option(*app, o.container,

@@ -75,7 +75,7 @@ struct WallAnalysis {
 /// g(r) counts the pairs whose two centres lie in the band and normalises by the volume of each
 /// shell inside this region (analyze_bed; docs/analysis.md, "Pair correlation g(r)").
 struct PairRegion {
-    Container container = Cylinder(0.0); ///< the container shrunk by the mean radius R
+    Container container = Container::tube(0.0); ///< the container shrunk by the mean radius R
     Band band; ///< the heights: the analysis band, within R and top - R (length)
 };
 

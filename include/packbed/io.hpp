@@ -108,7 +108,7 @@ struct DemSettle {
     std::string dump;       ///< the dump the run writes (first and last step)
     /// The container (LAMMPS: the region, a cylinder or a block); a cylinder of radius 0, the
     /// default, is refused.
-    Container container = Cylinder(0.0);
+    Container container = Container::tube(0.0);
     double container_height = 0.0; ///< H (LAMMPS: the region's top)
     double smallest_radius = 0.0;  ///< sets the time step
     double diameter = 0.0;         ///< mean Dp: the neighbour skin (0.1 Dp)

@@ -48,6 +48,7 @@ struct GenerateRequest {
     SoftSphereParameters params;
     std::string sizes = "mono";                      ///< a --sizes spec (docs/sizes.md)
     FractionBasis fractions = FractionBasis::volume; ///< what the sizes' fractions count
+    double aspect_ratio = 5.0;       ///< --aspect-ratio: a tube of a Dp, where `container` is ""
     std::string container;           ///< a --container SPEC (parse_container); "": aspect_ratio
     std::string checkpoint;          ///< --checkpoint file; "": none
     double band_clearance = 1.0;     ///< of the void-fraction band, Dp

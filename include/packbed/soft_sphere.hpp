@@ -52,7 +52,6 @@ std::string to_string(Solver solver);
 /// and the settling schedule, which is the chosen solver's own unless given (schedule()). Lengths
 /// marked "Dp" are in units of the sphere diameter. Plain value type.
 struct SoftSphereParameters {
-    double aspect_ratio = 5.0;     ///< a = 2 Rt / Dp, >= 1
     std::uint64_t particles = 500; ///< Np, >= 1
     std::uint64_t seed = 1;        ///< seed of the generation stage's random numbers
     double diameter = 1.0;         ///< Dp in output length units, 1e-12 to 1e12
@@ -89,11 +88,9 @@ struct SoftSphereParameters {
     /// sphere moves with its own step length (docs/sizes.md, "Both solvers").
     std::vector<double> sizes;
     static constexpr double max_size_ratio = 10.0; ///< largest over smallest diameter
-    /// The container in units of Dp (issue 17): a box, an annulus or a periodic cell (a
-    /// cylinder is taken as well, as its aspect ratio). Empty: the paper's cylinder of
-    /// diameter aspect_ratio, which is then the one length of the container; when set,
-    /// aspect_ratio is not read.
-    std::optional<Container> container;
+    /// The container in units of Dp: by default the paper's tube of a = 2 Rt / Dp = 5
+    /// (`Container::tube(a)`: the front ends' --aspect-ratio; a from 1 to 10000).
+    Container container = Container::tube(5.0);
 
     /// The settling schedule: the control band of eq. (7) and the mass-centre rule's spread.
     struct Schedule {
@@ -128,9 +125,8 @@ struct SoftSphereParameters {
     double smallest_size() const;
     /// \return the largest diameter over Dp: 1 for a mono-sized bed.
     double largest_size() const;
-    /// \return the container in units of Dp: `container`, or the cylinder of diameter
-    /// aspect_ratio.
-    Container container_dp() const;
+    /// \return a = 2 Rt / Dp where the container is a tube, else nothing.
+    std::optional<double> aspect_ratio() const { return container.tube_diameter(); }
 
     /// Check every value and their combinations.
     /// \throws InvalidInput naming the parameter, its value and the allowed range.
@@ -192,17 +188,17 @@ struct RunControl {
 
 /// The outcome of a run. Lengths of `packing` and `container` are in output units (diameter).
 struct SoftSphereResult {
-    Packing packing;                    ///< final sphere positions and radii (in a periodic
-                                        ///< cell, their copies in [0, LX) x [0, LY))
-    Container container{Cylinder(1.0)}; ///< the container (a cylinder: radius Rt = a Dp / 2)
-    double initial_height = 0.0;        ///< L0 of eq. (6), output units
-    std::uint64_t iterations = 0;       ///< all stages together
-    double max_overlap_pair = 0.0;      ///< largest sphere-sphere overlap of the result, Dp
-    double max_overlap_wall = 0.0;      ///< largest sphere-wall overlap of the result, Dp
-    std::vector<StageRecord> stages;    ///< initial, intermediate, final
-    std::uint64_t neighbor_builds = 0;  ///< Verlet-list rebuilds
-    std::uint32_t layers = 1;           ///< layers the fire solver built the bed in
-    double seconds = 0.0;               ///< wall time of run()
+    Packing packing;                            ///< final sphere positions and radii (in a periodic
+                                                ///< cell, their copies in [0, LX) x [0, LY))
+    Container container = Container::tube(2.0); ///< the container, in the bed's length units
+    double initial_height = 0.0;                ///< L0 of eq. (6), output units
+    std::uint64_t iterations = 0;               ///< all stages together
+    double max_overlap_pair = 0.0;              ///< largest sphere-sphere overlap of the result, Dp
+    double max_overlap_wall = 0.0;              ///< largest sphere-wall overlap of the result, Dp
+    std::vector<StageRecord> stages;            ///< initial, intermediate, final
+    std::uint64_t neighbor_builds = 0;          ///< Verlet-list rebuilds
+    std::uint32_t layers = 1;                   ///< layers the fire solver built the bed in
+    double seconds = 0.0;                       ///< wall time of run()
 };
 
 /// Largest overlaps of a configuration, computed exactly (O(N) with a cell grid).

@@ -86,7 +86,7 @@ Contacts parse_contacts(std::string_view text);
 /// The container a surface is cut against: a cylinder or a box from the floor z = 0 to
 /// `height`.
 struct SurfaceContainer {
-    Container container = Cylinder(1.0);
+    Container container = Container::tube(2.0);
     double height = 1.0;
 };
 

@@ -440,7 +440,7 @@ SoftSphereResult relax_with_fire(const SoftSphereParameters& parameters,
     parameters.validate();
     const auto t0 = std::chrono::steady_clock::now();
     const SoftSphereParameters& p = parameters;
-    detail::SoftBed bed(p.container_dp());
+    detail::SoftBed bed(p.container);
     bed.generate(p);
     SoftSphereResult result;
     const std::uint32_t layers = fire_layers(p);
@@ -494,7 +494,7 @@ SoftSphereResult relax_with_fire(const SoftSphereParameters& parameters,
             p.sizes.empty() ? 1.0
                             : std::max(1.0, *std::max_element(p.sizes.begin(), p.sizes.end()));
         const double shell = layer_shell * largest;
-        detail::SoftBed part(p.container_dp());
+        detail::SoftBed part(p.container);
         for (std::uint32_t l = first; l < layers; ++l) {
             if (members[l].empty())
                 continue;

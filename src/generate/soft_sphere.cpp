@@ -36,16 +36,15 @@ struct SweepStats {
 } // namespace
 
 void SoftSphereParameters::validate() const {
-    if (container && !container->tube_diameter()) {
-        const std::string problem = container->fit_problem(largest_size());
+    if (const std::optional<double> a = aspect_ratio()) {
+        require(std::isfinite(*a) && *a >= 1.0 && *a <= 1e4, "aspect-ratio", *a,
+                "1 <= a <= 10000 (a < 1: one sphere does not fit)");
+    } else {
+        const std::string problem = container.fit_problem(largest_size());
         if (!problem.empty())
             throw InvalidInput(fmt::format("--container {} (in units of Dp) is not allowed; "
                                            "allowed: {}",
-                                           container->spec(), problem));
-    } else {
-        const double a = container ? *container->tube_diameter() : aspect_ratio;
-        require(std::isfinite(a) && a >= 1.0 && a <= 1e4, "aspect-ratio", a,
-                "1 <= a <= 10000 (a < 1: one sphere does not fit)");
+                                           container.spec(), problem));
     }
     require(particles >= 1 && particles <= 100'000'000, "particles", static_cast<double>(particles),
             "1 to 100000000");
@@ -82,7 +81,7 @@ void SoftSphereParameters::validate() const {
                                        "per particle",
                                        sizes.size(), particles));
     const auto [smallest, largest] = std::minmax_element(sizes.begin(), sizes.end());
-    const Container shape = container_dp();
+    const Container shape = container;
     const std::optional<double> tube = shape.tube_diameter();
     // Written to fail on NaN: every comparison with NaN is false. Another container's fit to
     // the largest sphere was checked above.
@@ -107,7 +106,7 @@ void SoftSphereParameters::validate() const {
 /// A container that ends (a cone) holds the initial bed below its top: the paper's L0 and
 /// the largest sphere.
 void SoftSphereParameters::check_top() const {
-    const Container shape = container_dp();
+    const Container shape = container;
     const std::optional<double> top = shape.top();
     if (!top)
         return;
@@ -138,7 +137,7 @@ double initial_bed_height(const SoftSphereParameters& p) {
         solid = static_cast<double>(p.particles);
     for (const double d : p.sizes)
         solid += d * d * d;
-    return p.container_dp().fill_height(solid, p.e0);
+    return p.container.fill_height(solid, p.e0);
 }
 
 SoftSphereParameters::Schedule SoftSphereParameters::schedule() const {
@@ -157,10 +156,6 @@ double SoftSphereParameters::smallest_size() const {
 
 double SoftSphereParameters::largest_size() const {
     return sizes.empty() ? 1.0 : *std::max_element(sizes.begin(), sizes.end());
-}
-
-Container SoftSphereParameters::container_dp() const {
-    return container ? *container : Container::tube(aspect_ratio);
 }
 
 nlohmann::json progress_json(const Progress& p) {
@@ -185,7 +180,7 @@ struct SoftSphereGenerator::State : detail::SoftBed {
     std::vector<StageRecord> stages;
 
     explicit State(const SoftSphereParameters& p)
-        : SoftBed(p.container_dp())
+        : SoftBed(p.container)
         , params(detail::in_dp(p)) {}
 
     void generate() { SoftBed::generate(params); }
@@ -486,7 +481,8 @@ std::string to_string(UpdateOrder order) {
 
 nlohmann::json soft_sphere_parameters_json(const SoftSphereParameters& p) {
     const SoftSphereParameters::Schedule schedule = p.schedule(); // the values the run used
-    return {{"aspect_ratio", p.aspect_ratio},
+    const std::optional<double> a = p.aspect_ratio();
+    return {{"aspect_ratio", a ? nlohmann::json(*a) : nlohmann::json(nullptr)},
             {"particles", p.particles},
             {"seed", p.seed},
             {"diameter", p.diameter},
@@ -513,8 +509,8 @@ nlohmann::json soft_sphere_summary(const SoftSphereParameters& p, const SoftSphe
     json summary;
     summary["version"] = std::string(version);
     summary["generator"] = "soft-sphere (Salvat et al. 2005)";
-    if (result.container.tube_diameter())
-        summary["aspect_ratio"] = p.aspect_ratio; // another container has none: its spec
+    if (const std::optional<double> a = p.aspect_ratio())
+        summary["aspect_ratio"] = *a; // another container has none: its spec
     summary["particles"] = p.particles;
     summary["seed"] = p.seed;
     summary["diameter"] = d;

@@ -11,10 +11,10 @@
 #include "packbed/error.hpp"
 #include "packbed/files.hpp"
 #include "packbed/io.hpp"
+#include "packbed/json_text.hpp"
 #include "packbed/memory.hpp"
 #include "packbed/option_ranges.hpp"
 #include "packbed/pipeline.hpp"
-#include "packbed/json_text.hpp"
 
 namespace packbed {
 
@@ -103,7 +103,9 @@ PreparedGeneration prepare_generation(GenerateRequest request) {
                 fmt::format("--container {}: the tube's diameter over {} ({}) is a = {:.6g}; "
                             "allowed: a from 1 to 10000 (D from {:.6g} to {:.6g})",
                             request.container, dp, p.diameter, a, p.diameter, 1e4 * p.diameter));
-        p.aspect_ratio = a;
+        p.container = Container::tube(a);
+    } else {
+        p.container = Container::tube(request.aspect_ratio); // the shorthand
     }
     if (request.engine == Engine::lammps && p.solver == Solver::fire)
         p = lammps_parameters(p); // its own band unless one is given

@@ -335,21 +335,21 @@ LammpsJob lammps_job(const SoftSphereParameters& parameters, LammpsPairStyle sty
     const SoftSphereParameters banded = lammps_parameters(parameters);
     banded.validate();
     const SoftSphereParameters p = detail::in_dp(banded);
-    detail::SoftBed bed(p.container_dp());
+    detail::SoftBed bed(p.container);
     bed.generate(parameters);
     const Packing& start = bed.packing_in_generation_order();
     const SizeTypes types = size_types(p);
     double top = 0.0;
     for (const Vec3& c : start.centers)
         top = std::max(top, c.z);
-    const ContainerScript walls = container_script(p.container_dp(), types.diameters, top);
+    const ContainerScript walls = container_script(p.container, types.diameters, top);
 
     LammpsJob job;
     job.types = static_cast<std::uint32_t>(types.diameters.size());
-    const std::string bed_text =
-        fmt::format("{} spheres, {}, seed {}, L0 = {:.6g} Dp", p.particles,
-                    p.container ? p.container_dp().spec() : fmt::format("a = {}", p.aspect_ratio),
-                    p.seed, bed.initial_height);
+    const std::string bed_text = fmt::format(
+        "{} spheres, {}, seed {}, L0 = {:.6g} Dp", p.particles,
+        p.aspect_ratio() ? fmt::format("a = {}", *p.aspect_ratio()) : p.container.spec(), p.seed,
+        bed.initial_height);
     job.data = lammps_data(start, 6.0 / std::numbers::pi, walls.box,
                            "packbed generate --engine lammps: the generation stage, Dp = 1",
                            {bed_text}, types.of_sphere);
@@ -507,7 +507,7 @@ SoftSphereResult lammps_result(const SoftSphereParameters& parameters,
             fmt::format("LAMMPS's bed has {} spheres; the job had {}", bed.size(), p.particles));
     // The bed checked here, with packbed's code: the dump's radii are the job's, the overlaps
     // (pairs, walls, floor) below the tolerance.
-    const Container container = p.container_dp();
+    const Container container = p.container;
     double floor = 0.0;
     for (std::size_t i = 0; i < bed.size(); ++i) {
         const double want = p.sizes.empty() ? 0.5 : 0.5 * p.sizes[i];

@@ -11,9 +11,9 @@
 #include "child.hpp"
 #include "packbed/error.hpp"
 #include "packbed/files.hpp"
+#include "packbed/json_text.hpp"
 #include "packbed/limits.hpp"
 #include "packbed/pipeline.hpp"
-#include "packbed/json_text.hpp"
 #include "packbed/text.hpp"
 #include "packbed/version.hpp"
 
@@ -94,6 +94,7 @@ the options it needs; the bed's lengths come back in the unit of --diameter.
 nlohmann::json job_json(const GenerateRequest& r, const std::vector<std::string>& command,
                         LammpsPairStyle style) {
     nlohmann::json request = soft_sphere_parameters_json(r.params);
+    request["aspect_ratio"] = r.aspect_ratio; // the request's shorthand, as given
     request["container"] = r.container;
     request["sizes"] = r.sizes;
     request["fractions"] = to_string(r.fractions);
@@ -324,7 +325,7 @@ LammpsJobFile read_lammps_job(std::string_view text, std::string_view folder) {
             throw bad(key);
         return r[key].get<std::string>();
     };
-    p.aspect_ratio = number("aspect_ratio");
+    request.aspect_ratio = number("aspect_ratio");
     p.particles = whole("particles");
     p.seed = whole("seed");
     p.diameter = number("diameter");
