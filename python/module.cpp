@@ -89,6 +89,24 @@ void warn(const std::vector<std::string>& warnings) {
             throw py::error_already_set();
 }
 
+/// A flat record (progress_json) as a dict, in its order, each number as it is (a NaN stays a
+/// float: JSON text would make it None).
+py::dict flat_dict(const nlohmann::ordered_json& record) {
+    py::dict out;
+    for (const auto& [key, value] : record.items()) {
+        const py::str name(key);
+        if (value.is_string())
+            out[name] = value.get<std::string>();
+        else if (value.is_number_unsigned())
+            out[name] = value.get<std::uint64_t>();
+        else if (value.is_number_integer())
+            out[name] = value.get<std::int64_t>();
+        else
+            out[name] = value.get<double>();
+    }
+    return out;
+}
+
 /// Run `work` without the GIL, checking for Ctrl-C (Python's SIGINT flag) from the calling
 /// thread through `control.should_stop`, which the library calls every mc_period iterations.
 /// A signal turns into KeyboardInterrupt; a progress callback's exception goes through.
@@ -110,7 +128,7 @@ auto run_interruptible(RunControl& control, const py::object& progress, Work&& w
             if (callback_error)
                 return;
             try {
-                progress(to_python(progress_json(p)));
+                progress(flat_dict(progress_json(p)));
             } catch (py::error_already_set& e) {
                 callback_error.emplace(std::move(e));
             }
@@ -141,9 +159,9 @@ Container container_for(const Bed& bed, const std::optional<std::string>& contai
     if (container)
         return container_from_spec("--container", *container);
     if (!bed.container)
-        throw InvalidInput(
-            fmt::format("--container is needed: this bed has no container (give container= {})",
-                        forms_but("")));
+        throw InvalidInput(fmt::format("--container is needed: this bed has no container (give "
+                                       "container='SPEC', SPEC one of {})",
+                                       forms_but("")));
     return *bed.container;
 }
 

@@ -70,8 +70,8 @@ struct OffsetSphere {
             v.z += offset;
         return mesh;
     }
-    std::vector<DemSphere> dem_spheres(const Placement& p) const {
-        return sphere.dem_spheres(ball(p));
+    template <class F> void dem_spheres(const Placement& p, F&& f) const {
+        sphere.dem_spheres(ball(p), f);
     }
 
     SphereShape sphere;
@@ -188,7 +188,8 @@ TEST(SphereShape, AnswersItsClosedForms) {
     for (const Vec3& v : mesh.vertices)
         EXPECT_NEAR(norm(v - p.position), 2.0, 1e-14);
     // Its DEM representation: itself.
-    const std::vector<DemSphere> dem = s.dem_spheres(p);
+    std::vector<DemSphere> dem;
+    s.dem_spheres(p, [&](const DemSphere& d) { dem.push_back(d); });
     ASSERT_EQ(dem.size(), 1u);
     EXPECT_EQ(dem[0].centre, p.position);
     EXPECT_EQ(dem[0].radius, 2.0);
@@ -199,10 +200,10 @@ TEST(ShapedBed, TypesPointIntoTheTableOfShapes) {
     packing.add({0.0, 0.0, 1.0}, 1.0);
     packing.add({0.0, 0.0, 3.0}, 1.0);
     // No types: every particle is type 0; no orientations: the identity.
-    const ShapedBed<OffsetSphere> one(
-        Packing{packing.centers, packing.radii, {Quaternion{}, Quaternion{}}, {}},
-        {OffsetSphere{}});
+    const Packing identity{packing.centers, packing.radii, {Quaternion{}, Quaternion{}}, {}};
+    const ShapedBed<OffsetSphere> one(identity, {OffsetSphere{}});
     EXPECT_EQ(one.shape(1).offset, 0.5);
+    EXPECT_EQ(one.placement(1).orientation, Quaternion{});
     packing.types = {1, 0};
     packing.orientations = {Quaternion{}, Quaternion{0.0, 1.0, 0.0, 0.0}};
     const ShapedBed<OffsetSphere> two(packing, {OffsetSphere{0.25}, OffsetSphere{0.75}});

@@ -41,6 +41,8 @@ public:
     /// The front ends' shorthand of a tube (--aspect-ratio a in units of Dp,
     /// --container-radius R): the cylinder of inner diameter `diameter` about the z axis.
     static Container tube(double diameter);
+    /// The same tube by its radius (--container-radius R: every radius, however large).
+    static Container tube_of_radius(double radius);
 
     /// The shape itself, for the container's own files and for tests.
     const Shape& shape() const { return m_shape; }

@@ -63,7 +63,7 @@ struct DemSphere {
 /// - `volume_in_box(p, low, high)`: its volume in an axis-aligned box (a voxel's cover).
 /// - `unit_surface(level)`: its closed outward surface at size 1 in its body frame, finer with
 ///   `level` (placed by placed_surface).
-/// - `dem_spheres(p)`: its spheres for a DEM code.
+/// - `dem_spheres(p, f)`: f(DemSphere) for each of its spheres for a DEM code.
 template <class S>
 concept ParticleShape = std::copyable<S> &&
     requires(const S& s, const Placement& p, const Container& c, const Vec3& v, double d,
@@ -80,7 +80,7 @@ concept ParticleShape = std::copyable<S> &&
     { s.volume_from_wall(c, wall, d, p, d, d) } -> std::same_as<double>;
     { s.volume_in_box(p, v, v) } -> std::same_as<double>;
     { s.unit_surface(level) } -> std::same_as<TriangleMesh>;
-    { s.dem_spheres(p) } -> std::same_as<std::vector<DemSphere>>;
+    s.dem_spheres(p, [](const DemSphere&) {});
 };
 
 /// A bed's particles of one shape class S, as HOOMD's `IntegratorHPMCMono<S>` sees them: the
@@ -108,6 +108,9 @@ public:
         if (S::oriented && n > 0 && particles.orientations.empty())
             throw std::invalid_argument("ShapedBed: this shape needs orientations");
     }
+
+    /// Not of a temporary packing: the bed holds a reference to it.
+    ShapedBed(const Packing&& particles, std::vector<S> shapes) = delete;
 
     std::size_t size() const { return m_particles.size(); }
     const Packing& particles() const { return m_particles; }

@@ -44,7 +44,8 @@ int threads_in_use();
 /// What `packbed generate` is asked for, as its options give it.
 struct GenerateRequest {
     /// The solver's parameters; `diameter` is --diameter (with `sizes`, what the distribution's
-    /// `mono` means; the bed's Dp becomes the drawn sizes' Sauter mean d32).
+    /// `mono` means; the bed's Dp becomes the drawn sizes' Sauter mean d32). Its `container` is
+    /// not read: prepare_generation sets it from `container` or `aspect_ratio`.
     SoftSphereParameters params;
     std::string sizes = "mono";                      ///< a --sizes spec (docs/sizes.md)
     FractionBasis fractions = FractionBasis::volume; ///< what the sizes' fractions count

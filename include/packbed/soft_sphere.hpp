@@ -159,8 +159,9 @@ struct Progress {
     std::uint32_t layers = 1; ///< fire solver: number of layers (1: the bed in one piece)
 };
 
-/// A progress report as a record: its fields by name (what Python's progress callback gets).
-nlohmann::json progress_json(const Progress& progress);
+/// A progress report as a record: its fields by name, in the order of Progress (what Python's
+/// progress callback gets).
+nlohmann::ordered_json progress_json(const Progress& progress);
 
 /// The state of a fire run in layers (relax_with_fire) after `layers_done` whole layers:
 /// enough to resume it and end with the same bits as a run that was never stopped.

@@ -57,7 +57,9 @@ struct SphereShape {
     /// tessellations.
     TriangleMesh unit_surface(int level) const;
     /// The sphere itself.
-    std::vector<DemSphere> dem_spheres(const Placement& p) const { return {{p.position, p.size}}; }
+    template <class F> void dem_spheres(const Placement& p, F&& f) const {
+        f(DemSphere{p.position, p.size});
+    }
 };
 
 static_assert(ParticleShape<SphereShape>);
@@ -66,5 +68,6 @@ static_assert(ParticleShape<SphereShape>);
 inline ShapedBed<SphereShape> spheres(const Packing& packing) {
     return {packing, {SphereShape{}}};
 }
+ShapedBed<SphereShape> spheres(const Packing&& packing) = delete;
 
 } // namespace packbed

@@ -217,9 +217,8 @@ LayerCheckpoint read_checkpoint(std::istream& in, std::string_view name,
     // A checkpoint holds a bed in a tube (prepare_generation refuses any other container).
     const std::optional<double> tube = parameters.aspect_ratio();
     if (!tube)
-        throw InvalidInput(fmt::format("--checkpoint: a checkpoint of a bed in {} is not allowed; "
-                                       "allowed: a bed in a tube",
-                                       parameters.container.spec()));
+        field.refuse(fmt::format("this run's container is {}; a checkpoint holds a bed in a tube",
+                                 parameters.container.spec()));
     const double a = *tube;
     const double height = initial_bed_height(particles, a, parameters.e0);
     // Internal lengths are in Dp: centres inside the cylinder, the bed no taller than its

@@ -158,7 +158,7 @@ double SoftSphereParameters::largest_size() const {
     return sizes.empty() ? 1.0 : *std::max_element(sizes.begin(), sizes.end());
 }
 
-nlohmann::json progress_json(const Progress& p) {
+nlohmann::ordered_json progress_json(const Progress& p) {
     return {{"stage", p.stage},
             {"iteration", p.iteration},
             {"cg", p.cg},

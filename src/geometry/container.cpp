@@ -131,6 +131,10 @@ Container Container::tube(double diameter) {
     return Cylinder(0.5 * diameter);
 }
 
+Container Container::tube_of_radius(double radius) {
+    return Cylinder(radius);
+}
+
 Container Container::scaled(double factor) const {
     return ask(m_shape, [&](const auto& s) -> Container { return s.scaled(factor); });
 }

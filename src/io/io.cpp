@@ -60,20 +60,21 @@ std::string lammps_data(const Packing& packing, double density, const AxisBox& b
     for (const std::string& note : notes)
         if (note.find('\n') != std::string::npos)
             throw InvalidInput("a data file note with a newline is not allowed; allowed: one line");
-    for (std::size_t i = 0; i < packing.size(); ++i) {
-        const Vec3 c = packing.centers[i];
-        if (!(c.x >= box.lo.x && c.x <= box.hi.x && c.y >= box.lo.y && c.y <= box.hi.y &&
-              c.z >= box.lo.z && c.z <= box.hi.z))
-            throw InvalidInput(fmt::format(
-                "sphere {} at ({}, {}, {}) lies outside the box [{}, {}] x [{}, {}] x [{}, {}]; "
-                "allowed: a box holding every centre",
-                i + 1, c.x, c.y, c.z, box.lo.x, box.hi.x, box.lo.y, box.hi.y, box.lo.z, box.hi.z));
-    }
     // Each particle as its DEM spheres (ParticleShape::dem_spheres: a sphere is one atom).
     const ShapedBed<SphereShape> bed = spheres(packing);
     std::size_t atoms = 0;
     for (std::size_t i = 0; i < bed.size(); ++i)
-        atoms += bed.shape(i).dem_spheres(bed.placement(i)).size();
+        bed.shape(i).dem_spheres(bed.placement(i), [&](const DemSphere& a) {
+            const Vec3& c = a.centre;
+            if (!(c.x >= box.lo.x && c.x <= box.hi.x && c.y >= box.lo.y && c.y <= box.hi.y &&
+                  c.z >= box.lo.z && c.z <= box.hi.z))
+                throw InvalidInput(fmt::format(
+                    "sphere {} at ({}, {}, {}) lies outside the box [{}, {}] x [{}, {}] x [{}, "
+                    "{}]; allowed: a box holding every centre",
+                    i + 1, c.x, c.y, c.z, box.lo.x, box.hi.x, box.lo.y, box.hi.y, box.lo.z,
+                    box.hi.z));
+            ++atoms;
+        });
     fmt::memory_buffer out;
     const std::uint32_t ntypes = types.empty() ? 1u : *std::max_element(types.begin(), types.end());
     fmt::format_to(std::back_inserter(out), "{}\n\n{} atoms\n{} atom types\n\n", header, atoms,
@@ -83,10 +84,11 @@ std::string lammps_data(const Packing& packing, double density, const AxisBox& b
     fmt::format_to(std::back_inserter(out), "Atoms # sphere\n\n");
     std::size_t id = 0;
     for (std::size_t i = 0; i < bed.size(); ++i)
-        for (const DemSphere& a : bed.shape(i).dem_spheres(bed.placement(i)))
+        bed.shape(i).dem_spheres(bed.placement(i), [&](const DemSphere& a) {
             fmt::format_to(std::back_inserter(out), "{} {} {} {} {} {} {}\n", ++id,
                            types.empty() ? 1u : types[i], 2.0 * a.radius, density, a.centre.x,
                            a.centre.y, a.centre.z);
+        });
     return fmt::to_string(out);
 }
 

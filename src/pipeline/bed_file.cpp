@@ -4,12 +4,12 @@
 
 #include <fmt/format.h>
 
+#include "packbed/bed_volume.hpp"
 #include "packbed/error.hpp"
 #include "packbed/files.hpp"
 #include "packbed/option_ranges.hpp"
 #include "packbed/pipeline.hpp"
 #include "packbed/read.hpp"
-#include "packbed/bed_volume.hpp"
 #include "packbed/volume.hpp"
 
 namespace packbed {
@@ -34,7 +34,7 @@ std::optional<Container> find_container(const std::filesystem::path& particles,
     if (!container.empty())
         return container_from_spec("--container", container);
     if (cylinder_radius > 0.0)
-        return Container::tube(2.0 * cylinder_radius);
+        return Container::tube_of_radius(cylinder_radius);
     return container_beside(particles);
 }
 

@@ -211,6 +211,10 @@ def test_progress_is_reported_and_its_exceptions_go_through():
     reports = []
     packbed.generate(particles=50, progress=reports.append)
     assert reports and reports[-1]["stage"] in {"initial", "intermediate", "final"}
+    # Every field of a report, in Progress's order, whole numbers as int and the rest as float.
+    assert list(reports[0]) == ["stage", "iteration", "cg", "max_overlap_pair",
+                                "max_overlap_wall", "mass_centre_z", "layer", "layers"]
+    assert all(type(r["iteration"]) is int and type(r["cg"]) is float for r in reports)
     assert all(b["iteration"] - a["iteration"] == 100 for a, b in zip(reports, reports[1:])
                if a["stage"] == b["stage"] and b["layer"] == a["layer"])
 
