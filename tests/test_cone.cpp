@@ -14,12 +14,12 @@
 #include <nlohmann/json.hpp>
 
 #include "packbed/analysis.hpp"
+#include "packbed/bed_volume.hpp"
 #include "packbed/container.hpp"
 #include "packbed/error.hpp"
 #include "packbed/lattice.hpp"
 #include "packbed/read.hpp"
 #include "packbed/soft_sphere.hpp"
-#include "packbed/bed_volume.hpp"
 #include "packbed/volume.hpp"
 
 using namespace packbed;

@@ -23,8 +23,8 @@
 #include "packbed/analysis_files.hpp"
 #include "packbed/container.hpp"
 #include "packbed/error.hpp"
-#include "packbed/read.hpp"
 #include "packbed/json_text.hpp"
+#include "packbed/read.hpp"
 
 #include "run_packbed.hpp"
 

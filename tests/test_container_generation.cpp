@@ -11,9 +11,9 @@
 #include <gtest/gtest.h>
 #include <omp.h>
 
+#include "packbed/bed_volume.hpp"
 #include "packbed/error.hpp"
 #include "packbed/soft_sphere.hpp"
-#include "packbed/bed_volume.hpp"
 #include "packbed/volume.hpp"
 
 using namespace packbed;

@@ -6,8 +6,8 @@
 #include <gtest/gtest.h>
 
 #include "packbed/error.hpp"
-#include "packbed/lattice.hpp"
 #include "packbed/json_text.hpp"
+#include "packbed/lattice.hpp"
 
 namespace packbed {
 namespace {

@@ -9,8 +9,8 @@
 #include <boost/math/quadrature/tanh_sinh.hpp>
 #include <gtest/gtest.h>
 
-#include "packbed/error.hpp"
 #include "packbed/bed_volume.hpp"
+#include "packbed/error.hpp"
 #include "packbed/volume.hpp"
 
 using namespace packbed;

@@ -15,9 +15,9 @@
 #include "packbed/error.hpp"
 #include "packbed/files.hpp"
 #include "packbed/hydraulics.hpp"
+#include "packbed/json_text.hpp"
 #include "packbed/limits.hpp"
 #include "packbed/pipeline.hpp"
-#include "packbed/json_text.hpp"
 #include "packbed/text.hpp"
 
 namespace packbed {

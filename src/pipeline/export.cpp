@@ -15,17 +15,17 @@
 #include <fmt/ranges.h>
 #include <nlohmann/json.hpp>
 
+#include "packbed/bed_volume.hpp"
 #include "packbed/error.hpp"
 #include "packbed/files.hpp"
 #include "packbed/io.hpp"
+#include "packbed/json_text.hpp"
 #include "packbed/limits.hpp"
 #include "packbed/openfoam.hpp"
 #include "packbed/output.hpp"
 #include "packbed/pipeline.hpp"
-#include "packbed/json_text.hpp"
 #include "packbed/surface.hpp"
 #include "packbed/text.hpp"
-#include "packbed/bed_volume.hpp"
 #include "packbed/volume.hpp"
 
 namespace packbed {
