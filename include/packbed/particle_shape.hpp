@@ -62,7 +62,7 @@ struct DemSphere {
 ///   difference of two).
 /// - `volume_in_box(p, low, high)`: its volume in an axis-aligned box (a voxel's cover).
 /// - `unit_surface(level)`: its closed outward surface at size 1 in its body frame, finer with
-///   `level` (placed by placed_surface).
+///   `level` (placed by place_surface).
 /// - `dem_spheres(p, f)`: f(DemSphere) for each of its spheres for a DEM code.
 template <class S>
 concept ParticleShape = std::copyable<S> &&
