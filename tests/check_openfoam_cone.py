@@ -21,7 +21,7 @@ import shutil
 import sys
 import tempfile
 
-from openfoam_env import cap, mesh_case, openfoam_or_skip, runner
+from openfoam_env import cap, check_patches, check_volume, mesh_case, openfoam_or_skip, runner
 
 exe = sys.argv[1]
 env = openfoam_or_skip()
@@ -54,11 +54,6 @@ x, y, z = report["openfoam"]["location_in_mesh"]
 assert math.hypot(x, y) < 3.0 and 0 < z < 2, (x, y, z)
 
 out, patches, volume = mesh_case(run, case)
-for name in ("inlet", "outlet", "wall", "particles"):
-    assert patches.get(name, 0) > 0, (name, patches)
-assert patches.get("outside", 0) == 0, patches
-error = volume / exact - 1.0
-print(f"cone: mesh volume {volume:.6g} against the exact fluid volume {exact:.6g}: "
-      f"{error:+.2%}; patches {patches}")
-assert abs(error) < 0.01, error
+check_patches(patches, ("inlet", "outlet", "wall", "particles"))
+check_volume("cone", volume, exact, 0.01, patches)
 shutil.rmtree(work)

@@ -53,3 +53,19 @@ def mesh_case(run, case):
     patches = dict(re.findall(r"^\s+(\w+)\s+(\d+)\s+\d+\s+(?:ok|multiply)", out, re.M))
     volume = float(re.search(r"Total volume = ([0-9.eE+-]+?)\.?\s", out).group(1))
     return out, {k: int(v) for k, v in patches.items()}, volume
+
+
+def check_patches(patches, names):
+    """Every patch of `names` has faces, and none are left on snappyHexMesh's `outside`."""
+    for name in names:
+        assert patches.get(name, 0) > 0, (name, patches)
+    assert patches.get("outside", 0) == 0, patches
+
+
+def check_volume(label, volume, exact, tolerance, patches, what=""):
+    """The mesh's total volume within `tolerance` (relative) of the exact fluid volume: printed
+    as "LABEL: WHATmesh volume ... against the exact fluid volume ...", then asserted."""
+    error = volume / exact - 1.0
+    print(f"{label}: {what}mesh volume {volume:.6g} against the exact fluid volume {exact:.6g}: "
+          f"{error:+.2%}; patches {patches}")
+    assert abs(error) < tolerance, error

@@ -4,6 +4,7 @@
 // lattices, analysis and the wall's surface outside the cone, its refusals.
 #include <algorithm>
 #include <cmath>
+#include <cstdint>
 #include <numbers>
 #include <random>
 #include <sstream>
@@ -34,6 +35,17 @@ constexpr double pi = std::numbers::pi;
 double beyond_line(double rho, double z, double rb, double rt, double h) {
     const double dx = rt - rb, dz = h;
     return (dz * (rho - rb) - dx * z) / std::hypot(dx, dz);
+}
+
+/// The solver's parameters of a bed of `particles` spheres in `container`.
+SoftSphereParameters bed_of(const Container& container, std::uint64_t particles, std::uint64_t seed,
+                            Solver solver = SoftSphereParameters{}.solver) {
+    SoftSphereParameters p;
+    p.container = container;
+    p.particles = particles;
+    p.seed = seed;
+    p.solver = solver;
+    return p;
 }
 
 } // namespace
@@ -102,11 +114,7 @@ TEST(Cone, WithEqualDiametersItIsTheCylinderToTheBit) {
         EXPECT_EQ(a.push.z, b.push.z);
     }
     for (const Solver solver : {Solver::paper, Solver::fire}) {
-        SoftSphereParameters p;
-        p.particles = 150;
-        p.seed = 5;
-        p.solver = solver;
-        p.container = cone;
+        SoftSphereParameters p = bed_of(cone, 150, 5, solver);
         const SoftSphereResult in_cone = generate_soft_sphere(p);
         p.container = cylinder;
         const SoftSphereResult in_cylinder = generate_soft_sphere(p);
@@ -126,12 +134,7 @@ TEST(Cone, BedsWithBothSolversEndInsideTheSlantedWall) {
     // 0.47) and looser than the densest packing.
     for (const Cone& cone : {Cone(2.0, 4.0, 30.0), Cone(3.5, 2.5, 30.0)})
         for (const Solver solver : {Solver::paper, Solver::fire}) {
-            SoftSphereParameters p;
-            p.particles = 220;
-            p.seed = 7;
-            p.solver = solver;
-            p.container = cone;
-            const SoftSphereResult r = generate_soft_sphere(p);
+            const SoftSphereResult r = generate_soft_sphere(bed_of(cone, 220, 7, solver));
             const Packing& b = r.packing;
             double pair = 0.0, wall = 0.0, floor = 0.0;
             for (std::size_t i = 0; i < b.size(); ++i) {
@@ -290,11 +293,7 @@ TEST(Cone, SphereVolumesAgreeWithAnIndependentQuadrature) {
 TEST(Cone, AnalysisOfAStraightConeIsTheCylinders) {
     // cone:8,8,60 measures from the same wall as cylinder:8: the void fractions, the radial
     // profile and the centre distribution agree to the quadrature's 1e-8.
-    SoftSphereParameters p;
-    p.particles = 500;
-    p.seed = 2;
-    p.container = Cylinder(4.0);
-    const SoftSphereResult r = generate_soft_sphere(p);
+    const SoftSphereResult r = generate_soft_sphere(bed_of(Cylinder(4.0), 500, 2));
     const BedAnalysis a = analyze_bed(r.packing, Cylinder(4.0), {});
     const BedAnalysis b = analyze_bed(r.packing, Cone(4.0, 4.0, 60.0), {});
     EXPECT_NEAR(a.void_fraction, b.void_fraction, 1e-9);
