@@ -184,6 +184,7 @@ Bed generate(std::optional<double> aspect_ratio, const std::optional<std::string
              double tolerance, long long mc_period, long long mc_window,
              std::optional<double> mc_tolerance, const std::string& update,
              const std::string& solver, std::optional<double> skin, double layer_height,
+             double friction, double wall_friction, std::optional<double> target_void_fraction,
              const std::optional<std::filesystem::path>& checkpoint,
              std::optional<long long> max_iterations, double band_clearance,
              std::optional<long long> threads, const py::object& progress,
@@ -221,6 +222,11 @@ Bed generate(std::optional<double> aspect_ratio, const std::optional<std::string
     if (skin)
         p.skin = check_option("skin", *skin, range::skin);
     p.layer_height = check_option("layer-height", layer_height, range::layer_height);
+    p.friction = check_option("friction", friction, range::friction);
+    p.wall_friction = check_option("wall-friction", wall_friction, range::friction);
+    if (target_void_fraction)
+        request.target_void_fraction = check_option("target-void-fraction", *target_void_fraction,
+                                                    range::void_fraction_target);
     if (max_iterations)
         p.max_iterations = check_option("max-iterations", *max_iterations, range::max_iterations);
     request.sizes = sizes;
@@ -847,9 +853,12 @@ in the directory `out` (new or empty; force=True replaces a non-empty one whole)
           py::arg("solver") = to_string(SoftSphereParameters{}.solver),
           py::arg("skin") = py::none(),
           py::arg("layer_height") = SoftSphereParameters{}.layer_height,
-          py::arg("checkpoint") = py::none(), py::arg("max_iterations") = py::none(),
-          py::arg("band_clearance") = 1.0, py::arg("threads") = py::none(),
-          py::arg("progress") = py::none(), py::arg("out") = py::none(), py::arg("force") = false,
+          py::arg("friction") = SoftSphereParameters{}.friction,
+          py::arg("wall_friction") = SoftSphereParameters{}.wall_friction,
+          py::arg("target_void_fraction") = py::none(), py::arg("checkpoint") = py::none(),
+          py::arg("max_iterations") = py::none(), py::arg("band_clearance") = 1.0,
+          py::arg("threads") = py::none(), py::arg("progress") = py::none(),
+          py::arg("out") = py::none(), py::arg("force") = false,
           py::arg("engine") = to_string(Engine::packbed), py::arg("ranks") = 1,
           py::arg("mpi_command") = py::none(), py::arg("lmp") = "lmp",
           R"(Pack spheres in a container with the soft-sphere algorithm of Salvat et al. (2005).
@@ -860,8 +869,8 @@ The keyword arguments are `packbed generate`'s options in snake_case, with the s
 unit of diameter, docs/containers.md), particles Np, seed, diameter Dp, sizes (a --sizes spec, docs/sizes.md), fractions
 ('volume' or 'number'), e0, ck, cg_step, overlap_low, overlap_high, tolerance, mc_period,
 mc_window, mc_tolerance (None: the solver's schedule), update ('in-place' or 'simultaneous'),
-solver ('fire' or 'paper'), skin, layer_height, checkpoint (a file), max_iterations,
-band_clearance. threads: at most this many threads (None: all; the result does not depend on
+solver ('fire' or 'paper'), skin, layer_height, friction, wall_friction, target_void_fraction
+(None: none), checkpoint (a file), max_iterations, band_clearance. threads: at most this many threads (None: all; the result does not depend on
 it). progress: called as progress(report) every mc_period iterations with a dict (stage,
 iteration, cg, max_overlap_pair, max_overlap_wall, mass_centre_z, layer, layers). out: a
 directory to write what `packbed generate` writes there (None: nothing is written); force:

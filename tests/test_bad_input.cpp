@@ -415,10 +415,10 @@ INSTANTIATE_TEST_SUITE_P(
         exact("generate --config @D/unknown.toml",
               "packbed: --config @D/unknown.toml: line 2: unknown key 'warp_speed'; allowed: "
               "aspect-ratio, band-clearance, cg-step, checkpoint, ck, container, diameter, e0, "
-              "engine, force, fractions, layer-height, lmp, max-iterations, mc-period, "
-              "mc-tolerance, mc-window, mpi-command, no-analysis, out, overlap-high, overlap-low, "
-              "particles, quiet, ranks, seed, sizes, skin, solver, threads, tolerance, update, "
-              "write-only"),
+              "engine, force, fractions, friction, layer-height, lmp, max-iterations, "
+              "mc-period, mc-tolerance, mc-window, mpi-command, no-analysis, out, overlap-high, "
+              "overlap-low, particles, quiet, ranks, seed, sizes, skin, solver, "
+              "target-void-fraction, threads, tolerance, update, wall-friction, write-only"),
         exact("generate --config @D/broken.toml",
               "packbed: --config @D/broken.toml: line 1, column 16: Error while parsing value: "
               "could not "
@@ -557,6 +557,33 @@ INSTANTIATE_TEST_SUITE_P(
         exact("generate --mc-window 10001",
               "packbed: --mc-window: 10001 is not allowed; allowed: a whole number from 2 to "
               "10000"),
+        exact("generate --friction -0.1",
+              "packbed: --friction: -0.1 is not allowed; allowed: a number in [0, 100]"),
+        exact("generate --wall-friction 1e3",
+              "packbed: --wall-friction: 1e3 is not allowed; allowed: a number in [0, 100]"),
+        exact("generate --friction 0.3 --solver paper",
+              "packbed generate: --solver paper with --friction 0.3 and --wall-friction 0 is not "
+              "allowed; allowed: friction with --solver fire (the paper's iteration has no "
+              "rotations)"),
+        exact("generate --wall-friction 0.2 --engine lammps --write-only @D/job",
+              "packbed generate: --friction 0 and --wall-friction 0.2 are not allowed with "
+              "--engine lammps; allowed: 0 (LAMMPS minimises the frictionless energy; friction "
+              "needs damped dynamics with contact history, docs/lammps.md) or friction with "
+              "--engine packbed"),
+        exact("generate --target-void-fraction 1",
+              "packbed: --target-void-fraction: 1 is not allowed; allowed: a number in (0, 1)"),
+        exact("generate --target-void-fraction 0.42 --friction 0.1",
+              "packbed generate: --target-void-fraction 0.42 with --friction 0.1 and "
+              "--wall-friction 0 is not allowed; allowed: one of the two (the target sets the "
+              "friction of spheres and walls alike)"),
+        exact("generate --target-void-fraction 0.42 --solver paper",
+              "packbed generate: --target-void-fraction 0.42 is not allowed with --solver paper "
+              "or --engine lammps; allowed: with --solver fire and --engine packbed (the target "
+              "is reached by friction)"),
+        exact("generate -a 10 -n 1000 --target-void-fraction 0.3",
+              "packbed generate: --target-void-fraction 0.3 is not reachable in this container "
+              "with these sizes; allowed: 0.400 (no friction) to 0.481 (friction 1), as "
+              "measured on a bed of 1000 of its spheres"),
         exact("generate --layer-height 1e7",
               "packbed: --layer-height: 1e7 is not allowed; allowed: a number in [0, 1e+06]"),
         exact("generate --ck 1.2", "packbed: --ck: 1.2 is not allowed; allowed: a number in "

@@ -99,10 +99,6 @@ std::vector<std::array<double, 4>> last_dump_frame(const std::string& dump) {
     return frame;
 }
 
-Vec3 cross(const Vec3& a, const Vec3& b) {
-    return {a.y * b.z - a.z * b.y, a.z * b.x - a.x * b.z, a.x * b.y - a.y * b.x};
-}
-
 bool has_lmp() {
     return std::system("command -v lmp >/dev/null 2>&1") == 0;
 }

@@ -539,10 +539,6 @@ double cap(double r, double s) {
     return pi * c * c * (3.0 * r - c) / 3.0;
 }
 
-Vec3 cross(const Vec3& a, const Vec3& b) {
-    return {a.y * b.z - a.z * b.y, a.z * b.x - a.x * b.z, a.x * b.y - a.y * b.x};
-}
-
 } // namespace
 
 TEST(SurfaceBox, WallCutsAreOnePerNearFaceTwoInACorner) {

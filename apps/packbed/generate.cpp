@@ -36,6 +36,7 @@ struct GenerateOptions {
     std::string sizes = "mono";
     std::string fractions = to_string(FractionBasis::volume);
     double band_clearance = 1.0;
+    std::optional<double> target_void_fraction;
     std::string engine = to_string(Engine::packbed);
     LammpsLauncher lammps;
     std::string write_only; // --write-only DIR: the LAMMPS job, not run
@@ -98,6 +99,7 @@ int run_generate(GenerateOptions& o) {
     request.container = o.container;
     request.checkpoint = o.checkpoint;
     request.band_clearance = o.band_clearance;
+    request.target_void_fraction = o.target_void_fraction;
     request.engine = engines().at(o.engine);
     request.launcher = o.lammps;
     request.write_only = !o.write_only.empty();
@@ -278,6 +280,19 @@ Command register_generate(CLI::App& parent) {
                     "fire solver: a bed whose initial height L0 exceeds twice this is relaxed in "
                     "layers about this tall, bottom first; 0: in one piece (Dp; 0 or 10 to 1e6)")
         ->check(real_in(option_range::layer_height));
+    app->add_option("--friction", p.friction,
+                    "Coulomb friction between spheres: tangential springs capped by mu F_n and "
+                    "the spheres' rotations; 0 (default): the paper's frictionless, dense beds; "
+                    "more: looser, poured beds (fire solver; docs/generate.md, \"Friction\")")
+        ->check(real_in(option_range::friction));
+    app->add_option("--target-void-fraction", o.target_void_fraction,
+                    "reach this void fraction (summary.json's, within 0.005) by the friction of "
+                    "spheres and walls, found by short calibration runs; a target out of reach "
+                    "is refused with the range (docs/generate.md, \"A target void fraction\")")
+        ->check(real_in(option_range::void_fraction_target));
+    app->add_option("--wall-friction", p.wall_friction,
+                    "Coulomb friction between a sphere and the walls and floor (default 0)")
+        ->check(real_in(option_range::friction));
     app->add_option("--checkpoint", o.checkpoint,
                     "fire solver in layers: save the state to this file after each layer, and "
                     "resume from it when it exists (the same options give the same bytes)")

@@ -70,6 +70,8 @@ inline constexpr WholeRange mc_window{2, 10'000};
 inline constexpr NumberRange mc_tolerance{0.0, 100.0, true, false};
 inline constexpr NumberRange skin{0.0, 1.0, true, false};
 inline constexpr NumberRange layer_height{0.0, 1e6};
+inline constexpr NumberRange friction{0.0, 100.0}; ///< --friction, --wall-friction
+inline constexpr NumberRange void_fraction_target{0.0, 1.0, true, true};
 inline constexpr WholeRange max_iterations{1, std::numeric_limits<std::uint64_t>::max()};
 inline constexpr NumberRange band_clearance{0.0, inf, false, true};
 inline constexpr WholeRange threads{1, 1024};

@@ -56,6 +56,11 @@ struct GenerateRequest {
     Engine engine = Engine::packbed; ///< who relaxes the bed (Engine::lammps: the fire solver's)
     LammpsLauncher launcher;         ///< Engine::lammps: how LAMMPS is started
     bool write_only = false; ///< Engine::lammps: the job only staged (stage_lammps_job), not run
+    /// --target-void-fraction: the bed's void fraction (summary.json's, over the band clear of
+    /// the ends) to reach within target_tolerance by the friction of spheres and walls alike
+    /// (run_generation; docs/generate.md, "A target void fraction"); none: params' friction.
+    std::optional<double> target_void_fraction;
+    static constexpr double target_tolerance = 0.005;
 };
 
 /// A request with its sizes drawn and its container resolved into the solver's parameters,

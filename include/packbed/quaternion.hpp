@@ -21,9 +21,6 @@ struct Quaternion {
 /// 1999, sec. 5.14).
 constexpr Vec3 rotate(const Quaternion& q, const Vec3& v) {
     const Vec3 u{q.x, q.y, q.z};
-    const auto cross = [](const Vec3& a, const Vec3& b) {
-        return Vec3{a.y * b.z - a.z * b.y, a.z * b.x - a.x * b.z, a.x * b.y - a.y * b.x};
-    };
     const Vec3 t = 2.0 * cross(u, v);
     return v + q.w * t + cross(u, t);
 }

@@ -77,6 +77,12 @@ struct SoftSphereParameters {
     /// Fire solver: a bed whose L0 (eq. 6) exceeds twice this is relaxed in layers of about
     /// this height, bottom first (relax_with_fire); 0: in one piece. Dp; 0 or [10, 1e6].
     double layer_height = 30.0;
+    /// Coulomb's friction coefficient between spheres (issue 41; docs/generate.md, "Friction"):
+    /// tangential springs capped by mu F_n at every contact, the spheres' rotations. 0: the
+    /// paper's frictionless beds, bit for bit. The fire solver only; 0 to 100.
+    double friction = 0.0;
+    /// The same between a sphere and the container's walls and floor.
+    double wall_friction = 0.0;
     std::uint64_t max_iterations = 200'000'000; ///< give up (ConvergenceError) beyond this
     /// Spheres of many sizes (issue 16): each sphere's diameter in units of `diameter`, the
     /// reference diameter Dp that a and every length marked Dp refer to (packbed generate
@@ -125,6 +131,8 @@ struct SoftSphereParameters {
     double smallest_size() const;
     /// \return the largest diameter over Dp: 1 for a mono-sized bed.
     double largest_size() const;
+    /// \return true when a contact has friction (friction or wall_friction above 0).
+    bool frictional() const { return friction > 0.0 || wall_friction > 0.0; }
     /// \return a = 2 Rt / Dp where the container is a tube, else nothing.
     std::optional<double> aspect_ratio() const { return container.tube_diameter(); }
 

@@ -44,8 +44,14 @@ constexpr Vec3 operator*(Vec3 a, double s) {
 constexpr Vec3 operator*(double s, Vec3 a) {
     return a *= s;
 }
+constexpr Vec3 operator-(const Vec3& a) {
+    return {-a.x, -a.y, -a.z};
+}
 constexpr double dot(const Vec3& a, const Vec3& b) {
     return a.x * b.x + a.y * b.y + a.z * b.z;
+}
+constexpr Vec3 cross(const Vec3& a, const Vec3& b) {
+    return {a.y * b.z - a.z * b.y, a.z * b.x - a.x * b.z, a.x * b.y - a.y * b.x};
 }
 constexpr double norm2(const Vec3& a) {
     return dot(a, a);

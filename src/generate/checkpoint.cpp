@@ -39,10 +39,15 @@ constexpr int format = 3;
 constexpr std::string_view hash_label = "fnv1a64 ";
 
 /// The parameters a checkpoint records and a resumed run must match: all but max_iterations,
-/// which only bounds the run.
+/// which only bounds the run. Frictionless runs leave the friction out, as checkpoints written
+/// before friction existed do.
 json parameters_json(const SoftSphereParameters& p) {
     json all = soft_sphere_parameters_json(p);
     all.erase("max_iterations");
+    if (!p.frictional()) {
+        all.erase("friction");
+        all.erase("wall_friction");
+    }
     return all;
 }
 

@@ -31,11 +31,13 @@
 #include <algorithm>
 #include <chrono>
 #include <cmath>
+#include <optional>
 #include <string>
 
 #include <fmt/format.h>
 
 #include "base/parallel.hpp"
+#include "generate/friction.hpp"
 #include "generate/soft_bed.hpp"
 #include "packbed/error.hpp"
 #include "packbed/soft_sphere.hpp"
@@ -145,6 +147,10 @@ public:
         , m_layers(layers) {
         m_bed.velocity.assign(m_bed.packing.size(), Vec3{});
         m_force.resize(m_bed.packing.size());
+        if (p.frictional()) {
+            m_friction.emplace(p.friction, p.wall_friction);
+            m_torque.resize(m_bed.packing.size());
+        }
     }
 
     /// \return the number of steps taken so far (counted from the `steps` given)
@@ -155,7 +161,9 @@ public:
         const SoftSphereParameters& p = m_params;
         std::vector<StageRecord> stages;
 
-        // "initial": overlaps of the random start removed, no gravity.
+        // "initial": overlaps of the random start removed, no gravity. Without friction: the
+        // random start's overlaps are no contacts, and friction could wedge a sphere between
+        // the wall and the floor (mu >= 1) with its overlap held for good.
         std::uint64_t start = m_steps;
         m_g = 0.0;
         for (;;) {
@@ -164,6 +172,8 @@ public:
                 break;
         }
         stages.push_back(record("initial", start, 1));
+        if (m_friction)
+            start_friction();
 
         // "intermediate": gravity under eq. (7), in force units g = Cg / Ck; until the mass
         // centre settles.
@@ -198,6 +208,8 @@ public:
         detail::StallGuard guard(p.mc_window, p.mc_period);
         for (bool done = false; !done; factor = 0.5) {
             m_g *= factor;
+            if (m_friction) // the springs with the forces they bear
+                m_friction->scale_springs(factor);
             ++steps;
             reset_dynamics();
             m_window.clear();
@@ -236,6 +248,8 @@ private:
     /// One FIRE step at the current gravity. \return the force pass's totals (overlaps of
     /// the configuration before the move, as the paper's iteration reports them).
     PassTotals step(std::string_view stage, const RunControl& control) {
+        if (m_frictional)
+            return frictional_step(stage, control);
         const SoftSphereParameters& p = m_params;
         detail::SoftBed& bed = m_bed;
         if (bed.list_stale())
@@ -271,19 +285,7 @@ private:
         forces.pair = largest_pair;
         check(forces, stage);
 
-        // FIRE's control of dt and alpha.
-        const bool uphill = !(forces.a > 0.0);
-        if (!uphill) {
-            m_positive = std::min(m_positive + 1, fire_n_min + 1); // no overflow on long runs
-            if (m_positive > fire_n_min) {
-                m_dt = std::min(m_dt * fire_f_inc, fire_dt_max);
-                m_alpha *= fire_f_alpha;
-            }
-        } else {
-            m_positive = 0;
-            m_dt = std::max(m_dt * fire_f_dec, fire_dt_min);
-            m_alpha = fire_alpha0;
-        }
+        const bool uphill = control_step(forces);
         const double dt = m_dt;
         const double back = uphill ? 0.5 * dt : 0.0;
         // |v + dt F|^2 from the sums above (v = 0 after an uphill step), then the mixing
@@ -322,20 +324,156 @@ private:
             t.drift = std::max(t.drift, norm2(moved - reference[k]));
             t.finite = t.finite && is_finite(moved);
         });
+        end_step(forces, moves, stage, control);
+        return forces;
+    }
+
+    /// FIRE's control of dt and alpha from the power F.v of the force pass `forces`.
+    /// \return true when the step is uphill (F.v <= 0).
+    bool control_step(const PassTotals& forces) {
+        const bool uphill = !(forces.a > 0.0);
+        if (!uphill) {
+            m_positive = std::min(m_positive + 1, fire_n_min + 1); // no overflow on long runs
+            if (m_positive > fire_n_min) {
+                m_dt = std::min(m_dt * fire_f_inc, fire_dt_max);
+                m_alpha *= fire_f_alpha;
+            }
+        } else {
+            m_positive = 0;
+            m_dt = std::max(m_dt * fire_f_dec, fire_dt_min);
+            m_alpha = fire_alpha0;
+        }
+        return uphill;
+    }
+
+    /// After the move pass: the list's drift, the checks, the step count and the mass-centre
+    /// record.
+    void end_step(const PassTotals& forces, const PassTotals& moves, std::string_view stage,
+                  const RunControl& control) {
+        detail::SoftBed& bed = m_bed;
         bed.drift2 = std::max(bed.drift2, moves.drift);
         if (!moves.finite || moves.top > bed.ceiling)
             check(moves, stage);
         ++m_steps;
-        if (m_steps % p.mc_period == 0) {
+        if (m_steps % m_params.mc_period == 0) {
             const double mc = bed.mass_centre_z(m_fixed) - m_datum;
             m_window.push(mc);
             report(control, stage, forces, mc);
         }
+    }
+
+    /// One step with friction (detail::FrictionalContacts): FIRE on the translations and the
+    /// rotations together, their velocities as one vector (the rotation as the surface speed
+    /// u = r omega, so that both are speeds), F.v the power of forces and torques. Each sphere's
+    /// displacement and rotation of the step move its contacts' springs in the next force pass.
+    PassTotals frictional_step(std::string_view stage, const RunControl& control) {
+        const SoftSphereParameters& p = m_params;
+        detail::SoftBed& bed = m_bed;
+        detail::FrictionalContacts& friction = *m_friction;
+        if (bed.list_stale())
+            friction.rebuild_list(bed, p.list_skin());
+        const std::size_t n = bed.packing.size();
+        Vec3* const x = bed.packing.centers.data();
+        Vec3* const v = bed.velocity.data();
+        Vec3* const u = friction.spin.data();
+        Vec3* const f = m_force.data();
+        Vec3* const tau = m_torque.data();
+        const double* const radius = bed.packing.radii.data();
+        const detail::LinearOverlapLaw law{1.0};
+        const double g = m_g;
+
+        const std::size_t pairs = bed.list.pairs();
+        const std::size_t chunk = detail::SoftBed::pair_chunk;
+        const std::size_t chunks = (pairs + chunk - 1) / chunk;
+        double largest_pair = 0.0;
+#pragma omp parallel for schedule(static)                                                          \
+    reduction(max                                                                                  \
+              : largest_pair) if (n >= detail::parallel_min_spheres)
+        for (std::size_t c = 0; c < chunks; ++c)
+            largest_pair =
+                std::max(largest_pair, friction.pair_terms(bed, c * chunk,
+                                                           std::min(pairs, (c + 1) * chunk), law));
+        const std::uint32_t* const order = bed.order.data();
+        const std::uint32_t fixed = m_fixed;
+        PassTotals forces = for_each_block(n, m_blocks, [&](std::size_t k, PassTotals& t) {
+            if (order[k] < fixed) {
+                f[k] = tau[k] = Vec3{};
+                return;
+            }
+            const double r = radius[k];
+            const Vec3 weight{0.0, 0.0, -g * 8.0 * r * r * r}; // SoftBed::weight over mobility
+            friction.sphere_terms(bed, k, law, weight, f[k], tau[k], t.wall);
+            t.a += dot(f[k], v[k]) + dot(tau[k], u[k]);
+            t.b += norm2(f[k]) + norm2(tau[k]);
+            t.speed2 += norm2(v[k]) + norm2(u[k]);
+        });
+        forces.pair = largest_pair;
+        check(forces, stage);
+
+        const bool uphill = control_step(forces);
+        const double dt = m_dt;
+        const double back = uphill ? 0.5 * dt : 0.0;
+        const double speed2 =
+            uphill ? dt * dt * forces.b
+                   : std::max(0.0, forces.speed2 + 2.0 * dt * forces.a + dt * dt * forces.b);
+        const double mix = forces.b > 0.0 ? m_alpha * std::sqrt(speed2 / forces.b) : 0.0;
+        const double keep = 1.0 - m_alpha;
+        const Vec3* const reference = bed.list.reference().data();
+        Vec3* const moved_by = friction.moved.data();
+        Vec3* const turned_by = friction.turned.data();
+        const auto limit = [dt](Vec3& speed) { // no step longer than fire_max_step
+            const double step2 = norm2(speed) * dt * dt;
+            if (step2 > fire_max_step * fire_max_step)
+                speed *= fire_max_step / std::sqrt(step2);
+        };
+        const PassTotals moves = for_each_block(n, m_blocks, [&](std::size_t k, PassTotals& t) {
+            if (order[k] < fixed)
+                return;
+            const Vec3 before = x[k];
+            Vec3 xk = before;
+            Vec3 vk = v[k], uk = u[k], turn{};
+            if (uphill) {
+                xk -= vk * back;
+                xk.z = std::max(xk.z, radius[k]);
+                turn -= uk * back;
+                vk = uk = Vec3{};
+            }
+            vk += f[k] * dt;
+            uk += tau[k] * dt;
+            vk = vk * keep + f[k] * mix;
+            uk = uk * keep + tau[k] * mix;
+            limit(vk);
+            limit(uk);
+            Vec3 moved = xk + vk * dt;
+            if (moved.z < radius[k]) {
+                moved.z = radius[k];
+                vk.z = std::max(vk.z, 0.0);
+            }
+            v[k] = vk;
+            u[k] = uk;
+            x[k] = moved;
+            moved_by[k] = moved - before;
+            turned_by[k] = turn + uk * dt;
+            t.top = std::max(t.top, moved.z);
+            t.drift = std::max(t.drift, norm2(moved - reference[k]));
+            t.finite = t.finite && is_finite(moved);
+        });
+        end_step(forces, moves, stage, control);
         return forces;
+    }
+
+    /// From the intermediate stage on: every sphere at rest, no spring held, the pairs of the
+    /// list the frictionless steps built.
+    void start_friction() {
+        m_friction->reset(m_bed.packing.size());
+        m_friction->rebuild_list(m_bed, m_params.list_skin());
+        m_frictional = true;
     }
 
     void reset_dynamics() {
         std::fill(m_bed.velocity.begin(), m_bed.velocity.end(), Vec3{});
+        if (m_friction)
+            std::fill(m_friction->spin.begin(), m_friction->spin.end(), Vec3{});
         m_dt = fire_dt0;
         m_alpha = fire_alpha0;
         m_positive = 0;
@@ -403,6 +541,9 @@ private:
     detail::SoftBed& m_bed;
     std::vector<Vec3> m_force;
     std::vector<PassTotals> m_blocks;
+    std::optional<detail::FrictionalContacts> m_friction; // with friction only
+    bool m_frictional = false;  // steps with friction (from the intermediate stage on)
+    std::vector<Vec3> m_torque; // rate of each sphere's u (FrictionalContacts::sphere_terms)
     detail::MassCentreWindow m_window;
     std::uint32_t m_fixed;
     double m_datum;

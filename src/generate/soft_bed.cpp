@@ -56,7 +56,7 @@ void SoftBed::reset_order() {
     next.resize(packing.size());
 }
 
-void SoftBed::rebuild_list(double skin) {
+std::vector<std::uint32_t> SoftBed::rebuild_list(double skin) {
     if (cell) // the centres back into the cell: the list's reference, and the spatial order
         for (Vec3& c : packing.centers)
             c = cell->wrapped(c);
@@ -81,6 +81,7 @@ void SoftBed::rebuild_list(double skin) {
     list.build(packing.centers, packing.radii, skin, order);
     factor.resize(list.pairs());
     drift2 = 0.0;
+    return perm;
 }
 
 const Packing& SoftBed::packing_in_generation_order() const {

@@ -195,8 +195,8 @@ struct SoftBed {
     bool list_stale() const { return list.builds() == 0 || drift2 > list.drift_limit2(); }
 
     /// Store the spheres in the order of a cell grid, then build the Verlet list on them with
-    /// rows in generation order.
-    void rebuild_list(double skin);
+    /// rows in generation order. \return the new order: stored sphere k was stored at perm[k].
+    std::vector<std::uint32_t> rebuild_list(double skin);
 
     /// Add the wall term of eq. (4) for a sphere at `xk` of radius `r` to `move`; track the
     /// largest wall overlap: each wall the sphere presses adds its own term

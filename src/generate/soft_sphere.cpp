@@ -73,6 +73,14 @@ void SoftSphereParameters::validate() const {
     require(list_skin() > 0.0 && list_skin() <= 1.0, "skin", list_skin(), "0 < skin <= 1 (Dp)");
     require(layer_height == 0.0 || (layer_height >= 10.0 && layer_height <= 1e6), "layer-height",
             layer_height, "0 (one piece) or 10 to 1000000 (Dp)");
+    require(friction >= 0.0 && friction <= 100.0, "friction", friction, "0 to 100");
+    require(wall_friction >= 0.0 && wall_friction <= 100.0, "wall-friction", wall_friction,
+            "0 to 100");
+    if (frictional() && solver != Solver::fire)
+        throw InvalidInput(fmt::format("--solver {} with --friction {} and --wall-friction {} is "
+                                       "not allowed; allowed: friction with --solver fire (the "
+                                       "paper's iteration has no rotations)",
+                                       to_string(solver), friction, wall_friction));
     require(max_iterations >= 1, "max-iterations", static_cast<double>(max_iterations), ">= 1");
     if (sizes.empty())
         return check_top();
@@ -499,6 +507,8 @@ nlohmann::json soft_sphere_parameters_json(const SoftSphereParameters& p) {
             {"solver", to_string(p.solver)},
             {"skin", p.list_skin()},
             {"layer_height", p.layer_height},
+            {"friction", p.friction},
+            {"wall_friction", p.wall_friction},
             {"max_iterations", p.max_iterations}};
 }
 

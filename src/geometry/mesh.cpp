@@ -2,14 +2,6 @@
 
 namespace packbed {
 
-namespace {
-
-Vec3 cross(const Vec3& a, const Vec3& b) {
-    return {a.y * b.z - a.z * b.y, a.z * b.x - a.x * b.z, a.x * b.y - a.y * b.x};
-}
-
-} // namespace
-
 void TriangleMesh::append(const TriangleMesh& other) {
     const auto shift = static_cast<std::uint32_t>(vertices.size());
     vertices.insert(vertices.end(), other.vertices.begin(), other.vertices.end());

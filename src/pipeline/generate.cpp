@@ -1,12 +1,19 @@
 // A soft-sphere bed from a request to its files (pipeline.hpp).
+#include <algorithm>
+#include <chrono>
+#include <cmath>
 #include <cstdlib>
 #include <filesystem>
+#include <limits>
+#include <ranges>
 #include <stdexcept>
 
 #include <omp.h>
 
 #include <fmt/format.h>
+#include <fmt/ranges.h>
 
+#include "packbed/bed_volume.hpp"
 #include "packbed/checkpoint.hpp"
 #include "packbed/error.hpp"
 #include "packbed/files.hpp"
@@ -124,10 +131,35 @@ PreparedGeneration prepare_generation(GenerateRequest request) {
             throw InvalidInput("--solver paper is not allowed with --engine lammps; allowed: "
                                "--solver fire (LAMMPS runs the fire solver's energy and "
                                "schedule)");
+        if (p.frictional())
+            throw InvalidInput(fmt::format(
+                "--friction {} and --wall-friction {} are not allowed with --engine lammps; "
+                "allowed: 0 (LAMMPS minimises the frictionless energy; friction needs damped "
+                "dynamics with contact history, docs/lammps.md) or friction with --engine packbed",
+                p.friction, p.wall_friction));
         if (!request.checkpoint.empty())
             throw InvalidInput(fmt::format("--checkpoint {} is not allowed with --engine lammps; "
                                            "allowed: --checkpoint with --engine packbed",
                                            printable(request.checkpoint)));
+    }
+    if (const std::optional<double> target = request.target_void_fraction) {
+        const std::string given = fmt::format("--target-void-fraction {}", *target);
+        if (!(*target > 0.0 && *target < 1.0))
+            throw InvalidInput(given + " is not allowed; allowed: 0 < E < 1");
+        if (p.frictional())
+            throw InvalidInput(fmt::format("{} with --friction {} and --wall-friction {} is not "
+                                           "allowed; allowed: one of the two (the target sets "
+                                           "the friction of spheres and walls alike)",
+                                           given, p.friction, p.wall_friction));
+        if (p.solver != Solver::fire || request.engine != Engine::packbed)
+            throw InvalidInput(given + " is not allowed with --solver paper or --engine lammps; "
+                                       "allowed: with --solver fire and --engine packbed (the "
+                                       "target is reached by friction)");
+        if (!request.checkpoint.empty())
+            throw InvalidInput(fmt::format("{} with --checkpoint {} is not allowed; allowed: one "
+                                           "of the two (the runs that find the friction are not "
+                                           "saved)",
+                                           given, printable(request.checkpoint)));
     }
     if (!request.checkpoint.empty()) {
         check_path("--checkpoint", request.checkpoint);
@@ -155,8 +187,213 @@ GeneratedBed generate_bed(const PreparedGeneration& prepared, RunControl control
     return run_lammps_generation(prepared, prepared.request.launcher, control, *folder);
 }
 
+namespace {
+
+/// The void fraction summary.json reports: over the band `clearance` Dp clear of the floor and
+/// the top (bed lengths in Dp); NaN where the bed is too short for one.
+double band_void_fraction(const SoftSphereResult& result, double clearance, double diameter) {
+    const auto band = band_clear_of_ends(result.packing, clearance * diameter);
+    return band ? void_fraction(result.packing, result.container, band->z_low, band->z_high)
+                : std::numeric_limits<double>::quiet_NaN();
+}
+
+/// A friction coefficient and the void fraction of the bed it gave.
+struct Trial {
+    double friction;
+    double void_fraction;
+};
+
+// The friction the target's search spans: from 0 (the dense, frictionless bed) to 1, past which
+// a bed gets looser by less than 0.005 (a = 10: e = 0.4736 at mu = 1, 0.4775 at 3 and 10;
+// docs/validation.md, "Friction").
+constexpr double target_max_friction = 1.0;
+// The calibration bed: the request's container and sizes, its first spheres up to an initial
+// height of this many Dp (eq. 6), at least calibration_min of them.
+constexpr double calibration_height = 15.0;
+constexpr std::uint64_t calibration_min = 500;
+// The calibration stops within this of the target (its beds scatter by about 0.004 at a = 10).
+constexpr double calibration_tolerance = 0.002;
+constexpr int calibration_runs = 6; // at most, besides the frictionless one
+// How much looser the bed at target_max_friction is than without friction, before a trial
+// says (friction_for).
+constexpr double prior_span = 0.075;
+constexpr int full_runs = 3; // at most
+
+/// The friction, interpolated linearly in ln(mu + 0.01) (e grows about linearly in it from
+/// mu = 0.01 to 1), at which the void fraction between two trials reaches `target`.
+double interpolate(const Trial& lo, const Trial& hi, double target) {
+    const auto x = [](double mu) { return std::log(mu + 0.01); };
+    if (!(hi.void_fraction > lo.void_fraction))
+        return 0.5 * (lo.friction + hi.friction);
+    const double t =
+        std::clamp((target - lo.void_fraction) / (hi.void_fraction - lo.void_fraction), 0.0, 1.0);
+    return std::exp(x(lo.friction) + t * (x(hi.friction) - x(lo.friction))) - 0.01;
+}
+
+/// The friction at which the trials (any order) reach `target`: between the two trials of
+/// neighbouring friction that straddle it, the least friction where several pairs do; beyond
+/// the most frictional trial, by the prior: e rising by prior_span from mu = 0 to
+/// target_max_friction, linearly in ln(mu + 0.01) (a = 8 to 20: 0.071 to 0.081).
+double friction_for(std::vector<Trial> trials, double target) {
+    std::sort(trials.begin(), trials.end(),
+              [](const Trial& a, const Trial& b) { return a.friction < b.friction; });
+    const Trial last = trials.back();
+    if (last.friction < target_max_friction) {
+        const auto x = [](double mu) { return std::log(mu + 0.01); };
+        const double share =
+            (x(target_max_friction) - x(last.friction)) / (x(target_max_friction) - x(0.0));
+        trials.push_back({target_max_friction, last.void_fraction + prior_span * share});
+    }
+    if (target <= trials.front().void_fraction)
+        return trials.front().friction;
+    for (std::size_t i = 1; i < trials.size(); ++i)
+        if (target <= trials[i].void_fraction)
+            return interpolate(trials[i - 1], trials[i], target);
+    return trials.back().friction;
+}
+
+/// --target-void-fraction: the friction of spheres and walls alike found by short runs, then
+/// the bed itself (docs/generate.md, "A target void fraction"). The calibration bed (the
+/// request's first spheres, calibration_height Dp of them) is relaxed without friction and at
+/// target_max_friction: a target outside their void fractions (with the tolerance) is refused
+/// with that range. Then regula falsi in ln(mu + 0.01) on calibration beds, until one ends
+/// within calibration_tolerance; then the whole bed at that friction. A whole bed that misses
+/// the target by more than the tolerance moves the calibration's target by its miss and runs
+/// again, at most full_runs times.
+GeneratedBed run_to_target(const PreparedGeneration& prepared, const RunControl& control,
+                           int threads) {
+    const auto t0 = std::chrono::steady_clock::now();
+    const double target = *prepared.request.target_void_fraction;
+    const double tolerance = GenerateRequest::target_tolerance;
+    const double clearance = prepared.request.band_clearance;
+    RunControl quiet; // the calibration and the bed report progress, nothing else
+    quiet.on_progress = control.on_progress;
+    quiet.should_stop = control.should_stop;
+
+    SoftSphereParameters calibration = prepared.params;
+    const double height = initial_bed_height(prepared.params);
+    calibration.particles = std::min<std::uint64_t>(
+        prepared.params.particles,
+        std::max<std::uint64_t>(
+            calibration_min,
+            static_cast<std::uint64_t>(std::ceil(static_cast<double>(prepared.params.particles) *
+                                                 calibration_height / height))));
+    if (!calibration.sizes.empty())
+        calibration.sizes.resize(calibration.particles);
+    std::vector<Trial> calibrated;
+    const auto calibrate = [&](double mu) {
+        calibration.friction = calibration.wall_friction = mu;
+        const SoftSphereResult r = generate_soft_sphere(calibration, quiet);
+        calibrated.push_back({mu, band_void_fraction(r, clearance, calibration.diameter)});
+        if (!std::isfinite(calibrated.back().void_fraction))
+            throw InvalidInput(fmt::format(
+                "--target-void-fraction {}: the calibration bed of {} spheres is too short for "
+                "the void fraction's band; allowed: a lower --band-clearance (now {})",
+                target, calibration.particles, clearance));
+        return calibrated.back();
+    };
+    // The densest bed first; the loosest only where the target lies beyond every trial.
+    const Trial lo = calibrate(0.0);
+    double densest = lo.void_fraction, loosest = std::numeric_limits<double>::quiet_NaN();
+    const auto refuse = [&] {
+        if (std::isnan(loosest))
+            loosest = calibrate(target_max_friction).void_fraction;
+        return InvalidInput(fmt::format(
+            "--target-void-fraction {} is not reachable in this container with these sizes; "
+            "allowed: {:.3f} (no friction) to {:.3f} (friction {}), as measured on a bed of {} "
+            "of its spheres",
+            target, densest, loosest, target_max_friction, calibration.particles));
+    };
+    if (target < densest - tolerance)
+        throw refuse();
+    double mu = 0.0;
+    if (target > densest + calibration_tolerance) {
+        // The first guess by the prior (friction_for), then regula falsi on the trials.
+        mu = friction_for(calibrated, target);
+        for (int i = 0; i < calibration_runs; ++i) {
+            const Trial t = calibrate(mu);
+            if (std::abs(t.void_fraction - target) <= calibration_tolerance)
+                break;
+            if (t.void_fraction < target && mu >= target_max_friction) {
+                loosest = t.void_fraction;
+                if (target > loosest + tolerance)
+                    throw refuse();
+                break;
+            }
+            mu = friction_for(calibrated, target);
+        }
+    }
+
+    SoftSphereParameters p = prepared.params;
+    std::vector<Trial> runs;
+    GeneratedBed best;
+    double miss = std::numeric_limits<double>::infinity(), best_mu = mu;
+    for (int run = 0; run < full_runs; ++run) {
+        p.friction = p.wall_friction = mu;
+        SoftSphereResult result = generate_soft_sphere(p, quiet);
+        const double e = band_void_fraction(result, clearance, p.diameter);
+        runs.push_back({mu, e});
+        if (std::abs(e - target) < miss) {
+            miss = std::abs(e - target);
+            best_mu = mu;
+            best.result = std::move(result);
+        }
+        if (miss <= tolerance)
+            break;
+        // The whole bed is off the calibration's curve by (e - its value there): aim the
+        // calibration's curve at the target moved by as much.
+        const double offset = e - [&] {
+            std::vector<Trial> near = calibrated;
+            std::sort(near.begin(), near.end(), [mu](const Trial& a, const Trial& b) {
+                return std::abs(a.friction - mu) < std::abs(b.friction - mu);
+            });
+            return near.front().void_fraction;
+        }();
+        mu = std::clamp(friction_for(calibrated, target - offset), 0.0, target_max_friction);
+        const auto below = [target](const Trial& t) { return t.void_fraction < target; };
+        if (std::any_of(runs.begin(), runs.end(), below) &&
+            !std::all_of(runs.begin(), runs.end(), below)) // whole beds on both sides
+            mu = friction_for(runs, target);
+    }
+    if (miss > tolerance)
+        throw ConvergenceError(fmt::format(
+            "--target-void-fraction {}: the beds at friction {} ended at void fractions {} "
+            "(tolerance {}); the calibration bed of {} spheres reached {:.3f} without friction: "
+            "another --seed, more --particles or a target farther from the ends of the range",
+            target, fmt::join(std::views::transform(runs, &Trial::friction), ", "),
+            fmt::join(std::views::transform(runs, &Trial::void_fraction), ", "), tolerance,
+            calibration.particles, densest));
+    p.friction = p.wall_friction = best_mu;
+    best.result.seconds =
+        std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+    PreparedGeneration ran = prepared;
+    ran.params = p;
+    best.summary = generation_summary(ran, best.result, threads);
+    auto trials = [](const std::vector<Trial>& list) {
+        nlohmann::json out = nlohmann::json::array();
+        for (const Trial& t : list)
+            out.push_back({{"friction", t.friction}, {"void_fraction", t.void_fraction}});
+        return out;
+    };
+    best.summary["target_void_fraction"] = {
+        {"target", target},
+        {"tolerance", tolerance},
+        {"friction", p.friction},
+        {"method", "the friction of spheres and walls alike, found on calibration beds of the "
+                   "first spheres (regula falsi in ln(mu + 0.01)), then the whole bed"},
+        {"calibration_particles", calibration.particles},
+        {"frictionless", densest},
+        {"calibration", trials(calibrated)},
+        {"runs", trials(runs)}};
+    return best;
+}
+
+} // namespace
+
 GeneratedBed run_generation(const PreparedGeneration& prepared, RunControl control, int threads,
                             const std::function<void(std::uint32_t)>& on_resume) {
+    if (prepared.request.target_void_fraction)
+        return run_to_target(prepared, control, threads);
     const SoftSphereParameters& p = prepared.params;
     const std::string& checkpoint = prepared.request.checkpoint;
     std::optional<LayerCheckpoint> resume;

@@ -94,6 +94,8 @@ the options it needs; the bed's lengths come back in the unit of --diameter.
 nlohmann::json job_json(const GenerateRequest& r, const std::vector<std::string>& command,
                         LammpsPairStyle style) {
     nlohmann::json request = soft_sphere_parameters_json(r.params);
+    request.erase("friction"); // the engine runs frictionless beds only
+    request.erase("wall_friction");
     request["aspect_ratio"] = r.aspect_ratio; // the request's shorthand, as given
     request["container"] = r.container;
     request["sizes"] = r.sizes;
