@@ -15,7 +15,7 @@
 set -euo pipefail
 cd "$(dirname "$0")/.."
 out=${1:-results/bench-all}
-sections=${2:-threads peers iteration scaling analyze lattice export voxels seams timeleft lammps}
+sections=${2:-threads peers iteration scaling analyze lattice export voxels seams timeleft lammps friction}
 packbed=build/packbed
 mkdir -p "$out"
 out=$(cd "$out" && pwd)
@@ -110,6 +110,9 @@ for d in sys.argv[1:]:
     ;;
   seams)
     build/bench/bench_seams 20 60000 1,2,3,4 >> "$file"
+    ;;
+  friction) # frictional beds and targets against the frictionless bed, side by side
+    bench/time_friction.sh "$packbed" "$out/friction" >> "$file"
     ;;
   timeleft) # the progress line's estimate on a terminal: in layers, and in one piece
     bench/time_left.py --packbed "$packbed" -a 20 -n 60000 -s 1 >> "$file"

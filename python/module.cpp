@@ -608,6 +608,10 @@ export_bed_to(const Bed& bed, const std::filesystem::path& out, const std::strin
         request.keep = request.source;
     request.container =
         container ? std::optional(container_from_spec("--container", *container)) : bed.container;
+    if (bed.summary.is_object() && bed.summary.contains("parameters") &&
+        bed.summary["parameters"].contains("friction") &&
+        bed.summary["parameters"]["friction"].is_number())
+        request.friction = bed.summary["parameters"]["friction"].get<double>();
     if (container_height)
         request.container_height =
             check_option("container-height", *container_height, range::container_height);

@@ -188,6 +188,19 @@ series = open(os.path.join(repo, "results/settled-analysis/void_fraction_series.
 check(series[0] == "frame,timestep,void_fraction,particles" and len([l for l in series[1:] if l]) == 2,
       "analyze measured both snapshots of the settle")
 
+# 3b. Poured or dense: the target reached by friction, the dense bed frictionless.
+dense, poured = summary("results/dense"), summary("results/poured")
+check(dense["parameters"]["friction"] == 0 and 0.385 < dense["void_fraction"] < 0.405,
+      f"the dense bed is frictionless, e = {dense['void_fraction']:.4f} in (0.385, 0.405)")
+check(abs(poured["void_fraction"] - 0.42) <= 0.005,
+      f"the poured bed reached e = {poured['void_fraction']:.4f}, within 0.005 of 0.42")
+check(poured["parameters"]["friction"] == poured["target_void_fraction"]["friction"] > 0,
+      "its friction is recorded")
+check(max(poured["max_overlap_pair"], poured["max_overlap_wall"]) <= 1e-4,
+      "its overlaps within the 1e-4 Dp tolerance")
+zp, zd = poured["analysis"]["coordination"]["mean"], dense["analysis"]["coordination"]["mean"]
+check(zp < zd - 0.2, f"its spheres touch fewer neighbours ({zp:.2f} against {zd:.2f})")
+
 # 4. The analysis tour: analyze gives the void fraction generate measured.
 a = summary("results/a5-n500-analysis")
 check(abs(a["void_fraction"] - summary("results/a5-n500")["void_fraction"]) < 1e-12,

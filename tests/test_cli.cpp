@@ -161,6 +161,60 @@ TEST(Cli, FireSolverInLayersSameBytesWhateverTheThreads) {
     EXPECT_LT(s["max_overlap_wall"].get<double>(), 1e-4);
 }
 
+TEST(Cli, FrictionalBedInLayersResumesToTheSameBytesAndItsDemInputKeepsTheFriction) {
+    // The checkpoint test's bed with friction (mu = 0.3 at spheres, walls and floor): layers,
+    // a stop and a resume end in the bytes of the run never stopped; summary.json records the
+    // friction, and the LAMMPS example input of its data file settles with it.
+    const fs::path a = scratch("whole"), b = scratch("resumed"), c = scratch("ckpt");
+    const std::string bed = "generate --aspect-ratio 5 --particles 600 --seed 1 --layer-height "
+                            "10 --friction 0.3 --wall-friction 0.3 --no-analysis --quiet ";
+    const std::string checkpoint = (c / "bed.ckpt").string();
+    ASSERT_EQ(packbed(bed + "--out " + a.string()).status, 0);
+    const auto sa = nlohmann::json::parse(slurp(a / "summary.json"));
+    EXPECT_EQ(sa["layers"], 3);
+    EXPECT_EQ(sa["parameters"]["friction"], 0.3);
+    EXPECT_EQ(sa["parameters"]["wall_friction"], 0.3);
+    EXPECT_LT(sa["max_overlap_pair"].get<double>(), 1e-4);
+    const auto half = sa["iterations"].get<std::uint64_t>() * 3 / 4;
+    const Outcome stopped = packbed(bed + "--max-iterations " + std::to_string(half) +
+                                    " --checkpoint " + checkpoint + " --out " + b.string());
+    EXPECT_EQ(stopped.status, 1) << stopped.err;
+    ASSERT_TRUE(fs::exists(checkpoint));
+    const Outcome resumed = packbed(bed + "--checkpoint " + checkpoint + " --out " + b.string());
+    ASSERT_EQ(resumed.status, 0) << resumed.err;
+    EXPECT_EQ(slurp(a / "particles.csv"), slurp(b / "particles.csv"));
+    const fs::path data = c / "bed.data";
+    ASSERT_EQ(packbed("export " + (a / "particles.csv").string() +
+                      " --format lammps-data --quiet --out " + data.string())
+                  .status,
+              0);
+    const std::string input = slurp(data.string() + ".lammps.in");
+    EXPECT_NE(input.find("variable        friction equal 0.3\n"), std::string::npos) << input;
+}
+
+TEST(Cli, TargetVoidFractionReachedByCalibratedFriction) {
+    // a = 10, 4 000 spheres: the frictionless bed is at e = 0.397; targets 0.40 and 0.42 end
+    // within 0.005, every overlap below 1e-4 Dp, the friction and its search in summary.json.
+    for (const double target : {0.40, 0.42}) {
+        const fs::path d = scratch(fmt::format("e{}", target));
+        const Outcome o =
+            packbed(fmt::format("generate -a 10 -n 4000 --target-void-fraction {} --no-analysis "
+                                "--quiet --out {}",
+                                target, d.string()));
+        ASSERT_EQ(o.status, 0) << o.err;
+        const auto s = nlohmann::json::parse(slurp(d / "summary.json"));
+        EXPECT_NEAR(s["void_fraction"].get<double>(), target, 0.005);
+        EXPECT_LT(s["max_overlap_pair"].get<double>(), 1e-4);
+        EXPECT_LT(s["max_overlap_wall"].get<double>(), 1e-4);
+        const auto& t = s["target_void_fraction"];
+        EXPECT_EQ(t["target"], target);
+        EXPECT_GT(t["friction"].get<double>(), 0.0);
+        EXPECT_EQ(s["parameters"]["friction"], t["friction"]);
+        EXPECT_EQ(s["parameters"]["wall_friction"], t["friction"]);
+        EXPECT_EQ(t["runs"].back()["void_fraction"], s["void_fraction"]);
+    }
+}
+
 TEST(Cli, CheckpointResumesToTheSameBytes) {
     // Three layers of about 200 spheres (a = 5, L0 = 30.2 Dp, layers of 10 Dp). The second
     // run stops in the third layer (--max-iterations, exit 1) and leaves the checkpoint of

@@ -92,10 +92,11 @@ double rayleigh_time(double radius, double density, double youngs_modulus, doubl
 /// glass's 63 GPa, as usual in DEM, so that the time step is not tiny), Hertz contacts with
 /// damping from the restitution coefficient and Coulomb friction. docs/dem.md.
 struct DemMaterial {
-    double youngs_modulus = 1e7; ///< E (Pa with SI lengths)
-    double poisson_ratio = 0.25; ///< nu
-    double restitution = 0.5;    ///< coefficient of restitution
-    double friction = 0.5;       ///< sliding friction coefficient, sphere-sphere and wall
+    double youngs_modulus = 1e7;  ///< E (Pa with SI lengths)
+    double poisson_ratio = 0.25;  ///< nu
+    double restitution = 0.5;     ///< coefficient of restitution
+    double friction = 0.5;        ///< sliding friction coefficient, sphere-sphere and wall
+    bool friction_of_bed = false; ///< `friction` is the bed's own (generate --friction)
 };
 
 /// What the example DEM inputs (LAMMPS, LIGGGHTS) need: a short settle of the bed under

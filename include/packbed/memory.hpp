@@ -28,8 +28,10 @@ void check_memory(std::string_view what, std::uint64_t bytes, std::string_view a
 /// What a generation of `spheres` keeps at its largest (the bed, its neighbour list, the
 /// solver's per-sphere state, the staged CSV and VTU): measured 36 MiB at 1e5 spheres and 257
 /// MiB at 1e6 (a = 20 and 50, docs/performance.md); estimated as 32 MiB + 400 bytes a sphere.
-/// Also a lattice's (95 MiB for 296 353 balls).
-std::uint64_t generation_memory(std::uint64_t spheres);
+/// Also a lattice's (95 MiB for 296 353 balls). With friction (`frictional`), each sphere's
+/// rotation and wall springs and each listed pair's spring and forces add about 1 200 bytes a
+/// sphere (a = 30, 1e5 spheres in one piece: 171 MiB against 53): 1 250 are counted.
+std::uint64_t generation_memory(std::uint64_t spheres, bool frictional = false);
 
 /// What a bed read from a file keeps per sphere: its centre and radius (32 bytes) and its line
 /// number (8), and the same again while a vector grows.

@@ -215,6 +215,11 @@ void set_child_watcher(std::function<void(pid_t)> watcher);
 /// summary, or has a container outside the limits
 std::optional<Container> container_beside(const std::filesystem::path& particles);
 
+/// The friction between spheres recorded in `summary.json` beside a particle file (packbed
+/// generate's parameters.friction). \return nothing when there is no such file or it records
+/// none. \throws InvalidInput as container_beside
+std::optional<double> friction_beside(const std::filesystem::path& particles);
+
 /// The container a spec text names (parse_container). \throws InvalidInput naming `option`,
 /// the text and the four forms when it names none
 Container container_from_spec(std::string_view option, const std::string& spec);
@@ -296,6 +301,9 @@ struct ExportRequest {
     /// the bed's file: an input of the job (record_input), and the summary.json beside it;
     /// "": none
     std::filesystem::path keep;
+    /// the friction the bed was generated with; none: the one summary.json beside `keep`
+    /// records (friction_beside). Above 0, the example DEM input's friction.
+    std::optional<double> friction;
     std::optional<Container> container; ///< the bed's; none: no wall treatment, no example
     double container_height = 0.0;      ///< 0: the bed's top + 1 Dp
     bool no_container = false;          ///< surfaces: no container solids; data files: ignore it

@@ -139,6 +139,9 @@ struct BedSummary {
     std::optional<double> porosity; ///< a lattice's exact porosity or the void fraction
     /// "the porosity of the TYPE lattice" or "the overall void fraction", when porosity is set
     std::string porosity_source;
+    /// the friction between spheres the bed was generated with (parameters.friction), when
+    /// present
+    std::optional<double> friction;
 };
 
 /// Read a summary.json. Absent keys are left empty; present ones must be right.

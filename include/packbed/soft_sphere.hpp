@@ -208,6 +208,10 @@ struct SoftSphereResult {
     std::uint64_t neighbor_builds = 0;          ///< Verlet-list rebuilds
     std::uint32_t layers = 1;                   ///< layers the fire solver built the bed in
     double seconds = 0.0;                       ///< wall time of run()
+    /// With friction: the largest force (k Dp) and torque (k Dp^2) left on a sphere at the end,
+    /// k the contact stiffness (of the layer relaxed last where the bed is built in layers:
+    /// each layer's at its own end, the largest)
+    std::optional<std::pair<double, double>> residuals;
 };
 
 /// Largest overlaps of a configuration, computed exactly (O(N) with a cell grid).

@@ -96,8 +96,8 @@ void check_memory(std::string_view what, std::uint64_t bytes, std::string_view a
                                        what, memory_text(bytes), memory_text(*available), allowed));
 }
 
-std::uint64_t generation_memory(std::uint64_t spheres) {
-    return (std::uint64_t{32} << 20) + 400 * spheres;
+std::uint64_t generation_memory(std::uint64_t spheres, bool frictional) {
+    return (std::uint64_t{32} << 20) + (frictional ? 1650 : 400) * spheres;
 }
 
 } // namespace packbed

@@ -462,6 +462,34 @@ private:
         return forces;
     }
 
+public:
+    /// With friction, after relax(): the largest force and torque left on a free sphere by its
+    /// contacts, the floor and the final gravity (one force pass on the final bed; the last
+    /// step's slip moves the springs first). Force in units of k Dp (k the contact stiffness),
+    /// torque in k Dp^2.
+    std::pair<double, double> residuals() {
+        detail::SoftBed& bed = m_bed;
+        detail::FrictionalContacts& friction = *m_friction;
+        if (bed.list_stale())
+            friction.rebuild_list(bed, m_params.list_skin());
+        const detail::LinearOverlapLaw law{1.0};
+        friction.pair_terms(bed, 0, bed.list.pairs(), law);
+        double force = 0.0, torque = 0.0, wall = 0.0;
+        for (std::size_t k = 0; k < bed.packing.size(); ++k) {
+            if (bed.order[k] < m_fixed)
+                continue;
+            const double r = bed.packing.radii[k];
+            Vec3 accel, spin;
+            friction.sphere_terms(bed, k, law, {0.0, 0.0, -m_g * 8.0 * r * r * r}, accel, spin,
+                                  wall);
+            const double mass = 1.0 / bed.mobility(r);
+            force = std::max(force, norm(accel) * mass);
+            torque = std::max(torque, norm(spin) * mass * r / 2.5);
+        }
+        return {force, torque};
+    }
+
+private:
     /// From the intermediate stage on: every sphere at rest, no spring held, the pairs of the
     /// list the frictionless steps built.
     void start_friction() {
@@ -592,6 +620,8 @@ SoftSphereResult relax_with_fire(const SoftSphereParameters& parameters,
                                "layer-height); this run is relaxed in one piece");
         Fire fire(p, bed, 0, 0.0, 0);
         result.stages = fire.relax(control);
+        if (p.frictional())
+            result.residuals = fire.residuals();
         steps = fire.steps();
         builds = bed.list.builds();
     } else {
@@ -678,6 +708,12 @@ SoftSphereResult relax_with_fire(const SoftSphereParameters& parameters,
             part.assign(std::move(spheres), base + slice, bed.smallest_radius);
             Fire fire(p, part, fixed, datum, steps, l, layers);
             std::vector<StageRecord> stages = fire.relax(control);
+            if (p.frictional()) {
+                const auto [force, torque] = fire.residuals();
+                result.residuals = {
+                    std::max(force, result.residuals ? result.residuals->first : 0.0),
+                    std::max(torque, result.residuals ? result.residuals->second : 0.0)};
+            }
             steps = fire.steps();
             builds += part.list.builds();
             if (result.stages.empty()) {

@@ -544,6 +544,10 @@ nlohmann::json soft_sphere_summary(const SoftSphereParameters& p, const SoftSphe
     summary["band_clearance"] = band_clearance;
     summary["max_overlap_pair"] = result.max_overlap_pair;
     summary["max_overlap_wall"] = result.max_overlap_wall;
+    if (result.residuals) {
+        summary["force_residual"] = result.residuals->first;
+        summary["torque_residual"] = result.residuals->second;
+    }
     summary["iterations"] = result.iterations;
     summary["initial_height"] = result.initial_height;
     summary["neighbor_list_builds"] = result.neighbor_builds;
@@ -575,6 +579,10 @@ nlohmann::json soft_sphere_summary(const SoftSphereParameters& p, const SoftSphe
                         {"skin", "Dp"},
                         {"layer_height", "Dp"},
                         {"band_clearance", "Dp"}};
+    if (result.residuals) {
+        summary["units"]["force_residual"] = "k Dp (k the contact stiffness)";
+        summary["units"]["torque_residual"] = "k Dp^2";
+    }
     summary["seconds"] = result.seconds;
     return summary;
 }

@@ -222,6 +222,7 @@ std::string settle_head(const DemSettle& s, const SettleNumbers& n, std::string_
         "# Lengths as in {0} with units si (metres); the container is the {3} (docs/dem.md).\n"
         "# Material: an example (a soft glass-like solid, E far below glass's 63 GPa as usual in\n"
         "# DEM), not calibrated; edit the variables below, the time step follows them.\n"
+        "{15}"
         "# Time step: {4} x the Rayleigh time of the smallest sphere (radius R),\n"
         "#   t_R = pi R sqrt(rho / G) / (0.1631 nu + 0.8766), G = E / (2 (1 + nu))\n"
         "#   (Li, Xu & Thornton 2005, Powder Technol. 160: 219-228; LIGGGHTS fix "
@@ -241,7 +242,9 @@ std::string settle_head(const DemSettle& s, const SettleNumbers& n, std::string_
         "variable        dt equal {4}*v_rayleigh\n\n",
         s.data_file, program, run, settle_wall(s).words, s.time_step_fraction, s.smallest_radius,
         s.density, m.youngs_modulus, m.poisson_ratio, n.rayleigh, n.time_step, s.steps,
-        s.steps * n.time_step, m.restitution, m.friction);
+        s.steps * n.time_step, m.restitution, m.friction,
+        m.friction_of_bed ? "# Friction: the bed's own, as packbed generate --friction made it.\n"
+                          : "");
 }
 
 /// The run and its report, the same in both programs.

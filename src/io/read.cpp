@@ -1088,6 +1088,16 @@ BedSummary read_bed_summary(std::istream& input, std::string_view name) {
                                                   ? printable(type->get<std::string>())
                                                   : "?");
     }
+    if (const auto parameters = json.find("parameters");
+        parameters != json.end() && parameters->is_object() && parameters->contains("friction")) {
+        const nlohmann::json& v = (*parameters)["friction"];
+        const double value = v.is_number() ? v.get<double>() : std::nan("");
+        if (!(value >= 0.0 && value <= 100.0))
+            throw InvalidInput(fmt::format("{}: parameters.friction = {} is not allowed; "
+                                           "allowed: a number in [0, 100]",
+                                           shown, json_excerpt(v, 40)));
+        out.friction = value;
+    }
     if (!out.porosity) {
         out.porosity = number(json, "void_fraction", "void_fraction", 1.0);
         if (out.porosity)

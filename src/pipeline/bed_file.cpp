@@ -14,12 +14,27 @@
 
 namespace packbed {
 
-std::optional<Container> container_beside(const std::filesystem::path& particles) {
+namespace {
+
+/// The summary.json beside a particle file, when there is one.
+std::optional<BedSummary> summary_beside(const std::filesystem::path& particles) {
     const std::filesystem::path summary = particles.parent_path() / "summary.json";
     std::error_code ec;
     if (!std::filesystem::exists(std::filesystem::symlink_status(summary, ec)))
         return std::nullopt;
-    return read_bed_summary(summary).container;
+    return read_bed_summary(summary);
+}
+
+} // namespace
+
+std::optional<Container> container_beside(const std::filesystem::path& particles) {
+    const std::optional<BedSummary> summary = summary_beside(particles);
+    return summary ? summary->container : std::nullopt;
+}
+
+std::optional<double> friction_beside(const std::filesystem::path& particles) {
+    const std::optional<BedSummary> summary = summary_beside(particles);
+    return summary ? summary->friction : std::nullopt;
 }
 
 Container container_from_spec(std::string_view option, const std::string& spec) {

@@ -395,6 +395,12 @@ std::string data_export(const ExportRequest& o, ExportFormat format, const Packi
                                   : *std::min_element(packing.radii.begin(), packing.radii.end());
         settle.diameter = dp;
         settle.density = o.density;
+        const std::optional<double> friction =
+            o.friction ? o.friction : (o.keep.empty() ? std::nullopt : friction_beside(o.keep));
+        if (friction && *friction > 0.0) {
+            settle.material.friction = *friction;
+            settle.material.friction_of_bed = true;
+        }
         // The container's side (every solid but the floor and the top: an annulus' tube and
         // rod in one) and floor as LIGGGHTS walls, triangles about 1 Dp wide.
         const std::vector<Solid> solids = container->container.solids(0.0, container->height, dp);

@@ -58,8 +58,10 @@ PreparedGeneration prepare_generation(GenerateRequest request) {
         throw InvalidInput(fmt::format("--ranks, --mpi-command, --lmp and --write-only are not "
                                        "allowed with --engine {}; allowed: with --engine lammps",
                                        to_string(request.engine)));
-    PreparedGeneration prepared{request, request.params, std::nullopt,
-                                generation_memory(request.params.particles)};
+    PreparedGeneration prepared{
+        request, request.params, std::nullopt,
+        generation_memory(request.params.particles,
+                          request.params.frictional() || request.target_void_fraction.has_value())};
     SoftSphereParameters& p = prepared.params;
     // Before anything is allocated for it (the sizes drawn below are 8 bytes a sphere).
     check_memory(fmt::format("--particles {}", p.particles), prepared.memory,

@@ -64,6 +64,27 @@ def test_generated_bed_has_the_command_lines_bits(bed, cli_bed, tmp_path):
     assert bed.summary["void_fraction"] == summary["void_fraction"]
 
 
+def test_friction_and_target_void_fraction_as_the_command_line(tmp_path):
+    # a = 8, 1 000 spheres: friction loosens the bed; the target is reached within 0.005 by a
+    # friction the summary records, with the command line's bytes.
+    dense = packbed.generate(aspect_ratio=8, particles=1000, seed=2)
+    loose = packbed.generate(aspect_ratio=8, particles=1000, seed=2, friction=0.3,
+                             wall_friction=0.3)
+    assert loose.summary["void_fraction"] > dense.summary["void_fraction"] + 0.02
+    assert loose.summary["parameters"]["friction"] == 0.3
+    target = packbed.generate(aspect_ratio=8, particles=1000, seed=2, target_void_fraction=0.43)
+    assert abs(target.summary["void_fraction"] - 0.43) <= 0.005
+    mu = target.summary["target_void_fraction"]["friction"]
+    assert target.summary["parameters"]["friction"] == mu > 0
+    cli = subprocess.run([PACKBED, "generate", "-a", "8", "-n", "1000", "-s", "2",
+                          "--target-void-fraction", "0.43", "-q", "--no-analysis", "-o",
+                          str(tmp_path / "cli")], check=True)
+    table = read_csv(tmp_path / "cli" / "particles.csv")
+    assert np.array_equal(target.centers, table[:, :3])
+    with pytest.raises(ValueError, match="--target-void-fraction 0.42 with --friction 0.1"):
+        packbed.generate(particles=100, friction=0.1, target_void_fraction=0.42)
+
+
 def test_same_seed_same_bits_whatever_the_threads(bed):
     again = packbed.generate(**BED, threads=1)
     assert np.array_equal(again.centers, bed.centers)
