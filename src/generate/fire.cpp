@@ -285,16 +285,7 @@ private:
         forces.pair = largest_pair;
         check(forces, stage);
 
-        const bool uphill = control_step(forces);
-        const double dt = m_dt;
-        const double back = uphill ? 0.5 * dt : 0.0;
-        // |v + dt F|^2 from the sums above (v = 0 after an uphill step), then the mixing
-        // v <- (1 - alpha) v + alpha |v| F^.
-        const double speed2 =
-            uphill ? dt * dt * forces.b
-                   : std::max(0.0, forces.speed2 + 2.0 * dt * forces.a + dt * dt * forces.b);
-        const double mix = forces.b > 0.0 ? m_alpha * std::sqrt(speed2 / forces.b) : 0.0;
-        const double keep = 1.0 - m_alpha;
+        const auto [uphill, dt, back, mix, keep] = mixing(forces);
         const Vec3* const reference = bed.list.reference().data();
         // One pass: half step back and stop after an uphill step, v <- v + dt F, mixing,
         // x <- x + dt v with no step longer than fire_max_step, the rigid floor.
@@ -326,6 +317,24 @@ private:
         });
         end_step(forces, moves, stage, control);
         return forces;
+    }
+
+    /// What one FIRE step does with the velocities: whether it is uphill, dt, the half step
+    /// back after an uphill step, and the mixing v <- keep v + mix F.
+    struct Mixing {
+        bool uphill;
+        double dt, back, mix, keep;
+    };
+    /// control_step, then the mixing's numbers: |v + dt F|^2 from the force pass's sums (v = 0
+    /// after an uphill step) for v <- (1 - alpha) v + alpha |v| F^.
+    Mixing mixing(const PassTotals& forces) {
+        const bool uphill = control_step(forces);
+        const double dt = m_dt;
+        const double speed2 =
+            uphill ? dt * dt * forces.b
+                   : std::max(0.0, forces.speed2 + 2.0 * dt * forces.a + dt * dt * forces.b);
+        return {uphill, dt, uphill ? 0.5 * dt : 0.0,
+                forces.b > 0.0 ? m_alpha * std::sqrt(speed2 / forces.b) : 0.0, 1.0 - m_alpha};
     }
 
     /// FIRE's control of dt and alpha from the power F.v of the force pass `forces`.
@@ -410,14 +419,7 @@ private:
         forces.pair = largest_pair;
         check(forces, stage);
 
-        const bool uphill = control_step(forces);
-        const double dt = m_dt;
-        const double back = uphill ? 0.5 * dt : 0.0;
-        const double speed2 =
-            uphill ? dt * dt * forces.b
-                   : std::max(0.0, forces.speed2 + 2.0 * dt * forces.a + dt * dt * forces.b);
-        const double mix = forces.b > 0.0 ? m_alpha * std::sqrt(speed2 / forces.b) : 0.0;
-        const double keep = 1.0 - m_alpha;
+        const auto [uphill, dt, back, mix, keep] = mixing(forces);
         const Vec3* const reference = bed.list.reference().data();
         Vec3* const moved_by = friction.moved.data();
         Vec3* const turned_by = friction.turned.data();
