@@ -28,6 +28,9 @@
 // whole column), so it falls and settles ever more slowly; a layer gets the gravity of a
 // short bed, and a step costs only the spheres of the layer and the one under it, which is
 // relaxed again so that no part of the bed keeps the loose state of a free surface.
+// With friction (SoftSphereParameters::friction, wall_friction) the contacts carry tangential
+// springs and the spheres turn (detail::FrictionalContacts): FIRE then runs on translations and
+// rotations together, from the intermediate stage on (frictional_step).
 #include <algorithm>
 #include <chrono>
 #include <cmath>
