@@ -288,7 +288,9 @@ private:
         forces.pair = largest_pair;
         check(forces, stage);
 
-        const auto [uphill, dt, back, mix, keep] = mixing(forces);
+        const Mixing m = mixing(forces); // plain names: lambdas below capture them
+        const bool uphill = m.uphill;
+        const double dt = m.dt, back = m.back, mix = m.mix, keep = m.keep;
         const Vec3* const reference = bed.list.reference().data();
         // One pass: half step back and stop after an uphill step, v <- v + dt F, mixing,
         // x <- x + dt v with no step longer than fire_max_step, the rigid floor.
@@ -422,7 +424,9 @@ private:
         forces.pair = largest_pair;
         check(forces, stage);
 
-        const auto [uphill, dt, back, mix, keep] = mixing(forces);
+        const Mixing m = mixing(forces); // plain names: lambdas below capture them
+        const bool uphill = m.uphill;
+        const double dt = m.dt, back = m.back, mix = m.mix, keep = m.keep;
         const Vec3* const reference = bed.list.reference().data();
         Vec3* const moved_by = friction.moved.data();
         Vec3* const turned_by = friction.turned.data();
