@@ -5,7 +5,6 @@
 #include <cstdlib>
 #include <filesystem>
 #include <limits>
-#include <ranges>
 #include <stdexcept>
 
 #include <omp.h>
@@ -366,14 +365,19 @@ GeneratedBed run_to_target(const PreparedGeneration& prepared, const RunControl&
             !std::all_of(runs.begin(), runs.end(), below)) // whole beds on both sides
             mu = friction_for(runs, target);
     }
-    if (miss > tolerance)
+    if (miss > tolerance) {
+        std::vector<double> frictions, voids;
+        for (const Trial& t : runs) {
+            frictions.push_back(t.friction);
+            voids.push_back(t.void_fraction);
+        }
         throw ConvergenceError(fmt::format(
             "--target-void-fraction {}: the beds at friction {} ended at void fractions {} "
             "(tolerance {}); the calibration bed of {} spheres reached {:.3f} without friction: "
             "another --seed, more --particles or a target farther from the ends of the range",
-            target, fmt::join(std::views::transform(runs, &Trial::friction), ", "),
-            fmt::join(std::views::transform(runs, &Trial::void_fraction), ", "), tolerance,
+            target, fmt::join(frictions, ", "), fmt::join(voids, ", "), tolerance,
             calibration.particles, densest));
+    }
     p.friction = p.wall_friction = best_mu;
     best.result.seconds =
         std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
