@@ -4,10 +4,9 @@
 // The tangential law is Cundall & Strack's, "A discrete numerical model for granular
 // assemblies", Geotechnique 29 (1979) 47-65, in the form of LAMMPS's gran/hooke/history: each
 // contact keeps a spring xi, the tangential displacement of the contact points since the
-// contact began, turned into the contact's current tangent plane with its length kept; the
-// tangential force is k_t xi, capped by Coulomb's law |F_t| <= mu F_n (on the cap the spring is
-// shortened to mu F_n / k_t: the contact slides). F_n = k_n delta with the solvers' unit
-// stiffness k_n = 1.
+// contact began, projected into the contact's current tangent plane; the tangential force is k_t
+// xi, capped by Coulomb's law |F_t| <= mu F_n (on the cap the spring is shortened to mu F_n / k_t:
+// the contact slides). F_n = k_n delta with the solvers' unit stiffness k_n = 1.
 #pragma once
 
 #include <algorithm>
@@ -33,8 +32,9 @@ inline constexpr double tangential_stiffness = 2.0 / 7.0;
 /// relative displacement of the contact points in this step (its normal part is dropped) and
 /// `cap` = mu F_n, the largest tangential force. The spring is first projected into the tangent
 /// plane of `normal` (as LAMMPS's gran/hooke/history turns its shear history; the normal turns
-/// by less than 1e-2 rad in a step). \return the tangential force on this body (k_t xi: it is
-/// dragged along the other's displacement); the other body gets its opposite.
+/// by at most about 0.02 rad in a step, each sphere moving at most 0.01 Dp). \return the tangential
+/// force on this body (k_t xi: it is dragged along the other's displacement); the other body gets
+/// its opposite.
 inline Vec3 tangential_spring(Vec3& spring, const Vec3& normal, const Vec3& slip, double cap) {
     Vec3 xi = spring + slip;
     xi -= normal * dot(xi, normal);
