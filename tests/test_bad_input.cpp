@@ -580,10 +580,10 @@ INSTANTIATE_TEST_SUITE_P(
               "packbed generate: --target-void-fraction 0.42 is not allowed with --solver paper "
               "or --engine lammps; allowed: with --solver fire and --engine packbed (the target "
               "is reached by friction)"),
-        exact("generate -a 10 -n 1000 --target-void-fraction 0.3",
+        exact("generate -a 6 -n 200 --target-void-fraction 0.3",
               "packbed generate: --target-void-fraction 0.3 is not reachable in this container "
-              "with these sizes; allowed: 0.400 (no friction) to 0.481 (friction 1), as "
-              "measured on a bed of 1000 of its spheres"),
+              "with these sizes; allowed: 0.418 (no friction) to 0.497 (friction 1), as "
+              "measured on a bed of 200 of its spheres"),
         exact("generate --layer-height 1e7",
               "packbed: --layer-height: 1e7 is not allowed; allowed: a number in [0, 1e+06]"),
         exact("generate --ck 1.2", "packbed: --ck: 1.2 is not allowed; allowed: a number in "

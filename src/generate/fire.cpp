@@ -223,6 +223,17 @@ public:
                     break;
                 }
                 const bool record = m_steps % p.mc_period == 0;
+                if (m_g < stalled_g && record && m_friction && !m_released) {
+                    // Gravity negligible and an overlap held: friction of 1 or more can wedge
+                    // a sphere so that it keeps its overlap with no load. The bed's structure
+                    // is set; the rest of the final stage runs without friction, the spheres
+                    // moving by less than their overlaps.
+                    m_friction->release();
+                    m_released = true;
+                    reset_dynamics();
+                    m_window.clear();
+                    continue;
+                }
                 if (m_g < stalled_g && record) {
                     const auto verdict = guard.record(m_bed, std::max(s.pair, s.wall), p.tolerance,
                                                       m_fixed, m_steps);
@@ -580,6 +591,7 @@ private:
     std::vector<PassTotals> m_blocks;
     std::optional<detail::FrictionalContacts> m_friction; // with friction only
     bool m_frictional = false;  // steps with friction (from the intermediate stage on)
+    bool m_released = false;    // friction let go in a stalled final stage
     std::vector<Vec3> m_torque; // rate of each sphere's u (FrictionalContacts::sphere_terms)
     detail::MassCentreWindow m_window;
     std::uint32_t m_fixed;

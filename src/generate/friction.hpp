@@ -154,6 +154,12 @@ public:
     /// contact network, and no stress locked in by friction holds an overlap.
     void scale_springs(double factor);
 
+    /// No friction from now on (mu = 0 at spheres and walls), no spring held.
+    void release() {
+        m_mu = m_wall_mu = 0.0;
+        scale_springs(0.0);
+    }
+
     /// \return the tangential force of listed pair p on its first sphere (for tests).
     Vec3 pair_force(std::size_t p) const { return m_pair_force[p]; }
 
