@@ -162,7 +162,8 @@ void FrictionalContacts::sphere_terms(const SoftBed& bed, std::size_t k,
             moment += cross(-push, f);
         }
     });
-    m_wall[k] = walls;
+    if (m_wall_mu > 0.0) // else nothing was read or kept: no 192-byte store a sphere a step
+        m_wall[k] = walls;
     // The rigid floor: it takes the downward force of a sphere resting on it.
     if (xk.z <= r) {
         const double reaction = std::max(0.0, -force.z);
