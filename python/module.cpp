@@ -443,12 +443,22 @@ Bed from_arrays(const py::object& centers_given, const std::optional<py::object>
     return bed;
 }
 
+/// The friction between spheres the bed's summary records (packbed generate's
+/// parameters.friction); none where it records none.
+std::optional<double> bed_friction(const Bed& bed) {
+    if (bed.summary.is_object() && bed.summary.contains("parameters") &&
+        bed.summary["parameters"].contains("friction") &&
+        bed.summary["parameters"]["friction"].is_number())
+        return bed.summary["parameters"]["friction"].get<double>();
+    return std::nullopt;
+}
+
 Analysis analyze(const Bed& bed, const std::optional<std::string>& container,
                  std::optional<std::pair<double, double>> band, double band_clearance,
                  std::optional<double> diameter, double shell_width, double slab_height,
                  double centre_bin, double contact_tolerance, double rdf_range, double rdf_bin,
-                 std::optional<long long> threads, const std::optional<std::filesystem::path>& out,
-                 bool force) {
+                 std::optional<double> friction, std::optional<long long> threads,
+                 const std::optional<std::filesystem::path>& out, bool force) {
     const Container given = container_for(bed, container);
     namespace range = option_range;
     AnalysisOptions options;
@@ -464,6 +474,8 @@ Analysis analyze(const Bed& bed, const std::optional<std::string>& container,
         check_option("contact-tolerance", contact_tolerance, range::contact_tolerance);
     options.rdf_range = check_option("rdf-range", rdf_range, range::rdf_range);
     options.rdf_bin = check_option("rdf-bin", rdf_bin, range::rdf_bin);
+    options.frictional = (friction ? check_option("friction", *friction, range::friction)
+                                   : bed_friction(bed).value_or(0.0)) > 0.0;
     std::optional<OutputDirectory> directory;
     if (out)
         directory.emplace(*out, "--out", OutputKind::directory, force);
@@ -608,10 +620,7 @@ export_bed_to(const Bed& bed, const std::filesystem::path& out, const std::strin
         request.keep = request.source;
     request.container =
         container ? std::optional(container_from_spec("--container", *container)) : bed.container;
-    if (bed.summary.is_object() && bed.summary.contains("parameters") &&
-        bed.summary["parameters"].contains("friction") &&
-        bed.summary["parameters"]["friction"].is_number())
-        request.friction = bed.summary["parameters"]["friction"].get<double>();
+    request.friction = bed_friction(bed);
     if (container_height)
         request.container_height =
             check_option("container-height", *container_height, range::container_height);
@@ -921,13 +930,14 @@ inside the container.)");
           py::arg("centre_bin") = AnalysisOptions{}.centre_bin,
           py::arg("contact_tolerance") = AnalysisOptions{}.contact_tolerance,
           py::arg("rdf_range") = AnalysisOptions{}.rdf_range,
-          py::arg("rdf_bin") = AnalysisOptions{}.rdf_bin, py::arg("threads") = py::none(),
-          py::arg("out") = py::none(), py::arg("force") = false,
+          py::arg("rdf_bin") = AnalysisOptions{}.rdf_bin, py::arg("friction") = py::none(),
+          py::arg("threads") = py::none(), py::arg("out") = py::none(), py::arg("force") = false,
           R"(Measure a bed as `packbed analyze` does: the overall void fraction (exact), the
 radial (wall) and axial void fraction profiles, the centre distribution, contacts and
 coordination, and g(r), in the band band_clearance Dp clear of the floor and the top (or band =
 (z_low, z_high)). container: a spec string; None: the bed's own. Lengths in Dp are in units of
-diameter (None: the mean sphere diameter). out: a directory to write the tables, plots and
+diameter (None: the mean sphere diameter). friction: between the spheres, above 0 a rattler has
+fewer than 2 contacts, not 4 (None: the one the bed's summary records, else 0). out: a directory to write the tables, plots and
 summary.json to (None: nothing is written). Returns an Analysis with numpy arrays.)");
 
     m.def("voxelize", &voxelize_bed, py::call_guard<JobScope>(), py::arg("bed"), py::kw_only(),

@@ -288,6 +288,30 @@ TEST(Coordination, ExactlyTouchingSpheresCountAtZeroTolerance) {
     EXPECT_DOUBLE_EQ(a.coordination.mean, 2.0);
 }
 
+TEST(Coordination, RattlersHaveFewerThanFourContactsOrTwoWithFriction) {
+    // A column of touching spheres on the axis of a wide tube, and one sphere beside the
+    // column's sphere at z = 5.5. In the band [1, 9]: 8 column spheres with 2 contacts (3 for
+    // the one touched from the side) and the side sphere with 1. Without friction every one is
+    // a rattler (fewer than 4); with friction only the side sphere (fewer than 2).
+    Packing bed;
+    for (int k = 0; k < 10; ++k)
+        bed.add({0, 0, 0.5 + k}, 0.5);
+    bed.add({1, 0, 5.5}, 0.5);
+    AnalysisOptions o;
+    const BedAnalysis plain = analyze_bed(bed, Cylinder(3.0), o);
+    EXPECT_EQ(plain.coordination.spheres, 9u);
+    EXPECT_DOUBLE_EQ(plain.coordination.mean, 2.0);
+    EXPECT_EQ(plain.coordination.rattler_contacts, 4u);
+    EXPECT_EQ(plain.coordination.rattlers, 9u);
+    EXPECT_DOUBLE_EQ(plain.coordination.mean_without_rattlers, 0.0);
+    o.frictional = true;
+    const BedAnalysis rough = analyze_bed(bed, Cylinder(3.0), o);
+    EXPECT_DOUBLE_EQ(rough.coordination.mean, 2.0);
+    EXPECT_EQ(rough.coordination.rattler_contacts, 2u);
+    EXPECT_EQ(rough.coordination.rattlers, 1u);
+    EXPECT_DOUBLE_EQ(rough.coordination.mean_without_rattlers, 17.0 / 8.0);
+}
+
 TEST(PairCorrelation, DistanceJustBelowTheRangeStaysInTheLastBin) {
     // 0.8099999999999999 / 0.03 rounds to 27 = the number of bins: must not write past them.
     Packing p;

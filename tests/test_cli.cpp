@@ -190,11 +190,26 @@ TEST(Cli, FrictionalBedInLayersResumesToTheSameBytesAndItsDemInputKeepsTheFricti
               0);
     const std::string input = slurp(data.string() + ".lammps.in");
     EXPECT_NE(input.find("variable        friction equal 0.3\n"), std::string::npos) << input;
+    // analyze takes the friction summary.json records: a rattler has fewer than 2 contacts,
+    // not 4, and so fewer spheres are rattlers; --friction 0 takes the frictionless rule.
+    const auto rattlers = [&](const std::string& name, const std::string& extra) {
+        const fs::path out = c / name;
+        const Outcome o = packbed("analyze " + (a / "particles.csv").string() + " --quiet --out " +
+                                  out.string() + extra);
+        EXPECT_EQ(o.status, 0) << o.err;
+        return nlohmann::json::parse(slurp(out / "summary.json"))["coordination"];
+    };
+    const auto rough = rattlers("rough", ""), plain = rattlers("plain", " --friction 0");
+    EXPECT_EQ(rough["rattler_contacts"], 2);
+    EXPECT_EQ(plain["rattler_contacts"], 4);
+    EXPECT_LT(rough["rattlers"].get<int>(), plain["rattlers"].get<int>());
+    EXPECT_EQ(rough["mean"], plain["mean"]);
 }
 
 TEST(Cli, TargetVoidFractionReachedByCalibratedFriction) {
     // a = 10, 4 000 spheres: the frictionless bed is at e = 0.397; targets 0.40 and 0.42 end
-    // within 0.005, every overlap below 1e-4 Dp, the friction and its search in summary.json.
+    // within 0.005, every overlap below 1e-4 Dp, the friction and its search in summary.json,
+    // no sphere left with more force than a contact at the tolerance exerts (k 1e-4 Dp).
     for (const double target : {0.40, 0.42}) {
         const fs::path d = scratch(fmt::format("e{}", target));
         const Outcome o =
@@ -212,6 +227,9 @@ TEST(Cli, TargetVoidFractionReachedByCalibratedFriction) {
         EXPECT_EQ(s["parameters"]["friction"], t["friction"]);
         EXPECT_EQ(s["parameters"]["wall_friction"], t["friction"]);
         EXPECT_EQ(t["runs"].back()["void_fraction"], s["void_fraction"]);
+        // The stated residuals: below what one contact at the tolerance exerts.
+        EXPECT_LT(s["force_residual"].get<double>(), 1e-4);
+        EXPECT_LT(s["torque_residual"].get<double>(), 0.5e-4);
     }
 }
 

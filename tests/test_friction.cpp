@@ -255,6 +255,25 @@ TEST(FrictionalBeds, LooserAsFrictionGrowsWithinTheTolerance) {
     EXPECT_GT(previous, 0.45);
 }
 
+TEST(FrictionalBeds, OverlapsHeldByFrictionInANarrowTubeLetGoAfterOneCut) {
+    // a = 5, 750 spheres, mu = 0.5 at spheres and walls (seed 1): friction wedges spheres
+    // against the wall and holds overlaps of about 0.01 Dp that cuts of gravity do not free
+    // (21 halvings, 22 915 steps in the final stage, when gravity was halved until negligible).
+    // The first cut that leaves the largest overlap above 3/4 of itself lets friction go
+    // (docs/generate.md, "Friction: poured beds"): two cuts, every overlap below the tolerance.
+    SoftSphereParameters p = frictional_bed(0.5, 0.5);
+    p.container = Container::tube(5.0);
+    p.particles = 750;
+    p.seed = 1;
+    const SoftSphereResult r = relax_with_fire(p);
+    ASSERT_EQ(r.stages.size(), 3u);
+    EXPECT_LE(r.stages[2].steps, 2u);
+    EXPECT_LT(r.stages[2].iterations, 5000u);
+    EXPECT_LT(r.max_overlap_pair, 1e-4);
+    EXPECT_LT(r.max_overlap_wall, 1e-4);
+    EXPECT_GT(band_void_fraction(r), 0.46); // still a loose bed (0.4767; frictionless 0.43)
+}
+
 TEST(FrictionalBeds, SameBitsWhateverTheThreads) {
     const int saved = omp_get_max_threads();
     omp_set_num_threads(1);

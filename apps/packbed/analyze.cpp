@@ -38,6 +38,7 @@ struct AnalyzeOptions {
     InputPlacement placement; // --frame, --axis, --floor
     std::string frames;       // "all": every frame, and void_fraction_series.csv
     AnalysisOptions analysis;
+    std::optional<double> friction; // none: the one summary.json beside the file records
     unsigned long long threads = static_cast<unsigned long long>(omp_get_num_procs());
     bool quiet = false;
     bool force = false;
@@ -86,6 +87,7 @@ int run_analyze(AnalyzeOptions& o) {
     const Container container = *given;
     if (o.diameter > 0.0)
         o.analysis.diameter = o.diameter;
+    o.analysis.frictional = o.friction.value_or(friction_beside(path).value_or(0.0)) > 0.0;
 
     const fs::path out_dir = o.out.empty() ? path.parent_path() / "analysis" : fs::path(o.out);
     OutputDirectory out(out_dir, "--out", OutputKind::directory, o.force);
@@ -198,6 +200,10 @@ Command register_analyze(CLI::App& parent) {
         ->check(real_in(option_range::centre_bin));
     app->add_option("--contact-tolerance", a.contact_tolerance, "a gap up to this is a contact, Dp")
         ->check(real_in(option_range::contact_tolerance));
+    app->add_option("--friction", o.friction,
+                    "friction between the spheres; above 0 a rattler has fewer than 2 contacts, "
+                    "not 4 (default: summary.json's beside the file, else 0)")
+        ->check(real_in(option_range::friction));
     app->add_option("--rdf-range", a.rdf_range, "largest distance of g(r), Dp")
         ->check(real_in(option_range::rdf_range));
     app->add_option("--rdf-bin", a.rdf_bin, "bin width of g(r), Dp")

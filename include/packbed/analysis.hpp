@@ -33,8 +33,11 @@ struct AnalysisOptions {
     double slab_height = 0.05;       ///< height of the slabs of e(z), Dp
     double centre_bin = 0.02;        ///< bin width of the centre distribution, Dp
     double contact_tolerance = 1e-3; ///< a gap below this counts as a contact, Dp
-    double rdf_range = 3.0;          ///< g(r) is computed for centre distances up to this, Dp
-    double rdf_bin = 0.02;           ///< bin width of g(r), Dp
+    /// The contacts between spheres have friction: a rattler has fewer than 2 contacts, not 4
+    /// (Coordination::rattler_contacts).
+    bool frictional = false;
+    double rdf_range = 3.0; ///< g(r) is computed for centre distances up to this, Dp
+    double rdf_bin = 0.02;  ///< bin width of g(r), Dp
 };
 
 /// One bin of a profile: the interval [low, high] (length: the distance from the wall for the
@@ -47,9 +50,14 @@ struct ProfileBin {
 
 /// Contacts and coordination of the spheres whose centre lies in the band.
 struct Coordination {
-    double mean = 0.0;                     ///< mean number of sphere-sphere contacts per sphere
-    double mean_without_rattlers = 0.0;    ///< the same over spheres that are not rattlers
-    std::size_t rattlers = 0;              ///< spheres with fewer than 4 contacts, the wall counted
+    double mean = 0.0;                  ///< mean number of sphere-sphere contacts per sphere
+    double mean_without_rattlers = 0.0; ///< the same over spheres that are not rattlers
+    std::size_t rattlers = 0;           ///< spheres with fewer than rattler_contacts contacts
+    /// A sphere with fewer contacts than this, the wall counted as one, is a rattler: it bears no
+    /// load. Without friction 4: contact forces along the normals balance at a sphere only
+    /// with at least d + 1 = 4 of them not in one hemisphere. With friction 2: two contacts
+    /// whose forces lie in their friction cones can balance, one cannot.
+    std::size_t rattler_contacts = 4;
     std::size_t spheres = 0;               ///< spheres counted (centre in the band)
     std::vector<std::size_t> histogram;    ///< histogram[k]: spheres with k sphere-sphere contacts
     std::size_t wall_contacts = 0;         ///< spheres of the whole bed touching the lateral wall
@@ -166,7 +174,7 @@ struct BedAnalysis {
 ///   uniform distribution, 0 where no centre can be (d < Dp/2).
 /// - A contact is a pair with gap |x_i - x_j| - r_i - r_j <= contact_tolerance; a wall contact
 ///   is d_i - r_i <= contact_tolerance (in a cylinder Rt - (rho_i + r_i)). A rattler has fewer than
-///   4 contacts, counting the wall as one.
+///   4 contacts, counting the wall as one; 2 in a frictional bed (Coordination::rattler_contacts).
 /// - g(r), corrected for the container: g(r) = sum_i n_i(r) / (rho_c sum_i V_i(r)), over the
 ///   N centres i in the band; n_i counts the other centres in the band at a distance in the
 ///   bin [r, r + dr), V_i is the volume of the shell [r, r + dr) around centre i that lies

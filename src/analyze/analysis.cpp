@@ -332,9 +332,9 @@ struct ContactSearch {
 
 /// The contacts of the spheres in the band; `per_sphere` gets each sphere's count of
 /// sphere-sphere contacts (0 outside the band), `walls` one entry per profile wall with its
-/// name and wall contacts.
+/// name and wall contacts; `frictional` takes the rattler rule of frictional contacts.
 Coordination coordination(const Packing& packing, const Container& container,
-                          const ContactSearch& search, const Band& band,
+                          const ContactSearch& search, const Band& band, bool frictional,
                           std::vector<std::uint32_t>& per_sphere,
                           std::vector<WallAnalysis>& walls) {
     const std::size_t n = packing.size();
@@ -372,6 +372,7 @@ Coordination coordination(const Packing& packing, const Container& container,
         });
 
     Coordination out;
+    out.rattler_contacts = frictional ? 2 : 4;
     const std::size_t wall_count = container.profile_walls().size();
     walls.assign(wall_count, WallAnalysis{});
     for (std::size_t w = 0; w < wall_count; ++w)
@@ -399,7 +400,7 @@ Coordination coordination(const Packing& packing, const Container& container,
         ++out.histogram[k];
         ++out.spheres;
         contacts_total += k;
-        if (k + touched < 4) {
+        if (k + touched < out.rattler_contacts) {
             ++out.rattlers;
         } else {
             contacts_stable += k;
@@ -789,7 +790,8 @@ BedAnalysis analyze_bed(const Packing& packing, const Container& container,
     out.void_fraction = void_fraction(bed, container, band->z_low, band->z_high);
     out.axial_void_fraction = axial_void_fraction(bed, container, options.slab_height * dp, slabs);
     std::vector<std::uint32_t> per_sphere;
-    out.coordination = coordination(packing, container, contacts, *band, per_sphere, out.walls);
+    out.coordination = coordination(packing, container, contacts, *band, options.frictional,
+                                    per_sphere, out.walls);
     for (std::size_t w = 0; w < out.walls.size(); ++w) {
         out.walls[w].void_fraction =
             wall_void_fraction(bed, container, w, options.shell_width * dp, *band, shells);

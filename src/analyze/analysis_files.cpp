@@ -140,6 +140,7 @@ nlohmann::json analysis_summary(const BedAnalysis& a, const AnalysisOptions& o) 
          {{"mean", c.mean},
           {"mean_without_rattlers", c.mean_without_rattlers},
           {"rattlers", c.rattlers},
+          {"rattler_contacts", c.rattler_contacts},
           {"spheres", c.spheres},
           {"contact_tolerance", o.contact_tolerance},
           {"histogram", c.histogram}}},

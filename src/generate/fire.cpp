@@ -74,6 +74,11 @@ constexpr double fire_dt_min = 0.02 * fire_dt_max;
 // Verlet list (skin/2 = 0.1 Dp by default) valid for several steps. (0.02 took as many steps.)
 constexpr double fire_max_step = 0.01;
 
+// With friction, a cut of gravity in the final stage after which the largest overlap is still
+// above this share of what it was before the cut finds it held by friction (Fire::relax). A
+// borne overlap falls with g: to at most 0.5 of it at a halving (linear springs).
+constexpr double held_by_friction = 0.75;
+
 constexpr std::size_t sum_block = 1024;
 
 /// Global sums and maxima of one pass over the spheres.
@@ -209,6 +214,7 @@ public:
         // Gravity negligible and the overlaps still there: spheres pressed flat on the floor
         // are lifted and the run goes on, or the bed is jammed (detail::StallGuard).
         detail::StallGuard guard(p.mc_window, p.mc_period);
+        double held = largest; // with friction: the largest overlap before the last cut
         for (bool done = false; !done; factor = 0.5) {
             m_g *= factor;
             if (m_friction) // the springs with the forces they bear
@@ -224,10 +230,10 @@ public:
                 }
                 const bool record = m_steps % p.mc_period == 0;
                 if (m_g < stalled_g && record && m_friction && !m_released) {
-                    // Gravity negligible and an overlap held: friction of 1 or more can wedge
-                    // a sphere so that it keeps its overlap with no load. The bed's structure
-                    // is set; the rest of the final stage runs without friction, the spheres
-                    // moving by less than their overlaps.
+                    // Gravity negligible and an overlap held: friction can wedge spheres
+                    // (against each other and the wall) so that they keep their overlaps with
+                    // no load. The bed's structure is set; the rest of the final stage runs
+                    // without friction, the spheres moving by about their overlaps.
                     m_friction->release();
                     m_released = true;
                     reset_dynamics();
@@ -250,8 +256,19 @@ public:
                             "--seed gives another bed",
                             m_steps, s.pair, s.wall, m_g));
                 }
-                if (record && m_window.settled())
+                if (record && m_window.settled()) {
+                    const double now = std::max(s.pair, s.wall);
+                    if (m_friction && !m_released && now > held_by_friction * held) {
+                        // The cut left the largest overlap where it was: friction holds it,
+                        // not gravity, and further cuts would not free it (a = 5, mu = 0.5:
+                        // 0.0127 Dp after 21 halvings of g was still 0.0030). Gravity made
+                        // negligible at once; the branch above lets friction go.
+                        m_g = std::min(m_g, 0.5 * stalled_g);
+                        continue;
+                    }
+                    held = now;
                     break;
+                }
             }
         }
         stages.push_back(record("final", start, steps));

@@ -264,6 +264,10 @@ void stage_analysis(OutputDirectory& out, const Packing& packing, const Containe
                     double band_clearance, nlohmann::json& summary) {
     AnalysisOptions options;
     options.band_clearance = band_clearance;
+    // A generated bed's friction (a lattice's summary has no parameters)
+    const auto parameters = summary.find("parameters");
+    options.frictional = parameters != summary.end() && parameters->is_object() &&
+                         parameters->value("friction", 0.0) > 0.0;
     // A periodic cell: g(r) no farther than the smaller period (analyze_bed refuses a longer
     // range, which `analyze --rdf-range` may ask for; here nobody asked).
     if (const std::optional<Periods> cell = container.periods(); cell && !packing.radii.empty())
