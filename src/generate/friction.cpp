@@ -1,5 +1,6 @@
 #include "generate/friction.hpp"
 
+#include <array>
 #include <limits>
 
 namespace packbed::detail {
@@ -75,31 +76,51 @@ double FrictionalContacts::pair_terms(SoftBed& bed, std::size_t begin, std::size
     Vec3* const moment = m_pair_moment.data();
     const double ck = law.ck, mu = m_mu;
     double largest = 0.0;
-    // No branch on whether a pair touches (it is not predictable): a pair apart gets a factor,
-    // a spring and forces of 0 by masks, as SoftBed::pair_factors.
-    for (std::size_t p = begin; p < end; ++p) {
-        const std::uint32_t i = first[p], j = second[p];
-        const Vec3 rij = bed.separation<Wrap>(x[i], x[j]);
-        const double sum = radius[i] + radius[j];
-        const double dist2 = norm2(rij);
-        const double dist = std::sqrt(dist2);
-        const double overlap = sum - dist;
-        const bool touching = dist2 < sum * sum;
-        const double on = touching ? 1.0 : 0.0;
-        // +inf for coincident centres, as pair_factors: sphere_terms pushes them apart
-        // vertically, with no tangent plane (n = 0).
-        const double inverse = 1.0 / dist;
-        factor[p] = touching ? ck * overlap * inverse : 0.0;
-        largest = std::max(largest, overlap * on);
-        const Vec3 n = rij * (dist > 0.0 ? on * inverse : 0.0);
-        // The contact point of j relative to i's, moved by both translations and rotations.
-        const Vec3 slip =
-            (moved_by[j] - cross(turned_by[j], n) - moved_by[i] - cross(turned_by[i], n)) * on;
-        Vec3 xi = spring[p] * on;
-        const Vec3 force = tangential_spring(xi, n, slip, mu * ck * overlap * on);
-        spring[p] = xi;
-        tangential[p] = force;
-        moment[p] = cross(n, force);
+    // Two passes over each block of pairs, with no branch on whether a pair touches (it is not
+    // predictable): the first gives every pair its factor (as SoftBed::pair_factors) and a pair
+    // apart a spring and forces of 0, and lists the touching ones; the second moves on the
+    // springs of those alone (about half the listed pairs).
+    constexpr std::size_t block = 256;
+    std::array<std::uint32_t, block> touching_pairs;
+    std::array<Vec3, block> normals;
+    std::array<double, block> caps;
+    for (std::size_t from = begin; from < end; from += block) {
+        const std::size_t to = std::min(end, from + block);
+        std::size_t count = 0;
+        for (std::size_t p = from; p < to; ++p) {
+            const std::uint32_t i = first[p], j = second[p];
+            const Vec3 rij = bed.separation<Wrap>(x[i], x[j]);
+            const double sum = radius[i] + radius[j];
+            const double dist2 = norm2(rij);
+            const double dist = std::sqrt(dist2);
+            const double overlap = sum - dist;
+            const bool touching = dist2 < sum * sum;
+            const double on = touching ? 1.0 : 0.0;
+            // +inf for coincident centres, as pair_factors: sphere_terms pushes them apart
+            // vertically, with no tangent plane (n = 0).
+            const double inverse = 1.0 / dist;
+            factor[p] = touching ? ck * overlap * inverse : 0.0;
+            largest = std::max(largest, overlap * on);
+            spring[p] *= on;
+            tangential[p] = moment[p] = Vec3{};
+            touching_pairs[count] = static_cast<std::uint32_t>(p);
+            normals[count] = rij * (dist > 0.0 ? inverse : 0.0);
+            caps[count] = mu * ck * overlap;
+            count += touching ? 1 : 0;
+        }
+        for (std::size_t t = 0; t < count; ++t) {
+            const std::uint32_t p = touching_pairs[t];
+            const std::uint32_t i = first[p], j = second[p];
+            const Vec3& n = normals[t];
+            // The contact point of j relative to i's, moved by both translations and rotations.
+            const Vec3 slip =
+                moved_by[j] - cross(turned_by[j], n) - moved_by[i] - cross(turned_by[i], n);
+            Vec3 xi = spring[p];
+            const Vec3 force = tangential_spring(xi, n, slip, caps[t]);
+            spring[p] = xi;
+            tangential[p] = force;
+            moment[p] = cross(n, force);
+        }
     }
     return largest;
 }
@@ -128,7 +149,6 @@ void FrictionalContacts::sphere_terms(const SoftBed& bed, std::size_t k,
     Vec3 moment{};
     const std::span<const std::uint32_t> row = bed.list.neighbors_of(k);
     const std::uint32_t* const pair_number = bed.list.pair_numbers_of(k).data();
-    const std::uint32_t* const first = bed.list.pair_first().data();
     const double* const factor = bed.factor.data();
     const Vec3* const tangential = m_pair_force.data();
     const Vec3* const pair_moment = m_pair_moment.data();
@@ -143,7 +163,7 @@ void FrictionalContacts::sphere_terms(const SoftBed& bed, std::size_t k,
         }
         // Every listed pair, touching or not (0 where apart): no branch to mispredict.
         force -= bed.separation<Wrap>(xk, x[j]) * f;
-        force += tangential[p] * (first[p] == k ? 1.0 : -1.0);
+        force += tangential[p] * (k < j ? 1.0 : -1.0); // k is the pair's first sphere
         moment += pair_moment[p];
     }
     // The walls: the normal term of SoftBed::add_wall_term, and the spring of the sphere's

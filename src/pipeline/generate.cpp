@@ -206,7 +206,7 @@ struct Trial {
 };
 
 // The friction the target's search spans: from 0 (the dense, frictionless bed) to 1, past which
-// a bed gets looser by less than 0.005 (a = 10: e = 0.4736 at mu = 1, 0.4775 at 3 and 10;
+// a bed gets looser by less than 0.005 (a = 10: e = 0.4736 at mu = 1, 0.4772 at 3, 0.4771 at 10;
 // docs/validation.md, "Friction").
 constexpr double target_max_friction = 1.0;
 // The calibration bed: the request's container and sizes, its first spheres up to an initial
