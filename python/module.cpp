@@ -937,8 +937,9 @@ radial (wall) and axial void fraction profiles, the centre distribution, contact
 coordination, and g(r), in the band band_clearance Dp clear of the floor and the top (or band =
 (z_low, z_high)). container: a spec string; None: the bed's own. Lengths in Dp are in units of
 diameter (None: the mean sphere diameter). friction: between the spheres, above 0 a rattler has
-fewer than 2 contacts, not 4 (None: the one the bed's summary records, else 0). out: a directory to write the tables, plots and
-summary.json to (None: nothing is written). Returns an Analysis with numpy arrays.)");
+fewer than 2 contacts, not 4 (None: the one the bed's summary records, else 0). out: a
+directory to write the tables, plots and summary.json to (None: nothing is written). Returns an
+Analysis with numpy arrays.)");
 
     m.def("voxelize", &voxelize_bed, py::call_guard<JobScope>(), py::arg("bed"), py::kw_only(),
           py::arg("voxel_size"), py::arg("region") = py::none(), py::arg("kind") = "binary",

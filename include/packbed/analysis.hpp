@@ -54,9 +54,9 @@ struct Coordination {
     double mean_without_rattlers = 0.0; ///< the same over spheres that are not rattlers
     std::size_t rattlers = 0;           ///< spheres with fewer than rattler_contacts contacts
     /// A sphere with fewer contacts than this, the wall counted as one, is a rattler: it bears no
-    /// load. Without friction 4: contact forces along the normals balance at a sphere only
-    /// with at least d + 1 = 4 of them not in one hemisphere. With friction 2: two contacts
-    /// whose forces lie in their friction cones can balance, one cannot.
+    /// load. Without friction 4: forces along the normals hold a sphere in place only when its
+    /// contacts cage it, which takes at least d + 1 = 4 of them. With friction 2: two contacts
+    /// whose forces lie in their friction cones can balance each other, one cannot.
     std::size_t rattler_contacts = 4;
     std::size_t spheres = 0;               ///< spheres counted (centre in the band)
     std::vector<std::size_t> histogram;    ///< histogram[k]: spheres with k sphere-sphere contacts
