@@ -573,9 +573,11 @@ INSTANTIATE_TEST_SUITE_P(
         exact("generate --target-void-fraction 1",
               "packbed: --target-void-fraction: 1 is not allowed; allowed: a number in (0, 1)"),
         exact("generate --target-void-fraction 0.42 --friction 0.1",
-              "packbed generate: --target-void-fraction 0.42 with --friction 0.1 and "
-              "--wall-friction 0 is not allowed; allowed: one of the two (the target sets the "
-              "friction of spheres and walls alike)"),
+              "packbed generate: --friction 0.1 and --target-void-fraction 0.42 are both "
+              "given; allowed: one of the two"),
+        exact("generate --target-void-fraction 0.42 --wall-friction 0",
+              "packbed generate: --wall-friction 0 and --target-void-fraction 0.42 are both "
+              "given; allowed: one of the two"),
         exact("generate --target-void-fraction 0.42 --solver paper",
               "packbed generate: --target-void-fraction 0.42 is not allowed with --solver paper "
               "or --engine lammps; allowed: with --solver fire and --engine packbed (the target "

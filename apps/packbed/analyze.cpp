@@ -133,9 +133,12 @@ int run_analyze(AnalyzeOptions& o) {
                           : "");
         fmt::print("void fraction: {:.4f} (between z = {:.4g} and z = {:.4g})\n",
                    analysis.void_fraction, analysis.band.z_low, analysis.band.z_high);
-        fmt::print("coordination: {:.3f} ({:.3f} without {} rattlers); {}\n",
+        fmt::print("coordination: {:.3f} ({:.3f} without {} rattlers, spheres with fewer than "
+                   "{} contacts{}, a wall counted); {}\n",
                    analysis.coordination.mean, analysis.coordination.mean_without_rattlers,
-                   analysis.coordination.rattlers, wall_contacts_line(analysis));
+                   analysis.coordination.rattlers, analysis.coordination.rattler_contacts,
+                   o.analysis.frictional ? " in a frictional bed" : "",
+                   wall_contacts_line(analysis));
         fmt::print("results in {}/\n", out_dir.string());
     }
     return 0;

@@ -69,6 +69,13 @@ void report_bed(const PreparedGeneration& prepared, const GeneratedBed& bed,
     else
         fmt::print("void fraction: not computed: {}\n",
                    summary["void_fraction_note"].get<std::string>());
+    if (const auto target = summary.find("target_void_fraction"); target != summary.end())
+        fmt::print("friction: {:.4g} at spheres and walls, found for the target {} on {} "
+                   "calibration beds of {} spheres and {} whole bed{}\n",
+                   (*target)["friction"].get<double>(), (*target)["target"].get<double>(),
+                   (*target)["calibration"].size(),
+                   (*target)["calibration_particles"].get<std::uint64_t>(),
+                   (*target)["runs"].size(), (*target)["runs"].size() == 1 ? "" : "s");
     fmt::print("results in {}/ (particles.csv, particles.vtu, summary.json{}{})\n",
                out.path().string(), analysed ? " and the analysis tables" : "", more);
 }
@@ -280,19 +287,25 @@ Command register_generate(CLI::App& parent) {
                     "fire solver: a bed whose initial height L0 exceeds twice this is relaxed in "
                     "layers about this tall, bottom first; 0: in one piece (Dp; 0 or 10 to 1e6)")
         ->check(real_in(option_range::layer_height));
-    app->add_option("--friction", p.friction,
-                    "Coulomb friction between spheres: tangential springs capped by mu F_n and "
-                    "the spheres' rotations; 0 (default): the paper's frictionless, dense beds; "
-                    "more: looser, poured beds (fire solver; docs/generate.md, \"Friction\")")
-        ->check(real_in(option_range::friction));
+    CLI::Option* friction =
+        app->add_option(
+               "--friction", p.friction,
+               "Coulomb friction between spheres: tangential springs capped by mu F_n and "
+               "the spheres' rotations; 0 (default): the paper's frictionless, dense beds; "
+               "more: looser, poured beds (fire solver; docs/generate.md, \"Friction\")")
+            ->check(real_in(option_range::friction));
+    CLI::Option* wall_friction =
+        app->add_option("--wall-friction", p.wall_friction,
+                        "Coulomb friction between a sphere and the walls and floor (default 0)")
+            ->check(real_in(option_range::friction));
     app->add_option("--target-void-fraction", o.target_void_fraction,
                     "reach this void fraction (summary.json's, within 0.005) by the friction of "
                     "spheres and walls, found by short calibration runs; a target out of reach "
-                    "is refused with the range (docs/generate.md, \"A target void fraction\")")
-        ->check(real_in(option_range::void_fraction_target));
-    app->add_option("--wall-friction", p.wall_friction,
-                    "Coulomb friction between a sphere and the walls and floor (default 0)")
-        ->check(real_in(option_range::friction));
+                    "is refused with the range; not with --friction or --wall-friction "
+                    "(docs/generate.md, \"A target void fraction\")")
+        ->check(real_in(option_range::void_fraction_target))
+        ->excludes(friction)
+        ->excludes(wall_friction);
     app->add_option("--checkpoint", o.checkpoint,
                     "fire solver in layers: save the state to this file after each layer, and "
                     "resume from it when it exists (the same options give the same bytes)")

@@ -149,10 +149,12 @@ PreparedGeneration prepare_generation(GenerateRequest request) {
         if (!(*target > 0.0 && *target < 1.0))
             throw InvalidInput(given + " is not allowed; allowed: 0 < E < 1");
         if (p.frictional())
-            throw InvalidInput(fmt::format("{} with --friction {} and --wall-friction {} is not "
-                                           "allowed; allowed: one of the two (the target sets "
-                                           "the friction of spheres and walls alike)",
-                                           given, p.friction, p.wall_friction));
+            throw InvalidInput(fmt::format(
+                "{} with {} is not allowed; allowed: one of the two (the target sets the "
+                "friction of spheres and walls alike)",
+                given,
+                p.friction > 0.0 ? fmt::format("--friction {}", p.friction)
+                                 : fmt::format("--wall-friction {}", p.wall_friction)));
         if (p.solver != Solver::fire || request.engine != Engine::packbed)
             throw InvalidInput(given + " is not allowed with --solver paper or --engine lammps; "
                                        "allowed: with --solver fire and --engine packbed (the "
@@ -338,22 +340,28 @@ GeneratedBed run_to_target(const PreparedGeneration& prepared, const RunControl&
     // The densest bed first; the loosest only where the target lies beyond every trial.
     const Trial lo = calibrate(0.0);
     double densest = lo.void_fraction, loosest = std::numeric_limits<double>::quiet_NaN();
+    // The calibration bed aims above the target by what a frictional calibration bed is
+    // expected to be looser than the whole bed (calibration_offset); the loosest whole bed is
+    // expected as much below the loosest calibration bed.
+    const double share =
+        static_cast<double>(calibration.particles) / static_cast<double>(prepared.params.particles);
+    const double looser = calibration_offset * (1.0 - share);
+    const double aim = target + looser;
     const auto refuse = [&] {
         if (std::isnan(loosest))
             loosest = calibrate(target_max_friction).void_fraction;
         return InvalidInput(fmt::format(
             "--target-void-fraction {} is not reachable in this container with these sizes; "
             "allowed: {:.3f} (no friction) to {:.3f} (friction {}), as measured on a bed of {} "
-            "of its spheres",
-            target, densest, loosest, target_max_friction, calibration.particles));
+            "of its spheres{}",
+            target, densest, loosest - looser, target_max_friction, calibration.particles,
+            looser > 0.0 ? fmt::format(" (it gave {:.3f} at friction {}; the whole bed is "
+                                       "expected {:.3f} denser)",
+                                       loosest, target_max_friction, looser)
+                         : ""));
     };
     if (target < densest - tolerance)
         throw refuse();
-    // The calibration bed aims above the target by what a frictional calibration bed is
-    // expected to be looser than the whole bed (calibration_offset).
-    const double share =
-        static_cast<double>(calibration.particles) / static_cast<double>(prepared.params.particles);
-    const double aim = target + calibration_offset * (1.0 - share);
     double mu = 0.0;
     if (aim > densest + calibration_tolerance) {
         // The first guess by the prior (friction_for), then regula falsi on the trials.
@@ -364,7 +372,7 @@ GeneratedBed run_to_target(const PreparedGeneration& prepared, const RunControl&
                 break;
             if (t.void_fraction < aim && mu >= target_max_friction) {
                 loosest = t.void_fraction;
-                if (target > loosest + tolerance)
+                if (target > loosest - looser + tolerance)
                     throw refuse();
                 break;
             }
@@ -402,6 +410,8 @@ GeneratedBed run_to_target(const PreparedGeneration& prepared, const RunControl&
         if (std::any_of(runs.begin(), runs.end(), below) &&
             !std::all_of(runs.begin(), runs.end(), below)) // whole beds on both sides
             mu = friction_for(runs, target);
+        if (mu == runs.back().friction) // the same bed again (friction at an end of its range)
+            break;
     }
     if (miss > tolerance) {
         std::vector<double> frictions, voids;
@@ -436,6 +446,7 @@ GeneratedBed run_to_target(const PreparedGeneration& prepared, const RunControl&
          "the friction of spheres and walls alike, found on calibration beds of the "
          "first spheres (regula falsi in the measured loosening curve), then the whole bed"},
         {"calibration_particles", calibration.particles},
+        {"calibration_aim", aim},
         {"frictionless", densest},
         {"calibration", trials(calibrated)},
         {"runs", trials(runs)}};
