@@ -62,6 +62,8 @@ void TerminalProgress::operator()(const Progress& p) {
                                     fmt::format("{:<12}", p.stage)};
     if (p.layers > 1)
         fields.insert(fields.begin() + 1, fmt::format("layer {}/{}", p.layer + 1, p.layers));
+    if (!p.run.empty()) // a run of a target's search
+        fields.insert(fields.begin() + 1, std::string(p.run));
     fields.push_back(fmt::format("{:>12}", left_text));
     fields.push_back(
         fmt::format("overlaps {:.1e}/{:.1e} Dp", p.max_overlap_pair, p.max_overlap_wall));

@@ -165,6 +165,9 @@ struct Progress {
     double mass_centre_z;     ///< Dp (fire solver in layers: above the free band's bottom)
     std::uint32_t layer = 0;  ///< fire solver: the layer being relaxed, from 0
     std::uint32_t layers = 1; ///< fire solver: number of layers (1: the bed in one piece)
+    /// the run of a --target-void-fraction search this is ("calibration bed 2, friction
+    /// 0.0147"); empty otherwise
+    std::string_view run{};
 };
 
 /// A progress report as a record: its fields by name, in the order of Progress (what Python's

@@ -167,14 +167,17 @@ double SoftSphereParameters::largest_size() const {
 }
 
 nlohmann::ordered_json progress_json(const Progress& p) {
-    return {{"stage", p.stage},
-            {"iteration", p.iteration},
-            {"cg", p.cg},
-            {"max_overlap_pair", p.max_overlap_pair},
-            {"max_overlap_wall", p.max_overlap_wall},
-            {"mass_centre_z", p.mass_centre_z},
-            {"layer", p.layer},
-            {"layers", p.layers}};
+    nlohmann::ordered_json out = {{"stage", p.stage},
+                                  {"iteration", p.iteration},
+                                  {"cg", p.cg},
+                                  {"max_overlap_pair", p.max_overlap_pair},
+                                  {"max_overlap_wall", p.max_overlap_wall},
+                                  {"mass_centre_z", p.mass_centre_z},
+                                  {"layer", p.layer},
+                                  {"layers", p.layers}};
+    if (!p.run.empty())
+        out["run"] = p.run;
+    return out;
 }
 
 Overlaps measure_overlaps(const Packing& packing, const Container& container) {

@@ -7,6 +7,7 @@
 #include <filesystem>
 #include <limits>
 #include <stdexcept>
+#include <string>
 
 #include <omp.h>
 
@@ -311,8 +312,16 @@ GeneratedBed run_to_target(const PreparedGeneration& prepared, const RunControl&
     const double target = *prepared.request.target_void_fraction;
     const double tolerance = GenerateRequest::target_tolerance;
     const double clearance = prepared.request.band_clearance;
-    RunControl quiet; // the calibration and the bed report progress, nothing else
-    quiet.on_progress = control.on_progress;
+    // The calibration and the bed report progress, each run named (Progress::run), nothing
+    // else.
+    std::string run_name;
+    RunControl quiet;
+    if (control.on_progress)
+        quiet.on_progress = [&](const Progress& p) {
+            Progress named = p;
+            named.run = run_name;
+            control.on_progress(named);
+        };
     quiet.should_stop = control.should_stop;
 
     SoftSphereParameters calibration = prepared.params;
@@ -328,6 +337,7 @@ GeneratedBed run_to_target(const PreparedGeneration& prepared, const RunControl&
     std::vector<Trial> calibrated;
     const auto calibrate = [&](double mu) {
         calibration.friction = calibration.wall_friction = mu;
+        run_name = fmt::format("calibration bed {}, friction {:.3g}", calibrated.size() + 1, mu);
         const SoftSphereResult r = generate_soft_sphere(calibration, quiet);
         calibrated.push_back({mu, band_void_fraction(r, clearance, calibration.diameter)});
         if (!std::isfinite(calibrated.back().void_fraction))
@@ -386,6 +396,7 @@ GeneratedBed run_to_target(const PreparedGeneration& prepared, const RunControl&
     double miss = std::numeric_limits<double>::infinity(), best_mu = mu;
     for (int run = 0; run < full_runs; ++run) {
         p.friction = p.wall_friction = mu;
+        run_name = fmt::format("whole bed {}, friction {:.3g}", runs.size() + 1, mu);
         SoftSphereResult result = generate_soft_sphere(p, quiet);
         const double e = band_void_fraction(result, clearance, p.diameter);
         runs.push_back({mu, e});

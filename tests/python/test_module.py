@@ -72,8 +72,15 @@ def test_friction_and_target_void_fraction_as_the_command_line(tmp_path):
                              wall_friction=0.3)
     assert loose.summary["void_fraction"] > dense.summary["void_fraction"] + 0.02
     assert loose.summary["parameters"]["friction"] == 0.3
-    target = packbed.generate(aspect_ratio=8, particles=1000, seed=2, target_void_fraction=0.43)
+    reports = []
+    target = packbed.generate(aspect_ratio=8, particles=1000, seed=2, target_void_fraction=0.43,
+                              progress=reports.append)
     assert abs(target.summary["void_fraction"] - 0.43) <= 0.005
+    # Each run of the search names itself: the frictionless calibration bed first, a whole bed
+    # last, at the friction found.
+    assert reports[0]["run"] == "calibration bed 1, friction 0"
+    found = target.summary["target_void_fraction"]["friction"]
+    assert reports[-1]["run"] == f"whole bed {len(target.summary['target_void_fraction']['runs'])}, friction {found:.3g}"
     mu = target.summary["target_void_fraction"]["friction"]
     assert target.summary["parameters"]["friction"] == mu > 0
     cli = subprocess.run([PACKBED, "generate", "-a", "8", "-n", "1000", "-s", "2",
