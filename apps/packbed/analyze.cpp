@@ -87,7 +87,8 @@ int run_analyze(AnalyzeOptions& o) {
     const Container container = *given;
     if (o.diameter > 0.0)
         o.analysis.diameter = o.diameter;
-    o.analysis.frictional = o.friction.value_or(friction_beside(path).value_or(0.0)) > 0.0;
+    // summary.json is read only when --friction is not given
+    o.analysis.frictional = (o.friction ? *o.friction : friction_beside(path).value_or(0.0)) > 0.0;
 
     const fs::path out_dir = o.out.empty() ? path.parent_path() / "analysis" : fs::path(o.out);
     OutputDirectory out(out_dir, "--out", OutputKind::directory, o.force);
