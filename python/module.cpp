@@ -599,14 +599,16 @@ py::object correlations(double aspect_ratio, double profile_step, double profile
     return to_python(report.values);
 }
 
-std::string
-export_bed_to(const Bed& bed, const std::filesystem::path& out, const std::string& format,
-              const std::optional<std::string>& container, std::optional<double> container_height,
-              bool no_container, double density, const std::optional<std::string>& box,
-              std::optional<double> fluid_velocity, const std::string& contacts, long long refine,
-              std::optional<double> edge, long long cells_per_diameter, long long particle_level,
-              long long wall_level, long long ranks, double reynolds, const std::string& turbulence,
-              double fluid_density, double viscosity, std::optional<double> scale, bool force) {
+std::string export_bed_to(const Bed& bed, const std::filesystem::path& out,
+                          const std::string& format, const std::optional<std::string>& container,
+                          std::optional<double> container_height, bool no_container, double density,
+                          const std::optional<std::string>& box,
+                          std::optional<double> fluid_velocity, const std::string& contacts,
+                          long long refine, std::optional<double> edge,
+                          long long cells_per_diameter, long long particle_level,
+                          long long wall_level, long long ranks, double reynolds,
+                          const std::string& turbulence, double fluid_density, double viscosity,
+                          std::optional<double> scale, const std::string& flow, bool force) {
     namespace range = option_range;
     check_path("out", out);
     ExportRequest request;
@@ -643,6 +645,10 @@ export_bed_to(const Bed& bed, const std::filesystem::path& out, const std::strin
     request.flow.ranks = static_cast<int>(check_option("ranks", ranks, range::ranks));
     request.flow.reynolds = check_option("reynolds", reynolds, range::reynolds);
     request.turbulence = turbulence;
+    if (flow != "inlet" && flow != "periodic")
+        throw InvalidInput(fmt::format("flow '{}' is not allowed; allowed: inlet, periodic",
+                                       printable(flow.substr(0, 80))));
+    request.mesh.periodic_z = flow == "periodic";
     request.flow.fluid_density = check_option("fluid-density", fluid_density, range::density_kg_m3);
     request.flow.viscosity = check_option("viscosity", viscosity, range::viscosity_pa_s);
     if (scale)
@@ -972,7 +978,7 @@ it to a .npy, .tif or .raw (+ .raw.json) file. The array owns its memory (no cop
           py::arg("turbulence") = ExportRequest{}.turbulence,
           py::arg("fluid_density") = OpenFoamFlowOptions{}.fluid_density,
           py::arg("viscosity") = OpenFoamFlowOptions{}.viscosity, py::arg("scale") = py::none(),
-          py::arg("force") = false,
+          py::arg("flow") = "inlet", py::arg("force") = false,
           R"(Write a bed as `packbed export` does, to the file (or, for 'openfoam', the case
 directory) `out`: format 'lammps-data' (atom_style sphere), 'liggghts-data' (atom_style
 granular), 'stl', 'stl-ascii', 'obj' or 'openfoam' (docs/dem.md, docs/surfaces.md).
@@ -985,7 +991,9 @@ container's solids, data files in the spheres' bounding box. Data files: density
 cells_per_diameter, particle_level, wall_level; the flow of its Allrun: ranks, reynolds (or
 fluid_velocity, m/s), turbulence ('laminar', 'kEpsilon', 'kOmegaSST'), fluid_density
 (kg/m^3), viscosity (Pa s), scale (metres per unit of the bed's lengths; None: particles of
-1 mm). force: replace a non-empty case directory.
+1 mm), flow ('inlet', or 'periodic': a periodic cell repeating along z with container_height
+its period, the mean velocity held by a uniform pressure gradient). force: replace a
+non-empty case directory.
 Returns the command line's report line. Raises ValueError for a bad value.)");
 
     m.def("hydraulics", &hydraulics, py::call_guard<JobScope>(), py::kw_only(),
@@ -1016,8 +1024,10 @@ gradient of the straight line fitted to them, Ergun's and Eisfeld & Schnitzlein'
 the bed's own void fraction between the planes, the fluxes, whether simpleFoam converged and
 the mesh's void fraction. Writes pressure.csv, cfd_report.json and the plot pressure.svg/.png
 to out (None: CASE/cfd-report; force replaces a non-empty one). Returns a dict; a correlation
-outside its range, or no plot, gives a UserWarning. Raises ValueError for a case that is not
-a run one.)");
+outside its range, or no plot, gives a UserWarning. A case of export(..., flow='periodic'):
+the pressure gradient that held its mean velocity, the drag per sphere, K = F / (6 pi mu a
+U_s) beside Zick & Homsy's simple cubic arrays and (1 - phi) K beside van der Hoef et al.'s
+random ones, no planes and no plot. Raises ValueError for a case that is not a run one.)");
 
     m.def("correlations", &correlations, py::kw_only(),
           py::arg("aspect_ratio") = CorrelationsRequest{}.aspect_ratio,

@@ -84,6 +84,91 @@ def make_case(work, name, scatter=None, restarted=False):
     return case
 
 
+PHI, RADIUS, UBAR, CELL = 0.216, 0.372, 1.3e-5, 8.0  # a periodic cell (bed units, m/s)
+
+
+def make_periodic_case(work, name, k, cells, void=0.79):
+    """A cell periodic along z as export --flow periodic records it and its run logs: the
+    meanVelocityForce gradient that gives Zick & Homsy's K = k on a mesh of `cells` cells
+    and void fraction `void`."""
+    case = os.path.join(work, name)
+    os.makedirs(case)
+    json.dump({"diameter": D,
+               "openfoam": {"flow": {"ranks": 2, "metres_per_unit": SCALE, "fluid_density": RHO,
+                                     "viscosity": MU, "velocity": UBAR * (1 - PHI),
+                                     "reynolds": 0.01, "pressure_planes": [],
+                                     "band_void_fraction": 1 - PHI, "aspect_ratio": None,
+                                     "periodic": {"period_z": 2.0, "cell_volume": CELL,
+                                                  "spheres": 8, "sphere_radius": RADIUS,
+                                                  "solid_fraction": PHI,
+                                                  "interstitial_velocity": UBAR}}}},
+              open(os.path.join(case, "packbed.json"), "w"), indent=2)
+    volume = CELL * SCALE**3
+    force = k * 6 * math.pi * MU * RADIUS * SCALE * UBAR * void  # on a sphere, N
+    gradient = force * 8 / volume / RHO  # kinematic, m/s^2
+    with open(os.path.join(case, "log.simpleFoam"), "w") as f:
+        for t, g in ((1, 2 * gradient), (2, gradient)):  # the last line is the one read
+            f.write(f"Time = {t}\n\nPressure gradient source: uncorrected Ubar = {UBAR}, "
+                    f"pressure gradient = {g!r}\n")
+        f.write("\nSIMPLE solution converged in 2 iterations\n\nEnd\n")
+    with open(os.path.join(case, "log.checkMesh"), "w") as f:
+        f.write(f"    cells:            {cells}\n    Min volume = 1e-14. Max volume = 1e-11.  "
+                f"Total volume = {void * volume!r}.  Cell volumes OK.\n")
+    return case
+
+
+def periodic_cases(exe, work):
+    """cfd-report of a periodic cell, and a mesh series of three (Celik et al. 2008)."""
+    # One case: K = rho G V / 8 / (6 pi mu a U_s), U_s = Ubar times the mesh's void fraction;
+    # Zick & Homsy's 7.442 at 0.216; van der Hoef's (2005) eq. (9) for (1 - phi) K.
+    r = report(exe, make_periodic_case(work, "cell", 7.0, 1000))
+    p = r["periodic"]
+    assert math.isclose(p["K"], 7.0, rel_tol=1e-12), p
+    assert math.isclose(p["F"], (1 - PHI) * 7.0, rel_tol=1e-12), p
+    assert math.isclose(r["flow"]["superficial_velocity_m_s"], UBAR * 0.79, rel_tol=1e-12), r
+    assert math.isclose(r["void_fraction"]["mesh"], 0.79, rel_tol=1e-12), r
+    ref = p["references"]
+    assert ref["zick_homsy_simple_cubic_K"] == 7.442 and ref["zick_homsy_solid_fraction"] == 0.216
+    assert math.isclose(ref["K_over_zick_homsy"], 7.0 / 7.442, rel_tol=1e-12), ref
+    vdh = 10 * PHI / (1 - PHI) ** 2 + (1 - PHI) ** 2 * (1 + 1.5 * math.sqrt(PHI))
+    assert math.isclose(ref["van_der_hoef_random_F"], vdh, rel_tol=1e-12), ref
+    assert r["mesh"] == {"cells": 1000, "volume_m3": 0.79 * CELL * SCALE**3}, r["mesh"]
+    assert sorted(os.listdir(os.path.join(work, "cell", "cfd-report"))) == ["cfd_report.json"]
+    # A series whose K follows 7.4 + 30 (h/d)^2 exactly: order 2, extrapolated 7.4, and the
+    # GCI of the finest 1.25 |(K1 - K2) / K1| / (r^2 - 1). h/d = (mesh volume / cells)^(1/3)
+    # over the spheres' diameter 2 RADIUS.
+    volume = 0.79 * CELL
+    cases, ks = [], []
+    for n, cells in enumerate((27000, 8000, 1000)):  # given fine to coarse: sorted by cells
+        h = (volume / cells) ** (1 / 3) / (2 * RADIUS)
+        ks.append(7.4 + 30 * h * h)
+        cases.append(make_periodic_case(work, f"level{n}", ks[-1], cells))
+    out = subprocess.run([exe, "cfd-report", *cases, "--json"], capture_output=True, text=True)
+    assert out.returncode == 0, out.stderr
+    series = json.loads(out.stdout)
+    assert [row["cells"] for row in series["levels"]] == [1000, 8000, 27000], series
+    c = series["celik"]
+    assert math.isclose(c["order"], 2.0, rel_tol=1e-9) and not c["oscillating"], c
+    assert math.isclose(c["extrapolated"], 7.4, rel_tol=1e-9), c
+    r21 = 1.5  # (27000 / 8000)^(1/3)
+    assert math.isclose(c["gci_fine"], 1.25 * abs((ks[0] - ks[1]) / ks[0]) / (r21**2 - 1),
+                        rel_tol=1e-9), c
+    assert math.isclose(c["extrapolated_over_reference"], 7.4 / 7.442, rel_tol=1e-9), c
+    rows = list(csv.DictReader(open(os.path.join(cases[-1], "cfd-series", "series.csv"))))
+    assert [float(row["K"]) for row in rows] == [row["K"] for row in series["levels"]], rows
+    print(f"periodic: K {p['K']:.6f}; series order {c['order']:.6f}, extrapolated "
+          f"{c['extrapolated']:.9f}, GCI {100 * c['gci_fine']:.4f} %")
+    # Refused: two cases (a series needs 3), cases of two kinds.
+    line = make_case(work, "inlet-level")
+    for given, words in ((cases[:2], "2 case(s) given for a mesh series"),
+                         (cases[:2] + [line], "a inlet case among periodic ones")):
+        out = subprocess.run([exe, "cfd-report", *given, "-o", os.path.join(work, "series-bad")],
+                             capture_output=True, text=True)
+        assert out.returncode == 2 and out.stderr.count("\n") == 1, out.stderr
+        assert words in out.stderr, out.stderr
+        assert not os.path.exists(os.path.join(work, "series-bad"))
+
+
 def report(exe, case, *extra):
     out = subprocess.run([exe, "cfd-report", case, "--json", *extra], capture_output=True,
                          text=True)
@@ -138,6 +223,25 @@ def main(exe):
     assert math.isclose(g["cfd"], -slope, rel_tol=1e-9), (g, slope)
     assert math.isclose(g["standard_error"], math.sqrt(rr / (7 * szz)), rel_tol=1e-6), g
     print(f"scatter: {g['cfd']:.6f} +- {g['standard_error']:.4f} Pa/m")
+
+    periodic_cases(exe, work)
+
+    # A bed periodic across (no wall, aspect_ratio null): Ergun only, and the drag of a sphere
+    # beside van der Hoef et al.'s random arrays: F_total = G (pi d^3 / 6) / phi,
+    # K = F_total / (3 pi mu d U), F = (1 - phi) K.
+    across = make_case(work, "across")
+    j = json.load(open(os.path.join(across, "packbed.json")))
+    j["openfoam"]["flow"]["aspect_ratio"] = None
+    json.dump(j, open(os.path.join(across, "packbed.json"), "w"))
+    c = report(exe, across)["correlations"]
+    phi = 1 - E
+    k = GRADIENT * math.pi * d**3 / 6 / phi / (3 * math.pi * MU * d * U)
+    vdh = 10 * phi / (1 - phi) ** 2 + (1 - phi) ** 2 * (1 + 1.5 * math.sqrt(phi))
+    assert "eisfeld_schnitzlein_Pa_m" not in c, c
+    assert math.isclose(c["K"], k, rel_tol=1e-9) and math.isclose(c["F"], (1 - phi) * k,
+                                                                 rel_tol=1e-9), (c, k)
+    assert math.isclose(c["F_over_van_der_hoef"], (1 - phi) * k / vdh, rel_tol=1e-9), c
+    print(f"across: F = {c['F']:.6g}, van der Hoef {vdh:.6g}")
 
     # A restarted run: the table of the latest start time (20) is the one read.
     g = report(exe, make_case(work, "restarted", restarted=True))["pressure_gradient_Pa_m"]

@@ -1097,6 +1097,27 @@ INSTANTIATE_TEST_SUITE_P(
               "8"),
         exact("export two.csv --format openfoam -R 2 --wall-level x",
               "packbed: --wall-level: 'x' is not allowed; allowed: a whole number from 0 to 8"),
+        // A cell periodic along z: a periodic container, its period given, every sphere in it.
+        exact("export two.csv --format openfoam -R 2 --flow periodic --container-height 2 --out pf",
+              "packbed export: --flow periodic is not allowed with --container cylinder:4; "
+              "allowed: a periodic cell (periodic:LX,LY), whose sides repeat across"),
+        exact("export two.csv --format stl --flow periodic --out pf.stl",
+              "packbed export: --flow periodic is not allowed with --format stl; allowed: "
+              "--format openfoam"),
+        exact("export two.csv --format openfoam --container periodic:4,4 --flow periodic --out pf",
+              "packbed export: --flow periodic needs --container-height: the cell's period along "
+              "z (a lattice's region height); allowed: a height that holds every sphere"),
+        exact("export two.csv --format openfoam --container periodic:4,4 --flow periodic "
+              "--container-height 1.2 --out pf",
+              "packbed export: two.csv:2: the sphere at z = 1 (radius 0.5) crosses the bottom or "
+              "the top of the cell periodic along z with period 1.2; allowed with --flow "
+              "periodic: every sphere between z = 0 and --container-height"),
+        exact("export two.csv --format openfoam --container periodic:4,4 --flow periodic "
+              "--container-height 2 --turbulence kEpsilon --out pf",
+              "packbed export: --turbulence kEpsilon is not allowed with --flow periodic; "
+              "allowed: laminar (a periodic cell has no inlet to set the turbulence at)"),
+        exact("export two.csv --format openfoam --flow sideways",
+              "packbed: --flow: 'sideways' is not allowed; allowed: inlet, periodic"),
         // Options.
         exact("export two.csv --format png",
               "packbed: --format: 'png' is not allowed; allowed: lammps-data, liggghts-data, stl, "

@@ -287,15 +287,24 @@ TEST(ContainerExport, OpenFoamCaseOfAPeriodicCellHasCyclicSidesAndCopies) {
     const TriangleMesh& m = c.particles[0].mesh;
     EXPECT_EQ(static_cast<long>(m.vertices.size()) * 2 - static_cast<long>(m.triangles.size()),
               7 * 4);
-    // A cell narrower than twice the largest diameter is refused (the minimum image).
-    try {
-        treat_contacts(packing, caps, SurfaceContainer{Periodic(1.5, 8.0), 3.0});
-        FAIL() << "no exception";
-    } catch (const InvalidInput& e) {
-        EXPECT_STREQ(e.what(), "--container periodic:1.5,8 is not allowed for spheres of diameter "
-                               "up to 1; allowed: periods at least twice the largest diameter, 2 "
-                               "(the minimum image)");
-    }
+    // A cell narrower than twice the largest diameter and the caps' gap is refused: in one
+    // 2.05 wide, a sphere 1 from another on one side is 1.05 from its copy on the other, both
+    // within the gap, and the minimum image would cap only the first. Without caps, 2.05 is
+    // allowed.
+    for (const double width : {1.5, 2.05})
+        try {
+            treat_contacts(packing, caps, SurfaceContainer{Periodic(width, 8.0), 3.0});
+            FAIL() << "no exception";
+        } catch (const InvalidInput& e) {
+            EXPECT_EQ(std::string(e.what()),
+                      fmt::format("--container periodic:{},8 is not allowed for spheres of "
+                                  "diameter up to 1 with --contacts caps:0.05; allowed: periods "
+                                  "at least twice the largest diameter and the caps' gap, 2.1 "
+                                  "(the minimum image)",
+                                  width));
+        }
+    EXPECT_NO_THROW(treat_contacts(packing, {ContactTreatment::none, 0.0},
+                                   SurfaceContainer{Periodic(2.05, 8.0), 3.0}));
     // Enlarge and bridges are refused in a cell.
     try {
         treat_contacts(packing, {ContactTreatment::enlarge, 0.01}, cell);

@@ -1,12 +1,14 @@
 // Hydraulics (Tsayger 2013 eq. (1), Ergun, Eisfeld & Schnitzlein, Wen & Yu) against values
 // computed by hand from the formulas.
 #include <cmath>
+#include <numbers>
 #include <string>
 
 #include <gtest/gtest.h>
 
 #include "packbed/error.hpp"
 #include "packbed/hydraulics.hpp"
+#include "packbed/pipeline.hpp"
 
 namespace packbed {
 namespace {
@@ -92,6 +94,49 @@ TEST(Hydraulics, WenYuMinimumFluidization) {
 TEST(Hydraulics, Permeabilities) {
     EXPECT_NEAR(carman_kozeny_permeability(0.4, 1e-3), 1e-6 * 0.064 / (180 * 0.36), 1e-22);
     EXPECT_NEAR(ergun_permeability(0.4, 1e-3), 1e-6 * 0.064 / (150 * 0.36), 1e-22);
+}
+
+TEST(Hydraulics, DragOfPeriodicAndRandomArraysOfSpheres) {
+    // Zick & Homsy (1982), Table 2: the entries, matched within 1e-3, none between them.
+    using Entry = std::pair<double, double>;
+    EXPECT_EQ(zick_homsy_simple_cubic(0.216), Entry(0.216, 7.442));
+    EXPECT_EQ(zick_homsy_simple_cubic(0.2169), Entry(0.216, 7.442));
+    EXPECT_EQ(zick_homsy_simple_cubic(0.45), Entry(0.45, 28.1));
+    EXPECT_EQ(zick_homsy_simple_cubic(std::numbers::pi / 6.0), Entry(0.5236, 42.1)); // touching
+    // touching, its 6 contacts flattened by caps 0.02 apart: pi/6 - 6 caps of height 0.01
+    const double caps = 6.0 * std::numbers::pi * 1e-4 * (1.5 - 0.01) / 3.0;
+    EXPECT_EQ(zick_homsy_simple_cubic(std::numbers::pi / 6.0 - caps), Entry(0.5236, 42.1));
+    EXPECT_FALSE(zick_homsy_simple_cubic(0.2171));
+    EXPECT_FALSE(zick_homsy_simple_cubic(0.3));
+    // van der Hoef et al. (2005), eq. (9), by hand: 10 phi / (1 - phi)^2 + (1 - phi)^2 (1 + 1.5
+    // sqrt(phi)); at phi = 0.5: 20 + 0.25 (1 + 1.5 sqrt(0.5)) = 20.515165.
+    EXPECT_NEAR(van_der_hoef_drag(0.5), 20.0 + 0.25 * (1.0 + 1.5 * std::sqrt(0.5)), 1e-12);
+    EXPECT_NEAR(van_der_hoef_drag(0.216), 4.5573162, 1e-6);
+    // The dilute limit is Stokes's drag on one sphere: F -> 1.
+    EXPECT_NEAR(van_der_hoef_drag(1e-12), 1.0, 1e-5);
+    EXPECT_THROW(van_der_hoef_drag(1.0), InvalidInput);
+    EXPECT_THROW(van_der_hoef_drag(0.0), InvalidInput);
+}
+
+TEST(Hydraulics, GridConvergenceRecoversAPowerLaw) {
+    // Values on phi = 1 + 0.1 h^p exactly: the order, the limit 1 and Celik et al.'s GCI
+    // 1.25 |(phi_1 - phi_2) / phi_1| / (r^p - 1). Constant ratio (q = 0), p = 2:
+    const GridConvergence a = grid_convergence({1.0, 1.5, 2.25}, {1.1, 1.225, 1.50625});
+    EXPECT_NEAR(a.order, 2.0, 1e-12);
+    EXPECT_NEAR(a.extrapolated, 1.0, 1e-12);
+    EXPECT_NEAR(a.approximate_error, 0.125 / 1.1, 1e-12);
+    EXPECT_NEAR(a.gci_fine, 1.25 * (0.125 / 1.1) / 1.25, 1e-12);
+    EXPECT_FALSE(a.oscillating);
+    // Ratios 1.3 and 2 / 1.3 (q != 0: the iteration), p = 1.5:
+    const auto f = [](double h) { return 1.0 + 0.1 * std::pow(h, 1.5); };
+    const GridConvergence b = grid_convergence({1.0, 1.3, 2.0}, {f(1.0), f(1.3), f(2.0)});
+    EXPECT_NEAR(b.order, 1.5, 1e-9);
+    EXPECT_NEAR(b.extrapolated, 1.0, 1e-9);
+    EXPECT_NEAR(b.extrapolated_error, 0.1, 1e-9); // |(1 - 1.1) / 1|
+    // Differences of opposite signs: oscillating (s = -1).
+    EXPECT_TRUE(grid_convergence({1.0, 2.0, 4.0}, {1.0, 1.1, 0.95}).oscillating);
+    EXPECT_THROW(grid_convergence({1.0, 2.0, 4.0}, {1.0, 1.0, 1.2}), InvalidInput);
+    EXPECT_THROW(grid_convergence({2.0, 1.0, 4.0}, {1.0, 1.1, 1.2}), InvalidInput);
 }
 
 TEST(Hydraulics, BadInputsNameTheValue) {

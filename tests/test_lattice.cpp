@@ -8,6 +8,7 @@
 #include "packbed/error.hpp"
 #include "packbed/json_text.hpp"
 #include "packbed/lattice.hpp"
+#include "packbed/periodic.hpp"
 
 namespace packbed {
 namespace {
@@ -134,6 +135,24 @@ TEST(Lattice, CentresOptionKeepsBallsCutByTheWalls) {
     EXPECT_EQ(fill_lattice(p).size(), 8u); // 1 and 2 along each axis: whole balls
     p.keep = LatticeKeep::centres;
     EXPECT_EQ(fill_lattice(p).size(), 64u); // 0 to 3 along each axis
+}
+
+TEST(Lattice, ACellTwoBallsWideCountsBothCopiesOfANeighbour) {
+    // Simple cubic in periodic:2,2,2 (2 x 2 x 2 balls): each ball touches its x neighbour on
+    // both sides (d = 1 either way), its y neighbour likewise, and the one ball above or below
+    // it: 5 contacts; in periodic:3,3,2 the same 5 through three distinct neighbours a side.
+    for (const double width : {2.0, 3.0}) {
+        LatticeParameters p;
+        p.type = LatticeType::sc;
+        p.region = LatticeRegion{Periodic(width, width), 2.0};
+        p.origin = Vec3{0.5, 0.5, 0.5};
+        const Packing bed = fill_lattice(p);
+        ASSERT_EQ(bed.size(), static_cast<std::size_t>(width * width * 2.0));
+        const LatticeContacts contacts = lattice_contacts(bed, Periodic(width, width));
+        EXPECT_NEAR(contacts.closest, 1.0, 1e-12);
+        for (std::size_t i = 0; i < bed.size(); ++i)
+            EXPECT_EQ(contacts.contacts[i], 5u) << "width " << width << ", ball " << i;
+    }
 }
 
 TEST(Lattice, RotatedLatticesKeepTheirContactsAndStayInside) {

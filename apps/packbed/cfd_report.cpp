@@ -3,6 +3,7 @@
 #include <filesystem>
 #include <memory>
 #include <string>
+#include <vector>
 
 #include <fmt/format.h>
 #include <nlohmann/json.hpp>
@@ -17,15 +18,92 @@ namespace packbed::cli {
 namespace {
 
 struct CfdReportOptions {
-    std::string case_dir;
+    std::vector<std::string> cases;
     std::string out; // default: CASE/cfd-report
     bool force = false;
     bool json = false;
     bool quiet = false;
 };
 
+/// A cell periodic along z: the gradient, the drag per sphere and the references.
+void print_periodic(const nlohmann::json& v) {
+    const auto& p = v["periodic"];
+    const auto& f = v["flow"];
+    const auto& s = v["solver"];
+    const auto& e = v["void_fraction"];
+    const auto& r = p["references"];
+    fmt::print("simpleFoam: {} after {} iterations; a cell periodic along z, {} spheres of "
+               "d = {:.6g} m\n",
+               s["converged"].get<bool>() ? "converged" : "NOT converged",
+               s["iterations"].get<long>(), p["spheres"].get<double>(),
+               f["diameter_m"].get<double>());
+    fmt::print("void fraction {:.5f} exact, {:.5f} meshed; superficial velocity {:.6g} m/s (the "
+               "mesh's), Re_p = {:.4g}\n",
+               e["exact"].get<double>(), e["mesh"].get<double>(),
+               f["superficial_velocity_m_s"].get<double>(), f["reynolds"].get<double>());
+    fmt::print("pressure gradient {:.6g} Pa/m; drag per sphere {:.6g} N\n",
+               p["pressure_gradient_Pa_m"].get<double>(), p["drag_per_sphere_N"].get<double>());
+    fmt::print("  K = F_total / (6 pi mu a U_s) = {:.5g}", p["K"].get<double>());
+    if (r.contains("zick_homsy_simple_cubic_K"))
+        fmt::print("   Zick & Homsy (1982), simple cubic at phi = {:.4g}: {:.4g} (CFD / it "
+                   "{:.4f})",
+                   r["zick_homsy_solid_fraction"].get<double>(),
+                   r["zick_homsy_simple_cubic_K"].get<double>(),
+                   r["K_over_zick_homsy"].get<double>());
+    fmt::print("\n  F = (1 - phi) K = {:.5g}   van der Hoef et al. (2005), random arrays: {:.4g} "
+               "(CFD / it {:.4f})\n",
+               p["F"].get<double>(), r["van_der_hoef_random_F"].get<double>(),
+               r["F_over_van_der_hoef"].get<double>());
+}
+
+/// Several cases: the mesh series (cfd_series), to LAST/cfd-series unless --out.
+int run_cfd_series(const CfdReportOptions& o) {
+    std::vector<std::filesystem::path> cases;
+    for (const std::string& c : o.cases) {
+        cases.emplace_back(c);
+        check_cfd_case(cases.back());
+    }
+    const std::filesystem::path out_dir =
+        o.out.empty() ? cases.back() / "cfd-series" : std::filesystem::path(o.out);
+    OutputDirectory out(out_dir, "--out", OutputKind::directory, o.force); // before the work
+    const Report report = cfd_series(cases);
+    stage_cfd_series(out, report);
+    out.commit();
+    const nlohmann::json& v = report.values;
+    if (o.json) {
+        fmt::print("{}", json_file_text(v, "the report"));
+        return 0;
+    }
+    if (o.quiet)
+        return 0;
+    const std::string quantity = v["quantity"].get<std::string>();
+    const std::string name = quantity == "K" ? "K" : "Pa/m";
+    fmt::print("  {:>10} {:>8} {:>10} {:>12}{}\n", "cells", "h / d", "mesh e", name,
+               v["levels"][0].contains("over_reference") ? "   / reference" : "");
+    for (const auto& row : v["levels"]) {
+        fmt::print("  {:>10} {:>8.4f} {:>10.5f} {:>12.6g}", row["cells"].get<double>(),
+                   row["h_over_d"].get<double>(), row["mesh_void_fraction"].get<double>(),
+                   row[quantity].get<double>());
+        if (row.contains("over_reference"))
+            fmt::print("   {:.4f}", row["over_reference"].get<double>());
+        fmt::print("{}\n", row["converged"].get<bool>() ? "" : "   (NOT converged)");
+    }
+    const auto& c = v["celik"];
+    fmt::print("three finest (Celik et al. 2008): apparent order {:.3g}{}, extrapolated {:.6g}, "
+               "GCI of the finest {:.2f} %",
+               c["order"].get<double>(), c["oscillating"].get<bool>() ? " (oscillating)" : "",
+               c["extrapolated"].get<double>(), 100.0 * c["gci_fine"].get<double>());
+    if (c.contains("reference"))
+        fmt::print("; reference {:.4g}, extrapolated / reference {:.4f}",
+                   c["reference"].get<double>(), c["extrapolated_over_reference"].get<double>());
+    fmt::print("\ntable and JSON: {}\n", out_dir.string());
+    return 0;
+}
+
 int run_cfd_report(const CfdReportOptions& o) {
-    const std::filesystem::path case_dir(o.case_dir);
+    if (o.cases.size() > 1)
+        return run_cfd_series(o);
+    const std::filesystem::path case_dir(o.cases.front());
     check_cfd_case(case_dir);
     const std::filesystem::path out_dir =
         o.out.empty() ? case_dir / "cfd-report" : std::filesystem::path(o.out);
@@ -44,6 +122,11 @@ int run_cfd_report(const CfdReportOptions& o) {
     }
     if (o.quiet)
         return 0;
+    if (v.contains("periodic")) {
+        print_periodic(v);
+        fmt::print("JSON: {}\n", out_dir.string());
+        return 0;
+    }
     const auto& g = v["pressure_gradient_Pa_m"];
     const auto& c = v["correlations"];
     const auto& f = v["flow"];
@@ -78,6 +161,12 @@ int run_cfd_report(const CfdReportOptions& o) {
             fmt::format("Eisfeld & Schnitzlein (a = {:.4g})", c["aspect_ratio"].get<double>()),
             c["eisfeld_schnitzlein_Pa_m"].get<double>(),
             c["cfd_over_eisfeld_schnitzlein"].get<double>());
+    if (c.contains("van_der_hoef_random_F"))
+        fmt::print("  F = (1 - phi) K = {:.5g} (K = F_total / (3 pi mu d U_s) = {:.5g});   van der "
+                   "Hoef et al. (2005), random arrays: {:.4g} (CFD / it {:.4f})\n",
+                   c["F"].get<double>(), c["K"].get<double>(),
+                   c["van_der_hoef_random_F"].get<double>(),
+                   c["F_over_van_der_hoef"].get<double>());
     fmt::print("table, plot and JSON: {}\n", out_dir.string());
     return 0;
 }
@@ -90,13 +179,18 @@ Command register_cfd_report(CLI::App& parent) {
     CLI::App* app = parent.add_subcommand(
         "cfd-report", "The pressure gradient of a case from export --format openfoam, run by "
                       "its Allrun, next to Ergun's and Eisfeld & Schnitzlein's at the bed's own "
-                      "void fraction; a table, pressure.csv and a plot (docs/surfaces.md)");
+                      "void fraction; a table, pressure.csv and a plot (docs/surfaces.md); a "
+                      "periodic cell's drag beside Zick & Homsy's and van der Hoef's; of several "
+                      "cases, the mesh series: apparent order, extrapolated value and grid "
+                      "convergence index");
     app->option_defaults()->always_capture_default();
     app->fallthrough();
-    app->add_option("case", o.case_dir, "the case directory (after ./Allrun)")
+    app->add_option("case", o.cases,
+                    "the case directory (after ./Allrun); three or more: a mesh series of one "
+                    "bed, coarse to fine (docs/validation.md)")
         ->required()
         ->check(path_text());
-    add_output_directory(*app, o.out, o.force, "CASE/cfd-report");
+    add_output_directory(*app, o.out, o.force, "CASE/cfd-report; a series: LAST/cfd-series");
     app->add_flag("--json", o.json, "print the whole report as JSON");
     app->add_flag("-q,--quiet", o.quiet, "no report on the terminal");
     app->footer("Exit status: 0 success, 2 bad input (not a run case, a missing table).");

@@ -28,6 +28,7 @@ struct ExportOptions {
     InputPlacement placement;      // --frame, --axis, --floor
     double container_radius = 0.0; // 0: from summary.json beside the file, if any
     std::string container;         // --container SPEC (any shape), instead of -R
+    std::string flow = "inlet";    // --flow: inlet, or periodic (request.mesh.periodic_z)
     bool quiet = false;
 };
 
@@ -37,6 +38,7 @@ int run_export(ExportOptions& o) {
         o.out.empty() ? default_export_path(o.particles, request.format) : fs::path(o.out);
     request.source = o.particles;
     request.keep = o.particles;
+    request.mesh.periodic_z = o.flow == "periodic";
     ReadOptions read;
     if (o.diameter > 0.0)
         read.radius = 0.5 * o.diameter;
@@ -115,6 +117,12 @@ Command register_export(CLI::App& parent) {
     app->add_option("--wall-level", o.request.mesh.wall_level,
                     "openfoam: snappyHexMesh refinement level at the wall")
         ->check(whole_in(option_range::refinement_level));
+    app->add_option("--flow", o.flow,
+                    "openfoam: inlet (a flow rate in at z = 0, p = 0 at the top), or periodic (a "
+                    "periodic cell repeating along z too, --container-height its period: cyclic "
+                    "on all six faces, the mean velocity held by a uniform pressure gradient; "
+                    "docs/surfaces.md)")
+        ->check(one_of({"inlet", "periodic"}));
     app->add_option("--ranks", o.request.flow.ranks,
                     "openfoam: MPI ranks of the case's Allrun (decomposeParDict)")
         ->check(whole_in(option_range::ranks));

@@ -6,6 +6,7 @@
 
 #include <optional>
 #include <string>
+#include <utility>
 #include <vector>
 
 #include "packbed/container.hpp"
@@ -80,5 +81,22 @@ double wen_yu_reynolds(double archimedes);
 /// linear term, \f$k = d^2 e^3 / (150 (1-e)^2)\f$.
 double carman_kozeny_permeability(double porosity, double diameter);
 double ergun_permeability(double porosity, double diameter);
+
+/// Stokes flow through a simple cubic array of spheres along a cube axis: Zick & Homsy (1982,
+/// J. Fluid Mech. 115, 13), Table 2, the dimensionless drag \f$K = F / (6 \pi \mu a U)\f$ (F
+/// the whole force on a sphere, the mean pressure gradient's part included, a its radius, U
+/// the superficial velocity: the mean over the whole cell) at the solid fractions 0.027, 0.064,
+/// 0.125, 0.216, 0.343, 0.45 and 0.5236 (touching): 2.008, 2.810, 4.292, 7.442, 15.4, 28.1,
+/// 42.1. \return the entry (its solid fraction, K) within 1e-3 of `solid_fraction` (a
+/// touching array whose contacts are flattened by caps 0.02 d apart holds 0.5226), else nothing
+/// (no interpolation: the table is what was computed).
+std::optional<std::pair<double, double>> zick_homsy_simple_cubic(double solid_fraction);
+
+/// Stokes flow through random arrays of equal spheres: van der Hoef, Beetstra & Kuipers (2005,
+/// J. Fluid Mech. 528, 233), eq. (9), the drag over Stokes's for the superficial velocity,
+/// \f$F = 10 \phi / (1 - \phi)^2 + (1 - \phi)^2 (1 + 1.5 \sqrt\phi)\f$ with \f$F = F_d / (3 \pi
+/// \mu d U_s)\f$ and F_d the fluid's force on a sphere without the mean pressure gradient's
+/// part: F = (1 - phi) K in Zick & Homsy's terms. For 0 < phi < 1.
+double van_der_hoef_drag(double solid_fraction);
 
 } // namespace packbed

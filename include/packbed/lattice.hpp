@@ -122,8 +122,9 @@ struct LatticeContacts {
     double closest = 0.0;                ///< smallest centre distance / d (inf for < 2 balls)
 };
 LatticeContacts lattice_contacts(const Packing& packing, double tolerance = 1e-9);
-/// The same in a periodic cell: distances by the minimum image (Periodic::separation), the
-/// cell at least 2 d wide.
+/// The same in a periodic cell: distances by the minimum image (Periodic::separation) and to
+/// the copies one period either way (a cell exactly 2 d wide has a ball touch both copies of
+/// its neighbour across it), the cell at least 2 d wide.
 LatticeContacts lattice_contacts(const Packing& packing, const Periods& cell,
                                  double tolerance = 1e-9);
 

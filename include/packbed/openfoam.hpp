@@ -38,19 +38,21 @@ struct OpenFoamFlowOptions {
 struct OpenFoamCase {
     std::vector<std::pair<std::string, std::string>> files; ///< (relative path, contents)
     std::vector<Solid> particles;                           ///< constant/triSurface/particles.stl
-    std::vector<Solid> wall;    ///< constant/triSurface/wall.stl (a cylinder's or an annulus'
-                                ///< tube; empty for a box)
-    std::vector<Solid> rod;     ///< constant/triSurface/rod.stl (an annulus' rod; else empty)
-    Vec3 location_in_mesh;      ///< a point of the fluid, farthest from every surface we tried
-    double clearance = 0.0;     ///< its distance to the nearest surface (length)
-    double fluid_volume = 0;    ///< exact void volume of the container with the treated bodies
-    double cell_size = 0.0;     ///< background cell edge, Dp / cells_per_diameter (length; a
-                                ///< box's cells are at most that long)
-    double scale = 0.0;         ///< metres per bed unit (Allrun's transformPoints)
-    double velocity = 0.0;      ///< the inlet's superficial velocity, m/s
-    double reynolds = 0.0;      ///< the particle Reynolds number of that velocity
-    std::vector<double> planes; ///< heights of the pressure planes, m (after scaling)
-    std::string allrun;         ///< the script Allrun (to be written executable)
+    std::vector<Solid> wall; ///< constant/triSurface/wall.stl (a cylinder's or an annulus'
+                             ///< tube; empty for a box)
+    std::vector<Solid> rod;  ///< constant/triSurface/rod.stl (an annulus' rod; else empty)
+    Vec3 location_in_mesh;   ///< a point of the fluid, farthest from every surface we tried
+    double clearance = 0.0;  ///< its distance to the nearest surface (length)
+    double fluid_volume = 0; ///< exact void volume of the container with the treated bodies
+    double cell_size = 0.0;  ///< background cell edge, Dp / cells_per_diameter (length; a
+                             ///< box's cells are at most that long)
+    double scale = 0.0;      ///< metres per bed unit (Allrun's transformPoints)
+    double velocity = 0.0;   ///< the inlet's superficial velocity, m/s
+    double interstitial_velocity = 0.0; ///< velocity / the exact void fraction, m/s (the mean
+                                        ///< in the fluid a periodic cell's flow is held at)
+    double reynolds = 0.0;              ///< the particle Reynolds number of that velocity
+    std::vector<double> planes;         ///< heights of the pressure planes, m (after scaling)
+    std::string allrun;                 ///< the script Allrun (to be written executable)
 };
 
 /// The case for `bed` (from treat_contacts) in `container`, surfaces tessellated with

@@ -3,6 +3,7 @@
 // less than the other nor a copy of this logic.
 #pragma once
 
+#include <array>
 #include <filesystem>
 #include <functional>
 #include <optional>
@@ -413,6 +414,37 @@ Report cfd_report(const std::filesystem::path& case_dir);
 /// plot pressure.svg/.png (the planes, the fit and the correlations' lines through the planes'
 /// mean). \return "" or why there is no plot (gnuplot missing or failed)
 std::string stage_cfd_report(OutputDirectory& out, const Report& report);
+
+/// A mesh series' answer by Celik et al. (2008, J. Fluids Eng. 130, 078001, "Procedure for
+/// estimation and reporting of uncertainty due to discretization in CFD applications", steps
+/// 1-5) from its three finest levels.
+struct GridConvergence {
+    double order = 0.0;              ///< apparent order p
+    double extrapolated = 0.0;       ///< Richardson's phi_ext^21
+    double approximate_error = 0.0;  ///< e_a^21 = |(phi_1 - phi_2) / phi_1|
+    double extrapolated_error = 0.0; ///< e_ext^21 = |(phi_ext - phi_1) / phi_ext|
+    double gci_fine = 0.0;           ///< GCI_fine^21 = 1.25 e_a^21 / (r_21^p - 1)
+    bool oscillating = false;        ///< the two differences of opposite signs (s = -1)
+};
+
+/// Celik et al.'s steps: h_1 < h_2 < h_3 the representative cell sizes (finest first), phi
+/// the values; r_21 = h_2 / h_1, r_32 = h_3 / h_2, e_21 = phi_2 - phi_1, e_32 = phi_3 - phi_2,
+/// s = sign(e_32 / e_21); the order solves p = |ln|e_32 / e_21| + q(p)| / ln r_21 with
+/// q(p) = ln((r_21^p - s) / (r_32^p - s)) by fixed-point iteration from p = 2 (eqs. 3a-3c);
+/// phi_ext = (r_21^p phi_1 - phi_2) / (r_21^p - 1) (eq. 4). \throws InvalidInput when the
+/// sizes are not increasing, two levels give the same value, or the iteration finds no order
+GridConvergence grid_convergence(const std::array<double, 3>& h, const std::array<double, 3>& phi);
+
+/// A mesh series of cases of one bed (each as cfd_report reads it), coarse to fine by their
+/// cells: each level's cells, representative size h = (mesh volume / cells)^(1/3) over the
+/// spheres' diameter, the mesh's and the exact void fraction and the answer (a periodic
+/// cell's K, else the pressure gradient), and grid_convergence of the three finest with the
+/// reference where there is one (Zick & Homsy's K). \throws InvalidInput for fewer than 3
+/// cases, cases of different kinds, or two with the same number of cells
+Report cfd_series(const std::vector<std::filesystem::path>& cases);
+
+/// Stage `report` (cfd_series) in `out`: series.csv and series.json.
+void stage_cfd_series(OutputDirectory& out, const Report& report);
 
 // ---------------------------------------------------------------------------------------------
 // voxel images

@@ -134,6 +134,9 @@ struct OpenFoamMeshOptions {
     int cells_per_diameter = 4; ///< background (blockMesh) cells per Dp, >= 1
     int particle_level = 2;     ///< snappyHexMesh refinement level at the particles, 0 to 8
     int wall_level = 1;         ///< ... at a cylinder's wall, 0 to 8 (a box's is not refined)
+    /// A periodic cell's bottom and top a cyclic pair too (export --flow periodic): the cell
+    /// repeats along z with the container's height as its period. Other containers refuse it.
+    bool periodic_z = false;
 };
 
 /// The background mesh of an OpenFOAM case (export --format openfoam, docs/surfaces.md) about

@@ -88,6 +88,10 @@ Contacts parse_contacts(std::string_view text);
 struct SurfaceContainer {
     Container container = Container::tube(2.0);
     double height = 1.0;
+    /// A periodic cell that repeats along z too, with `height` as its period (export --flow
+    /// periodic): its bottom and top are no floor and no lid, and caps cut a body at half the
+    /// gap from each, so that it and the copy across lie the whole gap apart.
+    bool periodic_z = false;
 };
 
 /// What bed_surface builds.

@@ -1,5 +1,6 @@
 #include "packbed/hydraulics.hpp"
 
+#include <array>
 #include <cmath>
 #include <initializer_list>
 #include <string>
@@ -185,6 +186,28 @@ double ergun_permeability(double e, double d) {
     require(std::isfinite(d) && d > 0.0, "diameter", d, "> 0 (m)");
     return finite(d * d * e * e * e / (150.0 * (1.0 - e) * (1.0 - e)), "the Ergun permeability",
                   {{"porosity", e}, {"diameter", d}});
+}
+
+std::optional<std::pair<double, double>> zick_homsy_simple_cubic(double phi) {
+    // Zick & Homsy (1982), Table 2, simple cubic (the same numbers in Basilisk's
+    // src/test/spheres.c; Sangani & Acrivos's series agrees to 3-4 digits up to 0.216).
+    static constexpr std::array<std::pair<double, double>, 7> table{{{0.027, 2.008},
+                                                                     {0.064, 2.810},
+                                                                     {0.125, 4.292},
+                                                                     {0.216, 7.442},
+                                                                     {0.343, 15.4},
+                                                                     {0.45, 28.1},
+                                                                     {0.5236, 42.1}}};
+    for (const auto& entry : table)
+        if (std::abs(phi - entry.first) <= 1e-3)
+            return entry;
+    return std::nullopt;
+}
+
+double van_der_hoef_drag(double phi) {
+    require(std::isfinite(phi) && phi > 0.0 && phi < 1.0, "solid fraction", phi, "in (0, 1)");
+    const double e = 1.0 - phi;
+    return 10.0 * phi / (e * e) + e * e * (1.0 + 1.5 * std::sqrt(phi));
 }
 
 std::optional<double> hydraulic_diameter(const Container& container) {

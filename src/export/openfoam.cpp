@@ -129,9 +129,13 @@ void add_rans_fields(OpenFoamCase& c, const std::vector<std::string>& walls, Tur
 /// has the sources of each setting): `walls` the no-slip patches, `bed_top` the bed's top
 /// (bed units), the pressure planes between 1 Dp above the floor and 1 Dp below the top;
 /// `section` the container's cross-section (bed units): the inlet's flow rate is the
-/// superficial velocity times it, whatever part of the inlet the particles cover.
+/// superficial velocity times it, whatever part of the inlet the particles cover. A cell
+/// periodic along z (`void_fraction` its exact one) has no inlet, outlet or planes: OpenFOAM's
+/// meanVelocityForce holds the mean velocity in the fluid at the superficial velocity over the
+/// void fraction with a uniform pressure gradient, which is the result (log.simpleFoam).
 void add_flow_files(OpenFoamCase& c, const std::vector<std::string>& walls, double bed_top,
-                    double section, double diameter, const OpenFoamFlowOptions& flow) {
+                    double section, double diameter, const OpenFoamFlowOptions& flow, bool periodic,
+                    double void_fraction) {
     check_option("ranks", flow.ranks, option_range::ranks);
     check_option("fluid-density", flow.fluid_density, option_range::density_kg_m3);
     check_option("viscosity", flow.viscosity, option_range::viscosity_pa_s);
@@ -158,42 +162,70 @@ void add_flow_files(OpenFoamCase& c, const std::vector<std::string>& walls, doub
             "--viscosity, --fluid-density)",
             flow.reynolds, d, c.velocity, limits::max_velocity_m_s));
     const double area = section * c.scale * c.scale; // m^2
+    if (periodic && flow.turbulence != Turbulence::laminar)
+        throw InvalidInput(fmt::format("--turbulence {} is not allowed with --flow periodic; "
+                                       "allowed: laminar (a periodic cell has no inlet to set the "
+                                       "turbulence at)",
+                                       turbulence_models().name(flow.turbulence)));
     // Planes clear of the bed's ends by 1 Dp (or its middle half when it is lower than 3 Dp).
     double low = diameter, high = bed_top - diameter;
     if (high - low < diameter) {
         low = 0.25 * bed_top;
         high = 0.75 * bed_top;
     }
-    constexpr int planes = 9;
+    const int planes = periodic ? 0 : 9;
     for (int n = 0; n < planes; ++n)
         c.planes.push_back(c.scale * (low + (high - low) * n / (planes - 1)));
+    c.interstitial_velocity = c.velocity / void_fraction;
 
     std::string u_walls, p_walls;
     for (const std::string& w : walls) {
         u_walls += fmt::format("    {} {{ type noSlip; }}\n", w);
         p_walls += fmt::format("    {} {{ type zeroGradient; }}\n", w);
     }
+    const std::string u_ends =
+        periodic ? std::string("    // periodic: constant/fvOptions holds the mean velocity\n")
+                 : fmt::format("    // the superficial velocity {u} m/s times the cross-section "
+                               "{a} m^2\n"
+                               "    inlet {{ type flowRateInletVelocity; volumetricFlowRate {q}; "
+                               "value uniform (0 0 0); }}\n"
+                               "    outlet {{ type inletOutlet; inletValue uniform (0 0 0); value "
+                               "$internalField; }}\n",
+                               fmt::arg("u", c.velocity), fmt::arg("a", area),
+                               fmt::arg("q", c.velocity * area));
     c.files.emplace_back(
         "0.orig/U",
         header("U", "0", "volVectorField") +
             fmt::format("dimensions [0 1 -1 0 0 0 0];\n\ninternalField uniform (0 0 0);\n\n"
                         "boundaryField\n{{\n    #includeEtc \"caseDicts/setConstraintTypes\"\n"
-                        "    // the superficial velocity {u} m/s times the cross-section {a} m^2\n"
-                        "    inlet {{ type flowRateInletVelocity; volumetricFlowRate {q}; value "
-                        "uniform (0 0 0); }}\n"
-                        "    outlet {{ type inletOutlet; inletValue uniform (0 0 0); value "
-                        "$internalField; }}\n{walls}}}\n",
-                        fmt::arg("u", c.velocity), fmt::arg("a", area),
-                        fmt::arg("q", c.velocity * area), fmt::arg("walls", u_walls)));
+                        "{ends}{walls}}}\n",
+                        fmt::arg("ends", u_ends), fmt::arg("walls", u_walls)));
     c.files.emplace_back(
         "0.orig/p",
         header("p", "0", "volScalarField") +
             fmt::format("// kinematic: p / rho, m^2/s^2\ndimensions [0 2 -2 0 0 0 0];\n\n"
                         "internalField uniform 0;\n\n"
                         "boundaryField\n{{\n    #includeEtc \"caseDicts/setConstraintTypes\"\n"
-                        "    inlet {{ type zeroGradient; }}\n"
-                        "    outlet {{ type fixedValue; value uniform 0; }}\n{walls}}}\n",
+                        "{ends}{walls}}}\n",
+                        fmt::arg("ends", periodic ? ""
+                                                  : "    inlet { type zeroGradient; }\n"
+                                                    "    outlet { type fixedValue; value uniform "
+                                                    "0; }\n"),
                         fmt::arg("walls", p_walls)));
+    if (periodic)
+        // The momentum source of OpenFOAM's meanVelocityForce: a uniform pressure gradient
+        // (kinematic) in every cell, corrected each iteration so that the volume-averaged
+        // velocity of the fluid along z is Ubar; it writes the gradient to log.simpleFoam
+        // ("pressure gradient = ...") and to TIME/uniform/.
+        c.files.emplace_back(
+            "constant/fvOptions",
+            header("fvOptions", "constant") +
+                fmt::format("// the superficial velocity {u} m/s over the cell's exact void "
+                            "fraction {e}: the mean velocity in the fluid\n"
+                            "momentumSource\n{{\n    type meanVelocityForce;\n"
+                            "    selectionMode all;\n    fields (U);\n    Ubar (0 0 {ubar});\n}}\n",
+                            fmt::arg("u", c.velocity), fmt::arg("e", void_fraction),
+                            fmt::arg("ubar", c.interstitial_velocity)));
     c.files.emplace_back("constant/transportProperties",
                          header("transportProperties", "constant") +
                              fmt::format("// rho = {} kg/m^3, mu = {} Pa s\n"
@@ -216,7 +248,13 @@ void add_flow_files(OpenFoamCase& c, const std::vector<std::string>& walls, doub
             fmt::format("numberOfSubdomains {0};\n// slabs along z: hierarchical works in "
                         "parallel snappyHexMesh (Debian's scotch and metis are stubs)\n"
                         "method hierarchical;\ncoeffs {{ n (1 1 {0}); }}\n",
-                        flow.ranks));
+                        flow.ranks) +
+            (periodic ? "// both sides of each cyclic pair on one rank: parallel snappyHexMesh "
+                        "cannot match a\n// processor boundary through a cyclic one\n"
+                        "constraints\n{\n    cyclics\n    {\n        type preservePatches;\n"
+                        "        patches (x_low x_high y_low y_high z_low z_high);\n"
+                        "        enabled true;\n    }\n}\n"
+                      : ""));
     std::string functions;
     for (std::size_t n = 0; n < c.planes.size(); ++n)
         functions += fmt::format(
@@ -229,23 +267,27 @@ void add_flow_files(OpenFoamCase& c, const std::vector<std::string>& walls, doub
             "pointAndNormalDict {{ point (0 0 {z}); normal (0 0 1); }} interpolate false; }}\n"
             "        operation areaAverage;\n        fields (p);\n    }}\n",
             fmt::arg("n", n), fmt::arg("z", c.planes[n]));
-    functions += "    inletFlux\n    {\n        type surfaceFieldValue;\n"
-                 "        libs (\"libfieldFunctionObjects.so\");\n"
-                 "        writeControl timeStep;\n        writeInterval 10;\n        log false;\n"
-                 "        writeFields false;\n        regionType patch;\n        name inlet;\n"
-                 "        operation sum;\n        fields (phi);\n    }\n"
-                 "    outletFlux\n    {\n        $inletFlux;\n        name outlet;\n    }\n";
+    if (!periodic)
+        functions +=
+            "    inletFlux\n    {\n        type surfaceFieldValue;\n"
+            "        libs (\"libfieldFunctionObjects.so\");\n"
+            "        writeControl timeStep;\n        writeInterval 10;\n        log false;\n"
+            "        writeFields false;\n        regionType patch;\n        name inlet;\n"
+            "        operation sum;\n        fields (phi);\n    }\n"
+            "    outletFlux\n    {\n        $inletFlux;\n        name outlet;\n    }\n";
     c.files.emplace_back(
         "system/controlDict",
         header("controlDict", "system") +
             "application simpleFoam;\nstartFrom latestTime;\nstartTime 0;\nstopAt endTime;\n"
             "endTime 3000;\ndeltaT 1;\nwriteControl timeStep;\nwriteInterval 3000;\n"
             "purgeWrite 0;\nwriteFormat ascii;\nwritePrecision 10;\nwriteCompression off;\n"
-            "timeFormat general;\ntimePrecision 6;\nrunTimeModifiable true;\n\n"
-            "// the area-averaged (kinematic) pressure on planes z = const across the bed, clear "
-            "of its ends, and the volumetric fluxes of the inlet and outlet (postProcessing/)\n"
-            "functions\n{\n" +
-            functions + "}\n");
+            "timeFormat general;\ntimePrecision 6;\nrunTimeModifiable true;\n\n" +
+            (periodic ? "// periodic: the pressure gradient is meanVelocityForce's, in "
+                        "log.simpleFoam\n"
+                      : "// the area-averaged (kinematic) pressure on planes z = const across the "
+                        "bed, clear of its ends, and the volumetric fluxes of the inlet and outlet "
+                        "(postProcessing/)\n") +
+            "functions\n{\n" + functions + "}\n");
     // RANS: the turbulence quantities upwind (bounded), the wall distance of kOmegaSST, looser
     // residuals (a RANS solution's residuals level off higher) and relaxed k, epsilon, omega.
     c.files.emplace_back(
@@ -272,6 +314,9 @@ void add_flow_files(OpenFoamCase& c, const std::vector<std::string>& walls, doub
             "tolerance 1e-10; relTol 0.1; }\n"
             "}\n\n"
             "SIMPLE\n{\n    nNonOrthogonalCorrectors 1;\n    consistent yes;\n" +
+            (periodic ? "    // no boundary fixes p: its level at cell 0\n    pRefCell 0;\n"
+                        "    pRefValue 0;\n"
+                      : "") +
             (rans ? "    residualControl { p 1e-5; U 1e-4; \"(k|epsilon|omega)\" 1e-5; }\n}\n\n"
                     "relaxationFactors { equations { U 0.9; \"(k|epsilon|omega)\" 0.7; } }\n"
                   : "    residualControl { p 1e-6; U 1e-6; }\n}\n\n"
@@ -332,6 +377,10 @@ OpenFoamCase openfoam_case(const TreatedBed& bed, const SurfaceContainer& contai
                     options.particle_level, "0 to 8");
     detail::require(options.wall_level >= 0 && options.wall_level <= 8, "--wall-level",
                     options.wall_level, "0 to 8");
+    if (options.periodic_z && !container.container.periods())
+        throw InvalidInput(fmt::format("--flow periodic is not allowed with --container {}; "
+                                       "allowed: a periodic cell (periodic:LX,LY)",
+                                       container.container.spec()));
     OpenFoamCase c;
     const double height = container.height;
     c.cell_size = diameter / options.cells_per_diameter;
@@ -448,10 +497,37 @@ OpenFoamCase openfoam_case(const TreatedBed& bed, const SurfaceContainer& contai
     for (const TreatedBody& b : bed.bodies)
         bed_top = std::max(bed_top, b.center.z + b.radius);
     add_flow_files(c, walls, std::min(bed_top, height),
-                   container.container.cross_section_area(0.0, 0.0), diameter, flow);
+                   container.container.cross_section_area(0.0, 0.0), diameter, flow,
+                   options.periodic_z, volumes.treated_void_fraction);
     c.files.emplace_back("case.foam", ""); // what ParaView opens the case by
 
     const double bed_void = volumes.untouched_void_fraction;
+    const std::string drive =
+        options.periodic_z
+            ? fmt::format("the cell repeats along z with period {} (bed units): no inlet or "
+                          "outlet; `constant/fvOptions` (meanVelocityForce) holds the mean "
+                          "velocity in the fluid at {} m/s, the superficial velocity over the "
+                          "exact void fraction {:.6f}, by a uniform pressure gradient (`p` is "
+                          "kinematic, p / rho, and periodic); no slip on the particles.",
+                          height, c.interstitial_velocity, volumes.treated_void_fraction)
+            : std::string("the inlet's flow rate that velocity times the container's "
+                          "cross-section, the outlet at p = 0 (`p` is kinematic, p / rho); no "
+                          "slip on the particles and walls.");
+    const std::string results =
+        options.periodic_z
+            ? std::string("`log.simpleFoam`: \"pressure gradient = G\" each iteration, the "
+                          "kinematic gradient that drives the flow (rho G in Pa/m); the drag on "
+                          "the spheres balances it: G rho times the cell's volume over the "
+                          "number of spheres is each one's (`packbed cfd-report`).")
+            : fmt::format("`postProcessing/p0` to `p{}`: the area-averaged (kinematic) pressure "
+                          "on the planes z = {} to {} m across the bed, 1 Dp clear of its ends, "
+                          "with each plane's fluid area; `postProcessing/inletFlux` and "
+                          "`outletFlux`: the volumetric fluxes (m^3/s). The pressure gradient is "
+                          "-rho times the slope of the planes' pressures against z.",
+                          c.planes.size() - 1, c.planes.front(), c.planes.back());
+    const std::string ends = options.periodic_z
+                                 ? std::string()
+                                 : fmt::format("`inlet` (z = 0), `outlet` (z = {}), ", height);
     c.files.emplace_back(
         "README.md",
         fmt::format(
@@ -466,29 +542,16 @@ OpenFoamCase openfoam_case(const TreatedBed& bed, const SurfaceContainer& contai
             "reconstructParMesh and reconstructPar; each step's output in `log.STEP`. The "
             "fluid: rho = {rho} kg/m^3, mu = {mu} Pa s (nu = {nu} m^2/s); the inlet's "
             "superficial velocity {u} m/s, the particle Reynolds number rho u d / mu = "
-            "{re:.4g}; "
-            "the inlet's flow rate that velocity times the container's cross-section, the "
-            "outlet "
-            "at "
-            "p = 0 (`p` is kinematic, p / rho); no slip on the particles and "
-            "walls. Or step by step: `blockMesh`, `snappyHexMesh -overwrite`, `checkMesh` mesh "
-            "it "
-            "in the bed's units.\n\n"
-            "`postProcessing/p0` to `p{last}`: the area-averaged (kinematic) pressure on the "
-            "planes "
-            "z = {z0} to {z1} m across the bed, 1 Dp clear of its ends, with each plane's "
-            "fluid "
-            "area; `postProcessing/inletFlux` and `outletFlux`: the volumetric fluxes (m^3/s). "
-            "The pressure gradient is -rho times the slope of the planes' pressures against "
-            "z.\n\n"
+            "{re:.4g}; {drive} Or step by step: `blockMesh`, `snappyHexMesh -overwrite`, "
+            "`checkMesh` mesh it in the bed's units.\n\n"
+            "{results}\n\n"
             "(Debian's OpenFOAM needs `export WM_PROJECT_DIR=/usr/share/openfoam` first, "
             "where its `etc/` is, as Allrun does; elsewhere source OpenFOAM's `etc/bashrc`.) "
             "Open "
             "`case.foam` in ParaView to see the mesh and the flow.\n\n"
             "- `constant/triSurface/particles.stl`: every particle, closed and separate (patch "
             "`particles`){surfaces}.\n"
-            "- Patches after meshing: `inlet` (z = 0), `outlet` (z = {h}), `particles`"
-            "{patches}.\n"
+            "- Patches after meshing: {ends}`particles`{patches}.\n"
             "- {cells}.\n"
             "- `locationInMesh` ({x}, {y}, {z}): {clear} from the nearest surface.\n\n"
             "Exact volumes (geometry, not the mesh): container {vc}; solid {vs} after the "
@@ -510,9 +573,8 @@ OpenFoamCase openfoam_case(const TreatedBed& bed, const SurfaceContainer& contai
             fmt::arg("ranks", flow.ranks), fmt::arg("scale", c.scale),
             fmt::arg("dm", c.scale * diameter), fmt::arg("rho", flow.fluid_density),
             fmt::arg("mu", flow.viscosity), fmt::arg("nu", flow.viscosity / flow.fluid_density),
-            fmt::arg("u", c.velocity), fmt::arg("re", c.reynolds),
-            fmt::arg("last", c.planes.size() - 1), fmt::arg("z0", c.planes.front()),
-            fmt::arg("z1", c.planes.back())));
+            fmt::arg("u", c.velocity), fmt::arg("re", c.reynolds), fmt::arg("drive", drive),
+            fmt::arg("results", results), fmt::arg("ends", ends)));
     return c;
 }
 

@@ -248,10 +248,20 @@ void refuse_meeting_footprints(const std::vector<Footprint>& f, std::size_t sphe
 
 /// Cut body b by a plane `gap` from the floor and from the wall where it comes closer than
 /// that: the plane tangent to the wall moved `gap` inwards (a cylinder's at the nearest
-/// point; each box face that near, two in a corner).
+/// point; each box face that near, two in a corner). In a cell periodic along z, half the gap
+/// from its bottom and its top instead of the floor.
 void cut_at_walls(TreatedBody& b, double gap, const std::optional<SurfaceContainer>& container) {
-    if (b.center.z - b.radius < gap)
+    if (container && container->periodic_z) {
+        // No floor: the bottom and the top face each other across the period, half the gap
+        // from each (the copy across is cut the same way).
+        const double half = 0.5 * gap, top = container->height;
+        if (b.center.z - b.radius < half)
+            b.cuts.push_back({{0.0, 0.0, -1.0}, -half});
+        if (b.center.z + b.radius > top - half)
+            b.cuts.push_back({{0.0, 0.0, 1.0}, top - half});
+    } else if (b.center.z - b.radius < gap) {
         b.cuts.push_back({{0.0, 0.0, -1.0}, -gap});
+    }
     if (container)
         for (const WallPlane& wall : container->container.walls_within(b.center, b.radius, gap))
             b.cuts.push_back({wall.normal, wall.offset - gap});
@@ -286,14 +296,21 @@ TreatedBed treat_contacts(const Packing& packing, const Contacts& contacts,
             contact_treatments().name(contacts.treatment), contacts.parameter,
             container->container.spec()));
     if (cell && n > 0) {
-        // The minimum image finds every contact only where no sphere can touch two copies of
-        // another, and a sphere crosses at most one side of each pair.
+        // The minimum image finds every contact only where no sphere can reach two copies of
+        // another (caps reach `gap` beyond touching: contacts closer than that), and a sphere
+        // crosses at most one side of each pair. A cell exactly 2 d wide of touching spheres
+        // would lose the caps across its sides.
         const double widest = 2.0 * *std::max_element(packing.radii.begin(), packing.radii.end());
-        if (!(std::min(cell->lx(), cell->ly()) >= 2.0 * widest))
+        const double gap = contacts.treatment == ContactTreatment::caps
+                               ? contacts.parameter * packing.mean_diameter()
+                               : 0.0;
+        if (!(std::min(cell->lx(), cell->ly()) >= 2.0 * (widest + gap)))
             throw InvalidInput(fmt::format(
-                "--container {} is not allowed for spheres of diameter up to {}; allowed: "
-                "periods at least twice the largest diameter, {} (the minimum image)",
-                container->container.spec(), widest, 2.0 * widest));
+                "--container {} is not allowed for spheres of diameter up to {}{}; allowed: "
+                "periods at least twice the largest diameter{}, {} (the minimum image)",
+                container->container.spec(), widest,
+                gap > 0.0 ? fmt::format(" with --contacts caps:{}", contacts.parameter) : "",
+                gap > 0.0 ? " and the caps' gap" : "", 2.0 * (widest + gap)));
     }
     std::vector<Vec3> wrapped;
     if (cell)
@@ -344,7 +361,8 @@ TreatedBed treat_contacts(const Packing& packing, const Contacts& contacts,
             }
             const Vec3& x = packing.centers[i];
             if ((container && container->container.wall_distances(x, radii[i]).first <= 0.0) ||
-                x.z - radii[i] <= 0.0)
+                x.z - radii[i] <= 0.0 ||
+                (container && container->periodic_z && x.z + radii[i] >= container->height))
                 throw InvalidInput(fmt::format(
                     "--contacts shrink:{} leaves sphere {} at ({:.6g}, {:.6g}, {:.6g}) touching "
                     "the container; allowed: F above its overlap with the wall or floor",

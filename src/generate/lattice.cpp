@@ -378,14 +378,22 @@ LatticeContacts lattice_contacts(const Packing& packing, const Periods& cell, do
     if (periodic)
         list.wrap(cell);
     list.build(packing.centers, packing.radii, 0.5 * d);
+    // In a cell exactly 2 d wide a ball touches both copies of its neighbour across that
+    // period (d away on either side), which the minimum image counts once: every copy one
+    // period either way is looked at too (farther than d in any wider cell).
+    const int reach = periodic ? 1 : 0;
     for (std::size_t i = 0; i < packing.size(); ++i)
         for (const std::uint32_t j : list.neighbors_of(i)) {
             const Vec3 between = periodic ? cell.separation(packing.centers[i], packing.centers[j])
                                           : packing.centers[j] - packing.centers[i];
-            const double dist = norm(between) / d;
-            out.closest = std::min(out.closest, dist);
-            if (std::abs(dist - 1.0) <= tolerance)
-                ++out.contacts[i];
+            for (int sx = -reach; sx <= reach; ++sx)
+                for (int sy = -reach; sy <= reach; ++sy) {
+                    const Vec3 copy = between + Vec3{sx * cell.lx(), sy * cell.ly(), 0.0};
+                    const double dist = norm(copy) / d;
+                    out.closest = std::min(out.closest, dist);
+                    if (std::abs(dist - 1.0) <= tolerance)
+                        ++out.contacts[i];
+                }
         }
     return out;
 }

@@ -120,8 +120,9 @@ DemSettleWall Periodic::settle_wall(double height, std::string_view) const {
 
 /// A periodic cell: the background is the cell itself, [0, LX] x [0, LY] x [0, height], cells
 /// as a box's, its x sides and its y sides pairs of `cyclic` patches (x_low/x_high,
-/// y_low/y_high); particles.stl holds the bodies cut by a side and their copies across it
-/// (periodic_images), so the geometry the sides cut is periodic. No wall.
+/// y_low/y_high), its bottom and top too (z_low/z_high) with OpenFoamMeshOptions::periodic_z,
+/// else the patches inlet and outlet; particles.stl holds the bodies cut by a side and their copies
+/// across it (periodic_images), so the geometry the sides cut is periodic. No wall.
 OpenFoamBackground Periodic::openfoam_background(double height, double size,
                                                  const OpenFoamMeshOptions& options) const {
     const auto cells = [size](double length) {
@@ -138,8 +139,7 @@ OpenFoamBackground Periodic::openfoam_background(double height, double size,
         "    (0 0 {h}) ({x1} 0 {h}) ({x1} {y1} {h}) (0 {y1} {h})\n);\n\n"
         "blocks\n(\n    hex (0 1 2 3 4 5 6 7) ({nx} {ny} {nz}) simpleGrading (1 1 1)\n);\n\n"
         "edges\n(\n);\n\nboundary\n(\n"
-        "    inlet\n    {{\n        type patch;\n        faces ((0 3 2 1));\n    }}\n"
-        "    outlet\n    {{\n        type patch;\n        faces ((4 5 6 7));\n    }}\n"
+        "{ends}"
         "    x_low\n    {{\n        type cyclic;\n        neighbourPatch x_high;\n"
         "        faces ((3 0 4 7));\n    }}\n"
         "    x_high\n    {{\n        type cyclic;\n        neighbourPatch x_low;\n"
@@ -150,11 +150,23 @@ OpenFoamBackground Periodic::openfoam_background(double height, double size,
         "        faces ((2 3 7 6));\n    }}\n);\n",
         fmt::arg("x1", x1), fmt::arg("y1", y1), fmt::arg("h", height), fmt::arg("cell", size),
         fmt::arg("cpd", options.cells_per_diameter), fmt::arg("nx", nx), fmt::arg("ny", ny),
-        fmt::arg("nz", nz));
+        fmt::arg("nz", nz),
+        fmt::arg("ends",
+                 options.periodic_z
+                     ? "    z_low\n    {\n        type cyclic;\n        neighbourPatch z_high;\n"
+                       "        faces ((0 3 2 1));\n    }\n"
+                       "    z_high\n    {\n        type cyclic;\n        neighbourPatch z_low;\n"
+                       "        faces ((4 5 6 7));\n    }\n"
+                     : "    inlet\n    {\n        type patch;\n        faces ((0 3 2 1));\n    }\n"
+                       "    outlet\n    {\n        type patch;\n        faces ((4 5 6 7));\n    "
+                       "}\n"));
     b.where = fmt::format("the periodic cell x 0 to {}, y 0 to {}", x1, y1);
     b.surfaces = " with the copies across the sides of those a side cuts. No wall: the cell's "
                  "sides are the background mesh's own faces, cyclic pairs";
-    b.patches = ", `x_low` and `x_high`, `y_low` and `y_high` (cyclic pairs); no wall";
+    b.patches = options.periodic_z
+                    ? ", `x_low` and `x_high`, `y_low` and `y_high`, `z_low` and `z_high` (cyclic "
+                      "pairs); no wall"
+                    : ", `x_low` and `x_high`, `y_low` and `y_high` (cyclic pairs); no wall";
     // checkMesh's own limit: with 20, two faces of the particles at skewness 4.4 failed it
     // in the test's cell (docs/surfaces.md).
     b.boundary_skewness = 4;

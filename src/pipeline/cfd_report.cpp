@@ -1,8 +1,12 @@
 // `packbed cfd-report`: the pressure gradient of a run OpenFOAM case next to the correlations
 // (pipeline.hpp).
+#include <algorithm>
+#include <array>
 #include <cmath>
 #include <filesystem>
 #include <map>
+#include <numbers>
+#include <optional>
 #include <set>
 #include <string>
 #include <vector>
@@ -108,6 +112,8 @@ struct SolverLog {
     bool converged = false;
     long iterations = 0; ///< the last "Time = N"
     std::map<std::string, double> residuals;
+    /// meanVelocityForce's last "pressure gradient = G" (kinematic, m/s^2; a periodic cell)
+    std::optional<double> pressure_gradient;
 };
 
 SolverLog read_solver_log(const fs::path& case_dir) {
@@ -130,6 +136,12 @@ SolverLog read_solver_log(const fs::path& case_dir) {
                 out.iterations = std::lround(*t);
         } else if (line.find("SIMPLE solution converged") != std::string::npos) {
             out.converged = true;
+        } else if (const auto g = line.find("pressure gradient = "); g != std::string::npos) {
+            // "Pressure gradient source: uncorrected Ubar = 1e-05, pressure gradient = 0.0005"
+            const auto fields = split_spaces(std::string_view(line).substr(g + 20));
+            if (!fields.empty())
+                if (const auto v = parse_finite(fields.front()))
+                    out.pressure_gradient = *v;
         } else if (const auto at = line.find("Solving for "); at != std::string::npos) {
             // "smoothSolver:  Solving for Ux, Initial residual = 1e-07, Final residual = ..."
             const auto comma = line.find(',', at);
@@ -143,6 +155,23 @@ SolverLog read_solver_log(const fs::path& case_dir) {
             if (const auto v = parse_finite(line.substr(equals + 19, end - equals - 19)))
                 out.residuals[field] = *v;
         }
+    }
+    return out;
+}
+
+/// checkMesh's "cells: N", or nothing.
+std::optional<double> mesh_cells(const fs::path& case_dir) {
+    const fs::path path = case_dir / "log.checkMesh";
+    std::error_code error;
+    if (!fs::exists(path, error))
+        return std::nullopt;
+    std::ifstream in = open_regular_file("CASE", path);
+    std::string line;
+    std::optional<double> out;
+    for (LineRead r; (r = read_line(in, line, line_limit)) != LineRead::end;) {
+        const auto fields = split_spaces(line);
+        if (r == LineRead::line && fields.size() == 2 && fields[0] == "cells:")
+            out = parse_finite(fields[1]);
     }
     return out;
 }
@@ -185,6 +214,89 @@ double recorded(const nlohmann::json& json, const nlohmann::json::json_pointer& 
                                        "finite number",
                                        shown(case_dir), at.to_string(), v));
     return v;
+}
+
+/// The report of a cell periodic along z (packbed.json's openfoam.flow.periodic): the pressure
+/// gradient that meanVelocityForce found, the drag per sphere it balances and its
+/// dimensionless forms beside Zick & Homsy's simple cubic arrays and van der Hoef et al.'s
+/// random ones. The superficial velocity is the mesh's: the mean velocity in its fluid (held at
+/// the recorded one) times its void fraction (checkMesh's volume over the cell's), so that the
+/// drag is that of the flow the mesh carries.
+Report periodic_report(const fs::path& case_dir, const nlohmann::json& json) {
+    using ptr = nlohmann::json::json_pointer;
+    const ptr flow("/openfoam/flow"), cell = flow / "periodic";
+    const double rho = recorded(json, flow / "fluid_density", case_dir);
+    const double mu = recorded(json, flow / "viscosity", case_dir);
+    const double scale = recorded(json, flow / "metres_per_unit", case_dir);
+    const double volume = recorded(json, cell / "cell_volume", case_dir) * scale * scale * scale;
+    const double spheres = recorded(json, cell / "spheres", case_dir);
+    const double radius = recorded(json, cell / "sphere_radius", case_dir) * scale;
+    const double phi = recorded(json, cell / "solid_fraction", case_dir);
+    const double held = recorded(json, cell / "interstitial_velocity", case_dir);
+    if (!(spheres >= 1.0 && radius > 0.0 && volume > 0.0 && phi > 0.0 && phi < 1.0))
+        throw InvalidInput(fmt::format("CASE {}: packbed.json's openfoam.flow.periodic is not a "
+                                       "cell with spheres in it; allowed: a case exported by "
+                                       "packbed export --flow periodic",
+                                       shown(case_dir)));
+    const SolverLog log = read_solver_log(case_dir);
+    if (!log.pressure_gradient)
+        throw InvalidInput(fmt::format("CASE {}: log.simpleFoam has no \"pressure gradient = \" "
+                                       "line; allowed: a periodic case run by its Allrun",
+                                       shown(case_dir)));
+    const std::optional<double> meshed = mesh_volume(case_dir);
+    if (!meshed)
+        throw InvalidInput(fmt::format("CASE {}: log.checkMesh has no \"Total volume\"; allowed: "
+                                       "a case run by its Allrun",
+                                       shown(case_dir)));
+    const double mesh_void = *meshed / volume;
+    const double gradient = rho * *log.pressure_gradient; // Pa/m
+    const double superficial = held * mesh_void;          // m/s, the mesh's flow
+    const double force = gradient * volume / spheres;     // N, on each sphere
+    const double k = force / (6.0 * std::numbers::pi * mu * radius * superficial);
+    nlohmann::ordered_json references;
+    if (const auto zh = zick_homsy_simple_cubic(phi)) {
+        references["zick_homsy_solid_fraction"] = zh->first;
+        references["zick_homsy_simple_cubic_K"] = zh->second;
+        references["K_over_zick_homsy"] = k / zh->second;
+    }
+    const double vdh = van_der_hoef_drag(phi);
+    references["van_der_hoef_random_F"] = vdh;
+    references["F_over_van_der_hoef"] = (1.0 - phi) * k / vdh;
+
+    Report report;
+    nlohmann::ordered_json out;
+    out["case"] = case_dir.string();
+    out["flow"] = {{"superficial_velocity_m_s", superficial},
+                   {"interstitial_velocity_m_s", held},
+                   {"reynolds", rho * superficial * 2.0 * radius / mu},
+                   {"fluid_density_kg_m3", rho},
+                   {"viscosity_Pa_s", mu},
+                   {"diameter_m", 2.0 * radius}};
+    out["solver"] = {{"log", "log.simpleFoam"},
+                     {"converged", log.converged},
+                     {"iterations", log.iterations},
+                     {"last_initial_residuals", log.residuals}};
+    out["periodic"] = {{"pressure_gradient_Pa_m", gradient},
+                       {"cell_volume_m3", volume},
+                       {"spheres", spheres},
+                       {"drag_per_sphere_N", force},
+                       {"K", k},
+                       {"F", (1.0 - phi) * k},
+                       {"references", references}};
+    out["void_fraction"] = {{"exact", 1.0 - phi}, {"mesh", mesh_void}};
+    if (const std::optional<double> cells = mesh_cells(case_dir))
+        out["mesh"] = {{"cells", *cells}, {"volume_m3", *meshed}};
+    if (!log.converged)
+        report.warnings.push_back(fmt::format("{}: no \"SIMPLE solution converged\" in "
+                                              "log.simpleFoam: the gradient is the last "
+                                              "iteration's",
+                                              shown(case_dir)));
+    if (const std::string at = non_finite_at(out); !at.empty())
+        throw InvalidInput(fmt::format("CASE {}: the report's {} is not a finite number; "
+                                       "allowed: a case as its Allrun ran it",
+                                       shown(case_dir), at));
+    report.values = out;
+    return report;
 }
 
 } // namespace
@@ -245,6 +357,8 @@ Report cfd_report(const std::filesystem::path& case_dir) {
     }
     using ptr = nlohmann::json::json_pointer;
     const ptr flow("/openfoam/flow");
+    if (json.contains(flow / "periodic"))
+        return periodic_report(case_dir, json);
     const double rho = recorded(json, flow / "fluid_density", case_dir);
     const double mu = recorded(json, flow / "viscosity", case_dir);
     const double u = recorded(json, flow / "velocity", case_dir);
@@ -314,6 +428,18 @@ Report cfd_report(const std::filesystem::path& case_dir) {
                 report.warnings.push_back(es.warning);
         } else {
             correlations["eisfeld_schnitzlein"] = "no wall (a periodic cell): Ergun only";
+            // A bed periodic across: van der Hoef et al.'s random arrays. The gradient
+            // balances the whole force on the spheres, phi / (pi d^3 / 6) of them a unit of
+            // volume: F = G (pi d^3 / 6) / phi on each, K = F / (3 pi mu d U), and (1 - phi) K
+            // is their F.
+            const double phi = 1.0 - band_void;
+            const double k = gradient * std::numbers::pi * diameter * diameter * diameter / 6.0 /
+                             phi / (3.0 * std::numbers::pi * mu * diameter * u);
+            const double vdh = van_der_hoef_drag(phi);
+            correlations["K"] = k;
+            correlations["F"] = (1.0 - phi) * k;
+            correlations["van_der_hoef_random_F"] = vdh;
+            correlations["F_over_van_der_hoef"] = (1.0 - phi) * k / vdh;
         }
     } catch (const InvalidInput& e) {
         throw InvalidInput(
@@ -354,6 +480,9 @@ Report cfd_report(const std::filesystem::path& case_dir) {
         }
     }
     out["void_fraction"] = voids;
+    if (const auto v = mesh_volume(case_dir))
+        if (const auto cells = mesh_cells(case_dir))
+            out["mesh"] = {{"cells", *cells}, {"volume_m3", *v}};
     if (!log.converged)
         report.warnings.push_back(fmt::format("{}: no \"SIMPLE solution converged\" in "
                                               "log.simpleFoam: the pressures are those of the "
@@ -372,6 +501,10 @@ Report cfd_report(const std::filesystem::path& case_dir) {
 
 std::string stage_cfd_report(OutputDirectory& out, const Report& report) {
     const nlohmann::json& v = report.values;
+    if (v.contains("periodic")) { // no planes to draw
+        out.stage("cfd_report.json", json_file_text(v, "cfd_report.json"));
+        return {};
+    }
     std::string table = "z_m,pressure_Pa,fluid_area_m2\n";
     for (const auto& plane : v["planes"])
         table +=
@@ -419,6 +552,160 @@ std::string stage_cfd_report(OutputDirectory& out, const Report& report) {
             v["void_fraction"]["band"].get<double>(), 1e3 * g["from_m"].get<double>(),
             1e3 * g["to_m"].get<double>(), curves);
     return draw_plots(out, {"pressure"}, {script});
+}
+
+} // namespace packbed
+
+namespace packbed {
+
+GridConvergence grid_convergence(const std::array<double, 3>& h, const std::array<double, 3>& phi) {
+    const auto [h1, h2, h3] = h;
+    const auto [f1, f2, f3] = phi;
+    if (!(h1 > 0.0 && h2 > h1 && h3 > h2))
+        throw InvalidInput(fmt::format("mesh series: cell sizes {}, {}, {} are not allowed; "
+                                       "allowed: three sizes > 0, finest first, each larger",
+                                       h1, h2, h3));
+    const double e21 = f2 - f1, e32 = f3 - f2;
+    if (!(e21 != 0.0 && e32 != 0.0 && std::isfinite(e32 / e21)))
+        throw InvalidInput(fmt::format("mesh series: the values {}, {}, {} have two equal "
+                                       "neighbours; allowed: values that change from level to "
+                                       "level",
+                                       f1, f2, f3));
+    const double r21 = h2 / h1, r32 = h3 / h2;
+    const double s = e32 / e21 > 0.0 ? 1.0 : -1.0;
+    // Celik et al.'s eqs. (3a)-(3c) by fixed-point iteration; with r21 = r32, q = 0 and the
+    // first step is exact.
+    double p = 2.0;
+    for (int k = 0; k < 500; ++k) {
+        const double q = std::log((std::pow(r21, p) - s) / (std::pow(r32, p) - s));
+        const double next = std::abs(std::log(std::abs(e32 / e21)) + q) / std::log(r21);
+        if (!std::isfinite(next))
+            break;
+        const bool settled = std::abs(next - p) <= 1e-12 * std::max(1.0, p);
+        p = next;
+        if (settled)
+            break;
+    }
+    if (!(std::isfinite(p) && p > 0.0 && std::pow(r21, p) > 1.0))
+        throw InvalidInput(fmt::format("mesh series: no apparent order from the values {}, {}, "
+                                       "{}; allowed: a series in its asymptotic range",
+                                       f1, f2, f3));
+    GridConvergence g;
+    g.order = p;
+    const double rp = std::pow(r21, p);
+    g.extrapolated = (rp * f1 - f2) / (rp - 1.0);
+    g.approximate_error = std::abs((f1 - f2) / f1);
+    g.extrapolated_error = std::abs((g.extrapolated - f1) / g.extrapolated);
+    g.gci_fine = 1.25 * g.approximate_error / (rp - 1.0);
+    g.oscillating = s < 0.0;
+    return g;
+}
+
+Report cfd_series(const std::vector<std::filesystem::path>& cases) {
+    if (cases.size() < 3)
+        throw InvalidInput(fmt::format("{} case(s) given for a mesh series; allowed: 3 or more "
+                                       "cases of one bed, meshed at different resolutions",
+                                       cases.size()));
+    struct Level {
+        std::filesystem::path path;
+        nlohmann::json report;
+        double cells, h, value;
+    };
+    std::vector<Level> levels;
+    std::optional<bool> periodic;
+    for (const std::filesystem::path& c : cases) {
+        const Report r = cfd_report(c);
+        const nlohmann::json& v = r.values;
+        const bool is_periodic = v.contains("periodic");
+        if (periodic && *periodic != is_periodic)
+            throw InvalidInput(fmt::format("CASE {}: a {} case among {} ones; allowed: cases of "
+                                           "one kind (export --flow)",
+                                           shown(c), is_periodic ? "periodic" : "inlet",
+                                           *periodic ? "periodic" : "inlet"));
+        periodic = is_periodic;
+        if (!v.contains("mesh"))
+            throw InvalidInput(fmt::format("CASE {}: log.checkMesh has no cells or volume; "
+                                           "allowed: a case run by its Allrun",
+                                           shown(c)));
+        const double cells = v["mesh"]["cells"].get<double>();
+        const double volume = v["mesh"]["volume_m3"].get<double>();
+        const double d = v["flow"]["diameter_m"].get<double>();
+        const double value = is_periodic ? v["periodic"]["K"].get<double>()
+                                         : v["pressure_gradient_Pa_m"]["cfd"].get<double>();
+        levels.push_back({c, v, cells, std::cbrt(volume / cells) / d, value});
+    }
+    std::sort(levels.begin(), levels.end(),
+              [](const Level& a, const Level& b) { return a.cells < b.cells; });
+    for (std::size_t k = 1; k < levels.size(); ++k)
+        if (levels[k].cells == levels[k - 1].cells)
+            throw InvalidInput(fmt::format("CASE {} and CASE {} have the same {} cells; allowed: "
+                                           "meshes of different resolutions",
+                                           shown(levels[k - 1].path), shown(levels[k].path),
+                                           levels[k].cells));
+    const std::string quantity = *periodic ? "K" : "pressure_gradient_Pa_m";
+    std::optional<double> reference;
+    if (*periodic) {
+        const nlohmann::json& r = levels.back().report["periodic"]["references"];
+        if (r.contains("zick_homsy_simple_cubic_K"))
+            reference = r["zick_homsy_simple_cubic_K"].get<double>();
+    }
+    nlohmann::ordered_json rows = nlohmann::ordered_json::array();
+    for (const Level& l : levels) {
+        nlohmann::ordered_json row = {
+            {"case", l.path.string()}, {"cells", l.cells},
+            {"h_over_d", l.h},         {"mesh_void_fraction", l.report["void_fraction"]["mesh"]},
+            {quantity, l.value},       {"converged", l.report["solver"]["converged"]}};
+        if (reference)
+            row["over_reference"] = l.value / *reference;
+        rows.push_back(row);
+    }
+    const std::size_t n = levels.size();
+    const GridConvergence g =
+        grid_convergence({levels[n - 1].h, levels[n - 2].h, levels[n - 3].h},
+                         {levels[n - 1].value, levels[n - 2].value, levels[n - 3].value});
+    nlohmann::ordered_json celik = {{"order", g.order},
+                                    {"extrapolated", g.extrapolated},
+                                    {"approximate_error", g.approximate_error},
+                                    {"extrapolated_error", g.extrapolated_error},
+                                    {"gci_fine", g.gci_fine},
+                                    {"oscillating", g.oscillating}};
+    if (reference) {
+        celik["reference"] = *reference;
+        celik["extrapolated_over_reference"] = g.extrapolated / *reference;
+    }
+    Report report;
+    nlohmann::ordered_json out;
+    out["quantity"] = quantity;
+    out["levels"] = rows;
+    out["celik"] = celik;
+    if (const std::string at = non_finite_at(out); !at.empty())
+        throw InvalidInput(fmt::format("mesh series: the report's {} is not a finite number; "
+                                       "allowed: cases as their Allrun ran them",
+                                       at));
+    report.values = out;
+    return report;
+}
+
+void stage_cfd_series(OutputDirectory& out, const Report& report) {
+    const nlohmann::json& v = report.values;
+    // A path as one CSV field (RFC 4180): quoted, its quotes doubled, where it holds a comma
+    // or a quote.
+    const auto csv_field = [](const std::string& text) {
+        if (text.find_first_of(",\"") == std::string::npos)
+            return text;
+        std::string quoted = "\"";
+        for (const char c : text)
+            quoted += c == '"' ? std::string("\"\"") : std::string(1, c);
+        return quoted + "\"";
+    };
+    const std::string quantity = v["quantity"].get<std::string>();
+    std::string table = fmt::format("case,cells,h_over_d,mesh_void_fraction,{}\n", quantity);
+    for (const auto& row : v["levels"])
+        table += fmt::format("{},{},{},{},{}\n", csv_field(row["case"].get<std::string>()),
+                             row["cells"].get<double>(), row["h_over_d"].get<double>(),
+                             row["mesh_void_fraction"].get<double>(), row[quantity].get<double>());
+    out.stage("series.csv", table);
+    out.stage("series.json", json_file_text(v, "series.json"));
 }
 
 } // namespace packbed

@@ -87,11 +87,35 @@ std::optional<SurfaceContainer> bed_container(const ExportRequest& o, const Pack
         return std::nullopt;
     const Container& given = *o.container;
     const double top = bed_top(packing);
+    const bool periodic_z = o.mesh.periodic_z;
+    if (periodic_z && !given.periods())
+        throw InvalidInput(fmt::format("--flow periodic is not allowed with --container {}; "
+                                       "allowed: a periodic cell (periodic:LX,LY), whose sides "
+                                       "repeat across",
+                                       given.spec()));
+    if (periodic_z && !(o.container_height > 0.0))
+        throw InvalidInput("--flow periodic needs --container-height: the cell's period along z "
+                           "(a lattice's region height); allowed: a height that holds every "
+                           "sphere");
     const double height =
         o.container_height > 0.0 ? o.container_height : top + packing.mean_diameter();
-    if (!(height > top))
+    if (periodic_z) {
+        // Every sphere within the period: a sphere across the bottom or the top would need a
+        // copy across z, which the surfaces do not make.
+        const double slack = 1e-9 * packing.mean_diameter();
+        for (std::size_t i = 0; i < packing.size(); ++i) {
+            const double z = packing.centers[i].z, r = packing.radii[i];
+            if (!(z - r >= -slack && z + r <= height + slack))
+                throw InvalidInput(fmt::format(
+                    "{}:{}: the sphere at z = {} (radius {}) crosses the bottom or the top of "
+                    "the cell periodic along z with period {}; allowed with --flow periodic: "
+                    "every sphere between z = 0 and --container-height",
+                    printable(o.source), i < lines.size() ? lines[i] : i + 1, z, r, height));
+        }
+    } else if (!(height > top)) {
         throw InvalidInput(fmt::format(
             "--container-height {} is not allowed; allowed: above the bed's top, {}", height, top));
+    }
     for (std::size_t i = 0; i < packing.size(); ++i) {
         const Vec3& c = packing.centers[i];
         if (!(given.wall_distance(c) > 0.0) || c.z <= 0.0)
@@ -107,7 +131,7 @@ std::optional<SurfaceContainer> bed_container(const ExportRequest& o, const Pack
                                        "the container has no cross-section there; allowed: a "
                                        "height where it has one",
                                        height, given.spec()));
-    return SurfaceContainer{given, height};
+    return SurfaceContainer{given, height, periodic_z};
 }
 
 /// The container in packbed.json: its shape, size and height.
@@ -149,7 +173,7 @@ std::string surface_export(const ExportRequest& o, ExportFormat format, const Pa
     options.container = container;
     options.write_container = !o.no_container;
     const TreatedBed bed = treat_contacts(packing, contacts, container);
-    if (container)
+    if (container && !container->periodic_z) // periodic along z: checked by bed_container
         for (std::size_t i = 0; i < bed.bodies.size(); ++i) {
             const TreatedBody& b = bed.bodies[i];
             if (!(b.center.z + b.radius < container->height))
@@ -223,11 +247,29 @@ std::string surface_export(const ExportRequest& o, ExportFormat format, const Pa
               {"turbulence", o.turbulence},
               {"pressure_planes", foam.planes},
               // what cfd-report compares with: the bed's void fraction between the first and
-              // the last plane (exact, untreated) and the wall's aspect ratio D_h / d
+              // the last plane (exact, untreated; a cell periodic along z: the whole cell's,
+              // treated) and the wall's aspect ratio D_h / d
               {"band_void_fraction",
-               void_fraction(packing, container->container, foam.planes.front() / foam.scale,
-                             foam.planes.back() / foam.scale)},
+               container->periodic_z
+                   ? volumes->treated_void_fraction
+                   : void_fraction(packing, container->container, foam.planes.front() / foam.scale,
+                                   foam.planes.back() / foam.scale)},
               {"aspect_ratio", hydraulic ? nlohmann::json(*hydraulic / dp) : nlohmann::json()}}}};
+        if (container->periodic_z) {
+            // What cfd-report needs for the drag per sphere (F = rho G V / N) and its
+            // dimensionless forms: the cell, the spheres in it and their mean radius after the
+            // treatment (a shrunk array's spheres are the smaller ones).
+            double radius = 0.0;
+            for (const TreatedBody& b : bed.bodies)
+                radius += b.radius / static_cast<double>(bed.bodies.size());
+            report["openfoam"]["flow"]["periodic"] = {
+                {"period_z", container->height},
+                {"cell_volume", volumes->container_volume},
+                {"spheres", bed.bodies.size()},
+                {"sphere_radius", radius},
+                {"solid_fraction", 1.0 - volumes->treated_void_fraction},
+                {"interstitial_velocity", foam.interstitial_velocity}};
+        }
         for (const auto& [path, text] : foam.files)
             out->stage(path, text);
         {
@@ -492,6 +534,10 @@ bool export_uses_container(const ExportRequest& request) {
 std::string export_bed(const Packing& packing, const std::vector<std::size_t>& lines,
                        const ExportRequest& request) {
     const ExportFormat format = export_format(request.format);
+    if (request.mesh.periodic_z && format != ExportFormat::openfoam)
+        throw InvalidInput(fmt::format("--flow periodic is not allowed with --format {}; "
+                                       "allowed: --format openfoam",
+                                       request.format));
     if (!request.keep.empty()) { // the bed's file and the summary.json that gives its container
         record_input("the particles file", request.keep);
         std::error_code ec;

@@ -516,6 +516,33 @@ def test_export_writes_the_command_lines_openfoam_case(cli_bed, tmp_path):
         packbed.export(packbed.read(particles), str(tmp_path / "bad"), format="openfoam", ranks=0)
 
 
+def test_export_of_a_cell_periodic_along_z_is_the_command_lines(tmp_path):
+    # flow='periodic' is --flow periodic: the same case; the cell's numbers for cfd-report
+    status, _, err = cli("lattice", "--type", "sc", "--region", "periodic:3,3,2", "--origin",
+                         "0.5,0.5,0.5", "-q", "--no-analysis", "-o", tmp_path / "cell")
+    assert status == 0, err
+    particles = str(tmp_path / "cell" / "particles.csv")
+    options = ["--contacts", "caps:0.02", "--container-height", "2", "--refine", "2"]
+    status, _, err = cli("export", particles, "-f", "openfoam", "-q", "-o", tmp_path / "cli",
+                         "--flow", "periodic", *options)
+    assert status == 0, err
+    packbed.export(packbed.read(particles), str(tmp_path / "py"), format="openfoam",
+                   flow="periodic", contacts="caps:0.02", container_height=2, refine=2)
+    for f in (tmp_path / "cli").rglob("*"):
+        if f.is_file():
+            assert (tmp_path / "py" / f.relative_to(tmp_path / "cli")).read_bytes() == \
+                f.read_bytes(), f
+    cell = json.loads((tmp_path / "py" / "packbed.json").read_text())["openfoam"]["flow"]["periodic"]
+    # 18 touching balls, each with 6 caps 0.01 from its contacts (two of them across the
+    # bottom and the top): pi/6 - 6 caps of height 0.01 per unit of volume
+    caps = 6 * math.pi * 0.01**2 * (3 * 0.5 - 0.01) / 3
+    assert cell["spheres"] == 18 and cell["sphere_radius"] == pytest.approx(0.5, rel=1e-14)
+    assert cell["solid_fraction"] == pytest.approx(math.pi / 6 - caps, rel=1e-12)
+    with pytest.raises(ValueError, match="flow 'sideways' is not allowed"):
+        packbed.export(packbed.read(particles), str(tmp_path / "bad"), format="openfoam",
+                       flow="sideways", container_height=2)
+
+
 def test_export_of_a_bed_made_in_python_holds_every_sphere(bed, tmp_path):
     packbed.export(bed, str(tmp_path / "bed.data"))
     lines = (tmp_path / "bed.data").read_text().splitlines()
