@@ -12,7 +12,8 @@ finest levels (Celik et al. 2008, J. Fluids Eng. 130, 078001, the procedure of t
 Usage: bench/cfd_periodic_series.py PACKBED OUT PHI CPD [CPD ...]
     PHI: a solid fraction (0.216) or "touching"; CPD: --cells-per-diameter of each level
     (level 1 at the spheres), coarse to fine. OUT is replaced. Prints a table and writes
-    OUT/series.json.
+    OUT/series.json. Each level also records Allrun's wall time, snappyHexMesh's "Finished
+    meshing in", simpleFoam's last ExecutionTime and the largest resident set of a process.
 """
 import json
 import math
@@ -64,7 +65,9 @@ def main():
                         "--cells-per-diameter", cpd, "--particle-level", "1", "--refine", "5",
                         "--reynolds", "0.01", "-q", "--out", case], check=True)
         start = time.time()
-        subprocess.run([f"{case}/Allrun"], check=True, stdout=subprocess.DEVNULL)
+        # GNU time's %M: the largest resident set of the run's processes (one rank), kB
+        subprocess.run(["/usr/bin/time", "-f", "%M", "-o", f"{case}/memory", f"{case}/Allrun"],
+                       check=True, stdout=subprocess.DEVNULL)
         seconds = time.time() - start
         report = json.loads(subprocess.run([exe, "cfd-report", case, "--json", "-q"],
                                            check=True, capture_output=True, text=True).stdout)
@@ -73,6 +76,14 @@ def main():
             for line in log:
                 if line.strip().startswith("cells:"):
                     cells = int(line.split()[1])
+        with open(f"{case}/log.snappyHexMesh") as log:
+            meshing = [float(line.split("=")[1].split()[0]) for line in log
+                       if line.startswith("Finished meshing in")]
+        with open(f"{case}/log.simpleFoam") as log:
+            solving = [float(line.split("=")[1].split()[0]) for line in log
+                       if line.startswith("ExecutionTime")]
+        with open(f"{case}/memory") as f:
+            memory = int(f.read().split()[-1]) / 1024.0
         p = report["periodic"]
         volume = p["cell_volume_m3"] * report["void_fraction"]["mesh"]
         row = {"cells_per_diameter": int(cpd), "cells": cells,
@@ -81,6 +92,8 @@ def main():
                "exact_void_fraction": report["void_fraction"]["exact"],
                "K": p["K"], "iterations": report["solver"]["iterations"],
                "converged": report["solver"]["converged"], "seconds": seconds,
+               "snappy_seconds": meshing[-1], "simplefoam_seconds": solving[-1],
+               "largest_process_MiB": memory,
                "reference": p["references"].get("zick_homsy_simple_cubic_K")}
         rows.append(row)
         print(json.dumps(row), flush=True)

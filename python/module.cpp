@@ -589,6 +589,21 @@ py::object cfd_report_of(const std::filesystem::path& case_dir,
     return to_python(report.values);
 }
 
+py::object cfd_series_of(const std::vector<std::filesystem::path>& cases,
+                         const std::optional<std::filesystem::path>& out, bool force) {
+    if (cases.empty())
+        throw InvalidInput("cases: none given; allowed: 3 or more cases of one bed");
+    for (const std::filesystem::path& c : cases)
+        check_cfd_case(c);
+    OutputDirectory directory(out ? *out : cases.back() / "cfd-series", "--out",
+                              OutputKind::directory, force);
+    const Report report = cfd_series(cases);
+    stage_cfd_series(directory, report);
+    directory.commit();
+    warn(report.warnings);
+    return to_python(report.values);
+}
+
 py::object correlations(double aspect_ratio, double profile_step, double profile_to) {
     CorrelationsRequest request;
     request.aspect_ratio = check_option("aspect-ratio", aspect_ratio, option_range::aspect_ratio);
@@ -1028,6 +1043,16 @@ outside its range, or no plot, gives a UserWarning. A case of export(..., flow='
 the pressure gradient that held its mean velocity, the drag per sphere, K = F / (6 pi mu a
 U_s) beside Zick & Homsy's simple cubic arrays and (1 - phi) K beside van der Hoef et al.'s
 random ones, no planes and no plot. Raises ValueError for a case that is not a run one.)");
+
+    m.def("cfd_series", &cfd_series_of, py::call_guard<JobScope>(), py::arg("cases"), py::kw_only(),
+          py::arg("out") = py::none(), py::arg("force") = false,
+          R"(A mesh series of one bed, as `packbed cfd-report CASE CASE CASE ...  --json`: three
+or more cases meshed at different resolutions and run by their Allrun, coarse to fine by their
+cells; each level's cells, representative size h / d, the mesh's void fraction and its answer
+(a periodic cell's K, else the pressure gradient), and Celik et al.'s (2008) apparent order,
+Richardson extrapolation and grid convergence index of the three finest. Writes series.csv and
+series.json to out (None: the last case's cfd-series/). Returns a dict; an apparent order far
+from 2 gives a UserWarning. Raises ValueError for fewer than 3 cases or cases of two kinds.)");
 
     m.def("correlations", &correlations, py::kw_only(),
           py::arg("aspect_ratio") = CorrelationsRequest{}.aspect_ratio,

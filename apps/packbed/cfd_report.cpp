@@ -69,6 +69,8 @@ int run_cfd_series(const CfdReportOptions& o) {
     const Report report = cfd_series(cases);
     stage_cfd_series(out, report);
     out.commit();
+    for (const auto& w : report.warnings)
+        fmt::print(stderr, "packbed cfd-report: warning: {}\n", w);
     const nlohmann::json& v = report.values;
     if (o.json) {
         fmt::print("{}", json_file_text(v, "the report"));

@@ -439,7 +439,8 @@ GridConvergence grid_convergence(const std::array<double, 3>& h, const std::arra
 /// cells: each level's cells, representative size h = (mesh volume / cells)^(1/3) over the
 /// spheres' diameter, the mesh's and the exact void fraction and the answer (a periodic
 /// cell's K, else the pressure gradient), and grid_convergence of the three finest with the
-/// reference where there is one (Zick & Homsy's K). \throws InvalidInput for fewer than 3
+/// reference where there is one (Zick & Homsy's K); a warning when the apparent order lies
+/// outside 1 to 3 (the schemes' formal order is 2). \throws InvalidInput for fewer than 3
 /// cases, cases of different kinds, or two with the same number of cells
 Report cfd_series(const std::vector<std::filesystem::path>& cases);
 

@@ -12,6 +12,7 @@ The library of the `packbed` command line, for Python, with numpy arrays:
     packbed.hydraulics(porosity=0.4)               # eq. (1) of Tsayger (2013), Ergun, ... (dict)
     packbed.correlations(aspect_ratio=5)           # the void-fraction correlations (dict)
     packbed.cfd_report("case")        # a run OpenFOAM case's pressure drop against Ergun's (dict)
+    packbed.cfd_series(["c8", "c12", "c16"])   # a mesh series: order, extrapolation, GCI (dict)
 
 Bad values raise ValueError with the command line's message, a run that does not converge
 raises packbed.ConvergenceError, and Ctrl-C raises KeyboardInterrupt. See help(packbed.generate).
@@ -26,6 +27,7 @@ from ._core import (
     analyze,
     analyze_frames,
     cfd_report,
+    cfd_series,
     correlations,
     export,
     generate,
@@ -44,6 +46,7 @@ __all__ = [
     "analyze",
     "analyze_frames",
     "cfd_report",
+    "cfd_series",
     "correlations",
     "export",
     "generate",

@@ -1,5 +1,5 @@
 # Type stubs of the packbed module (python/module.cpp): names and types for editors.
-from typing import Any, Callable, Dict, Optional, Tuple
+from typing import Any, Callable, Dict, List, Optional, Tuple
 
 import numpy as np
 import numpy.typing as npt
@@ -167,10 +167,17 @@ def export(
     fluid_density: float = 998.2,
     viscosity: float = 0.001002,
     scale: Optional[float] = None,
+    flow: str = "inlet",
     force: bool = False,
 ) -> str: ...
 def cfd_report(
     case: str,
+    *,
+    out: Optional[str] = None,
+    force: bool = False,
+) -> Dict[str, Any]: ...
+def cfd_series(
+    cases: List[str],
     *,
     out: Optional[str] = None,
     force: bool = False,

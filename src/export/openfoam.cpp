@@ -540,7 +540,7 @@ OpenFoamCase openfoam_case(const TreatedBed& bed, const SurfaceContainer& contai
             "metres: "
             "{scale} m per unit, so d = {dm} m), checkMesh, simpleFoam ({model}, steady), "
             "reconstructParMesh and reconstructPar; each step's output in `log.STEP`. The "
-            "fluid: rho = {rho} kg/m^3, mu = {mu} Pa s (nu = {nu} m^2/s); the inlet's "
+            "fluid: rho = {rho} kg/m^3, mu = {mu} Pa s (nu = {nu} m^2/s); {whose}"
             "superficial velocity {u} m/s, the particle Reynolds number rho u d / mu = "
             "{re:.4g}; {drive} Or step by step: `blockMesh`, `snappyHexMesh -overwrite`, "
             "`checkMesh` mesh it in the bed's units.\n\n"
@@ -574,7 +574,8 @@ OpenFoamCase openfoam_case(const TreatedBed& bed, const SurfaceContainer& contai
             fmt::arg("dm", c.scale * diameter), fmt::arg("rho", flow.fluid_density),
             fmt::arg("mu", flow.viscosity), fmt::arg("nu", flow.viscosity / flow.fluid_density),
             fmt::arg("u", c.velocity), fmt::arg("re", c.reynolds), fmt::arg("drive", drive),
-            fmt::arg("results", results), fmt::arg("ends", ends)));
+            fmt::arg("results", results), fmt::arg("ends", ends),
+            fmt::arg("whose", options.periodic_z ? "the " : "the inlet's ")));
     return c;
 }
 

@@ -433,13 +433,15 @@ Report cfd_report(const std::filesystem::path& case_dir) {
             // volume: F = G (pi d^3 / 6) / phi on each, K = F / (3 pi mu d U), and (1 - phi) K
             // is their F.
             const double phi = 1.0 - band_void;
-            const double k = gradient * std::numbers::pi * diameter * diameter * diameter / 6.0 /
-                             phi / (3.0 * std::numbers::pi * mu * diameter * u);
-            const double vdh = van_der_hoef_drag(phi);
-            correlations["K"] = k;
-            correlations["F"] = (1.0 - phi) * k;
-            correlations["van_der_hoef_random_F"] = vdh;
-            correlations["F_over_van_der_hoef"] = (1.0 - phi) * k / vdh;
+            if (phi > 0.0 && phi < 1.0) {
+                const double k = gradient * std::numbers::pi * diameter * diameter * diameter /
+                                 6.0 / phi / (3.0 * std::numbers::pi * mu * diameter * u);
+                const double vdh = van_der_hoef_drag(phi);
+                correlations["K"] = k;
+                correlations["F"] = (1.0 - phi) * k;
+                correlations["van_der_hoef_random_F"] = vdh;
+                correlations["F_over_van_der_hoef"] = (1.0 - phi) * k / vdh;
+            }
         }
     } catch (const InvalidInput& e) {
         throw InvalidInput(
@@ -668,12 +670,22 @@ Report cfd_series(const std::vector<std::filesystem::path>& cases) {
                                     {"approximate_error", g.approximate_error},
                                     {"extrapolated_error", g.extrapolated_error},
                                     {"gci_fine", g.gci_fine},
-                                    {"oscillating", g.oscillating}};
+                                    {"oscillating", g.oscillating},
+                                    // the cases' schemes are second order (Gauss linear,
+                                    // linearUpwind): an apparent order far from 2 says the
+                                    // series is not in its asymptotic range
+                                    {"formal_order", 2},
+                                    {"near_formal_order", g.order >= 1.0 && g.order <= 3.0}};
     if (reference) {
         celik["reference"] = *reference;
         celik["extrapolated_over_reference"] = g.extrapolated / *reference;
     }
     Report report;
+    if (!(g.order >= 1.0 && g.order <= 3.0))
+        report.warnings.push_back(fmt::format(
+            "the apparent order {:.3g} is far from the schemes' 2: the three finest levels are "
+            "not in the asymptotic range, and the extrapolation and the GCI are not reliable",
+            g.order));
     nlohmann::ordered_json out;
     out["quantity"] = quantity;
     out["levels"] = rows;

@@ -439,6 +439,26 @@ def test_cfd_report_gives_the_command_lines_numbers(tmp_path):
         packbed.cfd_report(str(tmp_path / "none"))
 
 
+def test_cfd_series_gives_the_command_lines_numbers(tmp_path):
+    # three periodic cases on K = 7.4 + 30 (h/d)^2, made by the command line's own test
+    sys.path.insert(0, str(Path(__file__).resolve().parents[1]))
+    from check_cfd_report import CELL, RADIUS, make_periodic_case
+
+    cases = []
+    for cells in (1000, 8000, 27000):
+        h = (0.79 * CELL / cells) ** (1 / 3) / (2 * RADIUS)
+        cases.append(make_periodic_case(str(tmp_path), f"c{cells}", 7.4 + 30 * h * h, cells))
+    status, out, err = cli("cfd-report", *cases, "--json", "--out", str(tmp_path / "cli"))
+    assert status == 0, err
+    got = packbed.cfd_series(cases, out=str(tmp_path / "module"))
+    assert got == json.loads(out)
+    assert got["celik"]["extrapolated"] == pytest.approx(7.4, rel=1e-9)
+    for name in ("series.csv", "series.json"):
+        assert (tmp_path / "module" / name).read_bytes() == (tmp_path / "cli" / name).read_bytes()
+    with pytest.raises(ValueError, match="2 case\\(s\\) given for a mesh series"):
+        packbed.cfd_series(cases[:2], out=str(tmp_path / "two"))
+
+
 def test_hydraulics_and_correlations_give_the_command_lines_numbers():
     status, out, _ = cli("hydraulics", "--porosity", "0.4", "-a", "5", "--json")
     assert status == 0
