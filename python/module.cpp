@@ -591,8 +591,10 @@ py::object cfd_report_of(const std::filesystem::path& case_dir,
 
 py::object cfd_series_of(const std::vector<std::filesystem::path>& cases,
                          const std::optional<std::filesystem::path>& out, bool force) {
-    if (cases.empty())
-        throw InvalidInput("cases: none given; allowed: 3 or more cases of one bed");
+    if (cases.size() < 3) // before the output is claimed
+        throw InvalidInput(fmt::format("{} case(s) given for a mesh series; allowed: 3 or more "
+                                       "cases of one bed, meshed at different resolutions",
+                                       cases.size()));
     for (const std::filesystem::path& c : cases)
         check_cfd_case(c);
     OutputDirectory directory(out ? *out : cases.back() / "cfd-series", "--out",

@@ -87,7 +87,7 @@ def make_case(work, name, scatter=None, restarted=False):
 PHI, RADIUS, UBAR, CELL = 0.216, 0.372, 1.3e-5, 8.0  # a periodic cell (bed units, m/s)
 
 
-def make_periodic_case(work, name, k, cells, void=0.79):
+def make_periodic_case(work, name, k, cells, void=0.79, phi=PHI, ubar=UBAR):
     """A cell periodic along z as export --flow periodic records it and its run logs: the
     meanVelocityForce gradient that gives Zick & Homsy's K = k on a mesh of `cells` cells
     and void fraction `void`."""
@@ -95,20 +95,20 @@ def make_periodic_case(work, name, k, cells, void=0.79):
     os.makedirs(case)
     json.dump({"diameter": D,
                "openfoam": {"flow": {"ranks": 2, "metres_per_unit": SCALE, "fluid_density": RHO,
-                                     "viscosity": MU, "velocity": UBAR * (1 - PHI),
+                                     "viscosity": MU, "velocity": ubar * (1 - phi),
                                      "reynolds": 0.01, "pressure_planes": [],
-                                     "band_void_fraction": 1 - PHI, "aspect_ratio": None,
+                                     "band_void_fraction": 1 - phi, "aspect_ratio": None,
                                      "periodic": {"period_z": 2.0, "cell_volume": CELL,
                                                   "spheres": 8, "sphere_radius": RADIUS,
-                                                  "solid_fraction": PHI,
-                                                  "interstitial_velocity": UBAR}}}},
+                                                  "solid_fraction": phi,
+                                                  "interstitial_velocity": ubar}}}},
               open(os.path.join(case, "packbed.json"), "w"), indent=2)
     volume = CELL * SCALE**3
-    force = k * 6 * math.pi * MU * RADIUS * SCALE * UBAR * void  # on a sphere, N
+    force = k * 6 * math.pi * MU * RADIUS * SCALE * ubar * void  # on a sphere, N
     gradient = force * 8 / volume / RHO  # kinematic, m/s^2
     with open(os.path.join(case, "log.simpleFoam"), "w") as f:
         for t, g in ((1, 2 * gradient), (2, gradient)):  # the last line is the one read
-            f.write(f"Time = {t}\n\nPressure gradient source: uncorrected Ubar = {UBAR}, "
+            f.write(f"Time = {t}\n\nPressure gradient source: uncorrected Ubar = {ubar}, "
                     f"pressure gradient = {g!r}\n")
         f.write("\nSIMPLE solution converged in 2 iterations\n\nEnd\n")
     with open(os.path.join(case, "log.checkMesh"), "w") as f:
@@ -158,15 +158,33 @@ def periodic_cases(exe, work):
     assert [float(row["K"]) for row in rows] == [row["K"] for row in series["levels"]], rows
     print(f"periodic: K {p['K']:.6f}; series order {c['order']:.6f}, extrapolated "
           f"{c['extrapolated']:.9f}, GCI {100 * c['gci_fine']:.4f} %")
-    # Refused: two cases (a series needs 3), cases of two kinds.
+    # Refused: two cases (a series needs 3), cases of two kinds, of two beds or two flows, a
+    # finer mesh (more cells) with no smaller cells (another bed's volume).
     line = make_case(work, "inlet-level")
+    other = make_periodic_case(work, "other-bed", 7.0, 64000, phi=0.3)
+    faster = make_periodic_case(work, "other-flow", 7.0, 64000, ubar=2 * UBAR)
+    looser = make_periodic_case(work, "other-mesh", 7.0, 64000, void=0.79 * 50)
     for given, words in ((cases[:2], "2 case(s) given for a mesh series"),
-                         (cases[:2] + [line], "a inlet case among periodic ones")):
+                         (cases[:2] + [line], "a inlet case among periodic ones"),
+                         (cases[:2] + [other], "allowed: cases of one bed and one flow"),
+                         (cases[:2] + [faster], "allowed: cases of one bed and one flow"),
+                         (cases + [looser], "but no smaller ones")):
         out = subprocess.run([exe, "cfd-report", *given, "-o", os.path.join(work, "series-bad")],
                              capture_output=True, text=True)
         assert out.returncode == 2 and out.stderr.count("\n") == 1, out.stderr
         assert words in out.stderr, out.stderr
         assert not os.path.exists(os.path.join(work, "series-bad"))
+    # Re_p above 0.1: the Stokes references are flagged (one warning line on stderr).
+    fast = make_periodic_case(work, "fast", 7.0, 1000, ubar=1e-3)
+    out = subprocess.run([exe, "cfd-report", fast], capture_output=True, text=True)
+    assert out.returncode == 0 and "are for Stokes flow" in out.stderr, out.stderr
+    out = subprocess.run([exe, "cfd-report", cases[0]], capture_output=True, text=True)
+    assert out.returncode == 0 and "Stokes" not in out.stderr, out.stderr
+    # A case exported and never run: no log.
+    unrun = make_periodic_case(work, "unrun", 7.0, 1000)
+    os.remove(os.path.join(unrun, "log.simpleFoam"))
+    out = subprocess.run([exe, "cfd-report", unrun], capture_output=True, text=True)
+    assert out.returncode == 2 and "no log.simpleFoam" in out.stderr, out.stderr
 
 
 def report(exe, case, *extra):

@@ -35,7 +35,7 @@ void print_periodic(const nlohmann::json& v) {
     fmt::print("simpleFoam: {} after {} iterations; a cell periodic along z, {} spheres of "
                "d = {:.6g} m\n",
                s["converged"].get<bool>() ? "converged" : "NOT converged",
-               s["iterations"].get<long>(), p["spheres"].get<double>(),
+               s["iterations"].get<long>(), p["spheres"].get<long long>(),
                f["diameter_m"].get<double>());
     fmt::print("void fraction {:.5f} exact, {:.5f} meshed; superficial velocity {:.6g} m/s (the "
                "mesh's), Re_p = {:.4g}\n",
@@ -58,6 +58,10 @@ void print_periodic(const nlohmann::json& v) {
 
 /// Several cases: the mesh series (cfd_series), to LAST/cfd-series unless --out.
 int run_cfd_series(const CfdReportOptions& o) {
+    if (o.cases.size() < 3) // before the output is claimed
+        throw InvalidInput(fmt::format("{} case(s) given for a mesh series; allowed: 3 or more "
+                                       "cases of one bed, meshed at different resolutions",
+                                       o.cases.size()));
     std::vector<std::filesystem::path> cases;
     for (const std::string& c : o.cases) {
         cases.emplace_back(c);
@@ -83,7 +87,7 @@ int run_cfd_series(const CfdReportOptions& o) {
     fmt::print("  {:>10} {:>8} {:>10} {:>12}{}\n", "cells", "h / d", "mesh e", name,
                v["levels"][0].contains("over_reference") ? "   / reference" : "");
     for (const auto& row : v["levels"]) {
-        fmt::print("  {:>10} {:>8.4f} {:>10.5f} {:>12.6g}", row["cells"].get<double>(),
+        fmt::print("  {:>10} {:>8.4f} {:>10.5f} {:>12.6g}", row["cells"].get<long long>(),
                    row["h_over_d"].get<double>(), row["mesh_void_fraction"].get<double>(),
                    row[quantity].get<double>());
         if (row.contains("over_reference"))
@@ -126,7 +130,7 @@ int run_cfd_report(const CfdReportOptions& o) {
         return 0;
     if (v.contains("periodic")) {
         print_periodic(v);
-        fmt::print("JSON: {}\n", out_dir.string());
+        fmt::print("JSON: {}\n", (out_dir / "cfd_report.json").string());
         return 0;
     }
     const auto& g = v["pressure_gradient_Pa_m"];
@@ -189,10 +193,11 @@ Command register_cfd_report(CLI::App& parent) {
     app->fallthrough();
     app->add_option("case", o.cases,
                     "the case directory (after ./Allrun); three or more: a mesh series of one "
-                    "bed, coarse to fine (docs/validation.md)")
+                    "bed, in any order (docs/validation.md)")
         ->required()
         ->check(path_text());
-    add_output_directory(*app, o.out, o.force, "CASE/cfd-report; a series: LAST/cfd-series");
+    add_output_directory(*app, o.out, o.force,
+                         "CASE/cfd-report; a series: cfd-series in the last case given");
     app->add_flag("--json", o.json, "print the whole report as JSON");
     app->add_flag("-q,--quiet", o.quiet, "no report on the terminal");
     app->footer("Exit status: 0 success, 2 bad input (not a run case, a missing table).");

@@ -102,8 +102,10 @@ Command register_export(CLI::App& parent) {
             ->check(real_in(option_range::export_container_radius));
     add_container_option(*app, o.container, "file units; default: summary.json beside the file")
         ->excludes(radius);
-    app->add_option("--container-height", o.request.container_height,
-                    "container height from the floor z = 0 (default: the bed's top + 1 Dp)")
+    app->add_option(
+           "--container-height", o.request.container_height,
+           "container height from the floor z = 0 (default: the bed's top + 1 Dp); with --flow "
+           "periodic the period along z, required")
         ->check(real_in(option_range::container_height));
     app->add_flag("--no-container", o.request.no_container,
                   "surfaces: cut against the container but do not write its solids; data "
@@ -127,12 +129,14 @@ Command register_export(CLI::App& parent) {
                     "openfoam: MPI ranks of the case's Allrun (decomposeParDict)")
         ->check(whole_in(option_range::ranks));
     app->add_option("--reynolds", o.request.flow.reynolds,
-                    "openfoam: the particle Reynolds number rho u d / mu of the inlet's "
-                    "superficial velocity u (unless --fluid-velocity)")
+                    "openfoam: the particle Reynolds number rho u d / mu of the superficial "
+                    "velocity u, the inlet's or a periodic cell's mean (unless --fluid-velocity; d "
+                    "the bed's mean diameter before a treatment)")
         ->check(real_in(option_range::reynolds));
     app->add_option("--turbulence", o.request.turbulence,
                     "openfoam: laminar, or a RANS model with wall functions (kEpsilon, "
-                    "kOmegaSST; 5 % turbulence intensity at the inlet)")
+                    "kOmegaSST; 5 % turbulence intensity at the inlet; laminar only with --flow "
+                    "periodic)")
         ->check(one_of(turbulence_models().names()));
     app->add_option("--fluid-density", o.request.flow.fluid_density,
                     "openfoam: the fluid's density, kg/m^3 (default: water at 20 C)")
@@ -152,8 +156,8 @@ Command register_export(CLI::App& parent) {
                     "is known, else the smallest box holding every sphere)");
     app->add_option("--fluid-velocity,--velocity", o.request.fluid_velocity,
                     "data files: record this fluid velocity (e.g. from packbed hydraulics) in the "
-                    "header and in FILE.fluid.in as a LAMMPS variable; openfoam: the inlet's "
-                    "superficial velocity, m/s (instead of --reynolds)")
+                    "header and in FILE.fluid.in as a LAMMPS variable; openfoam: the superficial "
+                    "velocity, m/s, the inlet's or a periodic cell's mean (instead of --reynolds)")
         ->check(real_in(option_range::fluid_velocity));
     app->add_option("-d,--diameter", o.diameter,
                     "sphere diameter, for files without a radius or diameter column (XYZ, "

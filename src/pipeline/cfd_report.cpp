@@ -216,6 +216,18 @@ double recorded(const nlohmann::json& json, const nlohmann::json::json_pointer& 
     return v;
 }
 
+/// The references of a periodic cell's drag are Stokes flow (Re -> 0); above this particle
+/// Reynolds number inertia adds to the drag (Beetstra et al.'s 2007 correction is about 1 % of
+/// it at Re_p = 1 for phi = 0.2-0.6), so the comparison is flagged.
+constexpr double stokes_reynolds = 0.1;
+
+std::string stokes_warning(const fs::path& case_dir, double reynolds) {
+    return fmt::format("{}: Re_p = {:.4g}: Zick & Homsy's and van der Hoef's drags are for "
+                       "Stokes flow, and inertia adds to this one; export with --reynolds 0.01 "
+                       "to compare with them",
+                       shown(case_dir), reynolds);
+}
+
 /// The report of a cell periodic along z (packbed.json's openfoam.flow.periodic): the pressure
 /// gradient that meanVelocityForce found, the drag per sphere it balances and its
 /// dimensionless forms beside Zick & Homsy's simple cubic arrays and van der Hoef et al.'s
@@ -237,6 +249,11 @@ Report periodic_report(const fs::path& case_dir, const nlohmann::json& json) {
         throw InvalidInput(fmt::format("CASE {}: packbed.json's openfoam.flow.periodic is not a "
                                        "cell with spheres in it; allowed: a case exported by "
                                        "packbed export --flow periodic",
+                                       shown(case_dir)));
+    std::error_code error;
+    if (!fs::exists(case_dir / "log.simpleFoam", error))
+        throw InvalidInput(fmt::format("CASE {}: no log.simpleFoam; allowed: a case run by its "
+                                       "Allrun (./Allrun there)",
                                        shown(case_dir)));
     const SolverLog log = read_solver_log(case_dir);
     if (!log.pressure_gradient)
@@ -264,11 +281,14 @@ Report periodic_report(const fs::path& case_dir, const nlohmann::json& json) {
     references["F_over_van_der_hoef"] = (1.0 - phi) * k / vdh;
 
     Report report;
+    const double reynolds = rho * superficial * 2.0 * radius / mu;
+    if (reynolds > stokes_reynolds)
+        report.warnings.push_back(stokes_warning(case_dir, reynolds));
     nlohmann::ordered_json out;
     out["case"] = case_dir.string();
     out["flow"] = {{"superficial_velocity_m_s", superficial},
                    {"interstitial_velocity_m_s", held},
-                   {"reynolds", rho * superficial * 2.0 * radius / mu},
+                   {"reynolds", reynolds},
                    {"fluid_density_kg_m3", rho},
                    {"viscosity_Pa_s", mu},
                    {"diameter_m", 2.0 * radius}};
@@ -278,14 +298,14 @@ Report periodic_report(const fs::path& case_dir, const nlohmann::json& json) {
                      {"last_initial_residuals", log.residuals}};
     out["periodic"] = {{"pressure_gradient_Pa_m", gradient},
                        {"cell_volume_m3", volume},
-                       {"spheres", spheres},
+                       {"spheres", std::llround(spheres)},
                        {"drag_per_sphere_N", force},
                        {"K", k},
                        {"F", (1.0 - phi) * k},
                        {"references", references}};
     out["void_fraction"] = {{"exact", 1.0 - phi}, {"mesh", mesh_void}};
     if (const std::optional<double> cells = mesh_cells(case_dir))
-        out["mesh"] = {{"cells", *cells}, {"volume_m3", *meshed}};
+        out["mesh"] = {{"cells", std::llround(*cells)}, {"volume_m3", *meshed}};
     if (!log.converged)
         report.warnings.push_back(fmt::format("{}: no \"SIMPLE solution converged\" in "
                                               "log.simpleFoam: the gradient is the last "
@@ -441,6 +461,9 @@ Report cfd_report(const std::filesystem::path& case_dir) {
                 correlations["F"] = (1.0 - phi) * k;
                 correlations["van_der_hoef_random_F"] = vdh;
                 correlations["F_over_van_der_hoef"] = (1.0 - phi) * k / vdh;
+                const double re = rho * u * diameter / mu;
+                if (re > stokes_reynolds)
+                    report.warnings.push_back(stokes_warning(case_dir, re));
             }
         }
     } catch (const InvalidInput& e) {
@@ -484,7 +507,7 @@ Report cfd_report(const std::filesystem::path& case_dir) {
     out["void_fraction"] = voids;
     if (const auto v = mesh_volume(case_dir))
         if (const auto cells = mesh_cells(case_dir))
-            out["mesh"] = {{"cells", *cells}, {"volume_m3", *v}};
+            out["mesh"] = {{"cells", std::llround(*cells)}, {"volume_m3", *v}};
     if (!log.converged)
         report.warnings.push_back(fmt::format("{}: no \"SIMPLE solution converged\" in "
                                               "log.simpleFoam: the pressures are those of the "
@@ -629,6 +652,29 @@ Report cfd_series(const std::vector<std::filesystem::path>& cases) {
             throw InvalidInput(fmt::format("CASE {}: log.checkMesh has no cells or volume; "
                                            "allowed: a case run by its Allrun",
                                            shown(c)));
+        // One bed, one flow: the exact void fraction, the spheres' diameter and the velocity
+        // the case holds (a periodic cell's mean in the fluid, else the superficial one) of
+        // the first case given; the meshes' own void fractions, and so their superficial
+        // velocities, differ.
+        const auto signature = [](const nlohmann::json& r) {
+            const bool cell = r.contains("periodic");
+            return std::array<double, 3>{cell ? r["void_fraction"]["exact"].get<double>()
+                                              : r["void_fraction"]["band"].get<double>(),
+                                         r["flow"]["diameter_m"].get<double>(),
+                                         cell
+                                             ? r["flow"]["interstitial_velocity_m_s"].get<double>()
+                                             : r["flow"]["superficial_velocity_m_s"].get<double>()};
+        };
+        if (!levels.empty()) {
+            const auto a = signature(v), b = signature(levels.front().report);
+            for (std::size_t k = 0; k < 3; ++k)
+                if (std::abs(a[k] - b[k]) > 1e-9 * std::max(std::abs(a[k]), std::abs(b[k])))
+                    throw InvalidInput(fmt::format(
+                        "CASE {}: void fraction {:.6g}, diameter {:.6g} m, velocity {:.6g} m/s "
+                        "where CASE {} has {:.6g}, {:.6g} m, {:.6g} m/s; allowed: cases of one "
+                        "bed and one flow, meshed at different resolutions",
+                        shown(c), a[0], a[1], a[2], shown(levels.front().path), b[0], b[1], b[2]));
+        }
         const double cells = v["mesh"]["cells"].get<double>();
         const double volume = v["mesh"]["volume_m3"].get<double>();
         const double d = v["flow"]["diameter_m"].get<double>();
@@ -638,12 +684,19 @@ Report cfd_series(const std::vector<std::filesystem::path>& cases) {
     }
     std::sort(levels.begin(), levels.end(),
               [](const Level& a, const Level& b) { return a.cells < b.cells; });
-    for (std::size_t k = 1; k < levels.size(); ++k)
+    for (std::size_t k = 1; k < levels.size(); ++k) {
         if (levels[k].cells == levels[k - 1].cells)
             throw InvalidInput(fmt::format("CASE {} and CASE {} have the same {} cells; allowed: "
                                            "meshes of different resolutions",
                                            shown(levels[k - 1].path), shown(levels[k].path),
                                            levels[k].cells));
+        if (!(levels[k].h < levels[k - 1].h))
+            throw InvalidInput(fmt::format(
+                "CASE {} has more cells than CASE {} ({} against {}) but no smaller ones (h / d "
+                "{:.4g} against {:.4g}); allowed: meshes of one bed, finer with more cells",
+                shown(levels[k].path), shown(levels[k - 1].path), levels[k].cells,
+                levels[k - 1].cells, levels[k].h, levels[k - 1].h));
+    }
     const std::string quantity = *periodic ? "K" : "pressure_gradient_Pa_m";
     std::optional<double> reference;
     if (*periodic) {
@@ -654,7 +707,7 @@ Report cfd_series(const std::vector<std::filesystem::path>& cases) {
     nlohmann::ordered_json rows = nlohmann::ordered_json::array();
     for (const Level& l : levels) {
         nlohmann::ordered_json row = {
-            {"case", l.path.string()}, {"cells", l.cells},
+            {"case", l.path.string()}, {"cells", std::llround(l.cells)},
             {"h_over_d", l.h},         {"mesh_void_fraction", l.report["void_fraction"]["mesh"]},
             {quantity, l.value},       {"converged", l.report["solver"]["converged"]}};
         if (reference)
@@ -714,7 +767,7 @@ void stage_cfd_series(OutputDirectory& out, const Report& report) {
     std::string table = fmt::format("case,cells,h_over_d,mesh_void_fraction,{}\n", quantity);
     for (const auto& row : v["levels"])
         table += fmt::format("{},{},{},{},{}\n", csv_field(row["case"].get<std::string>()),
-                             row["cells"].get<double>(), row["h_over_d"].get<double>(),
+                             row["cells"].get<long long>(), row["h_over_d"].get<double>(),
                              row["mesh_void_fraction"].get<double>(), row[quantity].get<double>());
     out.stage("series.csv", table);
     out.stage("series.json", json_file_text(v, "series.json"));
