@@ -25,6 +25,18 @@ struct CfdReportOptions {
     bool quiet = false;
 };
 
+/// The report's warnings (and `why` there is no plot, unless --quiet) on stderr, the JSON with
+/// --json. \return whether the table is still to be printed (neither --json nor --quiet)
+bool warned_and_shown(const Report& report, const std::string& why, const CfdReportOptions& o) {
+    for (const auto& w : report.warnings)
+        fmt::print(stderr, "packbed cfd-report: warning: {}\n", w);
+    if (!why.empty() && !o.quiet)
+        fmt::print(stderr, "packbed cfd-report: {}\n", why);
+    if (o.json)
+        fmt::print("{}", json_file_text(report.values, "the report"));
+    return !o.json && !o.quiet;
+}
+
 /// A cell periodic along z: the gradient, the drag per sphere and the references.
 void print_periodic(const nlohmann::json& v) {
     const auto& p = v["periodic"];
@@ -73,15 +85,9 @@ int run_cfd_series(const CfdReportOptions& o) {
     const Report report = cfd_series(cases);
     stage_cfd_series(out, report);
     out.commit();
-    for (const auto& w : report.warnings)
-        fmt::print(stderr, "packbed cfd-report: warning: {}\n", w);
+    if (!warned_and_shown(report, {}, o))
+        return 0;
     const nlohmann::json& v = report.values;
-    if (o.json) {
-        fmt::print("{}", json_file_text(v, "the report"));
-        return 0;
-    }
-    if (o.quiet)
-        return 0;
     const std::string quantity = v["quantity"].get<std::string>();
     const std::string name = quantity == "K" ? "K" : "Pa/m";
     fmt::print("  {:>10} {:>8} {:>10} {:>12}{}\n", "cells", "h / d", "mesh e", name,
@@ -117,17 +123,9 @@ int run_cfd_report(const CfdReportOptions& o) {
     const Report report = cfd_report(case_dir);
     const std::string why = stage_cfd_report(out, report);
     out.commit();
-    for (const auto& w : report.warnings)
-        fmt::print(stderr, "packbed cfd-report: warning: {}\n", w);
-    if (!why.empty() && !o.quiet)
-        fmt::print(stderr, "packbed cfd-report: {}\n", why);
+    if (!warned_and_shown(report, why, o))
+        return 0;
     const nlohmann::json& v = report.values;
-    if (o.json) {
-        fmt::print("{}", json_file_text(v, "the report"));
-        return 0;
-    }
-    if (o.quiet)
-        return 0;
     if (v.contains("periodic")) {
         print_periodic(v);
         fmt::print("JSON: {}\n", (out_dir / "cfd_report.json").string());

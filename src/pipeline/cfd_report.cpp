@@ -159,43 +159,37 @@ SolverLog read_solver_log(const fs::path& case_dir) {
     return out;
 }
 
-/// checkMesh's "cells: N", or nothing.
-std::optional<double> mesh_cells(const fs::path& case_dir) {
-    const fs::path path = case_dir / "log.checkMesh";
-    std::error_code error;
-    if (!fs::exists(path, error))
-        return std::nullopt;
-    std::ifstream in = open_regular_file("CASE", path);
-    std::string line;
-    std::optional<double> out;
-    for (LineRead r; (r = read_line(in, line, line_limit)) != LineRead::end;) {
-        const auto fields = split_spaces(line);
-        if (r == LineRead::line && fields.size() == 2 && fields[0] == "cells:")
-            out = parse_finite(fields[1]);
-    }
-    return out;
-}
+/// What log.checkMesh says of the mesh: its "cells: N" and "Total volume = V." (m^3 after
+/// Allrun's transformPoints), each nothing when absent (or no log), in one pass.
+struct MeshLog {
+    std::optional<double> cells;
+    std::optional<double> volume;
+};
 
-/// checkMesh's "Total volume = V." (m^3 after Allrun's transformPoints), or nothing.
-std::optional<double> mesh_volume(const fs::path& case_dir) {
+MeshLog read_mesh_log(const fs::path& case_dir) {
     const fs::path path = case_dir / "log.checkMesh";
     std::error_code error;
+    MeshLog out;
     if (!fs::exists(path, error))
-        return std::nullopt;
+        return out;
     std::ifstream in = open_regular_file("CASE", path);
     std::string line;
-    std::optional<double> out;
     for (LineRead r; (r = read_line(in, line, line_limit)) != LineRead::end;) {
+        if (r != LineRead::line)
+            continue;
+        const auto fields = split_spaces(line);
+        if (fields.size() == 2 && fields[0] == "cells:")
+            out.cells = parse_finite(fields[1]);
         const auto at = line.find("Total volume = ");
-        if (r != LineRead::line || at == std::string::npos)
+        if (at == std::string::npos)
             continue;
-        const auto fields = split_spaces(std::string_view(line).substr(at + 15));
-        if (fields.empty())
+        const auto rest = split_spaces(std::string_view(line).substr(at + 15));
+        if (rest.empty())
             continue;
-        std::string value(fields.front());
+        std::string value(rest.front());
         if (value.back() == '.')
             value.pop_back();
-        out = parse_finite(value);
+        out.volume = parse_finite(value);
     }
     return out;
 }
@@ -260,7 +254,8 @@ Report periodic_report(const fs::path& case_dir, const nlohmann::json& json) {
         throw InvalidInput(fmt::format("CASE {}: log.simpleFoam has no \"pressure gradient = \" "
                                        "line; allowed: a periodic case run by its Allrun",
                                        shown(case_dir)));
-    const std::optional<double> meshed = mesh_volume(case_dir);
+    const MeshLog mesh = read_mesh_log(case_dir);
+    const std::optional<double> meshed = mesh.volume;
     if (!meshed)
         throw InvalidInput(fmt::format("CASE {}: log.checkMesh has no \"Total volume\"; allowed: "
                                        "a case run by its Allrun",
@@ -304,8 +299,8 @@ Report periodic_report(const fs::path& case_dir, const nlohmann::json& json) {
                        {"F", (1.0 - phi) * k},
                        {"references", references}};
     out["void_fraction"] = {{"exact", 1.0 - phi}, {"mesh", mesh_void}};
-    if (const std::optional<double> cells = mesh_cells(case_dir))
-        out["mesh"] = {{"cells", std::llround(*cells)}, {"volume_m3", *meshed}};
+    if (mesh.cells)
+        out["mesh"] = {{"cells", std::llround(*mesh.cells)}, {"volume_m3", *meshed}};
     if (!log.converged)
         report.warnings.push_back(fmt::format("{}: no \"SIMPLE solution converged\" in "
                                               "log.simpleFoam: the gradient is the last "
@@ -493,21 +488,21 @@ Report cfd_report(const std::filesystem::path& case_dir) {
     // The void fractions: the bed's between the planes (what the correlations use), the
     // container's before and after the contact treatment, and the mesh's (checkMesh's volume).
     nlohmann::ordered_json voids = {{"band", band_void}};
+    const MeshLog mesh = read_mesh_log(case_dir);
     const ptr untouched("/volumes/untouched_void_fraction"),
         treated("/volumes/treated_void_fraction");
     if (json.contains(untouched) && json.contains(treated)) {
         voids["container_untouched"] = recorded(json, untouched, case_dir);
         voids["container_treated"] = recorded(json, treated, case_dir);
-        if (const auto v = mesh_volume(case_dir); v && json.contains(ptr("/volumes/container"))) {
+        if (mesh.volume && json.contains(ptr("/volumes/container"))) {
             const double container =
                 recorded(json, ptr("/volumes/container"), case_dir) * scale * scale * scale;
-            voids["mesh"] = *v / container;
+            voids["mesh"] = *mesh.volume / container;
         }
     }
     out["void_fraction"] = voids;
-    if (const auto v = mesh_volume(case_dir))
-        if (const auto cells = mesh_cells(case_dir))
-            out["mesh"] = {{"cells", std::llround(*cells)}, {"volume_m3", *v}};
+    if (mesh.volume && mesh.cells)
+        out["mesh"] = {{"cells", std::llround(*mesh.cells)}, {"volume_m3", *mesh.volume}};
     if (!log.converged)
         report.warnings.push_back(fmt::format("{}: no \"SIMPLE solution converged\" in "
                                               "log.simpleFoam: the pressures are those of the "
