@@ -1,16 +1,17 @@
 #!/usr/bin/env python3
-"""A mesh series of a simple cubic array in a periodic cell against Zick & Homsy (1982)
-(docs/validation.md, "CFD: periodic arrays"): the 2 x 2 x 2 array of `packbed lattice --type sc`,
-its spheres shrunk to the solid fraction PHI (`export --contacts shrink:F`) or, with PHI
-"touching", the 3 x 3 x 2 array left touching with their contacts flattened into caps 0.02 d
-apart; each mesh
+"""A mesh series of an array in a periodic cell against Zick & Homsy (1982) or van der Hoef et
+al. (2005) (docs/validation.md, "CFD: periodic arrays"): the 2 x 2 x 2 array of `packbed
+lattice --type sc`, its spheres shrunk to the solid fraction PHI (`export --contacts shrink:F`)
+or, with PHI "touching", the 3 x 3 x 3 array left touching with their contacts flattened into
+caps 0.02 d apart; with PHI "random:N:FRACTION:GAP:SEED", `packbed random-array` of N spheres
+(no contact: the gap keeps them apart); each mesh
 level exported with `--flow periodic` (icosphere level 5: 20 480 triangles a sphere, whose
 inscribed polyhedron holds all but about 0.1 % of its volume), run by its Allrun and read by `cfd-report --json`; then
 the observed order, the Richardson extrapolation and the grid convergence index of the three
 finest levels (Celik et al. 2008, J. Fluids Eng. 130, 078001, the procedure of their section 2).
 
 Usage: bench/cfd_periodic_series.py PACKBED OUT PHI CPD [CPD ...]
-    PHI: a solid fraction (0.216) or "touching"; CPD: --cells-per-diameter of each level
+    PHI: a solid fraction (0.216), "touching" or "random:N:FRACTION:GAP:SEED"; CPD: --cells-per-diameter of each level
     (level 1 at the spheres), coarse to fine. OUT is replaced. Prints a table and writes
     OUT/series.json. Each level also records Allrun's wall time, snappyHexMesh's "Finished
     meshing in", simpleFoam's last ExecutionTime and the largest resident set of a process.
@@ -46,22 +47,31 @@ def celik(h, f):
 def main():
     exe, out, phi_text, *levels = sys.argv[1:]
     shutil.rmtree(out, ignore_errors=True)
-    # Touching spheres need a cell wider than 2 d across x and y (caps across a side and
-    # inside both), so 3 x 3 x 2; a shrunk array fits in 2 x 2 x 2.
-    region = "periodic:3,3,2" if phi_text == "touching" else "periodic:2,2,2"
-    subprocess.run([exe, "lattice", "--type", "sc", "--region", region,
-                    "--origin", "0.5,0.5,0.5", "--no-analysis", "-q", "--out", f"{out}/lattice"],
-                   check=True)
-    if phi_text == "touching":
-        contacts, phi = "caps:0.02", math.pi / 6
+    # Touching spheres need a cell wider than 2 d each way (caps across a side and inside
+    # both), so 3 x 3 x 3; a shrunk array fits in 2 x 2 x 2.
+    if phi_text.startswith("random:"):
+        n, fraction, gap, seed = phi_text.split(":")[1:]
+        subprocess.run([exe, "random-array", "-n", n, "--solid-fraction", fraction, "--gap", gap,
+                        "--seed", seed, "-q", "--out", f"{out}/lattice"], check=True)
+        with open(f"{out}/lattice/summary.json") as f:
+            array = json.load(f)
+        contacts, phi, height = "none", array["solid_fraction"], repr(array["period_z"])
     else:
-        phi = float(phi_text)
-        contacts = f"shrink:{1.0 - (6.0 * phi / math.pi) ** (1.0 / 3.0)!r}"
+        region = "periodic:3,3,3" if phi_text == "touching" else "periodic:2,2,2"
+        height = "3" if phi_text == "touching" else "2"
+        subprocess.run([exe, "lattice", "--type", "sc", "--region", region,
+                        "--origin", "0.5,0.5,0.5", "--no-analysis", "-q", "--out",
+                        f"{out}/lattice"], check=True)
+        if phi_text == "touching":
+            contacts, phi = "caps:0.02", math.pi / 6
+        else:
+            phi = float(phi_text)
+            contacts = f"shrink:{1.0 - (6.0 * phi / math.pi) ** (1.0 / 3.0)!r}"
     rows = []
     for cpd in levels:
         case = f"{out}/cpd{cpd}"
         subprocess.run([exe, "export", f"{out}/lattice/particles.csv", "--format", "openfoam",
-                        "--flow", "periodic", "--container-height", "2", "--contacts", contacts,
+                        "--flow", "periodic", "--container-height", height, "--contacts", contacts,
                         "--cells-per-diameter", cpd, "--particle-level", "1", "--refine", "5",
                         "--reynolds", "0.01", "-q", "--out", case], check=True)
         start = time.time()
@@ -90,17 +100,19 @@ def main():
                "h_over_d": (volume / cells) ** (1 / 3) / report["flow"]["diameter_m"],
                "mesh_void_fraction": report["void_fraction"]["mesh"],
                "exact_void_fraction": report["void_fraction"]["exact"],
-               "K": p["K"], "iterations": report["solver"]["iterations"],
+               "K": p["K"], "F": p["F"], "iterations": report["solver"]["iterations"],
                "converged": report["solver"]["converged"], "seconds": seconds,
                "snappy_seconds": meshing[-1], "simplefoam_seconds": solving[-1],
                "largest_process_MiB": memory,
-               "reference": p["references"].get("zick_homsy_simple_cubic_K")}
+               "reference": p["references"].get("zick_homsy_simple_cubic_K"),
+               "van_der_hoef_F": p["references"].get("van_der_hoef_random_F")}
         rows.append(row)
         print(json.dumps(row), flush=True)
     result = {"phi": phi, "contacts": contacts, "levels": rows}
     if len(rows) >= 3:
         fine = rows[-3:][::-1]
         result["celik"] = celik([r["h_over_d"] for r in fine], [r["K"] for r in fine])
+        result["celik"]["extrapolated_F"] = (1.0 - phi) * result["celik"]["extrapolated"]
         print(json.dumps(result["celik"]))
     with open(f"{out}/series.json", "w") as f:
         json.dump(result, f, indent=1)

@@ -28,7 +28,9 @@
 #include "packbed/limits.hpp"
 #include "packbed/option_ranges.hpp"
 #include "packbed/output.hpp"
+#include "packbed/periodic.hpp"
 #include "packbed/pipeline.hpp"
+#include "packbed/random_array.hpp"
 #include "packbed/read.hpp"
 #include "packbed/version.hpp"
 #include "packbed/volume.hpp"
@@ -495,6 +497,35 @@ Analysis analyze(const Bed& bed, const std::optional<std::string>& container,
     return result;
 }
 
+Bed random_array_bed(const py::object& count, double solid_fraction, double diameter, double gap,
+                     const py::object& sweeps, const py::object& seed,
+                     const std::optional<std::filesystem::path>& out, bool force) {
+    RandomArrayParameters p;
+    p.count = whole(count, "count", option_range::random_array_count);
+    p.solid_fraction = solid_fraction;
+    p.diameter = diameter;
+    p.gap = gap;
+    p.sweeps = whole(sweeps, "sweeps", option_range::random_array_sweeps);
+    p.seed = whole(seed, "seed", option_range::seed);
+    p.validate();
+    std::optional<OutputDirectory> directory;
+    if (out)
+        directory.emplace(*out, "--out", OutputKind::directory, force);
+    RandomArray array;
+    {
+        py::gil_scoped_release released;
+        array = random_array(p);
+    }
+    Bed bed{std::move(array.packing), Container(Periodic(array.cell, array.cell)),
+            nlohmann::json()};
+    bed.summary = random_array_summary(p, array);
+    if (directory) {
+        stage_bed(*directory, bed.packing, *bed.container, 1.0, false, bed.summary);
+        directory->commit();
+    }
+    return bed;
+}
+
 Bed lattice(const std::string& type, const std::string& region, double diameter,
             const std::optional<std::string>& origin, const std::string& keep,
             const std::string& rotate, double band_clearance, bool analysis,
@@ -666,6 +697,11 @@ std::string export_bed_to(const Bed& bed, const std::filesystem::path& out,
         throw InvalidInput(fmt::format("flow '{}' is not allowed; allowed: inlet, periodic",
                                        printable(flow.substr(0, 80))));
     request.mesh.periodic_z = flow == "periodic";
+    // A random array's cell repeats along z with its own period (summary.json's period_z).
+    if (request.mesh.periodic_z && !container_height && !container &&
+        bed.summary.contains("period_z") && bed.summary["period_z"].is_number())
+        request.container_height = check_option(
+            "container-height", bed.summary["period_z"].get<double>(), range::container_height);
     request.flow.fluid_density = check_option("fluid-density", fluid_density, range::density_kg_m3);
     request.flow.viscosity = check_option("viscosity", viscosity, range::viscosity_pa_s);
     if (scale)
@@ -1009,7 +1045,8 @@ cells_per_diameter, particle_level, wall_level; the flow of its Allrun: ranks, r
 fluid_velocity, m/s), turbulence ('laminar', 'kEpsilon', 'kOmegaSST'), fluid_density
 (kg/m^3), viscosity (Pa s), scale (metres per unit of the bed's lengths; None: particles of
 1 mm), flow ('inlet', or 'periodic': a periodic cell repeating along z with container_height
-its period, the mean velocity held by a uniform pressure gradient). force: replace a
+its period, a random array's own by default, the mean velocity held by a uniform pressure
+gradient). force: replace a
 non-empty case directory.
 Returns the command line's report line. Raises ValueError for a bad value.)");
 
@@ -1064,6 +1101,18 @@ from 2 gives a UserWarning. Raises ValueError for fewer than 3 cases or cases of
 correlations --json`: a dict with the mean void fractions and the radial profiles (x from the
 wall in d, from 0 to profile_to in steps of profile_step), each with its formula, source and
 validity range. A correlation used outside its range gives a UserWarning.)");
+
+    m.def("random_array", &random_array_bed, py::call_guard<JobScope>(), py::kw_only(),
+          py::arg("count"), py::arg("solid_fraction") = RandomArrayParameters{}.solid_fraction,
+          py::arg("diameter") = 1.0, py::arg("gap") = 0.0,
+          py::arg("sweeps") = py::int_(RandomArrayParameters{}.sweeps), py::arg("seed") = 1,
+          py::arg("out") = py::none(), py::arg("force") = false,
+          R"(Equal spheres at random in a cube periodic on all six faces, as `packbed
+random-array`: count spheres at solid_fraction (which sets the cube's edge), hard spheres of
+diameter (1 + gap) d in equilibrium (Monte Carlo, sweeps after they have grown to their size),
+at most 0.49 of the cube for those. The bed's summary has the cell (container periodic:L,L,
+period_z L); export(bed, ..., format='openfoam', flow='periodic') makes its CFD case. out: a
+directory to write what the command writes.)");
 
     m.def("lattice", &lattice, py::call_guard<JobScope>(), py::kw_only(),
           py::arg("type") = "diamond", py::arg("region") = "box:10,10,10",

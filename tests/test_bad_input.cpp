@@ -354,7 +354,8 @@ TEST_P(CliBadInput, Exit2OneLineNamingTheInputNothingLeft) {
 }
 
 const std::string subcommands =
-    "allowed: generate, lattice, hydraulics, export, analyze, correlations, voxelize, cfd-report, "
+    "allowed: generate, lattice, random-array, hydraulics, export, analyze, correlations, "
+    "voxelize, cfd-report, "
     "import-lammps";
 const std::string a_path = "allowed: a path of at most 4095 bytes without control characters "
                            "(newline, tab, ...)";
@@ -410,7 +411,8 @@ INSTANTIATE_TEST_SUITE_P(
         exact("--config range.toml generate",
               "packbed: --aspect-ratio: 0.5 is not allowed; allowed: a number in [1, 10000]"),
         exact("--config range.toml",
-              "packbed: a subcommand is required; allowed: generate, lattice, hydraulics, "
+              "packbed: a subcommand is required; allowed: generate, lattice, random-array, "
+              "hydraulics, "
               "export, analyze, correlations, voxelize, cfd-report, import-lammps"),
         exact("generate --config @D/unknown.toml",
               "packbed: --config @D/unknown.toml: line 2: unknown key 'warp_speed'; allowed: "
@@ -756,6 +758,22 @@ INSTANTIATE_TEST_SUITE_P(
         naming("lattice --diameter 1e-12", {"1e-12"}),
         // Issue 14 item 8: a thin region far longer than the rest; an origin far away.
         naming("lattice --region box:1e11,0.001,0.001 --keep centres --type sc", {"--region"}),
+        // A random array: hard spheres below their freezing point, a cell 2 sigma wide.
+        exact("random-array -n 100 --solid-fraction 0.45 --gap 0.05 --out ra",
+              "packbed random-array: --solid-fraction 0.45 with --gap 0.05 is not allowed: its "
+              "hard spheres of diameter (1 + gap) d fill 0.5209; allowed: at most 0.49 (hard "
+              "spheres freeze at 0.494), a solid fraction up to 0.4233 with this gap"),
+        exact("random-array -n 4 --solid-fraction 0.4 --out ra",
+              "packbed random-array: --count 4 is not allowed at --solid-fraction 0.4: the "
+              "cell's edge 1.736 d is below twice the spheres' diameter (1 + gap) d; allowed: "
+              "a count of at least 7"),
+        exact("random-array -n 1 --out ra",
+              "packbed: --count: 1 is not allowed; allowed: a whole number from 2 to 10000000"),
+        exact("random-array -n 10 --solid-fraction 0.5 --out ra",
+              "packbed: --solid-fraction: 0.5 is not allowed; allowed: a number in (0, 0.49]"),
+        exact("random-array -n 10000000 --sweeps 10000 --out ra",
+              "packbed random-array: --sweeps 10000 with --count 10000000 is not allowed: 1e+11 "
+              "trial moves; allowed: at most 1e+10 (spheres times sweeps)"),
         exact("lattice --origin 1e18,0,0",
               "packbed lattice: --origin 1e+18,0,0 is not allowed (1e+18 ball diameters from the "
               "region: the positions would lose their precision); allowed: within 1e+06 ball "
@@ -1106,12 +1124,19 @@ INSTANTIATE_TEST_SUITE_P(
               "--format openfoam"),
         exact("export two.csv --format openfoam --container periodic:4,4 --flow periodic --out pf",
               "packbed export: --flow periodic needs --container-height: the cell's period along "
-              "z (a lattice's region height); allowed: a height that holds every sphere"),
+              "z (a lattice's region height; a random array's summary.json gives its own); "
+              "allowed: a height above every centre"),
         exact("export two.csv --format openfoam --container periodic:4,4 --flow periodic "
-              "--container-height 1.2 --out pf",
-              "packbed export: two.csv:2: the sphere at z = 1 (radius 0.5) crosses the bottom or "
-              "the top of the cell periodic along z with period 1.2; allowed with --flow "
-              "periodic: every sphere between z = 0 and --container-height"),
+              "--container-height 0.8 --out pf",
+              "packbed export: two.csv:2: the sphere centre at z = 1 is outside the cell "
+              "periodic along z with period 0.8; allowed with --flow periodic: centres from "
+              "z = 0 to below --container-height"),
+        // Touching across a period exactly 2 d tall: each touches both copies of the other.
+        exact("export two.csv --format openfoam --container periodic:4,4 --flow periodic "
+              "--container-height 2 --contacts caps:0.02 --out pf",
+              "packbed export: --container periodic:4,4 is not allowed for spheres of diameter "
+              "up to 1 with --contacts caps:0.02; allowed: periods at least twice the largest "
+              "diameter and the caps' gap, 2.04 (the minimum image)"),
         exact("export two.csv --format openfoam --container periodic:4,4 --flow periodic "
               "--container-height 2 --turbulence kEpsilon --out pf",
               "packbed export: --turbulence kEpsilon is not allowed with --flow periodic; "

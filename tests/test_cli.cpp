@@ -356,9 +356,10 @@ TEST(Cli, AMistypedNameGetsTheClosestOne) {
         << inherited_form.err;
     const Outcome subcommand = packbed("generat");
     EXPECT_EQ(subcommand.status, 2);
-    EXPECT_EQ(subcommand.err, "packbed: 'generat' is not a subcommand (did you mean generate?); "
-                              "allowed: generate, lattice, hydraulics, export, analyze, "
-                              "correlations, voxelize, cfd-report, import-lammps\n");
+    EXPECT_EQ(subcommand.err,
+              "packbed: 'generat' is not a subcommand (did you mean generate?); "
+              "allowed: generate, lattice, random-array, hydraulics, export, analyze, "
+              "correlations, voxelize, cfd-report, import-lammps\n");
     // Nothing close: no guess.
     EXPECT_EQ(packbed("generate --zzzzzz 4").err.find("did you mean"), std::string::npos);
 }
@@ -1578,14 +1579,14 @@ TEST(Cli, ExportOfABoxLatticeKeepsItsBox) {
             .status,
         0);
     std::size_t wall = 0;
-    for (const auto& v : stl_vertices(slurp(d / "lig.data.wall.stl"))) {
+    for (const auto& vertex : stl_vertices(slurp(d / "lig.data.wall.stl"))) {
         ++wall;
-        EXPECT_TRUE(v[0] == 0.0 || v[0] == 4.0 || v[1] == 0.0 || v[1] == 4.0);
+        EXPECT_TRUE(vertex[0] == 0.0 || vertex[0] == 4.0 || vertex[1] == 0.0 || vertex[1] == 4.0);
     }
     // 4 cells of 1 Dp along each side and up: 2 (4 + 4) x 4 cells, 2 triangles of 3 vertices.
     EXPECT_EQ(wall, 3u * 2u * (2u * (4u + 4u)) * 4u);
-    for (const auto& v : stl_vertices(slurp(d / "lig.data.bottom.stl")))
-        EXPECT_EQ(v[2], 0.0);
+    for (const auto& vertex : stl_vertices(slurp(d / "lig.data.bottom.stl")))
+        EXPECT_EQ(vertex[2], 0.0);
 }
 
 namespace {

@@ -236,17 +236,20 @@ namespace {
 /// All pairs (i < j) whose nearest copies in the periodic cell are closer than r_i + r_j +
 /// margin, by brute force over the nine copies of j: the reference for the wrapped list.
 std::set<std::pair<std::uint32_t, std::uint32_t>>
-periodic_brute_force(const Cloud& c, const Periodic& cell, double margin) {
+periodic_brute_force(const Cloud& c, const Periods& cell, double margin) {
     std::set<std::pair<std::uint32_t, std::uint32_t>> pairs;
+    const int z = cell.lz() > 0.0 ? 1 : 0;
     for (std::uint32_t i = 0; i < c.centers.size(); ++i)
         for (std::uint32_t j = i + 1; j < c.centers.size(); ++j) {
             const double cut = c.radii[i] + c.radii[j] + margin;
             for (int sx = -1; sx <= 1; ++sx)
-                for (int sy = -1; sy <= 1; ++sy) {
-                    const Vec3 copy = c.centers[j] + Vec3{sx * cell.lx(), sy * cell.ly(), 0.0};
-                    if (norm2(copy - c.centers[i]) < cut * cut)
-                        pairs.emplace(i, j);
-                }
+                for (int sy = -1; sy <= 1; ++sy)
+                    for (int sz = -z; sz <= z; ++sz) {
+                        const Vec3 copy =
+                            c.centers[j] + Vec3{sx * cell.lx(), sy * cell.ly(), sz * cell.lz()};
+                        if (norm2(copy - c.centers[i]) < cut * cut)
+                            pairs.emplace(i, j);
+                    }
         }
     return pairs;
 }
@@ -279,6 +282,26 @@ TEST(PeriodicNeighborList, SamePairsAsBruteForceOverTheCopies) {
         }
         EXPECT_EQ(entries, 2 * slow.size());
     }
+}
+
+TEST(PeriodicNeighborList, PeriodicAlongZTooSamePairsAsBruteForceOverThe27Copies) {
+    // A cell periodic on all six faces (a random array's): pairs across the bottom and the
+    // top, and across edges and corners of the cube, found once each, as by brute force; the
+    // same cloud without the period along z loses the ones across z.
+    const Periods cell(6.0, 5.0, 4.0);
+    Cloud c = random_cloud(700, 1.0, true, 22);
+    for (auto& p : c.centers)
+        p = {p.x * cell.lx(), p.y * cell.ly(), p.z / 3.0 * cell.lz()}; // the cloud's z: [0, 3)
+    NeighborList list;
+    list.wrap(cell);
+    list.build(c.centers, c.radii, 0.1);
+    const auto slow = periodic_brute_force(c, cell, 0.1);
+    EXPECT_EQ(pairs_of(list, c.centers.size()), slow);
+    const auto flat = periodic_brute_force(c, Periods(6.0, 5.0), 0.1);
+    ASSERT_GT(slow.size(), flat.size() + 30); // the pairs across z are exercised
+    EXPECT_NEAR(cell.separation({1.0, 1.0, 0.2}, {1.0, 1.0, 3.9}).z, -0.3, 1e-15);
+    EXPECT_DOUBLE_EQ(cell.wrapped({1.0, 1.0, -0.5}).z, 3.5);
+    EXPECT_DOUBLE_EQ(Periods(6.0, 5.0).wrapped({1.0, 1.0, -0.5}).z, -0.5);
 }
 
 TEST(PeriodicNeighborList, CentresOutsideTheCellAreFoundByTheirCopies) {

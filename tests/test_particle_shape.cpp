@@ -206,7 +206,7 @@ TEST(ShapedBed, TypesPointIntoTheTableOfShapes) {
     EXPECT_EQ(one.placement(1).orientation, Quaternion{});
     packing.types = {1, 0};
     packing.orientations = {Quaternion{}, Quaternion{0.0, 1.0, 0.0, 0.0}};
-    const ShapedBed<OffsetSphere> two(packing, {OffsetSphere{0.25}, OffsetSphere{0.75}});
+    const ShapedBed<OffsetSphere> two(packing, {OffsetSphere{0.25, {}}, OffsetSphere{0.75, {}}});
     EXPECT_EQ(two.shape(0).offset, 0.75);
     EXPECT_EQ(two.shape(1).offset, 0.25);
     // Turned half a turn about x, the second one's centre lies below its position.

@@ -22,6 +22,7 @@ Command register_generate(CLI::App& parent);
 Command register_analyze(CLI::App& parent);
 Command register_correlations(CLI::App& parent);
 Command register_lattice(CLI::App& parent);
+Command register_random_array(CLI::App& parent);
 Command register_hydraulics(CLI::App& parent);
 Command register_export(CLI::App& parent);
 Command register_voxelize(CLI::App& parent);
@@ -65,10 +66,11 @@ std::vector<Command> build_app(CLI::App& app) {
                    "read a subcommand's options from this TOML file (keys are the option names, "
                    "e.g. aspect-ratio = 5); the command line wins");
     app.config_formatter(std::make_shared<TomlConfig>(&app));
-    std::vector<Command> commands{
-        register_generate(app), register_lattice(app),    register_hydraulics(app),
-        register_export(app),   register_analyze(app),    register_correlations(app),
-        register_voxelize(app), register_cfd_report(app), register_import_lammps(app)};
+    std::vector<Command> commands{register_generate(app),     register_lattice(app),
+                                  register_random_array(app), register_hydraulics(app),
+                                  register_export(app),       register_analyze(app),
+                                  register_correlations(app), register_voxelize(app),
+                                  register_cfd_report(app),   register_import_lammps(app)};
     hide_defaults_outside_their_range(app);
     return commands;
 }

@@ -47,6 +47,9 @@ int run_export(ExportOptions& o) {
     // The container: --container, --container-radius or summary.json beside the file.
     if (export_uses_container(request))
         request.container = find_container(o.particles, o.container, o.container_radius);
+    // A random array's cell repeats along z with the period its summary.json records.
+    if (request.mesh.periodic_z && !(request.container_height > 0.0) && o.container.empty())
+        request.container_height = period_z_beside(o.particles).value_or(0.0);
     const std::string report = export_bed(file.packing, file.lines, request);
     if (!o.quiet)
         fmt::print("packbed export: {}\n", report);
@@ -105,7 +108,8 @@ Command register_export(CLI::App& parent) {
     app->add_option(
            "--container-height", o.request.container_height,
            "container height from the floor z = 0 (default: the bed's top + 1 Dp); with --flow "
-           "periodic the period along z, required")
+           "periodic the period along z (default: a random array's, from summary.json beside "
+           "the file)")
         ->check(real_in(option_range::container_height));
     app->add_flag("--no-container", o.request.no_container,
                   "surfaces: cut against the container but do not write its solids; data "

@@ -74,6 +74,10 @@ void TerminalProgress::operator()(const Progress& p) {
         fields.push_back("memory ~" + memory_text(m_memory));
     fields.push_back(fmt::format("Cg {:.2e}", p.cg));
     fields.push_back(fmt::format("mass centre {:.6f} Dp", p.mass_centre_z));
+    draw_status_line(fields);
+}
+
+void draw_status_line(const std::vector<std::string>& fields) {
     // One line that fits the terminal (a wrapped line could not be redrawn in place).
     struct winsize size {};
     std::size_t columns = 80;

@@ -21,6 +21,10 @@ bool progress_wanted(bool quiet);
 std::string fit_status_line(const std::vector<std::string>& fields_by_priority,
                             std::size_t columns);
 
+/// Draw `fields` on stderr's status line in place of the last one (fit_status_line to the
+/// terminal's width). The caller decides when (progress_wanted, at most ten times a second).
+void draw_status_line(const std::vector<std::string>& fields);
+
 /// Redraws one status line on stderr at most ten times a second. Not thread-safe.
 class TerminalProgress {
 public:

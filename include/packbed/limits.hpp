@@ -18,6 +18,15 @@ inline constexpr double max_length = 1e15;
 /// The most spheres a bed may hold: what packbed generates, reads or fills a region with.
 inline constexpr std::uint64_t max_spheres = 100'000'000;
 
+/// A random array (random_array.hpp): at most this solid fraction of its hard spheres, the
+/// freezing point of hard spheres, 0.494 (Hoover & Ree 1968): an equilibrium hard-sphere
+/// system above it is partly a crystal, not a random array.
+inline constexpr double max_hard_sphere_fraction = 0.49;
+/// The most spheres of a random array, and the most trial moves (spheres times sweeps) of its
+/// Monte Carlo: about 10 000 s at 1e6 moves a second.
+inline constexpr std::uint64_t max_random_array = 10'000'000;
+inline constexpr double max_random_array_moves = 1e10;
+
 /// The most ball positions `fill_lattice` tries (the cells of the lattice that overlap the
 /// region's bounding box, times the balls of a cell): 10 times those of the largest lattice
 /// allowed (max_spheres balls), which leaves room for the bounding box of a turned region;

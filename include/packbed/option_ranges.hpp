@@ -79,6 +79,13 @@ inline constexpr WholeRange threads{1, 1024};
 // lattice
 inline constexpr NumberRange lattice_band_clearance{0.0, 1e6, false, true};
 
+// random-array (hard spheres' freezing point, limits.hpp)
+inline constexpr WholeRange random_array_count{2, limits::max_random_array};
+inline constexpr NumberRange random_array_solid_fraction{0.0, limits::max_hard_sphere_fraction,
+                                                         true, false};
+inline constexpr NumberRange random_array_gap{0.0, 0.5};
+inline constexpr WholeRange random_array_sweeps{0, 1'000'000};
+
 // reading a bed, analyze, voxelize
 inline constexpr NumberRange floor_height{-limits::max_length, limits::max_length};
 inline constexpr NumberRange outside_tolerance{0.0, 1.0};

@@ -221,6 +221,11 @@ std::optional<Container> container_beside(const std::filesystem::path& particles
 /// none. \throws InvalidInput as container_beside
 std::optional<double> friction_beside(const std::filesystem::path& particles);
 
+/// The period along z recorded in `summary.json` beside a particle file (a random array's
+/// period_z). \return nothing when there is no such file or it records none.
+/// \throws InvalidInput as container_beside
+std::optional<double> period_z_beside(const std::filesystem::path& particles);
+
 /// The container a spec text names (parse_container). \throws InvalidInput naming `option`,
 /// the text and the four forms when it names none
 Container container_from_spec(std::string_view option, const std::string& spec);

@@ -142,6 +142,9 @@ struct BedSummary {
     /// the friction between spheres the bed was generated with (parameters.friction), when
     /// present
     std::optional<double> friction;
+    /// the period along z of a cell periodic on all six faces (`period_z`, packbed
+    /// random-array), when present
+    std::optional<double> period_z;
 };
 
 /// Read a summary.json. Absent keys are left empty; present ones must be right.

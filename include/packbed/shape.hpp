@@ -52,25 +52,31 @@ struct WallPlane {
 /// Periodicity in x and y, a boundary of the cell [0, LX) x [0, LY) rather than a wall: a
 /// sphere leaving one side comes back through the opposite one, and two spheres touch through
 /// the sides by the minimum image (their nearest copies). What the searches, the solvers and
-/// the exports ask of a periodic container (Container::periods). Immutable.
+/// the exports ask of a periodic container (Container::periods). Along z too when LZ > 0 (a
+/// random array, a cell the CFD case repeats along z: [0, LX) x [0, LY) x [0, LZ)); LZ = 0
+/// leaves z alone, to the bit. Immutable.
 class Periods {
 public:
-    /// \param lx,ly the periods (length, > 0)
-    Periods(double lx, double ly)
+    /// \param lx,ly the periods (length, > 0) \param lz the period along z, 0 for none
+    Periods(double lx, double ly, double lz = 0.0)
         : m_lx(lx)
-        , m_ly(ly) {}
+        , m_ly(ly)
+        , m_lz(lz) {}
 
     double lx() const { return m_lx; }
     double ly() const { return m_ly; }
+    /// \return the period along z, 0 when z does not repeat.
+    double lz() const { return m_lz; }
 
-    /// \return p moved by whole periods into [0, LX) x [0, LY) (z unchanged).
+    /// \return p moved by whole periods into [0, LX) x [0, LY) (and [0, LZ) when z repeats).
     Vec3 wrapped(const Vec3& p) const {
-        return {p.x - m_lx * std::floor(p.x / m_lx), p.y - m_ly * std::floor(p.y / m_ly), p.z};
+        return {p.x - m_lx * std::floor(p.x / m_lx), p.y - m_ly * std::floor(p.y / m_ly),
+                m_lz > 0.0 ? p.z - m_lz * std::floor(p.z / m_lz) : p.z};
     }
     /// \return the separation b - a between the nearest copies of a and b (minimum image),
     /// for |b - a| within one period and a half on each side: whole periods are taken off
-    /// each of x and y while it exceeds half a period. -separation(a, b) == separation(b, a)
-    /// to the bit.
+    /// each of x and y (and z when it repeats) while it exceeds half a period.
+    /// -separation(a, b) == separation(b, a) to the bit.
     Vec3 separation(const Vec3& a, const Vec3& b) const {
         Vec3 d = b - a;
         const double hx = 0.5 * m_lx, hy = 0.5 * m_ly;
@@ -82,11 +88,17 @@ public:
             d.y -= m_ly;
         else if (d.y < -hy)
             d.y += m_ly;
+        if (m_lz > 0.0) {
+            if (d.z > 0.5 * m_lz)
+                d.z -= m_lz;
+            else if (d.z < -0.5 * m_lz)
+                d.z += m_lz;
+        }
         return d;
     }
 
 private:
-    double m_lx, m_ly;
+    double m_lx, m_ly, m_lz;
 };
 
 /// The hydraulic diameter 4 A / P of a container's cross-section (A its area, P its wetted

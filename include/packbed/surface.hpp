@@ -89,9 +89,19 @@ struct SurfaceContainer {
     Container container = Container::tube(2.0);
     double height = 1.0;
     /// A periodic cell that repeats along z too, with `height` as its period (export --flow
-    /// periodic): its bottom and top are no floor and no lid, and caps cut a body at half the
-    /// gap from each, so that it and the copy across lie the whole gap apart.
+    /// periodic): its bottom and top are no floor and no lid but sides like the others, which a
+    /// sphere may cross (its copy comes in across the other), and two spheres touch across
+    /// them by the minimum image.
     bool periodic_z = false;
+
+    /// \return the container's periods (Container::periods), along z too (`height`) with
+    /// periodic_z; nothing for a container with walls.
+    std::optional<Periods> periods() const {
+        const std::optional<Periods> sides = container.periods();
+        if (sides && periodic_z)
+            return Periods(sides->lx(), sides->ly(), height);
+        return sides;
+    }
 };
 
 /// What bed_surface builds.

@@ -33,6 +33,7 @@ from ._core import (
     generate,
     hydraulics,
     lattice,
+    random_array,
     read,
     voxelize,
 )
@@ -52,6 +53,7 @@ __all__ = [
     "generate",
     "hydraulics",
     "lattice",
+    "random_array",
     "read",
     "voxelize",
 ]

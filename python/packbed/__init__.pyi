@@ -133,6 +133,17 @@ def lattice(
     out: Optional[str] = None,
     force: bool = False,
 ) -> Bed: ...
+def random_array(
+    *,
+    count: int,
+    solid_fraction: float = 0.3,
+    diameter: float = 1.0,
+    gap: float = 0.0,
+    sweeps: int = 1000,
+    seed: int = 1,
+    out: Optional[str] = None,
+    force: bool = False,
+) -> Bed: ...
 def voxelize(
     bed: Bed,
     *,

@@ -248,20 +248,12 @@ void refuse_meeting_footprints(const std::vector<Footprint>& f, std::size_t sphe
 
 /// Cut body b by a plane `gap` from the floor and from the wall where it comes closer than
 /// that: the plane tangent to the wall moved `gap` inwards (a cylinder's at the nearest
-/// point; each box face that near, two in a corner). In a cell periodic along z, half the gap
-/// from its bottom and its top instead of the floor.
+/// point; each box face that near, two in a corner). A cell periodic along z has no floor: a
+/// contact across its bottom and top is a pair's.
 void cut_at_walls(TreatedBody& b, double gap, const std::optional<SurfaceContainer>& container) {
-    if (container && container->periodic_z) {
-        // No floor: the bottom and the top face each other across the period, half the gap
-        // from each (the copy across is cut the same way).
-        const double half = 0.5 * gap, top = container->height;
-        if (b.center.z - b.radius < half)
-            b.cuts.push_back({{0.0, 0.0, -1.0}, -half});
-        if (b.center.z + b.radius > top - half)
-            b.cuts.push_back({{0.0, 0.0, 1.0}, top - half});
-    } else if (b.center.z - b.radius < gap) {
+    const bool floor = !(container && container->periodic_z);
+    if (floor && b.center.z - b.radius < gap)
         b.cuts.push_back({{0.0, 0.0, -1.0}, -gap});
-    }
     if (container)
         for (const WallPlane& wall : container->container.walls_within(b.center, b.radius, gap))
             b.cuts.push_back({wall.normal, wall.offset - gap});
@@ -287,7 +279,7 @@ TreatedBed treat_contacts(const Packing& packing, const Contacts& contacts,
                           const std::optional<SurfaceContainer>& container) {
     const std::size_t n = packing.size();
     // In a periodic cell the centres moved into the cell, and pairs by the minimum image.
-    const std::optional<Periods> cell = container ? container->container.periods() : std::nullopt;
+    const std::optional<Periods> cell = container ? container->periods() : std::nullopt;
     if (cell && (contacts.treatment == ContactTreatment::enlarge ||
                  contacts.treatment == ContactTreatment::bridges))
         throw InvalidInput(fmt::format(
@@ -304,7 +296,9 @@ TreatedBed treat_contacts(const Packing& packing, const Contacts& contacts,
         const double gap = contacts.treatment == ContactTreatment::caps
                                ? contacts.parameter * packing.mean_diameter()
                                : 0.0;
-        if (!(std::min(cell->lx(), cell->ly()) >= 2.0 * (widest + gap)))
+        const double narrowest = cell->lz() > 0.0 ? std::min({cell->lx(), cell->ly(), cell->lz()})
+                                                  : std::min(cell->lx(), cell->ly());
+        if (!(narrowest >= 2.0 * (widest + gap)))
             throw InvalidInput(fmt::format(
                 "--container {} is not allowed for spheres of diameter up to {}{}; allowed: "
                 "periods at least twice the largest diameter{}, {} (the minimum image)",
@@ -329,7 +323,7 @@ TreatedBed treat_contacts(const Packing& packing, const Contacts& contacts,
         return bed;
     std::vector<TreatedBody>& bodies = bed.bodies;
     for (std::size_t i = 0; i < n; ++i)
-        if (!(packing.centers[i].z > 0.0))
+        if (!(packing.centers[i].z > 0.0) && !(container && container->periodic_z))
             throw InvalidInput(fmt::format(
                 "sphere {} at ({:.6g}, {:.6g}, {:.6g}) has its centre on or below the floor "
                 "z = 0; allowed: centres above the floor for --contacts {}",
@@ -361,8 +355,7 @@ TreatedBed treat_contacts(const Packing& packing, const Contacts& contacts,
             }
             const Vec3& x = packing.centers[i];
             if ((container && container->container.wall_distances(x, radii[i]).first <= 0.0) ||
-                x.z - radii[i] <= 0.0 ||
-                (container && container->periodic_z && x.z + radii[i] >= container->height))
+                (x.z - radii[i] <= 0.0 && !(container && container->periodic_z)))
                 throw InvalidInput(fmt::format(
                     "--contacts shrink:{} leaves sphere {} at ({:.6g}, {:.6g}, {:.6g}) touching "
                     "the container; allowed: F above its overlap with the wall or floor",
@@ -443,6 +436,19 @@ TreatedBed treat_contacts(const Packing& packing, const Contacts& contacts,
     return bed;
 }
 
+namespace {
+
+/// The volume of the sphere inside the container between its floor and height; the whole
+/// sphere where it crosses the bottom or the top of a cell periodic along z (its parts beyond
+/// are inside across the other).
+double sphere_in_container(const SurfaceContainer& container, const Vec3& c, double r) {
+    if (container.periodic_z && (c.z - r < 0.0 || c.z + r > container.height))
+        return 4.0 / 3.0 * std::numbers::pi * r * r * r;
+    return container.container.sphere_volume(c, r, 0.0, container.height);
+}
+
+} // namespace
+
 TreatmentVolumes treatment_volumes(const Packing& packing, const TreatedBed& bed,
                                    const SurfaceContainer& container) {
     TreatmentVolumes v;
@@ -454,7 +460,7 @@ TreatmentVolumes treatment_volumes(const Packing& packing, const TreatedBed& bed
         if (n == 0)
             return sum;
         NeighborList list;
-        const std::optional<Periods> cell = container.container.periods();
+        const std::optional<Periods> cell = container.periods();
         if (cell)
             list.wrap(*cell);
         list.build(packing.centers, radii, 1e-9 * packing.mean_diameter());
@@ -467,8 +473,7 @@ TreatmentVolumes treatment_volumes(const Packing& packing, const TreatedBed& bed
         return sum;
     };
     for (std::size_t i = 0; i < n; ++i)
-        v.untouched_solid += container.container.sphere_volume(packing.centers[i], packing.radii[i],
-                                                               0.0, container.height);
+        v.untouched_solid += sphere_in_container(container, packing.centers[i], packing.radii[i]);
     v.untouched_solid -= lenses(packing.radii);
     bool untreated = bed.bridges.empty();
     for (std::size_t i = 0; i < n; ++i)
@@ -546,7 +551,7 @@ TreatedBed periodic_images(const TreatedBed& bed, const Periods& cell) {
         // The shifts that bring a copy into the cell: + a period where the sphere crosses
         // the low side, - one where it crosses the high side (both at once: narrower cells
         // are refused by the minimum image's rule, 2 Dp).
-        std::vector<double> xs{0.0}, ys{0.0};
+        std::vector<double> xs{0.0}, ys{0.0}, zs{0.0};
         if (b.center.x - b.radius < 0.0)
             xs.push_back(cell.lx());
         if (b.center.x + b.radius > cell.lx())
@@ -555,17 +560,22 @@ TreatedBed periodic_images(const TreatedBed& bed, const Periods& cell) {
             ys.push_back(cell.ly());
         if (b.center.y + b.radius > cell.ly())
             ys.push_back(-cell.ly());
-        for (const double sx : xs)
-            for (const double sy : ys) {
-                if (sx == 0.0 && sy == 0.0)
-                    continue;
-                const Vec3 shift{sx, sy, 0.0};
-                TreatedBody copy = b;
-                copy.center = b.center + shift;
-                for (HalfSpace& h : copy.cuts)
-                    h.offset += dot(h.normal, shift);
-                out.bodies.push_back(std::move(copy));
-            }
+        if (cell.lz() > 0.0 && b.center.z - b.radius < 0.0)
+            zs.push_back(cell.lz());
+        if (cell.lz() > 0.0 && b.center.z + b.radius > cell.lz())
+            zs.push_back(-cell.lz());
+        for (const double sz : zs)
+            for (const double sx : xs)
+                for (const double sy : ys) {
+                    if (sx == 0.0 && sy == 0.0 && sz == 0.0)
+                        continue;
+                    const Vec3 shift{sx, sy, sz};
+                    TreatedBody copy = b;
+                    copy.center = b.center + shift;
+                    for (HalfSpace& h : copy.cuts)
+                        h.offset += dot(h.normal, shift);
+                    out.bodies.push_back(std::move(copy));
+                }
     }
     return out;
 }
@@ -573,7 +583,7 @@ TreatedBed periodic_images(const TreatedBed& bed, const Periods& cell) {
 std::vector<Solid> bed_surface(const TreatedBed& given, const SurfaceOptions& options) {
     // A periodic cell: every body cut by a side and its copies across the sides.
     const std::optional<Periods> cell =
-        options.container ? options.container->container.periods() : std::nullopt;
+        options.container ? options.container->periods() : std::nullopt;
     const TreatedBed imaged = cell ? periodic_images(given, *cell) : TreatedBed{};
     const TreatedBed& bed = cell ? imaged : given;
     const std::vector<TreatedBody>& bodies = bed.bodies;

@@ -131,10 +131,11 @@ struct CellGrid {
 
 /// The points a search in a periodic cell runs on: the centres moved into the cell
 /// (`points[i]` = cell.wrapped(centers[i]) for i < n), followed by their copies shifted by one
-/// period in x, y or both that lie within `cut` of the cell, [-cut, L + cut) each way, each
-/// standing for its sphere (`owner[k]` is the sphere of point n + k). A search from a sphere's
-/// own point then finds every copy of every sphere within `cut` of it, for cut up to the
-/// smaller period (NeighborList::wrap, the analysis' contacts and g(r) in a periodic cell).
+/// period in x, y or both (and z when it repeats) that lie within `cut` of the cell,
+/// [-cut, L + cut) each way, each standing for its sphere (`owner[k]` is the sphere of point n +
+/// k). A search from a sphere's own point then finds every copy of every sphere within `cut` of it,
+/// for cut up to the smaller period (NeighborList::wrap, the analysis' contacts and g(r) in a
+/// periodic cell).
 inline void periodic_images(const Periods& cell, std::span<const Vec3> centers, double cut,
                             std::vector<Vec3>& points, std::vector<std::uint32_t>& owner) {
     const std::size_t n = centers.size();
@@ -142,18 +143,23 @@ inline void periodic_images(const Periods& cell, std::span<const Vec3> centers, 
     owner.clear();
     for (std::size_t i = 0; i < n; ++i)
         points[i] = cell.wrapped(centers[i]);
+    const int z_copies = cell.lz() > 0.0 ? 1 : 0; // copies across z when z repeats
+    const double lz = cell.lz();
     for (std::size_t i = 0; i < n; ++i)
         for (int sx = -1; sx <= 1; ++sx)
-            for (int sy = -1; sy <= 1; ++sy) {
-                if (sx == 0 && sy == 0)
-                    continue;
-                const Vec3 p{points[i].x + sx * cell.lx(), points[i].y + sy * cell.ly(),
-                             points[i].z};
-                if (p.x >= -cut && p.x < cell.lx() + cut && p.y >= -cut && p.y < cell.ly() + cut) {
-                    points.push_back(p);
-                    owner.push_back(static_cast<std::uint32_t>(i));
+            for (int sy = -1; sy <= 1; ++sy)
+                for (int sz = -z_copies; sz <= z_copies; ++sz) {
+                    if (sx == 0 && sy == 0 && sz == 0)
+                        continue;
+                    const Vec3 p{points[i].x + sx * cell.lx(), points[i].y + sy * cell.ly(),
+                                 points[i].z + sz * lz};
+                    if (p.x >= -cut && p.x < cell.lx() + cut && p.y >= -cut &&
+                        p.y < cell.ly() + cut &&
+                        (z_copies == 0 || (p.z >= -cut && p.z < lz + cut))) {
+                        points.push_back(p);
+                        owner.push_back(static_cast<std::uint32_t>(i));
+                    }
                 }
-            }
 }
 
 } // namespace packbed::detail

@@ -1064,6 +1064,7 @@ BedSummary read_bed_summary(std::istream& input, std::string_view name) {
         out.container_radius =
             number(json["container"], "radius", "container.radius", limits::max_length);
     out.diameter = number(json, "diameter", "diameter", limits::max_diameter);
+    out.period_z = number(json, "period_z", "period_z", limits::max_length);
     out.sauter_mean = json.contains("sizes") && json["sizes"].is_object();
     // The container, read back by its shape (Container::summary_json's record; a lattice
     // without a container record: its region's, region_json).

@@ -37,6 +37,11 @@ std::optional<double> friction_beside(const std::filesystem::path& particles) {
     return summary ? summary->friction : std::nullopt;
 }
 
+std::optional<double> period_z_beside(const std::filesystem::path& particles) {
+    const std::optional<BedSummary> summary = summary_beside(particles);
+    return summary ? summary->period_z : std::nullopt;
+}
+
 Container container_from_spec(std::string_view option, const std::string& spec) {
     const auto parsed = parse_container(spec);
     if (!parsed)

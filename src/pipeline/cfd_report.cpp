@@ -651,14 +651,14 @@ Report cfd_series(const std::vector<std::filesystem::path>& cases) {
         // the case holds (a periodic cell's mean in the fluid, else the superficial one) of
         // the first case given; the meshes' own void fractions, and so their superficial
         // velocities, differ.
-        const auto signature = [](const nlohmann::json& r) {
-            const bool cell = r.contains("periodic");
-            return std::array<double, 3>{cell ? r["void_fraction"]["exact"].get<double>()
-                                              : r["void_fraction"]["band"].get<double>(),
-                                         r["flow"]["diameter_m"].get<double>(),
-                                         cell
-                                             ? r["flow"]["interstitial_velocity_m_s"].get<double>()
-                                             : r["flow"]["superficial_velocity_m_s"].get<double>()};
+        const auto signature = [](const nlohmann::json& values) {
+            const bool cell = values.contains("periodic");
+            return std::array<double, 3>{
+                cell ? values["void_fraction"]["exact"].get<double>()
+                     : values["void_fraction"]["band"].get<double>(),
+                values["flow"]["diameter_m"].get<double>(),
+                cell ? values["flow"]["interstitial_velocity_m_s"].get<double>()
+                     : values["flow"]["superficial_velocity_m_s"].get<double>()};
         };
         if (!levels.empty()) {
             const auto a = signature(v), b = signature(levels.front().report);

@@ -95,22 +95,21 @@ std::optional<SurfaceContainer> bed_container(const ExportRequest& o, const Pack
                                        given.spec()));
     if (periodic_z && !(o.container_height > 0.0))
         throw InvalidInput("--flow periodic needs --container-height: the cell's period along z "
-                           "(a lattice's region height); allowed: a height that holds every "
-                           "sphere");
+                           "(a lattice's region height; a random array's summary.json gives "
+                           "its own); allowed: a height above every centre");
     const double height =
         o.container_height > 0.0 ? o.container_height : top + packing.mean_diameter();
     if (periodic_z) {
-        // Every sphere within the period: a sphere across the bottom or the top would need a
-        // copy across z, which the surfaces do not make.
-        const double slack = 1e-9 * packing.mean_diameter();
+        // Every centre within the period: a sphere may cross the bottom or the top (its copy
+        // comes in across the other), as it crosses the sides.
         for (std::size_t i = 0; i < packing.size(); ++i) {
-            const double z = packing.centers[i].z, r = packing.radii[i];
-            if (!(z - r >= -slack && z + r <= height + slack))
+            const double z = packing.centers[i].z;
+            if (!(z >= 0.0 && z < height))
                 throw InvalidInput(fmt::format(
-                    "{}:{}: the sphere at z = {} (radius {}) crosses the bottom or the top of "
-                    "the cell periodic along z with period {}; allowed with --flow periodic: "
-                    "every sphere between z = 0 and --container-height",
-                    printable(o.source), i < lines.size() ? lines[i] : i + 1, z, r, height));
+                    "{}:{}: the sphere centre at z = {} is outside the cell periodic along z "
+                    "with period {}; allowed with --flow periodic: centres from z = 0 to below "
+                    "--container-height",
+                    printable(o.source), i < lines.size() ? lines[i] : i + 1, z, height));
         }
     } else if (!(height > top)) {
         throw InvalidInput(fmt::format(
@@ -118,7 +117,7 @@ std::optional<SurfaceContainer> bed_container(const ExportRequest& o, const Pack
     }
     for (std::size_t i = 0; i < packing.size(); ++i) {
         const Vec3& c = packing.centers[i];
-        if (!(given.wall_distance(c) > 0.0) || c.z <= 0.0)
+        if (!(given.wall_distance(c) > 0.0) || (c.z <= 0.0 && !periodic_z))
             throw InvalidInput(
                 fmt::format("{}:{}: the sphere centre ({}, {}, {}) is outside the container ({}, "
                             "floor z = 0); allowed: centres inside it",

@@ -538,29 +538,65 @@ def test_export_writes_the_command_lines_openfoam_case(cli_bed, tmp_path):
 
 def test_export_of_a_cell_periodic_along_z_is_the_command_lines(tmp_path):
     # flow='periodic' is --flow periodic: the same case; the cell's numbers for cfd-report
-    status, _, err = cli("lattice", "--type", "sc", "--region", "periodic:3,3,2", "--origin",
+    status, _, err = cli("lattice", "--type", "sc", "--region", "periodic:3,3,3", "--origin",
                          "0.5,0.5,0.5", "-q", "--no-analysis", "-o", tmp_path / "cell")
     assert status == 0, err
     particles = str(tmp_path / "cell" / "particles.csv")
-    options = ["--contacts", "caps:0.02", "--container-height", "2", "--refine", "2"]
+    options = ["--contacts", "caps:0.02", "--container-height", "3", "--refine", "2"]
     status, _, err = cli("export", particles, "-f", "openfoam", "-q", "-o", tmp_path / "cli",
                          "--flow", "periodic", *options)
     assert status == 0, err
     packbed.export(packbed.read(particles), str(tmp_path / "py"), format="openfoam",
-                   flow="periodic", contacts="caps:0.02", container_height=2, refine=2)
+                   flow="periodic", contacts="caps:0.02", container_height=3, refine=2)
     for f in (tmp_path / "cli").rglob("*"):
         if f.is_file():
             assert (tmp_path / "py" / f.relative_to(tmp_path / "cli")).read_bytes() == \
                 f.read_bytes(), f
     cell = json.loads((tmp_path / "py" / "packbed.json").read_text())["openfoam"]["flow"]["periodic"]
-    # 18 touching balls, each with 6 caps 0.01 from its contacts (two of them across the
+    # 27 touching balls, each with 6 caps 0.01 from its contacts (two of them across the
     # bottom and the top): pi/6 - 6 caps of height 0.01 per unit of volume
     caps = 6 * math.pi * 0.01**2 * (3 * 0.5 - 0.01) / 3
-    assert cell["spheres"] == 18 and cell["sphere_radius"] == pytest.approx(0.5, rel=1e-14)
+    assert cell["spheres"] == 27 and cell["sphere_radius"] == pytest.approx(0.5, rel=1e-14)
     assert cell["solid_fraction"] == pytest.approx(math.pi / 6 - caps, rel=1e-12)
     with pytest.raises(ValueError, match="flow 'sideways' is not allowed"):
         packbed.export(packbed.read(particles), str(tmp_path / "bad"), format="openfoam",
                        flow="sideways", container_height=2)
+
+
+def test_random_array_is_the_command_lines_and_its_case_repeats_along_z(tmp_path):
+    # the same seed: the command line's bytes; the spheres no closer than (1 + gap) d across
+    # every face (the 27 copies of each, by brute force); the case's cell the array's own
+    status, _, err = cli("random-array", "-n", "40", "--solid-fraction", "0.3", "--gap", "0.05",
+                         "--sweeps", "200", "--seed", "3", "-q", "-o", tmp_path / "cli")
+    assert status == 0, err
+    array = packbed.random_array(count=40, solid_fraction=0.3, gap=0.05, sweeps=200, seed=3,
+                                 out=str(tmp_path / "py"))
+    assert (tmp_path / "py" / "particles.csv").read_bytes() == \
+        (tmp_path / "cli" / "particles.csv").read_bytes()
+    summary = json.loads((tmp_path / "cli" / "summary.json").read_text())
+    edge = summary["period_z"]
+    assert summary["container"]["spec"] == f"periodic:{edge:.9g},{edge:.9g}"
+    assert summary["solid_fraction"] == pytest.approx(40 * math.pi / 6 / edge**3, rel=1e-15)
+    assert summary["solid_fraction"] == pytest.approx(0.3, abs=2e-9)
+    c = np.array(array.centers)
+    assert ((c >= 0) & (c < edge)).all()
+    shifts = np.array([[i, j, k] for i in (-1, 0, 1) for j in (-1, 0, 1) for k in (-1, 0, 1)])
+    closest = min(np.linalg.norm(c[b] + shifts * edge - c[a], axis=1).min()
+                  for a in range(40) for b in range(a + 1, 40))
+    assert closest >= 1.05 and closest == pytest.approx(summary["closest_distance_d"], rel=1e-12)
+    with pytest.raises(ValueError, match="--count: 1 is not allowed"):
+        packbed.random_array(count=1)
+    # export flow='periodic' takes the array's period, as the command line does
+    status, _, err = cli("export", tmp_path / "cli" / "particles.csv", "-f", "openfoam", "-q",
+                         "--flow", "periodic", "--refine", "2", "-o", tmp_path / "cli-case")
+    assert status == 0, err
+    packbed.export(array, str(tmp_path / "py-case"), format="openfoam", flow="periodic", refine=2)
+    for name in ("system/blockMeshDict", "system/snappyHexMeshDict", "constant/fvOptions"):
+        assert (tmp_path / "py-case" / name).read_bytes() == \
+            (tmp_path / "cli-case" / name).read_bytes(), name
+    cell = json.loads((tmp_path / "py-case" / "packbed.json").read_text())["openfoam"]["flow"]
+    assert cell["periodic"]["period_z"] == edge
+    assert cell["periodic"]["solid_fraction"] == pytest.approx(0.3, abs=2e-9)
 
 
 def test_export_of_a_bed_made_in_python_holds_every_sphere(bed, tmp_path):
