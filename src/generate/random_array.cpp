@@ -255,9 +255,9 @@ RandomArray random_array(const RandomArrayParameters& p, const RandomArrayProgre
     // sigma_c, up to sigma. The pairs a raise puts below sigma_c are a growth's width apart,
     // and may_move only parts them.
     const std::uint64_t max_growth = 1'000'000;
-    double current = std::min(sigma, spheres.closest(sigma));
-    for (;;) {
-        const double closest = spheres.closest(sigma);
+    double closest = spheres.closest(sigma);
+    double current = std::min(sigma, closest);
+    for (;; closest = spheres.closest(sigma)) {
         if (closest >= current) {
             if (current == sigma)
                 break;
