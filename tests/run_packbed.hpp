@@ -17,7 +17,10 @@
 #include <sstream>
 #include <string>
 #include <system_error>
+#include <utility>
 #include <vector>
+
+#include <gtest/gtest.h>
 
 extern char** environ;
 
@@ -141,5 +144,38 @@ std::string listing(const std::filesystem::path& root, DescribeFile describe_fil
         all += l + "\n";
     return all;
 }
+
+/// The running test's scratch folder, private to this process (the same test may run in
+/// several processes at once: two people running the suite): `packbed-test-PROGRAM-PID/TEST`
+/// in the temporary directory. The program's folder goes when every test it ran passed
+/// (remove_when_passed); what failed stays for a look.
+inline std::filesystem::path test_folder(const std::string& program) {
+    const auto* info = ::testing::UnitTest::GetInstance()->current_test_info();
+    std::string test = std::string(info->test_suite_name()) + "." + info->name();
+    std::replace(test.begin(), test.end(), '/', '_');
+    return std::filesystem::temp_directory_path() /
+           ("packbed-test-" + program + "-" + std::to_string(::getpid())) / test;
+}
+
+/// Removes this process's `packbed-test-PROGRAM-PID` folder at the end of the test program
+/// when every test passed. Register once per program: `::testing::AddGlobalTestEnvironment(new
+/// RemoveWhenPassed("PROGRAM"))`.
+class RemoveWhenPassed : public ::testing::Environment {
+public:
+    explicit RemoveWhenPassed(std::string program)
+        : m_program(std::move(program)) {}
+    void TearDown() override {
+        if (!::testing::UnitTest::GetInstance()->Passed())
+            return;
+        std::error_code ec;
+        std::filesystem::remove_all(
+            std::filesystem::temp_directory_path() /
+                ("packbed-test-" + m_program + "-" + std::to_string(::getpid())),
+            ec);
+    }
+
+private:
+    std::string m_program;
+};
 
 } // namespace packbed::test

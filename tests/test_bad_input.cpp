@@ -239,15 +239,12 @@ void prepare(const fs::path& d) {
     prepare_nothing_lost(d);
 }
 
-/// The running test's scratch folder, private to this process: the same test may run in
-/// several processes at once (two people running the suite).
 fs::path test_folder() {
-    const auto* info = ::testing::UnitTest::GetInstance()->current_test_info();
-    std::string test = std::string(info->test_suite_name()) + "." + info->name();
-    std::replace(test.begin(), test.end(), '/', '_');
-    return fs::temp_directory_path() / ("packbed-test-bad-input-" + std::to_string(::getpid())) /
-           test;
+    return packbed::test::test_folder("bad-input");
 }
+
+const auto* const remove_scratch =
+    ::testing::AddGlobalTestEnvironment(new packbed::test::RemoveWhenPassed("bad-input"));
 
 /// A fresh scratch folder for the running test: `work` (the cases' folder) and `io`.
 fs::path scratch() {
@@ -346,11 +343,6 @@ TEST_P(CliBadInput, Exit2OneLineNamingTheInputNothingLeft) {
     }
     EXPECT_EQ(listing(d), before)
         << "the run changed its folder (listing after it, then before it)";
-    if (!HasFailure()) { // what failed stays for a look
-        std::error_code ec;
-        fs::remove_all(test_folder(), ec);
-        fs::remove(test_folder().parent_path(), ec); // when no other test left its folder
-    }
 }
 
 const std::string subcommands =
@@ -1593,11 +1585,6 @@ TEST(CliPaths, QuotesAndShellSyntaxInOutputPathsRunNothing) {
     EXPECT_EQ(entries, std::vector<std::string>{name});
     if (fs::exists(d / name / "radial_void_fraction.svg")) { // gnuplot installed: it ran there
         EXPECT_GT(fs::file_size(d / name / "radial_void_fraction.svg"), 0u);
-    }
-    if (!HasFailure()) {
-        std::error_code ec;
-        fs::remove_all(test_folder(), ec);
-        fs::remove(test_folder().parent_path(), ec); // when no other test left its folder
     }
 }
 

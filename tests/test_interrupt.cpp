@@ -61,15 +61,12 @@ namespace {
 /// A run that does not end within this after its signal hangs: killed, and the test fails.
 constexpr auto time_limit = 60s;
 
-/// The running test's scratch folder, private to this process: the same test may run in
-/// several processes at once (two people running the suite).
 fs::path test_folder() {
-    const auto* info = ::testing::UnitTest::GetInstance()->current_test_info();
-    std::string test = std::string(info->test_suite_name()) + "." + info->name();
-    std::replace(test.begin(), test.end(), '/', '_');
-    return fs::temp_directory_path() / ("packbed-test-interrupt-" + std::to_string(::getpid())) /
-           test;
+    return test::test_folder("interrupt");
 }
+
+const auto* const remove_scratch =
+    ::testing::AddGlobalTestEnvironment(new test::RemoveWhenPassed("interrupt"));
 
 /// A fresh folder `NAME/work` (where the run happens) and `NAME/io` (its stdout and stderr) for
 /// the running test.
@@ -573,11 +570,6 @@ TEST_P(Interrupt, LeavesNothingOrTheWholeOutput) {
         kill_during_output(c);
     else
         sweep(c);
-    if (!HasFailure()) { // what failed stays for a look
-        std::error_code ec;
-        fs::remove_all(test_folder(), ec);
-        fs::remove(test_folder().parent_path(), ec); // when no other test left its folder
-    }
 }
 
 std::vector<Case> cases() {
