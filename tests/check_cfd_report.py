@@ -185,6 +185,23 @@ def periodic_cases(exe, work):
     os.remove(os.path.join(unrun, "log.simpleFoam"))
     out = subprocess.run([exe, "cfd-report", unrun], capture_output=True, text=True)
     assert out.returncode == 2 and "no log.simpleFoam" in out.stderr, out.stderr
+    # A mesh that failed checkMesh: with a negative cell checkMesh prints no total volume, and
+    # the drag is refused, naming the first failure; a failed check with the volume is warned of.
+    negative = make_periodic_case(work, "negative", 7.0, 1000)
+    with open(os.path.join(negative, "log.checkMesh"), "w") as f:
+        f.write("    cells:            1000\n ***Zero or negative cell volume detected.  Minimum "
+                "negative volume: -2.2e-15, Number of negative volume cells: 1\n\n"
+                "Failed 2 mesh checks.\n")
+    out = subprocess.run([exe, "cfd-report", negative], capture_output=True, text=True)
+    assert out.returncode == 2 and out.stderr.count("\n") == 1, out.stderr
+    assert ("the mesh failed 2 of checkMesh's checks (log.checkMesh: \"Zero or negative cell "
+            "volume detected.") in out.stderr, out.stderr
+    skewed = make_periodic_case(work, "skewed", 7.0, 1000)
+    with open(os.path.join(skewed, "log.checkMesh"), "a") as f:
+        f.write(" ***Max skewness = 5.2, 1 highly skew faces detected\n\nFailed 1 mesh checks.\n")
+    out = subprocess.run([exe, "cfd-report", skewed], capture_output=True, text=True)
+    assert out.returncode == 0 and "the mesh failed 1 of checkMesh's checks" in out.stderr, \
+        out.stderr
 
 
 def report(exe, case, *extra):

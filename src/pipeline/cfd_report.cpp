@@ -160,11 +160,21 @@ SolverLog read_solver_log(const fs::path& case_dir) {
 }
 
 /// What log.checkMesh says of the mesh: its "cells: N" and "Total volume = V." (m^3 after
-/// Allrun's transformPoints), each nothing when absent (or no log), in one pass.
+/// Allrun's transformPoints), each nothing when absent (or no log), and the checks it failed
+/// ("Failed N mesh checks.", the first "***" line), in one pass. checkMesh prints no total
+/// volume when a cell's volume is zero or negative.
 struct MeshLog {
     std::optional<double> cells;
     std::optional<double> volume;
+    int failed_checks = 0;
+    std::string first_failure;
 };
+
+/// "the mesh failed N of checkMesh's checks (log.checkMesh: FIRST)".
+std::string failed_checks(const MeshLog& mesh) {
+    return fmt::format("the mesh failed {} of checkMesh's checks (log.checkMesh: \"{}\")",
+                       mesh.failed_checks, mesh.first_failure);
+}
 
 MeshLog read_mesh_log(const fs::path& case_dir) {
     const fs::path path = case_dir / "log.checkMesh";
@@ -180,6 +190,10 @@ MeshLog read_mesh_log(const fs::path& case_dir) {
         const auto fields = split_spaces(line);
         if (fields.size() == 2 && fields[0] == "cells:")
             out.cells = parse_finite(fields[1]);
+        if (fields.size() == 4 && fields[0] == "Failed" && fields[2] == "mesh")
+            out.failed_checks = static_cast<int>(parse_finite(fields[1]).value_or(1.0));
+        if (out.first_failure.empty() && !fields.empty() && fields[0].starts_with("***"))
+            out.first_failure = printable(std::string_view(line).substr(line.find("***") + 3));
         const auto at = line.find("Total volume = ");
         if (at == std::string::npos)
             continue;
@@ -256,6 +270,11 @@ Report periodic_report(const fs::path& case_dir, const nlohmann::json& json) {
                                        shown(case_dir)));
     const MeshLog mesh = read_mesh_log(case_dir);
     const std::optional<double> meshed = mesh.volume;
+    if (!meshed && mesh.failed_checks > 0)
+        throw InvalidInput(fmt::format("CASE {}: {}, and its volume is unknown; allowed: a mesh "
+                                       "that passes (a finer mesh, or wider gaps between the "
+                                       "spheres)",
+                                       shown(case_dir), failed_checks(mesh)));
     if (!meshed)
         throw InvalidInput(fmt::format("CASE {}: log.checkMesh has no \"Total volume\"; allowed: "
                                        "a case run by its Allrun",
@@ -277,6 +296,8 @@ Report periodic_report(const fs::path& case_dir, const nlohmann::json& json) {
 
     Report report;
     const double reynolds = rho * superficial * 2.0 * radius / mu;
+    if (mesh.failed_checks > 0)
+        report.warnings.push_back(fmt::format("{}: {}", shown(case_dir), failed_checks(mesh)));
     if (reynolds > stokes_reynolds)
         report.warnings.push_back(stokes_warning(case_dir, reynolds));
     nlohmann::ordered_json out;
@@ -503,6 +524,8 @@ Report cfd_report(const std::filesystem::path& case_dir) {
     out["void_fraction"] = voids;
     if (mesh.volume && mesh.cells)
         out["mesh"] = {{"cells", std::llround(*mesh.cells)}, {"volume_m3", *mesh.volume}};
+    if (mesh.failed_checks > 0)
+        report.warnings.push_back(fmt::format("{}: {}", shown(case_dir), failed_checks(mesh)));
     if (!log.converged)
         report.warnings.push_back(fmt::format("{}: no \"SIMPLE solution converged\" in "
                                               "log.simpleFoam: the pressures are those of the "
