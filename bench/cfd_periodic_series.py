@@ -14,7 +14,9 @@ Usage: bench/cfd_periodic_series.py PACKBED OUT PHI CPD [CPD ...]
     PHI: a solid fraction (0.216), "touching" or "random:N:FRACTION:GAP:SEED"; CPD: --cells-per-diameter of each level
     (level 1 at the spheres), coarse to fine. OUT is replaced. Prints a table and writes
     OUT/series.json. Each level also records Allrun's wall time, snappyHexMesh's "Finished
-    meshing in", simpleFoam's last ExecutionTime and the largest resident set of a process.
+    meshing in", simpleFoam's last ExecutionTime and the largest resident set of a process; a
+    level that cfd-report refuses (a mesh that failed checkMesh) records its reason as
+    "failed" and stays out of the extrapolation.
 """
 import json
 import math
@@ -79,8 +81,15 @@ def main():
         subprocess.run(["/usr/bin/time", "-f", "%M", "-o", f"{case}/memory", f"{case}/Allrun"],
                        check=True, stdout=subprocess.DEVNULL)
         seconds = time.time() - start
-        report = json.loads(subprocess.run([exe, "cfd-report", case, "--json", "-q"],
-                                           check=True, capture_output=True, text=True).stdout)
+        run = subprocess.run([exe, "cfd-report", case, "--json", "-q"], capture_output=True,
+                             text=True)
+        if run.returncode != 0:  # a mesh that failed checkMesh: recorded, left out of Celik's
+            row = {"cells_per_diameter": int(cpd), "failed": run.stderr.strip(),
+                   "seconds": time.time() - start}
+            rows.append(row)
+            print(json.dumps(row), flush=True)
+            continue
+        report = json.loads(run.stdout)
         cells = 0
         with open(f"{case}/log.checkMesh") as log:
             for line in log:
@@ -109,8 +118,9 @@ def main():
         rows.append(row)
         print(json.dumps(row), flush=True)
     result = {"phi": phi, "contacts": contacts, "levels": rows}
-    if len(rows) >= 3:
-        fine = rows[-3:][::-1]
+    passed = [r for r in rows if "failed" not in r]
+    if len(passed) >= 3:
+        fine = passed[-3:][::-1]
         result["celik"] = celik([r["h_over_d"] for r in fine], [r["K"] for r in fine])
         result["celik"]["extrapolated_F"] = (1.0 - phi) * result["celik"]["extrapolated"]
         print(json.dumps(result["celik"]))
