@@ -148,7 +148,7 @@ std::string listing(const std::filesystem::path& root, DescribeFile describe_fil
 /// The running test's scratch folder, private to this process (the same test may run in
 /// several processes at once: two people running the suite): `packbed-test-PROGRAM-PID/TEST`
 /// in the temporary directory. The program's folder goes when every test it ran passed
-/// (remove_when_passed); what failed stays for a look.
+/// (RemoveWhenPassed); what failed stays for a look.
 inline std::filesystem::path test_folder(const std::string& program) {
     const auto* info = ::testing::UnitTest::GetInstance()->current_test_info();
     std::string test = std::string(info->test_suite_name()) + "." + info->name();
