@@ -6,7 +6,9 @@ line. Asserts
 - the fitted gradient is the line's (to 1e-9: the tables hold 11 digits, as OpenFOAM writes
   them), and its standard error that of the least-squares formula when the planes scatter;
 - Ergun's and Eisfeld & Schnitzlein's gradients are their formulas (written out here, with their
-  sources) at the recorded void fraction, velocity, fluid and aspect ratio (to 1e-12);
+  sources) at the recorded void fraction, velocity, fluid and aspect ratio (to 1e-12), and so
+  is each of the band of correlations (Carman, KTA, Erdim et al., Harrison et al. too), its span
+  and whether the CFD lies in it; a bed with no wall gets those without a wall term;
 - the flux imbalance, the convergence and iteration count, each field's first initial residual of
   the last iteration, the mesh's void fraction (checkMesh's volume over the container's);
 - a restarted run's latest table is read;
@@ -243,8 +245,26 @@ def main(exe):
     if shutil.which("gnuplot"):
         for ext in ("svg", "png"):
             assert os.path.getsize(os.path.join(case, "cfd-report", f"pressure.{ext}")) > 0, ext
+    # The band: each correlation's f_v (Erdim et al. 2015's normalisation) written out here,
+    # times mu u (1-e)^2 / (d^2 e^3); Ergun's and E&S's the same as above.
+    re_m = RHO * U * d / MU / (1 - E)
+    wall = (1 + math.pi / (6 * A * (1 - E))) ** 2
+    b = 1 - math.pi**2 / (24 * A) * (1 - 1 / (2 * A))
+    f_v = {"ergun-1952": 150 + 1.75 * re_m, "carman-1937": 180 + 2.871 * re_m**0.9,
+           "kta-1981": 160 + 3 * re_m**0.9, "erdim-2015": 160 + 2.81 * re_m**0.904,
+           "harrison-2013": 119.8 * wall + 4.63 * b * re_m ** (5 / 6),
+           "eisfeld-schnitzlein-2001": 154 * aw**2 + aw / bw * re_m}
+    band = r["correlations"]["band"]
+    assert [c["name"] for c in band] == list(f_v), band
+    for c in band:
+        value = f_v[c["name"]] * MU * U * (1 - E) ** 2 / (d**2 * E**3)
+        assert math.isclose(c["Pa_m"], value, rel_tol=1e-12), (c, value)
+        assert math.isclose(c["cfd_over"], GRADIENT / value, rel_tol=1e-9), c
+    values = [c["Pa_m"] for c in band]
+    assert r["correlations"]["band_Pa_m"] == [min(values), max(values)], r["correlations"]
+    assert r["correlations"]["cfd_in_band"] == (min(values) <= GRADIENT <= max(values))
     print(f"line: {g['cfd']:.6f} Pa/m (made {GRADIENT}); Ergun {ergun:.6g}, Eisfeld & Schnitzlein "
-          f"{es:.6g} Pa/m")
+          f"{es:.6g} Pa/m; the band {min(values):.6g} to {max(values):.6g} Pa/m")
 
     # Scattered planes: the slope and its standard error of the least-squares formula.
     scatter = [0.1 * math.sin(3.0 * k) / RHO for k in range(9)]
@@ -273,6 +293,9 @@ def main(exe):
     k = GRADIENT * math.pi * d**3 / 6 / phi / (3 * math.pi * MU * d * U)
     vdh = 10 * phi / (1 - phi) ** 2 + (1 - phi) ** 2 * (1 + 1.5 * math.sqrt(phi))
     assert "eisfeld_schnitzlein_Pa_m" not in c, c
+    # No wall: the band holds the correlations without a wall term.
+    assert [b["name"] for b in c["band"]] == ["ergun-1952", "carman-1937", "kta-1981",
+                                               "erdim-2015"], c["band"]
     assert math.isclose(c["K"], k, rel_tol=1e-9) and math.isclose(c["F"], (1 - phi) * k,
                                                                  rel_tol=1e-9), (c, k)
     assert math.isclose(c["F_over_van_der_hoef"], (1 - phi) * k / vdh, rel_tol=1e-9), c

@@ -1,8 +1,14 @@
-// Hydraulics (Tsayger 2013 eq. (1), Ergun, Eisfeld & Schnitzlein, Wen & Yu) against values
-// computed by hand from the formulas.
+// Hydraulics (Tsayger 2013 eq. (1), Ergun, Eisfeld & Schnitzlein, Wen & Yu, the band of
+// pressure-drop correlations) against values computed by hand from the formulas or by an
+// independent implementation.
 #include <cmath>
+#include <limits>
 #include <numbers>
+#include <stdexcept>
 #include <string>
+#include <string_view>
+#include <utility>
+#include <vector>
 
 #include <gtest/gtest.h>
 
@@ -84,6 +90,86 @@ TEST(Hydraulics, EisfeldSchnitzleinWithTheWallEffect) {
                             "(1.624 to 250)");
     // The wall adds resistance: above Ergun at a = 10.
     EXPECT_GT(v.value, ergun_pressure_gradient(0.4, 0.01, water()));
+}
+
+/// The correlation `name` of pressure_drop_correlations().
+const PressureDropCorrelation& correlation(std::string_view name) {
+    for (const PressureDropCorrelation& c : pressure_drop_correlations())
+        if (c.name == name)
+            return c;
+    throw std::out_of_range(std::string(name));
+}
+
+TEST(Hydraulics, PressureDropCorrelationsAgreeWithAnIndependentImplementation) {
+    // The examples of the Python library `fluids` (C. Bell, fluids/packed_bed.py, written from
+    // Erdim et al.'s 2015 review): d = 0.8 mm, e = 0.4, u = 1 mm/s, water-like, L = 1 m, so
+    // Re_p = 0.8 and Re_m = 1.333; Harrison's with D = 10 mm (a = 12.5).
+    FluidAndParticles f = water();
+    f.diameter = 8e-4;
+    const double none = std::numeric_limits<double>::infinity();
+    const auto at = [&](std::string_view name, double a) {
+        return correlation(name).gradient(0.4, 1e-3, a, f).value;
+    };
+    EXPECT_NEAR(at("ergun-1952", none) / 1338.8671874999995, 1.0, 1e-12);
+    EXPECT_NEAR(at("carman-1937", none) / 1614.721678121775, 1.0, 1e-12);
+    EXPECT_NEAR(at("kta-1981", none) / 1440.409277034248, 1.0, 1e-12);
+    EXPECT_NEAR(at("erdim-2015", none) / 1438.2826958844414, 1.0, 1e-12);
+    EXPECT_NEAR(at("harrison-2013", 12.5) / 1255.1625662548427, 1.0, 1e-12);
+    // Ergun's as the function of its own.
+    EXPECT_NEAR(at("ergun-1952", none) / ergun_pressure_gradient(0.4, 1e-3, f), 1.0, 1e-14);
+}
+
+TEST(Hydraulics, PressureDropCorrelationsReachTheirCreepingConstants) {
+    // As Re -> 0, f_v = (dP/L) d^2 e^3 / (mu u (1-e)^2) -> the viscous constant: 150, 180, 160,
+    // 160, Harrison's 119.8 (1 + pi / (6 a (1-e)))^2 and Eisfeld & Schnitzlein's 154 A_w^2.
+    const FluidAndParticles f = water();
+    const double e = 0.4, u = 1e-12, a = 5.0;
+    const double scale =
+        f.diameter * f.diameter * e * e * e / (f.viscosity * u * (1 - e) * (1 - e));
+    const double harrison = std::pow(1.0 + std::numbers::pi / (6.0 * a * (1 - e)), 2);
+    const double aw = 1.0 + 2.0 / (3.0 * a * (1 - e));
+    const std::vector<std::pair<std::string_view, double>> constants = {
+        {"ergun-1952", 150.0},
+        {"carman-1937", 180.0},
+        {"kta-1981", 160.0},
+        {"erdim-2015", 160.0},
+        {"harrison-2013", 119.8 * harrison},
+        {"eisfeld-schnitzlein-2001", 154.0 * aw * aw}};
+    ASSERT_EQ(constants.size(), pressure_drop_correlations().size());
+    for (const auto& [name, constant] : constants)
+        EXPECT_NEAR(correlation(name).gradient(e, u, a, f).value * scale / constant, 1.0, 1e-7)
+            << name;
+    // With no wall (a infinite) the wall terms vanish: Harrison's 119.8, E&S's 154.
+    const double none = std::numeric_limits<double>::infinity();
+    EXPECT_NEAR(correlation("harrison-2013").gradient(e, u, none, f).value * scale, 119.8, 1e-5);
+    EXPECT_NEAR(correlation("eisfeld-schnitzlein-2001").gradient(e, u, none, f).value * scale,
+                154.0, 1e-5);
+}
+
+TEST(Hydraulics, PressureDropCorrelationsWarnOutsideTheirRanges) {
+    const FluidAndParticles f = water(); // d = 1 mm: u = 1 mm/s is Re_p = 1
+    const double none = std::numeric_limits<double>::infinity();
+    // Re_m = 1 / 0.6 = 1.667: below KTA's 100 and Erdim's 2; a = 5 below Harrison's 8.3.
+    EXPECT_EQ(correlation("kta-1981").gradient(0.4, 1e-3, none, f).warning,
+              "KTA 3102.3 (1981) evaluated outside its range: Re_m = 1.667 (100 to 100000)");
+    EXPECT_EQ(correlation("erdim-2015").gradient(0.4, 1e-3, 5.0, f).warning,
+              "Erdim et al. (2015) evaluated outside its range: Re_m = 1.667 (2 to 3582)");
+    EXPECT_EQ(correlation("harrison-2013").gradient(0.4, 1e-3, 5.0, f).warning,
+              "Harrison et al. (2013) evaluated outside its range: a = 5 (8.3 to 50)");
+    // Inside every range: no warning; a formula without a wall term is not held to its data's
+    // a when there is no wall.
+    EXPECT_EQ(correlation("erdim-2015").gradient(0.4, 3e-3, 10.0, f).warning, "");
+    EXPECT_EQ(correlation("erdim-2015").gradient(0.4, 3e-3, none, f).warning, "");
+    EXPECT_EQ(correlation("harrison-2013").gradient(0.4, 3e-3, 10.0, f).warning, "");
+    // A wall formula with no wall lies outside its data.
+    EXPECT_EQ(correlation("harrison-2013").gradient(0.4, 3e-3, none, f).warning,
+              "Harrison et al. (2013) evaluated outside its range: a = inf (8.3 to 50)");
+    // Ergun and Carman state no range here: never a warning.
+    EXPECT_EQ(correlation("carman-1937").gradient(0.9, 1e-9, 1.0, f).warning, "");
+    // Bad input: refused like the other functions.
+    EXPECT_THROW(correlation("kta-1981").gradient(0.4, 0.0, 5.0, f), InvalidInput);
+    EXPECT_THROW(correlation("kta-1981").gradient(0.4, 1e-3, -none, f), InvalidInput);
+    EXPECT_THROW(correlation("kta-1981").gradient(1.0, 1e-3, 5.0, f), InvalidInput);
 }
 
 TEST(Hydraulics, WenYuMinimumFluidization) {
@@ -228,6 +314,13 @@ TEST(Hydraulics, EveryResultIsFiniteAtTheEndsOfTheRanges) {
                                     << d << " " << g << " " << rho << " " << rho_p << " " << mu
                                     << " " << e << " " << u;
                                 EXPECT_LT(dp, 1e38);
+                                for (const PressureDropCorrelation& c :
+                                     pressure_drop_correlations())
+                                    for (const double a :
+                                         {1.0, 1e4, std::numeric_limits<double>::infinity()})
+                                        ASSERT_TRUE(std::isfinite(c.gradient(e, u, a, f).value))
+                                            << c.name << " " << d << " " << rho << " " << mu << " "
+                                            << e << " " << u << " " << a;
                             }
                             EXPECT_TRUE(std::isfinite(ar) && std::isfinite(w) &&
                                         std::isfinite(u_mf));

@@ -154,17 +154,27 @@ int run_cfd_report(const CfdReportOptions& o) {
                                       : std::string());
     fmt::print("\npressure gradient over z = {:.6g} to {:.6g} m ({} planes):\n",
                g["from_m"].get<double>(), g["to_m"].get<double>(), v["planes"].size());
-    fmt::print("  {:<34} {:>12} {:>10}\n", "", "Pa/m", "CFD / it");
-    fmt::print("  {:<34} {:>12.5g} {:>10}   (standard error {:.2g})\n", "CFD (fitted line)", cfd,
+    fmt::print("  {:<38} {:>12} {:>10}\n", "", "Pa/m", "CFD / it");
+    fmt::print("  {:<38} {:>12.5g} {:>10}   (standard error {:.2g})\n", "CFD (fitted line)", cfd,
                "", g["standard_error"].get<double>());
-    fmt::print("  {:<34} {:>12.5g} {:>10.4f}\n", "Ergun (1952)", c["ergun_Pa_m"].get<double>(),
-               c["cfd_over_ergun"].get<double>());
-    if (c.contains("eisfeld_schnitzlein_Pa_m"))
-        fmt::print(
-            "  {:<34} {:>12.5g} {:>10.4f}\n",
-            fmt::format("Eisfeld & Schnitzlein (a = {:.4g})", c["aspect_ratio"].get<double>()),
-            c["eisfeld_schnitzlein_Pa_m"].get<double>(),
-            c["cfd_over_eisfeld_schnitzlein"].get<double>());
+    // The band of correlations (Ergun's and Eisfeld & Schnitzlein's among them); * marks a
+    // value outside the correlation's stated range.
+    bool outside = false;
+    for (const auto& b : c["band"]) {
+        const bool beyond = !b["outside_range"].is_null();
+        outside = outside || beyond;
+        const std::string label = b["label"].get<std::string>();
+        fmt::print("  {:<38} {:>12.5g} {:>10.4f}{}\n",
+                   b["wall"].get<bool>()
+                       ? fmt::format("{} (a = {:.4g})", label, c["aspect_ratio"].get<double>())
+                       : label,
+                   b["Pa_m"].get<double>(), b["cfd_over"].get<double>(), beyond ? " *" : "");
+    }
+    const double low = c["band_Pa_m"][0].get<double>(), high = c["band_Pa_m"][1].get<double>();
+    fmt::print("  the {} correlations span {:.5g} to {:.5g} Pa/m: the CFD is {}{}\n",
+               c["band"].size(), low, high,
+               cfd < low ? "below them" : (cfd > high ? "above them" : "among them"),
+               outside ? "; * outside its stated range (--json says which)" : "");
     if (c.contains("van_der_hoef_random_F"))
         fmt::print("  F = (1 - phi) K = {:.5g} (K = F_total / (3 pi mu d U_s) = {:.5g});   van der "
                    "Hoef et al. (2005), random arrays: {:.4g} (CFD / it {:.4f})\n",

@@ -56,6 +56,11 @@ int run_hydraulics(const HydraulicsOptions& o, bool json) {
         fmt::print("\nwall correction: a = {}", drop["aspect_ratio_from"].get<std::string>());
     if (drop.contains("wall_correction"))
         fmt::print("\nwall correction: {}", drop["wall_correction"].get<std::string>());
+    fmt::print("\nthe band of pressure-drop correlations at u (docs/hydraulics.md; * outside its "
+               "stated range, --json says which):");
+    for (const auto& b : drop["band"])
+        fmt::print("\n  {:<30} {:>12.6g} Pa/m{}", b["label"].get<std::string>(),
+                   b["Pa_m"].get<double>(), b["outside_range"].is_null() ? "" : " *");
     fmt::print("\npermeability: Carman-Kozeny {:.6g} m^2, Ergun {:.6g} m^2\n",
                out["permeability_m2"]["carman_kozeny"].get<double>(),
                out["permeability_m2"]["ergun"].get<double>());

@@ -6,6 +6,7 @@
 
 #include <optional>
 #include <string>
+#include <string_view>
 #include <utility>
 #include <vector>
 
@@ -59,10 +60,55 @@ double ergun_pressure_gradient(double porosity, double velocity, const FluidAndP
 /// \f$A_w = 1 + 2/(3 a (1-e))\f$, \f$B_w = (k_1 a^{-2} + k_2)^2\f$, \f$K_1 = 154\f$,
 /// \f$k_1 = 1.15\f$, \f$k_2 = 0.87\f$, \f$Re = \rho u d / \mu\f$. Valid for
 /// \f$0.01 \le Re \le 17635\f$, \f$1.624 \le a \le 250\f$, \f$0.330 \le e \le 0.882\f$: outside,
-/// the value comes with a warning. \return Pa/m (velocity > 0, aspect ratio 1 to 1e4)
+/// the value comes with a warning (the entry `eisfeld-schnitzlein-2001` of
+/// pressure_drop_correlations()). \return Pa/m (velocity > 0, aspect ratio 1 to 1e4)
 CorrelationValue eisfeld_schnitzlein_pressure_gradient(double porosity, double velocity,
                                                        double aspect_ratio,
                                                        const FluidAndParticles& f);
+
+/// A pressure-drop correlation for beds of spheres, written as Erdim, Akgiray & Demir (2015)
+/// compare them: the normalised gradient \f$f_v = (\Delta P / L)\, d^2 e^3 / (\mu u
+/// (1-e)^2)\f$ as a function of the porosity e, the modified Reynolds number \f$Re_m = \rho u
+/// d / (\mu (1-e))\f$ and the aspect ratio a = D/d (infinite: no wall), so that \f$\Delta P /
+/// L = f_v \mu u (1-e)^2 / (d^2 e^3)\f$; in the creeping limit f_v is the correlation's
+/// constant (Ergun's 150, Carman's 180). Each entry carries its source, formula and validity
+/// ranges as the source states them (`modified`: its Reynolds range is on Re_m, else on
+/// \f$Re_p = \rho u d / \mu\f$).
+struct PressureDropCorrelation {
+    std::string_view name;    ///< registry key, e.g. "kta-1981"
+    std::string_view label;   ///< what people call it, e.g. "KTA 3102.3 (1981)"
+    std::string_view source;  ///< the publication
+    std::string_view formula; ///< f_v as plain text
+    bool wall = false;        ///< whether a enters the formula
+    bool modified = true;     ///< the Reynolds range is on Re_m (else on Re_p)
+    double re_low, re_high;   ///< validity range of the Reynolds number
+    double e_low, e_high;     ///< ... of the porosity
+    double a_low, a_high;     ///< ... of a (of the source's data for a formula without a)
+    double (*f_v)(double porosity, double re_m, double aspect_ratio);
+    /// \return the pressure gradient, Pa/m, at porosity e, superficial velocity u (m/s, > 0) and
+    /// aspect ratio a (>= 1, or infinite for a bed with no wall), with a warning naming what lies
+    /// outside the ranges (a is not checked when infinite and the formula has no wall term).
+    /// \throws InvalidInput for inputs outside their domains or a result that is not finite
+    CorrelationValue gradient(double porosity, double velocity, double aspect_ratio,
+                              const FluidAndParticles& f) const;
+};
+
+/// The pressure-drop correlations a CFD result is set against (Ergun 1952, Carman 1937, KTA
+/// 1981, Erdim et al. 2015, Harrison et al. 2013, Eisfeld & Schnitzlein 2001), filled in one
+/// place; how each was checked is in docs/sources.md.
+const std::vector<PressureDropCorrelation>& pressure_drop_correlations();
+
+/// One correlation of the band and its value.
+struct PressureDropBandValue {
+    const PressureDropCorrelation* correlation = nullptr;
+    CorrelationValue gradient; ///< Pa/m, with the warning outside its ranges
+};
+/// Every correlation of pressure_drop_correlations() at porosity e, superficial velocity u and
+/// aspect ratio a; with no wall (a infinite), those without a wall term. \throws InvalidInput
+/// as PressureDropCorrelation::gradient
+std::vector<PressureDropBandValue> pressure_drop_band(double porosity, double velocity,
+                                                      double aspect_ratio,
+                                                      const FluidAndParticles& f);
 
 /// The hydraulic diameter of a container's cross-section, \f$D_h = 4 A / P\f$ (A its area, P
 /// its wetted perimeter): a cylinder's D; an annulus' \f$4 \pi (R^2 - R_i^2) / (2 \pi (R +

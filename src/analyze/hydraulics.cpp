@@ -1,8 +1,11 @@
 #include "packbed/hydraulics.hpp"
 
+#include <algorithm>
 #include <array>
 #include <cmath>
 #include <initializer_list>
+#include <limits>
+#include <numbers>
 #include <string>
 #include <string_view>
 #include <vector>
@@ -134,38 +137,132 @@ double ergun_pressure_gradient(double e, double u, const FluidAndParticles& f) {
 
 CorrelationValue eisfeld_schnitzlein_pressure_gradient(double e, double u, double a,
                                                        const FluidAndParticles& f) {
-    require_porosity(e);
-    require(std::isfinite(u) && u > 0.0, "velocity", u, "> 0 (m/s)");
     require(std::isfinite(a) && a >= 1.0 && a <= limits::max_tube_aspect_ratio, "aspect-ratio", a,
             fmt::format("1 to {:g}", limits::max_tube_aspect_ratio));
-    f.validate();
-    const double re = f.fluid_density * u * f.diameter / f.viscosity;
+    // The band's entry.
+    static const PressureDropCorrelation& entry = *std::find_if(
+        pressure_drop_correlations().begin(), pressure_drop_correlations().end(),
+        [](const PressureDropCorrelation& c) { return c.name == "eisfeld-schnitzlein-2001"; });
+    return entry.gradient(e, u, a, f);
+}
+
+namespace {
+
+// The normalised gradients f_v(e, Re_m, a) of pressure_drop_correlations(), each with its
+// source; how each was checked is in docs/sources.md.
+
+/// Ergun (1952): \f$f_v = 150 + 1.75 Re_m\f$.
+double ergun_f_v(double, double re_m, double) {
+    return 150.0 + 1.75 * re_m;
+}
+/// Carman (1937): \f$f_v = 180 + 2.871 Re_m^{0.9}\f$. His \f$R_1 / (\rho u_1^2) = 5 / Re_1 +
+/// 0.4 / Re_1^{0.1}\f$ is \f$f' / 6\f$ with \f$Re_1 = Re_m / 6\f$ (\f$f' = f_v / Re_m\f$): 180
+/// = 6 * 5 * 6 and 2.871 = 6 * 0.4 * 6^0.1.
+double carman_f_v(double, double re_m, double) {
+    return 180.0 + 2.871 * std::pow(re_m, 0.9);
+}
+/// KTA 3102.3 (1981): \f$\psi = 320 / Re_m + 6 / Re_m^{0.1}\f$ with \f$\Delta P / L = \psi
+/// (1-e) / e^3 \rho u^2 / (2 d)\f$, so \f$f_v = 160 + 3 Re_m^{0.9}\f$.
+double kta_f_v(double, double re_m, double) {
+    return 160.0 + 3.0 * std::pow(re_m, 0.9);
+}
+/// Erdim, Akgiray & Demir (2015), their eq. for spheres: \f$f_v = 160 + 2.81 Re_m^{0.904}\f$.
+double erdim_f_v(double, double re_m, double) {
+    return 160.0 + 2.81 * std::pow(re_m, 0.904);
+}
+/// Harrison, Brunner & Hecker (2013), with the wall (Liu et al.'s 1994 wall terms): \f$f_v = 119.8
+/// A + 4.63 B Re_m^{5/6}\f$, \f$A = (1 + \pi / (6 a (1-e)))^2\f$, \f$B = 1 - \pi^2 / (24 a) (1 - 1
+/// / (2 a))\f$ (A = B = 1 without a wall, a infinite).
+double harrison_f_v(double e, double re_m, double a) {
+    const double pi = std::numbers::pi;
+    const double wall = 1.0 + pi / (6.0 * a * (1.0 - e));
+    const double b = 1.0 - pi * pi / (24.0 * a) * (1.0 - 1.0 / (2.0 * a));
+    return 119.8 * wall * wall + 4.63 * b * std::pow(re_m, 5.0 / 6.0);
+}
+/// Eisfeld & Schnitzlein (2001), spheres: \f$f_v = K_1 A_w^2 + (A_w / B_w) Re_m\f$ (their
+/// \f$\psi = \Delta P\,d / (L \rho u^2)\f$ times \f$Re_p\,e^3 / (1-e)^2\f$).
+double eisfeld_schnitzlein_f_v(double e, double re_m, double a) {
     const double aw = 1.0 + 2.0 / (3.0 * a * (1.0 - e));
     const double bw = std::pow(1.15 / (a * a) + 0.87, 2);
-    const double e3 = e * e * e, d = f.diameter;
-    // psi rho u^2 / d with the viscous term's 1 / Re multiplied out (mu u / d^2): no 0 * inf
-    // when Re underflows at a tiny velocity.
-    const double viscous = 154.0 * aw * aw * (1.0 - e) * (1.0 - e) / e3 * f.viscosity * u / (d * d);
-    const double inertial = aw / bw * (1.0 - e) / e3 * f.fluid_density * u * u / d;
-    CorrelationValue out{finite(viscous + inertial, "the Eisfeld & Schnitzlein pressure gradient",
-                                {{"porosity", e},
-                                 {"velocity", u},
-                                 {"aspect-ratio", a},
-                                 {"diameter", f.diameter},
-                                 {"fluid-density", f.fluid_density},
-                                 {"viscosity", f.viscosity}}),
-                         {}};
+    return 154.0 * aw * aw + aw / bw * re_m;
+}
+
+constexpr double unbounded = std::numeric_limits<double>::infinity();
+
+} // namespace
+
+const std::vector<PressureDropCorrelation>& pressure_drop_correlations() {
+    static const std::vector<PressureDropCorrelation> table = {
+        {"ergun-1952", "Ergun (1952)", "S. Ergun, Chem. Eng. Prog. 48 (1952) 89-94",
+         "f_v = 150 + 1.75 Re_m", false, true, 0.0, unbounded, 0.0, 1.0, 1.0, unbounded, ergun_f_v},
+        {"carman-1937", "Carman (1937)",
+         "P. C. Carman, Trans. Inst. Chem. Eng. (London) 15 (1937) 150-166",
+         "f_v = 180 + 2.871 Re_m^0.9", false, true, 0.0, unbounded, 0.0, 1.0, 1.0, unbounded,
+         carman_f_v},
+        {"kta-1981", "KTA 3102.3 (1981)",
+         "KTA 3102.3, Reactor core design of high-temperature gas-cooled reactors, part 3: loss "
+         "of pressure through friction in pebble bed cores (1981)",
+         "f_v = 160 + 3 Re_m^0.9", false, true, 100.0, 1e5, 0.36, 0.42, 1.0, unbounded, kta_f_v},
+        {"erdim-2015", "Erdim et al. (2015)",
+         "E. Erdim, O. Akgiray, I. Demir, Powder Technol. 283 (2015) 488-504",
+         "f_v = 160 + 2.81 Re_m^0.904", false, true, 2.0, 3582.0, 0.377, 0.470, 4.0, 34.1,
+         erdim_f_v},
+        {"harrison-2013", "Harrison et al. (2013)",
+         "L. D. Harrison, K. M. Brunner, W. C. Hecker, AIChE J. (2013), doi:10.1002/aic.14034",
+         "f_v = 119.8 A + 4.63 B Re_m^(5/6), A = (1 + pi / (6 a (1-e)))^2, B = 1 - pi^2 / (24 a) "
+         "(1 - 1 / (2 a))",
+         true, false, 0.72, 7700.0, 0.33, 0.88, 8.3, 50.0, harrison_f_v},
+        {"eisfeld-schnitzlein-2001", "Eisfeld & Schnitzlein (2001)",
+         "B. Eisfeld, K. Schnitzlein, Chem. Eng. Sci. 56 (2001) 4321-4329",
+         "f_v = 154 A_w^2 + (A_w / B_w) Re_m, A_w = 1 + 2 / (3 a (1-e)), B_w = (1.15 / a^2 + "
+         "0.87)^2",
+         true, false, 0.01, 17635.0, 0.330, 0.882, 1.624, 250.0, eisfeld_schnitzlein_f_v},
+    };
+    return table;
+}
+
+CorrelationValue PressureDropCorrelation::gradient(double e, double u, double a,
+                                                   const FluidAndParticles& f) const {
+    require_porosity(e);
+    require(std::isfinite(u) && u > 0.0, "velocity", u, "> 0 (m/s)");
+    require(a == unbounded || (a >= 1.0 && a <= limits::max_tube_aspect_ratio), "aspect-ratio", a,
+            fmt::format("1 to {:g}, or none (no wall)", limits::max_tube_aspect_ratio));
+    f.validate();
+    const double re_p = f.fluid_density * u * f.diameter / f.viscosity;
+    const double re_m = re_p / (1.0 - e);
+    const double d = f.diameter;
+    CorrelationValue out{
+        finite(f_v(e, re_m, a) * f.viscosity * u * (1.0 - e) * (1.0 - e) / (d * d * e * e * e),
+               fmt::format("the {} pressure gradient", label),
+               {{"porosity", e},
+                {"velocity", u},
+                {"aspect-ratio", a},
+                {"diameter", f.diameter},
+                {"fluid-density", f.fluid_density},
+                {"viscosity", f.viscosity}}),
+        {}};
     std::vector<std::string> outside;
-    if (re < 0.01 || re > 17635)
-        outside.push_back(fmt::format("Re = {:.4g} (0.01 to 17635)", re));
-    if (a < 1.624 || a > 250)
-        outside.push_back(fmt::format("a = {:.4g} (1.624 to 250)", a));
-    if (e < 0.330 || e > 0.882)
-        outside.push_back(fmt::format("porosity = {:.4g} (0.330 to 0.882)", e));
+    const double re = modified ? re_m : re_p;
+    if (re < re_low || re > re_high)
+        outside.push_back(fmt::format("{} = {:.4g} ({:g} to {:g})", modified ? "Re_m" : "Re_p", re,
+                                      re_low, re_high));
+    if (!(a == unbounded && !wall) && (a < a_low || a > a_high))
+        outside.push_back(fmt::format("a = {:.4g} ({:g} to {:g})", a, a_low, a_high));
+    if (e < e_low || e > e_high)
+        outside.push_back(fmt::format("porosity = {:.4g} ({:g} to {:g})", e, e_low, e_high));
     if (!outside.empty())
-        out.warning = fmt::format("Eisfeld & Schnitzlein (2001) evaluated outside its range: {}",
-                                  fmt::join(outside, ", "));
+        out.warning =
+            fmt::format("{} evaluated outside its range: {}", label, fmt::join(outside, ", "));
     return out;
+}
+
+std::vector<PressureDropBandValue> pressure_drop_band(double e, double u, double a,
+                                                      const FluidAndParticles& f) {
+    std::vector<PressureDropBandValue> band;
+    for (const PressureDropCorrelation& c : pressure_drop_correlations())
+        if (!(c.wall && a == unbounded))
+            band.push_back({&c, c.gradient(e, u, a, f)});
+    return band;
 }
 
 double wen_yu_reynolds(double archimedes) {

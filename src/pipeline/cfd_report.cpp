@@ -4,6 +4,7 @@
 #include <array>
 #include <cmath>
 #include <filesystem>
+#include <limits>
 #include <map>
 #include <numbers>
 #include <optional>
@@ -482,6 +483,28 @@ Report cfd_report(const std::filesystem::path& case_dir) {
                     report.warnings.push_back(stokes_warning(case_dir, re));
             }
         }
+        // The band of published correlations (pressure_drop_band).
+        const double a = correlations.contains("aspect_ratio")
+                             ? correlations["aspect_ratio"].get<double>()
+                             : std::numeric_limits<double>::infinity();
+        nlohmann::ordered_json band = nlohmann::ordered_json::array();
+        double low = std::numeric_limits<double>::infinity(), high = 0.0;
+        for (const PressureDropBandValue& b : pressure_drop_band(band_void, u, a, fluid)) {
+            const CorrelationValue& v = b.gradient;
+            band.push_back(
+                {{"name", b.correlation->name},
+                 {"label", b.correlation->label},
+                 {"wall", b.correlation->wall},
+                 {"Pa_m", v.value},
+                 {"cfd_over", gradient / v.value},
+                 {"outside_range", v.warning.empty() ? nlohmann::ordered_json()
+                                                     : nlohmann::ordered_json(v.warning)}});
+            low = std::min(low, v.value);
+            high = std::max(high, v.value);
+        }
+        correlations["band"] = band;
+        correlations["band_Pa_m"] = {low, high};
+        correlations["cfd_in_band"] = gradient >= low && gradient <= high;
     } catch (const InvalidInput& e) {
         throw InvalidInput(
             fmt::format("CASE {}: packbed.json's flow: {}", shown(case_dir), e.what()));

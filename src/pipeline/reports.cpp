@@ -1,6 +1,7 @@
 // The reports of `packbed hydraulics` and `packbed correlations` (pipeline.hpp).
 #include <cmath>
 #include <filesystem>
+#include <limits>
 #include <optional>
 #include <string>
 #include <system_error>
@@ -223,6 +224,16 @@ Report hydraulics_report(const HydraulicsRequest& o) {
     }
     if (!wall_correction.empty())
         out["pressure_gradient"]["wall_correction"] = wall_correction;
+    // The band of published correlations at the same point (pressure_drop_band).
+    out["pressure_gradient"]["band"] = nlohmann::json::array();
+    for (const PressureDropBandValue& b : pressure_drop_band(
+             e, u, aspect_ratio > 0.0 ? aspect_ratio : std::numeric_limits<double>::infinity(), f))
+        out["pressure_gradient"]["band"].push_back(
+            {{"name", b.correlation->name},
+             {"label", b.correlation->label},
+             {"Pa_m", b.gradient.value},
+             {"outside_range",
+              b.gradient.warning.empty() ? nlohmann::json() : nlohmann::json(b.gradient.warning)}});
     out["permeability_m2"] = {{"carman_kozeny", k_carman_kozeny}, {"ergun", k_ergun}};
     // Eqs. (2)-(4): eq. (1) at the exact porosities of the three regular packings.
     const double hexagonal = fluidization_coefficients(unit_cell(LatticeType::fcc).porosity).linear;
