@@ -5,6 +5,7 @@
 #include <optional>
 #include <string>
 #include <system_error>
+#include <vector>
 
 #include <fmt/format.h>
 
@@ -224,10 +225,12 @@ Report hydraulics_report(const HydraulicsRequest& o) {
     }
     if (!wall_correction.empty())
         out["pressure_gradient"]["wall_correction"] = wall_correction;
-    // The band of published correlations at the same point (pressure_drop_band).
+    // The band of published correlations at the same point (pressure_drop_band; none at rest,
+    // a velocity that underflowed to 0).
     out["pressure_gradient"]["band"] = nlohmann::json::array();
-    for (const PressureDropBandValue& b : pressure_drop_band(
-             e, u, aspect_ratio > 0.0 ? aspect_ratio : std::numeric_limits<double>::infinity(), f))
+    const double a = aspect_ratio > 0.0 ? aspect_ratio : std::numeric_limits<double>::infinity();
+    for (const PressureDropBandValue& b :
+         u > 0.0 ? pressure_drop_band(e, u, a, f) : std::vector<PressureDropBandValue>{})
         out["pressure_gradient"]["band"].push_back(
             {{"name", b.correlation->name},
              {"label", b.correlation->label},
