@@ -21,6 +21,7 @@ packages=(
   libboost-dev              # Boost.Math tanh-sinh quadrature (header-only)
   libcgal-dev               # mesh unions (packbed export --contacts enlarge/bridges)
   zlib1g-dev                # gzip-compressed bed files (.dump.gz, .csv.gz)
+  libccd-dev                # GJK/EPA overlap of convex pellets
   libgtest-dev              # tests
   libbenchmark-dev          # benchmarks
   python3                   # bench/ scripts, examples/validate.py

@@ -778,10 +778,12 @@ TEST(ContainerExportCli, LiggghtsSettlesAnAnnulusAConeAndAPeriodicBed) {
                       .find(fmt::format("packbed settle: {} atoms after 2000 steps", balls)),
                   std::string::npos)
             << slurp(d / "lig.out");
-        if (region[0] == 'c') // inside the cone's prism: R(z) = 9 + 0.25 z mm at its sides
-            for (const auto& s : last_dump_frame(slurp(d / "bed.data.liggghts.dump")))
+        if (region[0] == 'c') { // inside the cone's prism: R(z) = 9 + 0.25 z mm at its sides
+            for (const auto& s : last_dump_frame(slurp(d / "bed.data.liggghts.dump"))) {
                 EXPECT_LE(std::hypot(s[0], s[1]) + s[3] * std::hypot(24.0, 6.0) / 24.0,
                           (0.009 + 0.25 * s[2]) / std::cos(pi / 48.0) + 0.01 * 0.003);
+            }
+        }
         if (region[0] != 'a')
             continue;
         // Between the rod and the tube's prism (corners at R / cos(pi / 48) at most).

@@ -135,7 +135,19 @@ TEST(Quaternion, TurnsAboutItsAxisByTwiceItsHalfAngle) {
         EXPECT_NEAR(norm(rotate(r, v)), norm(v), 1e-14);
         const Vec3 back = rotate(conjugate(r), rotate(r, v));
         EXPECT_NEAR(norm(back - v), 0.0, 1e-14);
+        // The product turns by the right factor first, then the left.
+        const Quaternion s = random_rotation(rng);
+        EXPECT_NEAR(norm(rotate(s * r, v) - rotate(s, rotate(r, v))), 0.0, 1e-14);
     }
+    // The exponential map: 90 degrees about z is q above; a zero vector the identity;
+    // normalized makes a scaled quaternion unit again.
+    const Quaternion quarter = rotation_by({0.0, 0.0, 0.5 * std::numbers::pi});
+    EXPECT_NEAR(quarter.w, h, 1e-15);
+    EXPECT_NEAR(quarter.z, h, 1e-15);
+    EXPECT_EQ(rotation_by({}), Quaternion{});
+    const Quaternion unit = normalized({2.0 * h, 0.0, 0.0, 2.0 * h});
+    EXPECT_NEAR(unit.w, h, 1e-15);
+    EXPECT_NEAR(unit.z, h, 1e-15);
 }
 
 TEST(SphereShape, AnswersItsClosedForms) {
@@ -155,6 +167,7 @@ TEST(SphereShape, AnswersItsClosedForms) {
     const PairOverlap o = s.pair_overlap(p, s, {{3.5, 2.0, 3.0}, {}, 1.0}, {2.5, 0.0, 0.0});
     EXPECT_DOUBLE_EQ(o.depth, 0.5);
     EXPECT_EQ(o.normal, (Vec3{1.0, 0.0, 0.0}));
+    EXPECT_EQ(o.point, (Vec3{1.75, 0.0, 0.0})); // 2 - 0.5 / 2 from the first's centre
     // In a tube of radius 4 a sphere of radius 2 at rho = sqrt 5 presses the wall by
     // sqrt 5 + 2 - 4.
     const Container tube = Cylinder(4.0);

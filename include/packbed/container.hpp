@@ -197,6 +197,24 @@ public:
     /// Where the centres at least `margin` inside the side lie, from the floor up to
     /// `height` (a lattice's fill).
     FillWindow fill_window(double margin, double height) const;
+    /// The part of the line p + s u inside the side walls (their continuation above and below
+    /// included; the floor does not cut it), at most two intervals of s (shape.hpp's Chord):
+    /// what an oriented particle's exact volumes integrate over.
+    Chord side_chord(const Vec3& p, const Vec3& u) const;
+    /// f(contact) for each side wall the convex body of support function `support` reaches
+    /// beyond (shape.hpp's ConvexWallContact: depth > 0, measured as a sphere's wall overlap
+    /// is, along the wall's normal; the push; the deepest point). `centre` is a point of the
+    /// body and `reach` the radius about it that holds the body: a body whose sphere (centre,
+    /// reach) touches no wall is answered without a support call. A wall seen from inside (a
+    /// tube, a box face, a cone) is asked for the body's farthest point: the maximum over the
+    /// directions around the axis of the support function (a scan of 64 directions refined by
+    /// golden-section search to 1e-12 rad); an annulus' rod, convex towards the body, for the
+    /// least horizontal shift that clears it (the same search, on the body's projection).
+    void convex_wall_contacts(const SupportFunction& support, const Vec3& centre, double reach,
+                              const ConvexWallFunction& f) const;
+    /// \return the deepest of convex_wall_contacts, 0 when it touches no wall.
+    double convex_wall_overlap(const SupportFunction& support, const Vec3& centre,
+                               double reach) const;
     /// The side in an export's DEM settle inputs, `contact` the LAMMPS wall's contact model.
     DemSettleWall settle_wall(double height, std::string_view contact) const;
     /// The background mesh of an OpenFOAM case in the container up to `height`, cells of

@@ -32,6 +32,7 @@ struct Placement {
 struct PairOverlap {
     double depth = 0.0; ///< > 0: they overlap by this much (the penetration depth)
     Vec3 normal;        ///< unit, from the first towards the second (undefined when they coincide)
+    Vec3 point;         ///< where they touch, from the first's position (the middle of the overlap)
 };
 
 /// One sphere of a particle's DEM representation (the particle itself for a sphere, the
@@ -53,9 +54,11 @@ struct DemSphere {
 /// - `wall_overlap(c, p)`: the deepest overlap with the container's walls (0 when clear; the
 ///   floor is the solver's).
 /// - `pair_overlap(pa, b, pb, ab)`: with particle b, `ab` the vector from pa.position to
-///   pb.position as the caller measures it (the minimum image in a periodic cell).
+///   pb.position as the caller measures it (the minimum image in a periodic cell); a depth
+///   <= 0 when they are apart.
 /// - `wall_extent(c, wall, p)`: the nearest and farthest distance of its points from the
-///   container's profile wall `wall` (Container::profile_walls).
+///   container's profile wall `wall` (Container::profile_walls), or bounds on them (the shells
+///   between are measured by volume_from_wall).
 /// - `volume_in(c, p, z_low, z_high)`: its volume inside the container between two heights
 ///   (the slabs of the axial profile and the void fraction); `volume_from_wall(c, wall, d, p,
 ///   z_low, z_high)`: the part at least d from wall `wall` (a shell of the wall profile is a

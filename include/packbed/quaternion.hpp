@@ -1,6 +1,8 @@
 // A rotation as a unit quaternion: the orientation of a particle whose shape has one.
 #pragma once
 
+#include <cmath>
+
 #include "packbed/vec3.hpp"
 
 namespace packbed {
@@ -28,6 +30,29 @@ constexpr Vec3 rotate(const Quaternion& q, const Vec3& v) {
 /// The inverse rotation of a unit quaternion (its conjugate).
 constexpr Quaternion conjugate(const Quaternion& q) {
     return {q.w, -q.x, -q.y, -q.z};
+}
+
+/// The product a b: the rotation b, then a (Hamilton's product).
+constexpr Quaternion operator*(const Quaternion& a, const Quaternion& b) {
+    return {a.w * b.w - a.x * b.x - a.y * b.y - a.z * b.z,
+            a.w * b.x + a.x * b.w + a.y * b.z - a.z * b.y,
+            a.w * b.y - a.x * b.z + a.y * b.w + a.z * b.x,
+            a.w * b.z + a.x * b.y - a.y * b.x + a.z * b.w};
+}
+
+/// q scaled to unit length (the identity for a zero quaternion).
+inline Quaternion normalized(const Quaternion& q) {
+    const double n = std::sqrt(q.w * q.w + q.x * q.x + q.y * q.y + q.z * q.z);
+    return n > 0.0 ? Quaternion{q.w / n, q.x / n, q.y / n, q.z / n} : Quaternion{};
+}
+
+/// The rotation by |v| radians about v / |v| (the exponential map; the identity for v = 0).
+inline Quaternion rotation_by(const Vec3& v) {
+    const double angle = norm(v);
+    if (angle == 0.0)
+        return {};
+    const double s = std::sin(0.5 * angle) / angle;
+    return {std::cos(0.5 * angle), v.x * s, v.y * s, v.z * s};
 }
 
 } // namespace packbed

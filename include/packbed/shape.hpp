@@ -11,6 +11,7 @@
 #include <cmath>
 #include <concepts>
 #include <cstddef>
+#include <functional>
 #include <limits>
 #include <optional>
 #include <span>
@@ -48,6 +49,46 @@ struct WallPlane {
     Vec3 normal;
     double offset = 0.0;
 };
+
+/// The part of a line p + s u inside a container's side (its walls continued above and below:
+/// neither the floor nor a top cuts it), as at most two intervals of s in increasing order
+/// (two where an annulus' rod cuts the line); an end may be infinite (a vertical line inside a
+/// tube, any line in a periodic cell). What the exact volumes of an oriented particle
+/// integrate over (cylinder_shape.hpp).
+struct Chord {
+    struct Interval {
+        double low = 0.0;
+        double high = 0.0;
+    };
+    std::array<Interval, 2> parts{};
+    std::size_t count = 0;
+
+    /// The whole line.
+    static Chord whole() {
+        constexpr double inf = std::numeric_limits<double>::infinity();
+        return {{{{-inf, inf}, {}}}, 1};
+    }
+    /// The interval [low, high], or nothing where it is empty.
+    static Chord between(double low, double high) {
+        if (!(low < high))
+            return {};
+        return {{{{low, high}, {}}}, 1};
+    }
+};
+
+/// A convex body's support function: its point farthest along a direction v (not necessarily
+/// unit). What a container asks of a particle to find how far it reaches into the walls.
+using SupportFunction = std::function<Vec3(const Vec3&)>;
+
+/// How far a convex body reaches beyond one wall (depth <= 0: it does not), the wall's push
+/// (its inward unit normal there) and the body's point that reaches deepest.
+struct ConvexWallContact {
+    double depth = 0.0;
+    Vec3 push;
+    Vec3 point;
+};
+/// Called once per wall with its ConvexWallContact.
+using ConvexWallFunction = std::function<void(const ConvexWallContact&)>;
 
 /// Periodicity in x and y, a boundary of the cell [0, LX) x [0, LY) rather than a wall: a
 /// sphere leaving one side comes back through the opposite one, and two spheres touch through
@@ -209,7 +250,10 @@ struct FillWindow {
                                            const OpenFoamMeshOptions& options) const;              \
     double prism_volume(double height) const;                                                      \
     nlohmann::json region_json(double height) const;                                               \
-    FillWindow fill_window(double margin, double height) const
+    FillWindow fill_window(double margin, double height) const;                                    \
+    Chord side_chord(const Vec3& p, const Vec3& u) const;                                          \
+    void convex_wall_contacts(const SupportFunction& support, const Vec3& centre,                  \
+                              const ConvexWallFunction& f) const
 
 /// The answers at a height of a prism (a cross-section the same at every height): its area,
 /// the area between two distances from the wall and its depth, over the heights z_low to

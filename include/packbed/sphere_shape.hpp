@@ -29,11 +29,13 @@ struct SphereShape {
     double wall_overlap(const Container& c, const Placement& p) const {
         return c.wall_overlap(p.position, p.size);
     }
-    /// r_a + r_b - |ab| along ab / |ab|.
+    /// r_a + r_b - |ab| along ab / |ab|, touching r_a - depth / 2 from a's centre.
     PairOverlap pair_overlap(const Placement& a, const SphereShape&, const Placement& b,
                              const Vec3& ab) const {
         const double distance = norm(ab);
-        return {a.size + b.size - distance, ab * (1.0 / distance)};
+        const double depth = a.size + b.size - distance;
+        const Vec3 normal = ab * (1.0 / distance);
+        return {depth, normal, normal * (a.size - 0.5 * depth)};
     }
     std::pair<double, double> wall_extent(const Container& c, std::size_t wall,
                                           const Placement& p) const {

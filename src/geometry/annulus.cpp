@@ -7,6 +7,7 @@
 #include <fmt/format.h>
 #include <nlohmann/json.hpp>
 
+#include "geometry/around_axis.hpp"
 #include "geometry/shape_text.hpp"
 #include "packbed/limits.hpp"
 #include "packbed/volume.hpp"
@@ -319,6 +320,38 @@ FillWindow Annulus::fill_window(double margin, double) const {
     if (!(inner <= reach))
         w.box.x_high = w.box.x_low - 1.0;
     return w;
+}
+
+/// The line inside the tube less its part inside the rod: up to two intervals.
+Chord Annulus::side_chord(const Vec3& p, const Vec3& u) const {
+    const Chord tube = detail::inside_circle(p, u, m_outer);
+    const Chord rod = detail::inside_circle(p, u, m_inner);
+    if (tube.count == 0 || rod.count == 0)
+        return tube;
+    const Chord::Interval t = tube.parts[0], r = rod.parts[0];
+    Chord out;
+    if (const Chord before = Chord::between(t.low, std::min(t.high, r.low)); before.count)
+        out.parts[out.count++] = before.parts[0];
+    if (const Chord after = Chord::between(std::max(t.low, r.high), t.high); after.count)
+        out.parts[out.count++] = after.parts[0];
+    return out;
+}
+
+/// The tube as a cylinder's wall (the farthest point from the axis beyond the tube's radius),
+/// the rod as the least horizontal shift that clears it: the rod's radius less the largest,
+/// over the horizontal directions u, of the body's nearest extent along u, u . support(-u)
+/// (the penetration depth of the body's projection into the rod's circle), pushed along u.
+void Annulus::convex_wall_contacts(const SupportFunction& support, const Vec3& centre,
+                                   const ConvexWallFunction& f) const {
+    f(detail::beyond_tube(support, centre, m_outer));
+    const detail::AroundAxis clear = detail::maximum_around_axis(
+        [&](double phi) {
+            const Vec3 u = detail::around_axis(phi);
+            return dot(u, support(-1.0 * u));
+        },
+        std::atan2(centre.y, centre.x));
+    const Vec3 u = detail::around_axis(clear.phi);
+    f({m_inner - clear.value, u, support(-1.0 * u)});
 }
 
 } // namespace packbed

@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <limits>
 #include <numbers>
 
 #include <fmt/format.h>
@@ -294,6 +295,36 @@ std::string Box::region_allowed() {
 /// The box less `margin` on every side.
 FillWindow Box::fill_window(double margin, double) const {
     return {{m_x_low + margin, m_x_high - margin, m_y_low + margin, m_y_high - margin}};
+}
+
+/// The line clipped by the two pairs of faces (Liang-Barsky's slab test).
+Chord Box::side_chord(const Vec3& p, const Vec3& u) const {
+    double low = -std::numeric_limits<double>::infinity();
+    double high = std::numeric_limits<double>::infinity();
+    auto clip = [&](double start, double along, double lo, double hi) {
+        if (along == 0.0) {
+            if (start < lo || start > hi)
+                high = low; // parallel to the faces and outside: nothing
+            return;
+        }
+        const double a = (lo - start) / along, b = (hi - start) / along;
+        low = std::max(low, std::min(a, b));
+        high = std::min(high, std::max(a, b));
+    };
+    clip(p.x, u.x, m_x_low, m_x_high);
+    clip(p.y, u.y, m_y_low, m_y_high);
+    return Chord::between(low, high);
+}
+
+/// Each of the four faces by one support point along its outward normal (exact).
+void Box::convex_wall_contacts(const SupportFunction& support, const Vec3&,
+                               const ConvexWallFunction& f) const {
+    const Vec3 x_high = support({1.0, 0.0, 0.0}), x_low = support({-1.0, 0.0, 0.0});
+    const Vec3 y_high = support({0.0, 1.0, 0.0}), y_low = support({0.0, -1.0, 0.0});
+    f({x_high.x - m_x_high, {-1.0, 0.0, 0.0}, x_high});
+    f({m_x_low - x_low.x, {1.0, 0.0, 0.0}, x_low});
+    f({y_high.y - m_y_high, {0.0, -1.0, 0.0}, y_high});
+    f({m_y_low - y_low.y, {0.0, 1.0, 0.0}, y_low});
 }
 
 } // namespace packbed

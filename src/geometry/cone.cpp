@@ -9,6 +9,7 @@
 #include <fmt/format.h>
 #include <nlohmann/json.hpp>
 
+#include "geometry/around_axis.hpp"
 #include "geometry/shape_text.hpp"
 #include "geometry/volume_pieces.hpp"
 #include "packbed/limits.hpp"
@@ -342,6 +343,73 @@ double sphere_volume_in_cone_slab(const Vec3& center, double radius, double rb, 
                                   // the wall's disk inside the slice: the frustum itself
                                   return frustum_volume(rc, slope, t1, t2);
                               });
+}
+
+/// The line inside the nappe of the cone that holds the frustum: rho^2 <= R(z)^2 with
+/// R(z) >= 0, a quadratic inequality in s cut by a half-line (one interval: the nappe's inside
+/// is convex).
+Chord Cone::side_chord(const Vec3& p, const Vec3& u) const {
+    const double r0 = radius_at(p.z), ku = m_slope * u.z;
+    const double a = u.x * u.x + u.y * u.y - ku * ku;
+    const double b = p.x * u.x + p.y * u.y - ku * r0;
+    const double c = p.x * p.x + p.y * p.y - r0 * r0;
+    constexpr double inf = std::numeric_limits<double>::infinity();
+    // Where a s^2 + 2 b s + c <= 0: up to two intervals.
+    std::array<Chord::Interval, 2> parts{};
+    std::size_t count = 0;
+    if (a == 0.0) {
+        if (b > 0.0)
+            parts[count++] = {-inf, -c / (2.0 * b)};
+        else if (b < 0.0)
+            parts[count++] = {-c / (2.0 * b), inf};
+        else if (c <= 0.0)
+            parts[count++] = {-inf, inf};
+    } else {
+        const double disc = b * b - a * c;
+        if (disc > 0.0) {
+            const double q = -(b + std::copysign(std::sqrt(disc), b));
+            const double s1 = std::min(q / a, c / q), s2 = std::max(q / a, c / q);
+            if (a > 0.0) {
+                parts[count++] = {s1, s2};
+            } else {
+                parts[count++] = {-inf, s1};
+                parts[count++] = {s2, inf};
+            }
+        } else if (a < 0.0) {
+            parts[count++] = {-inf, inf};
+        }
+    }
+    // R(z(s)) = r0 + k u_z s >= 0.
+    double low = -inf, high = inf;
+    if (ku > 0.0)
+        low = -r0 / ku;
+    else if (ku < 0.0)
+        high = -r0 / ku;
+    else if (r0 < 0.0)
+        return {};
+    Chord out;
+    for (std::size_t i = 0; i < count; ++i)
+        if (const Chord part =
+                Chord::between(std::max(parts[i].low, low), std::min(parts[i].high, high));
+            part.count)
+            out.parts[out.count++] = part.parts[0];
+    return out;
+}
+
+/// How far the body reaches beyond the slanted wall along its normal: cos(theta) times the
+/// largest rho - R(z) over its points, max over the horizontal u of (u, -k) . support((u, -k))
+/// less Rb; pushed along the inward normal (-cos u, sin theta).
+void Cone::convex_wall_contacts(const SupportFunction& support, const Vec3& centre,
+                                const ConvexWallFunction& f) const {
+    auto outward = [&](double phi) { return Vec3{std::cos(phi), std::sin(phi), -m_slope}; };
+    const detail::AroundAxis far = detail::maximum_around_axis(
+        [&](double phi) {
+            const Vec3 v = outward(phi);
+            return dot(v, support(v));
+        },
+        std::atan2(centre.y, centre.x));
+    const Vec3 u = detail::around_axis(far.phi);
+    f({m_cos * (far.value - m_rb), {-m_cos * u.x, -m_cos * u.y, m_sin}, support(outward(far.phi))});
 }
 
 } // namespace packbed

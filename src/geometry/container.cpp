@@ -227,6 +227,30 @@ double Container::profile_position_from(std::size_t wall, double d) const {
     return ask(m_shape, [&](const auto& s) { return s.profile_position_from(wall, d); });
 }
 
+Chord Container::side_chord(const Vec3& p, const Vec3& u) const {
+    return ask(m_shape, [&](const auto& s) { return s.side_chord(p, u); });
+}
+
+void Container::convex_wall_contacts(const SupportFunction& support, const Vec3& centre,
+                                     double reach, const ConvexWallFunction& f) const {
+    if (wall_overlap(centre, reach) <= 0.0)
+        return;
+    ask(m_shape, [&](const auto& s) {
+        s.convex_wall_contacts(support, centre, [&](const ConvexWallContact& c) {
+            if (c.depth > 0.0)
+                f(c);
+        });
+    });
+}
+
+double Container::convex_wall_overlap(const SupportFunction& support, const Vec3& centre,
+                                      double reach) const {
+    double deepest = 0.0;
+    convex_wall_contacts(support, centre, reach,
+                         [&](const ConvexWallContact& c) { deepest = std::max(deepest, c.depth); });
+    return deepest;
+}
+
 double Container::sticks_out(const Vec3& c, double r) const {
     return ask(m_shape, [&](const auto& s) { return s.sticks_out(c, r); });
 }

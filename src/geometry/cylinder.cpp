@@ -7,6 +7,7 @@
 #include <fmt/format.h>
 #include <nlohmann/json.hpp>
 
+#include "geometry/around_axis.hpp"
 #include "geometry/shape_text.hpp"
 #include "packbed/limits.hpp"
 #include "packbed/volume.hpp"
@@ -203,6 +204,17 @@ std::string Cylinder::region_allowed() {
 FillWindow Cylinder::fill_window(double margin, double) const {
     const double reach = m_radius - margin;
     return {{-reach, reach, -reach, reach}, reach * reach, -1.0};
+}
+
+/// The line inside the circle of radius Rt (detail::inside_circle).
+Chord Cylinder::side_chord(const Vec3& p, const Vec3& u) const {
+    return detail::inside_circle(p, u, m_radius);
+}
+
+/// The body's farthest point from the axis, beyond Rt (a point's wall overlap).
+void Cylinder::convex_wall_contacts(const SupportFunction& support, const Vec3& centre,
+                                    const ConvexWallFunction& f) const {
+    f(detail::beyond_tube(support, centre, m_radius));
 }
 
 } // namespace packbed

@@ -206,4 +206,13 @@ std::optional<Periods> Periodic::periods() const {
     return Periods(*this);
 }
 
+/// A periodic cell has no side: the whole line.
+Chord Periodic::side_chord(const Vec3&, const Vec3&) const {
+    return Chord::whole();
+}
+
+/// No wall.
+void Periodic::convex_wall_contacts(const SupportFunction&, const Vec3&,
+                                    const ConvexWallFunction&) const {}
+
 } // namespace packbed

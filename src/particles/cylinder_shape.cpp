@@ -1,0 +1,290 @@
+#include "packbed/cylinder_shape.hpp"
+
+#include <algorithm>
+#include <array>
+#include <cmath>
+#include <limits>
+#include <numbers>
+#include <vector>
+
+#include <boost/math/quadrature/gauss_kronrod.hpp>
+#include <boost/math/quadrature/tanh_sinh.hpp>
+#include <ccd/ccd.h>
+
+#include "packbed/box.hpp"
+
+namespace packbed {
+
+namespace {
+
+constexpr double pi = std::numbers::pi;
+
+/// One pellet as libccd sees it: its shape and placement.
+struct CcdBody {
+    const CylinderShape* shape;
+    Placement placement;
+};
+
+void ccd_support(const void* object, const ccd_vec3_t* direction, ccd_vec3_t* out) {
+    const auto* body = static_cast<const CcdBody*>(object);
+    const Vec3 s =
+        body->shape->support(body->placement, {direction->v[0], direction->v[1], direction->v[2]});
+    ccdVec3Set(out, s.x, s.y, s.z);
+}
+
+void ccd_centre(const void* object, ccd_vec3_t* out) {
+    const auto* body = static_cast<const CcdBody*>(object);
+    const Vec3& c = body->placement.position;
+    ccdVec3Set(out, c.x, c.y, c.z);
+}
+
+void ccd_first_direction(const void* a, const void* b, ccd_vec3_t* out) {
+    const Vec3 d = static_cast<const CcdBody*>(b)->placement.position -
+                   static_cast<const CcdBody*>(a)->placement.position;
+    if (dot(d, d) > 0.0)
+        ccdVec3Set(out, d.x, d.y, d.z);
+    else
+        ccdVec3Set(out, 1.0, 0.0, 0.0);
+}
+
+/// The area of the part of a disc of radius r with in-plane coordinate w <= x along a
+/// direction: r^2 acos(-x / r) + x sqrt(r^2 - x^2), 0 below -r and pi r^2 above r.
+double disc_below(double r, double x) {
+    if (x <= -r)
+        return 0.0;
+    if (x >= r)
+        return pi * r * r;
+    return r * r * std::acos(-x / r) + x * std::sqrt((r - x) * (r + x));
+}
+
+/// A pellet's body frame in the bed: its axis and two directions across it.
+struct Frame {
+    Vec3 e1, e2, axis;
+};
+
+Frame frame_of(const Placement& p) {
+    return {rotate(p.orientation, {1.0, 0.0, 0.0}), rotate(p.orientation, {0.0, 1.0, 0.0}),
+            rotate(p.orientation, {0.0, 0.0, 1.0})};
+}
+
+/// The volume of a cylinder (radius r, half-length h, placed by p) between the heights z_low
+/// and z_high: each cross-section is a disc cut by two parallel chords, its area in closed form
+/// (disc_below); integrated along the axis by tanh-sinh quadrature on the pieces between the
+/// positions where a chord meets the rim (the area is analytic inside each piece, with square-
+/// root ends that tanh-sinh takes at full accuracy).
+double slab_volume(const Frame& f, const Vec3& centre, double r, double h, double z_low,
+                   double z_high) {
+    const double az = f.axis.z;
+    const double g = std::sqrt(std::max(0.0, 1.0 - az * az)); // the disc's steepest slope
+    if (g < 1e-12) {
+        // Upright: each disc at one height; the axis' part between the planes.
+        if (std::abs(az) == 0.0)
+            return 0.0;
+        const double t1 = (z_low - centre.z) / az, t2 = (z_high - centre.z) / az;
+        const double lo = std::max(-h, std::min(t1, t2)), hi = std::min(h, std::max(t1, t2));
+        return hi > lo ? pi * r * r * (hi - lo) : 0.0;
+    }
+    auto area = [&](double t) {
+        const double cz = centre.z + t * az;
+        return disc_below(r, (z_high - cz) / g) - disc_below(r, (z_low - cz) / g);
+    };
+    std::vector<double> cuts{-h, h};
+    if (az != 0.0)
+        for (const double plane : {z_low, z_high})
+            for (const double side : {-1.0, 1.0})
+                if (const double t = (plane - centre.z - side * r * g) / az; t > -h && t < h)
+                    cuts.push_back(t);
+    std::sort(cuts.begin(), cuts.end());
+    const std::size_t n = cuts.size();
+    thread_local boost::math::quadrature::tanh_sinh<double> rule;
+    double total = 0.0;
+    for (std::size_t i = 0; i + 1 < n; ++i)
+        if (cuts[i + 1] > cuts[i])
+            total += rule.integrate(area, cuts[i], cuts[i + 1], 1e-13);
+    return total;
+}
+
+/// The volume of the cylinder inside a region: the heights z_low..z_high and the side whose
+/// chords `chord(p, u)` gives (Chord), by polar coordinates on each cross-section: the part of
+/// the ray from the axis point c(t) along w(phi) inside the region is a few intervals of rho,
+/// their integral of rho d rho in closed form; the angle and the axis by adaptive
+/// Gauss-Kronrod (15 points, relative tolerance 1e-10, Boost.Math).
+template <class ChordOf>
+double region_volume(const Frame& f, const Vec3& centre, double r, double h, double z_low,
+                     double z_high, ChordOf&& chord) {
+    using Kronrod = boost::math::quadrature::gauss_kronrod<double, 15>;
+    auto ring = [&](double t, double phi) {
+        const Vec3 c = centre + t * f.axis;
+        const Vec3 w = std::cos(phi) * f.e1 + std::sin(phi) * f.e2;
+        double lo = 0.0, hi = r;
+        if (w.z > 0.0) {
+            lo = std::max(lo, (z_low - c.z) / w.z);
+            hi = std::min(hi, (z_high - c.z) / w.z);
+        } else if (w.z < 0.0) {
+            lo = std::max(lo, (z_high - c.z) / w.z);
+            hi = std::min(hi, (z_low - c.z) / w.z);
+        } else if (c.z < z_low || c.z > z_high) {
+            return 0.0;
+        }
+        if (!(hi > lo))
+            return 0.0;
+        const Chord side = chord(c, w);
+        double sum = 0.0;
+        for (std::size_t k = 0; k < side.count; ++k) {
+            const double a = std::max(lo, side.parts[k].low), b = std::min(hi, side.parts[k].high);
+            if (b > a)
+                sum += 0.5 * (b - a) * (b + a);
+        }
+        return sum;
+    };
+    // Each integral starts from pieces (32 of the angle, 16 of the axis) so that no part of
+    // the region narrower than a piece goes unseen by the rule's first nodes.
+    auto pieces = [](auto&& integrand, double a, double b, int n) {
+        double sum = 0.0;
+        for (int k = 0; k < n; ++k)
+            sum += Kronrod::integrate(integrand, a + (b - a) * k / n, a + (b - a) * (k + 1) / n, 6,
+                                      1e-8);
+        return sum;
+    };
+    auto section = [&](double t) {
+        return pieces([&](double phi) { return ring(t, phi); }, 0.0, 2.0 * pi, 32);
+    };
+    return pieces(section, -h, h, 16);
+}
+
+} // namespace
+
+CylinderShape CylinderShape::of_aspect(double aspect) {
+    const double r = std::cbrt(2.0 / (3.0 * aspect));
+    return {r, r * aspect};
+}
+
+double CylinderShape::bounding_radius(double size) const {
+    return size * std::hypot(radius, half_length);
+}
+
+double CylinderShape::volume(double size) const {
+    return 2.0 * pi * radius * radius * half_length * size * size * size;
+}
+
+Vec3 CylinderShape::support(const Placement& p, const Vec3& v) const {
+    const Vec3 w = rotate(conjugate(p.orientation), v);
+    const double across = std::hypot(w.x, w.y);
+    Vec3 body{0.0, 0.0, w.z > 0.0 ? half_length : (w.z < 0.0 ? -half_length : 0.0)};
+    if (across > 0.0) {
+        body.x = radius * w.x / across;
+        body.y = radius * w.y / across;
+    }
+    return p.position + rotate(p.orientation, body) * p.size;
+}
+
+void CylinderShape::wall_contacts(const Container& c, const Placement& p,
+                                  const ConvexWallFunction& f) const {
+    c.convex_wall_contacts([&](const Vec3& v) { return support(p, v); }, p.position,
+                           bounding_radius(p.size), f);
+}
+
+double CylinderShape::wall_overlap(const Container& c, const Placement& p) const {
+    return c.convex_wall_overlap([&](const Vec3& v) { return support(p, v); }, p.position,
+                                 bounding_radius(p.size));
+}
+
+PairOverlap CylinderShape::pair_overlap(const Placement& a, const CylinderShape& other,
+                                        const Placement& b, const Vec3& ab) const {
+    const double reach = bounding_radius(a.size) + other.bounding_radius(b.size);
+    const double distance = norm(ab);
+    const Vec3 along = distance > 0.0 ? ab * (1.0 / distance) : Vec3{0.0, 0.0, 1.0};
+    if (distance >= reach)
+        return {0.0, along, {}};
+    const CcdBody first{this, {{0.0, 0.0, 0.0}, a.orientation, a.size}};
+    const CcdBody second{&other, {ab, b.orientation, b.size}};
+    ccd_t ccd;
+    CCD_INIT(&ccd);
+    ccd.support1 = ccd_support;
+    ccd.support2 = ccd_support;
+    ccd.center1 = ccd_centre;
+    ccd.center2 = ccd_centre;
+    ccd.first_dir = ccd_first_direction;
+    ccd.max_iterations = 1000;
+    ccd.mpr_tolerance = 1e-12 * std::max(a.size, b.size);
+    ccd.dist_tolerance = 1e-12 * std::max(a.size, b.size);
+    ccd_real_t depth = 0.0;
+    ccd_vec3_t direction, position;
+    if (ccdMPRPenetration(&first, &second, &ccd, &depth, &direction, &position) != 0)
+        return {0.0, along, {}};
+    return {depth,
+            {direction.v[0], direction.v[1], direction.v[2]},
+            {position.v[0], position.v[1], position.v[2]}};
+}
+
+std::pair<double, double> CylinderShape::wall_extent(const Container& c, std::size_t wall,
+                                                     const Placement& p) const {
+    return c.wall_distances_from(wall, p.position, bounding_radius(p.size));
+}
+
+namespace {
+
+/// The volume of the cylinder in the container `c` between two heights: none where its
+/// bounding sphere misses the heights, the slab's closed-form sections where the sphere keeps
+/// clear of the side, the region's otherwise.
+double cylinder_in(const CylinderShape& shape, const Container& c, const Placement& p, double z_low,
+                   double z_high) {
+    const double reach = shape.bounding_radius(p.size);
+    const double low = std::max(z_low, p.position.z - reach);
+    const double high = std::min(z_high, p.position.z + reach);
+    if (!(high > low))
+        return 0.0;
+    const Frame f = frame_of(p);
+    const double r = shape.radius * p.size, h = shape.half_length * p.size;
+    if (c.wall_overlap(p.position, reach) <= 0.0 &&
+        c.contains({p.position.x, p.position.y, std::max(p.position.z, 0.0)}))
+        return slab_volume(f, p.position, r, h, low, high);
+    return region_volume(f, p.position, r, h, low, high,
+                         [&](const Vec3& q, const Vec3& u) { return c.side_chord(q, u); });
+}
+
+} // namespace
+
+double CylinderShape::volume_in(const Container& c, const Placement& p, double z_low,
+                                double z_high) const {
+    return cylinder_in(*this, c, p, z_low, z_high);
+}
+
+double CylinderShape::volume_from_wall(const Container& c, std::size_t wall, double d,
+                                       const Placement& p, double z_low, double z_high) const {
+    return cylinder_in(*this, c.shrunk_from(wall, d), p, z_low, z_high);
+}
+
+double CylinderShape::volume_in_box(const Placement& p, const Vec3& low, const Vec3& high) const {
+    const double reach = bounding_radius(p.size);
+    const Vec3& o = p.position;
+    if (o.x + reach <= low.x || o.x - reach >= high.x || o.y + reach <= low.y ||
+        o.y - reach >= high.y)
+        return 0.0;
+    const Container box(Box(low.x, high.x, low.y, high.y));
+    return cylinder_in(*this, box, p, low.z, high.z);
+}
+
+TriangleMesh CylinderShape::unit_surface(int level) const {
+    const auto n = static_cast<std::uint32_t>(12u << std::clamp(level, 0, 8));
+    TriangleMesh mesh;
+    mesh.vertices.reserve(2 * n + 2);
+    for (const double z : {-half_length, half_length})
+        for (std::uint32_t k = 0; k < n; ++k) {
+            const double phi = 2.0 * pi * k / n;
+            mesh.vertices.push_back({radius * std::cos(phi), radius * std::sin(phi), z});
+        }
+    const std::uint32_t bottom = 2 * n, top = 2 * n + 1;
+    mesh.vertices.push_back({0.0, 0.0, -half_length});
+    mesh.vertices.push_back({0.0, 0.0, half_length});
+    for (std::uint32_t k = 0; k < n; ++k) {
+        const std::uint32_t next = (k + 1) % n;
+        mesh.triangles.push_back({bottom, next, k});      // seen from below
+        mesh.triangles.push_back({top, n + k, n + next}); // seen from above
+        mesh.triangles.push_back({k, next, n + next});    // the side
+        mesh.triangles.push_back({k, n + next, n + k});
+    }
+    return mesh;
+}
+
+} // namespace packbed
