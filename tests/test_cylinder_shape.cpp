@@ -257,6 +257,83 @@ TEST(CylinderShape, PairOverlapSeparatesByBruteForce) {
     EXPECT_GE(tried, 20);
 }
 
+/// Brute force: the cylinder's (radius r, half-length h, placed by p) farthest point along u
+/// among 2048 points on each rim (the test's own; at most 6e-7 r short of the cylinder's).
+double sampled_support(const Placement& p, double r, double h, const Vec3& u) {
+    double far = -1e300;
+    for (int k = 0; k < 2048; ++k) {
+        const double phi = 2.0 * pi * k / 2048.0;
+        for (const double z : {-h, h}) {
+            const Vec3 body{r * std::cos(phi), r * std::sin(phi), z};
+            far = std::max(far, dot(u, p.position + rotate(p.orientation, body)));
+        }
+    }
+    return far;
+}
+
+/// Brute force: the least depth of two overlapping cylinders, the least over the unit
+/// directions u of sampled_support(a, u) + sampled_support(b, -u) (the distance from the
+/// origin to the boundary of their Minkowski difference): 2000 directions of a Fibonacci
+/// lattice, then a random search about the lowest, shrinking from 0.03 rad to 1e-8.
+std::pair<double, Vec3> least_depth(const Placement& a, const Placement& b, double r, double h) {
+    auto depth = [&](const Vec3& u) {
+        return sampled_support(a, r, h, u) + sampled_support(b, r, h, -1.0 * u);
+    };
+    double best = 1e300;
+    Vec3 at;
+    const int n = 2000;
+    for (int k = 0; k < n; ++k) {
+        const double z = 1.0 - 2.0 * (k + 0.5) / n, rho = std::sqrt(1.0 - z * z);
+        const double phi = k * pi * (3.0 - std::sqrt(5.0));
+        const Vec3 u{rho * std::cos(phi), rho * std::sin(phi), z};
+        if (const double d = depth(u); d < best) {
+            best = d;
+            at = u;
+        }
+    }
+    std::mt19937_64 rng(1);
+    std::normal_distribution<double> g;
+    for (double step = 0.03; step > 1e-8; step *= 0.85)
+        for (int k = 0; k < 30; ++k) {
+            Vec3 u = at + step * Vec3{g(rng), g(rng), g(rng)};
+            u = u * (1.0 / norm(u));
+            if (const double d = depth(u); d < best) {
+                best = d;
+                at = u;
+            }
+        }
+    return {best, at};
+}
+
+TEST(CylinderShape, PairOverlapIsTheLeastDepth) {
+    // Random pairs turned at random, deep, and moved along their least-depth direction until
+    // it is about 0.01 (as in a bed): the depth is the brute force's least within 2e-6 (its
+    // rims' sampling and search), where MPR's alone was up to 12 % above and libccd's EPA up
+    // to 1.4 % below.
+    const CylinderShape c{0.5, 0.8};
+    std::mt19937_64 rng(33);
+    std::normal_distribution<double> g;
+    int tried = 0;
+    for (int trial = 0; trial < 4; ++trial) {
+        const Placement a{{0.0, 0.0, 0.0}, random_rotation(rng), 1.0};
+        const Vec3 ab = Vec3{g(rng), g(rng), g(rng)} * 0.4;
+        const Quaternion qb = random_rotation(rng);
+        const auto [deep, u] = least_depth(a, {ab, qb, 1.0}, 0.5, 0.8);
+        if (!(deep > 0.02))
+            continue;
+        for (const double shift : {0.0, deep - 0.01}) {
+            const Vec3 moved = ab + shift * u;
+            const Placement b{moved, qb, 1.0};
+            const auto [reference, direction] = least_depth(a, b, 0.5, 0.8);
+            const PairOverlap o = c.pair_overlap(a, c, b, moved);
+            EXPECT_NEAR(o.depth, reference, 2e-6) << trial;
+            EXPECT_NEAR(dot(o.normal, direction), 1.0, 1e-3) << trial;
+            ++tried;
+        }
+    }
+    EXPECT_GE(tried, 4);
+}
+
 TEST(CylinderShape, WallOverlapInEveryContainer) {
     const CylinderShape c{0.5, 1.0};
     const Quaternion upright{};

@@ -46,10 +46,13 @@ struct CylinderShape {
     /// Container::convex_wall_contacts on the support function: f(contact) for each side wall
     /// it presses (the floor is the solver's: support(-z)).
     void wall_contacts(const Container& c, const Placement& p, const ConvexWallFunction& f) const;
-    /// The penetration by MPR (libccd's ccdMPRPenetration, tolerance 1e-12 of the sizes), b
-    /// placed at a.position + ab: a depth and normal that moving b by them separates the two,
-    /// and the contact point; depth 0 when the pellets are apart (libccd gives no distance),
-    /// the normal along ab.
+    /// The penetration depth, exactly: libccd's MPR (ccdMPRPenetration) says whether they
+    /// overlap and gives a first direction, then the least over the unit directions of the
+    /// closed-form support of their Minkowski difference (cylinder_shape.cpp's
+    /// cylinder_depth: the ends' normals, the sides' great circles, their crossings and the
+    /// smooth minima between), b placed at a.position + ab; the normal
+    /// from a towards b and the point halfway between the two deepest points. Depth 0 when
+    /// they are apart, the normal along ab.
     PairOverlap pair_overlap(const Placement& a, const CylinderShape& other, const Placement& b,
                              const Vec3& ab) const;
     /// Bounds: the wall distances of the bounding sphere (the shells between them are measured
