@@ -8,6 +8,7 @@
 
 #include <benchmark/benchmark.h>
 
+#include "packbed/cone.hpp"
 #include "packbed/container.hpp"
 #include "packbed/cylinder_shape.hpp"
 #include "packbed/sphere_shape.hpp"
@@ -88,19 +89,22 @@ void BM_CylinderWall(benchmark::State& state) {
 }
 
 /// The volume between two heights that cut every pellet: state.range(0) = 0 in the middle of
-/// the tube (closed-form sections), 1 at its shell 0.1 from the wall (the region's integral).
+/// the tube (closed-form sections across the axis), 1 at its shell 0.1 from the wall (closed-form
+/// horizontal sections), 2 the same shell of a cone with equal radii (the region's integral).
 void BM_CylinderVolume(benchmark::State& state) {
     const std::vector<Quaternion> q = rotations(64);
     const CylinderShape c = CylinderShape::of_aspect(1.0);
     const Container tube = Container::tube(5.0);
-    const bool shell = state.range(0) == 1;
+    const Container cone(Cone(2.5, 2.5, 100.0));
+    const auto kind = state.range(0);
     std::size_t k = 0;
     for (auto _ : state) {
-        const Placement p{{shell ? 2.0 : 0.0, 0.0, 3.0}, q[k++ % 64], 0.5};
-        benchmark::DoNotOptimize(shell ? c.volume_from_wall(tube, 0, 0.1, p, 2.9, 3.2)
-                                       : c.volume_in(tube, p, 2.9, 3.2));
+        const Placement p{{kind > 0 ? 2.0 : 0.0, 0.0, 3.0}, q[k++ % 64], 0.5};
+        benchmark::DoNotOptimize(kind == 0   ? c.volume_in(tube, p, 2.9, 3.2)
+                                 : kind == 1 ? c.volume_from_wall(tube, 0, 0.1, p, 2.9, 3.2)
+                                             : c.volume_from_wall(cone, 0, 0.1, p, 2.9, 3.2));
     }
-    state.SetLabel(shell ? "shell" : "slab");
+    state.SetLabel(kind == 0 ? "slab" : (kind == 1 ? "tube shell" : "cone shell"));
 }
 
 } // namespace
@@ -108,5 +112,5 @@ void BM_CylinderVolume(benchmark::State& state) {
 BENCHMARK(BM_SpherePair);
 BENCHMARK(BM_CylinderPair)->Unit(benchmark::kMicrosecond);
 BENCHMARK(BM_CylinderWall)->Unit(benchmark::kMicrosecond);
-BENCHMARK(BM_CylinderVolume)->Arg(0)->Arg(1)->Unit(benchmark::kMicrosecond);
+BENCHMARK(BM_CylinderVolume)->DenseRange(0, 2)->Unit(benchmark::kMicrosecond);
 BENCHMARK_MAIN();

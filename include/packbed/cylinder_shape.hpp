@@ -59,10 +59,10 @@ struct CylinderShape {
     /// exactly by volume_from_wall).
     std::pair<double, double> wall_extent(const Container& c, std::size_t wall,
                                           const Placement& p) const;
-    /// The volume inside the container between two heights, by integration over its
-    /// cross-sections (cylinder_shape.cpp: closed-form disc-strip areas integrated along the
-    /// axis where the side cannot cut it, nested adaptive Gauss-Kronrod over the cross-sections'
-    /// polar angle and the axis otherwise).
+    /// The volume inside the container between two heights, by integration over its sections
+    /// (cylinder_shape.cpp: closed-form disc-strip areas along the axis where the side cannot
+    /// cut it; in a tube, closed-form horizontal sections met with the wall's circle; nested
+    /// adaptive Gauss-Kronrod over the cross-sections' polar angle and the axis otherwise).
     double volume_in(const Container& c, const Placement& p, double z_low, double z_high) const;
     /// The same in the container shrunk from wall `wall` by d (Container::shrunk_from).
     double volume_from_wall(const Container& c, std::size_t wall, double d, const Placement& p,
