@@ -359,8 +359,8 @@ std::pair<Vec3, Vec3> across(const Vec3& n) {
 /// The least of f over the great circle across n: 720 angles, then golden-section search about
 /// each of the three lowest to 1e-13 rad. Returns the value and the direction.
 template <class F> std::pair<double, Vec3> least_on_circle(F&& f, const Vec3& n) {
-    const auto [e1, e2] = across(n);
-    auto at = [&](double t) { return std::cos(t) * e1 + std::sin(t) * e2; };
+    const std::pair<Vec3, Vec3> frame = across(n);
+    auto at = [&](double t) { return std::cos(t) * frame.first + std::sin(t) * frame.second; };
     constexpr int scan = 720;
     constexpr double step = 2.0 * pi / scan;
     std::array<std::pair<double, double>, scan> values;
