@@ -23,10 +23,8 @@ std::vector<Quaternion> rotations(std::size_t n) {
     std::uniform_real_distribution<double> u(0.0, 1.0);
     std::vector<Quaternion> out(n);
     for (Quaternion& q : out) {
-        const double u1 = u(rng), u2 = 2.0 * std::numbers::pi * u(rng);
-        const double u3 = 2.0 * std::numbers::pi * u(rng);
-        const double a = std::sqrt(1.0 - u1), b = std::sqrt(u1);
-        q = {b * std::cos(u3), a * std::sin(u2), a * std::cos(u2), b * std::sin(u3)};
+        const double u1 = u(rng), u2 = u(rng), u3 = u(rng);
+        q = uniform_rotation(u1, u2, u3);
     }
     return out;
 }

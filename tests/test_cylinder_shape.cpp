@@ -38,9 +38,8 @@ Quaternion about(const Vec3& axis, double angle) {
 /// A uniformly random rotation (Shoemake 1992, from three uniform numbers).
 Quaternion random_rotation(std::mt19937_64& rng) {
     std::uniform_real_distribution<double> u(0.0, 1.0);
-    const double u1 = u(rng), u2 = 2.0 * pi * u(rng), u3 = 2.0 * pi * u(rng);
-    const double a = std::sqrt(1.0 - u1), b = std::sqrt(u1);
-    return {b * std::cos(u3), a * std::sin(u2), a * std::cos(u2), b * std::sin(u3)};
+    const double u1 = u(rng), u2 = u(rng), u3 = u(rng);
+    return uniform_rotation(u1, u2, u3);
 }
 
 /// The area of the part of a circle of radius r beyond a chord at distance d from its centre.

@@ -2,6 +2,7 @@
 #pragma once
 
 #include <cmath>
+#include <numbers>
 
 #include "packbed/vec3.hpp"
 
@@ -53,6 +54,16 @@ inline Quaternion rotation_by(const Vec3& v) {
         return {};
     const double s = std::sin(0.5 * angle) / angle;
     return {std::cos(0.5 * angle), v.x * s, v.y * s, v.z * s};
+}
+
+/// The rotation that three independent uniform numbers u1, u2, u3 in [0, 1) make uniformly
+/// random over all rotations (Shoemake, "Uniform random rotations", Graphics Gems III, 1992):
+/// (sqrt(u1) cos 2 pi u3, sqrt(1 - u1) sin 2 pi u2, sqrt(1 - u1) cos 2 pi u2, sqrt(u1) sin 2 pi
+/// u3).
+inline Quaternion uniform_rotation(double u1, double u2, double u3) {
+    const double t2 = 2.0 * std::numbers::pi * u2, t3 = 2.0 * std::numbers::pi * u3;
+    const double a = std::sqrt(1.0 - u1), b = std::sqrt(u1);
+    return {b * std::cos(t3), a * std::sin(t2), a * std::cos(t2), b * std::sin(t3)};
 }
 
 } // namespace packbed
