@@ -10,6 +10,7 @@
 #include <numbers>
 #include <string_view>
 #include <utility>
+#include <vector>
 
 #include "packbed/container.hpp"
 #include "packbed/mesh.hpp"
@@ -73,6 +74,38 @@ struct CylinderShape {
     /// R (1 - cos(pi / n))), each end a fan about its centre, the side one band of quads split
     /// into triangles.
     TriangleMesh unit_surface(int level) const;
+    /// Nodes on the surface at size 1 at most about `spacing` apart (> 0): rings at radii
+    /// j R / p (j = 0 .. p, p = ceil(R / spacing)) on each end and rows at heights -L/2 ..
+    /// L/2 (ceil(L / spacing) steps) on the side, ceil(2 pi R / spacing) nodes about the rim
+    /// and each row, proportionally fewer about an inner ring. The rims are shared by an end
+    /// and the side. Each node stands for the area of its ring's or row's band about it (the
+    /// halves of the neighbouring steps): the areas add up to 2 pi R^2 + 2 pi R L. Without
+    /// `rows`, the side's rows (rims included) are left out: surface_circles has them whole.
+    std::vector<SurfaceNode> surface_nodes(double spacing, bool rows = true) const;
+    /// The side's rows of surface_nodes (the rims first) as circles, each with the area its
+    /// nodes stand for per unit length.
+    std::vector<SurfaceCircle> surface_circles(double spacing) const;
+    /// The body-frame point q (size 1)'s depth inside (inside(q).depth) where it is inside;
+    /// outside, minus its distance from the cylinder.
+    double signed_depth(const Vec3& q) const {
+        const double side = std::sqrt(q.x * q.x + q.y * q.y) - radius;
+        const double end = std::abs(q.z) - half_length;
+        if (side <= 0.0 && end <= 0.0)
+            return -std::max(side, end);
+        const double s = std::max(side, 0.0), e = std::max(end, 0.0);
+        return -std::sqrt(s * s + e * e);
+    }
+    /// How deep the body-frame point q (size 1) lies inside: min(R - r, L/2 - |z|) where both
+    /// are positive, out through the side or the end it is nearer (the side where equal).
+    InsideDepth inside(const Vec3& q) const {
+        const double r = std::sqrt(q.x * q.x + q.y * q.y);
+        const double side = radius - r, end = half_length - std::abs(q.z);
+        if (side <= 0.0 || end <= 0.0)
+            return {};
+        if (side <= end)
+            return {side, r > 0.0 ? Vec3{q.x / r, q.y / r, 0.0} : Vec3{1.0, 0.0, 0.0}};
+        return {end, {0.0, 0.0, q.z < 0.0 ? -1.0 : 1.0}};
+    }
     /// A clump of equal spheres inside the cylinder, as LIGGGHTS' multisphere templates
     /// approximate one: radius s = min(R, L/2) / 2, centres on rings of radius 0 .. R - s
     /// (steps of at most s, ceil(2 pi r / s) about each) at axial positions -(L/2 - s) ..

@@ -35,6 +35,33 @@ struct PairOverlap {
     Vec3 point;         ///< where they touch, from the first's position (the middle of the overlap)
 };
 
+/// A point of a particle's surface in its body frame at size 1 and the area it stands for: the
+/// nodes of the level-set contact (Kawamoto, Ando, Viggiani & Andrade, "Level set discrete
+/// element method for three-dimensional computations with triaxial case study", J. Mech. Phys.
+/// Solids 91 (2016) 1-13), each pressed out of a neighbour by a spring on its depth.
+struct SurfaceNode {
+    Vec3 point;
+    double area = 0.0;
+};
+
+/// A circle of a particle's surface kept whole for the level-set contact: the body-frame
+/// circle of radius `radius` about the z axis at height z (size 1), and the area per unit
+/// length that stands for the surface beside it. A contact along an edge (two rims crossing)
+/// or between two curved sides can be shorter than any spacing of nodes: such a circle is
+/// searched as a curve.
+struct SurfaceCircle {
+    double z = 0.0;
+    double radius = 0.0;
+    double area_per_length = 0.0;
+};
+
+/// How deep a body-frame point lies inside a particle at size 1 (0 outside) and its way out:
+/// the outward unit normal of the nearest part of the surface.
+struct InsideDepth {
+    double depth = 0.0;
+    Vec3 normal;
+};
+
 /// One sphere of a particle's DEM representation (the particle itself for a sphere, the
 /// spheres of a clump for a pellet).
 struct DemSphere {

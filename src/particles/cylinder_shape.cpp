@@ -591,6 +591,75 @@ double CylinderShape::volume_in_box(const Placement& p, const Vec3& low, const V
     return cylinder_in(*this, box, p, low.z, high.z);
 }
 
+namespace {
+
+/// The steps of surface_nodes: nodes about the rim, rows along the side, rings on an end.
+struct NodeSteps {
+    int around, rows, rings;
+    /// The area of a side row and of a rim (half a row and the end's outermost half ring).
+    double row_area, rim_area;
+};
+
+NodeSteps node_steps(const CylinderShape& c, double spacing) {
+    const auto count = [spacing](double span) {
+        return std::max(1, static_cast<int>(std::ceil(span / spacing - 1e-9)));
+    };
+    NodeSteps s{std::max(6, count(2.0 * pi * c.radius)), count(2.0 * c.half_length),
+                count(c.radius), 0.0, 0.0};
+    const double ring_step = c.radius / s.rings;
+    s.row_area = 2.0 * pi * c.radius * 2.0 * c.half_length / s.rows;
+    s.rim_area =
+        0.5 * s.row_area + pi * (c.radius * c.radius - std::pow(c.radius - 0.5 * ring_step, 2));
+    return s;
+}
+
+} // namespace
+
+std::vector<SurfaceCircle> CylinderShape::surface_circles(double spacing) const {
+    const NodeSteps steps = node_steps(*this, spacing);
+    const double length = 2.0 * pi * radius;
+    std::vector<SurfaceCircle> out{{-half_length, radius, steps.rim_area / length},
+                                   {half_length, radius, steps.rim_area / length}};
+    for (int k = 1; k < steps.rows; ++k)
+        out.push_back(
+            {-half_length + 2.0 * half_length * k / steps.rows, radius, steps.row_area / length});
+    return out;
+}
+
+std::vector<SurfaceNode> CylinderShape::surface_nodes(double spacing, bool rows_too) const {
+    const double length = 2.0 * half_length;
+    const auto count = [spacing](double span) {
+        return std::max(1, static_cast<int>(std::ceil(span / spacing - 1e-9)));
+    };
+    const NodeSteps steps = node_steps(*this, spacing);
+    const int around = steps.around, rows = steps.rows, rings = steps.rings;
+    const double ring_step = radius / rings;
+    std::vector<SurfaceNode> nodes;
+    const auto circle = [&](double r, double z, int n, double offset, double area) {
+        for (int i = 0; i < n; ++i) {
+            const double phi = 2.0 * pi * (i + offset) / n;
+            nodes.push_back({{r * std::cos(phi), r * std::sin(phi), z}, area / n});
+        }
+    };
+    // The ends' inner rings, each the band of half a step either side (the centre's a disc).
+    for (const double z : {-half_length, half_length})
+        for (int j = 0; j < rings; ++j) {
+            const double r = j * ring_step;
+            const double low = std::max(0.0, r - 0.5 * ring_step), high = r + 0.5 * ring_step;
+            const int n = j == 0 ? 1 : std::max(3, count(2.0 * pi * r));
+            circle(r, z, n, 0.5 * (j % 2), pi * (high * high - low * low));
+        }
+    // The side's rows; the first and last are the rims, with the ends' outer half band.
+    for (int k = 0; k <= rows; ++k) {
+        if (!rows_too)
+            break;
+        const bool rim = k == 0 || k == rows;
+        circle(radius, -half_length + length * k / rows, around, rim ? 0.0 : 0.5 * (k % 2),
+               rim ? steps.rim_area : steps.row_area);
+    }
+    return nodes;
+}
+
 TriangleMesh CylinderShape::unit_surface(int level) const {
     const auto n = static_cast<std::uint32_t>(12u << std::clamp(level, 0, 8));
     TriangleMesh mesh;

@@ -1,0 +1,88 @@
+// Beds of pellets (docs/pellets.md): rigid, oriented particles poured into a container and
+// settled by the soft-contact energy of the sphere beds generalised to rigid bodies. Each
+// pellet's surface is a set of nodes (ParticleShape's SurfaceNode), each pressed out of a
+// neighbour or a wall by a linear spring on how deep it lies inside (the level-set contact of
+// Kawamoto et al. 2016); FIRE relaxes positions and orientations together.
+#pragma once
+
+#include <cstdint>
+#include <string>
+#include <vector>
+
+#include "packbed/container.hpp"
+#include "packbed/cylinder_shape.hpp"
+#include "packbed/packing.hpp"
+#include "packbed/soft_sphere.hpp"
+
+namespace packbed {
+
+/// Every parameter of a pellet bed. Lengths in units of the pellet's volume-equivalent
+/// diameter d_v (the bed's reference size: a = D_tube / d_v). Plain value type.
+struct PelletBedParameters {
+    std::uint64_t particles = 100; ///< >= 1
+    std::uint64_t seed = 1;        ///< seed of the positions and orientations at insertion
+    /// The pellet at size 1 (volume-equivalent radius 1): CylinderShape::of_aspect(L / D).
+    CylinderShape shape = CylinderShape::of_aspect(1.0);
+    /// The container in units of d_v (Container::tube(a)).
+    Container container = Container::tube(8.0);
+    /// The void fraction of the column the pellets are poured from (the paper's e0 of eq. 6).
+    /// They are placed apart (their bounding spheres, random sequential addition), so it is
+    /// loose: 0.87 at L = D leaves their bounding spheres (1.9 times a pellet's volume) a
+    /// quarter of the column, below where such addition jams; (0, 1).
+    double e0 = 0.87;
+    /// The largest allowed final penetration depth, pair and wall, in units of the pellet's
+    /// smallest dimension min(D, L); (0, 0.1].
+    double tolerance = 1e-3;
+    /// The settling band of the gravity control, in the same units as the tolerance: the
+    /// largest depth is held between them until the mass centre stops.
+    double band_low = 1.5e-2, band_high = 3e-2;
+    /// The nodes' spacing on the surface, d_v; [0.01, 0.2].
+    double node_spacing = 0.05;
+    /// The largest force (and torque over the bounding radius) left on a pellet at the end, in
+    /// units of its weight; (0, 1].
+    double force_tolerance = 1e-2;
+    std::uint64_t max_steps = 2'000'000; ///< give up (ConvergenceError) beyond this
+
+    /// \throws InvalidInput naming the parameter, its value and the allowed range.
+    void validate() const;
+    /// \return min(D, L) in units of d_v.
+    double smallest_dimension() const;
+};
+
+/// The state at the end of one stage: "settle" (the gravity held in the band until the mass
+/// centre stops) or "final" (the gravity lowered until the depths are below tolerance).
+struct PelletStage {
+    std::string name;
+    std::uint64_t steps = 0;
+    double gravity = 0.0;   ///< the gravity parameter at its end (weight over stiffness)
+    double max_depth = 0.0; ///< the nodes' deepest penetration at its end, d_v
+    double mass_centre_z = 0.0;
+};
+
+/// A settled pellet bed.
+struct PelletBed {
+    /// Centroids (d_v), sizes (d_v / 2 each: the shape's unit) and orientations (the pellet's
+    /// axis is its body z axis), in insertion order.
+    Packing packing;
+    std::vector<PelletStage> stages;
+    std::uint64_t steps = 0;
+    std::uint64_t neighbor_builds = 0;
+    std::size_t nodes = 0;        ///< nodes on each pellet's surface
+    double max_depth_nodes = 0.0; ///< the deepest node, pair or wall, d_v
+    /// The exact penetration depths (CylinderShape::pair_overlap and wall_overlap, the floor
+    /// by the support function), d_v.
+    double max_depth_pair = 0.0, max_depth_wall = 0.0;
+    /// The largest force and torque over the bounding radius left on a pellet, in weights.
+    double residual_force = 0.0, residual_torque = 0.0;
+};
+
+/// Pour and settle a bed of pellets: insertion at random positions (uniform over the
+/// container's cross-section, uniform in height over the column of void fraction e0) with
+/// uniformly random orientations (Shoemake), then FIRE under gravity in two stages
+/// (docs/pellets.md, "Generation"). Same seed and parameters, same bits, whatever the
+/// number of threads.
+/// \throws InvalidInput for a parameter out of range; ConvergenceError when max_steps pass;
+/// Cancelled when control.should_stop says so.
+PelletBed generate_pellet_bed(const PelletBedParameters& params, const RunControl& control = {});
+
+} // namespace packbed

@@ -1,0 +1,681 @@
+#include "packbed/pellet_bed.hpp"
+
+#include <algorithm>
+#include <array>
+#include <cmath>
+#include <limits>
+#include <map>
+#include <numbers>
+#include <optional>
+#include <random>
+#include <string>
+#include <vector>
+
+#include <fmt/format.h>
+
+#include "../base/parallel.hpp"
+#include "../base/require.hpp"
+#include "packbed/error.hpp"
+#include "packbed/neighbor_list.hpp"
+#include "packbed/quaternion.hpp"
+#include "random.hpp"
+
+using packbed::portable_random::uniform01;
+
+namespace packbed {
+
+void PelletBedParameters::validate() const {
+    using detail::require;
+    require(particles >= 1 && particles <= 10'000'000, "particles", static_cast<double>(particles),
+            "1 to 10^7");
+    require(shape.radius > 0.0 && shape.half_length > 0.0 && std::isfinite(shape.radius) &&
+                std::isfinite(shape.half_length),
+            "shape radius", shape.radius, "a cylinder of positive, finite radius and length");
+    require(e0 > 0.0 && e0 < 1.0, "e0", e0, "0 < e0 < 1");
+    require(tolerance > 0.0 && tolerance <= 0.1, "tolerance", tolerance, "0 < tolerance <= 0.1");
+    require(band_low > tolerance && band_high > band_low && band_high <= 0.2, "band", band_high,
+            "tolerance < low < high <= 0.2");
+    require(node_spacing >= 0.01 && node_spacing <= 0.2, "node spacing", node_spacing,
+            "0.01 to 0.2 d_v");
+    require(force_tolerance > 0.0 && force_tolerance <= 1.0, "force tolerance", force_tolerance,
+            "0 < force tolerance <= 1");
+}
+
+double PelletBedParameters::smallest_dimension() const {
+    // d_v = 2 at size 1: the shape's lengths over 2 are in units of d_v.
+    return std::min(shape.radius, shape.half_length);
+}
+
+namespace {
+
+/// A rotation as its matrix, rows first: cheaper than the quaternion for many points.
+struct Rotation {
+    double m[9];
+
+    explicit Rotation(const Quaternion& q) {
+        const double w = q.w, x = q.x, y = q.y, z = q.z;
+        m[0] = 1 - 2 * (y * y + z * z);
+        m[1] = 2 * (x * y - w * z);
+        m[2] = 2 * (x * z + w * y);
+        m[3] = 2 * (x * y + w * z);
+        m[4] = 1 - 2 * (x * x + z * z);
+        m[5] = 2 * (y * z - w * x);
+        m[6] = 2 * (x * z - w * y);
+        m[7] = 2 * (y * z + w * x);
+        m[8] = 1 - 2 * (x * x + y * y);
+    }
+    Vec3 operator()(const Vec3& v) const {
+        return {m[0] * v.x + m[1] * v.y + m[2] * v.z, m[3] * v.x + m[4] * v.y + m[5] * v.z,
+                m[6] * v.x + m[7] * v.y + m[8] * v.z};
+    }
+    Vec3 inverse(const Vec3& v) const {
+        return {m[0] * v.x + m[3] * v.y + m[6] * v.z, m[1] * v.x + m[4] * v.y + m[7] * v.z,
+                m[2] * v.x + m[5] * v.y + m[8] * v.z};
+    }
+};
+
+/// What one pair of pellets does to each other: the force on the first (the second gets its
+/// opposite), the torques about each one's centroid, the deepest node.
+struct PairPush {
+    Vec3 force, torque_first, torque_second;
+    double depth = 0.0;
+};
+
+/// Nodes begin .. end of a pellet's list, all within `radius` of the body-frame `centre`.
+struct NodeGroup {
+    std::size_t begin, end;
+    Vec3 centre;
+    double radius;
+};
+
+/// FIRE's constants (Bitzek et al. 2006; Guenole et al. 2020's FIRE 2.0 order of updates).
+struct Fire {
+    static constexpr int delay = 5;
+    static constexpr double grow = 1.1, shrink = 0.5, alpha_start = 0.1, alpha_shrink = 0.99;
+    /// dt_min: a floor, so that a kink of the contact law (where the force turns at once)
+    /// cannot stop the descent.
+    static constexpr double dt_start = 0.05, dt_max = 0.25, dt_min = 1e-3;
+    /// The farthest a centroid (or a bounding-sphere point, turning) moves in one step, d_v.
+    static constexpr double max_move = 0.02;
+};
+
+class PelletSolver {
+public:
+    PelletSolver(const PelletBedParameters& params, const RunControl& control)
+        : m_params(params)
+        , m_control(control)
+        , m_container(params.container)
+        , m_cell(params.container.periods()) {
+        params.validate();
+        m_size = 0.5; // d_v = 1
+        m_reach = m_params.shape.bounding_radius(m_size);
+        m_volume = m_params.shape.volume(m_size);
+        const double spacing = m_params.node_spacing / m_size;
+        for (const bool rows : {false, true})
+            for (SurfaceNode node : m_params.shape.surface_nodes(spacing, rows)) {
+                node.point = node.point * m_size;
+                node.area *= m_size * m_size;
+                (rows ? m_wall_nodes : m_nodes).push_back(node);
+            }
+        m_circles = m_params.shape.surface_circles(spacing);
+        // The nodes off the circles in two groups, below and above the body's middle (a
+        // cylinder's ends), each with the sphere about its mean that holds it.
+        const auto below = std::stable_partition(
+            m_nodes.begin(), m_nodes.end(), [](const SurfaceNode& o) { return o.point.z < 0.0; });
+        const std::size_t split = static_cast<std::size_t>(below - m_nodes.begin());
+        for (const auto& [begin, end] :
+             {std::pair{std::size_t{0}, split}, std::pair{split, m_nodes.size()}}) {
+            if (begin == end)
+                continue;
+            NodeGroup group{begin, end, {}, 0.0};
+            for (std::size_t k = begin; k < end; ++k)
+                group.centre += m_nodes[k].point * (1.0 / static_cast<double>(end - begin));
+            for (std::size_t k = begin; k < end; ++k)
+                group.radius = std::max(group.radius, norm(m_nodes[k].point - group.centre));
+            m_groups.push_back(group);
+        }
+        m_dmin = params.smallest_dimension();
+    }
+
+    PelletBed run() {
+        insert();
+        PelletBed out;
+        settle();
+        lower();
+        out.stages = m_stages;
+        out.steps = m_steps;
+        out.neighbor_builds = m_list.builds();
+        out.nodes = m_nodes.size();
+        forces();
+        out.max_depth_nodes = m_depth;
+        out.residual_force = residual().first;
+        out.residual_torque = residual().second;
+        measure_exact(out);
+        out.packing.centers = m_centre;
+        out.packing.orientations = m_turn;
+        out.packing.radii.assign(m_centre.size(), m_size);
+        if (m_cell)
+            for (Vec3& c : out.packing.centers)
+                c = m_cell->wrapped(c);
+        return out;
+    }
+
+private:
+    /// Section 3.1 of the paper over the container's cross-section with the pellet's bounding
+    /// radius for the sphere's, each pellet turned uniformly at random, and without overlap:
+    /// a draw whose bounding sphere meets an earlier one's is drawn again (random sequential
+    /// addition), so that the pellets start apart and pour. A deep overlap of two pellets
+    /// can hold the level-set contact in a local minimum (nodes pushed out through opposite
+    /// faces), which a pour never makes.
+    void insert() {
+        const std::size_t n = m_params.particles;
+        const double height = m_container.fill_height(static_cast<double>(n), m_params.e0);
+        if (const auto top = m_container.top(); top && height + 2.0 * m_reach > *top)
+            throw InvalidInput(fmt::format(
+                "particles = {} is not allowed in {}: the pellets' column ({:.6g} d_v at e0 = "
+                "{}) reaches above its top; allowed: fewer pellets or a taller container",
+                n, m_container.describe(), height + 2.0 * m_reach, m_params.e0));
+        std::mt19937_64 rng(m_params.seed);
+        const double cell = 2.0 * m_reach;
+        const auto key = [cell](const Vec3& p) {
+            return std::array<long, 3>{static_cast<long>(std::floor(p.x / cell)),
+                                       static_cast<long>(std::floor(p.y / cell)),
+                                       static_cast<long>(std::floor(p.z / cell))};
+        };
+        std::map<std::array<long, 3>, std::vector<std::uint32_t>> grid;
+        const auto clear = [&](const Vec3& p) {
+            const auto k = key(p);
+            for (long dx = -1; dx <= 1; ++dx)
+                for (long dy = -1; dy <= 1; ++dy)
+                    for (long dz = -1; dz <= 1; ++dz) {
+                        const auto found = grid.find({k[0] + dx, k[1] + dy, k[2] + dz});
+                        if (found == grid.end())
+                            continue;
+                        for (const std::uint32_t j : found->second) {
+                            const Vec3 d =
+                                m_cell ? m_cell->separation(p, m_centre[j]) : m_centre[j] - p;
+                            if (norm2(d) < cell * cell)
+                                return false;
+                        }
+                    }
+            return true;
+        };
+        constexpr int attempts = 10'000;
+        for (std::size_t i = 0; i < n; ++i) {
+            Vec3 p;
+            int tries = 0;
+            do {
+                if (++tries > attempts)
+                    throw InvalidInput(fmt::format(
+                        "e0 = {} is not allowed for {} pellets in {}: {} draws found no room "
+                        "for pellet {}; allowed: a looser column (a larger e0)",
+                        m_params.e0, n, m_container.describe(), attempts, i + 1));
+                const double u = uniform01(rng), v = uniform01(rng);
+                const double z = height * uniform01(rng) + m_reach;
+                p = m_container.uniform_point(m_reach, u, v, z);
+            } while (!clear(m_cell ? m_cell->wrapped(p) : p));
+            if (m_cell)
+                p = m_cell->wrapped(p);
+            grid[key(p)].push_back(static_cast<std::uint32_t>(i));
+            m_centre.push_back(p);
+            const double u1 = uniform01(rng), u2 = uniform01(rng), u3 = uniform01(rng);
+            m_turn.push_back(uniform_rotation(u1, u2, u3));
+        }
+        m_velocity.assign(n, Vec3{});
+        m_spin.assign(n, Vec3{});
+        m_force.assign(n, Vec3{});
+        m_torque.assign(n, Vec3{});
+    }
+
+    /// Nodes of pellet a pressed out of pellet b, b's centroid at u from a's: adds to `push`
+    /// (force on a, torques on a and b).
+    void press(const Rotation& ra, const Rotation& rb, const Vec3& u, double sign,
+               PairPush& push) const {
+        const double reach2 = m_reach * m_reach;
+        const CylinderShape& shape = m_params.shape;
+        // The nodes in groups (an end's disc) whose bounding sphere is skipped when it misses b's.
+        for (const NodeGroup& group : m_groups) {
+            if (norm(ra(group.centre) - u) >= group.radius + m_reach)
+                continue;
+            for (std::size_t g = group.begin; g < group.end; ++g) {
+                const SurfaceNode& node = m_nodes[g];
+                const Vec3 p = ra(node.point);
+                const Vec3 d = p - u;
+                if (norm2(d) >= reach2)
+                    continue;
+                const InsideDepth in = shape.inside(rb.inverse(d) * (1.0 / m_size));
+                if (in.depth <= 0.0)
+                    continue;
+                const double depth = in.depth * m_size;
+                const Vec3 f = rb(in.normal) * (node.area * depth);
+                // f pushes a's node out of b: on a at p, on b (opposite) at d from b's centroid.
+                push.force += f * sign;
+                (sign > 0 ? push.torque_first : push.torque_second) += cross(p, f);
+                (sign > 0 ? push.torque_second : push.torque_first) -= cross(d, f);
+                push.depth = std::max(push.depth, depth);
+            }
+        }
+    }
+
+    /// Pellet a's circles (its side's rows and rims) pressed out of pellet b as curves: the
+    /// energy k/2 lambda integral of depth^2 along each circle's part inside b (lambda its
+    /// area per length), force and torque the integrals of the nodes' along it. Only the arc
+    /// inside b's bounding sphere is searched: points on it 2 pi / circle_samples apart, each
+    /// local maximum of the signed depth within half a step's arc of b's surface (the depth
+    /// changes at most as fast as the point moves) refined by golden-section search (a
+    /// crossing shorter than the step), the ends of the parts
+    /// inside by bisection; each piece between found points is integrated by 4-point
+    /// Gauss-Legendre.
+    void press_circles(const Rotation& ra, const Rotation& rb, const Vec3& u, double sign,
+                       PairPush& push) const {
+        const CylinderShape& shape = m_params.shape;
+        const Vec3 axis = ra(Vec3{0.0, 0.0, 1.0}), x = ra(Vec3{1.0, 0.0, 0.0}),
+                   y = ra(Vec3{0.0, 1.0, 0.0});
+        const double reach2 = m_reach * m_reach;
+        for (const SurfaceCircle& circle : m_circles) {
+            // The circle's centre from b's, and the disc b's bounding sphere cuts its plane in.
+            const Vec3 centre = axis * (circle.z * m_size) - u;
+            const double h = dot(centre, axis);
+            if (h * h >= reach2)
+                continue;
+            const double disc = std::sqrt(reach2 - h * h), radius = circle.radius * m_size;
+            const Vec3 towards = axis * h - centre; // to b's centre, in the plane
+            const double d = norm(towards);
+            if (d - radius >= disc || radius - d >= disc)
+                continue;
+            const double mid = std::atan2(dot(towards, y), dot(towards, x));
+            const double half =
+                d + radius <= disc || d == 0.0
+                    ? std::numbers::pi
+                    : std::acos(std::clamp(
+                          (radius * radius + d * d - disc * disc) / (2.0 * radius * d), -1.0, 1.0));
+            // The circle in b's body frame at size 1 (both at the same size): q(t) = q0 +
+            // e1 cos t + e2 sin t.
+            const Vec3 q0 = rb.inverse(centre) * (1.0 / m_size);
+            const Vec3 e1 = rb.inverse(x) * circle.radius, e2 = rb.inverse(y) * circle.radius;
+            const auto at = [&](double t) { return q0 + e1 * std::cos(t) + e2 * std::sin(t); };
+            const auto depth_at = [&](double t) { return shape.signed_depth(at(t)) * m_size; };
+            // The samples at fixed angles k 2 pi / circle_samples, from the last before the
+            // arc to the first after it: they do not move with the pellets, so neither do the
+            // pieces the integral is split into.
+            constexpr double step = 2.0 * std::numbers::pi / circle_samples;
+            const long k_first = static_cast<long>(std::floor((mid - half) / step));
+            const long k_last = std::min(static_cast<long>(std::ceil((mid + half) / step)),
+                                         k_first + circle_samples);
+            std::vector<std::pair<double, double>>& points = m_points;
+            points.clear();
+            double best = -std::numeric_limits<double>::infinity();
+            static const std::array<std::pair<double, double>, circle_samples> around = [] {
+                std::array<std::pair<double, double>, circle_samples> out;
+                for (int k = 0; k < circle_samples; ++k)
+                    out[k] = {std::cos(k * step), std::sin(k * step)};
+                return out;
+            }();
+            for (long k = k_first; k <= k_last; ++k) {
+                const auto& [c, s] = around[static_cast<std::size_t>(
+                    ((k % circle_samples) + circle_samples) % circle_samples)];
+                points.emplace_back(k * step, shape.signed_depth(q0 + e1 * c + e2 * s) * m_size);
+                best = std::max(best, points.back().second);
+            }
+            const int n = static_cast<int>(points.size()) - 1;
+            // The depth changes at most as fast as the point moves: a part inside b lies within
+            // half a step's arc of a sample at least this deep.
+            const double probe = 0.5 * step * radius;
+            if (best < -probe)
+                continue;
+            // Each sampled local maximum near b's surface refined: inserted in order of angle.
+            for (int k = n - 1; k >= 1; --k) {
+                const double here = points[k].second;
+                if (here < points[k - 1].second || here < points[k + 1].second || here < -probe)
+                    continue;
+                double lo = points[k - 1].first, hi = points[k + 1].first;
+                constexpr double golden = 0.6180339887498949;
+                double x1 = hi - golden * (hi - lo), x2 = lo + golden * (hi - lo);
+                double f1 = depth_at(x1), f2 = depth_at(x2);
+                for (int it = 0; it < 24; ++it) {
+                    if (f1 < f2) {
+                        lo = x1;
+                        x1 = x2;
+                        f1 = f2;
+                        x2 = lo + golden * (hi - lo);
+                        f2 = depth_at(x2);
+                    } else {
+                        hi = x2;
+                        x2 = x1;
+                        f2 = f1;
+                        x1 = hi - golden * (hi - lo);
+                        f1 = depth_at(x1);
+                    }
+                }
+                const double t = 0.5 * (lo + hi);
+                points.insert(points.begin() + (t < points[k].first ? k : k + 1), {t, depth_at(t)});
+            }
+            for (std::size_t k = 0; k + 1 < points.size(); ++k) {
+                double t0 = points[k].first, t1 = points[k + 1].first;
+                const double d0 = points[k].second, d1 = points[k + 1].second;
+                if (d0 <= 0.0 && d1 <= 0.0)
+                    continue;
+                // The piece's end inside b, the other end moved to the crossing.
+                if (d0 <= 0.0 || d1 <= 0.0) {
+                    double in = d0 > 0.0 ? t0 : t1, out = d0 > 0.0 ? t1 : t0;
+                    for (int it = 0; it < 24; ++it) {
+                        const double m = 0.5 * (in + out);
+                        (depth_at(m) > 0.0 ? in : out) = m;
+                    }
+                    (d0 > 0.0 ? t1 : t0) = in;
+                }
+                // 4-point Gauss-Legendre over [t0, t1].
+                static constexpr std::array<double, 4> gx{-0.8611363115940526, -0.3399810435848563,
+                                                          0.3399810435848563, 0.8611363115940526};
+                static constexpr std::array<double, 4> gw{0.3478548451374538, 0.6521451548625461,
+                                                          0.6521451548625461, 0.3478548451374538};
+                const double span = 0.5 * (t1 - t0), centre_t = 0.5 * (t1 + t0);
+                for (int g = 0; g < 4; ++g) {
+                    const Vec3 q = at(centre_t + span * gx[g]);
+                    const InsideDepth in = shape.inside(q);
+                    if (in.depth <= 0.0)
+                        continue;
+                    const double depth = in.depth * m_size;
+                    const double weight = gw[g] * span * radius * circle.area_per_length * m_size;
+                    const Vec3 f = rb(in.normal) * (weight * depth);
+                    const Vec3 from_b = rb(q) * m_size;
+                    const Vec3 from_a = from_b + u;
+                    push.force += f * sign;
+                    (sign > 0 ? push.torque_first : push.torque_second) += cross(from_a, f);
+                    (sign > 0 ? push.torque_second : push.torque_first) -= cross(from_b, f);
+                    push.depth = std::max(push.depth, depth);
+                }
+            }
+        }
+    }
+
+    Vec3 separation(std::size_t a, std::size_t b) const {
+        return m_cell ? m_cell->separation(m_centre[a], m_centre[b]) : m_centre[b] - m_centre[a];
+    }
+
+    /// Forces and torques on every pellet at the current state; m_depth the deepest node.
+    void forces() {
+        const std::size_t n = m_centre.size();
+        if (m_list.needs_rebuild(m_centre)) {
+            if (m_cell)
+                for (Vec3& c : m_centre)
+                    c = m_cell->wrapped(c);
+            if (m_cell)
+                m_list.wrap(*m_cell);
+            const std::vector<double> radii(n, m_reach);
+            m_list.build(m_centre, radii, skin);
+        }
+        std::vector<Rotation> turn;
+        turn.reserve(n);
+        for (const Quaternion& q : m_turn)
+            turn.emplace_back(q);
+        const std::size_t pairs = m_list.pairs();
+        m_push.assign(pairs, PairPush{});
+        const auto first = m_list.pair_first();
+        const auto second = m_list.pair_second();
+        const double cut2 = 4.0 * m_reach * m_reach;
+#pragma omp parallel for schedule(dynamic, 64) if (n >= detail::parallel_min_spheres / 10)
+        for (std::size_t k = 0; k < pairs; ++k) {
+            const std::size_t a = first[k], b = second[k];
+            const Vec3 u = separation(a, b);
+            if (norm2(u) >= cut2)
+                continue;
+            press(turn[a], turn[b], u, 1.0, m_push[k]);
+            press(turn[b], turn[a], -u, -1.0, m_push[k]);
+            press_circles(turn[a], turn[b], u, 1.0, m_push[k]);
+            press_circles(turn[b], turn[a], -u, -1.0, m_push[k]);
+        }
+        m_wall_depth.assign(n, 0.0);
+        const double weight = m_gravity * m_volume;
+#pragma omp parallel for schedule(dynamic, 16) if (n >= detail::parallel_min_spheres / 10)
+        for (std::size_t i = 0; i < n; ++i) {
+            Vec3 force{0.0, 0.0, -weight}, torque;
+            const Vec3& c = m_centre[i];
+            const bool floor = c.z < m_reach;
+            if (floor || m_container.wall_overlap(c, m_reach) > 0.0) {
+                double deepest = 0.0;
+                for (const SurfaceNode& node : m_wall_nodes) {
+                    const Vec3 p = turn[i](node.point);
+                    const Vec3 at = c + p;
+                    const auto add = [&](double depth, const Vec3& push) {
+                        const Vec3 f = push * (node.area * depth);
+                        force += f;
+                        torque += cross(p, f);
+                        deepest = std::max(deepest, depth);
+                    };
+                    if (at.z < 0.0)
+                        add(-at.z, {0.0, 0.0, 1.0});
+                    m_container.wall_contacts(at, 0.0, add);
+                }
+                m_wall_depth[i] = deepest;
+            }
+            m_force[i] = force;
+            m_torque[i] = torque;
+        }
+        // The pairs' shares added in pair order: the same sums whatever the thread count.
+        double deepest = 0.0;
+        for (std::size_t k = 0; k < pairs; ++k) {
+            const PairPush& p = m_push[k];
+            m_force[first[k]] += p.force;
+            m_force[second[k]] -= p.force;
+            m_torque[first[k]] += p.torque_first;
+            m_torque[second[k]] += p.torque_second;
+            deepest = std::max(deepest, p.depth);
+        }
+        m_pair_depth = deepest;
+        m_wall_max = 0.0;
+        for (const double d : m_wall_depth)
+            m_wall_max = std::max(m_wall_max, d);
+        m_depth = std::max(m_pair_depth, m_wall_max);
+    }
+
+    /// The largest force and torque over the bounding radius on a pellet, in weights.
+    std::pair<double, double> residual() const {
+        double f = 0.0, t = 0.0;
+        for (std::size_t i = 0; i < m_force.size(); ++i) {
+            f = std::max(f, norm2(m_force[i]));
+            t = std::max(t, norm2(m_torque[i]));
+        }
+        const double weight = m_gravity * m_volume;
+        return {std::sqrt(f) / weight, std::sqrt(t) / (weight * m_reach)};
+    }
+
+    double mass_centre_z() const {
+        double z = 0.0;
+        for (const Vec3& c : m_centre)
+            z += c.z;
+        return z / static_cast<double>(m_centre.size());
+    }
+
+    /// One FIRE step (FIRE 2.0's order: power, then the velocity update and the mixing, then
+    /// the move). Rotations are moved as the arc of the bounding sphere, so that a torque
+    /// over the bounding radius and a force weigh alike.
+    void step() {
+        forces();
+        ++m_steps;
+        if (m_control.should_stop && m_steps % 100 == 0 && m_control.should_stop())
+            throw Cancelled();
+        if (m_steps > m_params.max_steps)
+            throw ConvergenceError(fmt::format(
+                "the pellet bed did not settle within {} steps (deepest node {:.3g} d_v)",
+                m_params.max_steps, m_depth));
+        const std::size_t n = m_centre.size();
+        const double inv_reach = 1.0 / m_reach;
+        double power = 0.0;
+        for (std::size_t i = 0; i < n; ++i)
+            power += dot(m_force[i], m_velocity[i]) + dot(m_torque[i], m_spin[i]) * inv_reach;
+        if (power > 0.0) {
+            if (++m_positive > Fire::delay) {
+                m_dt = std::min(m_dt * Fire::grow, Fire::dt_max);
+                m_alpha *= Fire::alpha_shrink;
+            }
+        } else {
+            m_positive = 0;
+            m_dt = std::max(m_dt * Fire::shrink, Fire::dt_min);
+            m_alpha = Fire::alpha_start;
+            std::fill(m_velocity.begin(), m_velocity.end(), Vec3{});
+            std::fill(m_spin.begin(), m_spin.end(), Vec3{});
+        }
+        double v2 = 0.0, f2 = 0.0;
+        for (std::size_t i = 0; i < n; ++i) {
+            m_velocity[i] += m_force[i] * m_dt;
+            m_spin[i] += m_torque[i] * (inv_reach * m_dt);
+            v2 += norm2(m_velocity[i]) + norm2(m_spin[i]);
+            f2 += norm2(m_force[i]) + norm2(m_torque[i]) * inv_reach * inv_reach;
+        }
+        const double mix = f2 > 0.0 ? m_alpha * std::sqrt(v2 / f2) : 0.0;
+        for (std::size_t i = 0; i < n; ++i) {
+            m_velocity[i] = m_velocity[i] * (1.0 - m_alpha) + m_force[i] * mix;
+            m_spin[i] = m_spin[i] * (1.0 - m_alpha) + m_torque[i] * (inv_reach * mix);
+            Vec3 move = m_velocity[i] * m_dt, arc = m_spin[i] * m_dt;
+            const double longest = std::max(norm(move), norm(arc));
+            if (longest > Fire::max_move) {
+                move = move * (Fire::max_move / longest);
+                arc = arc * (Fire::max_move / longest);
+            }
+            m_centre[i] += move;
+            m_turn[i] = normalized(rotation_by(arc * inv_reach) * m_turn[i]);
+        }
+    }
+
+    void report(std::string_view stage) const {
+        if (!m_control.on_progress || m_steps % 100 != 0)
+            return;
+        Progress p{stage, m_steps, m_gravity, m_pair_depth, m_wall_max, mass_centre_z()};
+        m_control.on_progress(p);
+    }
+
+    /// The paper's initial and intermediate stages in one: gravity raised while the deepest
+    /// node is above the band's low end and lowered while it is above the high end, every
+    /// `period` steps, until the mass centre's last `window` records agree within
+    /// `spread` of their mean.
+    void settle() {
+        constexpr int period = 50, window = 10;
+        constexpr double spread = 5e-4;
+        const double low = m_params.band_low * m_dmin, high = m_params.band_high * m_dmin;
+        m_gravity = 1e-3;
+        std::vector<double> records;
+        const std::uint64_t start = m_steps;
+        for (;;) {
+            step();
+            report("settle");
+            if (m_steps % period != 0)
+                continue;
+            if (m_depth > high)
+                m_gravity *= 0.8;
+            else if (m_depth < low)
+                m_gravity *= 1.15;
+            if (m_steps % (2 * period) != 0)
+                continue;
+            records.push_back(mass_centre_z());
+            if (records.size() < window)
+                continue;
+            const auto [lo, hi] = std::minmax_element(records.end() - window, records.end());
+            const double mean = 0.5 * (*lo + *hi);
+            if (*hi - *lo <= spread * mean && m_depth <= 1.5 * high)
+                break;
+        }
+        m_stages.push_back({"settle", m_steps - start, m_gravity, m_depth, mass_centre_z()});
+    }
+
+    /// The final stage: relaxed until every force and torque is below force_tolerance
+    /// weights, then, while the exact penetration depth (pair or wall) is above tolerance,
+    /// the gravity scaled down by the square of the depth's excess (at most tenfold): at a
+    /// crossing of two edges the contact stiffens with depth (the part of the curve inside
+    /// grows with it), and its depth falls slower than the load.
+    void lower() {
+        const double tol = m_params.tolerance * m_dmin;
+        const std::uint64_t start = m_steps;
+        for (;;) {
+            m_dt = Fire::dt_start;
+            m_alpha = Fire::alpha_start;
+            m_positive = 0;
+            double least = std::numeric_limits<double>::infinity();
+            std::uint64_t since = 0;
+            for (;;) {
+                step();
+                report("final");
+                const auto [f, t] = residual();
+                const double worst = std::max(f, t);
+                if (worst <= m_params.force_tolerance)
+                    break;
+                // Stalled: no step took the residual 1 % below its least for `patience` steps
+                // (a pellet held at a kink of the contact law, where the force turns at once).
+                if (worst < 0.99 * least) {
+                    least = worst;
+                    since = 0;
+                } else if (++since > patience) {
+                    break;
+                }
+            }
+            PelletBed exact;
+            measure_exact(exact);
+            const double deepest = std::max(exact.max_depth_pair, exact.max_depth_wall);
+            if (deepest <= tol)
+                break;
+            const double excess = 0.8 * tol / deepest;
+            m_gravity *= std::max(0.1, excess * excess);
+        }
+        m_stages.push_back({"final", m_steps - start, m_gravity, m_depth, mass_centre_z()});
+    }
+
+    void measure_exact(PelletBed& out) const {
+        const CylinderShape& shape = m_params.shape;
+        const auto first = m_list.pair_first();
+        const auto second = m_list.pair_second();
+        const std::size_t pairs = m_list.pairs();
+        std::vector<double> depth(pairs, 0.0);
+#pragma omp parallel for schedule(dynamic, 16)
+        for (std::size_t k = 0; k < pairs; ++k) {
+            const std::size_t a = first[k], b = second[k];
+            const Vec3 u = separation(a, b);
+            if (norm2(u) >= 4.0 * m_reach * m_reach)
+                continue;
+            const Placement pa{m_centre[a], m_turn[a], m_size};
+            const Placement pb{m_centre[a] + u, m_turn[b], m_size};
+            depth[k] = shape.pair_overlap(pa, shape, pb, u).depth;
+        }
+        for (const double d : depth)
+            out.max_depth_pair = std::max(out.max_depth_pair, d);
+        for (std::size_t i = 0; i < m_centre.size(); ++i) {
+            const Placement p{m_centre[i], m_turn[i], m_size};
+            out.max_depth_wall = std::max(out.max_depth_wall, shape.wall_overlap(m_container, p));
+            out.max_depth_wall = std::max(out.max_depth_wall, -shape.support(p, {0, 0, -1}).z);
+        }
+    }
+
+    static constexpr double skin = 0.3; // d_v
+    static constexpr std::uint64_t patience = 5000;
+    /// Points about a circle searched for its part inside a neighbour.
+    static constexpr int circle_samples = 64;
+
+    const PelletBedParameters& m_params;
+    const RunControl& m_control;
+    const Container& m_container;
+    std::optional<Periods> m_cell;
+    double m_size = 0.5, m_reach = 0.0, m_volume = 0.0, m_dmin = 0.0;
+    std::vector<SurfaceNode> m_nodes, m_wall_nodes; // without and with the side's rows
+    std::vector<SurfaceCircle> m_circles;           // the side's rows, whole
+    std::vector<NodeGroup> m_groups;
+    static thread_local std::vector<std::pair<double, double>> m_points; // press_circles' own
+    std::vector<Vec3> m_centre, m_velocity, m_spin, m_force, m_torque;
+    std::vector<Quaternion> m_turn;
+    std::vector<PairPush> m_push;
+    std::vector<double> m_wall_depth;
+    NeighborList m_list;
+    std::vector<PelletStage> m_stages;
+    double m_gravity = 1e-3, m_depth = 0.0, m_pair_depth = 0.0, m_wall_max = 0.0;
+    double m_dt = Fire::dt_start, m_alpha = Fire::alpha_start;
+    int m_positive = 0;
+    std::uint64_t m_steps = 0;
+};
+
+thread_local std::vector<std::pair<double, double>> PelletSolver::m_points;
+
+} // namespace
+
+PelletBed generate_pellet_bed(const PelletBedParameters& params, const RunControl& control) {
+    return PelletSolver(params, control).run();
+}
+
+} // namespace packbed

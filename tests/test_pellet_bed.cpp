@@ -1,0 +1,204 @@
+// Beds of cylinder pellets (pellet_bed.hpp) and the surface the level-set contact presses
+// (CylinderShape::surface_nodes, surface_circles, inside, signed_depth): the nodes' areas
+// against the cylinder's closed-form area, depths against the distances by hand, and a poured
+// bed checked by a brute force that shares no code with the solver: points drawn uniformly on
+// each pellet's surface by their own formulas, each tested against every other pellet and the
+// walls by its own inside test.
+#include <algorithm>
+#include <cmath>
+#include <numbers>
+#include <random>
+#include <vector>
+
+#include <gtest/gtest.h>
+
+#include "packbed/container.hpp"
+#include "packbed/cylinder_shape.hpp"
+#include "packbed/error.hpp"
+#include "packbed/pellet_bed.hpp"
+
+using namespace packbed;
+
+namespace {
+
+constexpr double pi = std::numbers::pi;
+
+TEST(SurfaceNodes, AreasAddUpToTheCylinders) {
+    const CylinderShape c{0.7, 1.1};
+    const double area = 2.0 * pi * c.radius * c.radius + 2.0 * pi * c.radius * 2.0 * c.half_length;
+    for (const double spacing : {0.3, 0.1, 0.05}) {
+        double all = 0.0, ends = 0.0, circles = 0.0;
+        for (const SurfaceNode& n : c.surface_nodes(spacing))
+            all += n.area;
+        for (const SurfaceNode& n : c.surface_nodes(spacing, false)) {
+            ends += n.area;
+            EXPECT_DOUBLE_EQ(std::abs(n.point.z), c.half_length); // only the ends' inner rings
+        }
+        for (const SurfaceCircle& k : c.surface_circles(spacing))
+            circles += k.area_per_length * 2.0 * pi * k.radius;
+        EXPECT_NEAR(all, area, 1e-12 * area) << spacing;
+        EXPECT_NEAR(ends + circles, area, 1e-12 * area) << spacing;
+    }
+}
+
+TEST(SurfaceNodes, LieOnTheSurfaceAtMostASpacingApartAround) {
+    const CylinderShape c{0.7, 1.1};
+    const double spacing = 0.1;
+    for (const SurfaceNode& n : c.surface_nodes(spacing)) {
+        const double r = std::hypot(n.point.x, n.point.y);
+        const bool end = std::abs(std::abs(n.point.z) - c.half_length) < 1e-12 && r <= c.radius;
+        const bool side = std::abs(r - c.radius) < 1e-12 && std::abs(n.point.z) <= c.half_length;
+        EXPECT_TRUE(end || side) << n.point.x << " " << n.point.y << " " << n.point.z;
+    }
+    const auto circles = c.surface_circles(spacing);
+    ASSERT_GE(circles.size(), 2u);
+    std::vector<double> heights;
+    for (const SurfaceCircle& k : circles)
+        heights.push_back(k.z);
+    std::sort(heights.begin(), heights.end());
+    EXPECT_DOUBLE_EQ(heights.front(), -c.half_length);
+    EXPECT_DOUBLE_EQ(heights.back(), c.half_length);
+    for (std::size_t i = 1; i < heights.size(); ++i)
+        EXPECT_LE(heights[i] - heights[i - 1], spacing + 1e-12);
+}
+
+TEST(CylinderDepth, InsideAndOutsideByHand) {
+    const CylinderShape c{1.0, 2.0};
+    // Nearer the side: out through it.
+    InsideDepth in = c.inside({0.7, 0.0, 0.5});
+    EXPECT_DOUBLE_EQ(in.depth, 0.3);
+    EXPECT_DOUBLE_EQ(in.normal.x, 1.0);
+    // Nearer the top end.
+    in = c.inside({0.0, 0.2, 1.9});
+    EXPECT_NEAR(in.depth, 0.1, 1e-15);
+    EXPECT_DOUBLE_EQ(in.normal.z, 1.0);
+    in = c.inside({0.0, 0.2, -1.95});
+    EXPECT_NEAR(in.depth, 0.05, 1e-15);
+    EXPECT_DOUBLE_EQ(in.normal.z, -1.0);
+    EXPECT_EQ(c.inside({1.2, 0.0, 0.0}).depth, 0.0);
+    EXPECT_NEAR(c.signed_depth({0.7, 0.0, 0.5}), 0.3, 1e-15);
+    EXPECT_NEAR(c.signed_depth({1.3, 0.0, 0.5}), -0.3, 1e-15);
+    EXPECT_NEAR(c.signed_depth({0.0, 0.0, 2.5}), -0.5, 1e-15);
+    // Beyond the rim: the distance to the rim circle, 3-4-5.
+    EXPECT_NEAR(c.signed_depth({1.3, 0.0, 2.4}), -0.5, 1e-15);
+}
+
+/// A point uniform on the cylinder's surface (by area) from three uniform numbers: the ends
+/// by sqrt of the radius, the side by angle and height.
+Vec3 surface_point(const CylinderShape& c, double u, double v, double w) {
+    const double end_area = pi * c.radius * c.radius;
+    const double side_area = 2.0 * pi * c.radius * 2.0 * c.half_length;
+    const double pick = u * (2.0 * end_area + side_area);
+    const double phi = 2.0 * pi * v;
+    if (pick < 2.0 * end_area) {
+        const double r = c.radius * std::sqrt(w);
+        return {r * std::cos(phi), r * std::sin(phi),
+                pick < end_area ? -c.half_length : c.half_length};
+    }
+    return {c.radius * std::cos(phi), c.radius * std::sin(phi), c.half_length * (2.0 * w - 1.0)};
+}
+
+/// The brute force's own rotation of v by the unit quaternion q (v' = q v q*).
+Vec3 turn(const Quaternion& q, const Vec3& v) {
+    const double w = q.w, x = q.x, y = q.y, z = q.z;
+    return {(1 - 2 * (y * y + z * z)) * v.x + 2 * (x * y - w * z) * v.y + 2 * (x * z + w * y) * v.z,
+            2 * (x * y + w * z) * v.x + (1 - 2 * (x * x + z * z)) * v.y + 2 * (y * z - w * x) * v.z,
+            2 * (x * z - w * y) * v.x + 2 * (y * z + w * x) * v.y +
+                (1 - 2 * (x * x + y * y)) * v.z};
+}
+
+/// How deep a point lies inside a placed cylinder by the brute force's own test: its
+/// coordinates along the axis and across it.
+double depth_in(const CylinderShape& c, const Vec3& centre, const Quaternion& q, double size,
+                const Vec3& p) {
+    const Vec3 axis = turn(q, {0.0, 0.0, 1.0});
+    const Vec3 d = p - centre;
+    const double along = d.x * axis.x + d.y * axis.y + d.z * axis.z;
+    const Vec3 across = d - axis * along;
+    const double r = std::sqrt(across.x * across.x + across.y * across.y + across.z * across.z);
+    return std::min(c.radius * size - r, c.half_length * size - std::abs(along));
+}
+
+class PouredBed : public ::testing::Test {
+protected:
+    static void SetUpTestSuite() {
+        params = new PelletBedParameters;
+        params->particles = 12;
+        params->container = Container::tube(4.0);
+        params->seed = 3;
+        bed = new PelletBed(generate_pellet_bed(*params));
+    }
+    static void TearDownTestSuite() {
+        delete bed;
+        delete params;
+    }
+    static PelletBedParameters* params;
+    static PelletBed* bed;
+};
+
+PelletBedParameters* PouredBed::params = nullptr;
+PelletBed* PouredBed::bed = nullptr;
+
+TEST_F(PouredBed, EndsBelowTheToleranceByTheExactDepth) {
+    const double tol = params->tolerance * params->smallest_dimension();
+    EXPECT_EQ(bed->packing.size(), 12u);
+    EXPECT_LE(bed->max_depth_pair, tol);
+    EXPECT_LE(bed->max_depth_wall, tol);
+    EXPECT_LE(bed->max_depth_nodes, tol);
+    // The bed rests: the pellets touch (the depths are not all zero) and the stages ran.
+    EXPECT_GT(bed->max_depth_pair, 0.0);
+    ASSERT_EQ(bed->stages.size(), 2u);
+    EXPECT_LT(bed->stages[1].gravity, bed->stages[0].gravity);
+}
+
+TEST_F(PouredBed, NoSurfacePointLiesDeeperThanTheToleranceInAnotherPellet) {
+    const CylinderShape& c = params->shape;
+    const Packing& p = bed->packing;
+    const double tol = params->tolerance * params->smallest_dimension();
+    const double rt = 0.5 * params->container.tube_diameter().value();
+    std::mt19937_64 rng(7);
+    std::uniform_real_distribution<double> u(0.0, 1.0);
+    double deepest_pair = 0.0, deepest_wall = 0.0;
+    for (std::size_t i = 0; i < p.size(); ++i) {
+        ASSERT_NEAR(p.orientations[i].w * p.orientations[i].w +
+                        p.orientations[i].x * p.orientations[i].x +
+                        p.orientations[i].y * p.orientations[i].y +
+                        p.orientations[i].z * p.orientations[i].z,
+                    1.0, 1e-12);
+        for (int k = 0; k < 20000; ++k) {
+            const Vec3 body = surface_point(c, u(rng), u(rng), u(rng));
+            const Vec3 at = p.centers[i] + turn(p.orientations[i], body * p.radii[i]);
+            deepest_wall = std::max({deepest_wall, -at.z, std::hypot(at.x, at.y) - rt});
+            for (std::size_t j = 0; j < p.size(); ++j)
+                if (j != i)
+                    deepest_pair = std::max(
+                        deepest_pair, depth_in(c, p.centers[j], p.orientations[j], p.radii[j], at));
+        }
+    }
+    EXPECT_LE(deepest_pair, tol);
+    EXPECT_LE(deepest_wall, tol);
+    // The exact penetration depth is at least the deepest point's depth.
+    EXPECT_LE(deepest_pair, bed->max_depth_pair + 1e-12);
+}
+
+TEST_F(PouredBed, TheSameSeedGivesTheSameBits) {
+    const PelletBed again = generate_pellet_bed(*params);
+    ASSERT_EQ(again.packing.size(), bed->packing.size());
+    for (std::size_t i = 0; i < again.packing.size(); ++i) {
+        EXPECT_EQ(again.packing.centers[i], bed->packing.centers[i]);
+        EXPECT_EQ(again.packing.orientations[i].w, bed->packing.orientations[i].w);
+    }
+    EXPECT_EQ(again.steps, bed->steps);
+}
+
+TEST(PelletBedInput, RefusesAColumnTooDenseToPour) {
+    PelletBedParameters p;
+    p.particles = 50;
+    p.e0 = 0.3; // bounding spheres would fill more of the column than random addition reaches
+    p.container = Container::tube(4.0);
+    EXPECT_THROW(generate_pellet_bed(p), InvalidInput);
+    p.e0 = 1.0;
+    EXPECT_THROW(generate_pellet_bed(p), InvalidInput);
+}
+
+} // namespace
