@@ -83,6 +83,38 @@ TEST(CylinderDepth, InsideAndOutsideByHand) {
     EXPECT_NEAR(c.signed_depth({1.3, 0.0, 2.4}), -0.5, 1e-15);
 }
 
+TEST(CylinderDepth, TheBlendIsSmoothUnderAnEdgeAndExactAwayFromIt) {
+    const CylinderShape c{1.0, 2.0};
+    const double blend = 0.01;
+    // Away from the edge (the side 0.3 nearer than the end): as without the blend.
+    EXPECT_DOUBLE_EQ(c.inside({0.7, 0.0, 1.0}, blend).depth, 0.3);
+    // Where the side and the end are equally near (0.05 each): blend / 4 less.
+    const InsideDepth at = c.inside({0.95, 0.0, 1.95}, blend);
+    EXPECT_NEAR(at.depth, 0.05 - blend / 4.0, 1e-15);
+    EXPECT_NEAR(at.normal.x, 0.5, 1e-12);
+    EXPECT_NEAR(at.normal.z, 0.5, 1e-12);
+    // Across the bisector the depth and the normal change by no more than the step allows.
+    InsideDepth before = c.inside({0.95 - 0.02, 0.0, 1.95}, blend);
+    for (int k = -199; k <= 200; ++k) {
+        const InsideDepth now = c.inside({0.95 + 1e-4 * k, 0.0, 1.95}, blend);
+        EXPECT_LE(std::abs(now.depth - before.depth), 1.0001e-4 + 1e-15) << k;
+        EXPECT_LE(std::abs(now.normal.x - before.normal.x), 1e-4 / blend + 1e-12) << k;
+        before = now;
+    }
+    // The normal is the depth's gradient: a finite difference along x and z.
+    const double h = 1e-7;
+    const Vec3 q{0.951, 0.0, 1.948};
+    const InsideDepth d = c.inside(q, blend);
+    EXPECT_NEAR(
+        (c.inside(q - Vec3{h, 0, 0}, blend).depth - c.inside(q + Vec3{h, 0, 0}, blend).depth) /
+            (2 * h),
+        d.normal.x, 1e-6);
+    EXPECT_NEAR(
+        (c.inside(q - Vec3{0, 0, h}, blend).depth - c.inside(q + Vec3{0, 0, h}, blend).depth) /
+            (2 * h),
+        d.normal.z, 1e-6);
+}
+
 /// A point uniform on the cylinder's surface (by area) from three uniform numbers: the ends
 /// by sqrt of the radius, the side by angle and height.
 Vec3 surface_point(const CylinderShape& c, double u, double v, double w) {

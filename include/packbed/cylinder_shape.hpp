@@ -97,14 +97,29 @@ struct CylinderShape {
     }
     /// How deep the body-frame point q (size 1) lies inside: min(R - r, L/2 - |z|) where both
     /// are positive, out through the side or the end it is nearer (the side where equal).
-    InsideDepth inside(const Vec3& q) const {
+    /// With `blend` > 0, the least of the two is the polynomial smooth minimum of that width
+    /// (m - blend h (1 - h), h = clamp(1/2 + (b - a) / (2 blend)), a the side's, b the
+    /// end's; at most blend / 4 less where they are equal) and the normal its gradient, h times
+    /// the side's and 1 - h times the end's, not of unit length: the depth of a point then
+    /// changes smoothly as it passes under an edge, and depth times normal is the gradient of
+    /// depth^2 / 2.
+    InsideDepth inside(const Vec3& q, double blend = 0.0) const {
         const double r = std::sqrt(q.x * q.x + q.y * q.y);
         const double side = radius - r, end = half_length - std::abs(q.z);
         if (side <= 0.0 || end <= 0.0)
             return {};
+        const Vec3 out_side = r > 0.0 ? Vec3{q.x / r, q.y / r, 0.0} : Vec3{1.0, 0.0, 0.0};
+        const Vec3 out_end{0.0, 0.0, q.z < 0.0 ? -1.0 : 1.0};
+        if (blend > 0.0 && std::abs(side - end) < blend) {
+            const double h = 0.5 + 0.5 * (end - side) / blend;
+            const double depth = h * side + (1.0 - h) * end - blend * h * (1.0 - h);
+            if (depth <= 0.0)
+                return {};
+            return {depth, out_side * h + out_end * (1.0 - h)};
+        }
         if (side <= end)
-            return {side, r > 0.0 ? Vec3{q.x / r, q.y / r, 0.0} : Vec3{1.0, 0.0, 0.0}};
-        return {end, {0.0, 0.0, q.z < 0.0 ? -1.0 : 1.0}};
+            return {side, out_side};
+        return {end, out_end};
     }
     /// A clump of equal spheres inside the cylinder, as LIGGGHTS' multisphere templates
     /// approximate one: radius s = min(R, L/2) / 2, centres on rings of radius 0 .. R - s

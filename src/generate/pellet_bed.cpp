@@ -243,7 +243,7 @@ private:
                 const Vec3 d = p - u;
                 if (norm2(d) >= reach2)
                     continue;
-                const InsideDepth in = shape.inside(rb.inverse(d) * (1.0 / m_size));
+                const InsideDepth in = shape.inside(rb.inverse(d) * (1.0 / m_size), edge_blend);
                 if (in.depth <= 0.0)
                     continue;
                 const double depth = in.depth * m_size;
@@ -372,7 +372,7 @@ private:
                 const double span = 0.5 * (t1 - t0), centre_t = 0.5 * (t1 + t0);
                 for (int g = 0; g < 4; ++g) {
                     const Vec3 q = at(centre_t + span * gx[g]);
-                    const InsideDepth in = shape.inside(q);
+                    const InsideDepth in = shape.inside(q, edge_blend);
                     if (in.depth <= 0.0)
                         continue;
                     const double depth = in.depth * m_size;
@@ -646,6 +646,10 @@ private:
 
     static constexpr double skin = 0.3; // d_v
     static constexpr std::uint64_t patience = 5000;
+    /// The width of the smooth minimum of a point's distances to a side and an end (inside's
+    /// blend), in units of the size: the pushing face turns over this width instead of at
+    /// once. An edge is then 1e-3 of the size (5e-4 d_v) shallower than it is.
+    static constexpr double edge_blend = 4e-3;
     /// Points about a circle searched for its part inside a neighbour.
     static constexpr int circle_samples = 64;
 
