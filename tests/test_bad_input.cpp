@@ -411,7 +411,7 @@ INSTANTIATE_TEST_SUITE_P(
               "aspect-ratio, band-clearance, cg-step, checkpoint, ck, container, diameter, e0, "
               "engine, force, fractions, friction, layer-height, lmp, max-iterations, "
               "mc-period, mc-tolerance, mc-window, mpi-command, no-analysis, out, overlap-high, "
-              "overlap-low, particles, quiet, ranks, seed, sizes, skin, solver, "
+              "overlap-low, particles, quiet, ranks, seed, shape, sizes, skin, solver, "
               "target-void-fraction, threads, tolerance, update, wall-friction, write-only"),
         exact("generate --config @D/broken.toml",
               "packbed: --config @D/broken.toml: line 1, column 16: Error while parsing value: "
@@ -454,6 +454,20 @@ INSTANTIATE_TEST_SUITE_P(
               "packbed generate: --container periodic:3,8 is not allowed with Dp = 2; allowed: "
               "widths from 2 Dp (twice the largest sphere, for the minimum image) to 10000 Dp"),
         naming("generate --container sphere:3", {"--container", "sphere:3", "periodic:LX,LY"}),
+        // Pellets (docs/generate.md, "Pellets"): a shape that is not one, an option of the
+        // spheres' alone, a pellet wider than the tube.
+        exact("generate --shape cylinder:1",
+              "packbed generate: --shape: 'cylinder:1' is not allowed; allowed: sphere (the "
+              "default), or cylinder:D,L (a cylinder pellet of diameter D and length L, each > 0 "
+              "and at most 1e+15, L / D from 0.1 to 10)"),
+        naming("generate --shape cylinder:1,20", {"--shape", "cylinder:1,20", "L / D"}),
+        exact("generate --shape cylinder:1,1 --friction 0.3",
+              "packbed generate: --friction is not allowed with --shape cylinder:1,1; allowed "
+              "with a pellet: --aspect-ratio, --container, --particles, --seed, --shape, --out, "
+              "--force, --threads, --quiet, --band-clearance, --no-analysis, --config "
+              "(docs/generate.md, \"Pellets\")"),
+        naming("generate --shape cylinder:1,1 --container cylinder:1",
+               {"--shape", "cylinder:1,1", "does not fit"}),
         naming("generate --container annulus:10", {"--container", "annulus:10", "annulus:D,DI"}),
         naming("generate --container annulus:4,6", {"--container", "annulus:4,6", "DI < D"}),
         exact("generate --container box:6,6 --aspect-ratio 5",

@@ -1694,3 +1694,41 @@ TEST(Cli, NamesThatAreNotUtf8AreRecordedInValidJson) {
         EXPECT_NE(read.dump().find("\xef\xbf\xbd.csv"), std::string::npos) << json;
     }
 }
+
+TEST(Cli, GenerateShapeCylinderWritesPelletsWithOrientations) {
+    // Eight cylinders D = L = 2 in a tube of a = 4 over d_v = (3 D^2 L / 2)^(1/3) = 12^(1/3):
+    // the CSV's orientations are unit quaternions, r is d_v / 2, every centroid inside the
+    // tube, and the exact depths are below 1e-3 of min(D, L) (docs/generate.md, "Pellets").
+    const fs::path d = scratch("pellets");
+    const Outcome o = packbed("generate --shape cylinder:2,2 -a 4 -n 8 -s 2 --out " + d.string());
+    ASSERT_EQ(o.status, 0) << o.err;
+    const std::string csv = slurp(d / "particles.csv");
+    ASSERT_EQ(csv.substr(0, csv.find('\n')), "x,y,z,r,qw,qx,qy,qz");
+    const double dv = std::cbrt(12.0), rt = 2.0 * dv;
+    std::istringstream rows(csv);
+    std::string row;
+    std::getline(rows, row);
+    int count = 0;
+    while (std::getline(rows, row)) {
+        std::array<double, 8> v{};
+        char comma = 0;
+        std::istringstream line(row);
+        line >> v[0];
+        for (int k = 1; k < 8; ++k)
+            line >> comma >> v[k];
+        EXPECT_NEAR(v[3], 0.5 * dv, 1e-12);
+        EXPECT_NEAR(v[4] * v[4] + v[5] * v[5] + v[6] * v[6] + v[7] * v[7], 1.0, 1e-12);
+        EXPECT_LT(std::hypot(v[0], v[1]), rt);
+        EXPECT_GT(v[2], 0.0);
+        ++count;
+    }
+    EXPECT_EQ(count, 8);
+    const auto s = nlohmann::json::parse(slurp(d / "summary.json"));
+    EXPECT_EQ(s["shape"]["kind"], "cylinder");
+    EXPECT_NEAR(s["shape"]["volume_equivalent_diameter"].get<double>(), dv, 1e-12);
+    EXPECT_NEAR(s["tolerance"].get<double>(), 2e-3, 1e-15);
+    EXPECT_LE(s["max_penetration_pair"].get<double>(), 2e-3);
+    EXPECT_LE(s["max_penetration_wall"].get<double>(), 2e-3);
+    EXPECT_NEAR(s["container"]["radius"].get<double>(), rt, 1e-12);
+    EXPECT_FALSE(fs::exists(d / "particles.vtu"));
+}

@@ -1,4 +1,8 @@
 // `packbed generate`: the soft-sphere bed of Salvat et al. (2005) in a cylinder.
+#include <algorithm>
+#include <array>
+#include <chrono>
+#include <cstdio>
 #include <filesystem>
 #include <limits>
 #include <memory>
@@ -11,6 +15,7 @@
 #include "command.hpp"
 #include "packbed/analysis.hpp"
 #include "packbed/error.hpp"
+#include "packbed/files.hpp"
 #include "packbed/io.hpp"
 #include "packbed/json_text.hpp"
 #include "packbed/lammps_engine.hpp"
@@ -44,7 +49,87 @@ struct GenerateOptions {
     bool no_analysis = false; // --no-analysis: the spheres and the summary only
     bool quiet = false;
     bool force = false;
+    std::string shape = "sphere";  // --shape: a pellet instead (cylinder:D,L)
+    const CLI::App* app = nullptr; // which options were given (those a pellet bed refuses)
 };
+
+/// The options a pellet bed takes; every other generate option is the spheres' alone.
+constexpr std::array pellet_options{"--aspect-ratio",   "--container",   "--particles",
+                                    "--seed",           "--shape",       "--out",
+                                    "--force",          "--threads",     "--quiet",
+                                    "--band-clearance", "--no-analysis", "--config"};
+
+/// --shape cylinder:D,L: a bed of pellets (docs/generate.md, "Pellets").
+int run_pellets(const GenerateOptions& o) {
+    for (const CLI::Option* option : o.app->get_options()) {
+        const std::string name = option->get_name();
+        if (option->count() == 0 || name.rfind("--", 0) != 0 ||
+            std::find(pellet_options.begin(), pellet_options.end(), name) != pellet_options.end())
+            continue;
+        throw InvalidInput(fmt::format(
+            "{} is not allowed with --shape {}; allowed with a pellet: {} (docs/generate.md, "
+            "\"Pellets\")",
+            name, printable(o.shape), fmt::join(pellet_options, ", ")));
+    }
+    PelletRequest request;
+    request.shape = o.shape;
+    request.particles = o.params.particles;
+    request.seed = o.params.seed;
+    request.aspect_ratio = o.aspect_ratio;
+    request.container = o.container;
+    request.band_clearance = o.band_clearance;
+    const PreparedPellets prepared = prepare_pellets(request);
+    OutputDirectory out(o.out, "--out", OutputKind::directory, o.force);
+    const int threads = use_threads(o.threads);
+    const bool drawing = progress_wanted(o.quiet);
+    auto last = std::chrono::steady_clock::now() - std::chrono::seconds(1);
+    bool drawn = false;
+    RunControl control;
+    control.on_progress = [&](const Progress& p) {
+        const auto now = std::chrono::steady_clock::now();
+        if (!drawing || now - last < std::chrono::milliseconds(100))
+            return;
+        last = now;
+        drawn = true;
+        draw_status_line(
+            {fmt::format("{} pellets", request.particles), std::string(p.stage),
+             fmt::format("step {}", p.iteration),
+             fmt::format("depth {:.2e} d_v", std::max(p.max_overlap_pair, p.max_overlap_wall)),
+             fmt::format("gravity {:.2e}", p.cg)});
+    };
+    const GeneratedPellets pellets = run_pellets(prepared, control, threads);
+    if (drawn) {
+        fmt::print(stderr, "\r\033[K");
+        std::fflush(stderr);
+    }
+    stage_pellet_bed(out, pellets);
+    out.commit();
+    if (!o.quiet) {
+        const auto& s = pellets.summary;
+        fmt::print("packbed generate: {} pellets {}, {}, seed {}: {} steps\n", request.particles,
+                   prepared.pellet.text,
+                   s.contains("aspect_ratio") ? fmt::format("a = {:g} (tube over d_v = {:.6g})",
+                                                            s["aspect_ratio"].get<double>(),
+                                                            prepared.pellet.volume_diameter)
+                                              : pellets.container.spec(),
+                   request.seed, pellets.bed.steps);
+        fmt::print("largest penetration: pellet-pellet {:.3e}, pellet-wall {:.3e} (tolerance "
+                   "{:.3e}); forces left {:.3g} weights, torques {:.3g}\n",
+                   s["max_penetration_pair"].get<double>(), s["max_penetration_wall"].get<double>(),
+                   s["tolerance"].get<double>(), pellets.bed.residual_force,
+                   pellets.bed.residual_torque);
+        if (s.contains("void_fraction"))
+            fmt::print("void fraction: {:.4f} (between z = {:.4g} and z = {:.4g})\n",
+                       s["void_fraction"].get<double>(), s["void_fraction_band"][0].get<double>(),
+                       s["void_fraction_band"][1].get<double>());
+        else
+            fmt::print("void fraction: not computed: {}\n",
+                       s["void_fraction_note"].get<std::string>());
+        fmt::print("results in {}/ (particles.csv with orientations, summary.json)\n",
+                   out.path().string());
+    }
+    return 0;
+}
 
 /// The print-out of a generated bed (generate, import-lammps). \param command the subcommand
 /// \param engine " (LAMMPS)" or "" \param more what else `out` holds, or ""
@@ -96,6 +181,8 @@ int write_lammps_job(const GenerateOptions& o, const PreparedGeneration& prepare
 }
 
 int run_generate(GenerateOptions& o) {
+    if (o.shape != "sphere")
+        return run_pellets(o);
     GenerateRequest request;
     request.params = o.params;
     request.params.update = update_orders().at(o.update);
@@ -201,6 +288,11 @@ Command register_generate(CLI::App& parent) {
                          "lengths in the unit of --diameter; a tube: a = D / Dp; instead of "
                          "--aspect-ratio")
         ->excludes(aspect);
+    o.app = app;
+    app->add_option("--shape", o.shape,
+                    "the particles: sphere, or cylinder:D,L (pellets of diameter D and length L, "
+                    "lengths in the bed's unit, -a over their volume-equivalent diameter d_v; "
+                    "docs/generate.md, \"Pellets\")");
     app->add_option("-n,--particles", p.particles, "Np, number of spheres")
         ->check(whole_in(option_range::particles));
     app->add_option("-s,--seed", p.seed, "seed of the random generation stage")

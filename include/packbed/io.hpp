@@ -14,7 +14,9 @@
 namespace packbed {
 
 /// The spheres as CSV: header `x,y,z,r`, one row per sphere, each number in the shortest form
-/// that reads back to the same double (round-trip precision).
+/// that reads back to the same double (round-trip precision). A packing with orientations (a
+/// bed of pellets) adds each one's unit quaternion, `qw,qx,qy,qz`, which turns the body z axis
+/// into the pellet's; r is then its size (d_v / 2).
 /// \return the file's text.
 std::string particles_csv(const Packing& packing);
 

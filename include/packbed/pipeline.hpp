@@ -16,11 +16,13 @@
 
 #include "packbed/analysis.hpp"
 #include "packbed/container.hpp"
+#include "packbed/cylinder_shape.hpp"
 #include "packbed/hydraulics.hpp"
 #include "packbed/lammps_engine.hpp"
 #include "packbed/openfoam.hpp"
 #include "packbed/output.hpp"
 #include "packbed/packing.hpp"
+#include "packbed/pellet_bed.hpp"
 #include "packbed/read.hpp"
 #include "packbed/sizes.hpp"
 #include "packbed/soft_sphere.hpp"
@@ -110,6 +112,57 @@ GeneratedBed generate_bed(const PreparedGeneration& prepared, RunControl control
 /// their spec and statistics.
 nlohmann::json generation_summary(const PreparedGeneration& prepared,
                                   const SoftSphereResult& result, int threads);
+
+// ---------------------------------------------------------------------------------------------
+// generate --shape: a bed of pellets (pellet_bed.hpp, docs/generate.md "Pellets")
+
+/// A pellet as users write it (--shape): "cylinder:D,L", its diameter and length in length
+/// units, each in (0, limits::max_length], L / D from 0.1 to 10.
+struct PelletSpec {
+    CylinderShape shape; ///< at the volume-equivalent size (CylinderShape::of_aspect(L / D))
+    double diameter = 0.0, length = 0.0;
+    double volume_diameter = 0.0; ///< d_v = (3 D^2 L / 2)^(1/3), the bed's unit
+    std::string text;             ///< as given
+};
+/// \return the pellet of `text`, or nothing when it is not one ("sphere" is not a pellet).
+std::optional<PelletSpec> parse_pellet_shape(std::string_view text);
+/// What --shape allows, in the command line's words.
+std::string allowed_shapes();
+
+/// What `packbed generate --shape` is asked for.
+struct PelletRequest {
+    std::string shape;             ///< --shape SPEC (parse_pellet_shape)
+    std::uint64_t particles = 100; ///< --particles
+    std::uint64_t seed = 1;        ///< --seed
+    double aspect_ratio = 5.0;     ///< a tube of a d_v, where `container` is ""
+    std::string container;         ///< --container SPEC in length units; "": aspect_ratio
+    double band_clearance = 1.0;   ///< of the void-fraction band, d_v
+};
+
+/// A pellet request checked and resolved: the solver's parameters (lengths in d_v).
+struct PreparedPellets {
+    PelletRequest request;
+    PelletSpec pellet;
+    PelletBedParameters params;
+};
+/// \throws InvalidInput naming the option, the value and what is allowed
+PreparedPellets prepare_pellets(const PelletRequest& request);
+
+/// A generated pellet bed in length units and its record.
+struct GeneratedPellets {
+    PelletBed bed;   ///< as the solver returns it (lengths in d_v)
+    Packing packing; ///< centroids and sizes (d_v / 2) in length units, orientations
+    Container container = Container::tube(1.0); ///< in length units
+    nlohmann::json summary;                     ///< summary.json
+};
+/// Run the pellet solver (generate_pellet_bed) and measure the bed: summary.json has the shape,
+/// the container, the stages, the exact depths and residuals, and the void fraction over the
+/// band clear of the floor and the top in a tube (the exact volumes, CylinderShape::volume_in).
+/// \throws ConvergenceError, Cancelled
+GeneratedPellets run_pellets(const PreparedPellets& prepared, const RunControl& control,
+                             int threads);
+/// particles.csv (with the orientations) and summary.json staged in `out`.
+void stage_pellet_bed(OutputDirectory& out, const GeneratedPellets& pellets);
 
 // ---------------------------------------------------------------------------------------------
 // generate --engine lammps (lammps_engine.hpp, docs/lammps.md)

@@ -15,11 +15,17 @@ namespace packbed {
 
 std::string particles_csv(const Packing& packing) {
     fmt::memory_buffer out;
-    fmt::format_to(std::back_inserter(out), "x,y,z,r\n");
+    const bool turned = !packing.orientations.empty();
+    fmt::format_to(std::back_inserter(out), "{}", turned ? "x,y,z,r,qw,qx,qy,qz\n" : "x,y,z,r\n");
     for (std::size_t i = 0; i < packing.size(); ++i) {
         const Vec3& c = packing.centers[i];
         // fmt's "{}" for double is the shortest representation that round-trips.
-        fmt::format_to(std::back_inserter(out), "{},{},{},{}\n", c.x, c.y, c.z, packing.radii[i]);
+        fmt::format_to(std::back_inserter(out), "{},{},{},{}", c.x, c.y, c.z, packing.radii[i]);
+        if (turned) {
+            const Quaternion& q = packing.orientations[i];
+            fmt::format_to(std::back_inserter(out), ",{},{},{},{}", q.w, q.x, q.y, q.z);
+        }
+        out.push_back('\n');
     }
     return fmt::to_string(out);
 }

@@ -1,0 +1,160 @@
+// generate --shape: a bed of pellets, from the request to its files (pipeline.hpp).
+#include <cmath>
+#include <optional>
+#include <string>
+#include <string_view>
+
+#include <fmt/format.h>
+
+#include "packbed/bed_volume.hpp"
+#include "packbed/error.hpp"
+#include "packbed/files.hpp"
+#include "packbed/io.hpp"
+#include "packbed/json_text.hpp"
+#include "packbed/limits.hpp"
+#include "packbed/pipeline.hpp"
+#include "packbed/text.hpp"
+#include "packbed/version.hpp"
+
+namespace packbed {
+
+namespace {
+
+constexpr double min_aspect = 0.1, max_aspect = 10.0; // L / D of a cylinder pellet
+
+} // namespace
+
+std::optional<PelletSpec> parse_pellet_shape(std::string_view text) {
+    const KindSpec spec = split_kind(text);
+    if (spec.kind != CylinderShape::kind || !spec.parameters)
+        return std::nullopt;
+    const auto numbers = parse_finite_list(*spec.parameters);
+    if (!numbers || numbers->size() != 2)
+        return std::nullopt;
+    const double d = (*numbers)[0], l = (*numbers)[1];
+    if (!(d > 0.0 && l > 0.0 && d <= limits::max_length && l <= limits::max_length))
+        return std::nullopt;
+    const double aspect = l / d;
+    if (!(aspect >= min_aspect && aspect <= max_aspect))
+        return std::nullopt;
+    PelletSpec out;
+    out.shape = CylinderShape::of_aspect(aspect);
+    out.diameter = d;
+    out.length = l;
+    // pi D^2 L / 4 = pi d_v^3 / 6.
+    out.volume_diameter = std::cbrt(1.5 * d * d * l);
+    out.text = std::string(text);
+    return out;
+}
+
+std::string allowed_shapes() {
+    return fmt::format("sphere (the default), or cylinder:D,L (a cylinder pellet of diameter D "
+                       "and length L, each > 0 and at most {:g}, L / D from {:g} to {:g})",
+                       limits::max_length, min_aspect, max_aspect);
+}
+
+PreparedPellets prepare_pellets(const PelletRequest& request) {
+    PreparedPellets out;
+    out.request = request;
+    const auto pellet = parse_pellet_shape(request.shape);
+    if (!pellet)
+        throw InvalidInput(fmt::format("--shape: '{}' is not allowed; allowed: {}",
+                                       printable(request.shape), allowed_shapes()));
+    out.pellet = *pellet;
+    const double dv = pellet->volume_diameter;
+    PelletBedParameters& p = out.params;
+    p.particles = request.particles;
+    p.seed = request.seed;
+    p.shape = pellet->shape;
+    if (request.container.empty()) {
+        p.container = Container::tube(request.aspect_ratio);
+    } else {
+        const auto c = parse_container(request.container);
+        if (!c)
+            throw InvalidInput(container_not_allowed("--container", request.container));
+        p.container = c->scaled(1.0 / dv);
+    }
+    if (const auto largest = p.container.fit_problem(2.0 * p.shape.bounding_radius(0.5));
+        !largest.empty())
+        throw InvalidInput(fmt::format("--shape: '{}' does not fit in {}: {}",
+                                       printable(request.shape), p.container.describe(), largest));
+    p.validate();
+    return out;
+}
+
+GeneratedPellets run_pellets(const PreparedPellets& prepared, const RunControl& control,
+                             int threads) {
+    GeneratedPellets out;
+    out.bed = generate_pellet_bed(prepared.params, control);
+    const double dv = prepared.pellet.volume_diameter;
+    out.packing = out.bed.packing;
+    for (Vec3& c : out.packing.centers)
+        c = c * dv;
+    for (double& r : out.packing.radii)
+        r *= dv;
+    out.container = prepared.params.container.scaled(dv);
+
+    using nlohmann::json;
+    const PelletBedParameters& p = prepared.params;
+    const PelletSpec& pellet = prepared.pellet;
+    const PelletBed& bed = out.bed;
+    json s;
+    s["version"] = std::string(version);
+    s["generator"] = "pellets: level-set contact and FIRE on positions and rotations "
+                     "(docs/design.md, \"A bed of cylinder pellets\")";
+    s["shape"] = {{"kind", CylinderShape::kind},
+                  {"spec", pellet.text},
+                  {"diameter", pellet.diameter},
+                  {"length", pellet.length},
+                  {"volume_equivalent_diameter", dv},
+                  {"axis", "the body z axis: particles.csv's quaternion qw, qx, qy, qz turns it "
+                           "into the pellet's"},
+                  {"r", "particles.csv's r is d_v / 2, the pellet's size"}};
+    if (const auto a = p.container.tube_diameter())
+        s["aspect_ratio"] = *a; // D_tube / d_v
+    s["particles"] = p.particles;
+    s["seed"] = p.seed;
+    s["threads"] = threads;
+    const ShapedBed<CylinderShape> shaped(out.packing, {pellet.shape});
+    const double top = bed_top(shaped);
+    s["container"] = out.container.summary_json();
+    s["container"]["height"] = top;
+    s["container"]["bottom"] = 0.0;
+    const double tol = p.tolerance * p.smallest_dimension() * dv;
+    s["tolerance"] = tol;
+    s["max_penetration_pair"] = bed.max_depth_pair * dv;
+    s["max_penetration_wall"] = bed.max_depth_wall * dv;
+    s["max_node_depth"] = bed.max_depth_nodes * dv;
+    s["force_residual"] = bed.residual_force;
+    s["torque_residual"] = bed.residual_torque;
+    s["residual_unit"] = "a pellet's weight (torque: times its bounding radius)";
+    s["steps"] = bed.steps;
+    s["nodes_per_pellet"] = bed.nodes;
+    json stages = json::array();
+    for (const PelletStage& st : bed.stages)
+        stages.push_back({{"name", st.name},
+                          {"steps", st.steps},
+                          {"gravity", st.gravity},
+                          {"max_node_depth", st.max_depth * dv},
+                          {"mass_centre_z", st.mass_centre_z * dv}});
+    s["stages"] = stages;
+    const double clearance = prepared.request.band_clearance * dv;
+    if (!out.container.tube_diameter())
+        s["void_fraction_note"] = "measured in a tube only: elsewhere the exact volume of a pellet "
+                                  "the walls cut takes about a second (docs/design.md)";
+    else if (top - clearance <= clearance)
+        s["void_fraction_note"] = "the bed is lower than twice the band clearance";
+    else {
+        s["void_fraction"] = void_fraction(shaped, out.container, clearance, top - clearance);
+        s["void_fraction_band"] = {clearance, top - clearance};
+    }
+    out.summary = s;
+    return out;
+}
+
+void stage_pellet_bed(OutputDirectory& out, const GeneratedPellets& pellets) {
+    out.stage("particles.csv", particles_csv(pellets.packing));
+    out.stage("summary.json", json_file_text(pellets.summary, "summary.json"));
+}
+
+} // namespace packbed
