@@ -1,4 +1,5 @@
 // generate --shape: a bed of pellets, from the request to its files (pipeline.hpp).
+#include <chrono>
 #include <cmath>
 #include <optional>
 #include <string>
@@ -85,7 +86,10 @@ PreparedPellets prepare_pellets(const PelletRequest& request) {
 GeneratedPellets run_pellets(const PreparedPellets& prepared, const RunControl& control,
                              int threads) {
     GeneratedPellets out;
+    const auto start = std::chrono::steady_clock::now();
     out.bed = generate_pellet_bed(prepared.params, control);
+    const double seconds =
+        std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
     const double dv = prepared.pellet.volume_diameter;
     out.packing = out.bed.packing;
     for (Vec3& c : out.packing.centers)
@@ -129,6 +133,7 @@ GeneratedPellets run_pellets(const PreparedPellets& prepared, const RunControl& 
     s["torque_residual"] = bed.residual_torque;
     s["residual_unit"] = "a pellet's weight (torque: times its bounding radius)";
     s["steps"] = bed.steps;
+    s["seconds"] = seconds;
     s["nodes_per_pellet"] = bed.nodes;
     json stages = json::array();
     for (const PelletStage& st : bed.stages)
