@@ -184,6 +184,12 @@ private:
         };
         std::map<std::array<long, 3>, std::vector<std::uint32_t>> grid;
         const auto clear = [&](const Vec3& p) {
+            if (m_cell) { // the minimum image: every earlier pellet (the grid's cells do not wrap)
+                for (const Vec3& q : m_centre)
+                    if (norm2(m_cell->separation(p, q)) < cell * cell)
+                        return false;
+                return true;
+            }
             const auto k = key(p);
             for (long dx = -1; dx <= 1; ++dx)
                 for (long dy = -1; dy <= 1; ++dy)
@@ -191,12 +197,9 @@ private:
                         const auto found = grid.find({k[0] + dx, k[1] + dy, k[2] + dz});
                         if (found == grid.end())
                             continue;
-                        for (const std::uint32_t j : found->second) {
-                            const Vec3 d =
-                                m_cell ? m_cell->separation(p, m_centre[j]) : m_centre[j] - p;
-                            if (norm2(d) < cell * cell)
+                        for (const std::uint32_t j : found->second)
+                            if (norm2(m_centre[j] - p) < cell * cell)
                                 return false;
-                        }
                     }
             return true;
         };
