@@ -13,6 +13,7 @@
 #include <omp.h>
 
 #include "command.hpp"
+#include "interrupt.hpp"
 #include "packbed/analysis.hpp"
 #include "packbed/error.hpp"
 #include "packbed/files.hpp"
@@ -91,6 +92,7 @@ int run_pellets(const GenerateOptions& o) {
             return;
         last = now;
         drawn = true;
+        progress_line_drawn(true); // the interrupt handler erases it
         draw_status_line(
             {fmt::format("{} pellets", request.particles), std::string(p.stage),
              fmt::format("step {}", p.iteration),
@@ -101,6 +103,7 @@ int run_pellets(const GenerateOptions& o) {
     if (drawn) {
         fmt::print(stderr, "\r\033[K");
         std::fflush(stderr);
+        progress_line_drawn(false);
     }
     stage_pellet_bed(out, pellets);
     out.commit();
