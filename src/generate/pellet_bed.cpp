@@ -9,6 +9,7 @@
 #include <optional>
 #include <random>
 #include <string>
+#include <tuple>
 #include <vector>
 
 #include <fmt/format.h>
@@ -148,8 +149,7 @@ public:
         out.nodes = m_nodes.size();
         forces();
         out.max_depth_nodes = m_depth;
-        out.residual_force = residual().first;
-        out.residual_torque = residual().second;
+        std::tie(out.residual_force, out.residual_torque) = residual();
         measure_exact(out);
         out.packing.centers = m_centre;
         out.packing.orientations = m_turn;
@@ -274,6 +274,14 @@ private:
         const CylinderShape& shape = m_params.shape;
         const Vec3 axis = ra(Vec3{0.0, 0.0, 1.0}), x = ra(Vec3{1.0, 0.0, 0.0}),
                    y = ra(Vec3{0.0, 1.0, 0.0});
+        // cos and sin of the fixed sample angles k 2 pi / circle_samples.
+        constexpr double step = 2.0 * std::numbers::pi / circle_samples;
+        static const std::array<std::pair<double, double>, circle_samples> around = [] {
+            std::array<std::pair<double, double>, circle_samples> out;
+            for (int k = 0; k < circle_samples; ++k)
+                out[k] = {std::cos(k * step), std::sin(k * step)};
+            return out;
+        }();
         const double reach2 = m_reach * m_reach;
         for (const SurfaceCircle& circle : m_circles) {
             // The circle's centre from b's, and the disc b's bounding sphere cuts its plane in.
@@ -301,19 +309,12 @@ private:
             // The samples at fixed angles k 2 pi / circle_samples, from the last before the
             // arc to the first after it: they do not move with the pellets, so neither do the
             // pieces the integral is split into.
-            constexpr double step = 2.0 * std::numbers::pi / circle_samples;
             const long k_first = static_cast<long>(std::floor((mid - half) / step));
             const long k_last = std::min(static_cast<long>(std::ceil((mid + half) / step)),
                                          k_first + circle_samples);
             std::vector<std::pair<double, double>>& points = m_points;
             points.clear();
             double best = -std::numeric_limits<double>::infinity();
-            static const std::array<std::pair<double, double>, circle_samples> around = [] {
-                std::array<std::pair<double, double>, circle_samples> out;
-                for (int k = 0; k < circle_samples; ++k)
-                    out[k] = {std::cos(k * step), std::sin(k * step)};
-                return out;
-            }();
             for (long k = k_first; k <= k_last; ++k) {
                 const auto& [c, s] = around[static_cast<std::size_t>(
                     ((k % circle_samples) + circle_samples) % circle_samples)];

@@ -600,10 +600,13 @@ struct NodeSteps {
     double row_area, rim_area;
 };
 
+/// The fewest steps of at most `spacing` over `span` (at least one).
+int node_count(double span, double spacing) {
+    return std::max(1, static_cast<int>(std::ceil(span / spacing - 1e-9)));
+}
+
 NodeSteps node_steps(const CylinderShape& c, double spacing) {
-    const auto count = [spacing](double span) {
-        return std::max(1, static_cast<int>(std::ceil(span / spacing - 1e-9)));
-    };
+    const auto count = [spacing](double span) { return node_count(span, spacing); };
     NodeSteps s{std::max(6, count(2.0 * pi * c.radius)), count(2.0 * c.half_length),
                 count(c.radius), 0.0, 0.0};
     const double ring_step = c.radius / s.rings;
@@ -628,9 +631,7 @@ std::vector<SurfaceCircle> CylinderShape::surface_circles(double spacing) const 
 
 std::vector<SurfaceNode> CylinderShape::surface_nodes(double spacing, bool rows_too) const {
     const double length = 2.0 * half_length;
-    const auto count = [spacing](double span) {
-        return std::max(1, static_cast<int>(std::ceil(span / spacing - 1e-9)));
-    };
+    const auto count = [spacing](double span) { return node_count(span, spacing); };
     const NodeSteps steps = node_steps(*this, spacing);
     const int around = steps.around, rows = steps.rows, rings = steps.rings;
     const double ring_step = radius / rings;
