@@ -3,7 +3,8 @@
 edge shared by two facets, consistent orientation, no degenerate facet, one part per body) and
 OpenFOAM's surfaceCheck (closed, not self-intersecting), for a generated bed, a lattice in a
 cylinder, a simple cubic lattice in a box (issue 17: 3 x 3 x 2 balls, 16 of them touching
-one or two faces of the box, the lower 9 the floor) and a bed in a cone, with every treatment. For caps and shrink admesh must also leave every stored normal as it is; the
+one or two faces of the box, the lower 9 the floor) and a bed in a cone, with every treatment,
+and a bed of 12 cylinder pellets shrunk by 2 %. For caps and shrink admesh must also leave every stored normal as it is; the
 unions of enlarge and bridges (CGAL's corefinement) keep small triangles whose single-precision
 normal admesh recomputes differently, so there only orientation is checked.
 Two untreated spheres overlapping by 0.045 Dp must be reported as self-intersecting: the
@@ -72,6 +73,15 @@ for bed, spheres in (("bed", 30), ("lattice", n_lattice), ("boxed", n_boxed), ("
         assert surface_check(stl) == (True, True), (stl, "closed, not self-intersecting")
         print(f"{stl}: {'one union' if united else f'{spheres} bodies'} + container, closed, "
               f"oriented, not self-intersecting")
+# Pellets: 12 cylinders poured into a tube (generate --shape), each shrunk by 2 % about its
+# centroid: 12 bodies and the container.
+run(exe, "generate", "--shape", "cylinder:3,3", "--aspect-ratio", "4", "--particles", "12",
+    "--seed", "3", "--quiet", "--out", "pellets")
+run(exe, "export", "pellets/particles.csv", "--format", "stl", "--contacts", "shrink:0.02",
+    "--out", "pellets.stl", "--quiet")
+admesh("pellets.stl", 12 + 1, normals_kept=True)
+assert surface_check("pellets.stl") == (True, True), ("pellets.stl", "closed, not self-intersecting")
+print("pellets.stl: 12 cylinders + container, closed, oriented, not self-intersecting")
 with open(os.path.join(work, "overlap.csv"), "w") as f:
     f.write("x,y,z,r\n0,0,1,0.5\n0.95,0.1,1.02,0.5\n")  # 0.045 Dp of overlap
 run(exe, "export", "overlap.csv", "--format", "stl", "--container-radius", "3", "--out",

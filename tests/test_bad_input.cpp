@@ -130,6 +130,16 @@ void prepare_nothing_lost(const fs::path& d) {
     fs::create_directory(d / "bed");
     write(d / "bed" / "particles.csv", column(40));
     write(d / "bed" / "summary.json", R"({"container": {"shape": "cylinder", "radius": 1}})");
+    // Two pellets (cylinder:1,1, r = d_v / 2) with their orientations and summary, and a
+    // summary whose shape is none.
+    fs::create_directory(d / "pel");
+    write(d / "pel" / "particles.csv",
+          "x,y,z,r,qw,qx,qy,qz\n0,0,0.6,0.5724,1,0,0,0\n0,0,1.8,0.5724,1,0,0,0\n");
+    write(d / "pel" / "summary.json", R"({"container": {"shape": "cylinder", "radius": 2}, )"
+                                      R"("shape": {"kind": "cylinder", "spec": "cylinder:1,1"}})");
+    fs::create_directory(d / "cone");
+    write(d / "cone" / "particles.csv", "x,y,z,r\n0,0,0.6,0.5\n");
+    write(d / "cone" / "summary.json", R"({"shape": {"spec": "cone:1,1"}})");
     fs::create_directory(d / "sz");
     write(d / "sz" / "sizes.csv", "diameter,cumulative_fraction\n1,0\n1.2,1\n");
     fs::create_directory(d / "cfg");
@@ -1376,6 +1386,36 @@ const std::string not_an_input = "; allowed: an output that is not an input";
 const std::string holds = "; allowed: an output directory that does not hold the inputs";
 const std::string job_json = "; allowed: the job.json packbed generate --engine lammps "
                              "--write-only wrote";
+
+INSTANTIATE_TEST_SUITE_P(
+    ExportPellets, CliBadInput,
+    ::testing::Values(
+        exact("export pel/particles.csv -f stl --contacts caps:0.02 -o pel.stl",
+              "packbed export: --contacts caps:0.02 is not allowed for a bed of pellets; "
+              "allowed: none, or shrink:F (each pellet scaled by 1 - F about its centroid, F in "
+              "(0, 0.5))"),
+        exact("export pel/particles.csv -o pel.data",
+              "packbed export: --format lammps-data is not allowed for a bed of cylinder:1,1 "
+              "pellets; allowed: stl, stl-ascii, obj, openfoam (the data files hold spheres)"),
+        exact("export bed/particles.csv -f stl --shape cylinder:1,1 -o p.stl",
+              "packbed export: bed/particles.csv: a bed of cylinder:1,1 pellets needs each "
+              "pellet's orientation; allowed: a table with the columns qw, qx, qy, qz (what "
+              "packbed generate --shape writes)"),
+        naming("export pel/particles.csv -f stl --shape cylinder:1 -o p.stl",
+               {"--shape", "cylinder:1", "cylinder:D,L"}),
+        exact("analyze pel/particles.csv",
+              "packbed analyze: pel/particles.csv: a bed of cylinder:1,1 pellets (its "
+              "summary.json's shape) is not allowed here; allowed: a bed of spheres (a pellet "
+              "bed's void fraction is in generate's summary.json, its surfaces from export "
+              "--format stl, obj or openfoam)"),
+        naming("analyze pel/particles.csv --frames all", {"pel/particles.csv", "cylinder:1,1"}),
+        naming("voxelize pel/particles.csv --voxel-size 0.1 --out v.raw",
+               {"pel/particles.csv", "pellets"}),
+        naming("export cone/particles.csv -f stl -o c.stl",
+               {"cone/summary.json", "shape 'cone:1,1'", "cylinder:D,L"}),
+        naming("export pel/particles.csv -f stl --contacts shrink:0.01 --container cylinder:0.9 "
+               "-o p.stl",
+               {"--contacts shrink:0.01", "pel/particles.csv", "wall"})));
 
 INSTANTIATE_TEST_SUITE_P(
     NothingLost, CliBadInput,

@@ -92,6 +92,28 @@ TEST(ReadParticles, EveryFormatGivesTheSameSpheres) {
     EXPECT_EQ(g.packing.centers[2], reference().centers[2]);
 }
 
+TEST(ReadParticles, OrientationsFromTheFourQuaternionColumns) {
+    // What generate --shape writes: x,y,z,r,qw,qx,qy,qz; a norm within 1e-3 of 1 is made 1.
+    const auto f = read_particles(write("q.csv", "x,y,z,r,qw,qx,qy,qz\n0,0,1,0.5,1,0,0,0\n"
+                                                 "1,0,1,0.5,0,0.6,0.8,0\n"
+                                                 "2,0,1,0.5,0.5005,0.5,0.5,0.5\n"));
+    ASSERT_EQ(f.packing.orientations.size(), 3u);
+    EXPECT_EQ(f.packing.orientations[1].x, 0.6);
+    EXPECT_EQ(f.packing.orientations[1].y, 0.8);
+    const Quaternion& q = f.packing.orientations[2];
+    EXPECT_NEAR(q.w * q.w + q.x * q.x + q.y * q.y + q.z * q.z, 1.0, 1e-15);
+    // Without them: none.
+    EXPECT_TRUE(
+        read_particles(write("n.csv", "x,y,z,r\n0,0,1,0.5\n")).packing.orientations.empty());
+    // Some of the four, or a quaternion that is not a rotation: refused, naming the line.
+    EXPECT_NE(error_of("x,y,z,r,qw,qx\n0,0,1,0.5,1,0\n", ParticleFormat::csv)
+                  .find(":1: some of the columns qw, qx, qy, qz but not all"),
+              std::string::npos);
+    EXPECT_NE(error_of("x,y,z,r,qw,qx,qy,qz\n0,0,1,0.5,1,0.1,0,0\n", ParticleFormat::csv)
+                  .find(":2: the quaternion (1, 0.1, 0, 0) has norm 1.00498"),
+              std::string::npos);
+}
+
 TEST(ReadParticles, EmptyFirstFrameAndByteOrderMark) {
     // LIGGGHTS writes a frame with 0 atoms before the particles are inserted.
     std::istringstream dump(

@@ -525,6 +525,30 @@ TEST(Surface, TheSameUnionWhateverTheThreads) {
     EXPECT_TRUE(closed_and_oriented({&one[0].mesh}));
 }
 
+TEST(Surface, TheSameBridgedUnionWhateverTheThreadsAndTheRun) {
+    // 27 touching balls of a simple cubic block and their 54 bridges: CGAL's corefinement
+    // numbers its output by memory addresses, which two threads change from run to run (it gave
+    // other bytes nearly every run); the union is built in one order whatever they are.
+    Packing p;
+    for (int i = 0; i < 27; ++i)
+        p.add({1.0 + (i % 3), 1.0 + (i / 3 % 3), 0.5 + (i / 9)}, 0.5);
+    SurfaceOptions o;
+    o.level = 2;
+    o.container = cylinder(8.0, 4.0);
+    o.write_container = false;
+    const TreatedBed bed = treat_contacts(p, parse_contacts("bridges:0.2"), o.container);
+    ASSERT_EQ(bed.bridges.size(), 54u);
+    omp_set_num_threads(1);
+    const auto one = bed_surface(bed, o);
+    omp_set_num_threads(2);
+    for (int run = 0; run < 3; ++run) {
+        const auto two = bed_surface(bed, o);
+        EXPECT_EQ(one[0].mesh.vertices, two[0].mesh.vertices) << run;
+        EXPECT_EQ(one[0].mesh.triangles, two[0].mesh.triangles) << run;
+    }
+    EXPECT_TRUE(closed_and_oriented({&one[0].mesh}));
+}
+
 // Issue 17: a bed in a box. The wall cuts are one per face closer than the gap (two in a
 // corner), the container's volume is LX LY H, and the solids are the box's faces.
 namespace {

@@ -10,8 +10,10 @@
 #include <fmt/format.h>
 
 #include "command.hpp"
+#include "packbed/error.hpp"
 #include "packbed/pipeline.hpp"
 #include "packbed/read.hpp"
+#include "packbed/text.hpp"
 
 namespace packbed::cli {
 
@@ -29,6 +31,7 @@ struct ExportOptions {
     double container_radius = 0.0; // 0: from summary.json beside the file, if any
     std::string container;         // --container SPEC (any shape), instead of -R
     std::string flow = "inlet";    // --flow: inlet, or periodic (request.mesh.periodic_z)
+    std::string shape;             // --shape SPEC; "": summary.json beside the file, or spheres
     bool quiet = false;
 };
 
@@ -44,6 +47,15 @@ int run_export(ExportOptions& o) {
         read.radius = 0.5 * o.diameter;
     o.placement.apply(read);
     const ParticleFile file = read_particles(o.particles, read);
+    // The particles' shape: --shape, else the one summary.json beside the file records.
+    if (!o.shape.empty() && o.shape != "sphere") {
+        request.pellet = parse_pellet_shape(o.shape);
+        if (!request.pellet)
+            throw InvalidInput(fmt::format("--shape '{}' is not allowed; allowed: {}",
+                                           printable(o.shape), allowed_shapes()));
+    } else if (o.shape.empty()) {
+        request.pellet = shape_beside(o.particles);
+    }
     // The container: --container, --container-radius or summary.json beside the file.
     if (export_uses_container(request))
         request.container = find_container(o.particles, o.container, o.container_radius);
@@ -85,6 +97,10 @@ Command register_export(CLI::App& parent) {
     app->add_flag("--force", o.request.force,
                   "openfoam: replace a non-empty case directory whole (its old files are "
                   "deleted); files are replaced without it");
+    app->add_option("--shape", o.shape,
+                    "the particles' shape: sphere, or cylinder:D,L (pellets: the table's r is "
+                    "d_v / 2 and its qw, qx, qy, qz each pellet's orientation; default: the "
+                    "shape summary.json beside the file records, else spheres)");
     app->add_option("--contacts", o.request.contacts,
                     "surfaces: none; shrink:F (radii times 1 - F, gaps); enlarge:F (radii times "
                     "1 + F, united); caps:H (flat faces H Dp apart at every contact closer than "

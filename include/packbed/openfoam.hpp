@@ -80,4 +80,24 @@ OpenFoamCase openfoam_case(const TreatedBed& bed, const SurfaceContainer& contai
                            double diameter, int level, const OpenFoamMeshOptions& options = {},
                            const OpenFoamFlowOptions& flow = {});
 
+/// The particles as a case sees them, whatever their shape: what openfoam_case builds from a
+/// treated bed of spheres, and the pellets' export from their shapes.
+struct CaseParticles {
+    std::vector<Solid> surface; ///< constant/triSurface/particles.stl
+    /// a ball holding each body (with a periodic cell's copies across its sides): the fluid
+    /// point keeps its clearance from them
+    std::vector<TreatedBody> bounds;
+    double reach = 0.0;     ///< how far a surface may come beyond the balls (a bridge's)
+    std::size_t count = 0;  ///< the particles of the bed (README)
+    double top = 0.0;       ///< the bed's top: the last pressure plane stays below it
+    double wall_edge = 0.0; ///< the wall's triangles, at most this long (and half a cell)
+};
+
+/// The same case for particles of any shape (the other overload's `level` is in their
+/// surface and wall_edge).
+OpenFoamCase openfoam_case(const CaseParticles& particles, const SurfaceContainer& container,
+                           const TreatmentVolumes& volumes, const std::string& contacts,
+                           double diameter, const OpenFoamMeshOptions& options = {},
+                           const OpenFoamFlowOptions& flow = {});
+
 } // namespace packbed

@@ -279,6 +279,12 @@ std::optional<double> friction_beside(const std::filesystem::path& particles);
 /// \throws InvalidInput as container_beside
 std::optional<double> period_z_beside(const std::filesystem::path& particles);
 
+/// The pellet recorded in `summary.json` beside a particle file (`shape.spec`, what `generate
+/// --shape` wrote). \return nothing when there is no such file or it records no shape (a bed of
+/// spheres). \throws InvalidInput as container_beside, and when the spec is not a pellet
+/// (parse_pellet_shape)
+std::optional<PelletSpec> shape_beside(const std::filesystem::path& particles);
+
 /// The container a spec text names (parse_container). \throws InvalidInput naming `option`,
 /// the text and the four forms when it names none
 Container container_from_spec(std::string_view option, const std::string& spec);
@@ -364,8 +370,11 @@ struct ExportRequest {
     /// records (friction_beside). Above 0, the example DEM input's friction.
     std::optional<double> friction;
     std::optional<Container> container; ///< the bed's; none: no wall treatment, no example
-    double container_height = 0.0;      ///< 0: the bed's top + 1 Dp
-    bool no_container = false;          ///< surfaces: no container solids; data files: ignore it
+    /// the particles' shape (shape_beside, or export --shape); none: spheres. Pellets are
+    /// written as surfaces (STL, OBJ, openfoam) with the contacts none or shrink:F
+    std::optional<PelletSpec> pellet;
+    double container_height = 0.0; ///< 0: the bed's top + 1 Dp
+    bool no_container = false;     ///< surfaces: no container solids; data files: ignore it
     // data files
     double density = 2500.0;    ///< written for every atom
     std::string box;            ///< "xlo,xhi,ylo,yhi,zlo,zhi"; "": the container's or the bed's

@@ -28,8 +28,10 @@ enum class ParticleFormat {
     /// A delimited table with a header row: the separator is the header's (`;`, else `,`,
     /// else a tab, else runs of spaces); fields may be quoted ("..."). Columns x, y, z (or
     /// ParaView's Points:0, Points:1, Points:2) and r, radius, d or diameter (or none when
-    /// ReadOptions::radius is given); other columns are ignored. In a `;`-separated table a
-    /// decimal comma (1,5) is read as a decimal point. One frame.
+    /// ReadOptions::radius is given); with the four columns qw, qx, qy, qz (what packbed writes
+    /// for pellets), each particle's orientation, a quaternion of norm 1 within 1e-3 (made
+    /// exactly 1); other columns are ignored. In a `;`-separated table a decimal comma (1,5) is
+    /// read as a decimal point. One frame.
     csv,
     /// Frames of: a count line, a comment line, `name x y z [radius]` per sphere.
     xyz,
@@ -145,6 +147,9 @@ struct BedSummary {
     /// the period along z of a cell periodic on all six faces (`period_z`, packbed
     /// random-array), when present
     std::optional<double> period_z;
+    /// the particles' shape as `generate --shape` wrote it (`shape.spec`: "cylinder:D,L"),
+    /// when the bed is not of spheres
+    std::optional<std::string> shape;
 };
 
 /// Read a summary.json. Absent keys are left empty; present ones must be right.

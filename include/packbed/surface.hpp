@@ -16,6 +16,7 @@
 #include "packbed/container.hpp"
 #include "packbed/mesh.hpp"
 #include "packbed/packing.hpp"
+#include "packbed/particle_shape.hpp"
 #include "packbed/registry.hpp"
 #include "packbed/vec3.hpp"
 
@@ -196,6 +197,27 @@ TreatedBed periodic_images(const TreatedBed& bed, const Periods& cell);
 /// "x_high", "y_low", "y_high" instead), "bottom" and "top" (Container::solids). In a periodic
 /// cell the particles include the copies of periodic_images.
 std::vector<Solid> bed_surface(const TreatedBed& bed, const SurfaceOptions& options);
+
+/// Every particle of a bed of one shape class as one surface: its type's unit_surface(level)
+/// scaled about its position by `scale` (1 - F for shrink:F, 1 as it is), turned and moved
+/// (place_surface). Each polyhedron's vertices lie on its particle's surface (scaled), so a
+/// convex particle's polyhedron lies inside it.
+template <ParticleShape S>
+TriangleMesh particle_surfaces(const ShapedBed<S>& bed, int level, double scale = 1.0) {
+    std::vector<TriangleMesh> units;
+    for (const S& shape : bed.shapes())
+        units.push_back(shape.unit_surface(level));
+    const Packing& particles = bed.particles();
+    TriangleMesh all;
+    for (std::size_t i = 0; i < bed.size(); ++i) {
+        TriangleMesh mesh = units[particles.types.empty() ? 0 : particles.types[i]];
+        Placement p = bed.placement(i);
+        p.size *= scale;
+        place_surface<S>(mesh, p);
+        all.append(mesh);
+    }
+    return all;
+}
 
 /// The three formats.
 enum class SurfaceFormat { stl_binary, stl_ascii, obj };

@@ -1,5 +1,6 @@
 #include "export/mesh_union.hpp"
 
+#include <algorithm>
 #include <stdexcept>
 
 #include <cmath>
@@ -33,23 +34,42 @@ Mesh to_cgal(const TriangleMesh& m) {
 /// collapsed where the shortest edge is below `shortest` and its caps (an angle above 179
 /// degrees) flipped: corefinement leaves such slivers where an intersection point falls next
 /// to a vertex, and single-precision STL would turn them into degenerate facets.
+/// The rounded mesh is built in a canonical order (vertices by their exact coordinates, faces by
+/// their vertices' ranks), not in the order CGAL's corefinement numbers them: that order
+/// depends on memory addresses (box_intersection_d, for one, breaks ties by box address, and
+/// the pairs it reports fill unordered maps whose iteration numbers the intersection points),
+/// so with several threads it changes from run to run. The collapses and flips, which go in
+/// index order, then see the same mesh every run, and the output has one order.
 TriangleMesh from_cgal(const Mesh& exact, double shortest) {
+    std::vector<Mesh::Vertex_index> order(exact.vertices().begin(), exact.vertices().end());
+    std::sort(order.begin(), order.end(), [&](Mesh::Vertex_index a, Mesh::Vertex_index b) {
+        return CGAL::compare_xyz(exact.point(a), exact.point(b)) == CGAL::SMALLER;
+    });
     Rounded m;
-    std::vector<Rounded::Vertex_index> map(exact.number_of_vertices() +
-                                           exact.number_of_removed_vertices());
-    for (const auto v : exact.vertices()) {
-        const auto& p = exact.point(v);
-        map[v] =
-            m.add_vertex({CGAL::to_double(p.x()), CGAL::to_double(p.y()), CGAL::to_double(p.z())});
+    std::vector<std::uint32_t> rank(exact.number_of_vertices() +
+                                    exact.number_of_removed_vertices());
+    for (std::size_t i = 0; i < order.size(); ++i) {
+        rank[order[i]] = static_cast<std::uint32_t>(i);
+        // From the exact value: the interval CGAL::to_double would take the middle of depends
+        // on which constructions were refined before.
+        const auto& p = CGAL::exact(exact.point(order[i]));
+        m.add_vertex({CGAL::to_double(p.x()), CGAL::to_double(p.y()), CGAL::to_double(p.z())});
     }
+    std::vector<std::array<std::uint32_t, 3>> faces;
+    faces.reserve(exact.number_of_faces());
     for (const auto f : exact.faces()) {
-        std::array<Rounded::Vertex_index, 3> t{};
+        std::array<std::uint32_t, 3> t{};
         int k = 0;
         for (const auto v : CGAL::vertices_around_face(exact.halfedge(f), exact))
             if (k < 3)
-                t[k++] = map[v];
-        m.add_face(t[0], t[1], t[2]);
+                t[k++] = rank[v];
+        std::rotate(t.begin(), std::min_element(t.begin(), t.end()), t.end());
+        faces.push_back(t);
     }
+    std::sort(faces.begin(), faces.end());
+    for (const auto& t : faces)
+        m.add_face(Rounded::Vertex_index(t[0]), Rounded::Vertex_index(t[1]),
+                   Rounded::Vertex_index(t[2]));
     CGAL::Polygon_mesh_processing::experimental::remove_almost_degenerate_faces(
         m, std::cos(179.0 / 180.0 * 3.141592653589793), 10.0, shortest);
     m.collect_garbage();

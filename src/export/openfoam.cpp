@@ -376,6 +376,33 @@ OpenFoamCase openfoam_case(const TreatedBed& bed, const SurfaceContainer& contai
                            const TreatmentVolumes& volumes, const std::string& contacts,
                            double diameter, int level, const OpenFoamMeshOptions& options,
                            const OpenFoamFlowOptions& flow) {
+    CaseParticles particles;
+    // In a periodic cell the fluid point keeps clear of the copies across the sides too.
+    const std::optional<Periods> cell = container.periods();
+    particles.bounds = cell ? periodic_images(bed, *cell).bodies : bed.bodies;
+    // A bridge's part outside its spheres lies within about its radius of their contact
+    // point, which is on a sphere: it is at most that much closer than the spheres.
+    for (const Bridge& b : bed.bridges)
+        particles.reach = std::max(particles.reach, 1.01 * b.radius);
+    particles.count = bed.bodies.size();
+    for (const TreatedBody& b : bed.bodies)
+        particles.top = std::max(particles.top, b.center.z + b.radius);
+    double largest = 0.0;
+    for (const TreatedBody& b : particles.bounds)
+        largest = std::max(largest, b.radius);
+    particles.wall_edge = largest * icosphere_edge(level);
+    SurfaceOptions surface;
+    surface.level = level;
+    surface.container = container;
+    surface.write_container = false;
+    particles.surface = bed_surface(bed, surface);
+    return openfoam_case(particles, container, volumes, contacts, diameter, options, flow);
+}
+
+OpenFoamCase openfoam_case(const CaseParticles& particles, const SurfaceContainer& container,
+                           const TreatmentVolumes& volumes, const std::string& contacts,
+                           double diameter, const OpenFoamMeshOptions& options,
+                           const OpenFoamFlowOptions& flow) {
     detail::require(options.cells_per_diameter >= 1 && options.cells_per_diameter <= 100,
                     "--cells-per-diameter", options.cells_per_diameter, "1 to 100");
     detail::require(options.particle_level >= 0 && options.particle_level <= 8, "--particle-level",
@@ -395,17 +422,10 @@ OpenFoamCase openfoam_case(const TreatedBed& bed, const SurfaceContainer& contai
     const double finest = detail::refined(
         c.cell_size, back.wall_surface ? std::max(options.particle_level, options.wall_level)
                                        : options.particle_level);
-    // In a periodic cell the fluid point keeps clear of the copies across the sides too.
     const std::optional<Periods> cell = container.periods();
-    const TreatedBed imaged = cell ? periodic_images(bed, *cell) : TreatedBed{};
-    const std::vector<TreatedBody>& bodies = cell ? imaged.bodies : bed.bodies;
-    std::tie(c.location_in_mesh, c.clearance) = farthest_fluid_point(bodies, container, diameter);
-    // A bridge's part outside its spheres lies within about its radius of their contact
-    // point, which is on a sphere: it is at most that much closer than the spheres.
-    double widest = 0.0;
-    for (const Bridge& b : bed.bridges)
-        widest = std::max(widest, b.radius);
-    c.clearance -= 1.01 * widest;
+    std::tie(c.location_in_mesh, c.clearance) =
+        farthest_fluid_point(particles.bounds, container, diameter);
+    c.clearance -= particles.reach;
     if (!(c.clearance > 2.0 * finest))
         throw InvalidInput(fmt::format(
             "no point of the fluid clears every surface by two of the finest cells ({:.4g}): the "
@@ -413,19 +433,12 @@ OpenFoamCase openfoam_case(const TreatedBed& bed, const SurfaceContainer& contai
             "finer cells",
             finest, c.clearance));
 
-    SurfaceOptions surface;
-    surface.level = level;
-    surface.container = container;
-    surface.write_container = false;
-    c.particles = bed_surface(bed, surface);
-    double largest = 0.0;
-    for (const TreatedBody& b : bodies)
-        largest = std::max(largest, b.radius);
+    c.particles = particles.surface;
     if (back.wall_surface) {
         // The wall, open, half a background cell beyond both ends of the box.
-        std::vector<Solid> walls = container.container.solids(
-            -0.5 * c.cell_size, height + 0.5 * c.cell_size,
-            std::min(largest * icosphere_edge(level), 0.5 * c.cell_size));
+        std::vector<Solid> walls =
+            container.container.solids(-0.5 * c.cell_size, height + 0.5 * c.cell_size,
+                                       std::min(particles.wall_edge, 0.5 * c.cell_size));
         c.wall.push_back(std::move(walls[0]));
         if (back.rod_surface) // an annulus: solids wall, rod, bottom, top
             c.rod.push_back(std::move(walls[1]));
@@ -498,10 +511,7 @@ OpenFoamCase openfoam_case(const TreatedBed& bed, const SurfaceContainer& contai
         walls.push_back("rod");
     if (back.wall_surface)
         walls.push_back("outside"); // no faces after snappyHexMesh; an entry all the same
-    double bed_top = 0.0;
-    for (const TreatedBody& b : bed.bodies)
-        bed_top = std::max(bed_top, b.center.z + b.radius);
-    add_flow_files(c, walls, std::min(bed_top, height),
+    add_flow_files(c, walls, std::min(particles.top, height),
                    container.container.cross_section_area(0.0, 0.0), diameter, flow,
                    options.periodic_z, volumes.treated_void_fraction);
     c.files.emplace_back("case.foam", ""); // what ParaView opens the case by
@@ -564,8 +574,8 @@ OpenFoamCase openfoam_case(const TreatedBed& bed, const SurfaceContainer& contai
             "`checkMesh` prints the mesh's `Total volume`, to compare with the fluid volume: "
             "gaps narrower than the finest cells are lost by the mesh, so refine where that "
             "matters.\n",
-            fmt::arg("n", bed.bodies.size()), fmt::arg("dp", diameter),
-            fmt::arg("where", back.where), fmt::arg("h", height), fmt::arg("contacts", contacts),
+            fmt::arg("n", particles.count), fmt::arg("dp", diameter), fmt::arg("where", back.where),
+            fmt::arg("h", height), fmt::arg("contacts", contacts),
             fmt::arg("surfaces", back.surfaces), fmt::arg("patches", back.patches),
             fmt::arg("cells", back.cells), fmt::arg("x", c.location_in_mesh.x),
             fmt::arg("y", c.location_in_mesh.y), fmt::arg("z", c.location_in_mesh.z),

@@ -467,6 +467,13 @@ void read_table(LineReader& in, const ReadOptions& options, const FrameSink& sin
     const Columns c =
         columns_of(header, in, {"x", "points:0", "points_0"}, {"y", "points:1", "points_1"},
                    {"z", "points:2", "points_2"}, options.radius.has_value());
+    // An orientation per particle: the four quaternion columns, or none of them.
+    const std::array<int, 4> q{find_column(header, {"qw"}), find_column(header, {"qx"}),
+                               find_column(header, {"qy"}), find_column(header, {"qz"})};
+    const bool oriented = q[0] >= 0 && q[1] >= 0 && q[2] >= 0 && q[3] >= 0;
+    if (!oriented && (q[0] >= 0 || q[1] >= 0 || q[2] >= 0 || q[3] >= 0))
+        in.fail("some of the columns qw, qx, qy, qz but not all; allowed: all four (an "
+                "orientation per particle) or none");
     std::string decimal; // a field with its decimal comma turned into a point
     auto number = [&](std::string_view field, const std::string& column) {
         if (sep == ';' && field.find(',') != std::string_view::npos) {
@@ -488,6 +495,17 @@ void read_table(LineReader& in, const ReadOptions& options, const FrameSink& sin
         const double size = c.size >= 0 ? number(at(c.size), name(c.size)) : *options.radius;
         in.add(out, number(at(c.x), name(c.x)), number(at(c.y), name(c.y)),
                number(at(c.z), name(c.z)), size, c.is_diameter, c.size_name);
+        if (oriented) {
+            Quaternion o{number(at(q[0]), "qw"), number(at(q[1]), "qx"), number(at(q[2]), "qy"),
+                         number(at(q[3]), "qz")};
+            const double length = std::sqrt(o.w * o.w + o.x * o.x + o.y * o.y + o.z * o.z);
+            if (!(std::abs(length - 1.0) <= 1e-3))
+                in.fail(fmt::format("the quaternion ({}, {}, {}, {}) has norm {}; allowed: a "
+                                    "unit quaternion (norm 1 within 1e-3)",
+                                    o.w, o.x, o.y, o.z, length));
+            out.packing.orientations.push_back(
+                {o.w / length, o.x / length, o.y / length, o.z / length});
+        }
     }
     if (out.packing.size() == 0)
         in.fail_file("no spheres after the header");
@@ -1098,6 +1116,15 @@ BedSummary read_bed_summary(std::istream& input, std::string_view name) {
                                            "allowed: a number in [0, 100]",
                                            shown, json_excerpt(v, 40)));
         out.friction = value;
+    }
+    if (const auto shape = json.find("shape"); shape != json.end() && shape->is_object()) {
+        const auto spec = shape->find("spec");
+        if (spec == shape->end() || !spec->is_string() || spec->get<std::string>().empty() ||
+            spec->get<std::string>().size() > 200)
+            throw InvalidInput(fmt::format("{}: shape {} is not allowed; allowed: a record with "
+                                           "the spec packbed generate --shape was given",
+                                           shown, json_excerpt(*shape, 80)));
+        out.shape = spec->get<std::string>();
     }
     if (!out.porosity) {
         out.porosity = number(json, "void_fraction", "void_fraction", 1.0);

@@ -128,8 +128,9 @@ template <class F> void for_each_arc(std::vector<double> cuts, F&& f) {
 ///   the integral of (x dy - y dx) / 2 over each piece of the three boundaries (ellipse arcs,
 ///   end chords, circle arcs) that lies inside the other two, the pieces split where the
 ///   boundaries cross. The ellipse meets the circle where a trigonometric polynomial of degree
-///   two vanishes: its sign changes among 96 angles, refined by bisection (a tangency that
-///   crosses twice between two angles is missed, an area below (R / 96)^3 / R).
+///   two vanishes: 96 pieces of the turn, each halved until its tangent and a bound on its
+///   second derivative show it holds no root or one (then found by bisection), so that two
+///   crossings close together (a pellet poking a little through the wall) are found.
 double section_in_disc(const Frame& f, const Vec3& c, double r, double h, double z, double radius) {
     const Vec3& a = f.axis;
     const double g = std::hypot(a.x, a.y);
@@ -139,7 +140,11 @@ double section_in_disc(const Frame& f, const Vec3& c, double r, double h, double
         return disk_intersection_area(r, radius, std::hypot(c.x, c.y));
     }
     const Vec3 u{a.x / g, a.y / g, 0.0}, v{-u.y, u.x, 0.0};
-    if (std::abs(a.z) < 1e-12) {
+    // Nearly level (|a_z| below 1e-7): the ellipse's part between the end lines is an arc of
+    // the turn about 2 h |a_z| / r wide, beyond what its angle resolves; the level cylinder
+    // about the same centre is the true one turned by at most 1e-7, its surface moved by less
+    // than 1e-7 of the bounding radius.
+    if (std::abs(a.z) < 1e-7) {
         const double dz = z - c.z;
         if (std::abs(dz) >= r)
             return 0.0;
@@ -166,30 +171,60 @@ double section_in_disc(const Frame& f, const Vec3& c, double r, double h, double
     auto in_disc = [&](double x, double y) {
         return (x - dx) * (x - dx) + (y - dy) * (y - dy) <= radius * radius;
     };
-    // Where the ellipse (angle theta) meets the circle.
+    // Where the ellipse (angle theta) meets the circle: the roots of
+    // meet = (big cos - dx)^2 + (r sin - dy)^2 - radius^2
+    //      = (big^2 - r^2) cos(2 theta) / 2 - 2 big dx cos - 2 r dy sin + const.
     auto meet = [&](double theta) {
         const double x = big * std::cos(theta) - dx, y = r * std::sin(theta) - dy;
         return x * x + y * y - radius * radius;
     };
+    auto slope = [&](double theta) {
+        return -(big * big - r * r) * std::sin(2.0 * theta) + 2.0 * big * dx * std::sin(theta) -
+               2.0 * r * dy * std::cos(theta);
+    };
+    // A bound on |meet''|: about an interval's middle m, meet differs from its tangent there by
+    // at most second w^2 / 8 (w its width), so the interval holds no root where |meet(m)|
+    // exceeds |meet'(m)| w / 2 + second w^2 / 8, and at most one where meet' keeps its sign
+    // (|meet'(m)| > second w / 2), found by bisection where the ends' signs differ. Others are
+    // halved: a pellet that pokes a little through the wall meets it twice within a small
+    // angle, between any fixed samples. (A bounded count of halvings: a circle that is the
+    // ellipse itself has meet = 0 throughout.)
+    const double second = 2.0 * std::abs(big * big - r * r) + 2.0 * std::hypot(big * dx, r * dy);
     std::vector<double> crossings; // ellipse angles
+    const auto bisect = [&](double lo, double hi, double flo) {
+        for (int it = 0; it < 64; ++it) {
+            const double mid = 0.5 * (lo + hi), fm = meet(mid);
+            if ((fm < 0.0) == (flo < 0.0)) {
+                lo = mid;
+                flo = fm;
+            } else {
+                hi = mid;
+            }
+        }
+        crossings.push_back(0.5 * (lo + hi));
+    };
+    int budget = 20000; // halvings, for the whole turn
+    const auto search = [&](auto&& self, double lo, double hi, double flo, double fhi,
+                            int depth) -> void {
+        const double width = hi - lo, mid = 0.5 * (lo + hi);
+        const bool change = (flo < 0.0) != (fhi < 0.0);
+        const double fm = meet(mid), dm = slope(mid);
+        if (!change && std::abs(fm) > 0.5 * std::abs(dm) * width + 0.125 * second * width * width)
+            return;
+        if (std::abs(dm) > 0.5 * second * width || depth >= 48 || --budget < 0) {
+            if (change)
+                bisect(lo, hi, flo);
+            return;
+        }
+        self(self, lo, mid, flo, fm, depth + 1);
+        self(self, mid, hi, fm, fhi, depth + 1);
+    };
     constexpr int samples = 96;
     double previous = meet(0.0);
     for (int k = 1; k <= samples; ++k) {
-        double lo = 2.0 * pi * (k - 1) / samples, hi = 2.0 * pi * k / samples;
+        const double lo = 2.0 * pi * (k - 1) / samples, hi = 2.0 * pi * k / samples;
         const double value = meet(hi);
-        if ((previous < 0.0) != (value < 0.0)) {
-            double flo = previous;
-            for (int it = 0; it < 64; ++it) {
-                const double mid = 0.5 * (lo + hi), fm = meet(mid);
-                if ((fm < 0.0) == (flo < 0.0)) {
-                    lo = mid;
-                    flo = fm;
-                } else {
-                    hi = mid;
-                }
-            }
-            crossings.push_back(0.5 * (lo + hi));
-        }
+        search(search, lo, hi, previous, value, 0);
         previous = value;
     }
     double area = 0.0;

@@ -10,6 +10,7 @@
 #include "packbed/option_ranges.hpp"
 #include "packbed/pipeline.hpp"
 #include "packbed/read.hpp"
+#include "packbed/text.hpp"
 #include "packbed/volume.hpp"
 
 namespace packbed {
@@ -42,6 +43,19 @@ std::optional<double> period_z_beside(const std::filesystem::path& particles) {
     return summary ? summary->period_z : std::nullopt;
 }
 
+std::optional<PelletSpec> shape_beside(const std::filesystem::path& particles) {
+    const std::optional<BedSummary> summary = summary_beside(particles);
+    if (!summary || !summary->shape)
+        return std::nullopt;
+    std::optional<PelletSpec> pellet = parse_pellet_shape(*summary->shape);
+    if (!pellet)
+        throw InvalidInput(
+            fmt::format("{}: shape '{}' is not allowed; allowed: {}",
+                        printable((particles.parent_path() / "summary.json").native()),
+                        printable(*summary->shape), allowed_shapes()));
+    return pellet;
+}
+
 Container container_from_spec(std::string_view option, const std::string& spec) {
     const auto parsed = parse_container(spec);
     if (!parsed)
@@ -58,11 +72,26 @@ std::optional<Container> find_container(const std::filesystem::path& particles,
     return container_beside(particles);
 }
 
+namespace {
+
+/// Refuse a bed of pellets where the spheres' measures would read each as a ball of d_v.
+void refuse_pellets(const std::filesystem::path& particles) {
+    if (const std::optional<PelletSpec> pellet = shape_beside(particles))
+        throw InvalidInput(fmt::format(
+            "{}: a bed of {} pellets (its summary.json's shape) is not allowed here; allowed: a "
+            "bed of spheres (a pellet bed's void fraction is in generate's summary.json, its "
+            "surfaces from export --format stl, obj or openfoam)",
+            printable(particles.native()), pellet->text));
+}
+
+} // namespace
+
 BedInContainer read_bed_in_container(const std::filesystem::path& particles,
                                      const ReadOptions& options, const std::string& container,
                                      double cylinder_radius, double outside_tolerance) {
     BedInContainer bed{read_particles(particles, options),
                        find_container(particles, container, cylinder_radius)};
+    refuse_pellets(particles);
     if (bed.container)
         check_file_inside(bed.file, options, particles.string(), *bed.container, outside_tolerance);
     return bed;
@@ -80,6 +109,7 @@ void check_file_inside(const ParticleFile& file, const ReadOptions& options, std
 FrameSeries void_fraction_series(const std::filesystem::path& particles, const ReadOptions& options,
                                  const Container& container, const AnalysisOptions& analysis,
                                  double outside_tolerance) {
+    refuse_pellets(particles);
     const std::string name = particles.string();
     FrameSeries series;
     bool any = false;

@@ -6,6 +6,7 @@
 #include <filesystem>
 #include <fstream>
 #include <memory>
+#include <numbers>
 #include <optional>
 #include <stdexcept>
 #include <string>
@@ -22,6 +23,7 @@
 #include "packbed/json_text.hpp"
 #include "packbed/limits.hpp"
 #include "packbed/openfoam.hpp"
+#include "packbed/option_ranges.hpp"
 #include "packbed/output.hpp"
 #include "packbed/pipeline.hpp"
 #include "packbed/surface.hpp"
@@ -138,6 +140,92 @@ nlohmann::ordered_json container_json(const SurfaceContainer& container) {
     return container.container.export_json(container.height);
 }
 
+/// The container and the volumes in a surface export's report.
+/// \return the change of void fraction, as the report line says it
+std::string record_volumes(nlohmann::ordered_json& report, const SurfaceContainer& container,
+                           const TreatmentVolumes& v) {
+    report["container"] = container_json(container);
+    report["volumes"] = {
+        {"container", v.container_volume},
+        {"untouched_solid", v.untouched_solid},
+        {"treated_solid", v.treated_solid},
+        {"fluid", v.container_volume - v.treated_solid},
+        {"untouched_void_fraction", v.untouched_void_fraction},
+        {"treated_void_fraction", v.treated_void_fraction},
+        {"void_fraction_change", v.treated_void_fraction - v.untouched_void_fraction}};
+    return fmt::format("; void fraction in the container (z 0 to {:.6g}) {:.6f} -> {:.6f} "
+                       "({:+.6f})",
+                       container.height, v.untouched_void_fraction, v.treated_void_fraction,
+                       v.treated_void_fraction - v.untouched_void_fraction);
+}
+
+/// The flow of the runnable case: the request's, the inlet's velocity where given instead of
+/// the Reynolds number's, and the turbulence model by name.
+OpenFoamFlowOptions case_flow(const ExportRequest& o) {
+    OpenFoamFlowOptions flow = o.flow;
+    if (o.fluid_velocity == 0.0)
+        throw InvalidInput("--fluid-velocity 0 is not allowed with --format openfoam; "
+                           "allowed: the inlet's velocity > 0 m/s, or --reynolds");
+    if (o.fluid_velocity > 0.0) // the inlet's, instead of the Reynolds number's
+        flow.velocity = o.fluid_velocity;
+    const std::optional<Turbulence> model = turbulence_models().find(o.turbulence);
+    if (!model)
+        throw InvalidInput(fmt::format("--turbulence '{}' is not allowed; allowed: {}",
+                                       printable(o.turbulence.substr(0, 80)),
+                                       turbulence_models().allowed()));
+    flow.turbulence = *model;
+    return flow;
+}
+
+/// packbed.json's record of a case: its mesh, its flow, and what cfd-report compares with
+/// (`band_void_fraction`, and the wall's aspect ratio D_h / d).
+nlohmann::ordered_json case_record(const ExportRequest& o, const OpenFoamCase& foam,
+                                   const OpenFoamFlowOptions& flow,
+                                   const SurfaceContainer& container, double band_void_fraction,
+                                   double diameter) {
+    const std::optional<double> hydraulic = hydraulic_diameter(container.container);
+    return {
+        {"cell_size", foam.cell_size},
+        {"particle_level", o.mesh.particle_level},
+        {"wall_level", o.mesh.wall_level},
+        {"location_in_mesh",
+         {foam.location_in_mesh.x, foam.location_in_mesh.y, foam.location_in_mesh.z}},
+        {"clearance", foam.clearance},
+        {"flow",
+         {{"ranks", flow.ranks},
+          {"metres_per_unit", foam.scale},
+          {"fluid_density", flow.fluid_density},
+          {"viscosity", flow.viscosity},
+          {"velocity", foam.velocity},
+          {"reynolds", foam.reynolds},
+          {"turbulence", o.turbulence},
+          {"pressure_planes", foam.planes},
+          {"band_void_fraction", band_void_fraction},
+          {"aspect_ratio", hydraulic ? nlohmann::json(*hydraulic / diameter) : nlohmann::json()}}}};
+}
+
+/// A case's files, Allrun executable, its surfaces and packbed.json staged, and the case
+/// committed.
+void stage_case(OutputDirectory& out, const OpenFoamCase& foam,
+                const nlohmann::ordered_json& report) {
+    for (const auto& [path, text] : foam.files)
+        out.stage(path, text);
+    out.stage("Allrun", foam.allrun);
+    const fs::path allrun = out.reserve("Allrun");
+    fs::permissions(allrun, fs::perms::owner_exec | fs::perms::group_exec | fs::perms::others_exec,
+                    fs::perm_options::add);
+    write_surface(foam.particles, SurfaceFormat::stl_binary,
+                  out.reserve("constant/triSurface/particles.stl"));
+    if (!foam.wall.empty()) // a cylinder's wall; a box's is the background's faces
+        write_surface(foam.wall, SurfaceFormat::stl_binary,
+                      out.reserve("constant/triSurface/wall.stl"));
+    if (!foam.rod.empty()) // an annulus' rod
+        write_surface(foam.rod, SurfaceFormat::stl_binary,
+                      out.reserve("constant/triSurface/rod.stl"));
+    out.stage("packbed.json", json_file_text(report, "packbed.json"));
+    out.commit();
+}
+
 /// STL, OBJ or an OpenFOAM case: treat the contacts, tessellate, write the surfaces and the
 /// volumes.
 std::string surface_export(const ExportRequest& o, ExportFormat format, const Packing& packing,
@@ -197,63 +285,24 @@ std::string surface_export(const ExportRequest& o, ExportFormat format, const Pa
     std::optional<TreatmentVolumes> volumes;
     std::string change;
     if (container) {
-        const TreatmentVolumes& v = volumes.emplace(treatment_volumes(packing, bed, *container));
-        report["container"] = container_json(*container);
-        report["volumes"] = {
-            {"container", v.container_volume},
-            {"untouched_solid", v.untouched_solid},
-            {"treated_solid", v.treated_solid},
-            {"fluid", v.container_volume - v.treated_solid},
-            {"untouched_void_fraction", v.untouched_void_fraction},
-            {"treated_void_fraction", v.treated_void_fraction},
-            {"void_fraction_change", v.treated_void_fraction - v.untouched_void_fraction}};
-        change = fmt::format("; void fraction in the container (z 0 to {:.6g}) {:.6f} -> {:.6f} "
-                             "({:+.6f})",
-                             container->height, v.untouched_void_fraction, v.treated_void_fraction,
-                             v.treated_void_fraction - v.untouched_void_fraction);
+        change = record_volumes(report, *container,
+                                volumes.emplace(treatment_volumes(packing, bed, *container)));
     }
 
     if (format == ExportFormat::openfoam) {
-        OpenFoamFlowOptions flow = o.flow;
-        if (o.fluid_velocity == 0.0)
-            throw InvalidInput("--fluid-velocity 0 is not allowed with --format openfoam; "
-                               "allowed: the inlet's velocity > 0 m/s, or --reynolds");
-        if (o.fluid_velocity > 0.0) // the inlet's, instead of the Reynolds number's
-            flow.velocity = o.fluid_velocity;
-        const std::optional<Turbulence> model = turbulence_models().find(o.turbulence);
-        if (!model)
-            throw InvalidInput(fmt::format("--turbulence '{}' is not allowed; allowed: {}",
-                                           printable(o.turbulence.substr(0, 80)),
-                                           turbulence_models().allowed()));
-        flow.turbulence = *model;
+        const OpenFoamFlowOptions flow = case_flow(o);
         const OpenFoamCase foam =
             openfoam_case(bed, *container, *volumes, o.contacts, dp, options.level, o.mesh, flow);
-        const std::optional<double> hydraulic = hydraulic_diameter(container->container);
-        report["openfoam"] = {
-            {"cell_size", foam.cell_size},
-            {"particle_level", o.mesh.particle_level},
-            {"wall_level", o.mesh.wall_level},
-            {"location_in_mesh",
-             {foam.location_in_mesh.x, foam.location_in_mesh.y, foam.location_in_mesh.z}},
-            {"clearance", foam.clearance},
-            {"flow",
-             {{"ranks", flow.ranks},
-              {"metres_per_unit", foam.scale},
-              {"fluid_density", flow.fluid_density},
-              {"viscosity", flow.viscosity},
-              {"velocity", foam.velocity},
-              {"reynolds", foam.reynolds},
-              {"turbulence", o.turbulence},
-              {"pressure_planes", foam.planes},
-              // what cfd-report compares with: the bed's void fraction between the first and
-              // the last plane (exact, untreated; a cell periodic along z: the whole cell's,
-              // treated) and the wall's aspect ratio D_h / d
-              {"band_void_fraction",
-               container->periodic_z
-                   ? volumes->treated_void_fraction
-                   : void_fraction(packing, container->container, foam.planes.front() / foam.scale,
-                                   foam.planes.back() / foam.scale)},
-              {"aspect_ratio", hydraulic ? nlohmann::json(*hydraulic / dp) : nlohmann::json()}}}};
+        report["openfoam"] =
+            case_record(o, foam, flow, *container,
+                        // what cfd-report compares with: the bed's void fraction between the first
+                        // and the last plane (exact, untreated; a cell periodic along z: the whole
+                        // cell's, treated)
+                        container->periodic_z ? volumes->treated_void_fraction
+                                              : void_fraction(packing, container->container,
+                                                              foam.planes.front() / foam.scale,
+                                                              foam.planes.back() / foam.scale),
+                        dp);
         if (container->periodic_z) {
             // What cfd-report needs for the drag per sphere (F = rho G V / N) and its
             // dimensionless forms: the cell, the spheres in it and their mean radius after the
@@ -269,25 +318,7 @@ std::string surface_export(const ExportRequest& o, ExportFormat format, const Pa
                 {"solid_fraction", 1.0 - volumes->treated_void_fraction},
                 {"interstitial_velocity", foam.interstitial_velocity}};
         }
-        for (const auto& [path, text] : foam.files)
-            out->stage(path, text);
-        {
-            out->stage("Allrun", foam.allrun);
-            const fs::path allrun = out->reserve("Allrun");
-            fs::permissions(allrun,
-                            fs::perms::owner_exec | fs::perms::group_exec | fs::perms::others_exec,
-                            fs::perm_options::add);
-        }
-        write_surface(foam.particles, SurfaceFormat::stl_binary,
-                      out->reserve("constant/triSurface/particles.stl"));
-        if (!foam.wall.empty()) // a cylinder's wall; a box's is the background's faces
-            write_surface(foam.wall, SurfaceFormat::stl_binary,
-                          out->reserve("constant/triSurface/wall.stl"));
-        if (!foam.rod.empty()) // an annulus' rod
-            write_surface(foam.rod, SurfaceFormat::stl_binary,
-                          out->reserve("constant/triSurface/rod.stl"));
-        out->stage("packbed.json", json_file_text(report, "packbed.json"));
-        out->commit();
+        stage_case(*out, foam, report);
         return fmt::format("OpenFOAM case in {} ({} spheres, contacts {}{}); run ./Allrun "
                            "there",
                            out_path.string(), packing.size(), o.contacts, change);
@@ -509,6 +540,217 @@ bool is_surface(ExportFormat format) {
            format == ExportFormat::obj || format == ExportFormat::openfoam;
 }
 
+/// A bed of pellets as surfaces (STL, OBJ, an OpenFOAM case): each pellet's exact shape
+/// tessellated (ParticleShape::unit_surface, its vertices on the surface, so that the
+/// polyhedron lies inside the convex pellet), for shrink:F scaled by 1 - F about its centroid,
+/// which leaves a gap wherever the exact shapes shrunk so are apart (checked pair by pair by
+/// the exact penetration depth, and at the walls and the floor); the exact volumes.
+std::string pellet_export(const ExportRequest& request, ExportFormat format, const Packing& packing,
+                          const std::vector<std::size_t>& lines, const PelletSpec& pellet) {
+    const std::string shown = printable(request.source);
+    if (!is_surface(format))
+        throw InvalidInput(fmt::format("--format {} is not allowed for a bed of {} pellets; "
+                                       "allowed: stl, stl-ascii, obj, openfoam (the data files "
+                                       "hold spheres)",
+                                       request.format, pellet.text));
+    if (packing.orientations.size() != packing.size())
+        throw InvalidInput(fmt::format("{}: a bed of {} pellets needs each pellet's orientation; "
+                                       "allowed: a table with the columns qw, qx, qy, qz (what "
+                                       "packbed generate --shape writes)",
+                                       shown, pellet.text));
+    if (request.container && request.container->periods())
+        throw InvalidInput(fmt::format("--container {} is not allowed for a bed of pellets; "
+                                       "allowed: {}",
+                                       request.container->spec(),
+                                       forms_but(request.container->name())));
+    const fs::path& out_path = request.out;
+    std::unique_ptr<OutputDirectory> out =
+        format == ExportFormat::openfoam
+            ? std::make_unique<OutputDirectory>(out_path, "--out", OutputKind::directory,
+                                                request.force)
+            : file_output(out_path, {".json"});
+    const Contacts contacts = parse_contacts(request.contacts);
+    if (contacts.treatment != ContactTreatment::none &&
+        contacts.treatment != ContactTreatment::shrink)
+        throw InvalidInput(fmt::format("--contacts {} is not allowed for a bed of pellets; "
+                                       "allowed: none, or shrink:F (each pellet scaled by 1 - F "
+                                       "about its centroid, F in (0, 0.5))",
+                                       printable(request.contacts)));
+    const double scale =
+        contacts.treatment == ContactTreatment::shrink ? 1.0 - contacts.parameter : 1.0;
+    const ShapedBed<CylinderShape> bed(packing, {pellet.shape});
+    const CylinderShape& shape = pellet.shape;
+    const double dv = packing.mean_diameter(); // r is d_v / 2
+    const double top = bed_top(bed);
+    // The container's height: given, or the pellets' top + 1 d_v.
+    ExportRequest o = request;
+    if (!(o.container_height > 0.0))
+        o.container_height = top + dv;
+    else if (!(o.container_height > top))
+        throw InvalidInput(fmt::format("--container-height {} is not allowed; allowed: above "
+                                       "the top of every pellet, {}",
+                                       o.container_height, top));
+    const std::optional<SurfaceContainer> container = bed_container(o, packing, lines);
+    if (format == ExportFormat::openfoam && !container)
+        throw InvalidInput(
+            fmt::format("--format openfoam needs the container: give --container (no "
+                        "summary.json with a container next to {})",
+                        shown));
+    // Each pellet shrunk so: placed at its size times the scale.
+    const auto placed = [&](std::size_t i) {
+        Placement p = bed.placement(i);
+        p.size *= scale;
+        return p;
+    };
+    const auto line = [&](std::size_t i) { return i < lines.size() ? lines[i] : i + 1; };
+    if (scale < 1.0) {
+        // Pairs whose bounding spheres meet, swept along z.
+        std::vector<std::size_t> by_z(bed.size());
+        for (std::size_t i = 0; i < by_z.size(); ++i)
+            by_z[i] = i;
+        std::sort(by_z.begin(), by_z.end(), [&](std::size_t a, std::size_t b) {
+            return packing.centers[a].z < packing.centers[b].z;
+        });
+        const double reach = 2.0 * shape.bounding_radius(0.5 * dv * scale) * 1.0001;
+        for (std::size_t k = 0; k < by_z.size(); ++k) {
+            const std::size_t i = by_z[k];
+            const Placement a = placed(i);
+            for (std::size_t m = k + 1; m < by_z.size(); ++m) {
+                const std::size_t j = by_z[m];
+                const Placement b = placed(j);
+                if (b.position.z - a.position.z > reach)
+                    break;
+                const Vec3 ab = b.position - a.position;
+                if (norm(ab) > shape.bounding_radius(a.size) + shape.bounding_radius(b.size))
+                    continue;
+                const PairOverlap overlap = shape.pair_overlap(a, shape, b, ab);
+                if (overlap.depth > 0.0)
+                    throw InvalidInput(fmt::format(
+                        "--contacts {}: the pellets of lines {} and {} of {} still overlap by "
+                        "{:.3g} after shrinking; allowed: a larger F",
+                        request.contacts, line(i), line(j), shown, overlap.depth));
+            }
+        }
+        if (container)
+            for (std::size_t i = 0; i < bed.size(); ++i) {
+                const Placement p = placed(i);
+                const double wall = shape.wall_overlap(container->container, p);
+                const double floor = -shape.support(p, Vec3{0.0, 0.0, -1.0}).z;
+                if (wall > 0.0 || floor >= 0.0)
+                    throw InvalidInput(fmt::format(
+                        "--contacts {}: the pellet of line {} of {} still reaches {:.3g} into "
+                        "the {} after shrinking; allowed: a larger F",
+                        request.contacts, line(i), shown, std::max(wall, floor),
+                        wall > 0.0 ? "wall" : "floor"));
+            }
+    }
+    // Segments about the rim: --refine, or the level whose chord is at most --edge.
+    const double rim = shape.radius * 0.5 * dv * scale;
+    int level = o.refine;
+    if (o.edge > 0.0) {
+        level = 0;
+        while (level < static_cast<int>(option_range::refine.high) &&
+               2.0 * std::numbers::pi * rim / static_cast<double>(12 << level) > o.edge)
+            ++level;
+        const double chord = 2.0 * std::numbers::pi * rim / static_cast<double>(12 << level);
+        if (chord > o.edge)
+            throw InvalidInput(fmt::format(
+                "--edge {:g} is not allowed for pellets of radius {:g}: it needs more than "
+                "level {}; allowed: at least {:.6g} (that level's edge about the rim)",
+                o.edge, rim, level, chord));
+    }
+    const int segments = 12 << level;
+    Solid particles{"particles", particle_surfaces(bed, level, scale)};
+
+    nlohmann::ordered_json report;
+    report["particles"] = o.source;
+    report["pellets"] = packing.size();
+    report["shape"] = pellet.text;
+    report["contacts"] = o.contacts;
+    report["volume_equivalent_diameter"] = dv;
+    // 6 V / S: 6 R h / (R + 2 h) for a cylinder of radius R and half-length h (D when L = D).
+    const double r = shape.radius * 0.5 * dv, h = shape.half_length * 0.5 * dv;
+    report["diameter"] = 6.0 * r * h / (r + 2.0 * h);
+    report["diameter_note"] = "the surface-volume equivalent diameter 6 V / S (Ergun's for "
+                              "non-spheres), which cfd-report's correlations use; the mesh's "
+                              "cells per diameter, the Reynolds number of --reynolds and the "
+                              "aspect ratio are on volume_equivalent_diameter";
+    report["segments"] = segments;
+    // An inscribed polygon of n sides: R (1 - cos(pi / n)) from the circle at most.
+    report["chord_error"] = rim * (1.0 - std::cos(std::numbers::pi / segments));
+    std::optional<TreatmentVolumes> volumes;
+    std::string change;
+    if (container) {
+        TreatmentVolumes& v = volumes.emplace();
+        const double height = container->height;
+        v.container_volume = container->container.cross_section_area(0.0, height) * height;
+        v.untouched_solid = solid_volume(bed, container->container, 0.0, height);
+        // Shrunk pellets lie inside the container (checked above): their whole volumes.
+        v.treated_solid = v.untouched_solid;
+        if (scale < 1.0) {
+            v.treated_solid = 0.0;
+            for (std::size_t i = 0; i < bed.size(); ++i)
+                v.treated_solid += shape.volume(placed(i).size);
+        }
+        v.untouched_void_fraction = 1.0 - v.untouched_solid / v.container_volume;
+        v.treated_void_fraction = 1.0 - v.treated_solid / v.container_volume;
+        change = record_volumes(report, *container, v);
+        report["volumes"]["note"] = "exact volumes of the shapes inside the container (overlaps "
+                                    "between pellets, each below the generator's tolerance, are "
+                                    "not subtracted)";
+    }
+
+    if (format == ExportFormat::openfoam) {
+        const OpenFoamFlowOptions flow = case_flow(o);
+        CaseParticles cp;
+        cp.surface.push_back(std::move(particles));
+        for (std::size_t i = 0; i < bed.size(); ++i) {
+            const Placement p = placed(i);
+            cp.bounds.push_back({p.position, shape.bounding_radius(p.size), {}});
+            cp.top = std::max(cp.top, shape.support(p, Vec3{0.0, 0.0, 1.0}).z);
+        }
+        cp.count = bed.size();
+        cp.wall_edge = 2.0 * std::numbers::pi * rim / segments;
+        const OpenFoamCase foam =
+            openfoam_case(cp, *container, *volumes, o.contacts, dv, o.mesh, flow);
+        report["openfoam"] =
+            case_record(o, foam, flow, *container,
+                        void_fraction(bed, container->container, foam.planes.front() / foam.scale,
+                                      foam.planes.back() / foam.scale),
+                        dv);
+        stage_case(*out, foam, report);
+        return fmt::format("OpenFOAM case in {} ({} {} pellets, contacts {}{}); run ./Allrun "
+                           "there",
+                           out_path.string(), packing.size(), pellet.text, o.contacts, change);
+    }
+
+    std::vector<Solid> solids;
+    solids.push_back(std::move(particles));
+    if (container && !o.no_container)
+        for (Solid& solid : container->container.solids(0.0, container->height,
+                                                        2.0 * std::numbers::pi * rim / segments))
+            solids.push_back(std::move(solid));
+    std::size_t triangles = 0;
+    report["solids"] = nlohmann::ordered_json::array();
+    for (const Solid& solid : solids) {
+        triangles += solid.mesh.triangles.size();
+        report["solids"].push_back(
+            {{"name", solid.name}, {"triangles", solid.mesh.triangles.size()}});
+    }
+    const std::string name = out_path.filename().string();
+    write_surface(solids,
+                  format == ExportFormat::stl         ? SurfaceFormat::stl_binary
+                  : format == ExportFormat::stl_ascii ? SurfaceFormat::stl_ascii
+                                                      : SurfaceFormat::obj,
+                  out->reserve(name));
+    out->stage(name + ".json", json_file_text(report, name + ".json"));
+    out->commit();
+    return fmt::format("{} {} pellets to {} ({} triangles, {} segments about the rim, contacts "
+                       "{}){}",
+                       packing.size(), pellet.text, out_path.string(), triangles, segments,
+                       o.contacts, change);
+}
+
 } // namespace
 
 std::filesystem::path default_export_path(const std::filesystem::path& particles,
@@ -563,6 +805,8 @@ std::string export_bed(const Packing& packing, const std::vector<std::size_t>& l
                 printable(request.source), i < lines.size() ? lines[i] : i + 1, c.x, c.y, c.z,
                 reach / dp, limits::max_export_reach));
     }
+    if (request.pellet)
+        return pellet_export(request, format, packing, lines, *request.pellet);
     if (is_surface(format))
         return surface_export(request, format, packing, lines);
     return data_export(request, format, packing, lines);
