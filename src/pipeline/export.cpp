@@ -581,6 +581,7 @@ std::string pellet_export(const ExportRequest& request, ExportFormat format, con
     const ShapedBed<CylinderShape> bed(packing, {pellet.shape});
     const CylinderShape& shape = pellet.shape;
     const double dv = packing.mean_diameter(); // r is d_v / 2
+    const double largest = *std::max_element(packing.radii.begin(), packing.radii.end());
     const double top = bed_top(bed);
     // The container's height: given, or the pellets' top + 1 d_v.
     ExportRequest o = request;
@@ -611,7 +612,7 @@ std::string pellet_export(const ExportRequest& request, ExportFormat format, con
         std::sort(by_z.begin(), by_z.end(), [&](std::size_t a, std::size_t b) {
             return packing.centers[a].z < packing.centers[b].z;
         });
-        const double reach = 2.0 * shape.bounding_radius(0.5 * dv * scale) * 1.0001;
+        const double reach = 2.0 * shape.bounding_radius(largest * scale) * 1.0001;
         for (std::size_t k = 0; k < by_z.size(); ++k) {
             const std::size_t i = by_z[k];
             const Placement a = placed(i);
@@ -644,8 +645,9 @@ std::string pellet_export(const ExportRequest& request, ExportFormat format, con
                         wall > 0.0 ? "wall" : "floor"));
             }
     }
-    // Segments about the rim: --refine, or the level whose chord is at most --edge.
-    const double rim = shape.radius * 0.5 * dv * scale;
+    // Segments about the rim: --refine, or the level whose chord is at most --edge (on the
+    // largest pellet).
+    const double rim = shape.radius * largest * scale;
     int level = o.refine;
     if (o.edge > 0.0) {
         level = 0;
