@@ -1730,5 +1730,8 @@ TEST(Cli, GenerateShapeCylinderWritesPelletsWithOrientations) {
     EXPECT_LE(s["max_penetration_pair"].get<double>(), 2e-3);
     EXPECT_LE(s["max_penetration_wall"].get<double>(), 2e-3);
     EXPECT_NEAR(s["container"]["radius"].get<double>(), rt, 1e-12);
-    EXPECT_FALSE(fs::exists(d / "particles.vtu"));
+    // particles.vtu: each pellet's quaternion and axis beside its point.
+    const std::string vtu = slurp(d / "particles.vtu");
+    EXPECT_NE(vtu.find("Name=\"orientation\" NumberOfComponents=\"4\""), std::string::npos);
+    EXPECT_NE(vtu.find("Name=\"axis\" NumberOfComponents=\"3\""), std::string::npos);
 }

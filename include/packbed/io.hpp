@@ -22,6 +22,8 @@ std::string particles_csv(const Packing& packing);
 
 /// The spheres as a VTK XML unstructured grid (.vtu): one vertex cell per sphere, point data
 /// `radius` and `diameter`. ParaView shows it with the Point Gaussian representation or glyphs.
+/// Oriented particles (pellets: r their size d_v / 2) add `orientation`, the unit quaternion
+/// (w, x, y, z), and `axis`, the body z axis it turns into the particle's.
 /// \return the file's text.
 std::string particles_vtu(const Packing& packing);
 

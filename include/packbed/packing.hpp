@@ -13,8 +13,10 @@ namespace packbed {
 /// A set of particles, HOOMD-blue's particle data: a position and a size per particle (a
 /// sphere's centre and radius: a size distribution needs no new data model), an orientation
 /// where the shape has one and a type pointing into a table of shapes (particle_shape.hpp:
-/// ShapedBed). Every bed today is of spheres: `orientations` and `types` are empty (one type,
-/// the sphere, and no orientation), and what copies a part of a bed keeps them empty.
+/// ShapedBed). A bed of spheres has `orientations` and `types` empty (one type, the sphere,
+/// and no orientation); a bed of pellets (generate --shape, or a table read with its
+/// qw, qx, qy, qz) one orientation per particle. What copies a part of a sphere bed keeps them
+/// empty.
 /// Lengths are in the caller's units. Not synchronised: share read-only between threads, or
 /// give each thread its own.
 struct Packing {

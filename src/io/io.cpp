@@ -367,8 +367,24 @@ std::string particles_vtu(const Packing& packing) {
         "        <DataArray type=\"Float64\" Name=\"diameter\" format=\"ascii\">\n");
     for (const double r : packing.radii)
         put("{}\n", 2.0 * r);
-    put("        </DataArray>\n"
-        "      </PointData>\n"
+    put("        </DataArray>\n");
+    if (!packing.orientations.empty()) {
+        // Oriented particles (pellets): the unit quaternion, and the body z axis it turns
+        // into the particle's (what glyphs are oriented by).
+        put("        <DataArray type=\"Float64\" Name=\"orientation\" NumberOfComponents=\"4\" "
+            "format=\"ascii\">\n");
+        for (const Quaternion& q : packing.orientations)
+            put("{} {} {} {}\n", q.w, q.x, q.y, q.z);
+        put("        </DataArray>\n"
+            "        <DataArray type=\"Float64\" Name=\"axis\" NumberOfComponents=\"3\" "
+            "format=\"ascii\">\n");
+        for (const Quaternion& q : packing.orientations) {
+            const Vec3 a = rotate(q, Vec3{0.0, 0.0, 1.0});
+            put("{} {} {}\n", a.x, a.y, a.z);
+        }
+        put("        </DataArray>\n");
+    }
+    put("      </PointData>\n"
         "      <Points>\n"
         "        <DataArray type=\"Float64\" NumberOfComponents=\"3\" format=\"ascii\">\n");
     for (const Vec3& c : packing.centers)

@@ -159,6 +159,7 @@ GeneratedPellets run_pellets(const PreparedPellets& prepared, const RunControl& 
 
 void stage_pellet_bed(OutputDirectory& out, const GeneratedPellets& pellets) {
     out.stage("particles.csv", particles_csv(pellets.packing));
+    out.stage("particles.vtu", particles_vtu(pellets.packing));
     out.stage("summary.json", json_file_text(pellets.summary, "summary.json"));
 }
 
