@@ -1403,12 +1403,14 @@ INSTANTIATE_TEST_SUITE_P(
               "packbed generate --shape writes)"),
         naming("export pel/particles.csv -f stl --shape cylinder:1 -o p.stl",
                {"--shape", "cylinder:1", "cylinder:D,L"}),
-        exact("analyze pel/particles.csv",
-              "packbed analyze: pel/particles.csv: a bed of cylinder:1,1 pellets (its "
-              "summary.json's shape) is not allowed here; allowed: a bed of spheres (a pellet "
-              "bed's void fraction is in generate's summary.json, its surfaces from export "
-              "--format stl, obj or openfoam)"),
-        naming("analyze pel/particles.csv --frames all", {"pel/particles.csv", "cylinder:1,1"}),
+        exact("analyze pel/particles.csv --frames all",
+              "packbed analyze: --frames all is not allowed for a bed of cylinder:1,1 pellets; "
+              "allowed: one frame"),
+        exact("voxelize pel/particles.csv --voxel-size 0.1 --out v.raw",
+              "packbed voxelize: pel/particles.csv: a bed of cylinder:1,1 pellets (its "
+              "summary.json's shape) is not allowed here; allowed: a bed of spheres (packbed "
+              "analyze measures a pellet bed, and export --format stl, obj or openfoam writes "
+              "its surfaces)"),
         naming("voxelize pel/particles.csv --voxel-size 0.1 --out v.raw",
                {"pel/particles.csv", "pellets"}),
         naming("export cone/particles.csv -f stl -o c.stl",

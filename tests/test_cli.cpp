@@ -1700,7 +1700,8 @@ TEST(Cli, GenerateShapeCylinderWritesPelletsWithOrientations) {
     // the CSV's orientations are unit quaternions, r is d_v / 2, every centroid inside the
     // tube, and the exact depths are below 1e-3 of min(D, L) (docs/generate.md, "Pellets").
     const fs::path d = scratch("pellets");
-    const Outcome o = packbed("generate --shape cylinder:2,2 -a 4 -n 8 -s 2 --out " + d.string());
+    const Outcome o = packbed(
+        "generate --shape cylinder:2,2 -a 4 -n 8 -s 2 --band-clearance 0.2 --out " + d.string());
     ASSERT_EQ(o.status, 0) << o.err;
     const std::string csv = slurp(d / "particles.csv");
     ASSERT_EQ(csv.substr(0, csv.find('\n')), "x,y,z,r,qw,qx,qy,qz");
@@ -1734,4 +1735,18 @@ TEST(Cli, GenerateShapeCylinderWritesPelletsWithOrientations) {
     const std::string vtu = slurp(d / "particles.vtu");
     EXPECT_NE(vtu.find("Name=\"orientation\" NumberOfComponents=\"4\""), std::string::npos);
     EXPECT_NE(vtu.find("Name=\"axis\" NumberOfComponents=\"3\""), std::string::npos);
+    // analyze reads the bed back as pellets (the shape from summary.json, the orientations
+    // from the CSV's 17 digits): the void fraction over the same band as generate's, to 1e-12.
+    const fs::path an = scratch("pellets-analysis");
+    const Outcome analysed = packbed("analyze " + (d / "particles.csv").string() +
+                                     " --band-clearance 0.2 -q --out " + an.string());
+    ASSERT_EQ(analysed.status, 0) << analysed.err;
+    const auto a = nlohmann::json::parse(slurp(an / "summary.json"));
+    EXPECT_EQ(a["shape"], "cylinder:2,2");
+    EXPECT_EQ(a["pellets"], 8);
+    ASSERT_TRUE(s.contains("void_fraction")) << s.dump();
+    EXPECT_NEAR(a["void_fraction"].get<double>(), s["void_fraction"].get<double>(), 1e-12);
+    EXPECT_EQ(a["band"], s["void_fraction_band"]);
+    EXPECT_TRUE(fs::exists(an / "radial_void_fraction.csv"));
+    EXPECT_TRUE(fs::exists(an / "orientation_profile.csv"));
 }

@@ -13,6 +13,7 @@
 
 #include <gtest/gtest.h>
 
+#include "packbed/analysis.hpp"
 #include "packbed/annulus.hpp"
 #include "packbed/bed_volume.hpp"
 #include "packbed/box.hpp"
@@ -576,4 +577,49 @@ TEST(CylinderShape, TheTemplatedLoopsTakeIt) {
         measure_overlaps(ShapedBed<CylinderShape>(packing, {CylinderShape{0.5, 1.0}}), tube);
     EXPECT_NEAR(pressed.pair, 0.1, 1e-9);
     EXPECT_NEAR(pressed.wall, 0.1, 1e-12);
+}
+
+TEST(PelletAnalysis, TwoPelletsByHand) {
+    // Two cylinders of L = D (R = h = 0.4368 d_v at size 0.5) in a tube of radius 2: one
+    // upright on the axis (z 0 to 2h), one lying along x above it at 2 h + R. In the band
+    // 0.1 .. 0.7 only the upright one: void fraction 1 - R^2 / Rt^2, its shells from the wall
+    // empty beyond R from the axis and full inside it; the orientations cos^2 = 1 and 0.
+    const CylinderShape c = CylinderShape::of_aspect(1.0);
+    const double r = c.radius * 0.5, h = c.half_length * 0.5;
+    Packing p;
+    p.add({0.0, 0.0, h}, 0.5);
+    p.add({0.0, 0.0, 2.0 * h + r}, 0.5);
+    p.orientations = {Quaternion{}, about({0.0, 1.0, 0.0}, 0.5 * pi)};
+    const Container tube = Container::tube_of_radius(2.0);
+    AnalysisOptions o;
+    o.band = Band{0.1, 0.7};
+    const PelletAnalysis a = analyze_pellet_bed(p, c, tube, o);
+    EXPECT_NEAR(a.void_fraction, 1.0 - r * r / 4.0, 1e-9);
+    ASSERT_FALSE(a.radial_void_fraction.empty());
+    for (const ProfileBin& b : a.radial_void_fraction) {
+        if (b.high <= 2.0 - r) { // the shell lies beyond R from the axis
+            EXPECT_NEAR(b.value, 1.0, 1e-12) << b.low;
+        } else if (b.low >= 2.0 - r) {
+            EXPECT_NEAR(b.value, 0.0, 1e-9) << b.low;
+        }
+    }
+    EXPECT_EQ(a.overall.pellets, 1u); // the lying one's centroid is above the band
+    EXPECT_DOUBLE_EQ(a.overall.mean_cos2, 1.0);
+    EXPECT_DOUBLE_EQ(a.overall.order, 1.0);
+    // The whole height: both, S = (3 / 2 - 1) / 2 = 1/4; the bins hold them at 2 from the wall.
+    o.band = Band{0.0, 3.0 * h + 2.0 * r};
+    const PelletAnalysis all = analyze_pellet_bed(p, c, tube, o);
+    EXPECT_EQ(all.overall.pellets, 2u);
+    EXPECT_NEAR(all.overall.order, 0.25, 1e-15);
+    std::uint64_t counted = 0;
+    for (const OrientationBin& b : all.orientation)
+        if (b.pellets > 0) {
+            EXPECT_LE(b.low, 2.0);
+            EXPECT_GE(b.high, 2.0 - 1e-12);
+            counted += b.pellets;
+        }
+    EXPECT_EQ(counted, 2u);
+    // The void fraction with the pellets' exact volumes: both whole inside.
+    EXPECT_NEAR(all.void_fraction, 1.0 - 2.0 * c.volume(0.5) / (pi * 4.0 * (3.0 * h + 2.0 * r)),
+                1e-9);
 }

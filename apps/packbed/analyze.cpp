@@ -10,6 +10,7 @@
 
 #include "command.hpp"
 #include "packbed/analysis.hpp"
+#include "packbed/analysis_files.hpp"
 #include "packbed/error.hpp"
 #include "packbed/files.hpp"
 #include "packbed/io.hpp"
@@ -59,6 +60,60 @@ std::string wall_contacts_line(const BedAnalysis& a) {
     return line;
 }
 
+/// A bed of pellets (the shape summary.json beside it records): the exact void fractions and
+/// the orientation of the axes (analyze_pellet_bed).
+int run_pellet_analyze(const AnalyzeOptions& o, const fs::path& path, const ReadOptions& read,
+                       const PelletSpec& pellet) {
+    if (o.frames == "all")
+        throw InvalidInput(fmt::format("--frames all is not allowed for a bed of {} pellets; "
+                                       "allowed: one frame",
+                                       pellet.text));
+    const ParticleFile file = read_particles(path, read);
+    const std::optional<Container> found = find_container(path, o.container, o.container_radius);
+    if (!found)
+        throw InvalidInput(fmt::format("--container (or --container-radius) is needed: no "
+                                       "summary.json with a container next to {}",
+                                       printable(path.native())));
+    const fs::path out_dir = o.out.empty() ? path.parent_path() / "analysis" : fs::path(o.out);
+    OutputDirectory out(out_dir, "--out", OutputKind::directory, o.force);
+    use_threads(o.threads);
+    const PelletAnalysis a = analyze_pellet_bed(file.packing, pellet.shape, *found, o.analysis);
+    nlohmann::ordered_json summary;
+    summary["particles_file"] = path.string();
+    summary["pellets"] = file.packing.size();
+    summary["shape"] = pellet.text;
+    summary["volume_equivalent_diameter"] = a.diameter;
+    summary["container"] = found->summary_json();
+    summary["band"] = {a.band.z_low, a.band.z_high};
+    summary["void_fraction"] = a.void_fraction;
+    summary["orientation"] = {{"pellets", a.overall.pellets},
+                              {"mean_cos2", a.overall.mean_cos2},
+                              {"order", a.overall.order},
+                              {"about", "theta between a pellet's axis and the container's z "
+                                        "axis, over the pellets with their centroid in the "
+                                        "band; S = (3 <cos^2> - 1) / 2: 1 upright, -1/2 lying, "
+                                        "0 at random"}};
+    nlohmann::ordered_json files = nlohmann::ordered_json::array();
+    for (const auto& [name, text] : pellet_analysis_files(a, *found)) {
+        out.stage(name, text);
+        files.push_back(name);
+    }
+    summary["files"] = files;
+    out.stage("summary.json", json_file_text(summary, "summary.json"));
+    out.commit();
+    if (!o.quiet) {
+        fmt::print("packbed analyze: {} {} pellets in {}\n", file.packing.size(), pellet.text,
+                   found->describe());
+        fmt::print("void fraction: {:.4f} (between z = {:.4g} and z = {:.4g})\n", a.void_fraction,
+                   a.band.z_low, a.band.z_high);
+        fmt::print("orientation: <cos^2 theta> = {:.4f}, S = {:.4f} over {} pellets (1/3 and 0 at "
+                   "random)\n",
+                   a.overall.mean_cos2, a.overall.order, a.overall.pellets);
+        fmt::print("results in {}/\n", out_dir.string());
+    }
+    return 0;
+}
+
 int run_analyze(AnalyzeOptions& o) {
     const fs::path path(o.particles);
     ReadOptions read_options;
@@ -69,6 +124,9 @@ int run_analyze(AnalyzeOptions& o) {
     const bool series = o.frames == "all";
     if (const auto b = parse_finite_list(o.band); b && b->size() == 2)
         o.analysis.band = Band{(*b)[0], (*b)[1]};
+    record_input("the particles file", path); // before its summary, as the reader would
+    if (const std::optional<PelletSpec> pellet = shape_beside(path))
+        return run_pellet_analyze(o, path, read_options, *pellet);
     // --container, then --container-radius, then the container summary.json records.
     std::optional<ParticleFile> read;
     std::optional<Container> given;

@@ -12,6 +12,7 @@
 
 #include "packbed/bed_volume.hpp"
 #include "packbed/container.hpp"
+#include "packbed/cylinder_shape.hpp"
 #include "packbed/packing.hpp"
 #include "packbed/sizes.hpp"
 #include "packbed/volume.hpp"
@@ -204,5 +205,36 @@ struct BedAnalysis {
 /// the contact distance or the range of g(r).
 BedAnalysis analyze_bed(const Packing& packing, const Container& container,
                         const AnalysisOptions& options = {});
+
+/// The orientation of the pellets whose centroid lies between two distances from the wall:
+/// cos(theta) is the component of a pellet's axis along the container's axis z.
+struct OrientationBin {
+    double low = 0.0, high = 0.0; ///< distances of the centroids from the wall (length)
+    std::uint64_t pellets = 0;    ///< pellets with their centroid in the band and the bin
+    double mean_cos2 = 0.0;       ///< <cos^2 theta>: 1/3 for random orientations
+    double order = 0.0; ///< S = (3 <cos^2 theta> - 1) / 2: 1 upright, -1/2 lying, 0 random
+};
+
+/// What analyze_pellet_bed measures.
+struct PelletAnalysis {
+    double diameter = 0.0;      ///< d_v, the pellets' reference size (length)
+    Band band;                  ///< the axial band (length)
+    double void_fraction = 0.0; ///< overall, exact, in the band
+    /// e(d) over shells from the wall, as BedAnalysis's (a container of one wall; else empty)
+    std::vector<ProfileBin> radial_void_fraction;
+    std::vector<ProfileBin> axial_void_fraction; ///< e(z) over slabs from the floor to the top
+    /// the axes' orientation against the centroid's distance from the wall, bins of 0.1 d_v (a
+    /// container of one wall; else empty)
+    std::vector<OrientationBin> orientation;
+    OrientationBin overall; ///< every pellet with its centroid in the band
+};
+
+/// Measure a bed of cylinder pellets (r = d_v / 2, an orientation each) in a container: the
+/// void fractions with the exact volumes (CylinderShape::volume_in, volume_from_wall: the same
+/// shells, slabs and band as analyze_bed, in units of d_v) and the orientation of the axes
+/// against the distance from the wall. 	hrows InvalidInput for an empty bed, a bed without
+/// orientations or a band that is empty
+PelletAnalysis analyze_pellet_bed(const Packing& packing, const CylinderShape& shape,
+                                  const Container& container, const AnalysisOptions& options = {});
 
 } // namespace packbed

@@ -53,6 +53,13 @@ std::pair<std::string, std::string> wall_table_names(const std::string& wall);
 std::vector<std::pair<std::string, std::string>> analysis_files(const BedAnalysis& analysis,
                                                                 const Container& container);
 
+/// The tables of a pellet bed's analysis (analyze_pellet_bed), lengths over d_v where a column
+/// ends in _d: radial_void_fraction.csv and axial_void_fraction.csv as a sphere bed's, and
+/// orientation_profile.csv (the container's position and x_from_wall_d of each bin's middle,
+/// pellets, mean_cos2, order) in a container of one wall.
+std::vector<std::pair<std::string, std::string>> pellet_analysis_files(const PelletAnalysis& a,
+                                                                       const Container& container);
+
 /// The numbers of a bed analysis (the tables go to CSV files, see analysis_files): band,
 /// overall void fraction, coordination (mean with and without rattlers, rattlers, wall contacts),
 /// the reference diameter, the options used and the files. An annulus adds `walls`, each wall's

@@ -812,4 +812,66 @@ BedAnalysis analyze_bed(const Packing& packing, const Container& container,
     return out;
 }
 
+PelletAnalysis analyze_pellet_bed(const Packing& packing, const CylinderShape& shape,
+                                  const Container& container, const AnalysisOptions& options) {
+    if (packing.size() == 0)
+        throw InvalidInput("no pellets to analyse; allowed: a bed with at least one pellet");
+    if (packing.orientations.size() != packing.size())
+        throw InvalidInput("a bed of pellets needs each one's orientation; allowed: a table with "
+                           "the columns qw, qx, qy, qz");
+    const ShapedBed<CylinderShape> bed(packing, {shape});
+    PelletAnalysis out;
+    const double dv = packing.mean_diameter();
+    out.diameter = dv;
+    const double top = bed_top(bed);
+    out.band = options.band ? *options.band
+                            : Band{options.band_clearance * dv, top - options.band_clearance * dv};
+    if (!(out.band.z_low >= 0.0 && out.band.z_high > out.band.z_low))
+        throw InvalidInput(fmt::format(
+            "--band-clearance {} d_v is not allowed for this bed (top at {:.6g}, {:.6g} d_v); "
+            "allowed: less than half the bed's height, or --band",
+            options.band_clearance, top, top / dv));
+    out.void_fraction = void_fraction(bed, container, out.band.z_low, out.band.z_high);
+    const auto slabs = static_cast<std::size_t>(std::ceil(top / (options.slab_height * dv)));
+    out.axial_void_fraction = axial_void_fraction(bed, container, options.slab_height * dv,
+                                                  std::max<std::size_t>(slabs, 1));
+    const auto orientation = [](double sum, std::uint64_t n, double low, double high) {
+        const double mean = n > 0 ? sum / static_cast<double>(n) : 0.0;
+        return OrientationBin{low, high, n, mean, n > 0 ? 1.5 * mean - 0.5 : 0.0};
+    };
+    double all = 0.0;
+    std::uint64_t counted = 0;
+    const bool one_wall = container.profile_walls().size() == 1;
+    const double depth = container.depth(out.band.z_low, out.band.z_high);
+    const double bin = 0.1 * dv;
+    const auto bins = static_cast<std::size_t>(std::ceil(depth / bin));
+    std::vector<double> sums(one_wall ? bins : 0, 0.0);
+    std::vector<std::uint64_t> counts(sums.size(), 0);
+    for (std::size_t i = 0; i < packing.size(); ++i) {
+        const Vec3& c = packing.centers[i];
+        if (c.z < out.band.z_low || c.z >= out.band.z_high)
+            continue;
+        const double cz = rotate(packing.orientations[i], Vec3{0.0, 0.0, 1.0}).z;
+        all += cz * cz;
+        ++counted;
+        if (one_wall) {
+            const double d = container.wall_distances_from(0, c, 0.0).first;
+            const auto k = static_cast<std::size_t>(
+                std::clamp(std::floor(d / bin), 0.0, static_cast<double>(bins - 1)));
+            sums[k] += cz * cz;
+            ++counts[k];
+        }
+    }
+    out.overall = orientation(all, counted, 0.0, depth);
+    for (std::size_t k = 0; k < sums.size(); ++k)
+        out.orientation.push_back(
+            orientation(sums[k], counts[k], k * bin, std::min(depth, (k + 1) * bin)));
+    if (one_wall) {
+        const auto shells = static_cast<std::size_t>(std::ceil(depth / (options.shell_width * dv)));
+        out.radial_void_fraction =
+            wall_void_fraction(bed, container, 0, options.shell_width * dv, out.band, shells);
+    }
+    return out;
+}
+
 } // namespace packbed

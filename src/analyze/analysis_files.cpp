@@ -105,6 +105,32 @@ std::vector<std::pair<std::string, std::string>> analysis_tables(const BedAnalys
     return tables;
 }
 
+std::vector<std::pair<std::string, std::string>> pellet_analysis_files(const PelletAnalysis& a,
+                                                                       const Container& container) {
+    const double dv = a.diameter;
+    auto in_dv = [&](double length) { return length / dv; };
+    auto as_is = [](double length) { return length; };
+    std::vector<std::pair<std::string, std::string>> tables{
+        {"axial_void_fraction.csv",
+         profile_csv("z,z_d,void_fraction", a.axial_void_fraction, as_is, in_dv)}};
+    if (a.radial_void_fraction.empty())
+        return tables;
+    const std::string position(container.profile_position_name());
+    tables.emplace_back("radial_void_fraction.csv",
+                        profile_csv(
+                            fmt::format("{},x_from_wall_d,void_fraction", position),
+                            a.radial_void_fraction,
+                            [&](double d) { return container.profile_position(d); }, in_dv));
+    std::string orientation = fmt::format("{},x_from_wall_d,pellets,mean_cos2,order\n", position);
+    for (const OrientationBin& b : a.orientation) {
+        const double mid = 0.5 * (b.low + b.high);
+        orientation += fmt::format("{:.12g},{:.12g},{},{},{}\n", container.profile_position(mid),
+                                   mid / dv, b.pellets, b.mean_cos2, b.order);
+    }
+    tables.emplace_back("orientation_profile.csv", orientation);
+    return tables;
+}
+
 std::vector<std::pair<std::string, std::string>> analysis_files(const BedAnalysis& a,
                                                                 const Container& container) {
     std::vector<std::pair<std::string, std::string>> tables = analysis_tables(a, container);

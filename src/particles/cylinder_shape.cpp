@@ -129,8 +129,9 @@ template <class F> void for_each_arc(std::vector<double> cuts, F&& f) {
 ///   end chords, circle arcs) that lies inside the other two, the pieces split where the
 ///   boundaries cross. The ellipse meets the circle where a trigonometric polynomial of degree
 ///   two vanishes: 96 pieces of the turn, each halved until its tangent and a bound on its
-///   second derivative show it holds no root or one (then found by bisection), so that two
-///   crossings close together (a pellet poking a little through the wall) are found.
+///   second derivative show it holds no root or one (then found by Newton's steps within the
+///   bracket), so that two crossings close together (a pellet poking a little through the wall) are
+///   found.
 double section_in_disc(const Frame& f, const Vec3& c, double r, double h, double z, double radius) {
     const Vec3& a = f.axis;
     const double g = std::hypot(a.x, a.y);
@@ -174,57 +175,77 @@ double section_in_disc(const Frame& f, const Vec3& c, double r, double h, double
     // Where the ellipse (angle theta) meets the circle: the roots of
     // meet = (big cos - dx)^2 + (r sin - dy)^2 - radius^2
     //      = (big^2 - r^2) cos(2 theta) / 2 - 2 big dx cos - 2 r dy sin + const.
-    auto meet = [&](double theta) {
-        const double x = big * std::cos(theta) - dx, y = r * std::sin(theta) - dy;
-        return x * x + y * y - radius * radius;
+    // meet and its derivative from one sine and cosine of the angle.
+    struct Value {
+        double f, df;
     };
-    auto slope = [&](double theta) {
-        return -(big * big - r * r) * std::sin(2.0 * theta) + 2.0 * big * dx * std::sin(theta) -
-               2.0 * r * dy * std::cos(theta);
+    const auto at = [&](double c, double s) {
+        const double x = big * c - dx, y = r * s - dy;
+        return Value{x * x + y * y - radius * radius, 2.0 * (r * c * y - big * s * x)};
     };
+    const auto meet = [&](double theta) { return at(std::cos(theta), std::sin(theta)); };
     // A bound on |meet''|: about an interval's middle m, meet differs from its tangent there by
     // at most second w^2 / 8 (w its width), so the interval holds no root where |meet(m)|
     // exceeds |meet'(m)| w / 2 + second w^2 / 8, and at most one where meet' keeps its sign
-    // (|meet'(m)| > second w / 2), found by bisection where the ends' signs differ. Others are
-    // halved: a pellet that pokes a little through the wall meets it twice within a small
-    // angle, between any fixed samples. (A bounded count of halvings: a circle that is the
-    // ellipse itself has meet = 0 throughout.)
+    // (|meet'(m)| > second w / 2), found by Newton's steps kept inside the bracket (halving it
+    // where a step would leave it) where the ends' signs differ. Others are halved: a pellet
+    // that pokes a little through the wall meets it twice within a small angle, between any
+    // fixed samples. (A bounded count of halvings: a circle that is the ellipse itself has
+    // meet = 0 throughout.)
     const double second = 2.0 * std::abs(big * big - r * r) + 2.0 * std::hypot(big * dx, r * dy);
     std::vector<double> crossings; // ellipse angles
-    const auto bisect = [&](double lo, double hi, double flo) {
-        for (int it = 0; it < 64; ++it) {
-            const double mid = 0.5 * (lo + hi), fm = meet(mid);
-            if ((fm < 0.0) == (flo < 0.0)) {
-                lo = mid;
-                flo = fm;
+    const auto root = [&](double lo, double hi, double flo, double x, Value v) {
+        for (int it = 0; it < 100 && v.f != 0.0 && hi - lo > 1e-15; ++it) {
+            if ((v.f < 0.0) == (flo < 0.0)) {
+                lo = x;
+                flo = v.f;
             } else {
-                hi = mid;
+                hi = x;
             }
+            const double step = v.df != 0.0 ? x - v.f / v.df : lo - 1.0;
+            const double next = step > lo && step < hi ? step : 0.5 * (lo + hi);
+            if (next == x)
+                break;
+            x = next;
+            v = meet(x);
         }
-        crossings.push_back(0.5 * (lo + hi));
+        crossings.push_back(x);
     };
     int budget = 20000; // halvings, for the whole turn
-    const auto search = [&](auto&& self, double lo, double hi, double flo, double fhi,
+    const auto search = [&](auto&& self, double lo, double hi, double flo, double fhi, Value m,
                             int depth) -> void {
         const double width = hi - lo, mid = 0.5 * (lo + hi);
         const bool change = (flo < 0.0) != (fhi < 0.0);
-        const double fm = meet(mid), dm = slope(mid);
-        if (!change && std::abs(fm) > 0.5 * std::abs(dm) * width + 0.125 * second * width * width)
+        if (!change &&
+            std::abs(m.f) > 0.5 * std::abs(m.df) * width + 0.125 * second * width * width)
             return;
-        if (std::abs(dm) > 0.5 * second * width || depth >= 48 || --budget < 0) {
+        if (std::abs(m.df) > 0.5 * second * width || depth >= 48 || --budget < 0) {
             if (change)
-                bisect(lo, hi, flo);
+                root(lo, hi, flo, mid, m);
             return;
         }
-        self(self, lo, mid, flo, fm, depth + 1);
-        self(self, mid, hi, fm, fhi, depth + 1);
+        const double left = 0.5 * (lo + mid), right = 0.5 * (mid + hi);
+        self(self, lo, mid, flo, m.f, meet(left), depth + 1);
+        self(self, mid, hi, m.f, fhi, meet(right), depth + 1);
     };
+    // The 96 pieces' ends and middles: the turn in 192 steps, their sines and cosines once.
     constexpr int samples = 96;
-    double previous = meet(0.0);
+    static const std::array<std::pair<double, double>, 2 * samples + 1> turn = [] {
+        std::array<std::pair<double, double>, 2 * samples + 1> t{};
+        for (int k = 0; k <= 2 * samples; ++k)
+            t[static_cast<std::size_t>(k)] = {std::cos(pi * k / samples),
+                                              std::sin(pi * k / samples)};
+        return t;
+    }();
+    const auto sample = [&](int k) {
+        const auto& [c, s] = turn[static_cast<std::size_t>(k)];
+        return at(c, s);
+    };
+    double previous = sample(0).f;
     for (int k = 1; k <= samples; ++k) {
         const double lo = 2.0 * pi * (k - 1) / samples, hi = 2.0 * pi * k / samples;
-        const double value = meet(hi);
-        search(search, lo, hi, previous, value, 0);
+        const double value = sample(2 * k).f;
+        search(search, lo, hi, previous, value, sample(2 * k - 1), 0);
         previous = value;
     }
     double area = 0.0;

@@ -79,8 +79,8 @@ void refuse_pellets(const std::filesystem::path& particles) {
     if (const std::optional<PelletSpec> pellet = shape_beside(particles))
         throw InvalidInput(fmt::format(
             "{}: a bed of {} pellets (its summary.json's shape) is not allowed here; allowed: a "
-            "bed of spheres (a pellet bed's void fraction is in generate's summary.json, its "
-            "surfaces from export --format stl, obj or openfoam)",
+            "bed of spheres (packbed analyze measures a pellet bed, and export --format stl, obj "
+            "or openfoam writes its surfaces)",
             printable(particles.native()), pellet->text));
 }
 
