@@ -226,6 +226,27 @@ void stage_case(OutputDirectory& out, const OpenFoamCase& foam,
     out.commit();
 }
 
+/// An STL or OBJ file of `solids` at `out_path`, the report (with each solid's triangles) as
+/// its `.json` beside it, committed. \return the triangles written
+std::size_t write_surface_file(OutputDirectory& out, const fs::path& out_path, ExportFormat format,
+                               const std::vector<Solid>& solids, nlohmann::ordered_json& report) {
+    std::size_t triangles = 0;
+    report["solids"] = nlohmann::ordered_json::array();
+    for (const Solid& s : solids) {
+        triangles += s.mesh.triangles.size();
+        report["solids"].push_back({{"name", s.name}, {"triangles", s.mesh.triangles.size()}});
+    }
+    const std::string name = out_path.filename().string();
+    write_surface(solids,
+                  format == ExportFormat::stl         ? SurfaceFormat::stl_binary
+                  : format == ExportFormat::stl_ascii ? SurfaceFormat::stl_ascii
+                                                      : SurfaceFormat::obj,
+                  out.reserve(name));
+    out.stage(name + ".json", json_file_text(report, name + ".json"));
+    out.commit();
+    return triangles;
+}
+
 /// STL, OBJ or an OpenFOAM case: treat the contacts, tessellate, write the surfaces and the
 /// volumes.
 std::string surface_export(const ExportRequest& o, ExportFormat format, const Packing& packing,
@@ -324,21 +345,8 @@ std::string surface_export(const ExportRequest& o, ExportFormat format, const Pa
                            out_path.string(), packing.size(), o.contacts, change);
     }
 
-    const std::vector<Solid> solids = bed_surface(bed, options);
-    std::size_t triangles = 0;
-    report["solids"] = nlohmann::ordered_json::array();
-    for (const Solid& s : solids) {
-        triangles += s.mesh.triangles.size();
-        report["solids"].push_back({{"name", s.name}, {"triangles", s.mesh.triangles.size()}});
-    }
-    const std::string name = out_path.filename().string();
-    write_surface(solids,
-                  format == ExportFormat::stl         ? SurfaceFormat::stl_binary
-                  : format == ExportFormat::stl_ascii ? SurfaceFormat::stl_ascii
-                                                      : SurfaceFormat::obj,
-                  out->reserve(name));
-    out->stage(name + ".json", json_file_text(report, name + ".json"));
-    out->commit();
+    const std::size_t triangles =
+        write_surface_file(*out, out_path, format, bed_surface(bed, options), report);
     return fmt::format("{} spheres to {} ({} triangles, icosphere level {}, contacts {}){}",
                        packing.size(), out_path.string(), triangles, options.level, o.contacts,
                        change);
@@ -732,21 +740,7 @@ std::string pellet_export(const ExportRequest& request, ExportFormat format, con
         for (Solid& solid : container->container.solids(0.0, container->height,
                                                         2.0 * std::numbers::pi * rim / segments))
             solids.push_back(std::move(solid));
-    std::size_t triangles = 0;
-    report["solids"] = nlohmann::ordered_json::array();
-    for (const Solid& solid : solids) {
-        triangles += solid.mesh.triangles.size();
-        report["solids"].push_back(
-            {{"name", solid.name}, {"triangles", solid.mesh.triangles.size()}});
-    }
-    const std::string name = out_path.filename().string();
-    write_surface(solids,
-                  format == ExportFormat::stl         ? SurfaceFormat::stl_binary
-                  : format == ExportFormat::stl_ascii ? SurfaceFormat::stl_ascii
-                                                      : SurfaceFormat::obj,
-                  out->reserve(name));
-    out->stage(name + ".json", json_file_text(report, name + ".json"));
-    out->commit();
+    const std::size_t triangles = write_surface_file(*out, out_path, format, solids, report);
     return fmt::format("{} {} pellets to {} ({} triangles, {} segments about the rim, contacts "
                        "{}){}",
                        packing.size(), pellet.text, out_path.string(), triangles, segments,
