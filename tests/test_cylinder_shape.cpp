@@ -231,6 +231,29 @@ bool surfaces_meet(const Placement& a, const Placement& b, double r, double h, i
     return any_inside(a, b) || any_inside(b, a);
 }
 
+TEST(CylinderShape, PairGapIsTheDistanceOrMinusTheDepth) {
+    // R = 0.5, L = 2, turned at random: apart and overlapping side by side, end to end, crossed,
+    // and rim to rim (coaxial-parallel, offset across by d and along by e: the nearest points
+    // are on the rims, sqrt((d - 2 R)^2 + (e - L)^2) apart).
+    const CylinderShape c{0.5, 1.0};
+    std::mt19937_64 rng(9);
+    for (int trial = 0; trial < 5; ++trial) {
+        const Quaternion q = random_rotation(rng);
+        const Vec3 axis = rotate(q, {0.0, 0.0, 1.0}), across = rotate(q, {1.0, 0.0, 0.0});
+        const Placement a{{0.3, -0.2, 4.0}, q, 1.0};
+        const auto gap = [&](const Vec3& ab, const Quaternion& qb) {
+            return c.pair_gap(a, c, {a.position + ab, qb, 1.0}, ab);
+        };
+        for (const double g : {0.2, 1e-3, -0.01}) {
+            EXPECT_NEAR(gap((1.0 + g) * across, q), g, 1e-9) << g;
+            EXPECT_NEAR(gap((2.0 + g) * axis, q), g, 1e-9) << g;
+            EXPECT_NEAR(gap((1.0 + g) * across, about(across, 0.5 * pi) * q), g, 1e-9) << g;
+        }
+        const double d = 1.3, e = 2.4;
+        EXPECT_NEAR(gap(d * across + e * axis, q), std::hypot(d - 1.0, e - 2.0), 1e-9);
+    }
+}
+
 TEST(CylinderShape, PairOverlapSeparatesByBruteForce) {
     // Random overlapping pairs: moved apart by the depth along the normal (and 1e-6 more) no
     // point of either surface lies inside the other; by 0.9 of it they still meet (tried
@@ -622,4 +645,39 @@ TEST(PelletAnalysis, TwoPelletsByHand) {
     // The void fraction with the pellets' exact volumes: both whole inside.
     EXPECT_NEAR(all.void_fraction, 1.0 - 2.0 * c.volume(0.5) / (pi * 4.0 * (3.0 * h + 2.0 * r)),
                 1e-9);
+}
+
+TEST(PelletAnalysis, ContactsByHand) {
+    // Cylinders of L = D (R = h = 0.4368 d_v, d_v = 1) in a tube of radius 2: P0 upright on
+    // the axis; P1 lying along x on P0's top (gap 0); P2 upright 5e-4 from the wall and 0.69
+    // from P0; P3 upright at x = -1.2, 0.33 from P0 and 0.36 from the wall, touching nothing.
+    const CylinderShape c = CylinderShape::of_aspect(1.0);
+    const double r = c.radius * 0.5, h = c.half_length * 0.5;
+    Packing p;
+    p.add({0.0, 0.0, h}, 0.5);
+    p.add({0.0, 0.0, 2.0 * h + r}, 0.5);
+    p.add({2.0 - r - 5e-4, 0.0, h}, 0.5);
+    p.add({-1.2, 0.0, h}, 0.5);
+    p.orientations = {Quaternion{}, about({0.0, 1.0, 0.0}, 0.5 * pi), Quaternion{}, Quaternion{}};
+    const Container tube = Container::tube_of_radius(2.0);
+    AnalysisOptions o;
+    o.band = Band{0.0, 3.0 * h + 2.0 * r};
+    const Coordination k = analyze_pellet_bed(p, c, tube, o).coordination;
+    EXPECT_EQ(k.spheres, 4u);
+    EXPECT_EQ(k.histogram, (std::vector<std::size_t>{2, 2}));
+    EXPECT_DOUBLE_EQ(k.mean, 0.5);
+    EXPECT_EQ(k.wall_contacts, 1u); // P2
+    EXPECT_EQ(k.rattlers, 1u);      // P3; P2 is held by the wall
+    EXPECT_DOUBLE_EQ(k.mean_without_rattlers, 2.0 / 3.0);
+    // A tolerance below P2's gap to the wall: P2 touches nothing either.
+    o.contact_tolerance = 1e-4;
+    const Coordination tight = analyze_pellet_bed(p, c, tube, o).coordination;
+    EXPECT_EQ(tight.wall_contacts, 0u);
+    EXPECT_EQ(tight.rattlers, 2u);
+    EXPECT_DOUBLE_EQ(tight.mean_without_rattlers, 1.0);
+    // P1 lifted 2e-4 off P0: still a contact at 1e-3 d_v, none at 1e-4.
+    p.centers[1].z += 2e-4;
+    EXPECT_EQ(analyze_pellet_bed(p, c, tube, o).coordination.histogram[0], 4u);
+    o.contact_tolerance = 1e-3;
+    EXPECT_EQ(analyze_pellet_bed(p, c, tube, o).coordination.histogram[1], 2u);
 }

@@ -12,6 +12,7 @@
 
 #include <gtest/gtest.h>
 
+#include "packbed/bed_volume.hpp"
 #include "packbed/container.hpp"
 #include "packbed/cylinder_shape.hpp"
 #include "packbed/error.hpp"
@@ -183,16 +184,21 @@ TEST_F(PouredBed, EndsBelowTheToleranceByTheExactDepth) {
     EXPECT_LT(bed->stages[1].gravity, bed->stages[0].gravity);
 }
 
-TEST_F(PouredBed, NoSurfacePointLiesDeeperThanTheToleranceInAnotherPellet) {
-    const CylinderShape& c = params->shape;
-    const Packing& p = bed->packing;
-    const double tol = params->tolerance * params->smallest_dimension();
-    const double rt = 0.5 * params->container.tube_diameter().value();
+/// The deepest a surface point of one pellet lies inside another, and below the floor or
+/// through the wall: 20 000 points drawn on each pellet's surface by surface_point, each tested
+/// against every other pellet by depth_in. In a periodic cell of periods lx, ly (> 0) each
+/// other pellet is taken at its copy nearest the point, by the brute force's own rounding;
+/// in a tube of radius rt (> 0), the wall is the circle.
+struct Deepest {
+    double pair = 0.0, wall = 0.0;
+};
+Deepest brute_force(const CylinderShape& c, const Packing& p, double rt, double lx = 0.0,
+                    double ly = 0.0) {
     std::mt19937_64 rng(7);
     std::uniform_real_distribution<double> u(0.0, 1.0);
-    double deepest_pair = 0.0, deepest_wall = 0.0;
+    Deepest out;
     for (std::size_t i = 0; i < p.size(); ++i) {
-        ASSERT_NEAR(p.orientations[i].w * p.orientations[i].w +
+        EXPECT_NEAR(p.orientations[i].w * p.orientations[i].w +
                         p.orientations[i].x * p.orientations[i].x +
                         p.orientations[i].y * p.orientations[i].y +
                         p.orientations[i].z * p.orientations[i].z,
@@ -200,17 +206,97 @@ TEST_F(PouredBed, NoSurfacePointLiesDeeperThanTheToleranceInAnotherPellet) {
         for (int k = 0; k < 20000; ++k) {
             const Vec3 body = surface_point(c, u(rng), u(rng), u(rng));
             const Vec3 at = p.centers[i] + turn(p.orientations[i], body * p.radii[i]);
-            deepest_wall = std::max({deepest_wall, -at.z, std::hypot(at.x, at.y) - rt});
-            for (std::size_t j = 0; j < p.size(); ++j)
-                if (j != i)
-                    deepest_pair = std::max(
-                        deepest_pair, depth_in(c, p.centers[j], p.orientations[j], p.radii[j], at));
+            out.wall = std::max(out.wall, -at.z);
+            if (rt > 0.0)
+                out.wall = std::max(out.wall, std::hypot(at.x, at.y) - rt);
+            for (std::size_t j = 0; j < p.size(); ++j) {
+                if (j == i)
+                    continue;
+                Vec3 other = p.centers[j];
+                if (lx > 0.0) {
+                    other.x -= lx * std::round((other.x - at.x) / lx);
+                    other.y -= ly * std::round((other.y - at.y) / ly);
+                }
+                out.pair =
+                    std::max(out.pair, depth_in(c, other, p.orientations[j], p.radii[j], at));
+            }
         }
     }
-    EXPECT_LE(deepest_pair, tol);
-    EXPECT_LE(deepest_wall, tol);
+    return out;
+}
+
+TEST_F(PouredBed, NoSurfacePointLiesDeeperThanTheToleranceInAnotherPellet) {
+    const double tol = params->tolerance * params->smallest_dimension();
+    const Deepest d =
+        brute_force(params->shape, bed->packing, 0.5 * params->container.tube_diameter().value());
+    EXPECT_LE(d.pair, tol);
+    EXPECT_LE(d.wall, tol);
     // The exact penetration depth is at least the deepest point's depth.
-    EXPECT_LE(deepest_pair, bed->max_depth_pair + 1e-12);
+    EXPECT_LE(d.pair, bed->max_depth_pair + 1e-12);
+}
+
+/// A bed in a cell periodic in x and y, 3.2 d_v wide (the pellet's bounding sphere 1.24 d_v
+/// across): pellets touch their neighbours' copies across the cell's sides.
+TEST(PeriodicPelletBed, EndsBelowTheToleranceAcrossTheCellsSides) {
+    PelletBedParameters params;
+    params.particles = 12;
+    params.seed = 3;
+    const double period = 3.2;
+    params.container = Container(Periodic(period, period));
+    const PelletBed bed = generate_pellet_bed(params);
+    const double tol = params.tolerance * params.smallest_dimension();
+    ASSERT_EQ(bed.packing.size(), 12u);
+    EXPECT_LE(bed.max_depth_pair, tol);
+    EXPECT_LE(bed.max_depth_wall, tol);
+    EXPECT_GT(bed.max_depth_pair, 0.0);
+    // Every centre in the cell, and pairs that meet only as copies across its sides (their
+    // nearest copies within the bounding spheres' reach, the centres themselves farther).
+    const double reach = 2.0 * params.shape.bounding_radius(0.5);
+    int across = 0;
+    for (std::size_t i = 0; i < bed.packing.size(); ++i) {
+        const Vec3& c = bed.packing.centers[i];
+        EXPECT_TRUE(c.x >= 0.0 && c.x < period && c.y >= 0.0 && c.y < period) << c.x << " " << c.y;
+        for (std::size_t j = i + 1; j < bed.packing.size(); ++j) {
+            Vec3 d = bed.packing.centers[j] - c;
+            const bool far = norm(d) >= reach;
+            d.x -= period * std::round(d.x / period);
+            d.y -= period * std::round(d.y / period);
+            across += far && norm(d) < reach;
+        }
+    }
+    EXPECT_GE(across, 3);
+    const Deepest d = brute_force(params.shape, bed.packing, 0.0, period, period);
+    EXPECT_LE(d.pair, tol);
+    EXPECT_LE(d.wall, tol);
+    EXPECT_LE(d.pair, bed.max_depth_pair + 1e-12);
+    // The void fraction of the first layer by the exact volumes (whole pellets, wrapped into
+    // the cell) against points drawn in the cell, each tested by depth_in at the copy of each
+    // pellet nearest it.
+    const double low = 0.2, high = 0.6;
+    const ShapedBed<CylinderShape> shaped(bed.packing, {params.shape});
+    const double exact = void_fraction(shaped, params.container, low, high);
+    std::mt19937_64 rng(11);
+    std::uniform_real_distribution<double> u(0.0, 1.0);
+    const int points = 200000;
+    int solid = 0;
+    for (int k = 0; k < points; ++k) {
+        const Vec3 at{period * u(rng), period * u(rng), low + (high - low) * u(rng)};
+        for (std::size_t j = 0; j < bed.packing.size(); ++j) {
+            Vec3 c = bed.packing.centers[j];
+            c.x -= period * std::round((c.x - at.x) / period);
+            c.y -= period * std::round((c.y - at.y) / period);
+            if (depth_in(params.shape, c, bed.packing.orientations[j], bed.packing.radii[j], at) >=
+                0.0) {
+                ++solid;
+                break;
+            }
+        }
+    }
+    const double f = static_cast<double>(solid) / points;
+    const double sigma = std::sqrt(f * (1.0 - f) / points);
+    EXPECT_NEAR(exact, 1.0 - f, 4.0 * sigma) << "sigma " << sigma;
+    EXPECT_GT(exact, 0.2);
+    EXPECT_LT(exact, 0.8);
 }
 
 TEST_F(PouredBed, TheSameSeedGivesTheSameBits) {

@@ -93,6 +93,19 @@ int run_pellet_analyze(const AnalyzeOptions& o, const fs::path& path, const Read
                                         "axis, over the pellets with their centroid in the "
                                         "band; S = (3 <cos^2> - 1) / 2: 1 upright, -1/2 lying, "
                                         "0 at random"}};
+    const Coordination& c = a.coordination;
+    summary["coordination"] = {{"mean", c.mean},
+                               {"mean_without_rattlers", c.mean_without_rattlers},
+                               {"rattlers", c.rattlers},
+                               {"rattler_contacts", c.rattler_contacts},
+                               {"pellets", c.spheres},
+                               {"contact_tolerance", o.analysis.contact_tolerance},
+                               {"histogram", c.histogram},
+                               {"about", "pellet-pellet contacts per pellet with its centroid in "
+                                         "the band: a pair whose exact gap is at most "
+                                         "contact_tolerance d_v; a rattler touches nothing"}};
+    summary["wall_contacts"] = c.wall_contacts;
+    summary["wall_contacts_in_band"] = c.wall_contacts_in_band;
     nlohmann::ordered_json files = nlohmann::ordered_json::array();
     for (const auto& [name, text] : pellet_analysis_files(a, *found)) {
         out.stage(name, text);
@@ -109,6 +122,9 @@ int run_pellet_analyze(const AnalyzeOptions& o, const fs::path& path, const Read
         fmt::print("orientation: <cos^2 theta> = {:.4f}, S = {:.4f} over {} pellets (1/3 and 0 at "
                    "random)\n",
                    a.overall.mean_cos2, a.overall.order, a.overall.pellets);
+        fmt::print("contacts: {:.3f} per pellet ({:.3f} without {} rattlers, pellets touching "
+                   "nothing); {} pellets touch the wall\n",
+                   c.mean, c.mean_without_rattlers, c.rattlers, c.wall_contacts);
         fmt::print("results in {}/\n", out_dir.string());
     }
     return 0;

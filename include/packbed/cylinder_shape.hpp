@@ -56,6 +56,13 @@ struct CylinderShape {
     /// they are apart, the normal along ab.
     PairOverlap pair_overlap(const Placement& a, const CylinderShape& other, const Placement& b,
                              const Vec3& ab) const;
+    /// The gap between two pellets, exactly: the least over the unit directions of the
+    /// closed-form support of their Minkowski difference (cylinder_shape.cpp's cylinder_depth),
+    /// b placed at a.position + ab, searched from the line of centres. Their distance negated
+    /// when they are apart (the least support is minus the distance from the origin to the
+    /// Minkowski difference), their penetration depth when they overlap: gap = -that.
+    double pair_gap(const Placement& a, const CylinderShape& other, const Placement& b,
+                    const Vec3& ab) const;
     /// Bounds: the wall distances of the bounding sphere (the shells between them are measured
     /// exactly by volume_from_wall).
     std::pair<double, double> wall_extent(const Container& c, std::size_t wall,

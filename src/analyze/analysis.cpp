@@ -18,6 +18,7 @@
 #include "geometry/cell_grid.hpp"
 #include "packbed/error.hpp"
 #include "packbed/limits.hpp"
+#include "packbed/neighbor_list.hpp"
 #include "packbed/sizes.hpp"
 #include "packbed/sphere_shape.hpp"
 
@@ -330,6 +331,34 @@ struct ContactSearch {
     }
 };
 
+/// The contact counts of the particles in the band added up into a Coordination: the histogram,
+/// the rattlers and the two means.
+struct CoordinationTally {
+    Coordination& out;
+    std::size_t total = 0, held = 0;
+
+    /// One particle: k contacts with others, `walls` walls touched (each one contact for the
+    /// rattler rule).
+    void add(std::size_t k, std::size_t walls) {
+        if (out.histogram.size() <= k)
+            out.histogram.resize(k + 1, 0);
+        ++out.histogram[k];
+        ++out.spheres;
+        total += k;
+        if (k + walls < out.rattler_contacts)
+            ++out.rattlers;
+        else
+            held += k;
+    }
+    void finish() {
+        if (out.spheres > 0)
+            out.mean = static_cast<double>(total) / static_cast<double>(out.spheres);
+        if (out.spheres > out.rattlers)
+            out.mean_without_rattlers =
+                static_cast<double>(held) / static_cast<double>(out.spheres - out.rattlers);
+    }
+};
+
 /// The contacts of the spheres in the band; `per_sphere` gets each sphere's count of
 /// sphere-sphere contacts (0 outside the band), `walls` one entry per profile wall with its
 /// name and wall contacts; `frictional` takes the rattler rule of frictional contacts.
@@ -377,7 +406,7 @@ Coordination coordination(const Packing& packing, const Container& container,
     walls.assign(wall_count, WallAnalysis{});
     for (std::size_t w = 0; w < wall_count; ++w)
         walls[w].name = container.profile_walls()[w];
-    std::size_t contacts_total = 0, contacts_stable = 0;
+    CoordinationTally tally{out};
     for (std::size_t i = 0; i < n; ++i) {
         const Vec3& c = packing.centers[i];
         // Each wall the sphere touches is one contact for the rattler rule; `wall` says it
@@ -394,23 +423,9 @@ Coordination coordination(const Packing& packing, const Container& container,
         if (!in_band(c, band))
             continue;
         out.wall_contacts_in_band += wall ? 1 : 0;
-        const std::size_t k = contacts[i];
-        if (out.histogram.size() <= k)
-            out.histogram.resize(k + 1, 0);
-        ++out.histogram[k];
-        ++out.spheres;
-        contacts_total += k;
-        if (k + touched < out.rattler_contacts) {
-            ++out.rattlers;
-        } else {
-            contacts_stable += k;
-        }
+        tally.add(contacts[i], touched);
     }
-    if (out.spheres > 0)
-        out.mean = static_cast<double>(contacts_total) / static_cast<double>(out.spheres);
-    if (out.spheres > out.rattlers)
-        out.mean_without_rattlers =
-            static_cast<double>(contacts_stable) / static_cast<double>(out.spheres - out.rattlers);
+    tally.finish();
     per_sphere = std::move(contacts);
     return out;
 }
@@ -812,6 +827,75 @@ BedAnalysis analyze_bed(const Packing& packing, const Container& container,
     return out;
 }
 
+namespace {
+
+/// The contacts of a bed of pellets (PelletAnalysis::coordination): the pairs whose bounding
+/// spheres come within `tolerance` (a NeighborList, by the minimum image in a periodic cell)
+/// measured by their exact gap, and the pellets whose support function grown by `tolerance`
+/// reaches a side wall.
+Coordination pellet_coordination(const ShapedBed<CylinderShape>& bed, const Container& container,
+                                 double tolerance, const Band& band) {
+    const Packing& packing = bed.particles();
+    const std::size_t n = bed.size();
+    const std::vector<double> reach = bed.bounding_radii();
+    std::vector<Vec3> centres = packing.centers;
+    const std::optional<Periods> cell = container.periods();
+    NeighborList list;
+    if (cell) {
+        const double widest = 2.0 * *std::max_element(reach.begin(), reach.end()) + tolerance;
+        if (!(cell->lx() >= 2.0 * widest && cell->ly() >= 2.0 * widest))
+            throw InvalidInput(fmt::format(
+                "the periodic cell {} is not allowed for the contacts of these pellets; allowed: "
+                "periods at least {:.6g}, twice the reach of two touching pellets",
+                container.spec(), 2.0 * widest));
+        for (Vec3& c : centres)
+            c = cell->wrapped(c);
+        list.wrap(*cell);
+    }
+    list.build(centres, reach, tolerance);
+    const auto first = list.pair_first();
+    const auto second = list.pair_second();
+    const std::size_t pairs = list.pairs();
+    std::vector<char> touching(pairs, 0);
+#pragma omp parallel for schedule(dynamic, 16) if (pairs >= 64)
+    for (std::size_t k = 0; k < pairs; ++k) {
+        const std::size_t a = first[k], b = second[k];
+        const Vec3 u = cell ? cell->separation(centres[a], centres[b]) : centres[b] - centres[a];
+        if (norm(u) > reach[a] + reach[b] + tolerance)
+            continue;
+        const Placement pa = bed.placement(a);
+        Placement pb = bed.placement(b);
+        pb.position = pa.position + u;
+        touching[k] = bed.shape(a).pair_gap(pa, bed.shape(b), pb, u) <= tolerance ? 1 : 0;
+    }
+    std::vector<std::size_t> contacts(n, 0);
+    for (std::size_t k = 0; k < pairs; ++k)
+        if (touching[k]) {
+            ++contacts[first[k]];
+            ++contacts[second[k]];
+        }
+    Coordination out;
+    out.rattler_contacts = 1;
+    CoordinationTally tally{out};
+    for (std::size_t i = 0; i < n; ++i) {
+        const Placement p = bed.placement(i);
+        const CylinderShape& shape = bed.shape(i);
+        const bool wall =
+            container.convex_wall_overlap(
+                [&](const Vec3& v) { return shape.support(p, v) + v * (tolerance / norm(v)); },
+                p.position, shape.bounding_radius(p.size) + tolerance) > 0.0;
+        out.wall_contacts += wall ? 1 : 0;
+        if (!in_band(p.position, band))
+            continue;
+        out.wall_contacts_in_band += wall ? 1 : 0;
+        tally.add(contacts[i], wall ? 1 : 0);
+    }
+    tally.finish();
+    return out;
+}
+
+} // namespace
+
 PelletAnalysis analyze_pellet_bed(const Packing& packing, const CylinderShape& shape,
                                   const Container& container, const AnalysisOptions& options) {
     if (packing.size() == 0)
@@ -871,6 +955,8 @@ PelletAnalysis analyze_pellet_bed(const Packing& packing, const CylinderShape& s
         out.radial_void_fraction =
             wall_void_fraction(bed, container, 0, options.shell_width * dv, out.band, shells);
     }
+    out.coordination =
+        pellet_coordination(bed, container, options.contact_tolerance * dv, out.band);
     return out;
 }
 

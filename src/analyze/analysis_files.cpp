@@ -110,9 +110,13 @@ std::vector<std::pair<std::string, std::string>> pellet_analysis_files(const Pel
     const double dv = a.diameter;
     auto in_dv = [&](double length) { return length / dv; };
     auto as_is = [](double length) { return length; };
+    std::string coordination = "contacts,pellets\n";
+    for (std::size_t k = 0; k < a.coordination.histogram.size(); ++k)
+        coordination += fmt::format("{},{}\n", k, a.coordination.histogram[k]);
     std::vector<std::pair<std::string, std::string>> tables{
         {"axial_void_fraction.csv",
-         profile_csv("z,z_d,void_fraction", a.axial_void_fraction, as_is, in_dv)}};
+         profile_csv("z,z_d,void_fraction", a.axial_void_fraction, as_is, in_dv)},
+        {"coordination.csv", coordination}};
     if (a.radial_void_fraction.empty())
         return tables;
     const std::string position(container.profile_position_name());

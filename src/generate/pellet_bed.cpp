@@ -467,6 +467,23 @@ private:
             deepest = std::max(deepest, p.depth);
         }
         m_pair_depth = deepest;
+        // The pairs whose exact depth the nodes leave above tolerance (lower()): a spring on
+        // the depth's excess over half the tolerance, along the normal at the contact point.
+        const double tol = m_params.tolerance * m_dmin;
+        for (const auto& [a, b] : m_exact_pairs) {
+            const Vec3 u = separation(a, b);
+            const PairOverlap o =
+                m_params.shape.pair_overlap({m_centre[a], m_turn[a], m_size}, m_params.shape,
+                                            {m_centre[a] + u, m_turn[b], m_size}, u);
+            const double excess = o.depth - 0.5 * tol;
+            if (!(excess > 0.0))
+                continue;
+            const Vec3 f = o.normal * (exact_stiffness * excess); // on b, from a
+            m_force[a] -= f;
+            m_force[b] += f;
+            m_torque[a] -= cross(o.point, f);
+            m_torque[b] += cross(o.point - u, f);
+        }
         m_wall_max = 0.0;
         for (const double d : m_wall_depth)
             m_wall_max = std::max(m_wall_max, d);
@@ -590,6 +607,7 @@ private:
     void lower() {
         const double tol = m_params.tolerance * m_dmin;
         const std::uint64_t start = m_steps;
+        std::vector<double> rounds; // the deepest exact depth after each relaxation
         for (;;) {
             m_dt = Fire::dt_start;
             m_alpha = Fire::alpha_start;
@@ -613,17 +631,38 @@ private:
                 }
             }
             PelletBed exact;
-            measure_exact(exact);
+            std::vector<std::pair<std::uint32_t, std::uint32_t>> over;
+            measure_exact(exact, tol, &over);
             const double deepest = std::max(exact.max_depth_pair, exact.max_depth_wall);
             if (deepest <= tol)
                 break;
+            // An overlap that lowering the gravity does not relieve: the bed is jammed without
+            // it, and more relaxations would run on without end.
+            rounds.push_back(deepest);
+            if (rounds.size() > stalled_rounds &&
+                deepest > 0.99 * rounds[rounds.size() - 1 - stalled_rounds])
+                throw ConvergenceError(fmt::format(
+                    "the pellet bed is jammed: an overlap of {:.3g} d_v (tolerance {:.3g}) stayed "
+                    "through {} relaxations, the gravity lowered after each; allowed: a wider "
+                    "container or another seed",
+                    deepest, tol, stalled_rounds));
+            // The nodes at rest with a pair too deep (the depth fell by less than a tenth in
+            // the last relaxation): its exact depth pushes it apart from then on.
+            if (rounds.size() >= 2 && deepest > 0.9 * rounds[rounds.size() - 2])
+                for (const auto& pair : over)
+                    if (std::find(m_exact_pairs.begin(), m_exact_pairs.end(), pair) ==
+                        m_exact_pairs.end())
+                        m_exact_pairs.push_back(pair);
             const double excess = 0.8 * tol / deepest;
             m_gravity *= std::max(0.1, excess * excess);
         }
         m_stages.push_back({"final", m_steps - start, m_gravity, m_depth, mass_centre_z()});
     }
 
-    void measure_exact(PelletBed& out) const {
+    /// The exact depths of every pair and at the walls into `out`; the pairs deeper than
+    /// `over_depth` appended to `over` (in pair order).
+    void measure_exact(PelletBed& out, double over_depth = 0.0,
+                       std::vector<std::pair<std::uint32_t, std::uint32_t>>* over = nullptr) const {
         const CylinderShape& shape = m_params.shape;
         const auto first = m_list.pair_first();
         const auto second = m_list.pair_second();
@@ -639,8 +678,12 @@ private:
             const Placement pb{m_centre[a] + u, m_turn[b], m_size};
             depth[k] = shape.pair_overlap(pa, shape, pb, u).depth;
         }
-        for (const double d : depth)
-            out.max_depth_pair = std::max(out.max_depth_pair, d);
+        for (std::size_t k = 0; k < pairs; ++k) {
+            out.max_depth_pair = std::max(out.max_depth_pair, depth[k]);
+            if (over && depth[k] > over_depth)
+                over->emplace_back(static_cast<std::uint32_t>(first[k]),
+                                   static_cast<std::uint32_t>(second[k]));
+        }
         for (std::size_t i = 0; i < m_centre.size(); ++i) {
             const Placement p{m_centre[i], m_turn[i], m_size};
             out.max_depth_wall = std::max(out.max_depth_wall, shape.wall_overlap(m_container, p));
@@ -650,6 +693,12 @@ private:
 
     static constexpr double skin = 0.3; // d_v
     static constexpr std::uint64_t patience = 5000;
+    /// Relaxations of the final stage whose deepest exact depth fell by less than 1 % in all
+    /// (the gravity cut each time) before the bed is called jammed.
+    static constexpr std::size_t stalled_rounds = 4;
+    /// The spring on a held pair's exact depth (lower()), in the nodes' unit (a node's force is
+    /// its area times its depth): the area of four nodes at the default spacing, d_v^2.
+    static constexpr double exact_stiffness = 0.01;
     /// The width of the smooth minimum of a point's distances to a side and an end (inside's
     /// blend), in units of the size: the pushing face turns over this width instead of at
     /// once. An edge is then 1e-3 of the size (5e-4 d_v) shallower than it is.
@@ -672,6 +721,10 @@ private:
     std::vector<double> m_wall_depth;
     NeighborList m_list;
     std::vector<PelletStage> m_stages;
+    /// Pairs (first, second) above tolerance after a relaxation that took the deepest exact
+    /// depth down by less than a tenth, in the order found; pushed apart on their exact depth
+    /// from then on (forces()).
+    std::vector<std::pair<std::uint32_t, std::uint32_t>> m_exact_pairs;
     double m_gravity = 1e-3, m_depth = 0.0, m_pair_depth = 0.0, m_wall_max = 0.0;
     double m_dt = Fire::dt_start, m_alpha = Fire::alpha_start;
     int m_positive = 0;

@@ -388,6 +388,17 @@ struct CylinderPair {
     Vec3 a, b, c;
     double ra, ha, rb, hb;
 
+    /// The pellets a (at the origin) and b (its centre at ab) at their placements.
+    static CylinderPair of(const CylinderShape& first, const Placement& a,
+                           const CylinderShape& second, const Placement& b, const Vec3& ab) {
+        return {rotate(a.orientation, {0.0, 0.0, 1.0}),
+                rotate(b.orientation, {0.0, 0.0, 1.0}),
+                ab,
+                first.radius * a.size,
+                first.half_length * a.size,
+                second.radius * b.size,
+                second.half_length * b.size};
+    }
     /// The support of the Minkowski difference first - second along the unit u:
     /// R_a |u x a| + H_a |u . a| + R_b |u x b| + H_b |u . b| - u . c.
     double support(const Vec3& u) const {
@@ -581,13 +592,7 @@ PairOverlap CylinderShape::pair_overlap(const Placement& a, const CylinderShape&
         return {0.0, along, {}};
     // MPR's depth is along one supporting plane of the Minkowski difference, up to 12 % more
     // than the least (docs/notes/pellets.md); the least from the closed-form support.
-    const CylinderPair pair{rotate(a.orientation, {0.0, 0.0, 1.0}),
-                            rotate(b.orientation, {0.0, 0.0, 1.0}),
-                            ab,
-                            radius * a.size,
-                            half_length * a.size,
-                            other.radius * b.size,
-                            other.half_length * b.size};
+    const CylinderPair pair = CylinderPair::of(*this, a, other, b, ab);
     const auto [least, normal] =
         cylinder_depth(pair, {direction.v[0], direction.v[1], direction.v[2]});
     if (!(least > 0.0))
@@ -595,6 +600,14 @@ PairOverlap CylinderShape::pair_overlap(const Placement& a, const CylinderShape&
     return {
         least, normal,
         0.5 * (support(first.placement, normal) + other.support(second.placement, -1.0 * normal))};
+}
+
+double CylinderShape::pair_gap(const Placement& a, const CylinderShape& other, const Placement& b,
+                               const Vec3& ab) const {
+    const double distance = norm(ab);
+    const CylinderPair pair = CylinderPair::of(*this, a, other, b, ab);
+    return -cylinder_depth(pair, distance > 0.0 ? ab * (1.0 / distance) : Vec3{0.0, 0.0, 1.0})
+                .first;
 }
 
 std::pair<double, double> CylinderShape::wall_extent(const Container& c, std::size_t wall,

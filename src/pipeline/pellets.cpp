@@ -144,10 +144,7 @@ GeneratedPellets run_pellets(const PreparedPellets& prepared, const RunControl& 
                           {"mass_centre_z", st.mass_centre_z * dv}});
     s["stages"] = stages;
     const double clearance = prepared.request.band_clearance * dv;
-    if (!out.container.tube_diameter())
-        s["void_fraction_note"] = "measured in a tube only: elsewhere the exact volume of a pellet "
-                                  "the walls cut takes about a second (docs/design.md)";
-    else if (top - clearance <= clearance)
+    if (top - clearance <= clearance)
         s["void_fraction_note"] = "the bed is lower than twice the band clearance";
     else {
         s["void_fraction"] = void_fraction(shaped, out.container, clearance, top - clearance);
