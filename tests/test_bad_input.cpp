@@ -1394,9 +1394,13 @@ INSTANTIATE_TEST_SUITE_P(
               "packbed export: --contacts caps:0.02 is not allowed for a bed of pellets; "
               "allowed: none, or shrink:F (each pellet scaled by 1 - F about its centroid, F in "
               "(0, 0.5))"),
-        exact("export pel/particles.csv -o pel.data",
-              "packbed export: --format lammps-data is not allowed for a bed of cylinder:1,1 "
-              "pellets; allowed: stl, stl-ascii, obj, openfoam (the data files hold spheres)"),
+        exact("export pel/particles.csv -f liggghts-data -o pel.data",
+              "packbed export: --format liggghts-data is not allowed for a bed of cylinder:1,1 "
+              "pellets; allowed: stl, stl-ascii, obj, openfoam, lammps-data (LIGGGHTS makes its "
+              "multisphere clumps from its own templates as it inserts them)"),
+        exact("export pel/particles.csv --contacts shrink:0.1 -o pel.data",
+              "packbed export: --contacts shrink:0.1 is not allowed with --format lammps-data; "
+              "allowed: none (the clumps are the pellets' own)"),
         exact("export bed/particles.csv -f stl --shape cylinder:1,1 -o p.stl",
               "packbed export: bed/particles.csv: a bed of cylinder:1,1 pellets needs each "
               "pellet's orientation; allowed: a table with the columns qw, qx, qy, qz (what "

@@ -79,24 +79,32 @@ std::vector<std::array<double, 4>> spheres_of(const fs::path& csv_path) {
 }
 
 /// The last frame of a `dump custom ... id type x y z radius`: x, y, z, radius per atom.
-std::vector<std::array<double, 4>> last_dump_frame(const std::string& dump) {
-    std::vector<std::array<double, 4>> frame;
+std::vector<std::vector<std::array<double, 4>>> dump_frames(const std::string& dump) {
+    std::vector<std::vector<std::array<double, 4>>> frames;
     std::istringstream in(dump);
     std::size_t atoms = 0;
     for (std::string line; std::getline(in, line);) {
         if (line.rfind("ITEM: NUMBER OF ATOMS", 0) == 0) {
             in >> atoms;
         } else if (line.rfind("ITEM: ATOMS id type x y z radius", 0) == 0) {
-            frame.clear();
+            // In the order of the atoms' ids (LAMMPS writes them in its own order).
+            std::vector<std::array<double, 4>>& frame = frames.emplace_back(atoms);
             for (std::size_t k = 0; k < atoms; ++k) {
-                double id = 0, type = 0;
+                std::size_t id = 0, type = 0;
                 std::array<double, 4> s{};
                 in >> id >> type >> s[0] >> s[1] >> s[2] >> s[3];
-                frame.push_back(s);
+                EXPECT_TRUE(id >= 1 && id <= atoms) << id;
+                if (id >= 1 && id <= atoms)
+                    frame[id - 1] = s;
             }
         }
     }
-    return frame;
+    return frames;
+}
+
+std::vector<std::array<double, 4>> last_dump_frame(const std::string& dump) {
+    auto frames = dump_frames(dump);
+    return frames.empty() ? std::vector<std::array<double, 4>>{} : frames.back();
 }
 
 bool has_lmp() {
@@ -724,6 +732,68 @@ TEST(ContainerExportCli, LammpsSettlesAConeBedAgainstTheSlantedWall) {
         at_wall += from_wall < tolerance ? 1 : 0;
     }
     EXPECT_GT(at_wall, 0u); // the slanted wall holds spheres
+}
+
+TEST(ContainerExportCli, LammpsSettlesPelletsAsRigidClumps) {
+    if (!has_lmp())
+        GTEST_SKIP() << "lmp (Debian package lammps) is not installed";
+    // 12 cylinders D = L = 3 mm in a tube of a = 4, each exported as its clump of 24 spheres
+    // (CylinderShape::dem_spheres) and settled by LAMMPS as one rigid body: the clumps keep
+    // their shape (every distance between two spheres of one clump as exported), stay in the
+    // tube and above the floor, and none is lost.
+    const fs::path d = scratch("clumps");
+    const Outcome g =
+        run_packbed("generate --shape cylinder:0.003,0.003 -a 4 -n 12 -s 3 -q --out " +
+                    (d / "bed").string() + " --force");
+    ASSERT_EQ(g.status, 0) << g.err;
+    const Outcome e = run_packbed("export " + (d / "bed" / "particles.csv").string() +
+                                  " --format lammps-data -q --out " + (d / "bed.data").string());
+    ASSERT_EQ(e.status, 0) << e.err;
+    const std::string data = slurp(d / "bed.data");
+    EXPECT_NE(data.find("288 atoms\n"), std::string::npos);
+    // The Molecules section: atom k in clump (k - 1) / 24 + 1.
+    const std::size_t at = data.find("\nMolecules\n\n");
+    ASSERT_NE(at, std::string::npos);
+    std::istringstream molecules(data.substr(at + 12));
+    for (std::size_t k = 1; k <= 288; ++k) {
+        std::size_t id = 0, mol = 0;
+        molecules >> id >> mol;
+        EXPECT_EQ(id, k);
+        EXPECT_EQ(mol, (k - 1) / 24 + 1) << k;
+    }
+    // A clump weighs its pellet: pi D^2 L / 4 rho against 24 balls of the density written.
+    const std::string input = slurp(d / "bed.data.lammps.in");
+    EXPECT_NE(input.find("fix             integrate all rigid/small molecule\n"),
+              std::string::npos);
+    const std::string cmd =
+        "cd " + d.string() + " && lmp -in bed.data.lammps.in -log none > lmp.out 2>&1";
+    EXPECT_EQ(std::system(cmd.c_str()), 0) << slurp(d / "lmp.out");
+    const std::string log = slurp(d / "lmp.out");
+    EXPECT_NE(log.find("12 rigid bodies with 288 atoms"), std::string::npos) << log;
+    EXPECT_NE(log.find("packbed settle: 288 atoms after 2000 steps"), std::string::npos) << log;
+    EXPECT_EQ(log.find("Lost"), std::string::npos) << log;
+    const auto frames = dump_frames(slurp(d / "bed.data.lammps.dump"));
+    ASSERT_EQ(frames.size(), 2u);
+    ASSERT_EQ(frames[0].size(), 288u);
+    ASSERT_EQ(frames[1].size(), 288u);
+    const auto distance = [](const std::array<double, 4>& a, const std::array<double, 4>& b) {
+        return std::hypot(a[0] - b[0], a[1] - b[1], a[2] - b[2]);
+    };
+    // Walls and floor within 1 % of D (the DEM's own soft overlap under load, as for spheres);
+    // the dump's positions to 6 digits, so the distances within a clump to 1e-5 D.
+    const double rt = 0.5 * 4.0 * std::cbrt(1.5) * 0.003, tolerance = 0.01 * 0.003;
+    double moved = 0.0;
+    for (std::size_t k = 0; k < 288; ++k) {
+        const std::size_t first = k / 24 * 24;
+        EXPECT_NEAR(distance(frames[1][k], frames[1][first]),
+                    distance(frames[0][k], frames[0][first]), 1e-5 * 0.003)
+            << k;
+        const auto& s = frames[1][k];
+        EXPECT_LE(std::hypot(s[0], s[1]) + s[3], rt + tolerance) << k;
+        EXPECT_GE(s[2] - s[3], -tolerance) << k;
+        moved = std::max(moved, distance(frames[1][k], frames[0][k]));
+    }
+    EXPECT_GT(moved, 1e-3 * 0.003); // the clumps did settle
 }
 
 TEST(ContainerExportCli, LatticeRegionsRefusedWithOneLine) {

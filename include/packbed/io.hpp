@@ -46,11 +46,15 @@ AxisBox bounding_box(const Packing& packing);
 /// \param comment first line of the file (no newline)
 /// \param notes header comments written after it, each as a line `# NOTE`
 /// \param types each sphere's atom type, from 1 (the LAMMPS engine's sizes); empty: type 1
+/// \param clump_spheres 0: every sphere free; N > 0: each N consecutive spheres one rigid
+/// clump (a pellet), written as a `Molecules` section (`atom-ID molecule-ID`, the clump's
+/// number from 1) for `fix property/atom mol` (lammps_settle_input)
 /// \throws InvalidInput when the density is not > 0, a centre is outside the box, or a header
 /// line (the comment, a note) is longer than max_data_header_line (or holds a newline)
 std::string lammps_data(const Packing& packing, double density, const AxisBox& box,
                         std::string_view comment, const std::vector<std::string>& notes = {},
-                        const std::vector<std::uint32_t>& types = {});
+                        const std::vector<std::uint32_t>& types = {},
+                        std::size_t clump_spheres = 0);
 
 /// The longest header line LAMMPS (2022) and LIGGGHTS (3.8) read whole: both read the data
 /// file's lines into 256-byte buffers, and go on reading the rest of a longer title as a header
@@ -121,6 +125,9 @@ struct DemSettle {
     DemMaterial material;
     int steps = 2000;                ///< the settle's length
     double time_step_fraction = 0.2; ///< dt = fraction x Rayleigh time of the smallest sphere
+    /// 0: each atom a free sphere; N > 0: each N consecutive atoms one rigid pellet, its
+    /// molecule (lammps_data's clump_spheres; LAMMPS only)
+    std::size_t clump_spheres = 0;
 };
 
 /// A LAMMPS (2022, GRANULAR package) input that reads the data file and settles the bed:
@@ -131,7 +138,10 @@ struct DemSettle {
 /// in`, the rod `side out`), for a periodic cell none (`boundary p p f`, else `f f f`), the
 /// floor as `fix wall/gran ... zplane`, gravity,
 /// `fix nve/sphere`, the time step from rayleigh_time computed in the script from its
-/// variables (and written as a number in a comment), a dump at the first and last step.
+/// variables (and written as a number in a comment), a dump at the first and last step. With
+/// clump_spheres, each clump a rigid body: the molecule IDs read by `fix property/atom mol`
+/// from the data file's `Molecules` section, `neigh_modify exclude molecule/intra`, and
+/// `fix rigid/small molecule` instead of `fix nve/sphere`.
 /// \throws InvalidInput when a value is out of range
 std::string lammps_settle_input(const DemSettle& settle);
 
@@ -140,7 +150,8 @@ std::string lammps_settle_input(const DemSettle& settle);
 /// floor from packbed's STL files (`fix mesh/surface`, `fix wall/gran ... mesh`): a prism
 /// about a cylinder, a box's four faces, an annulus' tube and rod in one file; a periodic cell
 /// (`boundary p p f`) has no STL, its floor is `fix wall/gran ... primitive ... zplane 0.0`.
-/// \throws InvalidInput when a value is out of range
+/// \throws InvalidInput when a value is out of range, or for clumps (LIGGGHTS builds its
+/// multisphere clumps from its own templates as it inserts them, not from a data file)
 std::string liggghts_settle_input(const DemSettle& settle);
 
 } // namespace packbed

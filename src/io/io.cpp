@@ -48,7 +48,7 @@ AxisBox bounding_box(const Packing& packing) {
 
 std::string lammps_data(const Packing& packing, double density, const AxisBox& box,
                         std::string_view comment, const std::vector<std::string>& notes,
-                        const std::vector<std::uint32_t>& types) {
+                        const std::vector<std::uint32_t>& types, std::size_t clump_spheres) {
     if (!(std::isfinite(density) && density > 0.0))
         throw InvalidInput(
             fmt::format("density = {} is not allowed; allowed: a number > 0", density));
@@ -95,6 +95,11 @@ std::string lammps_data(const Packing& packing, double density, const AxisBox& b
                            types.empty() ? 1u : types[i], 2.0 * a.radius, density, a.centre.x,
                            a.centre.y, a.centre.z);
         });
+    if (clump_spheres > 0) {
+        fmt::format_to(std::back_inserter(out), "\nMolecules\n\n");
+        for (std::size_t k = 1; k <= id; ++k)
+            fmt::format_to(std::back_inserter(out), "{} {}\n", k, (k - 1) / clump_spheres + 1);
+    }
     return fmt::to_string(out);
 }
 
@@ -257,10 +262,10 @@ std::string settle_head(const DemSettle& s, const SettleNumbers& n, std::string_
 std::string settle_run(const DemSettle& s, const SettleNumbers& n) {
     return fmt::format(
         "fix             gravity all gravity 9.81 vector 0.0 0.0 -1.0\n"
-        "fix             integrate all nve/sphere\n"
+        "{4}"
         "timestep        ${{dt}}\n\n"
         "thermo          {0}\n"
-        "thermo_style    custom step atoms ke\n"
+        "{5}"
         "# The spheres at the first and the last step (packbed analyze reads it: --frame -1).\n"
         "dump            settle all custom {1} {2} id type x y z radius\n"
         "variable        zc equal xcm(all,z)\n"
@@ -269,13 +274,34 @@ std::string settle_run(const DemSettle& s, const SettleNumbers& n) {
         "run             {1}\n"
         "print           \"packbed settle: ${{atoms}} atoms after {1} steps of {3:.6g} s; mass "
         "centre z ${{zc0}} -> ${{zc}}\"\n",
-        std::max(1, s.steps / 4), s.steps, s.dump, n.time_step);
+        std::max(1, s.steps / 4), s.steps, s.dump, n.time_step,
+        s.clump_spheres > 0
+            ? "# Each clump one rigid body (its spheres' forces and torques summed).\n"
+              "fix             integrate all rigid/small molecule\n"
+            : "fix             integrate all nve/sphere\n",
+        s.clump_spheres > 0 ? "# (No ke: the temperature compute counts the atoms' own degrees of "
+                              "freedom, which the bodies remove.)\n"
+                              "thermo_style    custom step atoms\n"
+                            : "thermo_style    custom step atoms ke\n");
 }
 
 /// The box of a settle input: SI units, the atom style, the boundary, how velocities reach the
 /// ghost atoms (the granular pair styles need them), the data file and the neighbour list.
 std::string settle_box(std::string_view atom_style, std::string_view boundary,
                        std::string_view communication, const DemSettle& s, const SettleNumbers& n) {
+    if (s.clump_spheres > 0)
+        return fmt::format("units           si\n"
+                           "atom_style      {}\n"
+                           "atom_modify     map array\n"
+                           "boundary        {}\n"
+                           "{}"
+                           "# The pellets' clumps: each sphere's molecule ID (the data file's "
+                           "Molecules section).\n"
+                           "fix             clumps all property/atom mol ghost yes\n"
+                           "read_data       {} fix clumps NULL Molecules\n\n"
+                           "neighbor        {} bin\n"
+                           "neigh_modify    delay 0 exclude molecule/intra all\n",
+                           atom_style, boundary, communication, s.data_file, n.skin);
     return fmt::format("units           si\n"
                        "atom_style      {}\n"
                        "atom_modify     map array\n"
@@ -309,6 +335,10 @@ std::string lammps_settle_input(const DemSettle& s) {
 }
 
 std::string liggghts_settle_input(const DemSettle& s) {
+    if (s.clump_spheres > 0)
+        throw InvalidInput("a LIGGGHTS settle of rigid clumps is not written; allowed: LAMMPS "
+                           "(LIGGGHTS makes its multisphere clumps from its own templates as it "
+                           "inserts them, not from a data file)");
     const SettleNumbers n = settle_numbers(s);
     const DemSettleWall wall = settle_wall(s);
     const bool stl = !wall.liggghts_stl.empty(); // a periodic cell: no STL, a plane floor

@@ -367,11 +367,23 @@ DemFiles dem_files(const std::string& name, ExportFormat format, bool periodic) 
             name + ".bottom.stl"};
 }
 
+/// A bed of pellets as DEM clumps (data_export): the packing holds the spheres of each pellet's
+/// clump, `spheres` per pellet, each of a density `density_scale` times the pellets' so that a
+/// clump weighs what its pellet does.
+struct ClumpExport {
+    std::size_t spheres = 0, pellets = 0;
+    std::string shape;
+    double density_scale = 1.0;
+};
+
 /// A LAMMPS or LIGGGHTS data file; where the container is known, its box holds the container
 /// and an example settle (input, and for LIGGGHTS the wall STL files) is written beside it.
+/// With `clumps` (LAMMPS only), each pellet's spheres one rigid body.
 std::string data_export(const ExportRequest& o, ExportFormat format, const Packing& packing,
-                        const std::vector<std::size_t>& lines) {
+                        const std::vector<std::size_t>& lines,
+                        const ClumpExport* clumps = nullptr) {
     const bool lammps = format == ExportFormat::lammps_data;
+    const double density = clumps ? o.density * clumps->density_scale : o.density;
     const std::optional<AxisBox> given_box =
         o.box.empty() ? std::nullopt : std::optional<AxisBox>(parse_box(o.box));
     const fs::path& out_path = o.out;
@@ -410,8 +422,11 @@ std::string data_export(const ExportRequest& o, ExportFormat format, const Packi
     // the path would make it longer than LAMMPS and LIGGGHTS read.
     const auto title = [&](std::string_view source) {
         std::string t =
-            fmt::format("{} spheres from {} (packbed export, {} atom_style {})", packing.size(),
-                        source, program, lammps ? "sphere" : "granular");
+            clumps ? fmt::format("{} {} pellets as rigid clumps of {} spheres from {} (packbed "
+                                 "export, LAMMPS atom_style sphere, molecules)",
+                                 clumps->pellets, clumps->shape, clumps->spheres, source)
+                   : fmt::format("{} spheres from {} (packbed export, {} atom_style {})",
+                                 packing.size(), source, program, lammps ? "sphere" : "granular");
         if (o.fluid_velocity >= 0.0)
             t += fmt::format("; fluid superficial velocity {} (packbed hydraulics)",
                              o.fluid_velocity);
@@ -453,9 +468,15 @@ std::string data_export(const ExportRequest& o, ExportFormat format, const Packi
                                    margin.container, container->height, container_box_margin(c, dp),
                                    margin.words);
     }
-    out->stage(name, lammps_data(wrapped, o.density, box, comment,
-                                 box_note.empty() ? std::vector<std::string>{}
-                                                  : std::vector<std::string>{box_note}));
+    std::vector<std::string> notes;
+    if (!box_note.empty())
+        notes.push_back(box_note);
+    if (clumps)
+        notes.push_back(fmt::format("each sphere of density {:.9g}: a clump weighs what its "
+                                    "pellet of density {:.9g} does",
+                                    density, o.density));
+    out->stage(
+        name, lammps_data(wrapped, density, box, comment, notes, {}, clumps ? clumps->spheres : 0));
     if (o.fluid_velocity >= 0.0)
         out->stage(name + ".fluid.in",
                    fmt::format("# for the coupling: include this file in the {} input\n"
@@ -474,7 +495,8 @@ std::string data_export(const ExportRequest& o, ExportFormat format, const Packi
             packing.radii.empty() ? 0.5 * dp
                                   : *std::min_element(packing.radii.begin(), packing.radii.end());
         settle.diameter = dp;
-        settle.density = o.density;
+        settle.density = density;
+        settle.clump_spheres = clumps ? clumps->spheres : 0;
         const std::optional<double> friction =
             o.friction ? o.friction : (o.keep.empty() ? std::nullopt : friction_beside(o.keep));
         if (friction && *friction > 0.0) {
@@ -521,9 +543,13 @@ std::string data_export(const ExportRequest& o, ExportFormat format, const Packi
                                       "LIGGGHTS refuses mesh elements outside the box)");
     }
     out->commit();
-    return fmt::format(
-        "{} spheres to {} ({}: read_data {}{}{})", packing.size(), out_path.string(), program, name,
-        o.fluid_velocity >= 0.0 ? fmt::format("; include {}.fluid.in", name) : "", note);
+    return fmt::format("{} to {} ({}: read_data {}{}{})",
+                       clumps ? fmt::format("{} pellets as rigid clumps of {} spheres",
+                                            clumps->pellets, clumps->spheres)
+                              : fmt::format("{} spheres", packing.size()),
+                       out_path.string(), program, name,
+                       o.fluid_velocity >= 0.0 ? fmt::format("; include {}.fluid.in", name) : "",
+                       note);
 }
 
 } // namespace
@@ -548,6 +574,35 @@ bool is_surface(ExportFormat format) {
            format == ExportFormat::obj || format == ExportFormat::openfoam;
 }
 
+/// A bed of pellets for LAMMPS: each pellet as its clump of spheres (CylinderShape::dem_spheres,
+/// inside the pellet, the outermost touching its side and ends), one rigid body in the example
+/// settle (docs/dem.md, "Pellets").
+std::string clump_export(const ExportRequest& request, const Packing& packing,
+                         const std::vector<std::size_t>& lines, const PelletSpec& pellet) {
+    if (request.contacts != "none" && !request.contacts.empty())
+        throw InvalidInput(fmt::format("--contacts {} is not allowed with --format lammps-data; "
+                                       "allowed: none (the clumps are the pellets' own)",
+                                       printable(request.contacts)));
+    const ShapedBed<CylinderShape> bed(packing, {pellet.shape});
+    Packing spheres;
+    std::vector<std::size_t> sphere_lines;
+    double sphere_volume = 0.0, pellet_volume = 0.0;
+    ClumpExport clumps{0, bed.size(), pellet.text, 1.0};
+    for (std::size_t i = 0; i < bed.size(); ++i) {
+        std::size_t count = 0;
+        bed.shape(i).dem_spheres(bed.placement(i), [&](const DemSphere& a) {
+            spheres.add(a.centre, a.radius);
+            sphere_lines.push_back(i < lines.size() ? lines[i] : i + 1);
+            sphere_volume += 4.0 / 3.0 * std::numbers::pi * a.radius * a.radius * a.radius;
+            ++count;
+        });
+        clumps.spheres = count; // the shape's, whatever the size
+        pellet_volume += bed.shape(i).volume(packing.radii[i]);
+    }
+    clumps.density_scale = pellet_volume / sphere_volume;
+    return data_export(request, ExportFormat::lammps_data, spheres, sphere_lines, &clumps);
+}
+
 /// A bed of pellets as surfaces (STL, OBJ, an OpenFOAM case): each pellet's exact shape
 /// tessellated (ParticleShape::unit_surface, its vertices on the surface, so that the
 /// polyhedron lies inside the convex pellet), for shrink:F scaled by 1 - F about its centroid,
@@ -556,10 +611,11 @@ bool is_surface(ExportFormat format) {
 std::string pellet_export(const ExportRequest& request, ExportFormat format, const Packing& packing,
                           const std::vector<std::size_t>& lines, const PelletSpec& pellet) {
     const std::string shown = printable(request.source);
-    if (!is_surface(format))
+    if (!is_surface(format) && format != ExportFormat::lammps_data)
         throw InvalidInput(fmt::format("--format {} is not allowed for a bed of {} pellets; "
-                                       "allowed: stl, stl-ascii, obj, openfoam (the data files "
-                                       "hold spheres)",
+                                       "allowed: stl, stl-ascii, obj, openfoam, lammps-data "
+                                       "(LIGGGHTS makes its multisphere clumps from its own "
+                                       "templates as it inserts them)",
                                        request.format, pellet.text));
     if (packing.orientations.size() != packing.size())
         throw InvalidInput(fmt::format("{}: a bed of {} pellets needs each pellet's orientation; "
@@ -571,6 +627,8 @@ std::string pellet_export(const ExportRequest& request, ExportFormat format, con
                                        "allowed: {}",
                                        request.container->spec(),
                                        forms_but(request.container->name())));
+    if (format == ExportFormat::lammps_data)
+        return clump_export(request, packing, lines, pellet);
     const fs::path& out_path = request.out;
     std::unique_ptr<OutputDirectory> out =
         format == ExportFormat::openfoam
