@@ -11,6 +11,7 @@
 #include <vector>
 
 #include <gtest/gtest.h>
+#include <omp.h>
 
 #include "packbed/bed_volume.hpp"
 #include "packbed/container.hpp"
@@ -307,6 +308,22 @@ TEST_F(PouredBed, TheSameSeedGivesTheSameBits) {
         EXPECT_EQ(again.packing.orientations[i].w, bed->packing.orientations[i].w);
     }
     EXPECT_EQ(again.steps, bed->steps);
+}
+
+TEST_F(PouredBed, TheSameBitsOnOneThreadAndOnTwo) {
+    // 12 pellets make enough pairs for the force loops to run on the threads.
+    const int threads = omp_get_max_threads();
+    omp_set_num_threads(1);
+    const PelletBed one = generate_pellet_bed(*params);
+    omp_set_num_threads(2);
+    const PelletBed two = generate_pellet_bed(*params);
+    omp_set_num_threads(threads);
+    ASSERT_EQ(one.packing.size(), two.packing.size());
+    EXPECT_EQ(one.steps, two.steps);
+    for (std::size_t i = 0; i < one.packing.size(); ++i) {
+        EXPECT_EQ(one.packing.centers[i], two.packing.centers[i]);
+        EXPECT_EQ(one.packing.orientations[i].x, two.packing.orientations[i].x);
+    }
 }
 
 TEST(PelletBedInput, RefusesAColumnTooDenseToPour) {

@@ -418,7 +418,7 @@ private:
         const auto first = m_list.pair_first();
         const auto second = m_list.pair_second();
         const double cut2 = 4.0 * m_reach * m_reach;
-#pragma omp parallel for schedule(dynamic, 64) if (n >= detail::parallel_min_spheres / 10)
+#pragma omp parallel for schedule(dynamic, 4) if (pairs >= parallel_min_pellets)
         for (std::size_t k = 0; k < pairs; ++k) {
             const std::size_t a = first[k], b = second[k];
             const Vec3 u = separation(a, b);
@@ -431,7 +431,7 @@ private:
         }
         m_wall_depth.assign(n, 0.0);
         const double weight = m_gravity * m_volume;
-#pragma omp parallel for schedule(dynamic, 16) if (n >= detail::parallel_min_spheres / 10)
+#pragma omp parallel for schedule(dynamic, 4) if (n >= parallel_min_pellets)
         for (std::size_t i = 0; i < n; ++i) {
             Vec3 force{0.0, 0.0, -weight}, torque;
             const Vec3& c = m_centre[i];
@@ -692,6 +692,10 @@ private:
     }
 
     static constexpr double skin = 0.3; // d_v
+    /// Pairs (and pellets at the walls) from which the force loops run on the threads: a pair
+    /// costs thousands of a sphere pair's work (its nodes and circles), so a few already pay
+    /// for the threads' start (a sphere bed waits for detail::parallel_min_spheres).
+    static constexpr std::size_t parallel_min_pellets = 8;
     static constexpr std::uint64_t patience = 5000;
     /// Relaxations of the final stage whose deepest exact depth fell by less than 1 % in all
     /// (the gravity cut each time) before the bed is called jammed.
