@@ -179,6 +179,62 @@ std::uint64_t whole(const py::handle& value, std::string_view option, const Whol
     return check_whole(option, text, range);
 }
 
+/// generate(shape=...): a bed of pellets (docs/generate.md, "Pellets"), as `packbed generate
+/// --shape` makes it; `sphere_only` names each sphere option and whether it was given another
+/// value than its default (refused, as the command line refuses it).
+Bed generate_pellets(std::optional<double> aspect_ratio,
+                     const std::optional<std::string>& container, long long particles,
+                     const py::object& seed, double band_clearance,
+                     std::optional<long long> threads, const py::object& progress,
+                     const std::optional<std::filesystem::path>& out, bool force,
+                     const std::string& shape,
+                     const std::vector<std::pair<std::string, bool>>& sphere_only) {
+    namespace range = option_range;
+    for (const auto& [name, given] : sphere_only)
+        if (given)
+            throw InvalidInput(fmt::format(
+                "{} is not allowed with shape='{}'; allowed with a pellet: aspect_ratio, "
+                "container, particles, seed, band_clearance, threads, progress, out, force "
+                "(docs/generate.md, \"Pellets\")",
+                name, printable(std::string_view(shape).substr(0, 80))));
+    if (aspect_ratio && container)
+        throw InvalidInput(fmt::format("--aspect-ratio {} and --container {} are both given; "
+                                       "allowed: one of the two",
+                                       *aspect_ratio, printable(container->substr(0, 80))));
+    PelletRequest request;
+    request.shape = shape;
+    request.particles = check_option("particles", particles, range::particles);
+    request.seed = whole(seed, "seed", range::seed);
+    if (aspect_ratio)
+        request.aspect_ratio = check_option("aspect-ratio", *aspect_ratio, range::aspect_ratio);
+    request.container = container.value_or("");
+    request.band_clearance = check_option("band-clearance", band_clearance, range::band_clearance);
+    const PreparedPellets prepared = prepare_pellets(request);
+    std::optional<OutputDirectory> directory;
+    if (out)
+        directory.emplace(*out, "--out", OutputKind::directory, force);
+    set_threads(threads);
+    RunControl control;
+    GeneratedPellets pellets = run_interruptible(
+        control, progress, [&] { return run_pellets(prepared, control, threads_in_use()); });
+    if (directory) {
+        stage_pellet_bed(*directory, pellets);
+        directory->commit();
+    }
+    return Bed{std::move(pellets.packing), pellets.container, std::move(pellets.summary)};
+}
+
+/// Raise ValueError for a bed of pellets where `what` takes spheres only.
+void refuse_pellets(const Bed& bed, std::string_view what) {
+    if (bed.packing.orientations.empty())
+        return;
+    throw InvalidInput(fmt::format(
+        "{} of a bed of pellets is not allowed here; allowed: a bed of spheres "
+        "(generate(shape=..., "
+        "out=DIR) writes the pellets' files, which `packbed analyze` and `packbed export` take)",
+        what));
+}
+
 Bed generate(std::optional<double> aspect_ratio, const std::optional<std::string>& container,
              long long particles, const py::object& seed, double diameter, const std::string& sizes,
              const std::string& fractions, double e0, double ck, double cg_step,
@@ -191,8 +247,37 @@ Bed generate(std::optional<double> aspect_ratio, const std::optional<std::string
              std::optional<long long> max_iterations, double band_clearance,
              std::optional<long long> threads, const py::object& progress,
              const std::optional<std::filesystem::path>& out, bool force, const std::string& engine,
-             long long ranks, const std::optional<std::string>& mpi_command,
-             const std::string& lmp) {
+             long long ranks, const std::optional<std::string>& mpi_command, const std::string& lmp,
+             const std::string& shape) {
+    if (shape != "sphere")
+        return generate_pellets(
+            aspect_ratio, container, particles, seed, band_clearance, threads, progress, out, force,
+            shape,
+            {{"diameter", diameter != SoftSphereParameters{}.diameter},
+             {"sizes", sizes != "mono"},
+             {"fractions", fractions != "volume"},
+             {"e0", e0 != SoftSphereParameters{}.e0},
+             {"ck", ck != SoftSphereParameters{}.ck},
+             {"cg_step", cg_step != SoftSphereParameters{}.cg_step},
+             {"overlap_low", overlap_low.has_value()},
+             {"overlap_high", overlap_high.has_value()},
+             {"tolerance", tolerance != SoftSphereParameters{}.tolerance},
+             {"mc_period", mc_period != SoftSphereParameters{}.mc_period},
+             {"mc_window", mc_window != SoftSphereParameters{}.mc_window},
+             {"mc_tolerance", mc_tolerance.has_value()},
+             {"update", update != to_string(SoftSphereParameters{}.update)},
+             {"solver", solver != to_string(SoftSphereParameters{}.solver)},
+             {"skin", skin.has_value()},
+             {"layer_height", layer_height != SoftSphereParameters{}.layer_height},
+             {"friction", friction != 0.0},
+             {"wall_friction", wall_friction != 0.0},
+             {"target_void_fraction", target_void_fraction.has_value()},
+             {"checkpoint", checkpoint.has_value()},
+             {"max_iterations", max_iterations.has_value()},
+             {"engine", engine != to_string(Engine::packbed)},
+             {"ranks", ranks != 1},
+             {"mpi_command", mpi_command.has_value()},
+             {"lmp", lmp != "lmp"}});
     GenerateRequest request;
     SoftSphereParameters& p = request.params;
     namespace range = option_range;
@@ -461,6 +546,7 @@ Analysis analyze(const Bed& bed, const std::optional<std::string>& container,
                  double centre_bin, double contact_tolerance, double rdf_range, double rdf_bin,
                  std::optional<double> friction, std::optional<long long> threads,
                  const std::optional<std::filesystem::path>& out, bool force) {
+    refuse_pellets(bed, "analyze");
     const Container given = container_for(bed, container);
     namespace range = option_range;
     AnalysisOptions options;
@@ -557,6 +643,7 @@ Bed lattice(const std::string& type, const std::string& region, double diameter,
 
 void write_bed(Bed& bed, const std::filesystem::path& out, bool force, bool analysis,
                double band_clearance) {
+    refuse_pellets(bed, "write");
     if (!bed.container)
         throw InvalidInput("write: this bed has no container; allowed: a bed made by generate "
                            "or lattice, or read or built with container=...");
@@ -657,6 +744,7 @@ std::string export_bed_to(const Bed& bed, const std::filesystem::path& out,
                           long long wall_level, long long ranks, double reynolds,
                           const std::string& turbulence, double fluid_density, double viscosity,
                           std::optional<double> scale, const std::string& flow, bool force) {
+    refuse_pellets(bed, "export");
     namespace range = option_range;
     check_path("out", out);
     ExportRequest request;
@@ -729,6 +817,7 @@ py::array voxelize_bed(const Bed& bed, double voxel_size,
                        const std::string& dtype, const std::optional<std::string>& container,
                        std::optional<long long> threads,
                        const std::optional<std::filesystem::path>& out) {
+    refuse_pellets(bed, "voxelize");
     const Container given = container_for(bed, container);
     const VoxelType type = voxel_type(kind, dtype);
     std::optional<ImageFormat> format;
@@ -818,6 +907,22 @@ z = 0.)")
                                            bed.packing.radii.data(), self);
             },
             "The radii, a numpy array (N) viewing the bed's own memory (no copy).")
+        .def_property_readonly(
+            "orientations",
+            [](py::object self) -> py::object {
+                Bed& bed = self.cast<Bed&>();
+                if (bed.packing.orientations.empty())
+                    return py::none();
+                static_assert(sizeof(Quaternion) == 4 * sizeof(double));
+                return py::array_t<double>(
+                    {static_cast<py::ssize_t>(bed.packing.size()), py::ssize_t{4}},
+                    {static_cast<py::ssize_t>(sizeof(Quaternion)),
+                     static_cast<py::ssize_t>(sizeof(double))},
+                    reinterpret_cast<double*>(bed.packing.orientations.data()), self);
+            },
+            "A pellet bed's orientations, a numpy array (N, 4) of unit quaternions qw, qx, qy, qz "
+            "(the pellet's axis is its body z axis turned) viewing the bed's own memory; None "
+            "for spheres.")
         .def_property_readonly(
             "container",
             [](const Bed& bed) -> std::optional<std::string> {
@@ -932,7 +1037,7 @@ in the directory `out` (new or empty; force=True replaces a non-empty one whole)
           py::arg("threads") = py::none(), py::arg("progress") = py::none(),
           py::arg("out") = py::none(), py::arg("force") = false,
           py::arg("engine") = to_string(Engine::packbed), py::arg("ranks") = 1,
-          py::arg("mpi_command") = py::none(), py::arg("lmp") = "lmp",
+          py::arg("mpi_command") = py::none(), py::arg("lmp") = "lmp", py::arg("shape") = "sphere",
           R"(Pack spheres in a container with the soft-sphere algorithm of Salvat et al. (2005).
 
 The keyword arguments are `packbed generate`'s options in snake_case, with the same defaults
@@ -949,6 +1054,11 @@ directory to write what `packbed generate` writes there (None: nothing is writte
 replace a non-empty one. engine: 'packbed' (here, threads) or 'lammps' (the same relaxation run
 by LAMMPS, docs/lammps.md) with ranks (mpirun -np ranks), mpi_command (a launcher's words
 instead) and lmp (the LAMMPS program); with out, LAMMPS's files are kept in out/lammps/.
+shape: 'sphere', or 'cylinder:D,L' for a bed of cylinder pellets as `packbed generate --shape`
+makes it (docs/generate.md, "Pellets"): with aspect_ratio (over the pellet's volume-equivalent
+diameter) or container (in the unit of D and L), particles, seed, band_clearance, threads,
+progress, out and force; the Bed's orientations hold each pellet's quaternion, and write,
+analyze, export and voxelize refuse it (out= writes its files for the command line).
 
 Returns a Bed (same seed and options: the same bits as the command line). Raises ValueError
 for a bad value (the message names the option, the value and what is allowed),

@@ -192,6 +192,10 @@ def test_a_lattice_in_a_box_has_its_exact_porosity():
         (lambda: packbed.generate(ranks=2), ["ranks", "engine", "allowed"]),
         (lambda: packbed.hydraulics(porosity=0.4, aspect_ratio=5, container="cylinder:0.01"),
          ["aspect-ratio", "container", "allowed"]),
+        (lambda: packbed.generate(shape="cylinder:1,1", friction=0.3),
+         ["friction", "cylinder:1,1", "allowed"]),
+        (lambda: packbed.generate(shape="cylinder:1"), ["shape", "cylinder:1", "allowed"]),
+        (lambda: packbed.generate(shape="cube:1"), ["shape", "cube:1", "allowed"]),
     ],
 )
 def test_bad_values_raise_value_error_with_one_line(call, words):
@@ -201,6 +205,32 @@ def test_bad_values_raise_value_error_with_one_line(call, words):
     assert "\n" not in message
     for word in words:
         assert word in message
+
+
+def test_a_pellet_bed_has_the_command_lines_bytes(tmp_path):
+    # 12 cylinders L = D in a tube of a = 4 (seed 3): the files written from Python are the
+    # command line's byte for byte; the orientations are the table's unit quaternions; the
+    # exact depths are below the tolerance; the sphere-only calls refuse the bed.
+    status, _, err = cli("generate", "--shape", "cylinder:1,1", "-a", 4, "-n", 12, "-s", 3,
+                         "-q", "--out", tmp_path / "cli")
+    assert status == 0, err
+    bed = packbed.generate(shape="cylinder:1,1", aspect_ratio=4, particles=12, seed=3,
+                           out=str(tmp_path / "py"))
+    for name in ["particles.csv", "particles.vtu"]:
+        assert (tmp_path / "py" / name).read_bytes() == (tmp_path / "cli" / name).read_bytes()
+    table = np.loadtxt(tmp_path / "cli" / "particles.csv", delimiter=",", skiprows=1, ndmin=2)
+    assert table.shape == (12, 8)
+    assert np.array_equal(bed.centers, table[:, :3])
+    assert np.array_equal(bed.orientations, table[:, 4:8])
+    assert np.allclose(np.linalg.norm(bed.orientations, axis=1), 1.0, atol=1e-12)
+    assert 0 < bed.summary["max_penetration_pair"] <= bed.summary["tolerance"]
+    assert bed.summary["shape"]["spec"] == "cylinder:1,1"
+    for call in [lambda: packbed.analyze(bed), lambda: packbed.export(bed, str(tmp_path / "x.stl")),
+                 lambda: packbed.voxelize(bed, voxel_size=0.1),
+                 lambda: bed.write(str(tmp_path / "w"))]:
+        with pytest.raises(ValueError, match="pellets"):
+            call()
+    assert packbed.generate(aspect_ratio=4, particles=10).orientations is None
 
 
 def test_bad_output_directory_raises_and_writes_nothing(tmp_path):
