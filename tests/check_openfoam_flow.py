@@ -34,15 +34,11 @@ import shutil
 import sys
 import tempfile
 
-from openfoam_env import openfoam_env, runner
+from openfoam_env import RUNNING, openfoam_or_skip, runner
 
 exe = sys.argv[1]
 turbulence, reynolds = (sys.argv[2], float(sys.argv[3])) if len(sys.argv) > 3 else ("laminar", 1.0)
-tools = ("blockMesh", "decomposePar", "snappyHexMesh", "simpleFoam", "reconstructPar", "mpirun")
-if not all(shutil.which(p) for p in tools):
-    print("OpenFOAM (Debian package openfoam) or mpirun (openmpi-bin) is missing: skipped")
-    sys.exit(77)
-env = openfoam_env()
+env = openfoam_or_skip(RUNNING)
 work = tempfile.mkdtemp(prefix="packbed-flow-")
 run = runner(env, work)
 

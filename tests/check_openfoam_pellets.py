@@ -21,20 +21,14 @@ Usage: check_openfoam_pellets.py PACKBED. Exit 77 (skipped) when OpenFOAM or mpi
 import json
 import math
 import os
-import re
 import shutil
 import sys
 import tempfile
 
-from openfoam_env import check_patches, openfoam_env, runner
+from openfoam_env import RUNNING, check_patches, openfoam_or_skip, patch_faces, runner
 
 exe = sys.argv[1]
-tools = ("blockMesh", "decomposePar", "snappyHexMesh", "simpleFoam", "reconstructPar", "mpirun",
-         "checkMesh")
-if not all(shutil.which(p) for p in tools):
-    print("OpenFOAM (Debian package openfoam) or mpirun (openmpi-bin) is missing: skipped")
-    sys.exit(77)
-env = openfoam_env()
+env = openfoam_or_skip(RUNNING + ("checkMesh",))
 work = tempfile.mkdtemp(prefix="packbed-pellets-")
 run = runner(env, work)
 
@@ -50,11 +44,7 @@ run(os.path.join(case, "Allrun"), cwd=case)
 
 check = open(os.path.join(case, "log.checkMesh")).read()
 assert "Mesh OK." in check, check[-3000:]
-# checkMesh run in parallel lists the patches under "Checking basic patch addressing".
-addressing = check[check.find("Checking basic patch addressing"):]
-patches = {k: int(v) for k, v in
-           re.findall(r"^\s+(\w+)\s+(\d+)\s+\d+$", addressing[:addressing.find("\n\n")], re.M)}
-check_patches(patches, ("inlet", "outlet", "wall", "particles"))
+check_patches(patch_faces(check), ("inlet", "outlet", "wall", "particles"))
 
 run(exe, "cfd-report", case, "--quiet")
 report = json.load(open(os.path.join(case, "cfd-report", "cfd_report.json")))

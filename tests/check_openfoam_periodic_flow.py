@@ -24,13 +24,10 @@ import shutil
 import sys
 import tempfile
 
-from openfoam_env import openfoam_or_skip, runner
+from openfoam_env import MESHING, openfoam_or_skip, runner
 
 exe = sys.argv[1]
-env = openfoam_or_skip()
-if not all(shutil.which(p) for p in ("simpleFoam", "decomposePar", "mpirun")):
-    print("simpleFoam, decomposePar or mpirun is missing: skipped")
-    sys.exit(77)
+env = openfoam_or_skip(MESHING + ("simpleFoam", "decomposePar", "mpirun"))
 work = tempfile.mkdtemp(prefix="packbed-foam-periodic-flow-")
 run = runner(env, work)
 

@@ -11,13 +11,18 @@ def openfoam_env():
     return env
 
 
-def openfoam_or_skip():
-    """openfoam_env(), or exit 77 (ctest: skipped) when blockMesh, snappyHexMesh or checkMesh
-    is missing."""
+MESHING = ("blockMesh", "snappyHexMesh", "checkMesh")
+RUNNING = ("blockMesh", "decomposePar", "snappyHexMesh", "simpleFoam", "reconstructPar", "mpirun")
+
+
+def openfoam_or_skip(tools=MESHING):
+    """openfoam_env(), or exit 77 (ctest: skipped) when one of `tools` is missing (OpenFOAM's
+    meshers by default; RUNNING for a case run by ./Allrun on MPI ranks)."""
     import shutil
     import sys
-    if not all(shutil.which(p) for p in ("blockMesh", "snappyHexMesh", "checkMesh")):
-        print("blockMesh, snappyHexMesh or checkMesh (Debian package openfoam) is missing: skipped")
+    missing = [p for p in tools if not shutil.which(p)]
+    if missing:
+        print(f"{', '.join(missing)} (Debian packages openfoam, openmpi-bin) missing: skipped")
         sys.exit(77)
     return openfoam_env()
 
@@ -50,9 +55,23 @@ def mesh_case(run, case):
     run("snappyHexMesh", "-overwrite", cwd=case)
     out = run("checkMesh", cwd=case)
     assert "Mesh OK." in out, out[-3000:]
-    patches = dict(re.findall(r"^\s+(\w+)\s+(\d+)\s+\d+\s+(?:ok|multiply)", out, re.M))
     volume = float(re.search(r"Total volume = ([0-9.eE+-]+?)\.?\s", out).group(1))
-    return out, {k: int(v) for k, v in patches.items()}, volume
+    return out, patch_faces(out), volume
+
+
+def patch_faces(check):
+    """The patches (name -> faces) in checkMesh's output `check`: a serial run's table of
+    patches ("ok" or "multiply" after each), or a parallel run's, listed under "Checking basic
+    patch addressing"."""
+    import re
+    addressing = check.find("Checking basic patch addressing")
+    if addressing >= 0:
+        table = check[addressing:]
+        table = table[:table.find("\n\n")]
+        patches = re.findall(r"^\s+(\w+)\s+(\d+)\s+\d+$", table, re.M)
+    else:
+        patches = re.findall(r"^\s+(\w+)\s+(\d+)\s+\d+\s+(?:ok|multiply)", check, re.M)
+    return {k: int(v) for k, v in patches}
 
 
 def check_patches(patches, names):
