@@ -136,6 +136,7 @@ public:
             m_groups.push_back(group);
         }
         m_dmin = params.smallest_dimension();
+        m_tol = m_params.tolerance * m_dmin;
     }
 
     PelletBed run() {
@@ -469,13 +470,12 @@ private:
         m_pair_depth = deepest;
         // The pairs whose exact depth the nodes leave above tolerance (lower()): a spring on
         // the depth's excess over half the tolerance, along the normal at the contact point.
-        const double tol = m_params.tolerance * m_dmin;
         for (const auto& [a, b] : m_exact_pairs) {
             const Vec3 u = separation(a, b);
             const PairOverlap o =
                 m_params.shape.pair_overlap({m_centre[a], m_turn[a], m_size}, m_params.shape,
                                             {m_centre[a] + u, m_turn[b], m_size}, u);
-            const double excess = o.depth - 0.5 * tol;
+            const double excess = o.depth - 0.5 * m_tol;
             if (!(excess > 0.0))
                 continue;
             const Vec3 f = o.normal * (exact_stiffness * excess); // on b, from a
@@ -605,7 +605,7 @@ private:
     /// crossing of two edges the contact stiffens with depth (the part of the curve inside
     /// grows with it), and its depth falls slower than the load.
     void lower() {
-        const double tol = m_params.tolerance * m_dmin;
+        const double tol = m_tol;
         const std::uint64_t start = m_steps;
         std::vector<double> rounds; // the deepest exact depth after each relaxation
         for (;;) {
@@ -715,6 +715,7 @@ private:
     const Container& m_container;
     std::optional<Periods> m_cell;
     double m_size = 0.5, m_reach = 0.0, m_volume = 0.0, m_dmin = 0.0;
+    double m_tol = 0.0;                             ///< the final depth tolerance, d_v
     std::vector<SurfaceNode> m_nodes, m_wall_nodes; // without and with the side's rows
     std::vector<SurfaceCircle> m_circles;           // the side's rows, whole
     std::vector<NodeGroup> m_groups;
