@@ -1,5 +1,5 @@
 #!/usr/bin/env bash
-# The bytes a refactor must keep: 62 commands (beds in every container, with sizes, lattices,
+# The bytes a refactor must keep: 69 commands (beds in every container, with sizes, lattices,
 # surfaces, OpenFOAM cases, data files, LAMMPS jobs, analyses, voxel images, hydraulics, help
 # texts and refusals) run by PACKBED into OUT, and the md5 of every output
 # (summary.json and other JSON without their timings and version). Run it with the binary
@@ -68,6 +68,14 @@ $exe generate --container cone:6,10,30 -n 200 -s 1 --engine lammps --write-only 
 for c in cylinder:0.05 box:0.05,0.04 annulus:0.05,0.01 periodic:0.05,0.05; do
   { $exe hydraulics --container $c -d 0.003 --porosity 0.4 || echo "exit $?"; } > "hyd_${c%%:*}.txt" 2>&1
 done
+# Pellets: cylinder beds in a tube and a periodic cell, their analysis, surfaces, case, data file.
+$exe generate --shape cylinder:1,1 -a 4 -n 12 -s 1 -q -o pel
+$exe generate --shape cylinder:1,1.5 --container periodic:4,4 -n 10 -s 2 -q -o pelper
+$exe analyze pel/particles.csv --band 0.2,0.6 -q -o anpel
+$exe analyze pelper/particles.csv --band 0.2,0.6 -q -o anpelper
+$exe export pel/particles.csv --format stl -q -o pel.stl
+$exe export pel/particles.csv --format openfoam --contacts shrink:0.02 -q -o pelfoam
+$exe export pel/particles.csv --format lammps-data -q -o pel.data
 find . -type f ! -name '*.json' -print0 | sort -z | xargs -0 md5sum
 find . -name '*.json' -print0 | sort -z | while IFS= read -r -d '' f; do
   python3 - "$f" <<'PY' | md5sum | sed "s|-|$f|"

@@ -4,7 +4,7 @@ edge shared by two facets, consistent orientation, no degenerate facet, one part
 OpenFOAM's surfaceCheck (closed, not self-intersecting), for a generated bed, a lattice in a
 cylinder, a simple cubic lattice in a box (issue 17: 3 x 3 x 2 balls, 16 of them touching
 one or two faces of the box, the lower 9 the floor) and a bed in a cone, with every treatment,
-and a bed of 12 cylinder pellets shrunk by 2 %. For caps and shrink admesh must also leave every stored normal as it is; the
+and beds of 12 cylinder pellets and of 8 trilobes, each shrunk by 2 %. For caps and shrink admesh must also leave every stored normal as it is; the
 unions of enlarge and bridges (CGAL's corefinement) keep small triangles whose single-precision
 normal admesh recomputes differently, so there only orientation is checked.
 Two untreated spheres overlapping by 0.045 Dp must be reported as self-intersecting: the
@@ -82,6 +82,16 @@ run(exe, "export", "pellets/particles.csv", "--format", "stl", "--contacts", "sh
 admesh("pellets.stl", 12 + 1, normals_kept=True)
 assert surface_check("pellets.stl") == (True, True), ("pellets.stl", "closed, not self-intersecting")
 print("pellets.stl: 12 cylinders + container, closed, oriented, not self-intersecting")
+# Trilobes: 8 poured into a tube, each one closed surface of its three lobes' arcs meeting in
+# the grooves, shrunk by 2 %.
+run(exe, "generate", "--shape", "trilobe:1,0.8,1.5", "--aspect-ratio", "4", "--particles",
+    "8", "--seed", "1", "--quiet", "--out", "trilobes")
+run(exe, "export", "trilobes/particles.csv", "--format", "stl", "--contacts", "shrink:0.02",
+    "--out", "trilobes.stl", "--quiet")
+admesh("trilobes.stl", 8 + 1, normals_kept=True)
+assert surface_check("trilobes.stl") == (True, True), ("trilobes.stl",
+                                                        "closed, not self-intersecting")
+print("trilobes.stl: 8 trilobes + container, closed, oriented, not self-intersecting")
 with open(os.path.join(work, "overlap.csv"), "w") as f:
     f.write("x,y,z,r\n0,0,1,0.5\n0.95,0.1,1.02,0.5\n")  # 0.045 Dp of overlap
 run(exe, "export", "overlap.csv", "--format", "stl", "--container-radius", "3", "--out",

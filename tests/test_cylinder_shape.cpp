@@ -21,6 +21,7 @@
 #include "packbed/container.hpp"
 #include "packbed/cylinder.hpp"
 #include "packbed/cylinder_shape.hpp"
+#include "packbed/multilobe_shape.hpp"
 #include "packbed/periodic.hpp"
 #include "packbed/soft_sphere.hpp"
 
@@ -616,7 +617,7 @@ TEST(PelletAnalysis, TwoPelletsByHand) {
     const Container tube = Container::tube_of_radius(2.0);
     AnalysisOptions o;
     o.band = Band{0.1, 0.7};
-    const PelletAnalysis a = analyze_pellet_bed(p, c, tube, o);
+    const PelletAnalysis a = analyze_pellet_bed(p, MultilobeShape::cylinder(c), tube, o);
     EXPECT_NEAR(a.void_fraction, 1.0 - r * r / 4.0, 1e-9);
     ASSERT_FALSE(a.radial_void_fraction.empty());
     for (const ProfileBin& b : a.radial_void_fraction) {
@@ -631,7 +632,7 @@ TEST(PelletAnalysis, TwoPelletsByHand) {
     EXPECT_DOUBLE_EQ(a.overall.order, 1.0);
     // The whole height: both, S = (3 / 2 - 1) / 2 = 1/4; the bins hold them at 2 from the wall.
     o.band = Band{0.0, 3.0 * h + 2.0 * r};
-    const PelletAnalysis all = analyze_pellet_bed(p, c, tube, o);
+    const PelletAnalysis all = analyze_pellet_bed(p, MultilobeShape::cylinder(c), tube, o);
     EXPECT_EQ(all.overall.pellets, 2u);
     EXPECT_NEAR(all.overall.order, 0.25, 1e-15);
     std::uint64_t counted = 0;
@@ -662,7 +663,7 @@ TEST(PelletAnalysis, ContactsByHand) {
     const Container tube = Container::tube_of_radius(2.0);
     AnalysisOptions o;
     o.band = Band{0.0, 3.0 * h + 2.0 * r};
-    const Coordination k = analyze_pellet_bed(p, c, tube, o).coordination;
+    const Coordination k = analyze_pellet_bed(p, MultilobeShape::cylinder(c), tube, o).coordination;
     EXPECT_EQ(k.spheres, 4u);
     EXPECT_EQ(k.histogram, (std::vector<std::size_t>{2, 2}));
     EXPECT_DOUBLE_EQ(k.mean, 0.5);
@@ -671,13 +672,16 @@ TEST(PelletAnalysis, ContactsByHand) {
     EXPECT_DOUBLE_EQ(k.mean_without_rattlers, 2.0 / 3.0);
     // A tolerance below P2's gap to the wall: P2 touches nothing either.
     o.contact_tolerance = 1e-4;
-    const Coordination tight = analyze_pellet_bed(p, c, tube, o).coordination;
+    const Coordination tight =
+        analyze_pellet_bed(p, MultilobeShape::cylinder(c), tube, o).coordination;
     EXPECT_EQ(tight.wall_contacts, 0u);
     EXPECT_EQ(tight.rattlers, 2u);
     EXPECT_DOUBLE_EQ(tight.mean_without_rattlers, 1.0);
     // P1 lifted 2e-4 off P0: still a contact at 1e-3 d_v, none at 1e-4.
     p.centers[1].z += 2e-4;
-    EXPECT_EQ(analyze_pellet_bed(p, c, tube, o).coordination.histogram[0], 4u);
+    EXPECT_EQ(analyze_pellet_bed(p, MultilobeShape::cylinder(c), tube, o).coordination.histogram[0],
+              4u);
     o.contact_tolerance = 1e-3;
-    EXPECT_EQ(analyze_pellet_bed(p, c, tube, o).coordination.histogram[1], 2u);
+    EXPECT_EQ(analyze_pellet_bed(p, MultilobeShape::cylinder(c), tube, o).coordination.histogram[1],
+              2u);
 }

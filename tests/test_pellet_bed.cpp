@@ -132,6 +132,36 @@ Vec3 surface_point(const CylinderShape& c, double u, double v, double w) {
     return {c.radius * std::cos(phi), c.radius * std::sin(phi), c.half_length * (2.0 * w - 1.0)};
 }
 
+/// Lobe k's axis in the body frame, by the brute force's own formula.
+Vec3 lobe_axis(const MultilobeShape& s, int k) {
+    const double a = 2.0 * pi * k / s.lobes;
+    return {s.circle * std::cos(a), s.circle * std::sin(a), 0.0};
+}
+
+/// How deep the body-frame point q lies in the cylinder of radius r and half-length h about
+/// the z axis through `axis` (negative outside).
+double cylinder_depth(double r, double h, const Vec3& axis, const Vec3& q) {
+    return std::min(r - std::hypot(q.x - axis.x, q.y - axis.y), h - std::abs(q.z));
+}
+
+/// A point on a multilobe's surface: on a lobe drawn at random (none for one lobe), uniform
+/// on its surface, drawn again while it lies strictly inside another lobe (the ends' shared
+/// parts are kept by each lobe: denser there, still on the surface).
+Vec3 surface_point(const MultilobeShape& s, std::mt19937_64& rng) {
+    std::uniform_real_distribution<double> u(0.0, 1.0);
+    for (;;) {
+        const int k = s.lobes == 1 ? 0 : static_cast<int>(u(rng) * s.lobes) % s.lobes;
+        const double a = u(rng), b = u(rng), c = u(rng);
+        const Vec3 q = surface_point(s.lobe, a, b, c) + lobe_axis(s, k);
+        bool inside = false;
+        for (int j = 0; j < s.lobes; ++j)
+            inside = inside || (j != k && cylinder_depth(s.lobe.radius, s.lobe.half_length,
+                                                         lobe_axis(s, j), q) > 1e-12);
+        if (!inside)
+            return q;
+    }
+}
+
 /// The brute force's own rotation of v by the unit quaternion q (v' = q v q*).
 Vec3 turn(const Quaternion& q, const Vec3& v) {
     const double w = q.w, x = q.x, y = q.y, z = q.z;
@@ -141,16 +171,18 @@ Vec3 turn(const Quaternion& q, const Vec3& v) {
                 (1 - 2 * (x * x + y * y)) * v.z};
 }
 
-/// How deep a point lies inside a placed cylinder by the brute force's own test: its
-/// coordinates along the axis and across it.
-double depth_in(const CylinderShape& c, const Vec3& centre, const Quaternion& q, double size,
+/// How deep a point lies inside a placed multilobe by the brute force's own test: its
+/// coordinates along the axis and across it, the deepest of the lobes.
+double depth_in(const MultilobeShape& s, const Vec3& centre, const Quaternion& q, double size,
                 const Vec3& p) {
-    const Vec3 axis = turn(q, {0.0, 0.0, 1.0});
     const Vec3 d = p - centre;
-    const double along = d.x * axis.x + d.y * axis.y + d.z * axis.z;
-    const Vec3 across = d - axis * along;
-    const double r = std::sqrt(across.x * across.x + across.y * across.y + across.z * across.z);
-    return std::min(c.radius * size - r, c.half_length * size - std::abs(along));
+    const Vec3 body{dot(d, turn(q, {1.0, 0.0, 0.0})), dot(d, turn(q, {0.0, 1.0, 0.0})),
+                    dot(d, turn(q, {0.0, 0.0, 1.0}))};
+    double best = -1e300;
+    for (int k = 0; k < s.lobes; ++k)
+        best = std::max(best, cylinder_depth(s.lobe.radius * size, s.lobe.half_length * size,
+                                             lobe_axis(s, k) * size, body));
+    return best;
 }
 
 class PouredBed : public ::testing::Test {
@@ -193,10 +225,9 @@ TEST_F(PouredBed, EndsBelowTheToleranceByTheExactDepth) {
 struct Deepest {
     double pair = 0.0, wall = 0.0;
 };
-Deepest brute_force(const CylinderShape& c, const Packing& p, double rt, double lx = 0.0,
+Deepest brute_force(const MultilobeShape& c, const Packing& p, double rt, double lx = 0.0,
                     double ly = 0.0) {
     std::mt19937_64 rng(7);
-    std::uniform_real_distribution<double> u(0.0, 1.0);
     Deepest out;
     for (std::size_t i = 0; i < p.size(); ++i) {
         EXPECT_NEAR(p.orientations[i].w * p.orientations[i].w +
@@ -205,7 +236,7 @@ Deepest brute_force(const CylinderShape& c, const Packing& p, double rt, double 
                         p.orientations[i].z * p.orientations[i].z,
                     1.0, 1e-12);
         for (int k = 0; k < 20000; ++k) {
-            const Vec3 body = surface_point(c, u(rng), u(rng), u(rng));
+            const Vec3 body = surface_point(c, rng);
             const Vec3 at = p.centers[i] + turn(p.orientations[i], body * p.radii[i]);
             out.wall = std::max(out.wall, -at.z);
             if (rt > 0.0)
@@ -236,6 +267,25 @@ TEST_F(PouredBed, NoSurfacePointLiesDeeperThanTheToleranceInAnotherPellet) {
     EXPECT_LE(d.pair, bed->max_depth_pair + 1e-12);
 }
 
+/// Pairs of a bed in a square periodic cell that meet only as copies across its sides: their
+/// nearest copies within `reach`, the centres themselves farther. Every centre must lie in the
+/// cell.
+int pairs_across(const Packing& p, double reach, double period) {
+    int across = 0;
+    for (std::size_t i = 0; i < p.size(); ++i) {
+        const Vec3& c = p.centers[i];
+        EXPECT_TRUE(c.x >= 0.0 && c.x < period && c.y >= 0.0 && c.y < period) << c.x << " " << c.y;
+        for (std::size_t j = i + 1; j < p.size(); ++j) {
+            Vec3 d = p.centers[j] - c;
+            const bool far = norm(d) >= reach;
+            d.x -= period * std::round(d.x / period);
+            d.y -= period * std::round(d.y / period);
+            across += far && norm(d) < reach;
+        }
+    }
+    return across;
+}
+
 /// A bed in a cell periodic in x and y, 3.2 d_v wide (the pellet's bounding sphere 1.24 d_v
 /// across): pellets touch their neighbours' copies across the cell's sides.
 TEST(PeriodicPelletBed, EndsBelowTheToleranceAcrossTheCellsSides) {
@@ -252,20 +302,7 @@ TEST(PeriodicPelletBed, EndsBelowTheToleranceAcrossTheCellsSides) {
     EXPECT_GT(bed.max_depth_pair, 0.0);
     // Every centre in the cell, and pairs that meet only as copies across its sides (their
     // nearest copies within the bounding spheres' reach, the centres themselves farther).
-    const double reach = 2.0 * params.shape.bounding_radius(0.5);
-    int across = 0;
-    for (std::size_t i = 0; i < bed.packing.size(); ++i) {
-        const Vec3& c = bed.packing.centers[i];
-        EXPECT_TRUE(c.x >= 0.0 && c.x < period && c.y >= 0.0 && c.y < period) << c.x << " " << c.y;
-        for (std::size_t j = i + 1; j < bed.packing.size(); ++j) {
-            Vec3 d = bed.packing.centers[j] - c;
-            const bool far = norm(d) >= reach;
-            d.x -= period * std::round(d.x / period);
-            d.y -= period * std::round(d.y / period);
-            across += far && norm(d) < reach;
-        }
-    }
-    EXPECT_GE(across, 3);
+    EXPECT_GE(pairs_across(bed.packing, 2.0 * params.shape.bounding_radius(0.5), period), 3);
     const Deepest d = brute_force(params.shape, bed.packing, 0.0, period, period);
     EXPECT_LE(d.pair, tol);
     EXPECT_LE(d.wall, tol);
@@ -274,7 +311,7 @@ TEST(PeriodicPelletBed, EndsBelowTheToleranceAcrossTheCellsSides) {
     // the cell) against points drawn in the cell, each tested by depth_in at the copy of each
     // pellet nearest it.
     const double low = 0.2, high = 0.6;
-    const ShapedBed<CylinderShape> shaped(bed.packing, {params.shape});
+    const ShapedBed<MultilobeShape> shaped(bed.packing, {params.shape});
     const double exact = void_fraction(shaped, params.container, low, high);
     std::mt19937_64 rng(11);
     std::uniform_real_distribution<double> u(0.0, 1.0);
@@ -324,6 +361,50 @@ TEST_F(PouredBed, TheSameBitsOnOneThreadAndOnTwo) {
         EXPECT_EQ(one.packing.centers[i], two.packing.centers[i]);
         EXPECT_EQ(one.packing.orientations[i].x, two.packing.orientations[i].x);
     }
+}
+
+/// Trilobes (three lobes of diameter DL on a circle of 0.8 DL, L = 1.5 DL), unions of three
+/// convex lobes, at nodes 0.08 d_v apart: poured into a tube (8 in a = 4) and into a
+/// periodic cell (10), each ends below the tolerance by the lobes' exact depths and by the
+/// brute force's points (drawn on the union's surface, tested by its own union).
+PelletBedParameters trilobe_bed(std::uint64_t particles, const Container& container,
+                                std::uint64_t seed) {
+    PelletBedParameters p;
+    p.particles = particles;
+    p.seed = seed;
+    p.shape = MultilobeShape::of(3, 1.0, 0.8, 1.5);
+    p.container = container;
+    p.node_spacing = 0.08;
+    return p;
+}
+
+TEST(TrilobeBed, EndsBelowTheToleranceInATube) {
+    const PelletBedParameters params = trilobe_bed(8, Container::tube(4.0), 1);
+    const PelletBed bed = generate_pellet_bed(params);
+    const double tol = params.tolerance * params.smallest_dimension();
+    EXPECT_LE(bed.max_depth_pair, tol);
+    EXPECT_LE(bed.max_depth_wall, tol);
+    EXPECT_GT(bed.max_depth_pair, 0.0);
+    const Deepest d =
+        brute_force(params.shape, bed.packing, 0.5 * params.container.tube_diameter().value());
+    EXPECT_LE(d.pair, tol);
+    EXPECT_LE(d.wall, tol);
+    EXPECT_LE(d.pair, bed.max_depth_pair + 1e-12);
+}
+
+TEST(TrilobeBed, EndsBelowTheToleranceAcrossTheCellsSides) {
+    // A cell 3.2 d_v wide (the pellet's bounding sphere 1.33 d_v across).
+    const double period = 3.2;
+    const PelletBedParameters params = trilobe_bed(10, Container(Periodic(period, period)), 2);
+    const PelletBed bed = generate_pellet_bed(params);
+    const double tol = params.tolerance * params.smallest_dimension();
+    EXPECT_LE(bed.max_depth_pair, tol);
+    EXPECT_LE(bed.max_depth_wall, tol);
+    EXPECT_GE(pairs_across(bed.packing, 2.0 * params.shape.bounding_radius(0.5), period), 2);
+    const Deepest d = brute_force(params.shape, bed.packing, 0.0, period, period);
+    EXPECT_LE(d.pair, tol);
+    EXPECT_LE(d.wall, tol);
+    EXPECT_LE(d.pair, bed.max_depth_pair + 1e-12);
 }
 
 TEST(PelletBedInput, RefusesAColumnTooDenseToPour) {

@@ -42,8 +42,9 @@ struct CylinderShape {
     /// the end sign(w_z) L / 2, w = v in the body frame (the axis, or the end's centre, where
     /// w_xy or w_z is 0).
     Vec3 support(const Placement& p, const Vec3& v) const;
-    /// Container::convex_wall_overlap on the support function.
-    double wall_overlap(const Container& c, const Placement& p) const;
+    /// Container::convex_wall_overlap on the support function; with `grow` > 0, of the
+    /// cylinder grown by that much all round (its support moved out along each direction).
+    double wall_overlap(const Container& c, const Placement& p, double grow = 0.0) const;
     /// Container::convex_wall_contacts on the support function: f(contact) for each side wall
     /// it presses (the floor is the solver's: support(-z)).
     void wall_contacts(const Container& c, const Placement& p, const ConvexWallFunction& f) const;

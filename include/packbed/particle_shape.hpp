@@ -5,6 +5,7 @@
 #include <concepts>
 #include <cstddef>
 #include <cstdint>
+#include <numbers>
 #include <stdexcept>
 #include <string>
 #include <string_view>
@@ -45,14 +46,18 @@ struct SurfaceNode {
 };
 
 /// A circle of a particle's surface kept whole for the level-set contact: the body-frame
-/// circle of radius `radius` about the z axis at height z (size 1), and the area per unit
-/// length that stands for the surface beside it. A contact along an edge (two rims crossing)
-/// or between two curved sides can be shorter than any spacing of nodes: such a circle is
-/// searched as a curve.
+/// circle of radius `radius` about the axis parallel to z through (x, y) at height z (size 1),
+/// and the area per unit length that stands for the surface beside it; where only an arc of it
+/// is on the surface (a multilobe's lobe), the angles about its own axis within `arc_half` of
+/// `arc_middle` (from the body x axis). A contact along an edge (two rims crossing) or between
+/// two curved sides can be shorter than any spacing of nodes: such a circle is searched as a
+/// curve.
 struct SurfaceCircle {
     double z = 0.0;
     double radius = 0.0;
     double area_per_length = 0.0;
+    double x = 0.0, y = 0.0;
+    double arc_middle = 0.0, arc_half = std::numbers::pi; ///< pi: the whole circle
 };
 
 /// How deep a body-frame point lies inside a particle at size 1 (0 outside) and its way out:

@@ -10,7 +10,7 @@
 #include <vector>
 
 #include "packbed/container.hpp"
-#include "packbed/cylinder_shape.hpp"
+#include "packbed/multilobe_shape.hpp"
 #include "packbed/packing.hpp"
 #include "packbed/soft_sphere.hpp"
 
@@ -21,8 +21,10 @@ namespace packbed {
 struct PelletBedParameters {
     std::uint64_t particles = 100; ///< >= 1
     std::uint64_t seed = 1;        ///< seed of the positions and orientations at insertion
-    /// The pellet at size 1 (volume-equivalent radius 1): CylinderShape::of_aspect(L / D).
-    CylinderShape shape = CylinderShape::of_aspect(1.0);
+    /// The pellet at size 1 (volume-equivalent radius 1): a cylinder
+    /// (MultilobeShape::cylinder(CylinderShape::of_aspect(L / D))) or a multilobe
+    /// (MultilobeShape::of).
+    MultilobeShape shape = MultilobeShape::cylinder(CylinderShape::of_aspect(1.0));
     /// The container in units of d_v (Container::tube(a)).
     Container container = Container::tube(8.0);
     /// The void fraction of the column the pellets are poured from (the paper's e0 of eq. 6).
@@ -69,7 +71,7 @@ struct PelletBed {
     std::uint64_t neighbor_builds = 0;
     std::size_t nodes = 0;        ///< nodes on each pellet's surface
     double max_depth_nodes = 0.0; ///< the deepest node, pair or wall, d_v
-    /// The exact penetration depths (CylinderShape::pair_overlap and wall_overlap, the floor
+    /// The exact penetration depths (MultilobeShape::pair_overlap and wall_overlap, the floor
     /// by the support function), d_v.
     double max_depth_pair = 0.0, max_depth_wall = 0.0;
     /// The largest force and torque over the bounding radius left on a pellet, in weights.

@@ -16,9 +16,9 @@
 
 #include "packbed/analysis.hpp"
 #include "packbed/container.hpp"
-#include "packbed/cylinder_shape.hpp"
 #include "packbed/hydraulics.hpp"
 #include "packbed/lammps_engine.hpp"
+#include "packbed/multilobe_shape.hpp"
 #include "packbed/openfoam.hpp"
 #include "packbed/output.hpp"
 #include "packbed/packing.hpp"
@@ -116,12 +116,19 @@ nlohmann::json generation_summary(const PreparedGeneration& prepared,
 // ---------------------------------------------------------------------------------------------
 // generate --shape: a bed of pellets (pellet_bed.hpp, docs/generate.md "Pellets")
 
-/// A pellet as users write it (--shape): "cylinder:D,L", its diameter and length in length
-/// units, each in (0, limits::max_length], L / D from 0.1 to 10.
+/// A pellet as users write it (--shape), in length units, each length in (0,
+/// limits::max_length]: "cylinder:D,L" (L / D from 0.1 to 10), "trilobe:DL,DC,L" (three lobes
+/// of diameter DL on a circle of diameter DC, 0 < DC <= DL, L / DL from 0.1 to 10), or
+/// "multilobe:N,DL,DC,L" (N from 2 to 8 lobes, the same ranges).
 struct PelletSpec {
-    CylinderShape shape; ///< at the volume-equivalent size (CylinderShape::of_aspect(L / D))
-    double diameter = 0.0, length = 0.0;
-    double volume_diameter = 0.0; ///< d_v = (3 D^2 L / 2)^(1/3), the bed's unit
+    /// At the volume-equivalent size: MultilobeShape::cylinder(CylinderShape::of_aspect(L / D))
+    /// or MultilobeShape::of.
+    MultilobeShape shape;
+    std::string kind;             ///< "cylinder", "trilobe" or "multilobe"
+    double diameter = 0.0;        ///< D, or DL for a multilobe
+    double circle_diameter = 0.0; ///< DC (0 for a cylinder)
+    double length = 0.0;          ///< L
+    double volume_diameter = 0.0; ///< d_v = (6 V / pi)^(1/3), the bed's unit
     std::string text;             ///< as given
 };
 /// \return the pellet of `text`, or nothing when it is not one ("sphere" is not a pellet).
@@ -157,7 +164,7 @@ struct GeneratedPellets {
 };
 /// Run the pellet solver (generate_pellet_bed) and measure the bed: summary.json has the shape,
 /// the container, the stages, the exact depths and residuals, and the void fraction over the
-/// band clear of the floor and the top in a tube (the exact volumes, CylinderShape::volume_in).
+/// band clear of the floor and the top in a tube (the exact volumes, MultilobeShape::volume_in).
 /// \throws ConvergenceError, Cancelled
 GeneratedPellets run_pellets(const PreparedPellets& prepared, const RunControl& control,
                              int threads);

@@ -833,7 +833,7 @@ namespace {
 /// spheres come within `tolerance` (a NeighborList, by the minimum image in a periodic cell)
 /// measured by their exact gap, and the pellets whose support function grown by `tolerance`
 /// reaches a side wall.
-Coordination pellet_coordination(const ShapedBed<CylinderShape>& bed, const Container& container,
+Coordination pellet_coordination(const ShapedBed<MultilobeShape>& bed, const Container& container,
                                  double tolerance, const Band& band) {
     const Packing& packing = bed.particles();
     const std::size_t n = bed.size();
@@ -879,11 +879,8 @@ Coordination pellet_coordination(const ShapedBed<CylinderShape>& bed, const Cont
     CoordinationTally tally{out};
     for (std::size_t i = 0; i < n; ++i) {
         const Placement p = bed.placement(i);
-        const CylinderShape& shape = bed.shape(i);
-        const bool wall =
-            container.convex_wall_overlap(
-                [&](const Vec3& v) { return shape.support(p, v) + v * (tolerance / norm(v)); },
-                p.position, shape.bounding_radius(p.size) + tolerance) > 0.0;
+        const MultilobeShape& shape = bed.shape(i);
+        const bool wall = shape.wall_overlap(container, p, tolerance) > 0.0;
         out.wall_contacts += wall ? 1 : 0;
         if (!in_band(p.position, band))
             continue;
@@ -896,14 +893,14 @@ Coordination pellet_coordination(const ShapedBed<CylinderShape>& bed, const Cont
 
 } // namespace
 
-PelletAnalysis analyze_pellet_bed(const Packing& packing, const CylinderShape& shape,
+PelletAnalysis analyze_pellet_bed(const Packing& packing, const MultilobeShape& shape,
                                   const Container& container, const AnalysisOptions& options) {
     if (packing.size() == 0)
         throw InvalidInput("no pellets to analyse; allowed: a bed with at least one pellet");
     if (packing.orientations.size() != packing.size())
         throw InvalidInput("a bed of pellets needs each one's orientation; allowed: a table with "
                            "the columns qw, qx, qy, qz");
-    const ShapedBed<CylinderShape> bed(packing, {shape});
+    const ShapedBed<MultilobeShape> bed(packing, {shape});
     PelletAnalysis out;
     const double dv = packing.mean_diameter();
     out.diameter = dv;

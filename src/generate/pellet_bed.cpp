@@ -29,9 +29,13 @@ void PelletBedParameters::validate() const {
     using detail::require;
     require(particles >= 1 && particles <= 10'000'000, "particles", static_cast<double>(particles),
             "1 to 10^7");
-    require(shape.radius > 0.0 && shape.half_length > 0.0 && std::isfinite(shape.radius) &&
-                std::isfinite(shape.half_length),
-            "shape radius", shape.radius, "a cylinder of positive, finite radius and length");
+    require(shape.lobe.radius > 0.0 && shape.lobe.half_length > 0.0 &&
+                std::isfinite(shape.lobe.radius) && std::isfinite(shape.lobe.half_length),
+            "shape radius", shape.lobe.radius, "lobes of positive, finite radius and length");
+    require(shape.lobes >= 1 && shape.lobes <= 8, "lobes", shape.lobes, "1 to 8");
+    require(shape.circle >= 0.0 && shape.circle <= shape.lobe.radius &&
+                (shape.lobes > 1 || shape.circle == 0.0),
+            "lobes' circle", shape.circle, "0 to the lobe's radius (0 for one lobe)");
     require(e0 > 0.0 && e0 < 1.0, "e0", e0, "0 < e0 < 1");
     require(tolerance > 0.0 && tolerance <= 0.1, "tolerance", tolerance, "0 < tolerance <= 0.1");
     require(band_low > tolerance && band_high > band_low && band_high <= 0.2, "band", band_high,
@@ -44,7 +48,7 @@ void PelletBedParameters::validate() const {
 
 double PelletBedParameters::smallest_dimension() const {
     // d_v = 2 at size 1: the shape's lengths over 2 are in units of d_v.
-    return std::min(shape.radius, shape.half_length);
+    return shape.smallest_dimension();
 }
 
 namespace {
@@ -112,8 +116,20 @@ public:
         m_reach = m_params.shape.bounding_radius(m_size);
         m_volume = m_params.shape.volume(m_size);
         const double spacing = m_params.node_spacing / m_size;
+        // A multilobe's wall nodes close enough that a lobe's rim between two of them reaches
+        // at most half the tolerance past them (a chord s of a circle of radius R lies
+        // s^2 / (8 R) inside it): s = sqrt(4 R tol), both at size 1. Coarser, a rim pressed
+        // into a wall between its nodes stays deeper than the tolerance while no node feels
+        // it, and the bed jams (docs/notes/pellets.md, "Wall nodes"). A cylinder's keep the
+        // spacing its beds were measured with.
+        const double tol_at_size = params.tolerance * params.smallest_dimension() / m_size;
+        const double wall_spacing =
+            m_params.shape.lobes > 1
+                ? std::min(spacing, std::sqrt(4.0 * m_params.shape.lobe.radius * tol_at_size))
+                : spacing;
         for (const bool rows : {false, true})
-            for (SurfaceNode node : m_params.shape.surface_nodes(spacing, rows)) {
+            for (SurfaceNode node :
+                 m_params.shape.surface_nodes(rows ? wall_spacing : spacing, rows)) {
                 node.point = node.point * m_size;
                 node.area *= m_size * m_size;
                 (rows ? m_wall_nodes : m_nodes).push_back(node);
@@ -236,7 +252,7 @@ private:
     void press(const Rotation& ra, const Rotation& rb, const Vec3& u, double sign,
                PairPush& push) const {
         const double reach2 = m_reach * m_reach;
-        const CylinderShape& shape = m_params.shape;
+        const MultilobeShape& shape = m_params.shape;
         // The nodes in groups (an end's disc) whose bounding sphere is skipped when it misses b's.
         for (const NodeGroup& group : m_groups) {
             if (norm(ra(group.centre) - u) >= group.radius + m_reach)
@@ -272,7 +288,7 @@ private:
     /// Gauss-Legendre.
     void press_circles(const Rotation& ra, const Rotation& rb, const Vec3& u, double sign,
                        PairPush& push) const {
-        const CylinderShape& shape = m_params.shape;
+        const MultilobeShape& shape = m_params.shape;
         const Vec3 axis = ra(Vec3{0.0, 0.0, 1.0}), x = ra(Vec3{1.0, 0.0, 0.0}),
                    y = ra(Vec3{0.0, 1.0, 0.0});
         // cos and sin of the fixed sample angles k 2 pi / circle_samples.
@@ -286,7 +302,9 @@ private:
         const double reach2 = m_reach * m_reach;
         for (const SurfaceCircle& circle : m_circles) {
             // The circle's centre from b's, and the disc b's bounding sphere cuts its plane in.
-            const Vec3 centre = axis * (circle.z * m_size) - u;
+            const bool off_axis = circle.x != 0.0 || circle.y != 0.0;
+            const Vec3 centre = off_axis ? ra(Vec3{circle.x, circle.y, circle.z} * m_size) - u
+                                         : axis * (circle.z * m_size) - u;
             const double h = dot(centre, axis);
             if (h * h >= reach2)
                 continue;
@@ -306,7 +324,16 @@ private:
             const Vec3 q0 = rb.inverse(centre) * (1.0 / m_size);
             const Vec3 e1 = rb.inverse(x) * circle.radius, e2 = rb.inverse(y) * circle.radius;
             const auto at = [&](double t) { return q0 + e1 * std::cos(t) + e2 * std::sin(t); };
-            const auto depth_at = [&](double t) { return shape.signed_depth(at(t)) * m_size; };
+            // Off the circle's arc (a lobe's side inside its neighbours) nothing presses.
+            const bool whole = circle.arc_half >= std::numbers::pi;
+            const auto on_arc = [&](double t) {
+                return whole || std::abs(std::remainder(t - circle.arc_middle,
+                                                        2.0 * std::numbers::pi)) <= circle.arc_half;
+            };
+            constexpr double off = -std::numeric_limits<double>::infinity();
+            const auto depth_at = [&](double t) {
+                return on_arc(t) ? shape.signed_depth(at(t)) * m_size : off;
+            };
             // The samples at fixed angles k 2 pi / circle_samples, from the last before the
             // arc to the first after it: they do not move with the pellets, so neither do the
             // pieces the integral is split into.
@@ -319,7 +346,9 @@ private:
             for (long k = k_first; k <= k_last; ++k) {
                 const auto& [c, s] = around[static_cast<std::size_t>(
                     ((k % circle_samples) + circle_samples) % circle_samples)];
-                points.emplace_back(k * step, shape.signed_depth(q0 + e1 * c + e2 * s) * m_size);
+                points.emplace_back(
+                    k * step,
+                    on_arc(k * step) ? shape.signed_depth(q0 + e1 * c + e2 * s) * m_size : off);
                 best = std::max(best, points.back().second);
             }
             const int n = static_cast<int>(points.size()) - 1;
@@ -376,6 +405,8 @@ private:
                                                           0.6521451548625461, 0.3478548451374538};
                 const double span = 0.5 * (t1 - t0), centre_t = 0.5 * (t1 + t0);
                 for (int g = 0; g < 4; ++g) {
+                    if (!on_arc(centre_t + span * gx[g]))
+                        continue;
                     const Vec3 q = at(centre_t + span * gx[g]);
                     const InsideDepth in = shape.inside(q, edge_blend);
                     if (in.depth <= 0.0)
@@ -663,7 +694,7 @@ private:
     /// `over_depth` appended to `over` (in pair order).
     void measure_exact(PelletBed& out, double over_depth = 0.0,
                        std::vector<std::pair<std::uint32_t, std::uint32_t>>* over = nullptr) const {
-        const CylinderShape& shape = m_params.shape;
+        const MultilobeShape& shape = m_params.shape;
         const auto first = m_list.pair_first();
         const auto second = m_list.pair_second();
         const std::size_t pairs = m_list.pairs();

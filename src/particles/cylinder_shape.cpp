@@ -8,18 +8,21 @@
 #include <optional>
 #include <vector>
 
-#include <boost/math/quadrature/gauss_kronrod.hpp>
 #include <boost/math/quadrature/tanh_sinh.hpp>
 #include <ccd/ccd.h>
 
 #include "packbed/box.hpp"
 #include "packbed/volume.hpp"
+#include "section_volume.hpp"
 
 namespace packbed {
 
 namespace {
 
 constexpr double pi = std::numbers::pi;
+using detail::Frame;
+using detail::frame_of;
+using detail::region_volume;
 
 /// One pellet as libccd sees it: its shape and placement.
 struct CcdBody {
@@ -57,16 +60,6 @@ double disc_below(double r, double x) {
     if (x >= r)
         return pi * r * r;
     return r * r * std::acos(-x / r) + x * std::sqrt((r - x) * (r + x));
-}
-
-/// A pellet's body frame in the bed: its axis and two directions across it.
-struct Frame {
-    Vec3 e1, e2, axis;
-};
-
-Frame frame_of(const Placement& p) {
-    return {rotate(p.orientation, {1.0, 0.0, 0.0}), rotate(p.orientation, {0.0, 1.0, 0.0}),
-            rotate(p.orientation, {0.0, 0.0, 1.0})};
 }
 
 /// The volume of a cylinder (radius r, half-length h, placed by p) between the heights z_low
@@ -333,55 +326,6 @@ double disc_volume(const Frame& f, const Vec3& centre, double r, double h, doubl
     return total;
 }
 
-/// The volume of the cylinder inside a region: the heights z_low..z_high and the side whose
-/// chords `chord(p, u)` gives (Chord), by polar coordinates on each cross-section: the part of
-/// the ray from the axis point c(t) along w(phi) inside the region is a few intervals of rho,
-/// their integral of rho d rho in closed form; the angle and the axis by adaptive
-/// Gauss-Kronrod (15 points, Boost.Math) from 32 pieces of the angle and 16 of the axis,
-/// relative tolerance 1e-8 and six halvings each.
-template <class ChordOf>
-double region_volume(const Frame& f, const Vec3& centre, double r, double h, double z_low,
-                     double z_high, ChordOf&& chord) {
-    using Kronrod = boost::math::quadrature::gauss_kronrod<double, 15>;
-    auto ring = [&](double t, double phi) {
-        const Vec3 c = centre + t * f.axis;
-        const Vec3 w = std::cos(phi) * f.e1 + std::sin(phi) * f.e2;
-        double lo = 0.0, hi = r;
-        if (w.z > 0.0) {
-            lo = std::max(lo, (z_low - c.z) / w.z);
-            hi = std::min(hi, (z_high - c.z) / w.z);
-        } else if (w.z < 0.0) {
-            lo = std::max(lo, (z_high - c.z) / w.z);
-            hi = std::min(hi, (z_low - c.z) / w.z);
-        } else if (c.z < z_low || c.z > z_high) {
-            return 0.0;
-        }
-        if (!(hi > lo))
-            return 0.0;
-        const Chord side = chord(c, w);
-        double sum = 0.0;
-        for (std::size_t k = 0; k < side.count; ++k) {
-            const double a = std::max(lo, side.parts[k].low), b = std::min(hi, side.parts[k].high);
-            if (b > a)
-                sum += 0.5 * (b - a) * (b + a);
-        }
-        return sum;
-    };
-    // Each integral starts from pieces (32 of the angle, 16 of the axis) so that no part of
-    // the region narrower than a piece goes unseen by the rule's first nodes.
-    auto pieces = [](auto&& integrand, double a, double b, int n) {
-        double sum = 0.0;
-        for (int k = 0; k < n; ++k)
-            sum += Kronrod::integrate(integrand, a + (b - a) * k / n, a + (b - a) * (k + 1) / n, 6,
-                                      1e-8);
-        return sum;
-    };
-    auto section = [&](double t) {
-        return pieces([&](double phi) { return ring(t, phi); }, 0.0, 2.0 * pi, 32);
-    };
-    return pieces(section, -h, h, 16);
-}
-
 /// Two cylinders as the penetration depth sees them: each one's axis, radius and half-length,
 /// the first at the origin and the second's centre at c.
 struct CylinderPair {
@@ -563,7 +507,11 @@ void CylinderShape::wall_contacts(const Container& c, const Placement& p,
                            bounding_radius(p.size), f);
 }
 
-double CylinderShape::wall_overlap(const Container& c, const Placement& p) const {
+double CylinderShape::wall_overlap(const Container& c, const Placement& p, double grow) const {
+    if (grow > 0.0)
+        return c.convex_wall_overlap(
+            [&](const Vec3& v) { return support(p, v) + v * (grow / norm(v)); }, p.position,
+            bounding_radius(p.size) + grow);
     return c.convex_wall_overlap([&](const Vec3& v) { return support(p, v); }, p.position,
                                  bounding_radius(p.size));
 }
@@ -634,8 +582,10 @@ double cylinder_in(const CylinderShape& shape, const Container& c, const Placeme
         return slab_volume(f, p.position, r, h, low, high);
     if (const std::optional<double> tube = c.tube_diameter())
         return disc_volume(f, p.position, r, h, low, high, 0.5 * *tube);
-    return region_volume(f, p.position, r, h, low, high,
-                         [&](const Vec3& q, const Vec3& u) { return c.side_chord(q, u); });
+    return region_volume(
+        f, p.position, h, low, high,
+        [&](const Vec3& q, const Vec3& u) { return c.side_chord(q, u); }, [r](double) { return r; },
+        {0.0, 2.0 * pi}, 32);
 }
 
 } // namespace

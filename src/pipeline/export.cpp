@@ -574,7 +574,7 @@ bool is_surface(ExportFormat format) {
            format == ExportFormat::obj || format == ExportFormat::openfoam;
 }
 
-/// A bed of pellets for LAMMPS: each pellet as its clump of spheres (CylinderShape::dem_spheres,
+/// A bed of pellets for LAMMPS: each pellet as its clump of spheres (MultilobeShape::dem_spheres,
 /// inside the pellet, the outermost touching its side and ends), one rigid body in the example
 /// settle (docs/dem.md, "Pellets").
 std::string clump_export(const ExportRequest& request, const Packing& packing,
@@ -583,7 +583,7 @@ std::string clump_export(const ExportRequest& request, const Packing& packing,
         throw InvalidInput(fmt::format("--contacts {} is not allowed with --format lammps-data; "
                                        "allowed: none (the clumps are the pellets' own)",
                                        printable(request.contacts)));
-    const ShapedBed<CylinderShape> bed(packing, {pellet.shape});
+    const ShapedBed<MultilobeShape> bed(packing, {pellet.shape});
     Packing spheres;
     std::vector<std::size_t> sphere_lines;
     double sphere_volume = 0.0, pellet_volume = 0.0;
@@ -644,8 +644,8 @@ std::string pellet_export(const ExportRequest& request, ExportFormat format, con
                                        printable(request.contacts)));
     const double scale =
         contacts.treatment == ContactTreatment::shrink ? 1.0 - contacts.parameter : 1.0;
-    const ShapedBed<CylinderShape> bed(packing, {pellet.shape});
-    const CylinderShape& shape = pellet.shape;
+    const ShapedBed<MultilobeShape> bed(packing, {pellet.shape});
+    const MultilobeShape& shape = pellet.shape;
     const double dv = packing.mean_diameter(); // r is d_v / 2
     const double largest = *std::max_element(packing.radii.begin(), packing.radii.end());
     const double top = bed_top(bed);
@@ -713,7 +713,7 @@ std::string pellet_export(const ExportRequest& request, ExportFormat format, con
     }
     // Segments about the rim: --refine, or the level whose chord is at most --edge (on the
     // largest pellet).
-    const double rim = shape.radius * largest * scale;
+    const double rim = shape.lobe.radius * largest * scale;
     int level = o.refine;
     if (o.edge > 0.0) {
         level = 0;
@@ -737,8 +737,10 @@ std::string pellet_export(const ExportRequest& request, ExportFormat format, con
     report["contacts"] = o.contacts;
     report["volume_equivalent_diameter"] = dv;
     // 6 V / S: 6 R h / (R + 2 h) for a cylinder of radius R and half-length h (D when L = D).
-    const double r = shape.radius * 0.5 * dv, h = shape.half_length * 0.5 * dv;
-    report["diameter"] = 6.0 * r * h / (r + 2.0 * h);
+    const double r = shape.lobe.radius * 0.5 * dv, h = shape.lobe.half_length * 0.5 * dv;
+    report["diameter"] = shape.lobes == 1
+                             ? 6.0 * r * h / (r + 2.0 * h)
+                             : 6.0 * shape.volume(0.5 * dv) / shape.surface_area(0.5 * dv);
     report["diameter_note"] = "the surface-volume equivalent diameter 6 V / S (Ergun's for "
                               "non-spheres), which cfd-report's correlations use; the mesh's "
                               "cells per diameter, the Reynolds number of --reynolds and the "

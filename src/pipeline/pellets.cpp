@@ -1,6 +1,7 @@
 // generate --shape: a bed of pellets, from the request to its files (pipeline.hpp).
 #include <chrono>
 #include <cmath>
+#include <numbers>
 #include <optional>
 #include <string>
 #include <string_view>
@@ -27,31 +28,63 @@ constexpr double min_aspect = 0.1, max_aspect = 10.0; // L / D of a cylinder pel
 
 std::optional<PelletSpec> parse_pellet_shape(std::string_view text) {
     const KindSpec spec = split_kind(text);
-    if (spec.kind != CylinderShape::kind || !spec.parameters)
+    if (!spec.parameters)
         return std::nullopt;
     const auto numbers = parse_finite_list(*spec.parameters);
-    if (!numbers || numbers->size() != 2)
+    if (!numbers)
         return std::nullopt;
-    const double d = (*numbers)[0], l = (*numbers)[1];
-    if (!(d > 0.0 && l > 0.0 && d <= limits::max_length && l <= limits::max_length))
-        return std::nullopt;
-    const double aspect = l / d;
-    if (!(aspect >= min_aspect && aspect <= max_aspect))
-        return std::nullopt;
+    const auto length_ok = [](double x) { return x > 0.0 && x <= limits::max_length; };
     PelletSpec out;
-    out.shape = CylinderShape::of_aspect(aspect);
-    out.diameter = d;
-    out.length = l;
-    // pi D^2 L / 4 = pi d_v^3 / 6.
-    out.volume_diameter = std::cbrt(1.5 * d * d * l);
+    out.kind = std::string(spec.kind);
     out.text = std::string(text);
+    if (spec.kind == "cylinder") {
+        if (numbers->size() != 2)
+            return std::nullopt;
+        const double d = (*numbers)[0], l = (*numbers)[1];
+        if (!(length_ok(d) && length_ok(l)))
+            return std::nullopt;
+        const double aspect = l / d;
+        if (!(aspect >= min_aspect && aspect <= max_aspect))
+            return std::nullopt;
+        out.shape = MultilobeShape::cylinder(CylinderShape::of_aspect(aspect));
+        out.diameter = d;
+        out.length = l;
+        // pi D^2 L / 4 = pi d_v^3 / 6.
+        out.volume_diameter = std::cbrt(1.5 * d * d * l);
+        return out;
+    }
+    const bool trilobe = spec.kind == "trilobe";
+    if (!trilobe && spec.kind != "multilobe")
+        return std::nullopt;
+    if (numbers->size() != (trilobe ? 3u : 4u))
+        return std::nullopt;
+    const double* v = numbers->data() + (trilobe ? 0 : 1);
+    const double lobes = trilobe ? 3.0 : (*numbers)[0];
+    const double dl = v[0], dc = v[1], l = v[2];
+    if (!(lobes >= 2.0 && lobes <= 8.0 && lobes == std::floor(lobes)))
+        return std::nullopt;
+    if (!(length_ok(dl) && length_ok(dc) && length_ok(l) && dc <= dl))
+        return std::nullopt;
+    if (!(l / dl >= min_aspect && l / dl <= max_aspect))
+        return std::nullopt;
+    const int n = static_cast<int>(lobes);
+    out.shape = MultilobeShape::of(n, dl, dc, l);
+    out.diameter = dl;
+    out.circle_diameter = dc;
+    out.length = l;
+    // The section's area at these lengths times L = pi d_v^3 / 6.
+    const MultilobeShape given{{0.5 * dl, 0.5 * l}, n, 0.5 * dc};
+    out.volume_diameter = std::cbrt(6.0 * given.section_area() * l / std::numbers::pi);
     return out;
 }
 
 std::string allowed_shapes() {
-    return fmt::format("sphere (the default), or cylinder:D,L (a cylinder pellet of diameter D "
-                       "and length L, each > 0 and at most {:g}, L / D from {:g} to {:g})",
-                       limits::max_length, min_aspect, max_aspect);
+    return fmt::format(
+        "sphere (the default); cylinder:D,L (a cylinder of diameter D and length L); "
+        "trilobe:DL,DC,L (three cylinders of diameter DL, their axes on a circle of diameter "
+        "DC, 0 < DC <= DL); or multilobe:N,DL,DC,L (N = 2 to 8 such lobes); each length > 0 "
+        "and at most {:g}, L / D (L / DL) from {:g} to {:g}",
+        limits::max_length, min_aspect, max_aspect);
 }
 
 PreparedPellets prepare_pellets(const PelletRequest& request) {
@@ -106,20 +139,30 @@ GeneratedPellets run_pellets(const PreparedPellets& prepared, const RunControl& 
     s["version"] = std::string(version);
     s["generator"] = "pellets: level-set contact and FIRE on positions and rotations "
                      "(docs/design.md, \"A bed of cylinder pellets\")";
-    s["shape"] = {{"kind", CylinderShape::kind},
-                  {"spec", pellet.text},
-                  {"diameter", pellet.diameter},
-                  {"length", pellet.length},
-                  {"volume_equivalent_diameter", dv},
-                  {"axis", "the body z axis: particles.csv's quaternion qw, qx, qy, qz turns it "
-                           "into the pellet's"},
-                  {"r", "particles.csv's r is d_v / 2, the pellet's size"}};
+    if (pellet.shape.lobes == 1)
+        s["shape"] = {{"kind", pellet.kind},
+                      {"spec", pellet.text},
+                      {"diameter", pellet.diameter},
+                      {"length", pellet.length}};
+    else
+        s["shape"] = {{"kind", pellet.kind},
+                      {"spec", pellet.text},
+                      {"lobes", pellet.shape.lobes},
+                      {"lobe_diameter", pellet.diameter},
+                      {"circle_diameter", pellet.circle_diameter},
+                      {"length", pellet.length},
+                      {"lobe_0", "towards the body x axis, lobe k turned 360 k / lobes degrees "
+                                 "about the axis"}};
+    s["shape"]["volume_equivalent_diameter"] = dv;
+    s["shape"]["axis"] = "the body z axis: particles.csv's quaternion qw, qx, qy, qz turns it "
+                         "into the pellet's";
+    s["shape"]["r"] = "particles.csv's r is d_v / 2, the pellet's size";
     if (const auto a = p.container.tube_diameter())
         s["aspect_ratio"] = *a; // D_tube / d_v
     s["particles"] = p.particles;
     s["seed"] = p.seed;
     s["threads"] = threads;
-    const ShapedBed<CylinderShape> shaped(out.packing, {pellet.shape});
+    const ShapedBed<MultilobeShape> shaped(out.packing, {pellet.shape});
     const double top = bed_top(shaped);
     s["container"] = out.container.summary_json();
     s["container"]["height"] = top;
