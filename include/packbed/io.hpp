@@ -128,6 +128,10 @@ struct DemSettle {
     /// 0: each atom a free sphere; N > 0: each N consecutive atoms one rigid pellet, its
     /// molecule (lammps_data's clump_spheres; LAMMPS only)
     std::size_t clump_spheres = 0;
+    /// With clumps: the farthest a clump's sphere reaches from its pellet's centroid (m). The
+    /// ghost atoms reach that far and the neighbour skin beyond (`comm_modify cutoff`), so that
+    /// every atom of a rigid body near a processor's side has its ghost.
+    double clump_reach = 0.0;
 };
 
 /// A LAMMPS (2022, GRANULAR package) input that reads the data file and settles the bed:

@@ -301,7 +301,12 @@ std::string settle_box(std::string_view atom_style, std::string_view boundary,
                            "read_data       {} fix clumps NULL Molecules\n\n"
                            "neighbor        {} bin\n"
                            "neigh_modify    delay 0 exclude molecule/intra all\n",
-                           atom_style, boundary, communication, s.data_file, n.skin);
+                           atom_style, boundary,
+                           fmt::format("# Ghost atoms as far as a pellet's clump reaches, and the "
+                                       "skin: LAMMPS needs a rigid body's atoms within them.\n"
+                                       "comm_modify     vel yes cutoff {:.9g}\n",
+                                       2.0 * s.clump_reach + n.skin),
+                           s.data_file, n.skin);
     return fmt::format("units           si\n"
                        "atom_style      {}\n"
                        "atom_modify     map array\n"

@@ -374,6 +374,7 @@ struct ClumpExport {
     std::size_t spheres = 0, pellets = 0;
     std::string shape;
     double density_scale = 1.0;
+    double reach = 0.0; ///< the farthest a sphere's surface lies from its pellet's centroid
 };
 
 /// A LAMMPS or LIGGGHTS data file; where the container is known, its box holds the container
@@ -497,6 +498,7 @@ std::string data_export(const ExportRequest& o, ExportFormat format, const Packi
         settle.diameter = dp;
         settle.density = density;
         settle.clump_spheres = clumps ? clumps->spheres : 0;
+        settle.clump_reach = clumps ? clumps->reach : 0.0;
         const std::optional<double> friction =
             o.friction ? o.friction : (o.keep.empty() ? std::nullopt : friction_beside(o.keep));
         if (friction && *friction > 0.0) {
@@ -592,6 +594,7 @@ std::string clump_export(const ExportRequest& request, const Packing& packing,
         std::size_t count = 0;
         bed.shape(i).dem_spheres(bed.placement(i), [&](const DemSphere& a) {
             spheres.add(a.centre, a.radius);
+            clumps.reach = std::max(clumps.reach, norm(a.centre - packing.centers[i]) + a.radius);
             sphere_lines.push_back(i < lines.size() ? lines[i] : i + 1);
             sphere_volume += 4.0 / 3.0 * std::numbers::pi * a.radius * a.radius * a.radius;
             ++count;
