@@ -118,10 +118,9 @@ public:
         const double spacing = m_params.node_spacing / m_size;
         // A multilobe's wall nodes close enough that a lobe's rim between two of them reaches
         // at most half the tolerance past them (a chord s of a circle of radius R lies
-        // s^2 / (8 R) inside it): s = sqrt(4 R tol), both at size 1. Coarser, a rim pressed
-        // into a wall between its nodes stays deeper than the tolerance while no node feels
-        // it, and the bed jams (docs/notes/pellets.md, "Wall nodes"). A cylinder's keep the
-        // spacing its beds were measured with.
+        // s^2 / (8 R) inside it): s = sqrt(4 R tol), both at size 1. Coarser, a rim can press
+        // a wall deeper than the tolerance while no node feels it (docs/notes/pellets.md,
+        // "Wall nodes"). A cylinder's keep the spacing its beds were measured with.
         const double tol_at_size = params.tolerance * params.smallest_dimension() / m_size;
         const double wall_spacing =
             m_params.shape.lobes > 1
