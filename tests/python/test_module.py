@@ -233,6 +233,22 @@ def test_a_pellet_bed_has_the_command_lines_bytes(tmp_path):
     assert packbed.generate(aspect_ratio=4, particles=10).orientations is None
 
 
+def test_a_trilobe_bed_has_the_command_lines_bytes(tmp_path):
+    # 8 trilobes (lobes 1 on a circle of 0.8, 1.5 long) in a tube of a = 4: the same bytes from
+    # Python as from the command line, the shape's lobes in the summary.
+    status, _, err = cli("generate", "--shape", "trilobe:1,0.8,1.5", "-a", 4, "-n", 8, "-s", 1,
+                         "-q", "--out", tmp_path / "cli")
+    assert status == 0, err
+    bed = packbed.generate(shape="trilobe:1,0.8,1.5", aspect_ratio=4, particles=8, seed=1,
+                           out=str(tmp_path / "py"))
+    for name in ["particles.csv", "particles.vtu"]:
+        assert (tmp_path / "py" / name).read_bytes() == (tmp_path / "cli" / name).read_bytes()
+    assert bed.orientations.shape == (8, 4)
+    assert bed.summary["shape"]["kind"] == "trilobe"
+    assert bed.summary["shape"]["lobes"] == 3
+    assert 0 < bed.summary["max_penetration_pair"] <= bed.summary["tolerance"]
+
+
 def test_bad_output_directory_raises_and_writes_nothing(tmp_path):
     full = tmp_path / "full"
     full.mkdir()
