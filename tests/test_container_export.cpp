@@ -734,6 +734,29 @@ TEST(ContainerExportCli, LammpsSettlesAConeBedAgainstTheSlantedWall) {
     EXPECT_GT(at_wall, 0u); // the slanted wall holds spheres
 }
 
+/// A pellet bed (`generate` with `shape_args`) in d/bed, exported as LAMMPS clumps to
+/// d/bed.data and its example settle run by lmp in d: the data file, the input and LAMMPS's
+/// output.
+struct SettledClumps {
+    std::string data, input, log;
+};
+SettledClumps settle_clumps(const fs::path& d, const std::string& shape_args) {
+    SettledClumps out;
+    const Outcome g =
+        run_packbed("generate " + shape_args + " -q --out " + (d / "bed").string() + " --force");
+    EXPECT_EQ(g.status, 0) << g.err;
+    const Outcome e = run_packbed("export " + (d / "bed" / "particles.csv").string() +
+                                  " --format lammps-data -q --out " + (d / "bed.data").string());
+    EXPECT_EQ(e.status, 0) << e.err;
+    out.data = slurp(d / "bed.data");
+    out.input = slurp(d / "bed.data.lammps.in");
+    const std::string cmd =
+        "cd " + d.string() + " && lmp -in bed.data.lammps.in -log none > lmp.out 2>&1";
+    EXPECT_EQ(std::system(cmd.c_str()), 0) << slurp(d / "lmp.out");
+    out.log = slurp(d / "lmp.out");
+    return out;
+}
+
 TEST(ContainerExportCli, LammpsSettlesPelletsAsRigidClumps) {
     if (!has_lmp())
         GTEST_SKIP() << "lmp (Debian package lammps) is not installed";
@@ -742,14 +765,8 @@ TEST(ContainerExportCli, LammpsSettlesPelletsAsRigidClumps) {
     // their shape (every distance between two spheres of one clump as exported), stay in the
     // tube and above the floor, and none is lost.
     const fs::path d = scratch("clumps");
-    const Outcome g =
-        run_packbed("generate --shape cylinder:0.003,0.003 -a 4 -n 12 -s 3 -q --out " +
-                    (d / "bed").string() + " --force");
-    ASSERT_EQ(g.status, 0) << g.err;
-    const Outcome e = run_packbed("export " + (d / "bed" / "particles.csv").string() +
-                                  " --format lammps-data -q --out " + (d / "bed.data").string());
-    ASSERT_EQ(e.status, 0) << e.err;
-    const std::string data = slurp(d / "bed.data");
+    const auto [data, input, log] =
+        settle_clumps(d, "--shape cylinder:0.003,0.003 -a 4 -n 12 -s 3");
     EXPECT_NE(data.find("288 atoms\n"), std::string::npos);
     // The Molecules section: atom k in clump (k - 1) / 24 + 1.
     const std::size_t at = data.find("\nMolecules\n\n");
@@ -761,14 +778,8 @@ TEST(ContainerExportCli, LammpsSettlesPelletsAsRigidClumps) {
         EXPECT_EQ(id, k);
         EXPECT_EQ(mol, (k - 1) / 24 + 1) << k;
     }
-    // A clump weighs its pellet: pi D^2 L / 4 rho against 24 balls of the density written.
-    const std::string input = slurp(d / "bed.data.lammps.in");
     EXPECT_NE(input.find("fix             integrate all rigid/small molecule\n"),
               std::string::npos);
-    const std::string cmd =
-        "cd " + d.string() + " && lmp -in bed.data.lammps.in -log none > lmp.out 2>&1";
-    EXPECT_EQ(std::system(cmd.c_str()), 0) << slurp(d / "lmp.out");
-    const std::string log = slurp(d / "lmp.out");
     EXPECT_NE(log.find("12 rigid bodies with 288 atoms"), std::string::npos) << log;
     EXPECT_NE(log.find("packbed settle: 288 atoms after 2000 steps"), std::string::npos) << log;
     EXPECT_EQ(log.find("Lost"), std::string::npos) << log;
@@ -804,18 +815,9 @@ TEST(ContainerExportCli, LammpsSettlesTrilobesAsRigidClumps) {
     // neighbour cutoff: without the input's ghost cutoff LAMMPS stops ("Rigid body extent >
     // ghost cutoff"). The clumps keep their shape, and none is lost.
     const fs::path d = scratch("trilobe-clumps");
-    const Outcome g = run_packbed("generate --shape trilobe:0.001,0.0008,0.0015 -a 4 -n 8 -s 1 "
-                                  "-q --out " +
-                                  (d / "bed").string() + " --force");
-    ASSERT_EQ(g.status, 0) << g.err;
-    const Outcome e = run_packbed("export " + (d / "bed" / "particles.csv").string() +
-                                  " --format lammps-data -q --out " + (d / "bed.data").string());
-    ASSERT_EQ(e.status, 0) << e.err;
-    EXPECT_NE(slurp(d / "bed.data").find("960 atoms\n"), std::string::npos);
-    const std::string cmd =
-        "cd " + d.string() + " && lmp -in bed.data.lammps.in -log none > lmp.out 2>&1";
-    EXPECT_EQ(std::system(cmd.c_str()), 0) << slurp(d / "lmp.out");
-    const std::string log = slurp(d / "lmp.out");
+    const auto [data, input, log] =
+        settle_clumps(d, "--shape trilobe:0.001,0.0008,0.0015 -a 4 -n 8 -s 1");
+    EXPECT_NE(data.find("960 atoms\n"), std::string::npos);
     EXPECT_NE(log.find("8 rigid bodies with 960 atoms"), std::string::npos) << log;
     EXPECT_NE(log.find("packbed settle: 960 atoms after 2000 steps"), std::string::npos) << log;
     EXPECT_EQ(log.find("Lost"), std::string::npos) << log;

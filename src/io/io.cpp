@@ -301,12 +301,7 @@ std::string settle_box(std::string_view atom_style, std::string_view boundary,
                            "read_data       {} fix clumps NULL Molecules\n\n"
                            "neighbor        {} bin\n"
                            "neigh_modify    delay 0 exclude molecule/intra all\n",
-                           atom_style, boundary,
-                           fmt::format("# Ghost atoms as far as a pellet's clump reaches, and the "
-                                       "skin: LAMMPS needs a rigid body's atoms within them.\n"
-                                       "comm_modify     vel yes cutoff {:.9g}\n",
-                                       2.0 * s.clump_reach + n.skin),
-                           s.data_file, n.skin);
+                           atom_style, boundary, communication, s.data_file, n.skin);
     return fmt::format("units           si\n"
                        "atom_style      {}\n"
                        "atom_modify     map array\n"
@@ -327,7 +322,14 @@ std::string lammps_settle_input(const DemSettle& s) {
     const DemSettleWall wall = settle_wall(s, contact);
     return settle_head(s, n, "LAMMPS (2022, GRANULAR package)",
                        fmt::format("lmp -in {}.lammps.in", s.data_file)) +
-           settle_box("sphere", wall.boundary, "comm_modify     vel yes\n", s, n) +
+           settle_box("sphere", wall.boundary,
+                      s.clump_spheres > 0
+                          ? fmt::format("# Ghost atoms as far as a pellet's clump reaches, and "
+                                        "the skin: LAMMPS needs a rigid body's atoms within "
+                                        "them.\ncomm_modify     vel yes cutoff {:.9g}\n",
+                                        2.0 * s.clump_reach + n.skin)
+                          : std::string("comm_modify     vel yes\n"),
+                      s, n) +
            fmt::format(
                "# Hertz contacts with the material's E, nu, restitution (Tsuji damping) and "
                "friction.\n"

@@ -207,17 +207,25 @@ def test_bad_values_raise_value_error_with_one_line(call, words):
         assert word in message
 
 
+def pellets_from_both(tmp_path, shape, particles, seed):
+    """A pellet bed in a tube of a = 4 from the command line (tmp_path/cli) and from Python
+    (tmp_path/py): asserts their particles.csv and particles.vtu are the same bytes, returns
+    the Python bed."""
+    status, _, err = cli("generate", "--shape", shape, "-a", 4, "-n", particles, "-s", seed,
+                         "-q", "--out", tmp_path / "cli")
+    assert status == 0, err
+    bed = packbed.generate(shape=shape, aspect_ratio=4, particles=particles, seed=seed,
+                           out=str(tmp_path / "py"))
+    for name in ["particles.csv", "particles.vtu"]:
+        assert (tmp_path / "py" / name).read_bytes() == (tmp_path / "cli" / name).read_bytes()
+    return bed
+
+
 def test_a_pellet_bed_has_the_command_lines_bytes(tmp_path):
     # 12 cylinders L = D in a tube of a = 4 (seed 3): the files written from Python are the
     # command line's byte for byte; the orientations are the table's unit quaternions; the
     # exact depths are below the tolerance; the sphere-only calls refuse the bed.
-    status, _, err = cli("generate", "--shape", "cylinder:1,1", "-a", 4, "-n", 12, "-s", 3,
-                         "-q", "--out", tmp_path / "cli")
-    assert status == 0, err
-    bed = packbed.generate(shape="cylinder:1,1", aspect_ratio=4, particles=12, seed=3,
-                           out=str(tmp_path / "py"))
-    for name in ["particles.csv", "particles.vtu"]:
-        assert (tmp_path / "py" / name).read_bytes() == (tmp_path / "cli" / name).read_bytes()
+    bed = pellets_from_both(tmp_path, "cylinder:1,1", 12, 3)
     table = np.loadtxt(tmp_path / "cli" / "particles.csv", delimiter=",", skiprows=1, ndmin=2)
     assert table.shape == (12, 8)
     assert np.array_equal(bed.centers, table[:, :3])
@@ -236,13 +244,7 @@ def test_a_pellet_bed_has_the_command_lines_bytes(tmp_path):
 def test_a_trilobe_bed_has_the_command_lines_bytes(tmp_path):
     # 8 trilobes (lobes 1 on a circle of 0.8, 1.5 long) in a tube of a = 4: the same bytes from
     # Python as from the command line, the shape's lobes in the summary.
-    status, _, err = cli("generate", "--shape", "trilobe:1,0.8,1.5", "-a", 4, "-n", 8, "-s", 1,
-                         "-q", "--out", tmp_path / "cli")
-    assert status == 0, err
-    bed = packbed.generate(shape="trilobe:1,0.8,1.5", aspect_ratio=4, particles=8, seed=1,
-                           out=str(tmp_path / "py"))
-    for name in ["particles.csv", "particles.vtu"]:
-        assert (tmp_path / "py" / name).read_bytes() == (tmp_path / "cli" / name).read_bytes()
+    bed = pellets_from_both(tmp_path, "trilobe:1,0.8,1.5", 8, 1)
     assert bed.orientations.shape == (8, 4)
     assert bed.summary["shape"]["kind"] == "trilobe"
     assert bed.summary["shape"]["lobes"] == 3
