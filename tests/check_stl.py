@@ -4,7 +4,7 @@ edge shared by two facets, consistent orientation, no degenerate facet, one part
 OpenFOAM's surfaceCheck (closed, not self-intersecting), for a generated bed, a lattice in a
 cylinder, a simple cubic lattice in a box (issue 17: 3 x 3 x 2 balls, 16 of them touching
 one or two faces of the box, the lower 9 the floor) and a bed in a cone, with every treatment,
-and beds of 12 cylinder pellets and of 8 trilobes, each shrunk by 2 %. For caps and shrink admesh must also leave every stored normal as it is; the
+and beds of 12 cylinder pellets, of 8 trilobes and of 3 rings, each shrunk by 2 %. For caps and shrink admesh must also leave every stored normal as it is; the
 unions of enlarge and bridges (CGAL's corefinement) keep small triangles whose single-precision
 normal admesh recomputes differently, so there only orientation is checked.
 Two untreated spheres overlapping by 0.045 Dp must be reported as self-intersecting: the
@@ -92,6 +92,15 @@ admesh("trilobes.stl", 8 + 1, normals_kept=True)
 assert surface_check("trilobes.stl") == (True, True), ("trilobes.stl",
                                                         "closed, not self-intersecting")
 print("trilobes.stl: 8 trilobes + container, closed, oriented, not self-intersecting")
+# Rings: 3 poured into a tube of a = 3, each one closed surface of its side, its bore and its
+# two annular ends (genus one), shrunk by 2 %.
+run(exe, "generate", "--shape", "ring:1,0.5,1", "--aspect-ratio", "3", "--particles", "3",
+    "--seed", "1", "--quiet", "--out", "rings")
+run(exe, "export", "rings/particles.csv", "--format", "stl", "--contacts", "shrink:0.02",
+    "--out", "rings.stl", "--quiet")
+admesh("rings.stl", 3 + 1, normals_kept=True)
+assert surface_check("rings.stl") == (True, True), ("rings.stl", "closed, not self-intersecting")
+print("rings.stl: 3 rings + container, closed, oriented, not self-intersecting")
 with open(os.path.join(work, "overlap.csv"), "w") as f:
     f.write("x,y,z,r\n0,0,1,0.5\n0.95,0.1,1.02,0.5\n")  # 0.045 Dp of overlap
 run(exe, "export", "overlap.csv", "--format", "stl", "--container-radius", "3", "--out",

@@ -468,11 +468,15 @@ INSTANTIATE_TEST_SUITE_P(
         // spheres' alone, a pellet wider than the tube.
         exact("generate --shape cylinder:1",
               "packbed generate: --shape: 'cylinder:1' is not allowed; allowed: sphere (the "
-              "default); cylinder:D,L (a cylinder of diameter D and length L); trilobe:DL,DC,L "
+              "default); cylinder:D,L (a cylinder of diameter D and length L); ring:D,DI,L (a "
+              "hollow cylinder, its bore of diameter DI, 0 < DI <= 0.9 D); trilobe:DL,DC,L "
               "(three cylinders of diameter DL, their axes on a circle of diameter DC, 0 < DC <= "
               "DL); or multilobe:N,DL,DC,L (N = 2 to 8 such lobes); each length > 0 and at most "
               "1e+15, L / D (L / DL) from 0.1 to 10"),
         naming("generate --shape trilobe:1,1.2,2", {"--shape", "trilobe:1,1.2,2", "DC <= DL"}),
+        naming("generate --shape ring:1,1,1", {"--shape", "ring:1,1,1", "DI <= 0.9 D"}),
+        naming("generate --shape ring:1,0.95,1", {"--shape", "ring:1,0.95,1", "DI <= 0.9 D"}),
+        naming("generate --shape ring:1,0.5", {"--shape", "ring:1,0.5", "ring:D,DI,L"}),
         naming("generate --shape multilobe:9,1,0.8,2",
                {"--shape", "multilobe:9,1,0.8,2", "N = 2 to 8"}),
         naming("generate --shape cylinder:1,20", {"--shape", "cylinder:1,20", "L / D"}),

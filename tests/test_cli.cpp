@@ -1742,6 +1742,39 @@ TEST(Cli, GenerateShapeTrilobeWritesItsLobesAndReadsBack) {
     EXPECT_GT(a["coordination"]["mean"].get<double>(), 0.0);
 }
 
+TEST(Cli, GenerateShapeRingWritesItsBoreAndReadsBack) {
+    // Eight rings (D = L = 1, DI = 0.5) in a tube of a = 3.5: the summary names the shape and
+    // its bore; d_v = (3 (D^2 - DI^2) L / 2)^(1/3); the tolerance is 1e-3 of the wall (D - DI)
+    // / 2 and both depths are below it; analyze reads the bed back as rings and measures the
+    // same void fraction over the same band.
+    const fs::path d = scratch("rings");
+    const Outcome o = packbed("generate --shape ring:1,0.5,1 -a 3.5 -n 8 -s 1 "
+                              "--band-clearance 0.2 --out " +
+                              d.string());
+    ASSERT_EQ(o.status, 0) << o.err;
+    const auto s = nlohmann::json::parse(slurp(d / "summary.json"));
+    EXPECT_EQ(s["shape"]["kind"], "ring");
+    EXPECT_EQ(s["shape"]["diameter"], 1.0);
+    EXPECT_EQ(s["shape"]["inner_diameter"], 0.5);
+    EXPECT_EQ(s["shape"]["length"], 1.0);
+    EXPECT_NEAR(s["shape"]["volume_equivalent_diameter"].get<double>(), std::cbrt(1.5 * 0.75),
+                1e-15);
+    EXPECT_NEAR(s["tolerance"].get<double>(), 2.5e-4, 1e-15);
+    EXPECT_LE(s["max_penetration_pair"].get<double>(), 2.5e-4);
+    EXPECT_LE(s["max_penetration_wall"].get<double>(), 2.5e-4);
+    EXPECT_GT(s["max_penetration_pair"].get<double>(), 0.0);
+    const fs::path an = scratch("rings-analysis");
+    const Outcome analysed = packbed(
+        "analyze " + (d / "particles.csv").string() +
+        " --band-clearance 0.2 --shell-width 0.25 --slab-height 0.25 -q --out " + an.string());
+    ASSERT_EQ(analysed.status, 0) << analysed.err;
+    const auto a = nlohmann::json::parse(slurp(an / "summary.json"));
+    EXPECT_EQ(a["shape"], "ring:1,0.5,1");
+    EXPECT_EQ(a["pellets"], 8);
+    ASSERT_TRUE(s.contains("void_fraction")) << s.dump();
+    EXPECT_NEAR(a["void_fraction"].get<double>(), s["void_fraction"].get<double>(), 1e-12);
+}
+
 TEST(Cli, GenerateShapeCylinderWritesPelletsWithOrientations) {
     // Eight cylinders D = L = 2 in a tube of a = 4 over d_v = (3 D^2 L / 2)^(1/3) = 12^(1/3):
     // the CSV's orientations are unit quaternions, r is d_v / 2, every centroid inside the

@@ -835,6 +835,31 @@ TEST(ContainerExportCli, LammpsSettlesTrilobesAsRigidClumps) {
     }
 }
 
+TEST(ContainerExportCli, LammpsSettlesRingsAsRigidClumps) {
+    if (!has_lmp())
+        GTEST_SKIP() << "lmp (Debian package lammps) is not installed";
+    // 3 rings (D = L = 1 mm, bore 0.5 mm), each a clump of 1710 spheres in its wall as one
+    // rigid body, none in the bore: the clumps keep their shape, and none is lost.
+    const fs::path d = scratch("ring-clumps");
+    const auto [data, input, log] =
+        settle_clumps(d, "--shape ring:0.001,0.0005,0.001 -a 3 -n 3 -s 1");
+    EXPECT_NE(data.find("5130 atoms\n"), std::string::npos);
+    EXPECT_NE(log.find("3 rigid bodies with 5130 atoms"), std::string::npos) << log;
+    EXPECT_EQ(log.find("Lost"), std::string::npos) << log;
+    const auto frames = dump_frames(slurp(d / "bed.data.lammps.dump"));
+    ASSERT_EQ(frames.size(), 2u);
+    ASSERT_EQ(frames[1].size(), 5130u);
+    const auto distance = [](const std::array<double, 4>& a, const std::array<double, 4>& b) {
+        return std::hypot(a[0] - b[0], a[1] - b[1], a[2] - b[2]);
+    };
+    for (std::size_t k = 0; k < 5130; ++k) {
+        const std::size_t first = k / 1710 * 1710;
+        EXPECT_NEAR(distance(frames[1][k], frames[1][first]),
+                    distance(frames[0][k], frames[0][first]), 3e-8)
+            << k;
+    }
+}
+
 TEST(ContainerExportCli, LatticeRegionsRefusedWithOneLine) {
     const fs::path d = scratch("bad");
     const std::string allowed =

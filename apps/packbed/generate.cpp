@@ -50,7 +50,7 @@ struct GenerateOptions {
     bool no_analysis = false; // --no-analysis: the spheres and the summary only
     bool quiet = false;
     bool force = false;
-    std::string shape = "sphere";  // --shape: a pellet instead (cylinder:D,L)
+    std::string shape = "sphere";  // --shape: a pellet instead (parse_pellet_shape)
     const CLI::App* app = nullptr; // which options were given (those a pellet bed refuses)
 };
 
@@ -60,7 +60,7 @@ constexpr std::array pellet_options{"--aspect-ratio",   "--container",   "--part
                                     "--force",          "--threads",     "--quiet",
                                     "--band-clearance", "--no-analysis", "--config"};
 
-/// --shape cylinder:D,L: a bed of pellets (docs/generate.md, "Pellets").
+/// --shape PELLET: a bed of pellets (docs/generate.md, "Pellets").
 int run_pellets(const GenerateOptions& o) {
     for (const CLI::Option* option : o.app->get_options()) {
         const std::string name = option->get_name();
@@ -293,9 +293,9 @@ Command register_generate(CLI::App& parent) {
         ->excludes(aspect);
     o.app = app;
     app->add_option("--shape", o.shape,
-                    "the particles: sphere, or cylinder:D,L (pellets of diameter D and length L, "
-                    "lengths in the bed's unit, -a over their volume-equivalent diameter d_v; "
-                    "docs/generate.md, \"Pellets\")");
+                    "the particles: sphere, or pellets: cylinder:D,L, ring:D,DI,L, "
+                    "trilobe:DL,DC,L or multilobe:N,DL,DC,L (lengths in the bed's unit, -a over "
+                    "their volume-equivalent diameter d_v; docs/generate.md, \"Pellets\")");
     app->add_option("-n,--particles", p.particles, "Np, number of spheres")
         ->check(whole_in(option_range::particles));
     app->add_option("-s,--seed", p.seed, "seed of the random generation stage")

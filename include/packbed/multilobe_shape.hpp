@@ -24,7 +24,8 @@ namespace packbed {
 /// body z axis at distance `circle` from it, lobe k towards the angle 2 pi k / lobes from the
 /// body x axis. circle <= lobe.radius: every lobe holds the axis, so the section is star-shaped
 /// about it and has no hole (a wider circle leaves a channel along the axis that the catalogue
-/// shapes fill). One lobe at circle 0 is the cylinder: every answer is then the lobe's own.
+/// shapes fill). One lobe at circle 0 is the cylinder, or the ring where the lobe has a bore
+/// (CylinderShape::bore; only one lobe may): every answer is then the lobe's own.
 struct MultilobeShape {
     static constexpr std::string_view kind = "multilobe";
     static constexpr bool oriented = true;
@@ -33,7 +34,7 @@ struct MultilobeShape {
     int lobes = 1;
     double circle = 0.0;
 
-    /// The cylinder `c` as a pellet of one lobe.
+    /// The cylinder or ring `c` as a pellet of one lobe.
     static MultilobeShape cylinder(const CylinderShape& c) { return {c, 1, 0.0}; }
     /// The pellet of `n` lobes of diameter `lobe_diameter` on a circle of diameter
     /// `circle_diameter`, `length` long (any one length unit), at the size whose volume is the
@@ -60,14 +61,19 @@ struct MultilobeShape {
     /// edges.
     double arc_half_angle() const;
     /// min(D_lobe, L) / d_v: the pellet's smallest dimension in units of d_v (the depth
-    /// tolerance's unit).
-    double smallest_dimension() const { return std::min(lobe.radius, lobe.half_length); }
+    /// tolerance's unit); a ring's min(L, (D - DI) / 2) / d_v, its wall the thinnest.
+    double smallest_dimension() const {
+        if (lobe.bore > 0.0)
+            return std::min(0.5 * (lobe.radius - lobe.bore), lobe.half_length);
+        return std::min(lobe.radius, lobe.half_length);
+    }
 
     double bounding_radius(double size) const {
         return size * std::hypot(circle + lobe.radius, lobe.half_length);
     }
     double volume(double size) const;
-    /// The ends' two sections and the side's N arcs of 2 arc_half_angle() r each, times L.
+    /// The ends' two sections and the side's N arcs of 2 arc_half_angle() r each, times L; a
+    /// ring's bore adds 2 pi R_i L.
     double surface_area(double size) const;
     /// The lobes' farthest point along v (the farthest lobe's, the first of equals).
     Vec3 support(const Placement& p, const Vec3& v) const;
@@ -101,8 +107,9 @@ struct MultilobeShape {
     /// Each lobe's nodes (CylinderShape::surface_nodes) that lie in its wedge: on the ends,
     /// the union's section once; on the side, the lobe's arc.
     std::vector<SurfaceNode> surface_nodes(double spacing, bool rows = true) const;
-    /// Each lobe's circles about its own axis, kept to its arc.
-    std::vector<SurfaceCircle> surface_circles(double spacing) const;
+    /// Each lobe's circles about its own axis, kept to its arc (a ring's: its own, its rows
+    /// at most `row_spacing` apart where > 0).
+    std::vector<SurfaceCircle> surface_circles(double spacing, double row_spacing = 0.0) const;
     /// The deepest of the lobes' signed depths (the distance outside, negated, is the least).
     double signed_depth(const Vec3& q) const {
         if (lobes == 1)

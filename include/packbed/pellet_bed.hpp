@@ -30,7 +30,8 @@ struct PelletBedParameters {
     /// The void fraction of the column the pellets are poured from (the paper's e0 of eq. 6).
     /// They are placed apart (their bounding spheres, random sequential addition), so it is
     /// loose: 0.87 at L = D leaves their bounding spheres (1.9 times a pellet's volume) a
-    /// quarter of the column, below where such addition jams; (0, 1).
+    /// quarter of the column, below where such addition jams (a ring's, whose sphere holds
+    /// more, is loosened to the same quarter); (0, 1).
     double e0 = 0.87;
     /// The largest allowed final penetration depth, pair and wall, in units of the pellet's
     /// smallest dimension min(D, L); (0, 0.1].

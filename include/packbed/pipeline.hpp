@@ -117,16 +117,18 @@ nlohmann::json generation_summary(const PreparedGeneration& prepared,
 // generate --shape: a bed of pellets (pellet_bed.hpp, docs/generate.md "Pellets")
 
 /// A pellet as users write it (--shape), in length units, each length in (0,
-/// limits::max_length]: "cylinder:D,L" (L / D from 0.1 to 10), "trilobe:DL,DC,L" (three lobes
-/// of diameter DL on a circle of diameter DC, 0 < DC <= DL, L / DL from 0.1 to 10), or
+/// limits::max_length]: "cylinder:D,L" (L / D from 0.1 to 10), "ring:D,DI,L" (a hollow
+/// cylinder, its bore DI < D, DI / D at most 0.9, L / D from 0.1 to 10), "trilobe:DL,DC,L" (three
+/// lobes of diameter DL on a circle of diameter DC, 0 < DC <= DL, L / DL from 0.1 to 10), or
 /// "multilobe:N,DL,DC,L" (N from 2 to 8 lobes, the same ranges).
 struct PelletSpec {
-    /// At the volume-equivalent size: MultilobeShape::cylinder(CylinderShape::of_aspect(L / D))
-    /// or MultilobeShape::of.
+    /// At the volume-equivalent size: MultilobeShape::cylinder(CylinderShape::of_aspect(L / D)),
+    /// MultilobeShape::cylinder(CylinderShape::ring(D, DI, L)) or MultilobeShape::of.
     MultilobeShape shape;
-    std::string kind;             ///< "cylinder", "trilobe" or "multilobe"
+    std::string kind;             ///< "cylinder", "ring", "trilobe" or "multilobe"
     double diameter = 0.0;        ///< D, or DL for a multilobe
-    double circle_diameter = 0.0; ///< DC (0 for a cylinder)
+    double circle_diameter = 0.0; ///< DC (0 for a cylinder or a ring)
+    double inner_diameter = 0.0;  ///< a ring's DI (0 for the others)
     double length = 0.0;          ///< L
     double volume_diameter = 0.0; ///< d_v = (6 V / pi)^(1/3), the bed's unit
     std::string text;             ///< as given

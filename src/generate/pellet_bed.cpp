@@ -33,6 +33,9 @@ void PelletBedParameters::validate() const {
                 std::isfinite(shape.lobe.radius) && std::isfinite(shape.lobe.half_length),
             "shape radius", shape.lobe.radius, "lobes of positive, finite radius and length");
     require(shape.lobes >= 1 && shape.lobes <= 8, "lobes", shape.lobes, "1 to 8");
+    require(shape.lobe.bore >= 0.0 && shape.lobe.bore < shape.lobe.radius &&
+                (shape.lobes == 1 || shape.lobe.bore == 0.0),
+            "bore", shape.lobe.bore, "0 to less than the radius (0 for a multilobe)");
     require(shape.circle >= 0.0 && shape.circle <= shape.lobe.radius &&
                 (shape.lobes > 1 || shape.circle == 0.0),
             "lobes' circle", shape.circle, "0 to the lobe's radius (0 for one lobe)");
@@ -116,14 +119,14 @@ public:
         m_reach = m_params.shape.bounding_radius(m_size);
         m_volume = m_params.shape.volume(m_size);
         const double spacing = m_params.node_spacing / m_size;
-        // A multilobe's wall nodes close enough that a lobe's rim between two of them reaches
-        // at most half the tolerance past them (a chord s of a circle of radius R lies
+        // A multilobe's and a ring's wall nodes close enough that a rim between two of them
+        // reaches at most half the tolerance past them (a chord s of a circle of radius R lies
         // s^2 / (8 R) inside it): s = sqrt(4 R tol), both at size 1. Coarser, a rim can press
         // a wall deeper than the tolerance while no node feels it (docs/notes/pellets.md,
         // "Wall nodes"). A cylinder's keep the spacing its beds were measured with.
         const double tol_at_size = params.tolerance * params.smallest_dimension() / m_size;
         const double wall_spacing =
-            m_params.shape.lobes > 1
+            m_params.shape.lobes > 1 || m_params.shape.lobe.bore > 0.0
                 ? std::min(spacing, std::sqrt(4.0 * m_params.shape.lobe.radius * tol_at_size))
                 : spacing;
         for (const bool rows : {false, true})
@@ -133,7 +136,10 @@ public:
                 node.area *= m_size * m_size;
                 (rows ? m_wall_nodes : m_nodes).push_back(node);
             }
-        m_circles = m_params.shape.surface_circles(spacing);
+        // A ring's rows as close as its wall nodes: two sides crossing at the tolerance's
+        // depth touch over about sqrt(8 R tol) along each, which coarser rows can straddle.
+        m_circles = m_params.shape.surface_circles(
+            spacing, m_params.shape.lobe.bore > 0.0 ? wall_spacing : 0.0);
         // The nodes off the circles in two groups, below and above the body's middle (a
         // cylinder's ends), each with the sphere about its mean that holds it.
         const auto below = std::stable_partition(
@@ -152,6 +158,8 @@ public:
         }
         m_dmin = params.smallest_dimension();
         m_tol = m_params.tolerance * m_dmin;
+        if (m_params.shape.lobe.bore > 0.0)
+            m_blend = std::min(edge_blend, tol_at_size);
     }
 
     PelletBed run() {
@@ -185,12 +193,20 @@ private:
     /// faces), which a pour never makes.
     void insert() {
         const std::size_t n = m_params.particles;
-        const double height = m_container.fill_height(static_cast<double>(n), m_params.e0);
+        // A ring's bounding sphere holds 2.5 times its volume (D = L = 2 DI), more than the
+        // cylinder's 1.9 that e0 = 0.87 leaves a quarter of the column: its column is loosened
+        // until the spheres fill a quarter of it again.
+        double e0 = m_params.e0;
+        if (m_params.shape.lobe.bore > 0.0)
+            e0 = std::max(e0,
+                          1.0 - 0.25 * m_volume /
+                                    (4.0 / 3.0 * std::numbers::pi * m_reach * m_reach * m_reach));
+        const double height = m_container.fill_height(static_cast<double>(n), e0);
         if (const auto top = m_container.top(); top && height + 2.0 * m_reach > *top)
             throw InvalidInput(fmt::format(
                 "particles = {} is not allowed in {}: the pellets' column ({:.6g} d_v at e0 = "
                 "{}) reaches above its top; allowed: fewer pellets or a taller container",
-                n, m_container.describe(), height + 2.0 * m_reach, m_params.e0));
+                n, m_container.describe(), height + 2.0 * m_reach, e0));
         std::mt19937_64 rng(m_params.seed);
         const double cell = 2.0 * m_reach;
         const auto key = [cell](const Vec3& p) {
@@ -228,7 +244,7 @@ private:
                     throw InvalidInput(fmt::format(
                         "e0 = {} is not allowed for {} pellets in {}: {} draws found no room "
                         "for pellet {}; allowed: a looser column (a larger e0)",
-                        m_params.e0, n, m_container.describe(), attempts, i + 1));
+                        e0, n, m_container.describe(), attempts, i + 1));
                 const double u = uniform01(rng), v = uniform01(rng);
                 const double z = height * uniform01(rng) + m_reach;
                 p = m_container.uniform_point(m_reach, u, v, z);
@@ -262,7 +278,7 @@ private:
                 const Vec3 d = p - u;
                 if (norm2(d) >= reach2)
                     continue;
-                const InsideDepth in = shape.inside(rb.inverse(d) * (1.0 / m_size), edge_blend);
+                const InsideDepth in = shape.inside(rb.inverse(d) * (1.0 / m_size), m_blend);
                 if (in.depth <= 0.0)
                     continue;
                 const double depth = in.depth * m_size;
@@ -407,7 +423,7 @@ private:
                     if (!on_arc(centre_t + span * gx[g]))
                         continue;
                     const Vec3 q = at(centre_t + span * gx[g]);
-                    const InsideDepth in = shape.inside(q, edge_blend);
+                    const InsideDepth in = shape.inside(q, m_blend);
                     if (in.depth <= 0.0)
                         continue;
                     const double depth = in.depth * m_size;
@@ -735,7 +751,9 @@ private:
     static constexpr double exact_stiffness = 0.01;
     /// The width of the smooth minimum of a point's distances to a side and an end (inside's
     /// blend), in units of the size: the pushing face turns over this width instead of at
-    /// once. An edge is then 1e-3 of the size (5e-4 d_v) shallower than it is.
+    /// once. An edge is then 1e-3 of the size (5e-4 d_v) shallower than it is. A ring's
+    /// tolerance (1e-3 of its wall) is below that: its blend is its tolerance, an edge at most
+    /// a quarter of a tolerance shallower (m_blend).
     static constexpr double edge_blend = 4e-3;
     /// Points about a circle searched for its part inside a neighbour.
     static constexpr int circle_samples = 64;
@@ -746,6 +764,7 @@ private:
     std::optional<Periods> m_cell;
     double m_size = 0.5, m_reach = 0.0, m_volume = 0.0, m_dmin = 0.0;
     double m_tol = 0.0;                             ///< the final depth tolerance, d_v
+    double m_blend = edge_blend;                    ///< inside's blend (edge_blend)
     std::vector<SurfaceNode> m_nodes, m_wall_nodes; // without and with the side's rows
     std::vector<SurfaceCircle> m_circles;           // the side's rows, whole
     std::vector<NodeGroup> m_groups;

@@ -14,6 +14,7 @@
 #include "packbed/box.hpp"
 #include "packbed/volume.hpp"
 #include "section_volume.hpp"
+#include "surface_search.hpp"
 
 namespace packbed {
 
@@ -482,11 +483,24 @@ CylinderShape CylinderShape::of_aspect(double aspect) {
     return {r, r * aspect};
 }
 
+CylinderShape CylinderShape::ring(double d, double di, double l) {
+    // At size 1, d_v = 2: the lengths times 2 / d_v.
+    const double dv = std::cbrt(1.5 * (d * d - di * di) * l);
+    const double scale = 2.0 / dv;
+    return {0.5 * d * scale, 0.5 * l * scale, 0.5 * di * scale};
+}
+
+double CylinderShape::section_area() const {
+    return pi * (radius * radius - bore * bore);
+}
+
 double CylinderShape::bounding_radius(double size) const {
     return size * std::hypot(radius, half_length);
 }
 
 double CylinderShape::volume(double size) const {
+    if (bore > 0.0)
+        return 2.0 * section_area() * half_length * size * size * size;
     return 2.0 * pi * radius * radius * half_length * size * size * size;
 }
 
@@ -508,13 +522,60 @@ void CylinderShape::wall_contacts(const Container& c, const Placement& p,
 }
 
 double CylinderShape::wall_overlap(const Container& c, const Placement& p, double grow) const {
-    if (grow > 0.0)
-        return c.convex_wall_overlap(
-            [&](const Vec3& v) { return support(p, v) + v * (grow / norm(v)); }, p.position,
-            bounding_radius(p.size) + grow);
-    return c.convex_wall_overlap([&](const Vec3& v) { return support(p, v); }, p.position,
-                                 bounding_radius(p.size));
+    const double hull =
+        grow > 0.0 ? c.convex_wall_overlap(
+                         [&](const Vec3& v) { return support(p, v) + v * (grow / norm(v)); },
+                         p.position, bounding_radius(p.size) + grow)
+                   : c.convex_wall_overlap([&](const Vec3& v) { return support(p, v); }, p.position,
+                                           bounding_radius(p.size));
+    if (bore == 0.0 || !(hull > 0.0))
+        return hull;
+    const detail::SurfacePeak peak = detail::highest_on_surface(*this, [&](const Vec3& q) {
+        return c.sticks_out(p.position + rotate(p.orientation, q) * p.size, grow);
+    });
+    return std::max(0.0, peak.value);
 }
+
+namespace {
+
+/// The deepest point of either's surface inside the other (highest_on_surface of the other's
+/// signed_depth), as a PairOverlap of a and b (b at ab from a): the depth (minus their distance
+/// when they are apart), the normal from a towards b (the outward normal of the surface the
+/// point is nearest, turned from b's surface into a's push), the point halfway between that
+/// point and the surface.
+PairOverlap deepest_surface_point(const CylinderShape& first, const Placement& a,
+                                  const CylinderShape& second, const Placement& b, const Vec3& ab) {
+    // q: a body-frame point of `from` (size 1) in the body frame of `into`, at `shift` from it.
+    const auto peak_of = [](const CylinderShape& from, const Placement& pf,
+                            const CylinderShape& into, const Placement& pt, const Vec3& shift) {
+        // The signed depth in units of the size of `into`, in the bed's lengths.
+        return detail::highest_on_surface(from, [&](const Vec3& q) {
+            const Vec3 world = rotate(pf.orientation, q) * pf.size - shift;
+            return into.signed_depth(rotate(conjugate(pt.orientation), world) * (1.0 / pt.size)) *
+                   pt.size;
+        });
+    };
+    const detail::SurfacePeak in_b = peak_of(first, a, second, b, ab);
+    const detail::SurfacePeak in_a = peak_of(second, b, first, a, -1.0 * ab);
+    const bool a_deeper = in_b.value >= in_a.value;
+    const double depth = a_deeper ? in_b.value : in_a.value;
+    // The point from a's position and the outward normal of the body it lies in.
+    Vec3 point, out;
+    if (a_deeper) {
+        point = rotate(a.orientation, in_b.point) * a.size;
+        const Vec3 local = rotate(conjugate(b.orientation), point - ab) * (1.0 / b.size);
+        out = rotate(b.orientation, second.inside(local).normal);
+    } else {
+        point = rotate(b.orientation, in_a.point) * b.size + ab;
+        const Vec3 local = rotate(conjugate(a.orientation), point) * (1.0 / a.size);
+        out = rotate(a.orientation, first.inside(local).normal);
+    }
+    // a's point inside b leaves it along b's outward normal, so b moves the other way.
+    const Vec3 normal = a_deeper ? -1.0 * out : out;
+    return {depth, normal, point + out * (0.5 * std::max(depth, 0.0))};
+}
+
+} // namespace
 
 PairOverlap CylinderShape::pair_overlap(const Placement& a, const CylinderShape& other,
                                         const Placement& b, const Vec3& ab) const {
@@ -538,6 +599,13 @@ PairOverlap CylinderShape::pair_overlap(const Placement& a, const CylinderShape&
     ccd_vec3_t direction, position;
     if (ccdMPRPenetration(&first, &second, &ccd, &depth, &direction, &position) != 0)
         return {0.0, along, {}};
+    // A ring's hull overlaps: its surface searched.
+    if (bore > 0.0 || other.bore > 0.0) {
+        const PairOverlap deepest = deepest_surface_point(*this, a, other, b, ab);
+        if (!(deepest.depth > 0.0))
+            return {0.0, along, {}};
+        return deepest;
+    }
     // MPR's depth is along one supporting plane of the Minkowski difference, up to 12 % more
     // than the least (docs/notes/pellets.md); the least from the closed-form support.
     const CylinderPair pair = CylinderPair::of(*this, a, other, b, ab);
@@ -552,6 +620,8 @@ PairOverlap CylinderShape::pair_overlap(const Placement& a, const CylinderShape&
 
 double CylinderShape::pair_gap(const Placement& a, const CylinderShape& other, const Placement& b,
                                const Vec3& ab) const {
+    if (bore > 0.0 || other.bore > 0.0)
+        return -deepest_surface_point(*this, a, other, b, ab).depth;
     const double distance = norm(ab);
     const CylinderPair pair = CylinderPair::of(*this, a, other, b, ab);
     return -cylinder_depth(pair, distance > 0.0 ? ab * (1.0 / distance) : Vec3{0.0, 0.0, 1.0})
@@ -567,9 +637,10 @@ namespace {
 
 /// The volume of the cylinder in the container `c` between two heights: none where its
 /// bounding sphere misses the heights, the slab's closed-form sections where the sphere keeps
-/// clear of the side, the region's otherwise.
+/// clear of the side, the region's otherwise (in a tube, its closed-form sections met with the
+/// wall's circle where `disc_sections`).
 double cylinder_in(const CylinderShape& shape, const Container& c, const Placement& p, double z_low,
-                   double z_high) {
+                   double z_high, bool disc_sections = true) {
     const double reach = shape.bounding_radius(p.size);
     const double low = std::max(z_low, p.position.z - reach);
     const double high = std::min(z_high, p.position.z + reach);
@@ -580,7 +651,7 @@ double cylinder_in(const CylinderShape& shape, const Container& c, const Placeme
     if (c.wall_overlap(p.position, reach) <= 0.0 &&
         c.contains({p.position.x, p.position.y, std::max(p.position.z, 0.0)}))
         return slab_volume(f, p.position, r, h, low, high);
-    if (const std::optional<double> tube = c.tube_diameter())
+    if (const std::optional<double> tube = c.tube_diameter(); tube && disc_sections)
         return disc_volume(f, p.position, r, h, low, high, 0.5 * *tube);
     return region_volume(
         f, p.position, h, low, high,
@@ -592,12 +663,19 @@ double cylinder_in(const CylinderShape& shape, const Container& c, const Placeme
 
 double CylinderShape::volume_in(const Container& c, const Placement& p, double z_low,
                                 double z_high) const {
+    // A ring's by the region's integral: a ring lying flat against a tube's wall (its axis
+    // vertical but for 1e-7) cuts sections nearly tangent to the wall profiles' circles, whose
+    // crossings the tube's closed-form sections search through their whole budget
+    // (docs/notes/pellets.md, "Rings: what their beds needed").
+    if (bore > 0.0)
+        return cylinder_in({radius, half_length}, c, p, z_low, z_high, false) -
+               cylinder_in({bore, half_length}, c, p, z_low, z_high, false);
     return cylinder_in(*this, c, p, z_low, z_high);
 }
 
 double CylinderShape::volume_from_wall(const Container& c, std::size_t wall, double d,
                                        const Placement& p, double z_low, double z_high) const {
-    return cylinder_in(*this, c.shrunk_from(wall, d), p, z_low, z_high);
+    return volume_in(c.shrunk_from(wall, d), p, z_low, z_high);
 }
 
 double CylinderShape::volume_in_box(const Placement& p, const Vec3& low, const Vec3& high) const {
@@ -607,7 +685,7 @@ double CylinderShape::volume_in_box(const Placement& p, const Vec3& low, const V
         o.y - reach >= high.y)
         return 0.0;
     const Container box(Box(low.x, high.x, low.y, high.y));
-    return cylinder_in(*this, box, p, low.z, high.z);
+    return volume_in(box, p, low.z, high.z);
 }
 
 namespace {
@@ -635,9 +713,62 @@ NodeSteps node_steps(const CylinderShape& c, double spacing) {
     return s;
 }
 
+/// A ring's surface_nodes (rows_too) or, without rows, the ends' inner rings; its circles
+/// (surface_circles): the side's rows (rims first), then the bore's.
+struct RingNodes {
+    std::vector<SurfaceNode> nodes;
+    std::vector<SurfaceCircle> circles;
+};
+
+RingNodes ring_nodes(const CylinderShape& c, double spacing, bool rows_too,
+                     double row_spacing = 0.0) {
+    const auto count = [spacing](double span) { return node_count(span, spacing); };
+    const double length = 2.0 * c.half_length, r_in = c.bore, r_out = c.radius;
+    const int rings = count(r_out - r_in);
+    const double ring_step = (r_out - r_in) / rings;
+    RingNodes out;
+    const auto circle = [&](double r, double z, int n, double offset, double area) {
+        for (int i = 0; i < n; ++i) {
+            const double phi = 2.0 * pi * (i + offset) / n;
+            out.nodes.push_back({{r * std::cos(phi), r * std::sin(phi), z}, area / n});
+        }
+    };
+    // The ends' inner rings, each the band of half a step either side.
+    for (const double z : {-c.half_length, c.half_length})
+        for (int j = 1; j < rings; ++j) {
+            const double r = r_in + j * ring_step;
+            const double low = r - 0.5 * ring_step, high = r + 0.5 * ring_step;
+            circle(r, z, std::max(3, count(2.0 * pi * r)), 0.5 * (j % 2),
+                   pi * (high * high - low * low));
+        }
+    // The side's and the bore's rows; the first and last of each are rims, with the ends'
+    // half band beside them.
+    const int rows = node_count(length, row_spacing > 0.0 ? row_spacing : spacing);
+    for (const double r : {r_out, r_in}) {
+        const int around = std::max(6, count(2.0 * pi * r));
+        const double row_area = 2.0 * pi * r * length / rows;
+        const double band = r == r_out ? r - 0.5 * ring_step : r + 0.5 * ring_step;
+        const double rim_area = 0.5 * row_area + pi * std::abs(r * r - band * band);
+        const double per_length = 1.0 / (2.0 * pi * r);
+        out.circles.push_back({-c.half_length, r, rim_area * per_length});
+        out.circles.push_back({c.half_length, r, rim_area * per_length});
+        for (int k = 1; k < rows; ++k)
+            out.circles.push_back({-c.half_length + length * k / rows, r, row_area * per_length});
+        for (int k = 0; k <= rows && rows_too; ++k) {
+            const bool rim = k == 0 || k == rows;
+            circle(r, -c.half_length + length * k / rows, around, rim ? 0.0 : 0.5 * (k % 2),
+                   rim ? rim_area : row_area);
+        }
+    }
+    return out;
+}
+
 } // namespace
 
-std::vector<SurfaceCircle> CylinderShape::surface_circles(double spacing) const {
+std::vector<SurfaceCircle> CylinderShape::surface_circles(double spacing,
+                                                          double row_spacing) const {
+    if (bore > 0.0)
+        return ring_nodes(*this, spacing, false, row_spacing).circles;
     const NodeSteps steps = node_steps(*this, spacing);
     const double length = 2.0 * pi * radius;
     std::vector<SurfaceCircle> out{{-half_length, radius, steps.rim_area / length},
@@ -649,6 +780,8 @@ std::vector<SurfaceCircle> CylinderShape::surface_circles(double spacing) const 
 }
 
 std::vector<SurfaceNode> CylinderShape::surface_nodes(double spacing, bool rows_too) const {
+    if (bore > 0.0)
+        return ring_nodes(*this, spacing, rows_too).nodes;
     const double length = 2.0 * half_length;
     const auto count = [spacing](double span) { return node_count(span, spacing); };
     const NodeSteps steps = node_steps(*this, spacing);
@@ -683,6 +816,28 @@ std::vector<SurfaceNode> CylinderShape::surface_nodes(double spacing, bool rows_
 TriangleMesh CylinderShape::unit_surface(int level) const {
     const auto n = static_cast<std::uint32_t>(12u << std::clamp(level, 0, 8));
     TriangleMesh mesh;
+    if (bore > 0.0) {
+        // Rings of n vertices: the side's bottom and top, then the bore's.
+        for (const double r : {radius, bore})
+            for (const double z : {-half_length, half_length})
+                for (std::uint32_t k = 0; k < n; ++k) {
+                    const double phi = 2.0 * pi * k / n;
+                    mesh.vertices.push_back({r * std::cos(phi), r * std::sin(phi), z});
+                }
+        const std::uint32_t top = n, in_bottom = 2 * n, in_top = 3 * n;
+        for (std::uint32_t k = 0; k < n; ++k) {
+            const std::uint32_t next = (k + 1) % n;
+            mesh.triangles.push_back({k, next, top + next}); // the side, seen from outside
+            mesh.triangles.push_back({k, top + next, top + k});
+            mesh.triangles.push_back({in_bottom + k, in_top + k, in_top + next}); // the bore
+            mesh.triangles.push_back({in_bottom + k, in_top + next, in_bottom + next});
+            mesh.triangles.push_back({in_bottom + k, in_bottom + next, next}); // from below
+            mesh.triangles.push_back({in_bottom + k, next, k});
+            mesh.triangles.push_back({in_top + k, top + k, top + next}); // from above
+            mesh.triangles.push_back({in_top + k, top + next, in_top + next});
+        }
+        return mesh;
+    }
     mesh.vertices.reserve(2 * n + 2);
     for (const double z : {-half_length, half_length})
         for (std::uint32_t k = 0; k < n; ++k) {

@@ -54,6 +54,8 @@ Placement MultilobeShape::lobe_placement(const Placement& p, int k) const {
 }
 
 double MultilobeShape::section_area() const {
+    if (lobe.bore > 0.0)
+        return lobe.section_area();
     if (lobes == 1)
         return pi * lobe.radius * lobe.radius;
     return 2.0 * lobes * wedge_area(lobe.radius, circle, pi / lobes);
@@ -82,7 +84,9 @@ double MultilobeShape::volume(double size) const {
 }
 
 double MultilobeShape::surface_area(double size) const {
-    const double side = lobes * 2.0 * arc_half_angle() * lobe.radius * 2.0 * lobe.half_length;
+    double side = lobes * 2.0 * arc_half_angle() * lobe.radius * 2.0 * lobe.half_length;
+    if (lobe.bore > 0.0)
+        side += 2.0 * pi * lobe.bore * 2.0 * lobe.half_length;
     return (2.0 * section_area() + side) * size * size;
 }
 
@@ -277,9 +281,10 @@ std::vector<SurfaceNode> MultilobeShape::surface_nodes(double spacing, bool rows
     return out;
 }
 
-std::vector<SurfaceCircle> MultilobeShape::surface_circles(double spacing) const {
+std::vector<SurfaceCircle> MultilobeShape::surface_circles(double spacing,
+                                                           double row_spacing) const {
     if (lobes == 1)
-        return lobe.surface_circles(spacing);
+        return lobe.surface_circles(spacing, row_spacing);
     std::vector<SurfaceCircle> out;
     const double half = arc_half_angle();
     for (int k = 0; k < lobes; ++k) {

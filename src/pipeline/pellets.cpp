@@ -23,6 +23,9 @@ namespace packbed {
 namespace {
 
 constexpr double min_aspect = 0.1, max_aspect = 10.0; // L / D of a cylinder pellet
+/// DI / D of a ring: a thinner wall than D / 20 is a tube, not a pellet, and its depth
+/// tolerance (1e-3 of the wall) below what the nodes resolve.
+constexpr double max_bore = 0.9;
 
 } // namespace
 
@@ -53,6 +56,22 @@ std::optional<PelletSpec> parse_pellet_shape(std::string_view text) {
         out.volume_diameter = std::cbrt(1.5 * d * d * l);
         return out;
     }
+    if (spec.kind == "ring") {
+        if (numbers->size() != 3)
+            return std::nullopt;
+        const double d = (*numbers)[0], di = (*numbers)[1], l = (*numbers)[2];
+        if (!(length_ok(d) && length_ok(di) && length_ok(l) && di < d))
+            return std::nullopt;
+        if (!(l / d >= min_aspect && l / d <= max_aspect && di / d <= max_bore))
+            return std::nullopt;
+        out.shape = MultilobeShape::cylinder(CylinderShape::ring(d, di, l));
+        out.diameter = d;
+        out.inner_diameter = di;
+        out.length = l;
+        // pi (D^2 - DI^2) L / 4 = pi d_v^3 / 6.
+        out.volume_diameter = std::cbrt(1.5 * (d * d - di * di) * l);
+        return out;
+    }
     const bool trilobe = spec.kind == "trilobe";
     if (!trilobe && spec.kind != "multilobe")
         return std::nullopt;
@@ -81,10 +100,11 @@ std::optional<PelletSpec> parse_pellet_shape(std::string_view text) {
 std::string allowed_shapes() {
     return fmt::format(
         "sphere (the default); cylinder:D,L (a cylinder of diameter D and length L); "
+        "ring:D,DI,L (a hollow cylinder, its bore of diameter DI, 0 < DI <= {:g} D); "
         "trilobe:DL,DC,L (three cylinders of diameter DL, their axes on a circle of diameter "
         "DC, 0 < DC <= DL); or multilobe:N,DL,DC,L (N = 2 to 8 such lobes); each length > 0 "
         "and at most {:g}, L / D (L / DL) from {:g} to {:g}",
-        limits::max_length, min_aspect, max_aspect);
+        max_bore, limits::max_length, min_aspect, max_aspect);
 }
 
 PreparedPellets prepare_pellets(const PelletRequest& request) {
@@ -139,7 +159,13 @@ GeneratedPellets run_pellets(const PreparedPellets& prepared, const RunControl& 
     s["version"] = std::string(version);
     s["generator"] = "pellets: level-set contact and FIRE on positions and rotations "
                      "(docs/design.md, \"A bed of cylinder pellets\")";
-    if (pellet.shape.lobes == 1)
+    if (pellet.shape.lobe.bore > 0.0)
+        s["shape"] = {{"kind", pellet.kind},
+                      {"spec", pellet.text},
+                      {"diameter", pellet.diameter},
+                      {"inner_diameter", pellet.inner_diameter},
+                      {"length", pellet.length}};
+    else if (pellet.shape.lobes == 1)
         s["shape"] = {{"kind", pellet.kind},
                       {"spec", pellet.text},
                       {"diameter", pellet.diameter},

@@ -207,15 +207,15 @@ def test_bad_values_raise_value_error_with_one_line(call, words):
         assert word in message
 
 
-def pellets_from_both(tmp_path, shape, particles, seed):
-    """A pellet bed in a tube of a = 4 from the command line (tmp_path/cli) and from Python
-    (tmp_path/py): asserts their particles.csv and particles.vtu are the same bytes, returns
-    the Python bed."""
-    status, _, err = cli("generate", "--shape", shape, "-a", 4, "-n", particles, "-s", seed,
-                         "-q", "--out", tmp_path / "cli")
+def pellets_from_both(tmp_path, shape, particles, seed, aspect_ratio=4):
+    """A pellet bed in a tube (a = 4 unless given) from the command line (tmp_path/cli) and
+    from Python (tmp_path/py): asserts their particles.csv and particles.vtu are the same
+    bytes, returns the Python bed."""
+    status, _, err = cli("generate", "--shape", shape, "-a", aspect_ratio, "-n", particles,
+                         "-s", seed, "-q", "--out", tmp_path / "cli")
     assert status == 0, err
-    bed = packbed.generate(shape=shape, aspect_ratio=4, particles=particles, seed=seed,
-                           out=str(tmp_path / "py"))
+    bed = packbed.generate(shape=shape, aspect_ratio=aspect_ratio, particles=particles,
+                           seed=seed, out=str(tmp_path / "py"))
     for name in ["particles.csv", "particles.vtu"]:
         assert (tmp_path / "py" / name).read_bytes() == (tmp_path / "cli" / name).read_bytes()
     return bed
@@ -249,6 +249,17 @@ def test_a_trilobe_bed_has_the_command_lines_bytes(tmp_path):
     assert bed.summary["shape"]["kind"] == "trilobe"
     assert bed.summary["shape"]["lobes"] == 3
     assert 0 < bed.summary["max_penetration_pair"] <= bed.summary["tolerance"]
+
+
+def test_a_ring_bed_has_the_command_lines_bytes(tmp_path):
+    # 3 rings (D = L = 1, bore 0.5) in a tube of a = 3: the same bytes from Python as from the
+    # command line, the bore in the summary, the tolerance 1e-3 of the wall (D - DI) / 2.
+    bed = pellets_from_both(tmp_path, "ring:1,0.5,1", 3, 1, aspect_ratio=3)
+    assert bed.orientations.shape == (3, 4)
+    assert bed.summary["shape"]["kind"] == "ring"
+    assert bed.summary["shape"]["inner_diameter"] == 0.5
+    assert bed.summary["tolerance"] == pytest.approx(2.5e-4, abs=1e-15)
+    assert bed.summary["max_penetration_wall"] <= bed.summary["tolerance"]
 
 
 def test_bad_output_directory_raises_and_writes_nothing(tmp_path):
