@@ -34,7 +34,7 @@ struct PelletBedParameters {
     /// more, is loosened to the same quarter); (0, 1).
     double e0 = 0.87;
     /// The largest allowed final penetration depth, pair and wall, in units of the pellet's
-    /// smallest dimension min(D, L); (0, 0.1].
+    /// smallest dimension min(D, L) (a ring's min(L, (D - DI) / 2), its wall); (0, 0.1].
     double tolerance = 1e-3;
     /// The settling band of the gravity control, in the same units as the tolerance: the
     /// largest depth is held between them until the mass centre stops.
@@ -48,7 +48,7 @@ struct PelletBedParameters {
 
     /// \throws InvalidInput naming the parameter, its value and the allowed range.
     void validate() const;
-    /// \return min(D, L) in units of d_v.
+    /// \return min(D, L) in units of d_v (a ring's min(L, (D - DI) / 2)).
     double smallest_dimension() const;
 };
 
