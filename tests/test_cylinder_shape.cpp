@@ -13,6 +13,8 @@
 
 #include <gtest/gtest.h>
 
+#include "rotations.hpp"
+
 #include "packbed/analysis.hpp"
 #include "packbed/annulus.hpp"
 #include "packbed/bed_volume.hpp"
@@ -30,12 +32,6 @@ using namespace packbed;
 namespace {
 
 constexpr double pi = std::numbers::pi;
-
-/// The rotation by `angle` about the unit vector `axis`.
-Quaternion about(const Vec3& axis, double angle) {
-    const double s = std::sin(0.5 * angle);
-    return {std::cos(0.5 * angle), axis.x * s, axis.y * s, axis.z * s};
-}
 
 /// A uniformly random rotation (Shoemake 1992, from three uniform numbers).
 Quaternion random_rotation(std::mt19937_64& rng) {

@@ -11,6 +11,8 @@
 
 #include <gtest/gtest.h>
 
+#include "rotations.hpp"
+
 #include "packbed/box.hpp"
 #include "packbed/container.hpp"
 #include "packbed/cylinder_shape.hpp"
@@ -21,11 +23,6 @@ using namespace packbed;
 namespace {
 
 constexpr double pi = std::numbers::pi;
-
-Quaternion about(const Vec3& axis, double angle) {
-    const double s = std::sin(0.5 * angle);
-    return {std::cos(0.5 * angle), axis.x * s, axis.y * s, axis.z * s};
-}
 
 /// Whether the body-frame point (x, y) lies in one of n discs of radius r whose centres lie
 /// at distance c from the origin at the angles 2 pi k / n: the test's own union.

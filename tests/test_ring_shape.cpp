@@ -12,6 +12,8 @@
 
 #include <gtest/gtest.h>
 
+#include "rotations.hpp"
+
 #include "packbed/annulus.hpp"
 #include "packbed/box.hpp"
 #include "packbed/container.hpp"
@@ -23,11 +25,6 @@ using namespace packbed;
 namespace {
 
 constexpr double pi = std::numbers::pi;
-
-Quaternion about(const Vec3& axis, double angle) {
-    const double s = std::sin(0.5 * angle);
-    return {std::cos(0.5 * angle), axis.x * s, axis.y * s, axis.z * s};
-}
 
 /// The test's own ring: outer radius 1, bore 0.5, half-length 0.6.
 const CylinderShape ring{1.0, 0.6, 0.5};

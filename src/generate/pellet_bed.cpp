@@ -116,6 +116,7 @@ public:
         , m_cell(params.container.periods()) {
         params.validate();
         m_size = 0.5; // d_v = 1
+        const bool ring = m_params.shape.lobe.bore > 0.0;
         m_reach = m_params.shape.bounding_radius(m_size);
         m_volume = m_params.shape.volume(m_size);
         const double spacing = m_params.node_spacing / m_size;
@@ -126,7 +127,7 @@ public:
         // "Wall nodes"). A cylinder's keep the spacing its beds were measured with.
         const double tol_at_size = params.tolerance * params.smallest_dimension() / m_size;
         const double wall_spacing =
-            m_params.shape.lobes > 1 || m_params.shape.lobe.bore > 0.0
+            m_params.shape.lobes > 1 || ring
                 ? std::min(spacing, std::sqrt(4.0 * m_params.shape.lobe.radius * tol_at_size))
                 : spacing;
         for (const bool rows : {false, true})
@@ -138,8 +139,7 @@ public:
             }
         // A ring's rows as close as its wall nodes: two sides crossing at the tolerance's
         // depth touch over about sqrt(8 R tol) along each, which coarser rows can straddle.
-        m_circles = m_params.shape.surface_circles(
-            spacing, m_params.shape.lobe.bore > 0.0 ? wall_spacing : 0.0);
+        m_circles = m_params.shape.surface_circles(spacing, ring ? wall_spacing : 0.0);
         // The nodes off the circles in two groups, below and above the body's middle (a
         // cylinder's ends), each with the sphere about its mean that holds it.
         const auto below = std::stable_partition(
@@ -158,7 +158,7 @@ public:
         }
         m_dmin = params.smallest_dimension();
         m_tol = m_params.tolerance * m_dmin;
-        if (m_params.shape.lobe.bore > 0.0)
+        if (ring)
             m_blend = std::min(edge_blend, tol_at_size);
     }
 

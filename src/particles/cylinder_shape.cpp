@@ -697,6 +697,16 @@ struct NodeSteps {
     double row_area, rim_area;
 };
 
+/// n nodes on the circle of radius r at height z, the first at the angle offset 2 pi / n,
+/// sharing `area`.
+void push_circle(std::vector<SurfaceNode>& nodes, double r, double z, int n, double offset,
+                 double area) {
+    for (int i = 0; i < n; ++i) {
+        const double phi = 2.0 * pi * (i + offset) / n;
+        nodes.push_back({{r * std::cos(phi), r * std::sin(phi), z}, area / n});
+    }
+}
+
 /// The fewest steps of at most `spacing` over `span` (at least one).
 int node_count(double span, double spacing) {
     return std::max(1, static_cast<int>(std::ceil(span / spacing - 1e-9)));
@@ -728,10 +738,7 @@ RingNodes ring_nodes(const CylinderShape& c, double spacing, bool rows_too,
     const double ring_step = (r_out - r_in) / rings;
     RingNodes out;
     const auto circle = [&](double r, double z, int n, double offset, double area) {
-        for (int i = 0; i < n; ++i) {
-            const double phi = 2.0 * pi * (i + offset) / n;
-            out.nodes.push_back({{r * std::cos(phi), r * std::sin(phi), z}, area / n});
-        }
+        push_circle(out.nodes, r, z, n, offset, area);
     };
     // The ends' inner rings, each the band of half a step either side.
     for (const double z : {-c.half_length, c.half_length})
@@ -789,10 +796,7 @@ std::vector<SurfaceNode> CylinderShape::surface_nodes(double spacing, bool rows_
     const double ring_step = radius / rings;
     std::vector<SurfaceNode> nodes;
     const auto circle = [&](double r, double z, int n, double offset, double area) {
-        for (int i = 0; i < n; ++i) {
-            const double phi = 2.0 * pi * (i + offset) / n;
-            nodes.push_back({{r * std::cos(phi), r * std::sin(phi), z}, area / n});
-        }
+        push_circle(nodes, r, z, n, offset, area);
     };
     // The ends' inner rings, each the band of half a step either side (the centre's a disc).
     for (const double z : {-half_length, half_length})
