@@ -1056,7 +1056,7 @@ replace a non-empty one. engine: 'packbed' (here, threads) or 'lammps' (the same
 by LAMMPS, docs/lammps.md) with ranks (mpirun -np ranks), mpi_command (a launcher's words
 instead) and lmp (the LAMMPS program); with out, LAMMPS's files are kept in out/lammps/.
 shape: 'sphere', or a pellet ('cylinder:D,L', 'ring:D,DI,L', 'trilobe:DL,DC,L',
-'multilobe:N,DL,DC,L') for a bed of pellets as `packbed generate --shape` makes it (docs/generate.md, "Pellets"): with aspect_ratio (over the pellet's volume-equivalent
+'multilobe:N,DL,DC,L', 'spherocylinder:D,L') for a bed of pellets as `packbed generate --shape` makes it (docs/generate.md, "Pellets"): with aspect_ratio (over the pellet's volume-equivalent
 diameter) or container (in the unit of D and L), particles, seed, band_clearance, threads,
 progress, out and force; the Bed's orientations hold each pellet's quaternion, and write,
 analyze, export and voxelize refuse it (out= writes its files for the command line).

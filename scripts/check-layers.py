@@ -26,7 +26,7 @@ FLOORS = {  # bottom to top; the folders of one floor may include each other
 }
 
 
-HEADER_ONLY = {"shape": "geometry", "particle_shape": "geometry"}  # public headers with no source file above the ground floor
+HEADER_ONLY = {"shape": "geometry", "particle_shape": "geometry", "pellet_shape": "particles"}  # public headers with no source file above the ground floor
 
 
 def main():

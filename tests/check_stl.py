@@ -4,7 +4,8 @@ edge shared by two facets, consistent orientation, no degenerate facet, one part
 OpenFOAM's surfaceCheck (closed, not self-intersecting), for a generated bed, a lattice in a
 cylinder, a simple cubic lattice in a box (issue 17: 3 x 3 x 2 balls, 16 of them touching
 one or two faces of the box, the lower 9 the floor) and a bed in a cone, with every treatment,
-and beds of 12 cylinder pellets, of 8 trilobes and of 3 rings, each shrunk by 2 %. For caps and shrink admesh must also leave every stored normal as it is; the
+and beds of 12 cylinder pellets, of 8 trilobes, of 3 rings and of 10 spherocylinders, each
+shrunk by 2 %. For caps and shrink admesh must also leave every stored normal as it is; the
 unions of enlarge and bridges (CGAL's corefinement) keep small triangles whose single-precision
 normal admesh recomputes differently, so there only orientation is checked.
 Two untreated spheres overlapping by 0.045 Dp must be reported as self-intersecting: the
@@ -101,6 +102,15 @@ run(exe, "export", "rings/particles.csv", "--format", "stl", "--contacts", "shri
 admesh("rings.stl", 3 + 1, normals_kept=True)
 assert surface_check("rings.stl") == (True, True), ("rings.stl", "closed, not self-intersecting")
 print("rings.stl: 3 rings + container, closed, oriented, not self-intersecting")
+# Spherocylinders: 10 poured into a tube of a = 4, each its side and two caps of latitude bands
+# closed by fans at the tips, shrunk by 2 %.
+run(exe, "generate", "--shape", "spherocylinder:1,1", "--aspect-ratio", "4", "--particles",
+    "10", "--seed", "2", "--quiet", "--out", "rods")
+run(exe, "export", "rods/particles.csv", "--format", "stl", "--contacts", "shrink:0.02",
+    "--out", "rods.stl", "--quiet")
+admesh("rods.stl", 10 + 1, normals_kept=True)
+assert surface_check("rods.stl") == (True, True), ("rods.stl", "closed, not self-intersecting")
+print("rods.stl: 10 spherocylinders + container, closed, oriented, not self-intersecting")
 with open(os.path.join(work, "overlap.csv"), "w") as f:
     f.write("x,y,z,r\n0,0,1,0.5\n0.95,0.1,1.02,0.5\n")  # 0.045 Dp of overlap
 run(exe, "export", "overlap.csv", "--format", "stl", "--container-radius", "3", "--out",

@@ -471,8 +471,9 @@ INSTANTIATE_TEST_SUITE_P(
               "default); cylinder:D,L (a cylinder of diameter D and length L); ring:D,DI,L (a "
               "hollow cylinder, its bore of diameter DI, 0 < DI <= 0.9 D); trilobe:DL,DC,L "
               "(three cylinders of diameter DL, their axes on a circle of diameter DC, 0 < DC <= "
-              "DL); or multilobe:N,DL,DC,L (N = 2 to 8 such lobes); each length > 0 and at most "
-              "1e+15, L / D (L / DL) from 0.1 to 10"),
+              "DL); multilobe:N,DL,DC,L (N = 2 to 8 such lobes); each length > 0 and at most "
+              "1e+15, L / D (L / DL) from 0.1 to 10; or spherocylinder:D,L (a cylinder of "
+              "diameter D and length L capped by two hemispheres, L >= 0, L / D at most 10)"),
         naming("generate --shape trilobe:1,1.2,2", {"--shape", "trilobe:1,1.2,2", "DC <= DL"}),
         naming("generate --shape ring:1,1,1", {"--shape", "ring:1,1,1", "DI <= 0.9 D"}),
         naming("generate --shape ring:1,0.95,1", {"--shape", "ring:1,0.95,1", "DI <= 0.9 D"}),
@@ -480,6 +481,12 @@ INSTANTIATE_TEST_SUITE_P(
         naming("generate --shape multilobe:9,1,0.8,2",
                {"--shape", "multilobe:9,1,0.8,2", "N = 2 to 8"}),
         naming("generate --shape cylinder:1,20", {"--shape", "cylinder:1,20", "L / D"}),
+        naming("generate --shape spherocylinder:1,-1",
+               {"--shape", "spherocylinder:1,-1", "L >= 0"}),
+        naming("generate --shape spherocylinder:1,11",
+               {"--shape", "spherocylinder:1,11", "L / D at most 10"}),
+        naming("generate --shape spherocylinder:1",
+               {"--shape", "spherocylinder:1", "spherocylinder:D,L"}),
         exact("generate --shape cylinder:1,1 --friction 0.3",
               "packbed generate: --friction is not allowed with --shape cylinder:1,1; allowed "
               "with a pellet: --aspect-ratio, --container, --particles, --seed, --shape, --out, "

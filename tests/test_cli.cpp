@@ -1775,6 +1775,54 @@ TEST(Cli, GenerateShapeRingWritesItsBoreAndReadsBack) {
     EXPECT_NEAR(a["void_fraction"].get<double>(), s["void_fraction"].get<double>(), 1e-12);
 }
 
+TEST(Cli, GenerateShapeSpherocylinderPacksACellAndReadsBack) {
+    // Thirty spherocylinders (D = L = 1, the whole pellet 2 long) in a periodic cell 4.5 wide:
+    // the summary names the shape; d_v = (3 D^2 L / 2 + D^3)^(1/3); the tolerance is 1e-3 of
+    // D and both depths are below it; analyze reads the bed back and measures the same void
+    // fraction over the same band, and contacts by the segments' exact gap.
+    const fs::path d = scratch("spherocylinders");
+    const Outcome o = packbed("generate --shape spherocylinder:1,1 --container periodic:4.5,4.5 "
+                              "-n 30 -s 1 --band-clearance 0.5 --out " +
+                              d.string());
+    ASSERT_EQ(o.status, 0) << o.err;
+    const auto s = nlohmann::json::parse(slurp(d / "summary.json"));
+    EXPECT_EQ(s["shape"]["kind"], "spherocylinder");
+    EXPECT_EQ(s["shape"]["length"], 1.0);
+    EXPECT_NEAR(s["shape"]["volume_equivalent_diameter"].get<double>(), std::cbrt(2.5), 1e-15);
+    EXPECT_NEAR(s["tolerance"].get<double>(), 1e-3, 1e-15);
+    EXPECT_LE(s["max_penetration_pair"].get<double>(), 1e-3);
+    EXPECT_LE(s["max_penetration_wall"].get<double>(), 1e-3);
+    EXPECT_GT(s["max_penetration_pair"].get<double>(), 0.0);
+    EXPECT_EQ(s["nodes_per_pellet"], 0);
+    const fs::path an = scratch("spherocylinders-analysis");
+    const Outcome analysed = packbed("analyze " + (d / "particles.csv").string() +
+                                     " --band-clearance 0.5 -q --out " + an.string());
+    ASSERT_EQ(analysed.status, 0) << analysed.err;
+    const auto a = nlohmann::json::parse(slurp(an / "summary.json"));
+    EXPECT_EQ(a["shape"], "spherocylinder:1,1");
+    ASSERT_TRUE(s.contains("void_fraction")) << s.dump();
+    EXPECT_NEAR(a["void_fraction"].get<double>(), s["void_fraction"].get<double>(), 1e-12);
+    // A settled bed: every pellet in the band touches at least one other.
+    EXPECT_GT(a["coordination"]["mean"].get<double>(), 4.0);
+    // Ten in a tube of a = 4, exported as their exact surfaces: the report's chord error is
+    // R (1 - cos(pi / n)) about the rims, R = D / 2 = 0.5.
+    const fs::path tube = scratch("spherocylinders-tube");
+    const Outcome t =
+        packbed("generate --shape spherocylinder:1,1 -a 4 -n 10 -s 2 -q --out " + tube.string());
+    ASSERT_EQ(t.status, 0) << t.err;
+    const Outcome exported =
+        packbed("export " + (tube / "particles.csv").string() + " --format stl --refine 1 -q -o " +
+                (tube / "bed.stl").string());
+    ASSERT_EQ(exported.status, 0) << exported.err;
+    const auto r = nlohmann::json::parse(slurp(tube / "bed.stl.json"));
+    EXPECT_EQ(r["segments"], 24);
+    EXPECT_NEAR(r["chord_error"].get<double>(), 0.5 * (1.0 - std::cos(std::numbers::pi / 24)),
+                1e-15);
+    // 6 V / S of the pellet: 6 (pi R^2 L + 4 pi R^3 / 3) / (2 pi R L + 4 pi R^2) = 6 (pi / 4 +
+    // pi / 6) / (2 pi) = 5 / 4.
+    EXPECT_NEAR(r["diameter"].get<double>(), 1.25, 1e-12);
+}
+
 TEST(Cli, GenerateShapeCylinderWritesPelletsWithOrientations) {
     // Eight cylinders D = L = 2 in a tube of a = 4 over d_v = (3 D^2 L / 2)^(1/3) = 12^(1/3):
     // the CSV's orientations are unit quaternions, r is d_v / 2, every centroid inside the

@@ -860,6 +860,31 @@ TEST(ContainerExportCli, LammpsSettlesRingsAsRigidClumps) {
     }
 }
 
+TEST(ContainerExportCli, LammpsSettlesSpherocylindersAsRigidClumps) {
+    if (!has_lmp())
+        GTEST_SKIP() << "lmp (Debian package lammps) is not installed";
+    // 4 spherocylinders (D = L = 1 mm), each a row of 5 spheres of diameter D from cap centre
+    // to cap centre (L / (D / 4) = 4 steps) as one rigid body: the rows keep their shape, and
+    // none is lost.
+    const fs::path d = scratch("rod-clumps");
+    const auto [data, input, log] =
+        settle_clumps(d, "--shape spherocylinder:0.001,0.001 -a 3 -n 4 -s 1");
+    EXPECT_NE(data.find("20 atoms\n"), std::string::npos);
+    EXPECT_NE(log.find("4 rigid bodies with 20 atoms"), std::string::npos) << log;
+    EXPECT_EQ(log.find("Lost"), std::string::npos) << log;
+    const auto frames = dump_frames(slurp(d / "bed.data.lammps.dump"));
+    ASSERT_EQ(frames.size(), 2u);
+    ASSERT_EQ(frames[1].size(), 20u);
+    for (std::size_t k = 0; k < 20; ++k) {
+        const auto& a = frames[1][k];
+        const auto& first = frames[1][k / 5 * 5];
+        // The k-th sphere of its row lies (k mod 5) L / 4 from the first, both before and after.
+        EXPECT_NEAR(std::hypot(a[0] - first[0], a[1] - first[1], a[2] - first[2]),
+                    0.25e-3 * static_cast<double>(k % 5), 3e-8)
+            << k;
+    }
+}
+
 TEST(ContainerExportCli, LatticeRegionsRefusedWithOneLine) {
     const fs::path d = scratch("bad");
     const std::string allowed =

@@ -99,7 +99,7 @@ Command register_export(CLI::App& parent) {
                   "deleted); files are replaced without it");
     app->add_option("--shape", o.shape,
                     "the particles' shape: sphere, or a pellet (cylinder:D,L, ring:D,DI,L, "
-                    "trilobe:DL,DC,L, multilobe:N,DL,DC,L: the table's r is "
+                    "trilobe:DL,DC,L, multilobe:N,DL,DC,L, spherocylinder:D,L: the table's r is "
                     "d_v / 2 and its qw, qx, qy, qz each pellet's orientation; default: the "
                     "shape summary.json beside the file records, else spheres)");
     app->add_option("--contacts", o.request.contacts,

@@ -294,7 +294,8 @@ Command register_generate(CLI::App& parent) {
     o.app = app;
     app->add_option("--shape", o.shape,
                     "the particles: sphere, or pellets: cylinder:D,L, ring:D,DI,L, "
-                    "trilobe:DL,DC,L or multilobe:N,DL,DC,L (lengths in the bed's unit, -a over "
+                    "trilobe:DL,DC,L, multilobe:N,DL,DC,L or spherocylinder:D,L (lengths in the "
+                    "bed's unit, -a over "
                     "their volume-equivalent diameter d_v; docs/generate.md, \"Pellets\")");
     app->add_option("-n,--particles", p.particles, "Np, number of spheres")
         ->check(whole_in(option_range::particles));

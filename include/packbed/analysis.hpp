@@ -12,8 +12,8 @@
 
 #include "packbed/bed_volume.hpp"
 #include "packbed/container.hpp"
-#include "packbed/multilobe_shape.hpp"
 #include "packbed/packing.hpp"
+#include "packbed/pellet_shape.hpp"
 #include "packbed/sizes.hpp"
 #include "packbed/volume.hpp"
 
@@ -228,19 +228,19 @@ struct PelletAnalysis {
     std::vector<OrientationBin> orientation;
     OrientationBin overall; ///< every pellet with its centroid in the band
     /// Contacts per pellet (`spheres` counts the pellets with their centroid in the band):
-    /// pairs whose exact gap (MultilobeShape::pair_gap) is at most contact_tolerance d_v, and
+    /// pairs whose exact gap (the shape's pair_gap) is at most contact_tolerance d_v, and
     /// the pellets as close to a side wall. A rattler touches nothing (rattler_contacts 1): a
     /// pellet's count does not say how many points hold it (a face lying on another is one
     /// contact), so the spheres' rule of 4 does not carry over.
     Coordination coordination;
 };
 
-/// Measure a bed of cylinder pellets (r = d_v / 2, an orientation each) in a container: the
-/// void fractions with the exact volumes (MultilobeShape::volume_in, volume_from_wall: the same
+/// Measure a bed of pellets (r = d_v / 2, an orientation each) in a container: the void
+/// fractions with the exact volumes (the shape's volume_in, volume_from_wall: the same
 /// shells, slabs and band as analyze_bed, in units of d_v) and the orientation of the axes
 /// against the distance from the wall; the contacts per pellet. \throws InvalidInput for an empty
 /// bed, a bed without orientations or a band that is empty
-PelletAnalysis analyze_pellet_bed(const Packing& packing, const MultilobeShape& shape,
+PelletAnalysis analyze_pellet_bed(const Packing& packing, const PelletShape& shape,
                                   const Container& container, const AnalysisOptions& options = {});
 
 } // namespace packbed

@@ -1,8 +1,10 @@
 // Beds of pellets (docs/pellets.md): rigid, oriented particles poured into a container and
-// settled by the soft-contact energy of the sphere beds generalised to rigid bodies. Each
-// pellet's surface is a set of nodes (ParticleShape's SurfaceNode), each pressed out of a
-// neighbour or a wall by a linear spring on how deep it lies inside (the level-set contact of
-// Kawamoto et al. 2016); FIRE relaxes positions and orientations together.
+// settled by the soft-contact energy of the sphere beds generalised to rigid bodies. A
+// cylinder's, a ring's or a multilobe's surface is a set of nodes (ParticleShape's
+// SurfaceNode), each pressed out of a neighbour or a wall by a linear spring on how deep it
+// lies inside (the level-set contact of Kawamoto et al. 2016); a spherocylinder's contact is
+// one linear spring on its exact penetration depth, as a sphere's. FIRE relaxes positions and
+// orientations together.
 #pragma once
 
 #include <cstdint>
@@ -10,8 +12,8 @@
 #include <vector>
 
 #include "packbed/container.hpp"
-#include "packbed/multilobe_shape.hpp"
 #include "packbed/packing.hpp"
+#include "packbed/pellet_shape.hpp"
 #include "packbed/soft_sphere.hpp"
 
 namespace packbed {
@@ -22,9 +24,9 @@ struct PelletBedParameters {
     std::uint64_t particles = 100; ///< >= 1
     std::uint64_t seed = 1;        ///< seed of the positions and orientations at insertion
     /// The pellet at size 1 (volume-equivalent radius 1): a cylinder
-    /// (MultilobeShape::cylinder(CylinderShape::of_aspect(L / D))) or a multilobe
-    /// (MultilobeShape::of).
-    MultilobeShape shape = MultilobeShape::cylinder(CylinderShape::of_aspect(1.0));
+    /// (MultilobeShape::cylinder(CylinderShape::of_aspect(L / D))), a ring, a multilobe
+    /// (MultilobeShape::of) or a spherocylinder (SpherocylinderShape::of_aspect).
+    PelletShape shape = MultilobeShape::cylinder(CylinderShape::of_aspect(1.0));
     /// The container in units of d_v (Container::tube(a)).
     Container container = Container::tube(8.0);
     /// The void fraction of the column the pellets are poured from (the paper's e0 of eq. 6).
@@ -34,7 +36,8 @@ struct PelletBedParameters {
     /// more, is loosened to the same quarter); (0, 1).
     double e0 = 0.87;
     /// The largest allowed final penetration depth, pair and wall, in units of the pellet's
-    /// smallest dimension min(D, L) (a ring's min(L, (D - DI) / 2), its wall); (0, 0.1].
+    /// smallest dimension min(D, L) (a ring's min(L, (D - DI) / 2), its wall; a
+    /// spherocylinder's D); (0, 0.1].
     double tolerance = 1e-3;
     /// The settling band of the gravity control, in the same units as the tolerance: the
     /// largest depth is held between them until the mass centre stops.
@@ -48,7 +51,7 @@ struct PelletBedParameters {
 
     /// \throws InvalidInput naming the parameter, its value and the allowed range.
     void validate() const;
-    /// \return min(D, L) in units of d_v (a ring's min(L, (D - DI) / 2)).
+    /// \return min(D, L) in units of d_v (a ring's min(L, (D - DI) / 2), a spherocylinder's D).
     double smallest_dimension() const;
 };
 
@@ -70,10 +73,10 @@ struct PelletBed {
     std::vector<PelletStage> stages;
     std::uint64_t steps = 0;
     std::uint64_t neighbor_builds = 0;
-    std::size_t nodes = 0;        ///< nodes on each pellet's surface
+    std::size_t nodes = 0;        ///< nodes on each pellet's surface (0: a spherocylinder)
     double max_depth_nodes = 0.0; ///< the deepest node, pair or wall, d_v
-    /// The exact penetration depths (MultilobeShape::pair_overlap and wall_overlap, the floor
-    /// by the support function), d_v.
+    /// The exact penetration depths (the shape's pair_overlap and wall_overlap, the floor by
+    /// the support function), d_v.
     double max_depth_pair = 0.0, max_depth_wall = 0.0;
     /// The largest force and torque over the bounding radius left on a pellet, in weights.
     double residual_force = 0.0, residual_torque = 0.0;

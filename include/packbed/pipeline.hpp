@@ -18,11 +18,11 @@
 #include "packbed/container.hpp"
 #include "packbed/hydraulics.hpp"
 #include "packbed/lammps_engine.hpp"
-#include "packbed/multilobe_shape.hpp"
 #include "packbed/openfoam.hpp"
 #include "packbed/output.hpp"
 #include "packbed/packing.hpp"
 #include "packbed/pellet_bed.hpp"
+#include "packbed/pellet_shape.hpp"
 #include "packbed/read.hpp"
 #include "packbed/sizes.hpp"
 #include "packbed/soft_sphere.hpp"
@@ -120,13 +120,15 @@ nlohmann::json generation_summary(const PreparedGeneration& prepared,
 /// limits::max_length]: "cylinder:D,L" (L / D from 0.1 to 10), "ring:D,DI,L" (a hollow
 /// cylinder, its bore DI < D, DI / D at most 0.9, L / D from 0.1 to 10), "trilobe:DL,DC,L" (three
 /// lobes of diameter DL on a circle of diameter DC, 0 < DC <= DL, L / DL from 0.1 to 10), or
-/// "multilobe:N,DL,DC,L" (N from 2 to 8 lobes, the same ranges).
+/// "multilobe:N,DL,DC,L" (N from 2 to 8 lobes, the same ranges), or "spherocylinder:D,L" (L the
+/// cylindrical part, the caps' centres L apart; L / D from 0 to 10).
 struct PelletSpec {
     /// At the volume-equivalent size: MultilobeShape::cylinder(CylinderShape::of_aspect(L / D)),
-    /// MultilobeShape::cylinder(CylinderShape::ring(D, DI, L)) or MultilobeShape::of.
-    MultilobeShape shape;
-    std::string kind;             ///< "cylinder", "ring", "trilobe" or "multilobe"
-    double diameter = 0.0;        ///< D, or DL for a multilobe
+    /// MultilobeShape::cylinder(CylinderShape::ring(D, DI, L)), MultilobeShape::of or
+    /// SpherocylinderShape::of_aspect(L / D).
+    PelletShape shape;
+    std::string kind;      ///< "cylinder", "ring", "trilobe", "multilobe" or "spherocylinder"
+    double diameter = 0.0; ///< D, or DL for a multilobe
     double circle_diameter = 0.0; ///< DC (0 for a cylinder or a ring)
     double inner_diameter = 0.0;  ///< a ring's DI (0 for the others)
     double length = 0.0;          ///< L

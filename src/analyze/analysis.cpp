@@ -833,7 +833,8 @@ namespace {
 /// spheres come within `tolerance` (a NeighborList, by the minimum image in a periodic cell)
 /// measured by their exact gap, and the pellets whose support function grown by `tolerance`
 /// reaches a side wall.
-Coordination pellet_coordination(const ShapedBed<MultilobeShape>& bed, const Container& container,
+template <class S>
+Coordination pellet_coordination(const ShapedBed<S>& bed, const Container& container,
                                  double tolerance, const Band& band) {
     const Packing& packing = bed.particles();
     const std::size_t n = bed.size();
@@ -879,7 +880,7 @@ Coordination pellet_coordination(const ShapedBed<MultilobeShape>& bed, const Con
     CoordinationTally tally{out};
     for (std::size_t i = 0; i < n; ++i) {
         const Placement p = bed.placement(i);
-        const MultilobeShape& shape = bed.shape(i);
+        const S& shape = bed.shape(i);
         const bool wall = shape.wall_overlap(container, p, tolerance) > 0.0;
         out.wall_contacts += wall ? 1 : 0;
         if (!in_band(p.position, band))
@@ -891,16 +892,16 @@ Coordination pellet_coordination(const ShapedBed<MultilobeShape>& bed, const Con
     return out;
 }
 
-} // namespace
-
-PelletAnalysis analyze_pellet_bed(const Packing& packing, const MultilobeShape& shape,
-                                  const Container& container, const AnalysisOptions& options) {
+/// analyze_pellet_bed for pellets of shape class S.
+template <class S>
+PelletAnalysis analyze_pellets(const Packing& packing, const S& shape, const Container& container,
+                               const AnalysisOptions& options) {
     if (packing.size() == 0)
         throw InvalidInput("no pellets to analyse; allowed: a bed with at least one pellet");
     if (packing.orientations.size() != packing.size())
         throw InvalidInput("a bed of pellets needs each one's orientation; allowed: a table with "
                            "the columns qw, qx, qy, qz");
-    const ShapedBed<MultilobeShape> bed(packing, {shape});
+    const ShapedBed<S> bed(packing, {shape});
     PelletAnalysis out;
     const double dv = packing.mean_diameter();
     out.diameter = dv;
@@ -955,6 +956,14 @@ PelletAnalysis analyze_pellet_bed(const Packing& packing, const MultilobeShape& 
     out.coordination =
         pellet_coordination(bed, container, options.contact_tolerance * dv, out.band);
     return out;
+}
+
+} // namespace
+
+PelletAnalysis analyze_pellet_bed(const Packing& packing, const PelletShape& shape,
+                                  const Container& container, const AnalysisOptions& options) {
+    return std::visit(
+        [&](const auto& s) { return analyze_pellets(packing, s, container, options); }, shape);
 }
 
 } // namespace packbed

@@ -10,6 +10,8 @@
 #include <random>
 #include <string>
 #include <tuple>
+#include <type_traits>
+#include <variant>
 #include <vector>
 
 #include <fmt/format.h>
@@ -25,10 +27,10 @@ using packbed::portable_random::uniform01;
 
 namespace packbed {
 
-void PelletBedParameters::validate() const {
+namespace {
+
+void validate_shape(const MultilobeShape& shape) {
     using detail::require;
-    require(particles >= 1 && particles <= 10'000'000, "particles", static_cast<double>(particles),
-            "1 to 10^7");
     require(shape.lobe.radius > 0.0 && shape.lobe.half_length > 0.0 &&
                 std::isfinite(shape.lobe.radius) && std::isfinite(shape.lobe.half_length),
             "shape radius", shape.lobe.radius, "lobes of positive, finite radius and length");
@@ -39,6 +41,22 @@ void PelletBedParameters::validate() const {
     require(shape.circle >= 0.0 && shape.circle <= shape.lobe.radius &&
                 (shape.lobes > 1 || shape.circle == 0.0),
             "lobes' circle", shape.circle, "0 to the lobe's radius (0 for one lobe)");
+}
+
+void validate_shape(const SpherocylinderShape& shape) {
+    using detail::require;
+    require(shape.radius > 0.0 && shape.half_length >= 0.0 && std::isfinite(shape.radius) &&
+                std::isfinite(shape.half_length),
+            "shape radius", shape.radius, "a positive, finite radius and a length >= 0");
+}
+
+} // namespace
+
+void PelletBedParameters::validate() const {
+    using detail::require;
+    require(particles >= 1 && particles <= 10'000'000, "particles", static_cast<double>(particles),
+            "1 to 10^7");
+    std::visit([](const auto& s) { validate_shape(s); }, shape);
     require(e0 > 0.0 && e0 < 1.0, "e0", e0, "0 < e0 < 1");
     require(tolerance > 0.0 && tolerance <= 0.1, "tolerance", tolerance, "0 < tolerance <= 0.1");
     require(band_low > tolerance && band_high > band_low && band_high <= 0.2, "band", band_high,
@@ -50,8 +68,7 @@ void PelletBedParameters::validate() const {
 }
 
 double PelletBedParameters::smallest_dimension() const {
-    // d_v = 2 at size 1: the shape's lengths over 2 are in units of d_v.
-    return shape.smallest_dimension();
+    return packbed::smallest_dimension(shape);
 }
 
 namespace {
@@ -107,59 +124,28 @@ struct Fire {
     static constexpr double max_move = 0.02;
 };
 
-class PelletSolver {
+/// The solver for pellets of shape S: MultilobeShape (cylinders, rings, multilobes) pressed
+/// by its surface's nodes and circles (the level-set contact), SpherocylinderShape by springs
+/// on exact depths (its pair_springs and wall_springs).
+template <class S> class PelletSolver {
 public:
-    PelletSolver(const PelletBedParameters& params, const RunControl& control)
+    /// Whether the pellets touch by their surfaces' nodes (else by their exact depths).
+    static constexpr bool level_set = std::is_same_v<S, MultilobeShape>;
+
+    PelletSolver(const PelletBedParameters& params, const S& shape, const RunControl& control)
         : m_params(params)
+        , m_shape(shape)
         , m_control(control)
         , m_container(params.container)
         , m_cell(params.container.periods()) {
         params.validate();
         m_size = 0.5; // d_v = 1
-        const bool ring = m_params.shape.lobe.bore > 0.0;
-        m_reach = m_params.shape.bounding_radius(m_size);
-        m_volume = m_params.shape.volume(m_size);
-        const double spacing = m_params.node_spacing / m_size;
-        // A multilobe's and a ring's wall nodes close enough that a rim between two of them
-        // reaches at most half the tolerance past them (a chord s of a circle of radius R lies
-        // s^2 / (8 R) inside it): s = sqrt(4 R tol), both at size 1. Coarser, a rim can press
-        // a wall deeper than the tolerance while no node feels it (docs/notes/pellets.md,
-        // "Wall nodes"). A cylinder's keep the spacing its beds were measured with.
-        const double tol_at_size = params.tolerance * params.smallest_dimension() / m_size;
-        const double wall_spacing =
-            m_params.shape.lobes > 1 || ring
-                ? std::min(spacing, std::sqrt(4.0 * m_params.shape.lobe.radius * tol_at_size))
-                : spacing;
-        for (const bool rows : {false, true})
-            for (SurfaceNode node :
-                 m_params.shape.surface_nodes(rows ? wall_spacing : spacing, rows)) {
-                node.point = node.point * m_size;
-                node.area *= m_size * m_size;
-                (rows ? m_wall_nodes : m_nodes).push_back(node);
-            }
-        // A ring's rows as close as its wall nodes: two sides crossing at the tolerance's
-        // depth touch over about sqrt(8 R tol) along each, which coarser rows can straddle.
-        m_circles = m_params.shape.surface_circles(spacing, ring ? wall_spacing : 0.0);
-        // The nodes off the circles in two groups, below and above the body's middle (a
-        // cylinder's ends), each with the sphere about its mean that holds it.
-        const auto below = std::stable_partition(
-            m_nodes.begin(), m_nodes.end(), [](const SurfaceNode& o) { return o.point.z < 0.0; });
-        const std::size_t split = static_cast<std::size_t>(below - m_nodes.begin());
-        for (const auto& [begin, end] :
-             {std::pair{std::size_t{0}, split}, std::pair{split, m_nodes.size()}}) {
-            if (begin == end)
-                continue;
-            NodeGroup group{begin, end, {}, 0.0};
-            for (std::size_t k = begin; k < end; ++k)
-                group.centre += m_nodes[k].point * (1.0 / static_cast<double>(end - begin));
-            for (std::size_t k = begin; k < end; ++k)
-                group.radius = std::max(group.radius, norm(m_nodes[k].point - group.centre));
-            m_groups.push_back(group);
-        }
+        m_reach = m_shape.bounding_radius(m_size);
+        m_volume = m_shape.volume(m_size);
         m_dmin = params.smallest_dimension();
         m_tol = m_params.tolerance * m_dmin;
-        if (ring)
-            m_blend = std::min(edge_blend, tol_at_size);
+        if constexpr (level_set)
+            place_nodes();
     }
 
     PelletBed run() {
@@ -185,6 +171,57 @@ public:
     }
 
 private:
+    /// A ring: a cylinder with a bore (its tolerance is of its wall).
+    bool ring() const {
+        if constexpr (level_set)
+            return m_shape.lobe.bore > 0.0;
+        else
+            return false;
+    }
+
+    /// The level-set contact's nodes, circles and node groups, and a ring's blend.
+    void place_nodes() {
+        const bool ring = this->ring();
+        const double spacing = m_params.node_spacing / m_size;
+        // A multilobe's and a ring's wall nodes close enough that a rim between two of them
+        // reaches at most half the tolerance past them (a chord s of a circle of radius R lies
+        // s^2 / (8 R) inside it): s = sqrt(4 R tol), both at size 1. Coarser, a rim can press
+        // a wall deeper than the tolerance while no node feels it (docs/notes/pellets.md,
+        // "Wall nodes"). A cylinder's keep the spacing its beds were measured with.
+        const double tol_at_size = m_params.tolerance * m_params.smallest_dimension() / m_size;
+        const double wall_spacing =
+            m_shape.lobes > 1 || ring
+                ? std::min(spacing, std::sqrt(4.0 * m_shape.lobe.radius * tol_at_size))
+                : spacing;
+        for (const bool rows : {false, true})
+            for (SurfaceNode node : m_shape.surface_nodes(rows ? wall_spacing : spacing, rows)) {
+                node.point = node.point * m_size;
+                node.area *= m_size * m_size;
+                (rows ? m_wall_nodes : m_nodes).push_back(node);
+            }
+        // A ring's rows as close as its wall nodes: two sides crossing at the tolerance's
+        // depth touch over about sqrt(8 R tol) along each, which coarser rows can straddle.
+        m_circles = m_shape.surface_circles(spacing, ring ? wall_spacing : 0.0);
+        // The nodes off the circles in two groups, below and above the body's middle (a
+        // cylinder's ends), each with the sphere about its mean that holds it.
+        const auto below = std::stable_partition(
+            m_nodes.begin(), m_nodes.end(), [](const SurfaceNode& o) { return o.point.z < 0.0; });
+        const std::size_t split = static_cast<std::size_t>(below - m_nodes.begin());
+        for (const auto& [begin, end] :
+             {std::pair{std::size_t{0}, split}, std::pair{split, m_nodes.size()}}) {
+            if (begin == end)
+                continue;
+            NodeGroup group{begin, end, {}, 0.0};
+            for (std::size_t k = begin; k < end; ++k)
+                group.centre += m_nodes[k].point * (1.0 / static_cast<double>(end - begin));
+            for (std::size_t k = begin; k < end; ++k)
+                group.radius = std::max(group.radius, norm(m_nodes[k].point - group.centre));
+            m_groups.push_back(group);
+        }
+        if (ring)
+            m_blend = std::min(edge_blend, tol_at_size);
+    }
+
     /// Section 3.1 of the paper over the container's cross-section with the pellet's bounding
     /// radius for the sphere's, each pellet turned uniformly at random, and without overlap:
     /// a draw whose bounding sphere meets an earlier one's is drawn again (random sequential
@@ -197,7 +234,7 @@ private:
         // cylinder's 1.9 that e0 = 0.87 leaves a quarter of the column: its column is loosened
         // until the spheres fill a quarter of it again.
         double e0 = m_params.e0;
-        if (m_params.shape.lobe.bore > 0.0)
+        if (ring())
             e0 = std::max(e0,
                           1.0 - 0.25 * m_volume /
                                     (4.0 / 3.0 * std::numbers::pi * m_reach * m_reach * m_reach));
@@ -215,10 +252,25 @@ private:
                                        static_cast<long>(std::floor(p.z / cell))};
         };
         std::map<std::array<long, 3>, std::vector<std::uint32_t>> grid;
-        const auto clear = [&](const Vec3& p) {
+        // Apart: their bounding spheres (level-set pellets), or their exact gap at least
+        // insert_gap (a spherocylinder, whose bounding sphere holds 3.2 times its volume at
+        // L = D and more as it grows longer: the spheres' addition would jam far below the
+        // column's e0).
+        const auto apart = [&](const Vec3& p, const Quaternion& turn, std::uint32_t j,
+                               const Vec3& d) {
+            if (!(norm2(d) < cell * cell))
+                return true;
+            if constexpr (level_set)
+                return false;
+            else
+                return m_shape.pair_gap({p, turn, m_size}, m_shape, {p + d, m_turn[j], m_size},
+                                        d) >= insert_gap;
+        };
+        const auto clear = [&](const Vec3& p, const Quaternion& turn) {
             if (m_cell) { // the minimum image: every earlier pellet (the grid's cells do not wrap)
-                for (const Vec3& q : m_centre)
-                    if (norm2(m_cell->separation(p, q)) < cell * cell)
+                for (std::size_t j = 0; j < m_centre.size(); ++j)
+                    if (!apart(p, turn, static_cast<std::uint32_t>(j),
+                               m_cell->separation(p, m_centre[j])))
                         return false;
                 return true;
             }
@@ -230,7 +282,7 @@ private:
                         if (found == grid.end())
                             continue;
                         for (const std::uint32_t j : found->second)
-                            if (norm2(m_centre[j] - p) < cell * cell)
+                            if (!apart(p, turn, j, m_centre[j] - p))
                                 return false;
                     }
             return true;
@@ -238,6 +290,7 @@ private:
         constexpr int attempts = 10'000;
         for (std::size_t i = 0; i < n; ++i) {
             Vec3 p;
+            Quaternion turn;
             int tries = 0;
             do {
                 if (++tries > attempts)
@@ -248,13 +301,20 @@ private:
                 const double u = uniform01(rng), v = uniform01(rng);
                 const double z = height * uniform01(rng) + m_reach;
                 p = m_container.uniform_point(m_reach, u, v, z);
-            } while (!clear(m_cell ? m_cell->wrapped(p) : p));
+                if constexpr (!level_set) { // drawn with the position: the gap depends on it
+                    const double u1 = uniform01(rng), u2 = uniform01(rng), u3 = uniform01(rng);
+                    turn = uniform_rotation(u1, u2, u3);
+                }
+            } while (!clear(m_cell ? m_cell->wrapped(p) : p, turn));
             if (m_cell)
                 p = m_cell->wrapped(p);
             grid[key(p)].push_back(static_cast<std::uint32_t>(i));
             m_centre.push_back(p);
-            const double u1 = uniform01(rng), u2 = uniform01(rng), u3 = uniform01(rng);
-            m_turn.push_back(uniform_rotation(u1, u2, u3));
+            if constexpr (level_set) {
+                const double u1 = uniform01(rng), u2 = uniform01(rng), u3 = uniform01(rng);
+                turn = uniform_rotation(u1, u2, u3);
+            }
+            m_turn.push_back(turn);
         }
         m_velocity.assign(n, Vec3{});
         m_spin.assign(n, Vec3{});
@@ -267,7 +327,7 @@ private:
     void press(const Rotation& ra, const Rotation& rb, const Vec3& u, double sign,
                PairPush& push) const {
         const double reach2 = m_reach * m_reach;
-        const MultilobeShape& shape = m_params.shape;
+        const MultilobeShape& shape = m_shape;
         // The nodes in groups (an end's disc) whose bounding sphere is skipped when it misses b's.
         for (const NodeGroup& group : m_groups) {
             if (norm(ra(group.centre) - u) >= group.radius + m_reach)
@@ -303,7 +363,7 @@ private:
     /// Gauss-Legendre.
     void press_circles(const Rotation& ra, const Rotation& rb, const Vec3& u, double sign,
                        PairPush& push) const {
-        const MultilobeShape& shape = m_params.shape;
+        const MultilobeShape& shape = m_shape;
         const Vec3 axis = ra(Vec3{0.0, 0.0, 1.0}), x = ra(Vec3{1.0, 0.0, 0.0}),
                    y = ra(Vec3{0.0, 1.0, 0.0});
         // cos and sin of the fixed sample angles k 2 pi / circle_samples.
@@ -440,6 +500,34 @@ private:
         }
     }
 
+    /// A pair pressed apart by its springs (SpherocylinderShape::pair_springs), each of
+    /// exact_contact_stiffness along its normal at its point, as two soft spheres; the depth
+    /// recorded is the exact one (pair_overlap).
+    void press_exact(std::size_t a, std::size_t b, const Vec3& u, PairPush& push) const {
+        const Placement pa{m_centre[a], m_turn[a], m_size}, pb{m_centre[a] + u, m_turn[b], m_size};
+        m_shape.pair_springs(
+            pa, m_shape, pb, u, [&](double depth, const Vec3& normal, const Vec3& point) {
+                const Vec3 f = normal * (exact_contact_stiffness * depth); // on b, from a
+                push.force -= f;
+                push.torque_first -= cross(point, f);
+                push.torque_second += cross(point - u, f);
+            });
+        push.depth = std::max(0.0, m_shape.pair_overlap(pa, m_shape, pb, u).depth);
+    }
+
+    /// Pellet i pressed out of the floor and the side walls by the same springs
+    /// (SpherocylinderShape::wall_springs): adds to `force` and `torque`; \return the deepest
+    /// exact depth.
+    double press_walls_exact(std::size_t i, Vec3& force, Vec3& torque) const {
+        const Placement p{m_centre[i], m_turn[i], m_size};
+        m_shape.wall_springs(m_container, p, [&](double depth, const Vec3& push, const Vec3& at) {
+            const Vec3 f = push * (exact_contact_stiffness * depth);
+            force += f;
+            torque += cross(at - p.position, f);
+        });
+        return std::max(m_shape.wall_overlap(m_container, p), -m_shape.support(p, {0, 0, -1}).z);
+    }
+
     Vec3 separation(std::size_t a, std::size_t b) const {
         return m_cell ? m_cell->separation(m_centre[a], m_centre[b]) : m_centre[b] - m_centre[a];
     }
@@ -471,10 +559,14 @@ private:
             const Vec3 u = separation(a, b);
             if (norm2(u) >= cut2)
                 continue;
-            press(turn[a], turn[b], u, 1.0, m_push[k]);
-            press(turn[b], turn[a], -u, -1.0, m_push[k]);
-            press_circles(turn[a], turn[b], u, 1.0, m_push[k]);
-            press_circles(turn[b], turn[a], -u, -1.0, m_push[k]);
+            if constexpr (level_set) {
+                press(turn[a], turn[b], u, 1.0, m_push[k]);
+                press(turn[b], turn[a], -u, -1.0, m_push[k]);
+                press_circles(turn[a], turn[b], u, 1.0, m_push[k]);
+                press_circles(turn[b], turn[a], -u, -1.0, m_push[k]);
+            } else {
+                press_exact(a, b, u, m_push[k]);
+            }
         }
         m_wall_depth.assign(n, 0.0);
         const double weight = m_gravity * m_volume;
@@ -483,7 +575,10 @@ private:
             Vec3 force{0.0, 0.0, -weight}, torque;
             const Vec3& c = m_centre[i];
             const bool floor = c.z < m_reach;
-            if (floor || m_container.wall_overlap(c, m_reach) > 0.0) {
+            if constexpr (!level_set) {
+                if (floor || m_container.wall_overlap(c, m_reach) > 0.0)
+                    m_wall_depth[i] = press_walls_exact(i, force, torque);
+            } else if (floor || m_container.wall_overlap(c, m_reach) > 0.0) {
                 double deepest = 0.0;
                 for (const SurfaceNode& node : m_wall_nodes) {
                     const Vec3 p = turn[i](node.point);
@@ -518,9 +613,8 @@ private:
         // the depth's excess over half the tolerance, along the normal at the contact point.
         for (const auto& [a, b] : m_exact_pairs) {
             const Vec3 u = separation(a, b);
-            const PairOverlap o =
-                m_params.shape.pair_overlap({m_centre[a], m_turn[a], m_size}, m_params.shape,
-                                            {m_centre[a] + u, m_turn[b], m_size}, u);
+            const PairOverlap o = m_shape.pair_overlap({m_centre[a], m_turn[a], m_size}, m_shape,
+                                                       {m_centre[a] + u, m_turn[b], m_size}, u);
             const double excess = o.depth - 0.5 * m_tol;
             if (!(excess > 0.0))
                 continue;
@@ -619,7 +713,8 @@ private:
     void settle() {
         constexpr int period = 50, window = 10;
         constexpr double spread = 5e-4;
-        const double low = m_params.band_low * m_dmin, high = m_params.band_high * m_dmin;
+        const double band = level_set ? m_dmin : exact_band_scale * m_dmin;
+        const double low = m_params.band_low * band, high = m_params.band_high * band;
         m_gravity = 1e-3;
         std::vector<double> records;
         const std::uint64_t start = m_steps;
@@ -688,13 +783,14 @@ private:
             if (rounds.size() > stalled_rounds &&
                 deepest > 0.99 * rounds[rounds.size() - 1 - stalled_rounds])
                 throw ConvergenceError(fmt::format(
-                    "the pellet bed is jammed: an overlap of {:.3g} d_v (tolerance {:.3g}) stayed "
-                    "through {} relaxations, the gravity lowered after each; allowed: a wider "
-                    "container or another seed",
-                    deepest, tol, stalled_rounds));
+                    "the pellet bed is jammed: {} overlap of {:.3g} d_v (tolerance {:.3g}) "
+                    "stayed through {} relaxations, the gravity lowered after each; allowed: a "
+                    "wider container or another seed",
+                    exact.max_depth_pair >= exact.max_depth_wall ? "a pair's" : "a wall's", deepest,
+                    tol, stalled_rounds));
             // The nodes at rest with a pair too deep (the depth fell by less than a tenth in
             // the last relaxation): its exact depth pushes it apart from then on.
-            if (rounds.size() >= 2 && deepest > 0.9 * rounds[rounds.size() - 2])
+            if (level_set && rounds.size() >= 2 && deepest > 0.9 * rounds[rounds.size() - 2])
                 for (const auto& pair : over)
                     if (std::find(m_exact_pairs.begin(), m_exact_pairs.end(), pair) ==
                         m_exact_pairs.end())
@@ -709,7 +805,7 @@ private:
     /// `over_depth` appended to `over` (in pair order).
     void measure_exact(PelletBed& out, double over_depth = 0.0,
                        std::vector<std::pair<std::uint32_t, std::uint32_t>>* over = nullptr) const {
-        const MultilobeShape& shape = m_params.shape;
+        const S& shape = m_shape;
         const auto first = m_list.pair_first();
         const auto second = m_list.pair_second();
         const std::size_t pairs = m_list.pairs();
@@ -749,6 +845,18 @@ private:
     /// The spring on a held pair's exact depth (lower()), in the nodes' unit (a node's force is
     /// its area times its depth): the area of four nodes at the default spacing, d_v^2.
     static constexpr double exact_stiffness = 0.01;
+    /// A spherocylinder pair's and wall's spring, force per d_v of depth in the nodes' unit
+    /// (area times depth): the stiffness of a flat contact of 1 d_v^2, as a sphere bed's
+    /// unit spring; FIRE's largest step (0.25) stays stable for a pellet held by ten.
+    static constexpr double exact_contact_stiffness = 1.0;
+    /// A spherocylinder bed's settling band, a share of the level-set beds': a layer of rods
+    /// lying flat on the floor locks part of the depth it settled at (the rods press each
+    /// other and the wall in the floor's plane, and lowering the gravity does not relieve
+    /// that), about 7 % of it, which at the full band is above the tolerance
+    /// (docs/notes/pellets.md, "Spherocylinders").
+    static constexpr double exact_band_scale = 0.5;
+    /// The least gap between two spherocylinders at insertion, d_v.
+    static constexpr double insert_gap = 0.02;
     /// The width of the smooth minimum of a point's distances to a side and an end (inside's
     /// blend), in units of the size: the pushing face turns over this width instead of at
     /// once. An edge is then 1e-3 of the size (5e-4 d_v) shallower than it is. A ring's
@@ -759,6 +867,7 @@ private:
     static constexpr int circle_samples = 64;
 
     const PelletBedParameters& m_params;
+    const S& m_shape;
     const RunControl& m_control;
     const Container& m_container;
     std::optional<Periods> m_cell;
@@ -785,12 +894,17 @@ private:
     std::uint64_t m_steps = 0;
 };
 
-thread_local std::vector<std::pair<double, double>> PelletSolver::m_points;
+template <class S> thread_local std::vector<std::pair<double, double>> PelletSolver<S>::m_points;
 
 } // namespace
 
 PelletBed generate_pellet_bed(const PelletBedParameters& params, const RunControl& control) {
-    return PelletSolver(params, control).run();
+    return std::visit(
+        [&](const auto& shape) {
+            using S = std::decay_t<decltype(shape)>;
+            return PelletSolver<S>(params, shape, control).run();
+        },
+        params.shape);
 }
 
 } // namespace packbed

@@ -8,7 +8,6 @@
 #include <optional>
 #include <vector>
 
-#include <boost/math/quadrature/tanh_sinh.hpp>
 #include <ccd/ccd.h>
 
 #include "packbed/box.hpp"
@@ -21,9 +20,11 @@ namespace packbed {
 namespace {
 
 constexpr double pi = std::numbers::pi;
+using detail::disc_below;
 using detail::Frame;
 using detail::frame_of;
 using detail::region_volume;
+using detail::slab_volume;
 
 /// One pellet as libccd sees it: its shape and placement.
 struct CcdBody {
@@ -51,53 +52,6 @@ void ccd_first_direction(const void* a, const void* b, ccd_vec3_t* out) {
         ccdVec3Set(out, d.x, d.y, d.z);
     else
         ccdVec3Set(out, 1.0, 0.0, 0.0);
-}
-
-/// The area of the part of a disc of radius r with in-plane coordinate w <= x along a
-/// direction: r^2 acos(-x / r) + x sqrt(r^2 - x^2), 0 below -r and pi r^2 above r.
-double disc_below(double r, double x) {
-    if (x <= -r)
-        return 0.0;
-    if (x >= r)
-        return pi * r * r;
-    return r * r * std::acos(-x / r) + x * std::sqrt((r - x) * (r + x));
-}
-
-/// The volume of a cylinder (radius r, half-length h, placed by p) between the heights z_low
-/// and z_high: each cross-section is a disc cut by two parallel chords, its area in closed form
-/// (disc_below); integrated along the axis by tanh-sinh quadrature on the pieces between the
-/// positions where a chord meets the rim (the area is analytic inside each piece, with square-
-/// root ends that tanh-sinh takes at full accuracy).
-double slab_volume(const Frame& f, const Vec3& centre, double r, double h, double z_low,
-                   double z_high) {
-    const double az = f.axis.z;
-    const double g = std::sqrt(std::max(0.0, 1.0 - az * az)); // the disc's steepest slope
-    if (g < 1e-12) {
-        // Upright: each disc at one height; the axis' part between the planes.
-        if (std::abs(az) == 0.0)
-            return 0.0;
-        const double t1 = (z_low - centre.z) / az, t2 = (z_high - centre.z) / az;
-        const double lo = std::max(-h, std::min(t1, t2)), hi = std::min(h, std::max(t1, t2));
-        return hi > lo ? pi * r * r * (hi - lo) : 0.0;
-    }
-    auto area = [&](double t) {
-        const double cz = centre.z + t * az;
-        return disc_below(r, (z_high - cz) / g) - disc_below(r, (z_low - cz) / g);
-    };
-    std::vector<double> cuts{-h, h};
-    if (az != 0.0)
-        for (const double plane : {z_low, z_high})
-            for (const double side : {-1.0, 1.0})
-                if (const double t = (plane - centre.z - side * r * g) / az; t > -h && t < h)
-                    cuts.push_back(t);
-    std::sort(cuts.begin(), cuts.end());
-    const std::size_t n = cuts.size();
-    thread_local boost::math::quadrature::tanh_sinh<double> rule;
-    double total = 0.0;
-    for (std::size_t i = 0; i + 1 < n; ++i)
-        if (cuts[i + 1] > cuts[i])
-            total += rule.integrate(area, cuts[i], cuts[i + 1], 1e-13);
-    return total;
 }
 
 /// f(a, b) for each piece [a, b] of the turn [0, 2 pi] between the angles `cuts` (each in
@@ -679,13 +633,7 @@ double CylinderShape::volume_from_wall(const Container& c, std::size_t wall, dou
 }
 
 double CylinderShape::volume_in_box(const Placement& p, const Vec3& low, const Vec3& high) const {
-    const double reach = bounding_radius(p.size);
-    const Vec3& o = p.position;
-    if (o.x + reach <= low.x || o.x - reach >= high.x || o.y + reach <= low.y ||
-        o.y - reach >= high.y)
-        return 0.0;
-    const Container box(Box(low.x, high.x, low.y, high.y));
-    return volume_in(box, p, low.z, high.z);
+    return detail::volume_in_box(*this, p, low, high);
 }
 
 namespace {

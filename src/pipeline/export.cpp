@@ -10,6 +10,7 @@
 #include <optional>
 #include <stdexcept>
 #include <string>
+#include <variant>
 #include <vector>
 
 #include <fmt/format.h>
@@ -576,16 +577,40 @@ bool is_surface(ExportFormat format) {
            format == ExportFormat::obj || format == ExportFormat::openfoam;
 }
 
-/// A bed of pellets for LAMMPS: each pellet as its clump of spheres (MultilobeShape::dem_spheres,
-/// inside the pellet, the outermost touching its side and ends), one rigid body in the example
+/// The radius of a pellet's rims (a lobe's, a spherocylinder's), at size 1: what its surface's
+/// segments about the axis are counted on.
+double rim_radius(const MultilobeShape& shape) {
+    return shape.lobe.radius;
+}
+double rim_radius(const SpherocylinderShape& shape) {
+    return shape.radius;
+}
+
+/// The surface-volume equivalent diameter 6 V / S at `size`: a cylinder's in closed form,
+/// 6 R h / (R + 2 h) for radius R and half-length h (D when L = D).
+double surface_volume_diameter(const MultilobeShape& shape, double size) {
+    if (shape.lobes == 1 && shape.lobe.bore == 0.0) {
+        const double r = shape.lobe.radius * size, h = shape.lobe.half_length * size;
+        return 6.0 * r * h / (r + 2.0 * h);
+    }
+    return 6.0 * shape.volume(size) / shape.surface_area(size);
+}
+double surface_volume_diameter(const SpherocylinderShape& shape, double size) {
+    return 6.0 * shape.volume(size) / shape.surface_area(size);
+}
+
+/// A bed of pellets for LAMMPS: each pellet as its clump of spheres (the shape's dem_spheres,
+/// inside the pellet, the outermost touching its surface), one rigid body in the example
 /// settle (docs/dem.md, "Pellets").
+template <class S>
 std::string clump_export(const ExportRequest& request, const Packing& packing,
-                         const std::vector<std::size_t>& lines, const PelletSpec& pellet) {
+                         const std::vector<std::size_t>& lines, const PelletSpec& pellet,
+                         const S& shape) {
     if (request.contacts != "none" && !request.contacts.empty())
         throw InvalidInput(fmt::format("--contacts {} is not allowed with --format lammps-data; "
                                        "allowed: none (the clumps are the pellets' own)",
                                        printable(request.contacts)));
-    const ShapedBed<MultilobeShape> bed(packing, {pellet.shape});
+    const ShapedBed<S> bed(packing, {shape});
     Packing spheres;
     std::vector<std::size_t> sphere_lines;
     double sphere_volume = 0.0, pellet_volume = 0.0;
@@ -611,8 +636,10 @@ std::string clump_export(const ExportRequest& request, const Packing& packing,
 /// polyhedron lies inside the convex pellet), for shrink:F scaled by 1 - F about its centroid,
 /// which leaves a gap wherever the exact shapes shrunk so are apart (checked pair by pair by
 /// the exact penetration depth, and at the walls and the floor); the exact volumes.
+template <class S>
 std::string pellet_export(const ExportRequest& request, ExportFormat format, const Packing& packing,
-                          const std::vector<std::size_t>& lines, const PelletSpec& pellet) {
+                          const std::vector<std::size_t>& lines, const PelletSpec& pellet,
+                          const S& shape) {
     const std::string shown = printable(request.source);
     if (!is_surface(format) && format != ExportFormat::lammps_data)
         throw InvalidInput(fmt::format("--format {} is not allowed for a bed of {} pellets; "
@@ -631,7 +658,7 @@ std::string pellet_export(const ExportRequest& request, ExportFormat format, con
                                        request.container->spec(),
                                        forms_but(request.container->name())));
     if (format == ExportFormat::lammps_data)
-        return clump_export(request, packing, lines, pellet);
+        return clump_export(request, packing, lines, pellet, shape);
     const fs::path& out_path = request.out;
     std::unique_ptr<OutputDirectory> out =
         format == ExportFormat::openfoam
@@ -647,8 +674,7 @@ std::string pellet_export(const ExportRequest& request, ExportFormat format, con
                                        printable(request.contacts)));
     const double scale =
         contacts.treatment == ContactTreatment::shrink ? 1.0 - contacts.parameter : 1.0;
-    const ShapedBed<MultilobeShape> bed(packing, {pellet.shape});
-    const MultilobeShape& shape = pellet.shape;
+    const ShapedBed<S> bed(packing, {shape});
     const double dv = packing.mean_diameter(); // r is d_v / 2
     const double largest = *std::max_element(packing.radii.begin(), packing.radii.end());
     const double top = bed_top(bed);
@@ -716,7 +742,7 @@ std::string pellet_export(const ExportRequest& request, ExportFormat format, con
     }
     // Segments about the rim: --refine, or the level whose chord is at most --edge (on the
     // largest pellet).
-    const double rim = shape.lobe.radius * largest * scale;
+    const double rim = rim_radius(shape) * largest * scale;
     int level = o.refine;
     if (o.edge > 0.0) {
         level = 0;
@@ -739,11 +765,7 @@ std::string pellet_export(const ExportRequest& request, ExportFormat format, con
     report["shape"] = pellet.text;
     report["contacts"] = o.contacts;
     report["volume_equivalent_diameter"] = dv;
-    // 6 V / S: 6 R h / (R + 2 h) for a cylinder of radius R and half-length h (D when L = D).
-    const double r = shape.lobe.radius * 0.5 * dv, h = shape.lobe.half_length * 0.5 * dv;
-    report["diameter"] = shape.lobes == 1
-                             ? 6.0 * r * h / (r + 2.0 * h)
-                             : 6.0 * shape.volume(0.5 * dv) / shape.surface_area(0.5 * dv);
+    report["diameter"] = surface_volume_diameter(shape, 0.5 * dv);
     report["diameter_note"] = "the surface-volume equivalent diameter 6 V / S (Ergun's for "
                               "non-spheres), which cfd-report's correlations use; the mesh's "
                               "cells per diameter, the Reynolds number of --reynolds and the "
@@ -865,7 +887,11 @@ std::string export_bed(const Packing& packing, const std::vector<std::size_t>& l
                 reach / dp, limits::max_export_reach));
     }
     if (request.pellet)
-        return pellet_export(request, format, packing, lines, *request.pellet);
+        return std::visit(
+            [&](const auto& shape) {
+                return pellet_export(request, format, packing, lines, *request.pellet, shape);
+            },
+            request.pellet->shape);
     if (is_surface(format))
         return surface_export(request, format, packing, lines);
     return data_export(request, format, packing, lines);

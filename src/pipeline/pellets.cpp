@@ -5,6 +5,7 @@
 #include <optional>
 #include <string>
 #include <string_view>
+#include <variant>
 
 #include <fmt/format.h>
 
@@ -21,6 +22,11 @@
 namespace packbed {
 
 namespace {
+
+/// The pellets of one shape as a ShapedBed (a reference to `packing`).
+template <class S> ShapedBed<S> shaped_bed(const Packing& packing, const S& shape) {
+    return ShapedBed<S>(packing, {shape});
+}
 
 constexpr double min_aspect = 0.1, max_aspect = 10.0; // L / D of a cylinder pellet
 /// DI / D of a ring: a thinner wall than D / 20 is a tube, not a pellet, and its depth
@@ -72,6 +78,19 @@ std::optional<PelletSpec> parse_pellet_shape(std::string_view text) {
         out.volume_diameter = std::cbrt(1.5 * (d * d - di * di) * l);
         return out;
     }
+    if (spec.kind == "spherocylinder") {
+        if (numbers->size() != 2)
+            return std::nullopt;
+        const double d = (*numbers)[0], l = (*numbers)[1];
+        if (!(length_ok(d) && (l == 0.0 || length_ok(l)) && l / d <= max_aspect))
+            return std::nullopt;
+        out.shape = SpherocylinderShape::of_aspect(l / d);
+        out.diameter = d;
+        out.length = l;
+        // pi D^2 L / 4 + pi D^3 / 6 = pi d_v^3 / 6.
+        out.volume_diameter = std::cbrt(1.5 * d * d * l + d * d * d);
+        return out;
+    }
     const bool trilobe = spec.kind == "trilobe";
     if (!trilobe && spec.kind != "multilobe")
         return std::nullopt;
@@ -102,9 +121,10 @@ std::string allowed_shapes() {
         "sphere (the default); cylinder:D,L (a cylinder of diameter D and length L); "
         "ring:D,DI,L (a hollow cylinder, its bore of diameter DI, 0 < DI <= {:g} D); "
         "trilobe:DL,DC,L (three cylinders of diameter DL, their axes on a circle of diameter "
-        "DC, 0 < DC <= DL); or multilobe:N,DL,DC,L (N = 2 to 8 such lobes); each length > 0 "
-        "and at most {:g}, L / D (L / DL) from {:g} to {:g}",
-        max_bore, limits::max_length, min_aspect, max_aspect);
+        "DC, 0 < DC <= DL); multilobe:N,DL,DC,L (N = 2 to 8 such lobes); each length > 0 and "
+        "at most {:g}, L / D (L / DL) from {:g} to {:g}; or spherocylinder:D,L (a cylinder of "
+        "diameter D and length L capped by two hemispheres, L >= 0, L / D at most {:g})",
+        max_bore, limits::max_length, min_aspect, max_aspect, max_aspect);
 }
 
 PreparedPellets prepare_pellets(const PelletRequest& request) {
@@ -128,7 +148,7 @@ PreparedPellets prepare_pellets(const PelletRequest& request) {
             throw InvalidInput(container_not_allowed("--container", request.container));
         p.container = c->scaled(1.0 / dv);
     }
-    if (const auto largest = p.container.fit_problem(2.0 * p.shape.bounding_radius(0.5));
+    if (const auto largest = p.container.fit_problem(2.0 * bounding_radius(p.shape, 0.5));
         !largest.empty())
         throw InvalidInput(fmt::format("--shape: '{}' does not fit in {}: {}",
                                        printable(request.shape), p.container.describe(), largest));
@@ -157,15 +177,25 @@ GeneratedPellets run_pellets(const PreparedPellets& prepared, const RunControl& 
     const PelletBed& bed = out.bed;
     json s;
     s["version"] = std::string(version);
-    s["generator"] = "pellets: level-set contact and FIRE on positions and rotations "
-                     "(docs/design.md, \"A bed of cylinder pellets\")";
-    if (pellet.shape.lobe.bore > 0.0)
+    const auto* lobed = std::get_if<MultilobeShape>(&pellet.shape);
+    s["generator"] = lobed ? "pellets: level-set contact and FIRE on positions and rotations "
+                             "(docs/design.md, \"A bed of cylinder pellets\")"
+                           : "pellets: the exact depth's spring and FIRE on positions and "
+                             "rotations (docs/design.md, \"A bed of cylinder pellets\")";
+    if (!lobed)
+        s["shape"] = {{"kind", pellet.kind},
+                      {"spec", pellet.text},
+                      {"diameter", pellet.diameter},
+                      {"length", pellet.length},
+                      {"length_note", "the cylindrical part's: the caps' centres are L apart, the "
+                                      "pellet L + D long"}};
+    else if (lobed->lobe.bore > 0.0)
         s["shape"] = {{"kind", pellet.kind},
                       {"spec", pellet.text},
                       {"diameter", pellet.diameter},
                       {"inner_diameter", pellet.inner_diameter},
                       {"length", pellet.length}};
-    else if (pellet.shape.lobes == 1)
+    else if (lobed->lobes == 1)
         s["shape"] = {{"kind", pellet.kind},
                       {"spec", pellet.text},
                       {"diameter", pellet.diameter},
@@ -173,7 +203,7 @@ GeneratedPellets run_pellets(const PreparedPellets& prepared, const RunControl& 
     else
         s["shape"] = {{"kind", pellet.kind},
                       {"spec", pellet.text},
-                      {"lobes", pellet.shape.lobes},
+                      {"lobes", lobed->lobes},
                       {"lobe_diameter", pellet.diameter},
                       {"circle_diameter", pellet.circle_diameter},
                       {"length", pellet.length},
@@ -188,8 +218,8 @@ GeneratedPellets run_pellets(const PreparedPellets& prepared, const RunControl& 
     s["particles"] = p.particles;
     s["seed"] = p.seed;
     s["threads"] = threads;
-    const ShapedBed<MultilobeShape> shaped(out.packing, {pellet.shape});
-    const double top = bed_top(shaped);
+    const double top = std::visit(
+        [&](const auto& shape) { return bed_top(shaped_bed(out.packing, shape)); }, pellet.shape);
     s["container"] = out.container.summary_json();
     s["container"]["height"] = top;
     s["container"]["bottom"] = 0.0;
@@ -216,7 +246,12 @@ GeneratedPellets run_pellets(const PreparedPellets& prepared, const RunControl& 
     if (top - clearance <= clearance)
         s["void_fraction_note"] = "the bed is lower than twice the band clearance";
     else {
-        s["void_fraction"] = void_fraction(shaped, out.container, clearance, top - clearance);
+        s["void_fraction"] = std::visit(
+            [&](const auto& shape) {
+                return void_fraction(shaped_bed(out.packing, shape), out.container, clearance,
+                                     top - clearance);
+            },
+            pellet.shape);
         s["void_fraction_band"] = {clearance, top - clearance};
     }
     out.summary = s;
