@@ -33,8 +33,8 @@ if ! command -v python3 >/dev/null 2>&1; then
   echo "bench/peers/liggghts_pellets.sh: python3 not found (writes the clump, reads the dump)" >&2
   exit 1
 fi
-if ! [[ $n =~ ^[1-9][0-9]*$ ]] || ! python3 -c "import sys; sys.exit(not float('$a') > 1.5)" \
-     2>/dev/null; then
+if ! [[ $n =~ ^[1-9][0-9]*$ ]] ||
+   ! python3 -c "import sys; sys.exit(not float(sys.argv[1]) > 1.5)" "$a" 2>/dev/null; then
   echo "bench/peers/liggghts_pellets.sh: N must be a positive integer and A a number > 1.5" \
        "(got N = $n, A = $a)" >&2
   exit 2

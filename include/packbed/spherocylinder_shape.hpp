@@ -11,7 +11,9 @@
 #include <numbers>
 #include <string_view>
 #include <utility>
+#include <variant>
 
+#include "packbed/annulus.hpp"
 #include "packbed/container.hpp"
 #include "packbed/mesh.hpp"
 #include "packbed/particle_shape.hpp"
@@ -72,10 +74,10 @@ struct SpherocylinderShape {
     /// their depth exceeds the deepest of those. One spring where they cross, one where an end
     /// rests on a side, two where they lie side by side: the energy's gradient (force and
     /// torque) then changes smoothly as two rods turn through parallel, where the nearest
-    /// points alone jump from one end of the overlap to the other.
+    /// points alone jump from one end of the overlap to the other. \return pair_overlap's depth.
     template <class F>
-    void pair_springs(const Placement& a, const SpherocylinderShape& other, const Placement& b,
-                      const Vec3& ab, F&& f) const {
+    double pair_springs(const Placement& a, const SpherocylinderShape& other, const Placement& b,
+                        const Vec3& ab, F&& f) const {
         const Vec3 ua = rotate(a.orientation, Vec3{0.0, 0.0, 1.0});
         const Vec3 ub = rotate(b.orientation, Vec3{0.0, 0.0, 1.0});
         const double ra = radius * a.size, rb = other.radius * b.size;
@@ -103,17 +105,19 @@ struct SpherocylinderShape {
         const PairOverlap o = pair_overlap(a, other, b, ab);
         if (const double excess = o.depth - deepest; excess > 0.0)
             f(excess, o.normal, o.point + o.normal * (0.5 * (o.depth - excess)));
+        return o.depth;
     }
     /// The springs that press it out of the container, each as f(depth, push, point) (the
     /// push the wall's inward unit normal, the point in the bed): each cap's sphere against the
-    /// floor and the walls (Container::wall_contacts), and the pellet's deepest point
-    /// (wall_contacts) for what it exceeds them. The distance outside a convex region is
-    /// convex along the segment: in a tube, a box, a cone the ends are the deepest, and only
-    /// an annulus' rod meets the side between them.
-    template <class F> void wall_springs(const Container& c, const Placement& p, F&& f) const {
+    /// floor and the walls (Container::wall_contacts); in an annulus, the pellet's deepest point
+    /// (wall_contacts) for what it exceeds them. The distance outside a convex region is convex
+    /// along the segment: in a tube, a box, a cone the ends are the deepest, and only an
+    /// annulus' rod, bulging into the region, meets the side between them. \return the deepest
+    /// of the side walls (the floor left out: the caller has it exactly, support(-z)).
+    template <class F> double wall_springs(const Container& c, const Placement& p, F&& f) const {
         const Vec3 axis = rotate(p.orientation, Vec3{0.0, 0.0, 1.0});
         const double r = radius * p.size;
-        double deepest = 0.0;
+        double deepest = 0.0, side = 0.0;
         for (const double end : {-1.0, 1.0}) {
             const Vec3 centre = p.position + axis * (end * half_length * p.size);
             const auto add = [&](double depth, const Vec3& push) {
@@ -123,12 +127,18 @@ struct SpherocylinderShape {
                 deepest = std::max(deepest, depth);
             };
             add(r - centre.z, Vec3{0.0, 0.0, 1.0});
-            c.wall_contacts(centre, r, add);
+            c.wall_contacts(centre, r, [&](double depth, const Vec3& push) {
+                add(depth, push);
+                side = std::max(side, depth);
+            });
         }
-        wall_contacts(c, p, [&](const ConvexWallContact& w) {
-            if (const double excess = w.depth - deepest; excess > 0.0)
-                f(excess, w.push, w.point);
-        });
+        if (std::holds_alternative<Annulus>(c.shape()))
+            wall_contacts(c, p, [&](const ConvexWallContact& w) {
+                side = std::max(side, w.depth);
+                if (const double excess = w.depth - deepest; excess > 0.0)
+                    f(excess, w.push, w.point);
+            });
+        return side;
     }
     /// Bounds: the wall distances of the bounding sphere.
     std::pair<double, double> wall_extent(const Container& c, std::size_t wall,

@@ -505,27 +505,29 @@ private:
     /// recorded is the exact one (pair_overlap).
     void press_exact(std::size_t a, std::size_t b, const Vec3& u, PairPush& push) const {
         const Placement pa{m_centre[a], m_turn[a], m_size}, pb{m_centre[a] + u, m_turn[b], m_size};
-        m_shape.pair_springs(
-            pa, m_shape, pb, u, [&](double depth, const Vec3& normal, const Vec3& point) {
-                const Vec3 f = normal * (exact_contact_stiffness * depth); // on b, from a
+        const double depth = m_shape.pair_springs(
+            pa, m_shape, pb, u, [&](double spring, const Vec3& normal, const Vec3& point) {
+                const Vec3 f = normal * (exact_contact_stiffness * spring); // on b, from a
                 push.force -= f;
                 push.torque_first -= cross(point, f);
                 push.torque_second += cross(point - u, f);
             });
-        push.depth = std::max(0.0, m_shape.pair_overlap(pa, m_shape, pb, u).depth);
+        push.depth = std::max(0.0, depth);
     }
 
     /// Pellet i pressed out of the floor and the side walls by the same springs
     /// (SpherocylinderShape::wall_springs): adds to `force` and `torque`; \return the deepest
-    /// exact depth.
+    /// exact depth (the side walls' by the springs' law, exact where they are convex towards
+    /// the inside; measure_exact's search at the end).
     double press_walls_exact(std::size_t i, Vec3& force, Vec3& torque) const {
         const Placement p{m_centre[i], m_turn[i], m_size};
-        m_shape.wall_springs(m_container, p, [&](double depth, const Vec3& push, const Vec3& at) {
-            const Vec3 f = push * (exact_contact_stiffness * depth);
-            force += f;
-            torque += cross(at - p.position, f);
-        });
-        return std::max(m_shape.wall_overlap(m_container, p), -m_shape.support(p, {0, 0, -1}).z);
+        const double side = m_shape.wall_springs(
+            m_container, p, [&](double depth, const Vec3& push, const Vec3& at) {
+                const Vec3 f = push * (exact_contact_stiffness * depth);
+                force += f;
+                torque += cross(at - p.position, f);
+            });
+        return std::max(side, -m_shape.support(p, {0, 0, -1}).z);
     }
 
     Vec3 separation(std::size_t a, std::size_t b) const {

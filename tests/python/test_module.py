@@ -262,6 +262,18 @@ def test_a_ring_bed_has_the_command_lines_bytes(tmp_path):
     assert bed.summary["max_penetration_wall"] <= bed.summary["tolerance"]
 
 
+def test_a_spherocylinder_bed_has_the_command_lines_bytes(tmp_path):
+    # 10 spherocylinders (D = L = 1) in a tube of a = 4: the same bytes from Python as from the
+    # command line, the tolerance 1e-3 of D, no nodes (the contact in closed form).
+    bed = pellets_from_both(tmp_path, "spherocylinder:1,1", 10, 2)
+    assert bed.orientations.shape == (10, 4)
+    assert bed.summary["shape"]["kind"] == "spherocylinder"
+    assert bed.summary["tolerance"] == pytest.approx(1e-3, abs=1e-15)
+    assert bed.summary["nodes_per_pellet"] == 0
+    assert bed.summary["max_penetration_pair"] <= bed.summary["tolerance"]
+    assert 0 < bed.summary["max_penetration_wall"] <= bed.summary["tolerance"]
+
+
 def test_bad_output_directory_raises_and_writes_nothing(tmp_path):
     full = tmp_path / "full"
     full.mkdir()
