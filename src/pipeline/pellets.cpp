@@ -180,7 +180,7 @@ GeneratedPellets run_pellets(const PreparedPellets& prepared, const RunControl& 
     const auto* lobed = std::get_if<MultilobeShape>(&pellet.shape);
     s["generator"] = lobed ? "pellets: level-set contact and FIRE on positions and rotations "
                              "(docs/design.md, \"A bed of cylinder pellets\")"
-                           : "pellets: the exact depth's spring and FIRE on positions and "
+                           : "pellets: springs on the exact depths and FIRE on positions and "
                              "rotations (docs/design.md, \"A bed of cylinder pellets\")";
     if (!lobed)
         s["shape"] = {{"kind", pellet.kind},
