@@ -78,10 +78,12 @@ struct SpherocylinderShape {
     template <class F>
     double pair_springs(const Placement& a, const SpherocylinderShape& other, const Placement& b,
                         const Vec3& ab, F&& f) const {
-        const Vec3 ua = rotate(a.orientation, Vec3{0.0, 0.0, 1.0});
-        const Vec3 ub = rotate(b.orientation, Vec3{0.0, 0.0, 1.0});
-        const double ra = radius * a.size, rb = other.radius * b.size;
-        const double ha = half_length * a.size, hb = other.half_length * b.size;
+        const Placed pa{rotate(a.orientation, Vec3{0.0, 0.0, 1.0}), radius * a.size,
+                        half_length * a.size};
+        const Placed pb{rotate(b.orientation, Vec3{0.0, 0.0, 1.0}), other.radius * b.size,
+                        other.half_length * b.size};
+        const Vec3 &ua = pa.axis, &ub = pb.axis;
+        const double ra = pa.radius, rb = pb.radius, ha = pa.half_length, hb = pb.half_length;
         double deepest = 0.0;
         // From the point q (from a's position) of one body to its nearest on the other's
         // segment (centre c, axis u, half-length h); `towards` +1 when q is a's.
@@ -102,7 +104,7 @@ struct SpherocylinderShape {
             end_spring(ua * (end * ha), ab, ub, hb, 1.0);
             end_spring(ab + ub * (end * hb), Vec3{}, ua, ha, -1.0);
         }
-        const PairOverlap o = pair_overlap(a, other, b, ab);
+        const PairOverlap o = segments_overlap(pa, pb, ab);
         if (const double excess = o.depth - deepest; excess > 0.0)
             f(excess, o.normal, o.point + o.normal * (0.5 * (o.depth - excess)));
         return o.depth;
@@ -147,8 +149,8 @@ struct SpherocylinderShape {
     /// between them clear of the side; the cylinder's slab sections (cylinder_shape.cpp's
     /// closed-form disc strips) and the caps' (the same discs, radius sqrt(R^2 - s^2) at s past
     /// the segment's end, integrated along the axis by adaptive Gauss-Kronrod) where it keeps
-    /// clear of the side (wall_overlap); the region's polar integral over the same sections
-    /// otherwise (section_volume.hpp).
+    /// clear of the side (wall_overlap); otherwise the cylinder part's CylinderShape::volume_in
+    /// and each cap's sections by the region's polar integral (section_volume.hpp).
     double volume_in(const Container& c, const Placement& p, double z_low, double z_high) const;
     double volume_from_wall(const Container& c, std::size_t wall, double d, const Placement& p,
                             double z_low, double z_high) const;
@@ -169,6 +171,16 @@ struct SpherocylinderShape {
             f(DemSphere{p.position + axis * (t * p.size), radius * p.size});
         }
     }
+
+private:
+    /// A pellet placed, as its contact needs it: its axis in the bed, its radius and its
+    /// segment's half-length at its size.
+    struct Placed {
+        Vec3 axis;
+        double radius, half_length;
+    };
+    /// pair_overlap of a and b (b's centre at ab from a's).
+    static PairOverlap segments_overlap(const Placed& a, const Placed& b, const Vec3& ab);
 };
 
 static_assert(ParticleShape<SpherocylinderShape>);

@@ -118,11 +118,18 @@ void SpherocylinderShape::wall_contacts(const Container& c, const Placement& p,
 
 PairOverlap SpherocylinderShape::pair_overlap(const Placement& a, const SpherocylinderShape& other,
                                               const Placement& b, const Vec3& ab) const {
-    const Vec3 ua = rotate(a.orientation, Vec3{0.0, 0.0, 1.0});
-    const Vec3 ub = rotate(b.orientation, Vec3{0.0, 0.0, 1.0});
-    const double ra = radius * a.size, rb = other.radius * b.size;
-    const auto [s, t] =
-        nearest_parameters({}, ua, half_length * a.size, ab, ub, other.half_length * b.size);
+    return segments_overlap(
+        {rotate(a.orientation, Vec3{0.0, 0.0, 1.0}), radius * a.size, half_length * a.size},
+        {rotate(b.orientation, Vec3{0.0, 0.0, 1.0}), other.radius * b.size,
+         other.half_length * b.size},
+        ab);
+}
+
+PairOverlap SpherocylinderShape::segments_overlap(const Placed& a, const Placed& b,
+                                                  const Vec3& ab) {
+    const Vec3 &ua = a.axis, &ub = b.axis;
+    const double ra = a.radius, rb = b.radius;
+    const auto [s, t] = nearest_parameters({}, ua, a.half_length, ab, ub, b.half_length);
     const Vec3 pa = ua * s, pb = ab + ub * t;
     const Vec3 between = pb - pa;
     const double distance = norm(between);
