@@ -818,7 +818,18 @@ py::array voxelize_bed(const Bed& bed, double voxel_size,
                        const std::string& dtype, const std::optional<std::string>& container,
                        std::optional<long long> threads,
                        const std::optional<std::filesystem::path>& out) {
-    refuse_pellets(bed, "voxelize");
+    // A bed of pellets from generate(shape=...) is drawn as its pellets (the shape its summary
+    // records).
+    std::optional<PelletSpec> pellet;
+    if (!bed.packing.orientations.empty()) {
+        const auto spec = bed.summary.find("shape");
+        if (spec != bed.summary.end() && spec->is_object() && spec->contains("spec") &&
+            (*spec)["spec"].is_string())
+            pellet = parse_pellet_shape((*spec)["spec"].get<std::string>());
+        if (!pellet)
+            refuse_pellets(bed, "voxelize");
+    }
+    const PelletShape* shape = pellet ? &pellet->shape : nullptr;
     const Container given = container_for(bed, container);
     const VoxelType type = voxel_type(kind, dtype);
     std::optional<ImageFormat> format;
@@ -831,7 +842,8 @@ py::array voxelize_bed(const Bed& bed, double voxel_size,
                                            printable(out->native())));
     }
     // every check before the work
-    voxel_grid(bed.packing, given, voxel_size, region, voxel_bytes(type));
+    voxel_grid(bed.packing, given, voxel_size, region, voxel_bytes(type),
+               shape ? std::optional(pellet_bed_top(bed.packing, *shape)) : std::nullopt);
     std::optional<OutputDirectory> directory;
     if (out)
         directory.emplace(out->parent_path().empty() ? "." : out->parent_path(), "--out",
@@ -840,7 +852,7 @@ py::array voxelize_bed(const Bed& bed, double voxel_size,
     VoxelImage image;
     {
         py::gil_scoped_release released;
-        image = voxelize(bed.packing, given, voxel_size, region, type);
+        image = voxelize(bed.packing, given, voxel_size, region, type, shape);
     }
     if (directory) {
         stage_image(*directory, out->filename().string(), *format, image);

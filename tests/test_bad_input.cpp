@@ -1426,13 +1426,6 @@ INSTANTIATE_TEST_SUITE_P(
         exact("analyze pel/particles.csv --frames all",
               "packbed analyze: --frames all is not allowed for a bed of cylinder:1,1 pellets; "
               "allowed: one frame"),
-        exact("voxelize pel/particles.csv --voxel-size 0.1 --out v.raw",
-              "packbed voxelize: pel/particles.csv: a bed of cylinder:1,1 pellets (its "
-              "summary.json's shape) is not allowed here; allowed: a bed of spheres (packbed "
-              "analyze measures a pellet bed, and export --format stl, obj or openfoam writes "
-              "its surfaces)"),
-        naming("voxelize pel/particles.csv --voxel-size 0.1 --out v.raw",
-               {"pel/particles.csv", "pellets"}),
         naming("export cone/particles.csv -f stl -o c.stl",
                {"cone/summary.json", "shape 'cone:1,1'", "cylinder:D,L"}),
         naming("export pel/particles.csv -f stl --contacts shrink:0.01 --container cylinder:0.9 "

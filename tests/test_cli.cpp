@@ -8,8 +8,10 @@
 #include <cmath>
 #include <cstdio>
 #include <cstdlib>
+#include <cstring>
 #include <filesystem>
 #include <fstream>
+#include <numbers>
 #include <set>
 #include <sstream>
 #include <thread>
@@ -1804,6 +1806,25 @@ TEST(Cli, GenerateShapeSpherocylinderPacksACellAndReadsBack) {
     EXPECT_NEAR(a["void_fraction"].get<double>(), s["void_fraction"].get<double>(), 1e-12);
     // A settled bed: every pellet in the band touches at least one other.
     EXPECT_GT(a["coordination"]["mean"].get<double>(), 4.0);
+    // voxelize draws the pellets: the image of the cell from just below the floor (the
+    // pellets press into it by up to the tolerance) to well above the bed holds all thirty
+    // (their copies across the sides bring back what sticks out), pi d_v^3 / 6 each.
+    const Outcome voxels = packbed("voxelize " + (d / "particles.csv").string() +
+                                   " --voxel-size 0.09 --region 0,0,-0.09,4.5,4.5,9.9 --kind "
+                                   "fraction -q -o " +
+                                   (d / "bed.raw").string());
+    ASSERT_EQ(voxels.status, 0) << voxels.err;
+    const std::string raw = slurp(d / "bed.raw");
+    const auto header = nlohmann::json::parse(slurp(d / "bed.raw.json"));
+    EXPECT_EQ(header["shape"][0], 50);
+    ASSERT_EQ(raw.size() % sizeof(double), 0u);
+    double solid = 0.0;
+    for (std::size_t k = 0; k < raw.size(); k += sizeof(double)) {
+        double v = 0.0;
+        std::memcpy(&v, raw.data() + k, sizeof v);
+        solid += v;
+    }
+    EXPECT_NEAR(solid * 0.09 * 0.09 * 0.09, 30.0 * std::numbers::pi * 2.5 / 6.0, 1e-8);
     // Ten in a tube of a = 4, exported as their exact surfaces: the report's chord error is
     // R (1 - cos(pi / n)) about the rims, R = D / 2 = 0.5.
     const fs::path tube = scratch("spherocylinders-tube");

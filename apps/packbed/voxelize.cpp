@@ -48,14 +48,20 @@ int run_voxelize(VoxelizeOptions& o) {
         read_options.radius = 0.5 * o.diameter;
     read_options.format = particle_formats().at(o.format);
     o.placement.apply(read_options);
+    // A bed of pellets (the shape its summary.json records) is drawn as its pellets; a bed of
+    // spheres is checked to lie inside its container first.
+    const std::optional<PelletSpec> pellet = shape_beside(path);
     const BedInContainer bed =
-        read_bed_in_container(path, read_options, o.container, 0.0, o.outside_tolerance);
+        pellet ? BedInContainer{read_particles(path, read_options),
+                                find_container(path, o.container, 0.0)}
+               : read_bed_in_container(path, read_options, o.container, 0.0, o.outside_tolerance);
     if (!bed.container)
         throw InvalidInput(fmt::format("--container is needed: no summary.json with a container "
                                        "next to {}",
                                        printable(path.native())));
     const ParticleFile& file = bed.file;
     const Container& container = *bed.container;
+    const PelletShape* shape = pellet ? &pellet->shape : nullptr;
     std::optional<std::array<double, 6>> region;
     if (!o.region.empty()) {
         const auto v = parse_finite_list(o.region);
@@ -68,17 +74,20 @@ int run_voxelize(VoxelizeOptions& o) {
     const VoxelType type = voxel_type(o.kind, o.dtype);
     const bool binary = type == VoxelType::boolean;
     // Every check before the work: the grid's size, the output.
-    voxel_grid(file.packing, container, o.voxel_size, region, voxel_bytes(type));
+    voxel_grid(file.packing, container, o.voxel_size, region, voxel_bytes(type),
+               shape ? std::optional(pellet_bed_top(file.packing, *shape)) : std::nullopt);
     const std::filesystem::path target(o.out);
     OutputDirectory out(target.parent_path().empty() ? "." : target.parent_path(), "--out",
                         OutputKind::files);
     use_threads(o.threads);
-    const VoxelImage image = voxelize(file.packing, container, o.voxel_size, region, type);
+    const VoxelImage image = voxelize(file.packing, container, o.voxel_size, region, type, shape);
     stage_image(out, target.filename().string(), *format, image);
     out.commit();
     if (!o.quiet)
-        fmt::print("packbed voxelize: {} x {} x {} voxels of {:g} ({}), porosity of the image "
+        fmt::print("packbed voxelize: {}{} x {} x {} voxels of {:g} ({}), porosity of the image "
                    "{:.5f}: {}\n",
+                   pellet ? fmt::format("{} pellets {} in ", file.packing.size(), pellet->text)
+                          : std::string(),
                    image.grid.count[0], image.grid.count[1], image.grid.count[2], image.grid.size,
                    binary ? "1 = pore, 0 = solid"
                           : fmt::format("solid fractions, exact, {}", o.dtype),
@@ -98,7 +107,7 @@ Command register_voxelize(CLI::App& parent) {
     app->fallthrough();
     app->add_option("particles", o.particles,
                     "the bed: any file analyze reads (CSV, XYZ, LAMMPS/LIGGGHTS dump or data; "
-                    "also .gz)")
+                    "also .gz); a bed of pellets with the shape its summary.json records")
         ->required()
         ->check(path_text());
     app->add_option("--format", o.format, "file format; auto: from the extension or first line")
@@ -113,7 +122,8 @@ Command register_voxelize(CLI::App& parent) {
         ->check(path_text());
     app->add_option("--kind", o.kind,
                     "binary: 1 where a voxel's centre is pore space (inside the container, in no "
-                    "sphere), 0 solid; fraction: each voxel's solid fraction, exact (float64)")
+                    "sphere or pellet), 0 solid; fraction: each voxel's solid fraction, exact "
+                    "(float64)")
         ->check(one_of({"binary", "fraction"}));
     app->add_option("--dtype", o.dtype,
                     "the fractions' type: float64, or float32 for half the memory and file "

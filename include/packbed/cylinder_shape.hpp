@@ -93,7 +93,9 @@ struct CylinderShape {
     /// The same in the container shrunk from wall `wall` by d (Container::shrunk_from).
     double volume_from_wall(const Container& c, std::size_t wall, double d, const Placement& p,
                             double z_low, double z_high) const;
-    /// The volume in an axis-aligned box. A ring's volumes: the cylinder's less the bore's.
+    /// The volume in an axis-aligned box: the section's disc inside the box's section, in
+    /// closed form, integrated along the axis (section_volume.hpp's box_volume_by_sections); a
+    /// ring's, the disc's less the bore's.
     double volume_in_box(const Placement& p, const Vec3& low, const Vec3& high) const;
     /// The closed outward surface at size 1: 12 * 2^level segments around (chord error
     /// R (1 - cos(pi / n))), each end a fan about its centre, the side one band of quads split

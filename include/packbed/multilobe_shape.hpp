@@ -98,6 +98,9 @@ struct MultilobeShape {
     double volume_in(const Container& c, const Placement& p, double z_low, double z_high) const;
     double volume_from_wall(const Container& c, std::size_t wall, double d, const Placement& p,
                             double z_low, double z_high) const;
+    /// The volume in an axis-aligned box: each lobe's disc in its wedge inside the box's
+    /// section, in closed form, integrated along the axis (section_volume.hpp's
+    /// box_volume_by_sections).
     double volume_in_box(const Placement& p, const Vec3& low, const Vec3& high) const;
     /// The closed outward surface at size 1: each lobe's arc in segments of at most 2 pi /
     /// (12 * 2^level) about its axis (chord error r (1 - cos(pi / n)), as the cylinder's), the

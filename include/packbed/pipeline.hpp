@@ -551,10 +551,12 @@ struct VoxelImage {
 VoxelType voxel_type(std::string_view kind, std::string_view dtype);
 
 /// Make the image `voxelize` makes: voxel_grid, then pore_image (type boolean) or
-/// solid_fraction_image (float64 or float32).
+/// solid_fraction_image (float64 or float32), of spheres or, given `pellet`, of pellets of that
+/// shape (the default region's top then the pellets' highest point, pellet_bed_top).
 /// \throws InvalidInput as voxel_grid
 VoxelImage voxelize(const Packing& packing, const Container& container, double voxel_size,
-                    const std::optional<std::array<double, 6>>& region, VoxelType type);
+                    const std::optional<std::array<double, 6>>& region, VoxelType type,
+                    const PelletShape* pellet = nullptr);
 
 /// Stage an image as the file `name` of `out` in `format`, and a raw image's header as
 /// name + ".json" (image_header).

@@ -142,6 +142,12 @@ struct SpherocylinderShape {
             });
         return side;
     }
+    /// The body-frame point q (size 1)'s depth inside, R less its distance from the segment:
+    /// its distance from the surface, negative outside.
+    double signed_depth(const Vec3& q) const {
+        const double t = std::clamp(q.z, -half_length, half_length);
+        return radius - std::sqrt(q.x * q.x + q.y * q.y + (q.z - t) * (q.z - t));
+    }
     /// Bounds: the wall distances of the bounding sphere.
     std::pair<double, double> wall_extent(const Container& c, std::size_t wall,
                                           const Placement& p) const;
@@ -154,6 +160,9 @@ struct SpherocylinderShape {
     double volume_in(const Container& c, const Placement& p, double z_low, double z_high) const;
     double volume_from_wall(const Container& c, std::size_t wall, double d, const Placement& p,
                             double z_low, double z_high) const;
+    /// The volume in an axis-aligned box: the section's disc (radius R, or sqrt(R^2 - s^2) at s
+    /// past the segment's end) inside the box's section, in closed form, integrated along the
+    /// axis (section_volume.hpp's box_volume_by_sections).
     double volume_in_box(const Placement& p, const Vec3& low, const Vec3& high) const;
     /// The closed outward surface at size 1: 12 * 2^level segments around and 3 * 2^level
     /// latitude steps on each cap (chord error R (1 - cos(pi / n)) both ways), the vertices on

@@ -15,6 +15,7 @@
 
 #include "packbed/container.hpp"
 #include "packbed/packing.hpp"
+#include "packbed/pellet_shape.hpp"
 #include "packbed/vec3.hpp"
 
 namespace packbed {
@@ -39,9 +40,10 @@ struct VoxelGrid {
 /// \param bytes_per_voxel of the image to be made: 1 binary, 8 fractions
 /// \throws InvalidInput naming --voxel-size or --region when the size is not a positive finite
 /// length, the region is empty, or the image would take more than limits::max_image_bytes
+/// \param top the bed's top for the default region; none: bed_top(packing), the spheres' top
 VoxelGrid voxel_grid(const Packing& packing, const Container& container, double size,
                      const std::optional<std::array<double, 6>>& region = std::nullopt,
-                     std::size_t bytes_per_voxel = 1);
+                     std::size_t bytes_per_voxel = 1, std::optional<double> top = std::nullopt);
 
 namespace detail {
 /// `bytes` of memory for an image; from 64 MiB on aligned to 2 MiB and, with `huge`, advised to
@@ -102,6 +104,33 @@ extern template Voxels<double> solid_fraction_image(const Packing&, const Contai
                                                     const VoxelGrid&);
 extern template Voxels<float> solid_fraction_image(const Packing&, const Container&,
                                                    const VoxelGrid&);
+
+/// The pore image of a bed of pellets of one shape (pellet_shape.hpp: each particle's radius
+/// its size d_v / 2, its orientation the packing's): 1 where the voxel's centre is inside the
+/// container and inside no pellet (signed_depth > 0 in none), 0 elsewhere, as pore_image for
+/// spheres. Parallel; the same bytes for any number of threads.
+Voxels<std::uint8_t> pore_image(const Packing& packing, const PelletShape& shape,
+                                const Container& container, const VoxelGrid& grid);
+
+/// The solid fraction image of a bed of pellets: each voxel's volume inside the pellets over its
+/// own, summed over the pellets in their order. A voxel whose centre lies deeper inside a pellet
+/// than its half-diagonal (signed_depth, never more than the distance to the surface) holds
+/// it whole, one farther outside none; each other is the shape's volume_in_box (its sections'
+/// areas in closed form, integrated along its axis: within 1e-9 of the voxel's volume,
+/// docs/voxels.md). Overlaps count twice, the container does not enter, and in a periodic
+/// cell the copies across the sides count too, as in solid_fraction_image. Parallel; the same
+/// bits for any number of threads.
+template <class Real = double>
+Voxels<Real> solid_fraction_image(const Packing& packing, const PelletShape& shape,
+                                  const Container& container, const VoxelGrid& grid);
+extern template Voxels<double> solid_fraction_image(const Packing&, const PelletShape&,
+                                                    const Container&, const VoxelGrid&);
+extern template Voxels<float> solid_fraction_image(const Packing&, const PelletShape&,
+                                                   const Container&, const VoxelGrid&);
+
+/// The height of the highest point of a bed of pellets (each pellet's support along z): the top
+/// of voxel_grid's default region for it.
+double pellet_bed_top(const Packing& packing, const PelletShape& shape);
 
 /// Volume of the unit ball inside the orthant {x > a, y > b, z > c}, any a, b, c, in closed
 /// form. For a, b, c >= 0 (a^2 + b^2 + c^2 < 1), integrating the chord over y and then x,

@@ -231,16 +231,19 @@ struct PlaneLists {
     std::vector<std::uint32_t> ball;
 };
 
-PlaneLists plane_lists(const std::vector<Ball>& balls, const VoxelGrid& grid, bool centres) {
+/// The lists of `count` bodies whose x extents, extent(n) = (from, to), reach each plane.
+template <class Extent>
+PlaneLists plane_lists(std::size_t count, Extent&& extent, const VoxelGrid& grid, bool centres) {
     const std::size_t nx = grid.count[0];
-    auto range = [&](const Ball& b) {
-        return centres ? centres_within(b.c.x - b.r, b.c.x + b.r, grid.low.x, grid.size, nx)
-                       : voxels_meeting(b.c.x - b.r, b.c.x + b.r, grid.low.x, grid.size, nx);
+    auto range = [&](std::size_t n) {
+        const auto [from, to] = extent(n);
+        return centres ? centres_within(from, to, grid.low.x, grid.size, nx)
+                       : voxels_meeting(from, to, grid.low.x, grid.size, nx);
     };
     PlaneLists lists;
     lists.start.assign(nx + 1, 0);
-    for (const Ball& b : balls) {
-        const auto [first, last] = range(b);
+    for (std::size_t n = 0; n < count; ++n) {
+        const auto [first, last] = range(n);
         for (long long i = first; i <= last; ++i)
             ++lists.start[static_cast<std::size_t>(i) + 1];
     }
@@ -248,12 +251,21 @@ PlaneLists plane_lists(const std::vector<Ball>& balls, const VoxelGrid& grid, bo
         lists.start[i + 1] += lists.start[i];
     lists.ball.resize(lists.start[nx]);
     std::vector<std::size_t> next(lists.start.begin(), lists.start.end() - 1);
-    for (std::size_t n = 0; n < balls.size(); ++n) {
-        const auto [first, last] = range(balls[n]);
+    for (std::size_t n = 0; n < count; ++n) {
+        const auto [first, last] = range(n);
         for (long long i = first; i <= last; ++i)
             lists.ball[next[static_cast<std::size_t>(i)]++] = static_cast<std::uint32_t>(n);
     }
     return lists;
+}
+
+PlaneLists plane_lists(const std::vector<Ball>& balls, const VoxelGrid& grid, bool centres) {
+    return plane_lists(
+        balls.size(),
+        [&](std::size_t n) {
+            return std::pair(balls[n].c.x - balls[n].r, balls[n].c.x + balls[n].r);
+        },
+        grid, centres);
 }
 
 double centre_of(double low, double h, std::size_t i) {
@@ -295,7 +307,7 @@ Vec3 VoxelGrid::high() const {
 
 VoxelGrid voxel_grid(const Packing& packing, const Container& container, double size,
                      const std::optional<std::array<double, 6>>& region,
-                     std::size_t bytes_per_voxel) {
+                     std::size_t bytes_per_voxel, std::optional<double> top) {
     const double max_voxels = limits::max_image_bytes / static_cast<double>(bytes_per_voxel);
     check_option("voxel-size", size, option_range::voxel_size);
     std::array<double, 6> box{};
@@ -303,7 +315,7 @@ VoxelGrid voxel_grid(const Packing& packing, const Container& container, double 
         box = *region;
     } else {
         const Rectangle b = container.bounds();
-        box = {b.x_low, b.y_low, 0.0, b.x_high, b.y_high, bed_top(packing)};
+        box = {b.x_low, b.y_low, 0.0, b.x_high, b.y_high, top ? *top : bed_top(packing)};
     }
     for (int d = 0; d < 3; ++d)
         if (!(std::isfinite(box[d]) && std::isfinite(box[d + 3]) && box[d] < box[d + 3] &&
@@ -372,6 +384,30 @@ double ball_box_volume(const Vec3& center, double radius, const Vec3& low, const
     return std::max(0.0, sum) * radius * radius * radius;
 }
 
+namespace {
+
+/// Plane i of the pore image before any particle: 1 where the voxel's centre is inside the
+/// container, 0 outside. The containers are upright prisms above the floor: a column (i, j) is
+/// inside or not at every height above z = 0.
+void container_plane(std::uint8_t* plane, std::size_t i, const VoxelGrid& grid,
+                     const Container& container) {
+    const std::size_t ny = grid.count[1], nz = grid.count[2];
+    const double h = grid.size;
+    const auto k_floor =
+        centres_within(0.0, std::numeric_limits<double>::infinity(), grid.low.z, h, nz).first;
+    const double x = centre_of(grid.low.x, h, i);
+    for (std::size_t j = 0; j < ny; ++j) {
+        const double y = centre_of(grid.low.y, h, j);
+        const bool inside = container.contains({x, y, std::max(0.0, grid.low.z)});
+        std::uint8_t* row = plane + j * nz;
+        std::memset(row, 0, nz);
+        if (inside && k_floor < static_cast<long long>(nz))
+            std::memset(row + k_floor, 1, nz - static_cast<std::size_t>(k_floor));
+    }
+}
+
+} // namespace
+
 Voxels<std::uint8_t> pore_image(const Packing& packing, const Container& container,
                                 const VoxelGrid& grid) {
     // plain names, not a structured binding: clang 14 cannot name those inside OpenMP regions
@@ -380,22 +416,11 @@ Voxels<std::uint8_t> pore_image(const Packing& packing, const Container& contain
     Voxels<std::uint8_t> image(grid.voxels()); // every voxel written below
     const std::vector<Ball> balls = balls_reaching(packing, container, grid);
     const PlaneLists lists = plane_lists(balls, grid, true);
-    // The containers are upright prisms above the floor: a column (i, j) is inside or not at
-    // every height above z = 0.
-    const auto k_floor =
-        centres_within(0.0, std::numeric_limits<double>::infinity(), grid.low.z, h, nz).first;
 #pragma omp parallel for schedule(dynamic, 1)
     for (std::size_t i = 0; i < nx; ++i) {
         std::uint8_t* plane = image.data() + i * ny * nz;
         const double x = centre_of(grid.low.x, h, i);
-        for (std::size_t j = 0; j < ny; ++j) {
-            const double y = centre_of(grid.low.y, h, j);
-            const bool inside = container.contains({x, y, std::max(0.0, grid.low.z)});
-            std::uint8_t* row = plane + j * nz;
-            std::memset(row, 0, nz);
-            if (inside && k_floor < static_cast<long long>(nz))
-                std::memset(row + k_floor, 1, nz - static_cast<std::size_t>(k_floor));
-        }
+        container_plane(plane, i, grid, container);
         for (std::size_t e = lists.start[i]; e < lists.start[i + 1]; ++e) {
             const Ball& b = balls[lists.ball[e]];
             const double dx = x - b.c.x;
@@ -794,6 +819,167 @@ Voxels<Real> solid_fraction_image(const Packing& packing, const Container& conta
 
 template Voxels<double> solid_fraction_image(const Packing&, const Container&, const VoxelGrid&);
 template Voxels<float> solid_fraction_image(const Packing&, const Container&, const VoxelGrid&);
+
+namespace {
+
+/// A pellet to draw: where it is (a periodic copy's position moved by whole periods), the box
+/// that holds it (its support along the axes) and the rotation into its body frame.
+struct PlacedPellet {
+    Placement p;
+    Vec3 low, high;
+    Quaternion to_body;
+};
+
+void require_orientations(const Packing& packing) {
+    if (packing.orientations.size() != packing.size())
+        throw InvalidInput("a bed of pellets needs each one's orientation; allowed: a table with "
+                           "the columns qw, qx, qy, qz");
+}
+
+/// The pellets, with their copies across a periodic cell's sides, whose boxes reach the grid,
+/// in order (each pellet, then its copies).
+template <class Shape>
+std::vector<PlacedPellet> pellets_reaching(const Packing& packing, const Shape& shape,
+                                           const Container& container, const VoxelGrid& grid) {
+    require_orientations(packing);
+    const Vec3 high = grid.high();
+    const std::optional<Periods> cell = container.periods();
+    std::vector<PlacedPellet> out;
+    for (std::size_t n = 0; n < packing.size(); ++n) {
+        const Placement p{packing.centers[n], packing.orientations[n], packing.radii[n]};
+        const Vec3 low{shape.support(p, {-1.0, 0.0, 0.0}).x, shape.support(p, {0.0, -1.0, 0.0}).y,
+                       shape.support(p, {0.0, 0.0, -1.0}).z};
+        const Vec3 top{shape.support(p, {1.0, 0.0, 0.0}).x, shape.support(p, {0.0, 1.0, 0.0}).y,
+                       shape.support(p, {0.0, 0.0, 1.0}).z};
+        for (int sx = cell ? -1 : 0; sx <= (cell ? 1 : 0); ++sx)
+            for (int sy = cell ? -1 : 0; sy <= (cell ? 1 : 0); ++sy) {
+                const Vec3 shift = cell ? Vec3{sx * cell->lx(), sy * cell->ly(), 0.0} : Vec3{};
+                const Vec3 a = low + shift, b = top + shift;
+                if (b.x > grid.low.x && a.x < high.x && b.y > grid.low.y && a.y < high.y &&
+                    b.z > grid.low.z && a.z < high.z)
+                    out.push_back({{p.position + shift, p.orientation, p.size},
+                                   a,
+                                   b,
+                                   conjugate(p.orientation)});
+            }
+    }
+    return out;
+}
+
+/// The signed depth (length units) of the point x in the pellet: the shape's, in its body frame.
+template <class Shape>
+double depth_in(const Shape& shape, const PlacedPellet& pellet, const Vec3& x) {
+    const double size = pellet.p.size;
+    return shape.signed_depth(rotate(pellet.to_body, x - pellet.p.position) * (1.0 / size)) * size;
+}
+
+template <class Shape>
+Voxels<std::uint8_t> pellet_pore_image(const Packing& packing, const Shape& shape,
+                                       const Container& container, const VoxelGrid& grid) {
+    const std::size_t nx = grid.count[0], ny = grid.count[1], nz = grid.count[2];
+    const double h = grid.size;
+    Voxels<std::uint8_t> image(grid.voxels()); // every voxel written below
+    const std::vector<PlacedPellet> pellets = pellets_reaching(packing, shape, container, grid);
+    const PlaneLists lists = plane_lists(
+        pellets.size(),
+        [&](std::size_t n) { return std::pair(pellets[n].low.x, pellets[n].high.x); }, grid, true);
+#pragma omp parallel for schedule(dynamic, 1)
+    for (std::size_t i = 0; i < nx; ++i) {
+        std::uint8_t* plane = image.data() + i * ny * nz;
+        container_plane(plane, i, grid, container);
+        const double x = centre_of(grid.low.x, h, i);
+        for (std::size_t e = lists.start[i]; e < lists.start[i + 1]; ++e) {
+            const PlacedPellet& pellet = pellets[lists.ball[e]];
+            const auto [j0, j1] = centres_within(pellet.low.y, pellet.high.y, grid.low.y, h, ny);
+            const auto [k0, k1] = centres_within(pellet.low.z, pellet.high.z, grid.low.z, h, nz);
+            for (long long j = j0; j <= j1; ++j) {
+                std::uint8_t* row = plane + static_cast<std::size_t>(j) * nz;
+                const double y = centre_of(grid.low.y, h, static_cast<std::size_t>(j));
+                for (long long k = k0; k <= k1; ++k)
+                    if (depth_in(shape, pellet,
+                                 {x, y, centre_of(grid.low.z, h, static_cast<std::size_t>(k))}) >
+                        0.0)
+                        row[k] = 0;
+            }
+        }
+    }
+    return image;
+}
+
+template <class Real, class Shape>
+Voxels<Real> pellet_fraction_image(const Packing& packing, const Shape& shape,
+                                   const Container& container, const VoxelGrid& grid) {
+    const std::size_t nx = grid.count[0], ny = grid.count[1], nz = grid.count[2];
+    const double h = grid.size;
+    const double cube = h * h * h;
+    // A voxel lies within its half-diagonal of its centre.
+    const double half_diagonal = 0.5 * std::sqrt(3.0) * h;
+    Voxels<Real> image(grid.voxels()); // zeroed plane by plane below
+    const std::vector<PlacedPellet> pellets = pellets_reaching(packing, shape, container, grid);
+    const PlaneLists lists = plane_lists(
+        pellets.size(),
+        [&](std::size_t n) { return std::pair(pellets[n].low.x, pellets[n].high.x); }, grid, false);
+    // Each plane a task, its voxels summing their pellets in order: the bits do not depend on
+    // the threads.
+#pragma omp parallel for schedule(dynamic, 1)
+    for (std::size_t i = 0; i < nx; ++i) {
+        Real* plane = image.data() + i * ny * nz;
+        std::fill(plane, plane + ny * nz, Real(0));
+        const double x0 = grid.low.x + static_cast<double>(i) * h;
+        for (std::size_t e = lists.start[i]; e < lists.start[i + 1]; ++e) {
+            const PlacedPellet& pellet = pellets[lists.ball[e]];
+            const auto [j0, j1] = voxels_meeting(pellet.low.y, pellet.high.y, grid.low.y, h, ny);
+            const auto [k0, k1] = voxels_meeting(pellet.low.z, pellet.high.z, grid.low.z, h, nz);
+            for (long long j = j0; j <= j1; ++j) {
+                Real* row = plane + static_cast<std::size_t>(j) * nz;
+                const double y0 = grid.low.y + static_cast<double>(j) * h;
+                for (long long k = k0; k <= k1; ++k) {
+                    const double z0 = grid.low.z + static_cast<double>(k) * h;
+                    const Vec3 low{x0, y0, z0};
+                    const double depth =
+                        depth_in(shape, pellet, low + Vec3{0.5 * h, 0.5 * h, 0.5 * h});
+                    if (depth >= half_diagonal)
+                        row[k] += Real(1);
+                    else if (depth > -half_diagonal)
+                        row[k] += static_cast<Real>(
+                            shape.volume_in_box(pellet.p, low, low + Vec3{h, h, h}) / cube);
+                }
+            }
+        }
+    }
+    return image;
+}
+
+} // namespace
+
+Voxels<std::uint8_t> pore_image(const Packing& packing, const PelletShape& shape,
+                                const Container& container, const VoxelGrid& grid) {
+    return std::visit([&](const auto& s) { return pellet_pore_image(packing, s, container, grid); },
+                      shape);
+}
+
+template <class Real>
+Voxels<Real> solid_fraction_image(const Packing& packing, const PelletShape& shape,
+                                  const Container& container, const VoxelGrid& grid) {
+    return std::visit(
+        [&](const auto& s) { return pellet_fraction_image<Real>(packing, s, container, grid); },
+        shape);
+}
+
+template Voxels<double> solid_fraction_image(const Packing&, const PelletShape&, const Container&,
+                                             const VoxelGrid&);
+template Voxels<float> solid_fraction_image(const Packing&, const PelletShape&, const Container&,
+                                            const VoxelGrid&);
+
+double pellet_bed_top(const Packing& packing, const PelletShape& shape) {
+    require_orientations(packing);
+    return std::visit(
+        [&](const auto& s) {
+            using S = std::decay_t<decltype(s)>;
+            return bed_top(ShapedBed<S>(packing, {s}));
+        },
+        shape);
+}
 
 const char* voxel_type_name(VoxelType type) {
     switch (type) {

@@ -633,7 +633,16 @@ double CylinderShape::volume_from_wall(const Container& c, std::size_t wall, dou
 }
 
 double CylinderShape::volume_in_box(const Placement& p, const Vec3& low, const Vec3& high) const {
-    return detail::volume_in_box(*this, p, low, high);
+    detail::SectionLaws laws;
+    laws.circles = {{0.0, 0.0, radius}};
+    if (bore > 0.0)
+        laws.circles.push_back({0.0, 0.0, bore});
+    return detail::volume_in_box(
+        *this, p, low, high, -half_length, half_length, radius, laws,
+        [this](double, const detail::SectionPolygon& poly) {
+            const double disc = detail::disc_polygon_area(0.0, 0.0, radius, poly);
+            return bore > 0.0 ? disc - detail::disc_polygon_area(0.0, 0.0, bore, poly) : disc;
+        });
 }
 
 namespace {

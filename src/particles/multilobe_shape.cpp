@@ -217,12 +217,32 @@ double MultilobeShape::volume_from_wall(const Container& c, std::size_t wall, do
 double MultilobeShape::volume_in_box(const Placement& p, const Vec3& low, const Vec3& high) const {
     if (lobes == 1)
         return lobe.volume_in_box(p, low, high);
-    const double reach = bounding_radius(p.size);
-    const Vec3& o = p.position;
-    if (o.x + reach <= low.x || o.x - reach >= high.x || o.y + reach <= low.y ||
-        o.y - reach >= high.y)
-        return 0.0;
-    return volume_in(Container(Box(low.x, high.x, low.y, high.y)), p, low.z, high.z);
+    // Lobe k's disc in its wedge (the angles within pi / N of its direction): the wedges' parts
+    // tile the section (section_area), and each wedge is convex (N >= 2), so its part of the
+    // box's polygon is the polygon clipped by the wedge's two edges.
+    const double half = pi / lobes;
+    detail::SectionLaws laws;
+    for (int k = 0; k < lobes; ++k) {
+        const Vec3 c = lobe_centre(k);
+        laws.circles.push_back({c.x, c.y, lobe.radius});
+        const double edge = 2.0 * pi * k / lobes + half;
+        laws.rays.push_back({edge, section_radius(edge)});
+    }
+    return detail::volume_in_box(
+        *this, p, low, high, -lobe.half_length, lobe.half_length, circle + lobe.radius, laws,
+        [&](double, const detail::SectionPolygon& poly) {
+            double sum = 0.0;
+            for (int k = 0; k < lobes; ++k) {
+                const double middle = 2.0 * pi * k / lobes;
+                const double a1 = middle - half, a2 = middle + half;
+                detail::SectionPolygon part = poly;
+                detail::clip(part, std::sin(a1), -std::cos(a1), 0.0); // counter-clockwise of a1
+                detail::clip(part, -std::sin(a2), std::cos(a2), 0.0); // clockwise of a2
+                const Vec3 c = lobe_centre(k);
+                sum += detail::disc_polygon_area(c.x, c.y, lobe.radius, part);
+            }
+            return sum;
+        });
 }
 
 TriangleMesh MultilobeShape::unit_surface(int level) const {

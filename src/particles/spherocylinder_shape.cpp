@@ -203,7 +203,18 @@ double SpherocylinderShape::volume_from_wall(const Container& c, std::size_t wal
 
 double SpherocylinderShape::volume_in_box(const Placement& p, const Vec3& low,
                                           const Vec3& high) const {
-    return detail::volume_in_box(*this, p, low, high);
+    const double h = half_length, r = radius;
+    detail::SectionLaws laws;
+    laws.circles = {{0.0, 0.0, r}};
+    laws.spheres = {{-h, r}, {h, r}};
+    laws.kinks = {-h, h};
+    return detail::volume_in_box(*this, p, low, high, -h - r, h + r, r, laws,
+                                 [h, r](double t, const detail::SectionPolygon& poly) {
+                                     const double past = std::max(0.0, std::abs(t) - h);
+                                     const double rho =
+                                         std::sqrt(std::max(0.0, (r - past) * (r + past)));
+                                     return detail::disc_polygon_area(0.0, 0.0, rho, poly);
+                                 });
 }
 
 TriangleMesh SpherocylinderShape::unit_surface(int level) const {

@@ -58,16 +58,27 @@ double VoxelImage::porosity() const {
 }
 
 VoxelImage voxelize(const Packing& packing, const Container& container, double voxel_size,
-                    const std::optional<std::array<double, 6>>& region, VoxelType type) {
+                    const std::optional<std::array<double, 6>>& region, VoxelType type,
+                    const PelletShape* pellet) {
     VoxelImage image;
     image.type = type;
-    image.grid = voxel_grid(packing, container, voxel_size, region, voxel_bytes(type));
-    if (type == VoxelType::boolean)
+    image.grid =
+        voxel_grid(packing, container, voxel_size, region, voxel_bytes(type),
+                   pellet ? std::optional(pellet_bed_top(packing, *pellet)) : std::nullopt);
+    if (pellet) {
+        if (type == VoxelType::boolean)
+            image.pore = pore_image(packing, *pellet, container, image.grid);
+        else if (type == VoxelType::float64)
+            image.fraction = solid_fraction_image<double>(packing, *pellet, container, image.grid);
+        else
+            image.fraction32 = solid_fraction_image<float>(packing, *pellet, container, image.grid);
+    } else if (type == VoxelType::boolean) {
         image.pore = pore_image(packing, container, image.grid);
-    else if (type == VoxelType::float64)
+    } else if (type == VoxelType::float64) {
         image.fraction = solid_fraction_image<double>(packing, container, image.grid);
-    else
+    } else {
         image.fraction32 = solid_fraction_image<float>(packing, container, image.grid);
+    }
     return image;
 }
 

@@ -224,7 +224,8 @@ def pellets_from_both(tmp_path, shape, particles, seed, aspect_ratio=4):
 def test_a_pellet_bed_has_the_command_lines_bytes(tmp_path):
     # 12 cylinders L = D in a tube of a = 4 (seed 3): the files written from Python are the
     # command line's byte for byte; the orientations are the table's unit quaternions; the
-    # exact depths are below the tolerance; the sphere-only calls refuse the bed.
+    # exact depths are below the tolerance; the sphere-only calls refuse the bed; voxelize
+    # draws its pellets as the command line does.
     bed = pellets_from_both(tmp_path, "cylinder:1,1", 12, 3)
     table = np.loadtxt(tmp_path / "cli" / "particles.csv", delimiter=",", skiprows=1, ndmin=2)
     assert table.shape == (12, 8)
@@ -234,10 +235,22 @@ def test_a_pellet_bed_has_the_command_lines_bytes(tmp_path):
     assert 0 < bed.summary["max_penetration_pair"] <= bed.summary["tolerance"]
     assert bed.summary["shape"]["spec"] == "cylinder:1,1"
     for call in [lambda: packbed.analyze(bed), lambda: packbed.export(bed, str(tmp_path / "x.stl")),
-                 lambda: packbed.voxelize(bed, voxel_size=0.1),
                  lambda: bed.write(str(tmp_path / "w"))]:
         with pytest.raises(ValueError, match="pellets"):
             call()
+    # The image from just below the floor (the pellets press into it by up to the tolerance)
+    # holds the twelve cylinders, pi / 4 each.
+    region = (-2.3, -2.3, -0.1, 2.3, 2.3, 4.9)
+    image = packbed.voxelize(bed, voxel_size=0.1, kind="fraction", region=region)
+    status, _, err = cli("voxelize", tmp_path / "cli" / "particles.csv", "--voxel-size", 0.1,
+                         "--kind", "fraction", "--region", ",".join(map(str, region)), "-q",
+                         "-o", tmp_path / "cli.npy")
+    assert status == 0, err
+    # The same image to rounding: the table's quaternions are read back divided by their norms
+    # (docs/notes/voxels.md).
+    assert np.allclose(image, np.load(tmp_path / "cli.npy"), rtol=0, atol=1e-12)
+    assert image.sum() * 1e-3 == pytest.approx(12 * np.pi / 4, abs=1e-9)
+    assert packbed.voxelize(bed, voxel_size=0.1).dtype == np.bool_
     assert packbed.generate(aspect_ratio=4, particles=10).orientations is None
 
 
