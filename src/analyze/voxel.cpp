@@ -866,6 +866,15 @@ std::vector<PlacedPellet> pellets_reaching(const Packing& packing, const Shape& 
     return out;
 }
 
+/// plane_lists of the pellets' boxes.
+PlaneLists plane_lists(const std::vector<PlacedPellet>& pellets, const VoxelGrid& grid,
+                       bool centres) {
+    return plane_lists(
+        pellets.size(),
+        [&](std::size_t n) { return std::pair(pellets[n].low.x, pellets[n].high.x); }, grid,
+        centres);
+}
+
 /// The signed depth (length units) of the point x in the pellet: the shape's, in its body frame.
 template <class Shape>
 double depth_in(const Shape& shape, const PlacedPellet& pellet, const Vec3& x) {
@@ -880,9 +889,7 @@ Voxels<std::uint8_t> pellet_pore_image(const Packing& packing, const Shape& shap
     const double h = grid.size;
     Voxels<std::uint8_t> image(grid.voxels()); // every voxel written below
     const std::vector<PlacedPellet> pellets = pellets_reaching(packing, shape, container, grid);
-    const PlaneLists lists = plane_lists(
-        pellets.size(),
-        [&](std::size_t n) { return std::pair(pellets[n].low.x, pellets[n].high.x); }, grid, true);
+    const PlaneLists lists = plane_lists(pellets, grid, true);
 #pragma omp parallel for schedule(dynamic, 1)
     for (std::size_t i = 0; i < nx; ++i) {
         std::uint8_t* plane = image.data() + i * ny * nz;
@@ -916,9 +923,7 @@ Voxels<Real> pellet_fraction_image(const Packing& packing, const Shape& shape,
     const double half_diagonal = 0.5 * std::sqrt(3.0) * h;
     Voxels<Real> image(grid.voxels()); // zeroed plane by plane below
     const std::vector<PlacedPellet> pellets = pellets_reaching(packing, shape, container, grid);
-    const PlaneLists lists = plane_lists(
-        pellets.size(),
-        [&](std::size_t n) { return std::pair(pellets[n].low.x, pellets[n].high.x); }, grid, false);
+    const PlaneLists lists = plane_lists(pellets, grid, false);
     // Each plane a task, its voxels summing their pellets in order: the bits do not depend on
     // the threads.
 #pragma omp parallel for schedule(dynamic, 1)
