@@ -127,9 +127,9 @@ double section_in_disc(const Frame& f, const Vec3& c, double r, double h, double
     struct Value {
         double f, df;
     };
-    const auto at = [&](double c, double s) {
-        const double x = big * c - dx, y = r * s - dy;
-        return Value{x * x + y * y - radius * radius, 2.0 * (r * c * y - big * s * x)};
+    const auto at = [&](double cos_t, double sin_t) {
+        const double x = big * cos_t - dx, y = r * sin_t - dy;
+        return Value{x * x + y * y - radius * radius, 2.0 * (r * cos_t * y - big * sin_t * x)};
     };
     const auto meet = [&](double theta) { return at(std::cos(theta), std::sin(theta)); };
     // A bound on |meet''|: about an interval's middle m, meet differs from its tangent there by
@@ -142,20 +142,20 @@ double section_in_disc(const Frame& f, const Vec3& c, double r, double h, double
     // meet = 0 throughout.)
     const double second = 2.0 * std::abs(big * big - r * r) + 2.0 * std::hypot(big * dx, r * dy);
     std::vector<double> crossings; // ellipse angles
-    const auto root = [&](double lo, double hi, double flo, double x, Value v) {
-        for (int it = 0; it < 100 && v.f != 0.0 && hi - lo > 1e-15; ++it) {
-            if ((v.f < 0.0) == (flo < 0.0)) {
+    const auto root = [&](double lo, double hi, double flo, double x, Value val) {
+        for (int it = 0; it < 100 && val.f != 0.0 && hi - lo > 1e-15; ++it) {
+            if ((val.f < 0.0) == (flo < 0.0)) {
                 lo = x;
-                flo = v.f;
+                flo = val.f;
             } else {
                 hi = x;
             }
-            const double step = v.df != 0.0 ? x - v.f / v.df : lo - 1.0;
+            const double step = val.df != 0.0 ? x - val.f / val.df : lo - 1.0;
             const double next = step > lo && step < hi ? step : 0.5 * (lo + hi);
             if (next == x)
                 break;
             x = next;
-            v = meet(x);
+            val = meet(x);
         }
         crossings.push_back(x);
     };
@@ -179,15 +179,15 @@ double section_in_disc(const Frame& f, const Vec3& c, double r, double h, double
     // The 96 pieces' ends and middles: the turn in 192 steps, their sines and cosines once.
     constexpr int samples = 96;
     static const std::array<std::pair<double, double>, 2 * samples + 1> turn = [] {
-        std::array<std::pair<double, double>, 2 * samples + 1> t{};
+        std::array<std::pair<double, double>, 2 * samples + 1> table{};
         for (int k = 0; k <= 2 * samples; ++k)
-            t[static_cast<std::size_t>(k)] = {std::cos(pi * k / samples),
-                                              std::sin(pi * k / samples)};
-        return t;
+            table[static_cast<std::size_t>(k)] = {std::cos(pi * k / samples),
+                                                  std::sin(pi * k / samples)};
+        return table;
     }();
     const auto sample = [&](int k) {
-        const auto& [c, s] = turn[static_cast<std::size_t>(k)];
-        return at(c, s);
+        const auto& [cos_t, sin_t] = turn[static_cast<std::size_t>(k)];
+        return at(cos_t, sin_t);
     };
     double previous = sample(0).f;
     for (int k = 1; k <= samples; ++k) {
