@@ -19,10 +19,12 @@
 #include <pybind11/stl/filesystem.h>
 
 #include "packbed/analysis.hpp"
+#include "packbed/analysis_files.hpp"
 #include "packbed/bed_checks.hpp"
 #include "packbed/bed_volume.hpp"
 #include "packbed/error.hpp"
 #include "packbed/files.hpp"
+#include "packbed/io.hpp"
 #include "packbed/json_text.hpp"
 #include "packbed/lattice.hpp"
 #include "packbed/limits.hpp"
@@ -69,11 +71,27 @@ Profile profile(const std::vector<ProfileBin>& bins) {
     return p;
 }
 
+/// Counts (a coordination histogram) as a numpy array of int64.
+template <class T> py::array_t<std::int64_t> counts(const std::vector<T>& h) {
+    py::array_t<std::int64_t> out(static_cast<py::ssize_t>(h.size()));
+    for (std::size_t k = 0; k < h.size(); ++k)
+        out.mutable_at(static_cast<py::ssize_t>(k)) = static_cast<std::int64_t>(h[k]);
+    return out;
+}
+
 /// An analysis as Python sees it: the library's BedAnalysis, its numbers as summary.json has
 /// them, and the container it was measured in.
 struct Analysis {
     BedAnalysis analysis;
     nlohmann::json summary;
+    Container container;
+};
+
+/// A pellet bed's analysis as Python sees it: analyze_pellet_bed's numbers, summary.json's
+/// record of them, and the container.
+struct PelletAnalysisResult {
+    PelletAnalysis analysis;
+    nlohmann::ordered_json summary;
     Container container;
 };
 
@@ -224,15 +242,30 @@ Bed generate_pellets(std::optional<double> aspect_ratio,
     return Bed{std::move(pellets.packing), pellets.container, std::move(pellets.summary)};
 }
 
-/// Raise ValueError for a bed of pellets where `what` takes spheres only.
+/// Raise ValueError for a bed with orientations whose summary names no pellet shape.
 void refuse_pellets(const Bed& bed, std::string_view what) {
     if (bed.packing.orientations.empty())
         return;
     throw InvalidInput(fmt::format(
-        "{} of a bed of pellets is not allowed here; allowed: a bed of spheres "
-        "(generate(shape=..., "
-        "out=DIR) writes the pellets' files, which `packbed analyze` and `packbed export` take)",
+        "{} of a bed with orientations but no pellet shape in its summary is not allowed; "
+        "allowed: a bed of spheres, or of pellets from generate(shape=...) or read()",
         what));
+}
+
+/// The pellet of a bed with orientations (its summary's shape.spec: generate(shape=...) and
+/// read() of a pellet bed record it); nothing for a bed of spheres. Raises ValueError for
+/// orientations without a shape that `what` can read.
+std::optional<PelletSpec> bed_pellet(const Bed& bed, std::string_view what) {
+    if (bed.packing.orientations.empty())
+        return std::nullopt;
+    std::optional<PelletSpec> pellet;
+    const auto spec = bed.summary.find("shape");
+    if (spec != bed.summary.end() && spec->is_object() && spec->contains("spec") &&
+        (*spec)["spec"].is_string())
+        pellet = parse_pellet_shape((*spec)["spec"].get<std::string>());
+    if (!pellet)
+        refuse_pellets(bed, what);
+    return pellet;
 }
 
 Bed generate(std::optional<double> aspect_ratio, const std::optional<std::string>& container,
@@ -409,8 +442,11 @@ Bed read_bed(const std::filesystem::path& path, const std::string& format, long 
     const ReadOptions options =
         read_options_of(path, format, frame, axis, floor, diameter, container, outside_tolerance);
     BedInContainer read =
-        read_bed_in_container(path, options, container.value_or(""), 0.0, outside_tolerance);
-    return file_bed(path, std::move(read.file), std::move(read.container));
+        read_bed_or_pellets(path, options, container.value_or(""), 0.0, outside_tolerance);
+    Bed bed = file_bed(path, std::move(read.file), std::move(read.container));
+    if (read.pellet)
+        bed.summary["shape"] = pellet_shape_summary(*read.pellet);
+    return bed;
 }
 
 py::dict analyze_frames(const std::filesystem::path& path, const std::string& format,
@@ -541,13 +577,52 @@ std::optional<double> bed_friction(const Bed& bed) {
     return std::nullopt;
 }
 
-Analysis analyze(const Bed& bed, const std::optional<std::string>& container,
-                 std::optional<std::pair<double, double>> band, double band_clearance,
-                 std::optional<double> diameter, double shell_width, double slab_height,
-                 double centre_bin, double contact_tolerance, double rdf_range, double rdf_bin,
-                 std::optional<double> friction, std::optional<long long> threads,
-                 const std::optional<std::filesystem::path>& out, bool force) {
-    refuse_pellets(bed, "analyze");
+/// analyze() of a bed of pellets, as `packbed analyze` measures one (analyze_pellet_bed):
+/// `options` checked, the spheres' own options refused by the caller.
+PelletAnalysisResult analyze_pellets(const Bed& bed, const PelletSpec& pellet,
+                                     const Container& given, const AnalysisOptions& options,
+                                     std::optional<long long> threads,
+                                     const std::optional<std::filesystem::path>& out, bool force) {
+    std::optional<OutputDirectory> directory;
+    if (out)
+        directory.emplace(*out, "--out", OutputKind::directory, force);
+    set_threads(threads);
+    PelletAnalysisResult result{{}, {}, given};
+    {
+        py::gil_scoped_release released;
+        result.analysis = analyze_pellet_bed(bed.packing, pellet.shape, given, options);
+    }
+    result.summary = pellet_analysis_summary(result.analysis, pellet.text, bed.packing.size(),
+                                             given, options.contact_tolerance);
+    if (directory) {
+        for (const auto& [name, text] : pellet_analysis_files(result.analysis, given))
+            directory->stage(name, text);
+        directory->stage("summary.json", json_file_text(result.summary, "summary.json"));
+        directory->commit();
+    }
+    return result;
+}
+
+py::object analyze(const Bed& bed, const std::optional<std::string>& container,
+                   std::optional<std::pair<double, double>> band, double band_clearance,
+                   std::optional<double> diameter, double shell_width, double slab_height,
+                   std::optional<double> centre_bin, double contact_tolerance,
+                   std::optional<double> rdf_range, std::optional<double> rdf_bin,
+                   std::optional<double> friction, std::optional<long long> threads,
+                   const std::optional<std::filesystem::path>& out, bool force) {
+    const std::optional<PelletSpec> pellet = bed_pellet(bed, "analyze");
+    if (pellet) // the spheres' measures that a bed of pellets has no use for
+        for (const auto& [name, given] : {std::pair{"diameter", diameter.has_value()},
+                                          std::pair{"centre_bin", centre_bin.has_value()},
+                                          std::pair{"rdf_range", rdf_range.has_value()},
+                                          std::pair{"rdf_bin", rdf_bin.has_value()},
+                                          std::pair{"friction", friction.has_value()}})
+            if (given)
+                throw InvalidInput(fmt::format(
+                    "{} is not allowed for a bed of {} pellets; allowed with pellets: container, "
+                    "band, band_clearance, shell_width, slab_height, contact_tolerance, threads, "
+                    "out and force (lengths in d_v)",
+                    name, pellet->text));
     const Container given = container_for(bed, container);
     namespace range = option_range;
     AnalysisOptions options;
@@ -558,11 +633,16 @@ Analysis analyze(const Bed& bed, const std::optional<std::string>& container,
         options.band = Band{band->first, band->second};
     options.shell_width = check_option("shell-width", shell_width, range::shell_width);
     options.slab_height = check_option("slab-height", slab_height, range::slab_height);
-    options.centre_bin = check_option("centre-bin", centre_bin, range::centre_bin);
     options.contact_tolerance =
         check_option("contact-tolerance", contact_tolerance, range::contact_tolerance);
-    options.rdf_range = check_option("rdf-range", rdf_range, range::rdf_range);
-    options.rdf_bin = check_option("rdf-bin", rdf_bin, range::rdf_bin);
+    if (pellet)
+        return py::cast(analyze_pellets(bed, *pellet, given, options, threads, out, force));
+    if (centre_bin)
+        options.centre_bin = check_option("centre-bin", *centre_bin, range::centre_bin);
+    if (rdf_range)
+        options.rdf_range = check_option("rdf-range", *rdf_range, range::rdf_range);
+    if (rdf_bin)
+        options.rdf_bin = check_option("rdf-bin", *rdf_bin, range::rdf_bin);
     options.frictional = (friction ? check_option("friction", *friction, range::friction)
                                    : bed_friction(bed).value_or(0.0)) > 0.0;
     std::optional<OutputDirectory> directory;
@@ -581,7 +661,7 @@ Analysis analyze(const Bed& bed, const std::optional<std::string>& container,
         directory->stage("summary.json", json_file_text(result.summary, "summary.json"));
         directory->commit();
     }
-    return result;
+    return py::cast(std::move(result));
 }
 
 Bed random_array_bed(const py::object& count, double solid_fraction, double diameter, double gap,
@@ -644,11 +724,18 @@ Bed lattice(const std::string& type, const std::string& region, double diameter,
 
 void write_bed(Bed& bed, const std::filesystem::path& out, bool force, bool analysis,
                double band_clearance) {
-    refuse_pellets(bed, "write");
+    const std::optional<PelletSpec> pellet = bed_pellet(bed, "write");
     if (!bed.container)
         throw InvalidInput("write: this bed has no container; allowed: a bed made by generate "
                            "or lattice, or read or built with container=...");
     OutputDirectory directory(out, "--out", OutputKind::directory, force);
+    if (pellet) { // as generate --shape writes it (stage_pellet_bed)
+        directory.stage("particles.csv", particles_csv(bed.packing));
+        directory.stage("particles.vtu", particles_vtu(bed.packing));
+        directory.stage("summary.json", json_file_text(bed.summary, "summary.json"));
+        directory.commit();
+        return;
+    }
     nlohmann::json summary = bed.summary;
     const bool tall = bed.packing.size() > 0 &&
                       bed_top(bed.packing) > 2.0 * band_clearance * bed.packing.mean_diameter();
@@ -745,10 +832,10 @@ std::string export_bed_to(const Bed& bed, const std::filesystem::path& out,
                           long long wall_level, long long ranks, double reynolds,
                           const std::string& turbulence, double fluid_density, double viscosity,
                           std::optional<double> scale, const std::string& flow, bool force) {
-    refuse_pellets(bed, "export");
     namespace range = option_range;
     check_path("out", out);
     ExportRequest request;
+    request.pellet = bed_pellet(bed, "export");
     request.format = format;
     request.out = out;
     request.force = force;
@@ -820,15 +907,7 @@ py::array voxelize_bed(const Bed& bed, double voxel_size,
                        const std::optional<std::filesystem::path>& out) {
     // A bed of pellets from generate(shape=...) is drawn as its pellets (the shape its summary
     // records).
-    std::optional<PelletSpec> pellet;
-    if (!bed.packing.orientations.empty()) {
-        const auto spec = bed.summary.find("shape");
-        if (spec != bed.summary.end() && spec->is_object() && spec->contains("spec") &&
-            (*spec)["spec"].is_string())
-            pellet = parse_pellet_shape((*spec)["spec"].get<std::string>());
-        if (!pellet)
-            refuse_pellets(bed, "voxelize");
-    }
+    const std::optional<PelletSpec> pellet = bed_pellet(bed, "voxelize");
     const PelletShape* shape = pellet ? &pellet->shape : nullptr;
     const Container given = container_for(bed, container);
     const VoxelType type = voxel_type(kind, dtype);
@@ -953,7 +1032,9 @@ z = 0.)")
              py::arg("force") = false, py::arg("analysis") = true, py::arg("band_clearance") = 1.0,
              R"(Write the bed as `packbed generate` does: particles.csv, particles.vtu, the
 analysis (tables and plots, when the bed is taller than twice band_clearance) and summary.json
-in the directory `out` (new or empty; force=True replaces a non-empty one whole).)");
+in the directory `out` (new or empty; force=True replaces a non-empty one whole). A bed of
+pellets: particles.csv (with the quaternions), particles.vtu and its summary, as `packbed
+generate --shape` writes them.)");
 
     py::class_<Profile>(m, "Profile", "A profile: each bin's interval [low, high] and its value.")
         .def_readonly("low", &Profile::low, "The bins' lower ends (length), numpy array.")
@@ -1013,18 +1094,76 @@ in the directory `out` (new or empty; force=True replaces a non-empty one whole)
             "void_fraction and centre_distribution profiles and wall_contacts.")
         .def_property_readonly(
             "coordination_histogram",
-            [](const Analysis& a) {
-                const auto& h = a.analysis.coordination.histogram;
-                py::array_t<std::int64_t> out(static_cast<py::ssize_t>(h.size()));
-                for (std::size_t k = 0; k < h.size(); ++k)
-                    out.mutable_at(static_cast<py::ssize_t>(k)) = static_cast<std::int64_t>(h[k]);
-                return out;
-            },
+            [](const Analysis& a) { return counts(a.analysis.coordination.histogram); },
             "histogram[k]: spheres (centre in the band) with k sphere-sphere contacts.")
         .def_property_readonly(
             "summary", [](const Analysis& a) { return to_python(a.summary); },
             "The numbers as `packbed analyze` writes them in summary.json (band, void fraction, "
             "coordination, rattlers, wall contacts, options, warnings).");
+
+    py::class_<PelletAnalysisResult>(m, "PelletAnalysis",
+                                     "What analyze measured in a bed of pellets.")
+        .def_property_readonly(
+            "void_fraction", [](const PelletAnalysisResult& a) { return a.analysis.void_fraction; },
+            "The overall void fraction in the band, from the pellets' exact volumes.")
+        .def_property_readonly(
+            "band",
+            [](const PelletAnalysisResult& a) {
+                return std::make_pair(a.analysis.band.z_low, a.analysis.band.z_high);
+            },
+            "The band (z_low, z_high) the numbers refer to (length).")
+        .def_property_readonly(
+            "diameter", [](const PelletAnalysisResult& a) { return a.analysis.diameter; },
+            "The pellets' volume-equivalent diameter d_v (length).")
+        .def_property_readonly(
+            "radial_void_fraction",
+            [](const PelletAnalysisResult& a) { return profile(a.analysis.radial_void_fraction); },
+            "e(d) against the distance from the wall, exact (empty without one wall).")
+        .def_property_readonly(
+            "axial_void_fraction",
+            [](const PelletAnalysisResult& a) { return profile(a.analysis.axial_void_fraction); },
+            "e(z) over slabs from the floor to the top, exact.")
+        .def_property_readonly(
+            "orientation",
+            [](const PelletAnalysisResult& a) {
+                const std::vector<OrientationBin>& bins = a.analysis.orientation;
+                const auto n = static_cast<py::ssize_t>(bins.size());
+                py::array_t<double> low(n), high(n), cos2(n), order(n);
+                py::array_t<std::int64_t> pellets(n);
+                for (py::ssize_t k = 0; k < n; ++k) {
+                    const OrientationBin& b = bins[static_cast<std::size_t>(k)];
+                    low.mutable_at(k) = b.low;
+                    high.mutable_at(k) = b.high;
+                    pellets.mutable_at(k) = static_cast<std::int64_t>(b.pellets);
+                    cos2.mutable_at(k) = b.mean_cos2;
+                    order.mutable_at(k) = b.order;
+                }
+                py::dict out;
+                out["low"] = low;
+                out["high"] = high;
+                out["pellets"] = pellets;
+                out["mean_cos2"] = cos2;
+                out["order"] = order;
+                return out;
+            },
+            "The axes' orientation against the centroid's distance from the wall (bins of 0.1 "
+            "d_v; empty without one wall): a dict of numpy arrays low, high (length), pellets, "
+            "mean_cos2 (<cos^2 theta>, theta from the container's z axis) and order (S = "
+            "(3 <cos^2> - 1) / 2).")
+        .def_property_readonly(
+            "order", [](const PelletAnalysisResult& a) { return a.analysis.overall.order; },
+            "S over every pellet with its centroid in the band: 1 upright, -1/2 lying, 0 random.")
+        .def_property_readonly(
+            "mean_cos2", [](const PelletAnalysisResult& a) { return a.analysis.overall.mean_cos2; },
+            "<cos^2 theta> over every pellet with its centroid in the band (1/3 at random).")
+        .def_property_readonly(
+            "coordination_histogram",
+            [](const PelletAnalysisResult& a) { return counts(a.analysis.coordination.histogram); },
+            "histogram[k]: pellets (centroid in the band) with k pellet-pellet contacts.")
+        .def_property_readonly(
+            "summary", [](const PelletAnalysisResult& a) { return to_python(a.summary); },
+            "The numbers as `packbed analyze` writes them in summary.json (band, void fraction, "
+            "orientation, coordination, wall contacts).");
 
     m.def("generate", &generate, py::call_guard<JobScope>(), py::kw_only(),
           py::arg("aspect_ratio") = py::none(), py::arg("container") = py::none(),
@@ -1088,7 +1227,9 @@ LIGGGHTS dumps and data files, each gzip-compressed or not (format 'auto' detect
 frame: 1 the first, -1 the last. axis (X, Y) and floor: the container's axis and floor,
 subtracted from every centre. diameter: of spheres in files without a size column. container: a
 spec string; None: the one summary.json beside the file records, if any. Spheres sticking out of
-the container by more than outside_tolerance Dp raise ValueError, as every bad input does.)");
+the container by more than outside_tolerance Dp raise ValueError, as every bad input does.
+A bed of pellets (the shape in the summary.json beside the file, as `packbed generate --shape`
+writes it) keeps its orientations and has the shape in its summary['shape'].)");
 
     m.def("analyze_frames", &analyze_frames, py::call_guard<JobScope>(), py::arg("path"),
           py::kw_only(), py::arg("format") = "auto", py::arg("axis") = py::none(),
@@ -1109,19 +1250,25 @@ inside the container.)");
           py::arg("band_clearance") = 1.0, py::arg("diameter") = py::none(),
           py::arg("shell_width") = AnalysisOptions{}.shell_width,
           py::arg("slab_height") = AnalysisOptions{}.slab_height,
-          py::arg("centre_bin") = AnalysisOptions{}.centre_bin,
+          py::arg("centre_bin") = py::none(),
           py::arg("contact_tolerance") = AnalysisOptions{}.contact_tolerance,
-          py::arg("rdf_range") = AnalysisOptions{}.rdf_range,
-          py::arg("rdf_bin") = AnalysisOptions{}.rdf_bin, py::arg("friction") = py::none(),
-          py::arg("threads") = py::none(), py::arg("out") = py::none(), py::arg("force") = false,
+          py::arg("rdf_range") = py::none(), py::arg("rdf_bin") = py::none(),
+          py::arg("friction") = py::none(), py::arg("threads") = py::none(),
+          py::arg("out") = py::none(), py::arg("force") = false,
           R"(Measure a bed as `packbed analyze` does: the overall void fraction (exact), the
 radial (wall) and axial void fraction profiles, the centre distribution, contacts and
 coordination, and g(r), in the band band_clearance Dp clear of the floor and the top (or band =
 (z_low, z_high)). container: a spec string; None: the bed's own. Lengths in Dp are in units of
-diameter (None: the mean sphere diameter). friction: between the spheres, above 0 a rattler has
-fewer than 2 contacts, not 4 (None: the one the bed's summary records, else 0). out: a
-directory to write the tables, plots and summary.json to (None: nothing is written). Returns an
-Analysis with numpy arrays.)");
+diameter (None: the mean sphere diameter). centre_bin, rdf_range, rdf_bin: None, 0.02, 3 and
+0.02 Dp. friction: between the spheres, above 0 a rattler has fewer than 2 contacts, not 4
+(None: the one the bed's summary records, else 0). out: a directory to write the tables, plots
+and summary.json to (None: nothing is written). Returns an Analysis with numpy arrays.
+
+A bed of pellets (from generate(shape=...) or read() of one) is measured as `packbed analyze`
+measures it: the exact void fractions, the axes' orientation against the distance from the
+wall and the contacts per pellet, lengths in d_v; it takes container, band, band_clearance,
+shell_width, slab_height, contact_tolerance, threads, out and force, refuses the spheres' other
+options, and returns a PelletAnalysis.)");
 
     m.def("voxelize", &voxelize_bed, py::call_guard<JobScope>(), py::arg("bed"), py::kw_only(),
           py::arg("voxel_size"), py::arg("region") = py::none(), py::arg("kind") = "binary",
@@ -1170,7 +1317,8 @@ fluid_velocity, m/s), turbulence ('laminar', 'kEpsilon', 'kOmegaSST'), fluid_den
 1 mm), flow ('inlet', or 'periodic': a periodic cell repeating along z with container_height
 its period, a random array's own by default, the mean velocity held by a uniform pressure
 gradient). force: replace a
-non-empty case directory.
+non-empty case directory. A bed of pellets is written as its pellets (surfaces of the exact
+shapes; data files of rigid clumps of spheres), as `packbed export` writes one.
 Returns the command line's report line. Raises ValueError for a bad value.)");
 
     m.def("hydraulics", &hydraulics, py::call_guard<JobScope>(), py::kw_only(),

@@ -80,41 +80,14 @@ int run_pellet_analyze(const AnalyzeOptions& o, const fs::path& path, const Read
     const PelletAnalysis a = analyze_pellet_bed(file.packing, pellet.shape, *found, o.analysis);
     nlohmann::ordered_json summary;
     summary["particles_file"] = path.string();
-    summary["pellets"] = file.packing.size();
-    summary["shape"] = pellet.text;
-    summary["volume_equivalent_diameter"] = a.diameter;
-    summary["container"] = found->summary_json();
-    summary["band"] = {a.band.z_low, a.band.z_high};
-    summary["void_fraction"] = a.void_fraction;
-    summary["orientation"] = {{"pellets", a.overall.pellets},
-                              {"mean_cos2", a.overall.mean_cos2},
-                              {"order", a.overall.order},
-                              {"about", "theta between a pellet's axis and the container's z "
-                                        "axis, over the pellets with their centroid in the "
-                                        "band; S = (3 <cos^2> - 1) / 2: 1 upright, -1/2 lying, "
-                                        "0 at random"}};
-    const Coordination& c = a.coordination;
-    summary["coordination"] = {{"mean", c.mean},
-                               {"mean_without_rattlers", c.mean_without_rattlers},
-                               {"rattlers", c.rattlers},
-                               {"rattler_contacts", c.rattler_contacts},
-                               {"pellets", c.spheres},
-                               {"contact_tolerance", o.analysis.contact_tolerance},
-                               {"histogram", c.histogram},
-                               {"about", "pellet-pellet contacts per pellet with its centroid in "
-                                         "the band: a pair whose exact gap is at most "
-                                         "contact_tolerance d_v; a rattler touches nothing"}};
-    summary["wall_contacts"] = c.wall_contacts;
-    summary["wall_contacts_in_band"] = c.wall_contacts_in_band;
-    nlohmann::ordered_json files = nlohmann::ordered_json::array();
-    for (const auto& [name, text] : pellet_analysis_files(a, *found)) {
+    summary.update(pellet_analysis_summary(a, pellet.text, file.packing.size(), *found,
+                                           o.analysis.contact_tolerance));
+    for (const auto& [name, text] : pellet_analysis_files(a, *found))
         out.stage(name, text);
-        files.push_back(name);
-    }
-    summary["files"] = files;
     out.stage("summary.json", json_file_text(summary, "summary.json"));
     out.commit();
     if (!o.quiet) {
+        const Coordination& c = a.coordination;
         fmt::print("packbed analyze: {} {} pellets in {}\n", file.packing.size(), pellet.text,
                    found->describe());
         fmt::print("void fraction: {:.4f} (between z = {:.4g} and z = {:.4g})\n", a.void_fraction,

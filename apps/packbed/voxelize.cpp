@@ -50,11 +50,9 @@ int run_voxelize(VoxelizeOptions& o) {
     o.placement.apply(read_options);
     // A bed of pellets (the shape its summary.json records) is drawn as its pellets; a bed of
     // spheres is checked to lie inside its container first.
-    const std::optional<PelletSpec> pellet = shape_beside(path);
     const BedInContainer bed =
-        pellet ? BedInContainer{read_particles(path, read_options),
-                                find_container(path, o.container, 0.0)}
-               : read_bed_in_container(path, read_options, o.container, 0.0, o.outside_tolerance);
+        read_bed_or_pellets(path, read_options, o.container, 0.0, o.outside_tolerance);
+    const std::optional<PelletSpec>& pellet = bed.pellet;
     if (!bed.container)
         throw InvalidInput(fmt::format("--container is needed: no summary.json with a container "
                                        "next to {}",

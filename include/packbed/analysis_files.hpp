@@ -4,6 +4,7 @@
 #pragma once
 
 #include <string>
+#include <string_view>
 #include <utility>
 #include <vector>
 
@@ -59,6 +60,14 @@ std::vector<std::pair<std::string, std::string>> analysis_files(const BedAnalysi
 /// pellets, mean_cos2, order) in a container of one wall.
 std::vector<std::pair<std::string, std::string>> pellet_analysis_files(const PelletAnalysis& a,
                                                                        const Container& container);
+
+/// The numbers of a pellet bed's analysis as `packbed analyze` writes them in summary.json
+/// (the tables go to pellet_analysis_files): the pellets, their `shape` spec, d_v, the
+/// container, band, void fraction, the axes' orientation and the contacts per pellet.
+/// \param contact_tolerance the gap (d_v) the contacts were counted at
+nlohmann::ordered_json pellet_analysis_summary(const PelletAnalysis& a, std::string_view shape,
+                                               std::size_t pellets, const Container& container,
+                                               double contact_tolerance);
 
 /// The numbers of a bed analysis (the tables go to CSV files, see analysis_files): band,
 /// overall void fraction, coordination (mean with and without rattlers, rattlers, wall contacts),

@@ -174,6 +174,9 @@ GeneratedPellets run_pellets(const PreparedPellets& prepared, const RunControl& 
                              int threads);
 /// particles.csv (with the orientations) and summary.json staged in `out`.
 void stage_pellet_bed(OutputDirectory& out, const GeneratedPellets& pellets);
+/// summary.json's `shape` of a bed of `pellet`s: its kind, spec and lengths, d_v, and what
+/// particles.csv's r and quaternion mean.
+nlohmann::json pellet_shape_summary(const PelletSpec& pellet);
 
 // ---------------------------------------------------------------------------------------------
 // generate --engine lammps (lammps_engine.hpp, docs/lammps.md)
@@ -312,6 +315,8 @@ std::optional<Container> find_container(const std::filesystem::path& particles,
 struct BedInContainer {
     ParticleFile file;
     std::optional<Container> container;
+    /// the pellets' shape (shape_beside) where read_bed_or_pellets read a bed of pellets
+    std::optional<PelletSpec> pellet;
 };
 
 /// Read a bed file as `analyze`, `voxelize` and `packbed.read` do: read_particles, its
@@ -322,6 +327,14 @@ struct BedInContainer {
 BedInContainer read_bed_in_container(const std::filesystem::path& particles,
                                      const ReadOptions& options, const std::string& container,
                                      double cylinder_radius, double outside_tolerance);
+
+/// read_bed_in_container, or, where summary.json beside the file records a pellet
+/// (shape_beside), the pellets (their orientations) in their container with `pellet` set: the
+/// spheres' check that nothing sticks out is not made, since r is a pellet's d_v / 2 and not
+/// its extent.
+BedInContainer read_bed_or_pellets(const std::filesystem::path& particles,
+                                   const ReadOptions& options, const std::string& container,
+                                   double cylinder_radius, double outside_tolerance);
 
 /// check_inside for a file read with `options`, at `outside_tolerance` Dp (Dp: the file's
 /// given diameter, else the spheres' mean), saying whether --axis and --floor moved it.

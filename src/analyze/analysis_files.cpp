@@ -135,6 +135,43 @@ std::vector<std::pair<std::string, std::string>> pellet_analysis_files(const Pel
     return tables;
 }
 
+nlohmann::ordered_json pellet_analysis_summary(const PelletAnalysis& a, std::string_view shape,
+                                               std::size_t pellets, const Container& container,
+                                               double contact_tolerance) {
+    nlohmann::ordered_json summary;
+    summary["pellets"] = pellets;
+    summary["shape"] = std::string(shape);
+    summary["volume_equivalent_diameter"] = a.diameter;
+    summary["container"] = container.summary_json();
+    summary["band"] = {a.band.z_low, a.band.z_high};
+    summary["void_fraction"] = a.void_fraction;
+    summary["orientation"] = {{"pellets", a.overall.pellets},
+                              {"mean_cos2", a.overall.mean_cos2},
+                              {"order", a.overall.order},
+                              {"about", "theta between a pellet's axis and the container's z "
+                                        "axis, over the pellets with their centroid in the "
+                                        "band; S = (3 <cos^2> - 1) / 2: 1 upright, -1/2 lying, "
+                                        "0 at random"}};
+    const Coordination& c = a.coordination;
+    summary["coordination"] = {{"mean", c.mean},
+                               {"mean_without_rattlers", c.mean_without_rattlers},
+                               {"rattlers", c.rattlers},
+                               {"rattler_contacts", c.rattler_contacts},
+                               {"pellets", c.spheres},
+                               {"contact_tolerance", contact_tolerance},
+                               {"histogram", c.histogram},
+                               {"about", "pellet-pellet contacts per pellet with its centroid in "
+                                         "the band: a pair whose exact gap is at most "
+                                         "contact_tolerance d_v; a rattler touches nothing"}};
+    summary["wall_contacts"] = c.wall_contacts;
+    summary["wall_contacts_in_band"] = c.wall_contacts_in_band;
+    nlohmann::ordered_json files = nlohmann::ordered_json::array();
+    for (const auto& [name, text] : pellet_analysis_files(a, container))
+        files.push_back(name);
+    summary["files"] = files;
+    return summary;
+}
+
 std::vector<std::pair<std::string, std::string>> analysis_files(const BedAnalysis& a,
                                                                 const Container& container) {
     std::vector<std::pair<std::string, std::string>> tables = analysis_tables(a, container);

@@ -90,11 +90,22 @@ BedInContainer read_bed_in_container(const std::filesystem::path& particles,
                                      const ReadOptions& options, const std::string& container,
                                      double cylinder_radius, double outside_tolerance) {
     BedInContainer bed{read_particles(particles, options),
-                       find_container(particles, container, cylinder_radius)};
+                       find_container(particles, container, cylinder_radius), std::nullopt};
     refuse_pellets(particles);
     if (bed.container)
         check_file_inside(bed.file, options, particles.string(), *bed.container, outside_tolerance);
     return bed;
+}
+
+BedInContainer read_bed_or_pellets(const std::filesystem::path& particles,
+                                   const ReadOptions& options, const std::string& container,
+                                   double cylinder_radius, double outside_tolerance) {
+    std::optional<PelletSpec> pellet = shape_beside(particles);
+    if (!pellet)
+        return read_bed_in_container(particles, options, container, cylinder_radius,
+                                     outside_tolerance);
+    return {read_particles(particles, options),
+            find_container(particles, container, cylinder_radius), std::move(pellet)};
 }
 
 void check_file_inside(const ParticleFile& file, const ReadOptions& options, std::string_view name,

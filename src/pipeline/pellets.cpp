@@ -156,6 +156,43 @@ PreparedPellets prepare_pellets(const PelletRequest& request) {
     return out;
 }
 
+nlohmann::json pellet_shape_summary(const PelletSpec& pellet) {
+    nlohmann::json s;
+    const auto* lobed = std::get_if<MultilobeShape>(&pellet.shape);
+    if (!lobed)
+        s = {{"kind", pellet.kind},
+             {"spec", pellet.text},
+             {"diameter", pellet.diameter},
+             {"length", pellet.length},
+             {"length_note", "the cylindrical part's: the caps' centres are L apart, the "
+                             "pellet L + D long"}};
+    else if (lobed->lobe.bore > 0.0)
+        s = {{"kind", pellet.kind},
+             {"spec", pellet.text},
+             {"diameter", pellet.diameter},
+             {"inner_diameter", pellet.inner_diameter},
+             {"length", pellet.length}};
+    else if (lobed->lobes == 1)
+        s = {{"kind", pellet.kind},
+             {"spec", pellet.text},
+             {"diameter", pellet.diameter},
+             {"length", pellet.length}};
+    else
+        s = {{"kind", pellet.kind},
+             {"spec", pellet.text},
+             {"lobes", lobed->lobes},
+             {"lobe_diameter", pellet.diameter},
+             {"circle_diameter", pellet.circle_diameter},
+             {"length", pellet.length},
+             {"lobe_0", "towards the body x axis, lobe k turned 360 k / lobes degrees "
+                        "about the axis"}};
+    s["volume_equivalent_diameter"] = pellet.volume_diameter;
+    s["axis"] = "the body z axis: particles.csv's quaternion qw, qx, qy, qz turns it "
+                "into the pellet's";
+    s["r"] = "particles.csv's r is d_v / 2, the pellet's size";
+    return s;
+}
+
 GeneratedPellets run_pellets(const PreparedPellets& prepared, const RunControl& control,
                              int threads) {
     GeneratedPellets out;
@@ -177,42 +214,12 @@ GeneratedPellets run_pellets(const PreparedPellets& prepared, const RunControl& 
     const PelletBed& bed = out.bed;
     json s;
     s["version"] = std::string(version);
-    const auto* lobed = std::get_if<MultilobeShape>(&pellet.shape);
-    s["generator"] = lobed ? "pellets: level-set contact and FIRE on positions and rotations "
-                             "(docs/design.md, \"A bed of cylinder pellets\")"
-                           : "pellets: springs on the exact depths and FIRE on positions and "
-                             "rotations (docs/design.md, \"A bed of cylinder pellets\")";
-    if (!lobed)
-        s["shape"] = {{"kind", pellet.kind},
-                      {"spec", pellet.text},
-                      {"diameter", pellet.diameter},
-                      {"length", pellet.length},
-                      {"length_note", "the cylindrical part's: the caps' centres are L apart, the "
-                                      "pellet L + D long"}};
-    else if (lobed->lobe.bore > 0.0)
-        s["shape"] = {{"kind", pellet.kind},
-                      {"spec", pellet.text},
-                      {"diameter", pellet.diameter},
-                      {"inner_diameter", pellet.inner_diameter},
-                      {"length", pellet.length}};
-    else if (lobed->lobes == 1)
-        s["shape"] = {{"kind", pellet.kind},
-                      {"spec", pellet.text},
-                      {"diameter", pellet.diameter},
-                      {"length", pellet.length}};
-    else
-        s["shape"] = {{"kind", pellet.kind},
-                      {"spec", pellet.text},
-                      {"lobes", lobed->lobes},
-                      {"lobe_diameter", pellet.diameter},
-                      {"circle_diameter", pellet.circle_diameter},
-                      {"length", pellet.length},
-                      {"lobe_0", "towards the body x axis, lobe k turned 360 k / lobes degrees "
-                                 "about the axis"}};
-    s["shape"]["volume_equivalent_diameter"] = dv;
-    s["shape"]["axis"] = "the body z axis: particles.csv's quaternion qw, qx, qy, qz turns it "
-                         "into the pellet's";
-    s["shape"]["r"] = "particles.csv's r is d_v / 2, the pellet's size";
+    s["generator"] = std::holds_alternative<MultilobeShape>(pellet.shape)
+                         ? "pellets: level-set contact and FIRE on positions and rotations "
+                           "(docs/design.md, \"A bed of cylinder pellets\")"
+                         : "pellets: springs on the exact depths and FIRE on positions and "
+                           "rotations (docs/design.md, \"A bed of cylinder pellets\")";
+    s["shape"] = pellet_shape_summary(pellet);
     if (const auto a = p.container.tube_diameter())
         s["aspect_ratio"] = *a; // D_tube / d_v
     s["particles"] = p.particles;

@@ -224,8 +224,8 @@ def pellets_from_both(tmp_path, shape, particles, seed, aspect_ratio=4):
 def test_a_pellet_bed_has_the_command_lines_bytes(tmp_path):
     # 12 cylinders L = D in a tube of a = 4 (seed 3): the files written from Python are the
     # command line's byte for byte; the orientations are the table's unit quaternions; the
-    # exact depths are below the tolerance; the sphere-only calls refuse the bed; voxelize
-    # draws its pellets as the command line does.
+    # exact depths are below the tolerance; voxelize draws its pellets as the command line
+    # does (read back, measured, written and exported: the next test).
     bed = pellets_from_both(tmp_path, "cylinder:1,1", 12, 3)
     table = np.loadtxt(tmp_path / "cli" / "particles.csv", delimiter=",", skiprows=1, ndmin=2)
     assert table.shape == (12, 8)
@@ -234,10 +234,6 @@ def test_a_pellet_bed_has_the_command_lines_bytes(tmp_path):
     assert np.allclose(np.linalg.norm(bed.orientations, axis=1), 1.0, atol=1e-12)
     assert 0 < bed.summary["max_penetration_pair"] <= bed.summary["tolerance"]
     assert bed.summary["shape"]["spec"] == "cylinder:1,1"
-    for call in [lambda: packbed.analyze(bed), lambda: packbed.export(bed, str(tmp_path / "x.stl")),
-                 lambda: bed.write(str(tmp_path / "w"))]:
-        with pytest.raises(ValueError, match="pellets"):
-            call()
     # The image from just below the floor (the pellets press into it by up to the tolerance)
     # holds the twelve cylinders, pi / 4 each.
     region = (-2.3, -2.3, -0.1, 2.3, 2.3, 4.9)
@@ -252,6 +248,63 @@ def test_a_pellet_bed_has_the_command_lines_bytes(tmp_path):
     assert image.sum() * 1e-3 == pytest.approx(12 * np.pi / 4, abs=1e-9)
     assert packbed.voxelize(bed, voxel_size=0.1).dtype == np.bool_
     assert packbed.generate(aspect_ratio=4, particles=10).orientations is None
+
+
+def test_a_pellet_bed_is_read_measured_written_and_exported_as_the_command_line_does(tmp_path):
+    # 12 cylinders L = D in a tube of a = 3 (seed 3), written by the command line: read() keeps
+    # their orientations and shape; analyze() measures them as `packbed analyze` does (the same
+    # numbers and tables; in generate's band, generate's void fraction), and the orientation
+    # is the quaternions' (a pellet's axis along z is 1 - 2 (qx^2 + qy^2)); write() gives back
+    # the table's bytes, export() the command line's STL.
+    status, _, err = cli("generate", "--shape", "cylinder:1,1", "-a", 3, "-n", 12, "-s", 3, "-q",
+                         "--out", tmp_path / "cli")
+    assert status == 0, err
+    particles = tmp_path / "cli" / "particles.csv"
+    generated = json.loads((tmp_path / "cli" / "summary.json").read_text())
+    bed = packbed.read(str(particles))
+    table = read_csv(particles)
+    assert np.array_equal(bed.centers, table[:, :3])
+    assert np.allclose(bed.orientations, table[:, 4:8], rtol=0, atol=1e-15)
+    assert bed.summary["shape"]["spec"] == "cylinder:1,1"
+    assert bed.summary["shape"]["volume_equivalent_diameter"] == pytest.approx(
+        (1.5 * 1.0 * 1.0) ** (1 / 3), abs=1e-12)  # (6 V / pi)^(1/3), V = pi D^2 L / 4
+
+    # Measured in generate's band: the void fraction is generate's own.
+    band = generated["void_fraction_band"]
+    status, _, err = cli("analyze", particles, "--band", f"{band[0]!r},{band[1]!r}", "-q", "-o",
+                         tmp_path / "cli_an")
+    assert status == 0, err
+    analysis = packbed.analyze(bed, band=tuple(band), out=str(tmp_path / "py_an"))
+    assert type(analysis).__name__ == "PelletAnalysis"
+    expected = json.loads((tmp_path / "cli_an" / "summary.json").read_text())
+    del expected["particles_file"]
+    assert analysis.summary == expected
+    for name in expected["files"]:
+        assert (tmp_path / "py_an" / name).read_bytes() == (tmp_path / "cli_an" / name).read_bytes()
+    assert analysis.void_fraction == pytest.approx(generated["void_fraction"], abs=1e-12)
+    z = bed.centers[:, 2]
+    inside = (z >= analysis.band[0]) & (z < analysis.band[1])
+    q = bed.orientations[inside]
+    cos_theta = 1.0 - 2.0 * (q[:, 1] ** 2 + q[:, 2] ** 2)  # columns qw, qx, qy, qz
+    assert analysis.mean_cos2 == pytest.approx(np.mean(cos_theta**2), abs=1e-12)
+    assert analysis.order == pytest.approx(1.5 * np.mean(cos_theta**2) - 0.5, abs=1e-12)
+    assert analysis.orientation["pellets"].sum() == inside.sum()
+    assert analysis.coordination_histogram.sum() == inside.sum()
+    # Lengths in d_v: shells of 0.02 d_v from the wall.
+    radial = analysis.radial_void_fraction
+    assert radial.high[0] - radial.low[0] == pytest.approx(0.02 * analysis.diameter, abs=1e-12)
+    with pytest.raises(ValueError, match="rdf_bin"):
+        packbed.analyze(bed, rdf_bin=0.1)
+
+    bed.write(str(tmp_path / "written"))
+    assert (tmp_path / "written" / "particles.csv").read_bytes() == particles.read_bytes()
+    assert packbed.read(str(tmp_path / "written" / "particles.csv")).summary["shape"] == \
+        bed.summary["shape"]
+    status, _, err = cli("export", particles, "--format", "stl", "-q", "-o", tmp_path / "cli.stl")
+    assert status == 0, err
+    report = packbed.export(bed, str(tmp_path / "py.stl"), format="stl")
+    assert "12 cylinder:1,1 pellets" in report
+    assert (tmp_path / "py.stl").read_bytes() == (tmp_path / "cli.stl").read_bytes()
 
 
 def test_a_trilobe_bed_has_the_command_lines_bytes(tmp_path):
