@@ -151,6 +151,8 @@ public:
     PelletBed run() {
         insert();
         PelletBed out;
+        if (ring())
+            pour();
         settle();
         lower();
         out.stages = m_stages;
@@ -650,10 +652,9 @@ private:
         return z / static_cast<double>(m_centre.size());
     }
 
-    /// One FIRE step (FIRE 2.0's order: power, then the velocity update and the mixing, then
-    /// the move). Rotations are moved as the arc of the bounding sphere, so that a torque
-    /// over the bounding radius and a force weigh alike.
-    void step() {
+    /// The forces of one more step, counted. \throws Cancelled when the run is stopped,
+    /// ConvergenceError past max_steps
+    void count_step() {
         forces();
         ++m_steps;
         if (m_control.should_stop && m_steps % 100 == 0 && m_control.should_stop())
@@ -662,6 +663,13 @@ private:
             throw ConvergenceError(fmt::format(
                 "the pellet bed did not settle within {} steps (deepest node {:.3g} d_v)",
                 m_params.max_steps, m_depth));
+    }
+
+    /// One FIRE step (FIRE 2.0's order: power, then the velocity update and the mixing, then
+    /// the move). Rotations are moved as the arc of the bounding sphere, so that a torque
+    /// over the bounding radius and a force weigh alike.
+    void step() {
+        count_step();
         const std::size_t n = m_centre.size();
         const double inv_reach = 1.0 / m_reach;
         double power = 0.0;
@@ -690,15 +698,20 @@ private:
         for (std::size_t i = 0; i < n; ++i) {
             m_velocity[i] = m_velocity[i] * (1.0 - m_alpha) + m_force[i] * mix;
             m_spin[i] = m_spin[i] * (1.0 - m_alpha) + m_torque[i] * (inv_reach * mix);
-            Vec3 move = m_velocity[i] * m_dt, arc = m_spin[i] * m_dt;
-            const double longest = std::max(norm(move), norm(arc));
-            if (longest > Fire::max_move) {
-                move = move * (Fire::max_move / longest);
-                arc = arc * (Fire::max_move / longest);
-            }
-            m_centre[i] += move;
-            m_turn[i] = normalized(rotation_by(arc * inv_reach) * m_turn[i]);
+            move(i, m_velocity[i] * m_dt, m_spin[i] * m_dt);
         }
+    }
+
+    /// Pellet i moved by `shift` and turned by the arc `arc` of its bounding sphere, both cut
+    /// to at most Fire::max_move.
+    void move(std::size_t i, Vec3 shift, Vec3 arc) {
+        const double longest = std::max(norm(shift), norm(arc));
+        if (longest > Fire::max_move) {
+            shift = shift * (Fire::max_move / longest);
+            arc = arc * (Fire::max_move / longest);
+        }
+        m_centre[i] += shift;
+        m_turn[i] = normalized(rotation_by(arc * (1.0 / m_reach)) * m_turn[i]);
     }
 
     void report(std::string_view stage) const {
@@ -706,6 +719,57 @@ private:
             return;
         Progress p{stage, m_steps, m_gravity, m_pair_depth, m_wall_max, mass_centre_z()};
         m_control.on_progress(p);
+    }
+
+    /// A ring column's pour (the loosened columns, insert()): the pellets fall at a held
+    /// gravity, each one's velocity and spin zeroed alone when its own power turns negative
+    /// (so that a landing stops the pellet that lands, not the whole column, as FIRE's reset
+    /// does), the step pour_dt, until every pellet touches a neighbour or a wall and the mass
+    /// centre moved less than 1e-3 of its height in pour_check steps. The gravity is the one
+    /// at which the settled column's weight presses its lowest contacts to about the settling
+    /// band's high end: the depth at rest grows with the column's height times the gravity
+    /// (docs/notes/pellets.md, "Rings in a tall column"), so it is pour_load times the band's
+    /// high end over the column's height at a void fraction of 0.6 (2e-6 for 105 rings
+    /// D = L = 2 DI in a tube of a = 4), at most the settle stage's start.
+    void pour() {
+        const std::size_t n = m_centre.size();
+        const double height = m_container.fill_height(static_cast<double>(n), 0.6);
+        m_gravity = std::min(settle_gravity, pour_load * m_params.band_high * m_dmin / height);
+        const std::uint64_t start = m_steps;
+        const double inv_reach = 1.0 / m_reach;
+        std::vector<char> touching(n);
+        double last = mass_centre_z();
+        for (;;) {
+            count_step();
+            std::fill(touching.begin(), touching.end(), 0);
+            const auto first = m_list.pair_first();
+            const auto second = m_list.pair_second();
+            for (std::size_t k = 0; k < m_list.pairs(); ++k)
+                if (m_push[k].depth > 0.0)
+                    touching[first[k]] = touching[second[k]] = 1;
+            bool all = true;
+            for (std::size_t i = 0; i < n; ++i) {
+                all = all && (touching[i] || m_wall_depth[i] > 0.0);
+                if (dot(m_force[i], m_velocity[i]) + dot(m_torque[i], m_spin[i]) * inv_reach <
+                    0.0) {
+                    m_velocity[i] = Vec3{};
+                    m_spin[i] = Vec3{};
+                }
+                m_velocity[i] += m_force[i] * pour_dt;
+                m_spin[i] += m_torque[i] * (inv_reach * pour_dt);
+                move(i, m_velocity[i] * pour_dt, m_spin[i] * pour_dt);
+            }
+            report("pour");
+            if (m_steps % pour_check != 0)
+                continue;
+            const double mc = mass_centre_z();
+            if (all && std::abs(mc - last) <= 1e-3 * mc)
+                break;
+            last = mc;
+        }
+        std::fill(m_velocity.begin(), m_velocity.end(), Vec3{});
+        std::fill(m_spin.begin(), m_spin.end(), Vec3{});
+        m_stages.push_back({"pour", m_steps - start, m_gravity, m_depth, mass_centre_z()});
     }
 
     /// The paper's initial and intermediate stages in one: gravity raised while the deepest
@@ -717,7 +781,6 @@ private:
         constexpr double spread = 5e-4;
         const double band = level_set ? m_dmin : exact_band_scale * m_dmin;
         const double low = m_params.band_low * band, high = m_params.band_high * band;
-        m_gravity = 1e-3;
         std::vector<double> records;
         const std::uint64_t start = m_steps;
         for (;;) {
@@ -836,6 +899,13 @@ private:
     }
 
     static constexpr double skin = 0.3; // d_v
+    /// The settle stage's gravity at its start (where no pour ran before it).
+    static constexpr double settle_gravity = 1e-3;
+    /// pour()'s step: four times FIRE's largest, which the pour's per-pellet stop keeps stable
+    /// (a ring column's deepest node stayed within the settling band); its gravity's load
+    /// factor, and the steps between its tests of the mass centre.
+    static constexpr double pour_dt = 1.0, pour_load = 3e-3;
+    static constexpr std::uint64_t pour_check = 500;
     /// Pairs (and pellets at the walls) from which the force loops run on the threads: a pair
     /// costs thousands of a sphere pair's work (its nodes and circles), so a few already pay
     /// for the threads' start (a sphere bed waits for detail::parallel_min_spheres).
@@ -890,7 +960,7 @@ private:
     /// depth down by less than a tenth, in the order found; pushed apart on their exact depth
     /// from then on (forces()).
     std::vector<std::pair<std::uint32_t, std::uint32_t>> m_exact_pairs;
-    double m_gravity = 1e-3, m_depth = 0.0, m_pair_depth = 0.0, m_wall_max = 0.0;
+    double m_gravity = settle_gravity, m_depth = 0.0, m_pair_depth = 0.0, m_wall_max = 0.0;
     double m_dt = Fire::dt_start, m_alpha = Fire::alpha_start;
     int m_positive = 0;
     std::uint64_t m_steps = 0;
