@@ -87,6 +87,31 @@ struct Analysis {
     Container container;
 };
 
+/// The properties an Analysis and a PelletAnalysis share (R's `analysis` has them): the void
+/// fraction, the band, the reference diameter and the radial and axial profiles, each with its
+/// docstring.
+template <class R>
+py::class_<R>& def_measured(py::class_<R>& c, const char* void_fraction, const char* diameter,
+                            const char* radial, const char* axial) {
+    return c
+        .def_property_readonly(
+            "void_fraction", [](const R& a) { return a.analysis.void_fraction; }, void_fraction)
+        .def_property_readonly(
+            "band",
+            [](const R& a) {
+                return std::make_pair(a.analysis.band.z_low, a.analysis.band.z_high);
+            },
+            "The band (z_low, z_high) the numbers refer to (length).")
+        .def_property_readonly(
+            "diameter", [](const R& a) { return a.analysis.diameter; }, diameter)
+        .def_property_readonly(
+            "radial_void_fraction",
+            [](const R& a) { return profile(a.analysis.radial_void_fraction); }, radial)
+        .def_property_readonly(
+            "axial_void_fraction",
+            [](const R& a) { return profile(a.analysis.axial_void_fraction); }, axial);
+}
+
 /// A pellet bed's analysis as Python sees it: analyze_pellet_bed's numbers, summary.json's
 /// record of them, and the container.
 struct PelletAnalysisResult {
@@ -1048,31 +1073,15 @@ generate --shape` writes them.)");
             },
             "The bins' middles (length), numpy array.");
 
-    py::class_<Analysis>(m, "Analysis", "What analyze measured.")
-        .def_property_readonly(
-            "void_fraction", [](const Analysis& a) { return a.analysis.void_fraction; },
-            "The overall void fraction in the band, exact.")
-        .def_property_readonly(
-            "band",
-            [](const Analysis& a) {
-                return std::make_pair(a.analysis.band.z_low, a.analysis.band.z_high);
-            },
-            "The band (z_low, z_high) the numbers refer to (length).")
-        .def_property_readonly(
-            "diameter", [](const Analysis& a) { return a.analysis.diameter; },
-            "The reference diameter Dp (length).")
-        .def_property_readonly(
-            "radial_void_fraction",
-            [](const Analysis& a) { return profile(a.analysis.radial_void_fraction); },
-            "e(d) against the distance from the wall (a container of one wall; see walls).")
+    py::class_<Analysis> analysis(m, "Analysis", "What analyze measured.");
+    def_measured(analysis, "The overall void fraction in the band, exact.",
+                 "The reference diameter Dp (length).",
+                 "e(d) against the distance from the wall (a container of one wall; see walls).",
+                 "e(z) over slabs from the floor to the top.")
         .def_property_readonly(
             "centre_distribution",
             [](const Analysis& a) { return profile(a.analysis.centre_distribution); },
             "The density of centres against the distance from the wall over its mean.")
-        .def_property_readonly(
-            "axial_void_fraction",
-            [](const Analysis& a) { return profile(a.analysis.axial_void_fraction); },
-            "e(z) over slabs from the floor to the top.")
         .def_property_readonly(
             "pair_correlation",
             [](const Analysis& a) { return profile(a.analysis.pair_correlation); },
@@ -1101,28 +1110,12 @@ generate --shape` writes them.)");
             "The numbers as `packbed analyze` writes them in summary.json (band, void fraction, "
             "coordination, rattlers, wall contacts, options, warnings).");
 
-    py::class_<PelletAnalysisResult>(m, "PelletAnalysis",
-                                     "What analyze measured in a bed of pellets.")
-        .def_property_readonly(
-            "void_fraction", [](const PelletAnalysisResult& a) { return a.analysis.void_fraction; },
-            "The overall void fraction in the band, from the pellets' exact volumes.")
-        .def_property_readonly(
-            "band",
-            [](const PelletAnalysisResult& a) {
-                return std::make_pair(a.analysis.band.z_low, a.analysis.band.z_high);
-            },
-            "The band (z_low, z_high) the numbers refer to (length).")
-        .def_property_readonly(
-            "diameter", [](const PelletAnalysisResult& a) { return a.analysis.diameter; },
-            "The pellets' volume-equivalent diameter d_v (length).")
-        .def_property_readonly(
-            "radial_void_fraction",
-            [](const PelletAnalysisResult& a) { return profile(a.analysis.radial_void_fraction); },
-            "e(d) against the distance from the wall, exact (empty without one wall).")
-        .def_property_readonly(
-            "axial_void_fraction",
-            [](const PelletAnalysisResult& a) { return profile(a.analysis.axial_void_fraction); },
-            "e(z) over slabs from the floor to the top, exact.")
+    py::class_<PelletAnalysisResult> pellets(m, "PelletAnalysis",
+                                             "What analyze measured in a bed of pellets.");
+    def_measured(pellets, "The overall void fraction in the band, from the pellets' exact volumes.",
+                 "The pellets' volume-equivalent diameter d_v (length).",
+                 "e(d) against the distance from the wall, exact (empty without one wall).",
+                 "e(z) over slabs from the floor to the top, exact.")
         .def_property_readonly(
             "orientation",
             [](const PelletAnalysisResult& a) {

@@ -741,15 +741,20 @@ private:
         double last = mass_centre_z();
         for (;;) {
             count_step();
-            std::fill(touching.begin(), touching.end(), 0);
-            const auto first = m_list.pair_first();
-            const auto second = m_list.pair_second();
-            for (std::size_t k = 0; k < m_list.pairs(); ++k)
-                if (m_push[k].depth > 0.0)
-                    touching[first[k]] = touching[second[k]] = 1;
-            bool all = true;
+            // Whether every pellet touches, asked only where the mass centre is tested.
+            const bool check = m_steps % pour_check == 0;
+            bool all = check;
+            if (check) {
+                std::fill(touching.begin(), touching.end(), 0);
+                const auto first = m_list.pair_first();
+                const auto second = m_list.pair_second();
+                for (std::size_t k = 0; k < m_list.pairs(); ++k)
+                    if (m_push[k].depth > 0.0)
+                        touching[first[k]] = touching[second[k]] = 1;
+                for (std::size_t i = 0; i < n; ++i)
+                    all = all && (touching[i] || m_wall_depth[i] > 0.0);
+            }
             for (std::size_t i = 0; i < n; ++i) {
-                all = all && (touching[i] || m_wall_depth[i] > 0.0);
                 if (dot(m_force[i], m_velocity[i]) + dot(m_torque[i], m_spin[i]) * inv_reach <
                     0.0) {
                     m_velocity[i] = Vec3{};
@@ -760,7 +765,7 @@ private:
                 move(i, m_velocity[i] * pour_dt, m_spin[i] * pour_dt);
             }
             report("pour");
-            if (m_steps % pour_check != 0)
+            if (!check)
                 continue;
             const double mc = mass_centre_z();
             if (all && std::abs(mc - last) <= 1e-3 * mc)
