@@ -1,5 +1,5 @@
 # Type stubs of the packbed module (python/module.cpp): names and types for editors.
-from typing import Any, Callable, Dict, List, Optional, Tuple
+from typing import Any, Callable, Dict, List, Optional, Tuple, Union
 
 import numpy as np
 import numpy.typing as npt
@@ -62,6 +62,28 @@ class Analysis:
     @property
     def summary(self) -> Dict[str, Any]: ...
 
+class PelletAnalysis:
+    @property
+    def void_fraction(self) -> float: ...
+    @property
+    def band(self) -> Tuple[float, float]: ...
+    @property
+    def diameter(self) -> float: ...
+    @property
+    def radial_void_fraction(self) -> Profile: ...
+    @property
+    def axial_void_fraction(self) -> Profile: ...
+    @property
+    def orientation(self) -> Dict[str, npt.NDArray[Any]]: ...
+    @property
+    def order(self) -> float: ...
+    @property
+    def mean_cos2(self) -> float: ...
+    @property
+    def coordination_histogram(self) -> npt.NDArray[np.int64]: ...
+    @property
+    def summary(self) -> Dict[str, Any]: ...
+
 def generate(
     *,
     aspect_ratio: Optional[float] = None,
@@ -112,14 +134,15 @@ def analyze(
     diameter: Optional[float] = None,
     shell_width: float = 0.02,
     slab_height: float = 0.05,
-    centre_bin: float = 0.02,
+    centre_bin: Optional[float] = None,
     contact_tolerance: float = 1e-3,
-    rdf_range: float = 3.0,
-    rdf_bin: float = 0.02,
+    rdf_range: Optional[float] = None,
+    rdf_bin: Optional[float] = None,
+    friction: Optional[float] = None,
     threads: Optional[int] = None,
     out: Optional[str] = None,
     force: bool = False,
-) -> Analysis: ...
+) -> Union[Analysis, PelletAnalysis]: ...
 def lattice(
     *,
     type: str = "diamond",
