@@ -1122,19 +1122,19 @@ generate --shape` writes them.)");
                 const std::vector<OrientationBin>& bins = a.analysis.orientation;
                 const auto n = static_cast<py::ssize_t>(bins.size());
                 py::array_t<double> low(n), high(n), cos2(n), order(n);
-                py::array_t<std::int64_t> pellets(n);
+                py::array_t<std::int64_t> count(n);
                 for (py::ssize_t k = 0; k < n; ++k) {
                     const OrientationBin& b = bins[static_cast<std::size_t>(k)];
                     low.mutable_at(k) = b.low;
                     high.mutable_at(k) = b.high;
-                    pellets.mutable_at(k) = static_cast<std::int64_t>(b.pellets);
+                    count.mutable_at(k) = static_cast<std::int64_t>(b.pellets);
                     cos2.mutable_at(k) = b.mean_cos2;
                     order.mutable_at(k) = b.order;
                 }
                 py::dict out;
                 out["low"] = low;
                 out["high"] = high;
-                out["pellets"] = pellets;
+                out["pellets"] = count;
                 out["mean_cos2"] = cos2;
                 out["order"] = order;
                 return out;

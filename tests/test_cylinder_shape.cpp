@@ -12,6 +12,7 @@
 #include <vector>
 
 #include <gtest/gtest.h>
+#include <omp.h>
 
 #include "rotations.hpp"
 
@@ -642,6 +643,47 @@ TEST(PelletAnalysis, TwoPelletsByHand) {
     // The void fraction with the pellets' exact volumes: both whole inside.
     EXPECT_NEAR(all.void_fraction, 1.0 - 2.0 * c.volume(0.5) / (pi * 4.0 * (3.0 * h + 2.0 * r)),
                 1e-9);
+}
+
+TEST(PelletAnalysis, SameBitsWhateverTheThreads) {
+    // Four cylinders (d_v = 1) in a tube of radius 1.5, each profile's pellets computed on
+    // their own in parallel and added in order: one lying on the floor 2e-5 rad from level and
+    // 1e-3 through the wall, one upright on the axis, two turned; one thread and two give the
+    // same bits.
+    const CylinderShape c = CylinderShape::of_aspect(1.0);
+    const double r = c.radius * 0.5, h = c.half_length * 0.5;
+    Packing p;
+    p.add({1.5 - r + 1e-3, 0.0, r}, 0.5);
+    p.add({0.0, 0.0, h}, 0.5);
+    p.add({-0.8, 0.2, 1.2}, 0.5);
+    p.add({0.2, -0.9, 0.9}, 0.5);
+    p.orientations = {about({0.0, 1.0, 0.0}, 2e-5) * about({1.0, 0.0, 0.0}, 0.5 * pi), Quaternion{},
+                      about(Vec3{1.0, 1.0, 0.0} * (1.0 / std::sqrt(2.0)), 0.7),
+                      about({1.0, 0.0, 0.0}, 1.2)};
+    const Container tube = Container::tube_of_radius(1.5);
+    AnalysisOptions o;
+    o.band = Band{0.2, 1.4};
+    const int saved = omp_get_max_threads();
+    omp_set_num_threads(1);
+    const PelletAnalysis one = analyze_pellet_bed(p, MultilobeShape::cylinder(c), tube, o);
+    omp_set_num_threads(2);
+    const PelletAnalysis two = analyze_pellet_bed(p, MultilobeShape::cylinder(c), tube, o);
+    omp_set_num_threads(saved);
+    EXPECT_EQ(one.void_fraction, two.void_fraction);
+    ASSERT_EQ(one.radial_void_fraction.size(), two.radial_void_fraction.size());
+    for (std::size_t k = 0; k < one.radial_void_fraction.size(); ++k)
+        EXPECT_EQ(one.radial_void_fraction[k].value, two.radial_void_fraction[k].value) << k;
+    ASSERT_EQ(one.axial_void_fraction.size(), two.axial_void_fraction.size());
+    for (std::size_t k = 0; k < one.axial_void_fraction.size(); ++k)
+        EXPECT_EQ(one.axial_void_fraction[k].value, two.axial_void_fraction[k].value) << k;
+    // The slabs hold the pellets' volume in the tube (1e-3 of the level one's side lies beyond
+    // the wall): each slab's integral meets its tolerance.
+    double solid = 0.0;
+    for (const ProfileBin& b : one.axial_void_fraction)
+        solid += (1.0 - b.value) * pi * 1.5 * 1.5 * (b.high - b.low);
+    const double whole = 4.0 * c.volume(0.5);
+    EXPECT_LT(solid, whole - 1e-5);
+    EXPECT_NEAR(solid, solid_volume(ShapedBed<CylinderShape>(p, {c}), tube, 0.0, 10.0), 1e-8);
 }
 
 TEST(PelletAnalysis, ContactsByHand) {

@@ -4,6 +4,7 @@
 
 #include <algorithm>
 #include <cstddef>
+#include <functional>
 #include <optional>
 
 #include "packbed/container.hpp"
@@ -19,15 +20,21 @@ struct Band {
     double z_high = 0.0; ///< upper height (length)
 };
 
+namespace detail {
+/// \return volume(0) + volume(1) + ... + volume(n - 1), added in that order; the terms are
+/// computed in parallel (a pellet's volume in a tube costs milliseconds), so the sum has the
+/// same bits whatever the number of threads.
+double sum_in_order(std::size_t n, const std::function<double(std::size_t)>& volume);
+} // namespace detail
+
 /// The particles' volume inside the container between two heights, summed in order (each
 /// particle's ParticleShape::volume_in).
 template <ParticleShape S>
 double solid_volume(const ShapedBed<S>& bed, const Container& container, double z_low,
                     double z_high) {
-    double solid = 0.0;
-    for (std::size_t i = 0; i < bed.size(); ++i)
-        solid += bed.shape(i).volume_in(container, bed.placement(i), z_low, z_high);
-    return solid;
+    return detail::sum_in_order(bed.size(), [&](std::size_t i) {
+        return bed.shape(i).volume_in(container, bed.placement(i), z_low, z_high);
+    });
 }
 
 /// \throws InvalidInput unless z_low < z_high (the void fraction's band).

@@ -63,15 +63,40 @@ private:
     std::exception_ptr m_first;
 };
 
+/// Chunks fewer than this (a bed of fewer than about 500 particles) leave threads idle; each
+/// particle is then computed alone into its own row, in parallel, and the rows are added in
+/// the chunks' order (parallel_rows).
+constexpr std::size_t few_chunks = 16;
+
 /// Run `per_sphere(i, row)` for every sphere, `row` being its chunk's partial histogram of
 /// `bins` values, and add the rows in chunk order (batches of chunks at a time: the same
-/// additions in the same order as all at once).
+/// additions in the same order as all at once). `per_sphere` adds to each value of the row at
+/// most once: a bed of few chunks then runs each particle into a zeroed row of its own, in
+/// parallel, and adds those rows to their chunk's in order, the same additions (x + 0 = x).
 template <class F>
 std::vector<double> histogram_over_spheres(std::size_t n, std::size_t bins, F&& per_sphere) {
     const std::size_t chunk_size = chunk_size_for(n);
     const std::size_t chunks = (n + chunk_size - 1) / chunk_size;
-    const std::size_t batch = std::clamp<std::size_t>(partial_values / bins, 1, chunks);
     std::vector<double> total(bins, 0.0);
+    if (chunks < few_chunks && n * bins <= partial_values) {
+        std::vector<double> rows(n * bins, 0.0);
+        ParallelErrors errors;
+#pragma omp parallel for schedule(dynamic, 1) if (n > 1)
+        for (std::size_t i = 0; i < n; ++i)
+            errors.run([&] { per_sphere(i, rows.data() + i * bins); });
+        errors.rethrow();
+        std::vector<double> row(bins);
+        for (std::size_t c = 0; c < chunks; ++c) {
+            std::fill(row.begin(), row.end(), 0.0);
+            for (std::size_t i = c * chunk_size; i < std::min(n, (c + 1) * chunk_size); ++i)
+                for (std::size_t k = 0; k < bins; ++k)
+                    row[k] += rows[i * bins + k];
+            for (std::size_t k = 0; k < bins; ++k)
+                total[k] += row[k];
+        }
+        return total;
+    }
+    const std::size_t batch = std::clamp<std::size_t>(partial_values / bins, 1, chunks);
     std::vector<double> partials(batch * bins);
     for (std::size_t first = 0; first < chunks; first += batch) {
         const std::size_t count = std::min(batch, chunks - first);
@@ -179,6 +204,32 @@ std::vector<ProfileBin> axial_void_fraction(const ShapedBed<S>& bed, const Conta
         row_start[c] = lo;
         row_end[c] = hi + 1;
     }
+    auto volume = [&](std::size_t i, std::size_t k) {
+        return bed.shape(i).volume_in(container, bed.placement(i), static_cast<double>(k) * height,
+                                      static_cast<double>(k + 1) * height);
+    };
+    // Few chunks (few_chunks): each particle's slabs first, in parallel over the particles,
+    // stored from at[s]; the chunks below then add the stored values in the same order.
+    std::vector<double> stored;
+    std::vector<std::size_t> at;
+    if (chunks < few_chunks) {
+        at.assign(n + 1, 0);
+        for (std::size_t s = 0; s < n; ++s) {
+            const auto [k_first, k_last] = slab_range(order[s]);
+            at[s + 1] = at[s] + (k_last - k_first + 1);
+        }
+        stored.assign(at[n], 0.0);
+        ParallelErrors errors;
+#pragma omp parallel for schedule(dynamic, 1) if (n > 1)
+        for (std::size_t s = 0; s < n; ++s)
+            errors.run([&] {
+                const std::size_t i = order[s];
+                const auto [k_first, k_last] = slab_range(i);
+                for (std::size_t k = k_first; k <= k_last; ++k)
+                    stored[at[s] + (k - k_first)] = volume(i, k);
+            });
+        errors.rethrow();
+    }
     std::vector<double> solid(slabs, 0.0);
     std::vector<double> rows;
     std::vector<std::size_t> row_at(chunks);
@@ -200,9 +251,8 @@ std::vector<ProfileBin> axial_void_fraction(const ShapedBed<S>& bed, const Conta
                     const std::size_t i = order[s];
                     const auto [k_first, k_last] = slab_range(i);
                     for (std::size_t k = k_first; k <= k_last; ++k)
-                        row[k - row_start[c]] += bed.shape(i).volume_in(
-                            container, bed.placement(i), static_cast<double>(k) * height,
-                            static_cast<double>(k + 1) * height);
+                        row[k - row_start[c]] +=
+                            stored.empty() ? volume(i, k) : stored[at[s] + (k - k_first)];
                 }
             });
         errors.rethrow();

@@ -1,11 +1,35 @@
 #include "packbed/bed_volume.hpp"
 
+#include <exception>
+#include <vector>
+
 #include <fmt/format.h>
 
 #include "packbed/error.hpp"
 #include "packbed/sphere_shape.hpp"
 
 namespace packbed {
+
+double detail::sum_in_order(std::size_t n, const std::function<double(std::size_t)>& volume) {
+    std::vector<double> terms(n);
+    std::exception_ptr failure;
+#pragma omp parallel for schedule(dynamic, 16) if (n > 1)
+    for (std::size_t i = 0; i < n; ++i) {
+        try {
+            terms[i] = volume(i);
+        } catch (...) {
+#pragma omp critical(packbed_sum_in_order)
+            if (!failure)
+                failure = std::current_exception();
+        }
+    }
+    if (failure)
+        std::rethrow_exception(failure);
+    double sum = 0.0;
+    for (const double t : terms)
+        sum += t;
+    return sum;
+}
 
 void check_band(double z_low, double z_high) {
     if (!(z_high > z_low))

@@ -113,6 +113,21 @@ double section_in_disc(const Frame& f, const Vec3& c, double r, double h, double
         return 0.0;
     // The disc's centre (the z axis) in the ellipse's frame.
     const double dx = -(qx * u.x + qy * u.y), dy = -(qx * v.x + qy * v.y);
+    bool clear = false;
+    // The section lies in the box [x_lo, x_hi] x [-r, r]: a box that keeps clear of the
+    // circle (all inside the disc, or all outside it, by 1e-9 of its radius squared) has no
+    // crossing that bounds a piece of the section, and the search below is skipped (the sum
+    // is the same: the crossings it would find lie outside the strip, on arcs not counted).
+    {
+        const double near_x = std::clamp(dx, x_lo, x_hi), near_y = std::clamp(dy, -r, r);
+        const double far_x = std::max(std::abs(x_lo - dx), std::abs(x_hi - dx));
+        const double far_y = std::max(std::abs(-r - dy), std::abs(r - dy));
+        const double nearest = (near_x - dx) * (near_x - dx) + (near_y - dy) * (near_y - dy);
+        const double radius2 = radius * radius;
+        if (nearest > radius2 * (1.0 + 1e-9))
+            return 0.0;
+        clear = far_x * far_x + far_y * far_y < radius2 * (1.0 - 1e-9);
+    }
     auto in_ellipse = [&](double x, double y) {
         return (x / big) * (x / big) + (y / r) * (y / r) <= 1.0;
     };
@@ -159,9 +174,19 @@ double section_in_disc(const Frame& f, const Vec3& c, double r, double h, double
         }
         crossings.push_back(x);
     };
+    // The angles of the ellipse's part in the strip, [first, last] and its mirror
+    // [2 pi - last, 2 pi - first] (grown by 1e-9 rad): a crossing elsewhere lies on arcs that
+    // are not counted, so pieces of the turn outside them are not searched.
+    const double first = std::acos(std::clamp(x_hi / big, -1.0, 1.0)) - 1e-9;
+    const double last = std::acos(std::clamp(x_lo / big, -1.0, 1.0)) + 1e-9;
+    const auto in_strip_turn = [&](double lo, double hi) {
+        return (hi >= first && lo <= last) || (hi >= 2.0 * pi - last && lo <= 2.0 * pi - first);
+    };
     int budget = 20000; // halvings, for the whole turn
     const auto search = [&](auto&& self, double lo, double hi, double flo, double fhi, Value m,
                             int depth) -> void {
+        if (!in_strip_turn(lo, hi))
+            return;
         const double width = hi - lo, mid = 0.5 * (lo + hi);
         const bool change = (flo < 0.0) != (fhi < 0.0);
         if (!change &&
@@ -190,7 +215,7 @@ double section_in_disc(const Frame& f, const Vec3& c, double r, double h, double
         return at(cos_t, sin_t);
     };
     double previous = sample(0).f;
-    for (int k = 1; k <= samples; ++k) {
+    for (int k = 1; k <= (clear ? 0 : samples); ++k) {
         const double lo = 2.0 * pi * (k - 1) / samples, hi = 2.0 * pi * k / samples;
         const double value = sample(2 * k).f;
         search(search, lo, hi, previous, value, sample(2 * k - 1), 0);
