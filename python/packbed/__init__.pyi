@@ -106,6 +106,9 @@ def generate(
     solver: str = "fire",
     skin: Optional[float] = None,
     layer_height: float = 30.0,
+    friction: float = 0.0,
+    wall_friction: float = 0.0,
+    target_void_fraction: Optional[float] = None,
     checkpoint: Optional[str] = None,
     max_iterations: Optional[int] = None,
     band_clearance: float = 1.0,
@@ -113,6 +116,11 @@ def generate(
     progress: Optional[Callable[[Dict[str, Any]], None]] = None,
     out: Optional[str] = None,
     force: bool = False,
+    engine: str = "packbed",
+    ranks: int = 1,
+    mpi_command: Optional[str] = None,
+    lmp: str = "lmp",
+    shape: str = "sphere",
 ) -> Bed: ...
 def read(
     path: str,

@@ -3,9 +3,11 @@
 Run by ctest (python_module): PYTHONPATH holds build/python, PACKBED the command line.
 """
 
+import ast
 import json
 import math
 import os
+import re
 import shutil
 import signal
 import subprocess
@@ -428,6 +430,29 @@ def test_help_shows_the_docstrings():
     for name in packbed.__all__:
         if not name.startswith("__"):
             assert name in stubs
+
+
+def test_the_stubs_name_every_keyword_the_functions_take():
+    # The type stubs (__init__.pyi) against the signatures pybind11 writes into each
+    # function's docstring: an editor completes every keyword the module takes, and only those.
+    tree = ast.parse(Path(packbed.__file__).with_name("__init__.pyi").read_text())
+    declared = {}
+    for node in ast.walk(tree):
+        if isinstance(node, ast.FunctionDef):
+            a = node.args
+            declared.setdefault(node.name, set()).update(
+                x.arg for x in a.posonlyargs + a.args + a.kwonlyargs if x.arg != "self")
+    checked = 0
+    for name in packbed.__all__:
+        f = getattr(packbed, name)
+        if not callable(f) or isinstance(f, type):
+            continue
+        signature = re.match(r"\w+\((.*)\) ->", f.__doc__.splitlines()[0])
+        assert signature, name
+        taken = set(re.findall(r"(?:^|, )(\w+)(?=:|,|$)", signature.group(1)))
+        assert taken == declared.get(name), name
+        checked += 1
+    assert checked >= 12
 
 
 def test_voxelize_a_sphere_on_a_voxel_corner():
