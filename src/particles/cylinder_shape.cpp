@@ -289,8 +289,9 @@ double section_in_disc(const Frame& f, const Vec3& c, double r, double h, double
 
 /// The volume of the cylinder between two heights inside the disc of radius `radius` about
 /// the z axis: section_in_disc integrated over the height by adaptive Gauss-Kronrod (15
-/// points, relative tolerance 1e-9) on the pieces between the heights where an end's rim has
-/// its highest and lowest point (where the section changes its kind).
+/// points, relative tolerance 1e-9 above 1e-13 of the pellet's volume: integrate_with_floor) on
+/// the pieces between the heights where an end's rim has its highest and lowest point (where
+/// the section changes its kind).
 double disc_volume(const Frame& f, const Vec3& centre, double r, double h, double z_low,
                    double z_high, double radius) {
     const double g = std::hypot(f.axis.x, f.axis.y);
@@ -300,7 +301,6 @@ double disc_volume(const Frame& f, const Vec3& centre, double r, double h, doubl
             if (const double z = centre.z + end * f.axis.z + side * g; z > z_low && z < z_high)
                 cuts.push_back(z);
     std::sort(cuts.begin(), cuts.end());
-    using Kronrod = boost::math::quadrature::gauss_kronrod<double, 15>;
     auto area = [&](double z) { return section_in_disc(f, centre, r, h, z, radius); };
     // An absolute floor of 1e-13 of the pellet's volume under the relative tolerance: a piece
     // holding 1e-9 of it (the thin pieces at the top and bottom of a pellet lying near level)
@@ -308,12 +308,8 @@ double disc_volume(const Frame& f, const Vec3& centre, double r, double h, doubl
     const double floor = 1e-13 * 2.0 * pi * r * r * h;
     double total = 0.0;
     for (std::size_t k = 0; k + 1 < cuts.size(); ++k)
-        if (cuts[k + 1] > cuts[k]) {
-            double l1 = 0.0;
-            Kronrod::integrate(area, cuts[k], cuts[k + 1], 0, 0.0, nullptr, &l1);
-            const double tolerance = l1 > 0.0 ? std::max(1e-9, floor / l1) : 1e-9;
-            total += Kronrod::integrate(area, cuts[k], cuts[k + 1], 10, tolerance);
-        }
+        if (cuts[k + 1] > cuts[k])
+            total += detail::integrate_with_floor(area, cuts[k], cuts[k + 1], 10, 1e-9, floor);
     return total;
 }
 

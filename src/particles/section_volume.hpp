@@ -23,6 +23,33 @@
 
 namespace packbed::detail {
 
+/// Adaptive 15-point Gauss-Kronrod (Boost.Math's, whose halving it repeats node for node) with
+/// an absolute floor under its relative tolerance: a piece is halved while its error estimate
+/// exceeds `tolerance` times its own estimate, the same share of the whole's, and `floor` (each
+/// halved with the piece). Boost's alone asks a vanishing integral (a sliver of a pellet in a
+/// region) for an error below its integrand's rounding and halves to `depth` everywhere; where
+/// the floor is not reached the two give the same bits.
+template <class F>
+double integrate_with_floor(F&& f, double a, double b, unsigned depth, double tolerance,
+                            double floor) {
+    using Kronrod = boost::math::quadrature::gauss_kronrod<double, 15>;
+    const auto piece = [&](auto&& self, double lo, double hi, unsigned levels, double whole,
+                           double least) -> double {
+        double error = 0.0;
+        const double estimate = Kronrod::integrate(f, lo, hi, 0, tolerance, &error);
+        const double own = std::abs(estimate * tolerance);
+        if (whole == 0.0)
+            whole = own;
+        if (levels > 0 && own < error && whole < error && least < error) {
+            const double mid = 0.5 * (lo + hi);
+            const double left = self(self, lo, mid, levels - 1, 0.5 * whole, 0.5 * least);
+            return left + self(self, mid, hi, levels - 1, 0.5 * whole, 0.5 * least);
+        }
+        return estimate;
+    };
+    return piece(piece, a, b, depth, 0.0, floor);
+}
+
 /// A pellet's body frame in the bed: its axis and two directions across it.
 struct Frame {
     Vec3 e1, e2, axis;
@@ -94,7 +121,6 @@ double region_volume_over(const Frame& f, const Vec3& centre, double t_low, doub
                           int axis_pieces, double z_low, double z_high, ChordOf&& chord,
                           RadiusOf&& radius_at, const std::vector<double>& cuts, int pieces_per_cut,
                           double tolerance = 1e-8) {
-    using Kronrod = boost::math::quadrature::gauss_kronrod<double, 15>;
     auto ring = [&](double t, double phi) {
         const Vec3 c = centre + t * f.axis;
         const Vec3 w = std::cos(phi) * f.e1 + std::sin(phi) * f.e2;
@@ -120,22 +146,29 @@ double region_volume_over(const Frame& f, const Vec3& centre, double t_low, doub
         return sum;
     };
     // Each integral starts from pieces so that no part of the region narrower than a piece
-    // goes unseen by the rule's first nodes.
-    auto pieces = [tolerance](auto&& integrand, double a, double b, int n) {
+    // goes unseen by the rule's first nodes. Under the relative tolerance, an absolute floor
+    // (integrate_with_floor): 1e-13 of s^2 per radian about the axis and of s^3 per unit of
+    // its length, s the section's largest radius at the ends and the middle of the axis.
+    double s = 0.0;
+    for (const double t : {t_low, 0.5 * (t_low + t_high), t_high})
+        for (std::size_t k = 0; k + 1 < cuts.size(); ++k)
+            s = std::max(s, radius_at(t, 0.5 * (cuts[k] + cuts[k + 1])));
+    auto pieces = [tolerance](auto&& integrand, double a, double b, int n, double floor) {
         double sum = 0.0;
-        for (int k = 0; k < n; ++k)
-            sum += Kronrod::integrate(integrand, a + (b - a) * k / n, a + (b - a) * (k + 1) / n, 6,
-                                      tolerance);
+        for (int k = 0; k < n; ++k) {
+            const double lo = a + (b - a) * k / n, hi = a + (b - a) * (k + 1) / n;
+            sum += integrate_with_floor(integrand, lo, hi, 6, tolerance, floor * (hi - lo));
+        }
         return sum;
     };
     auto section = [&](double t) {
         double sum = 0.0;
         for (std::size_t k = 0; k + 1 < cuts.size(); ++k)
             sum += pieces([&](double phi) { return ring(t, phi); }, cuts[k], cuts[k + 1],
-                          pieces_per_cut);
+                          pieces_per_cut, 1e-13 * s * s);
         return sum;
     };
-    return pieces(section, t_low, t_high, axis_pieces);
+    return pieces(section, t_low, t_high, axis_pieces, 1e-13 * s * s * s);
 }
 
 /// region_volume_over the prism's whole length, -h .. h in 16 pieces, its section the same at
