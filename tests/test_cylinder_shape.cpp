@@ -16,6 +16,8 @@
 
 #include "rotations.hpp"
 
+#include "particles/section_volume.hpp"
+
 #include "packbed/analysis.hpp"
 #include "packbed/annulus.hpp"
 #include "packbed/bed_volume.hpp"
@@ -598,6 +600,31 @@ TEST(CylinderShape, TheTemplatedLoopsTakeIt) {
         measure_overlaps(ShapedBed<CylinderShape>(packing, {CylinderShape{0.5, 1.0}}), tube);
     EXPECT_NEAR(pressed.pair, 0.1, 1e-9);
     EXPECT_NEAR(pressed.wall, 0.1, 1e-12);
+}
+
+TEST(IntegrateWithFloor, BoostsBitsAboveTheFloorAndStopsAtIt) {
+    using Kronrod = boost::math::quadrature::gauss_kronrod<double, 15>;
+    // Above the floor (none): Boost's adaptive rule, bit for bit; the integral of sqrt(x) over
+    // [0, 1] is 2/3, its kink at 0 halved to.
+    const auto root = [](double x) { return std::sqrt(x); };
+    const double boost = Kronrod::integrate(root, 0.0, 1.0, 10, 1e-9);
+    EXPECT_EQ(detail::integrate_with_floor(root, 0.0, 1.0, 10, 1e-9, 0.0), boost);
+    EXPECT_NEAR(boost, 2.0 / 3.0, 1e-9);
+    // 1 + 1e-7 sin(1e6 x): its ripple keeps every error estimate near 1e-7, above the relative
+    // tolerance of 1e-12, so Boost halves all 2 047 pieces of a ten-level tree (15 points each);
+    // with a floor of 1e-6 the first piece is enough, within the floor of
+    // 1 + 1e-7 (1 - cos 1e6) / 1e6.
+    int calls = 0;
+    const auto ripple = [&calls](double x) {
+        ++calls;
+        return 1.0 + 1e-7 * std::sin(1e6 * x);
+    };
+    const double exact = 1.0 + 1e-7 * (1.0 - std::cos(1e6)) / 1e6;
+    EXPECT_NEAR(Kronrod::integrate(ripple, 0.0, 1.0, 10, 1e-12), exact, 1e-6);
+    EXPECT_EQ(calls, 2047 * 15);
+    calls = 0;
+    EXPECT_NEAR(detail::integrate_with_floor(ripple, 0.0, 1.0, 10, 1e-12, 1e-6), exact, 1e-6);
+    EXPECT_EQ(calls, 15);
 }
 
 TEST(PelletAnalysis, TwoPelletsByHand) {
