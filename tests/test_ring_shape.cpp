@@ -153,6 +153,38 @@ TEST(RingShape, VolumeUprightInASlabAShellAndAtABoxsWall) {
     }
 }
 
+/// The area common to two discs of radii a and b whose centres are d apart (the lens).
+double lens(double a, double b, double d) {
+    if (d >= a + b)
+        return 0.0;
+    if (d <= std::abs(a - b))
+        return pi * std::min(a, b) * std::min(a, b);
+    const double wa = std::acos((d * d + a * a - b * b) / (2.0 * d * a));
+    const double wb = std::acos((d * d + b * b - a * a) / (2.0 * d * b));
+    return a * a * (wa - std::sin(2.0 * wa) / 2.0) + b * b * (wb - std::sin(2.0 * wb) / 2.0);
+}
+
+TEST(RingShape, VolumeUprightThroughATubesWallByTheLenses) {
+    // Upright with its centre 2.001 from the axis of a tube of radius 3: 1e-3 of it through the
+    // wall; inside the tube, and inside the tube shrunk by 0.5 and by 1.7 (a shell's sides),
+    // the outer disc's lens with the wall's circle less the bore's, times the length.
+    const Container tube = Container::tube(6.0);
+    const Placement upright{{2.001, 0.0, 2.0}, about({0.0, 0.0, 1.0}, 0.4), 1.0};
+    const auto exact = [](double radius) {
+        return (lens(1.0, radius, 2.001) - lens(0.5, radius, 2.001)) * 1.2;
+    };
+    EXPECT_NEAR(ring.volume_in(tube, upright, 0.0, 10.0), exact(3.0), 1e-12);
+    EXPECT_LT(exact(3.0), ring.volume(1.0) - 1e-5);
+    for (const double d : {0.5, 1.7})
+        EXPECT_NEAR(ring.volume_from_wall(tube, 0, d, upright, 0.0, 10.0), exact(3.0 - d), 1e-12)
+            << d;
+    // Turned 1e-9 from upright: the surface moves by less than 1e-9, the volumes by less than
+    // its area times that.
+    const Placement tilted{upright.position, about({1.0, 0.0, 0.0}, 1e-9), 1.0};
+    EXPECT_NEAR(ring.volume_in(tube, tilted, 0.0, 10.0), exact(3.0), 1e-8);
+    EXPECT_NEAR(ring.volume_from_wall(tube, 0, 0.5, tilted, 0.0, 10.0), exact(2.5), 1e-8);
+}
+
 TEST(RingShape, VolumeTurnedAtTheWallAgreesWithTheCount) {
     const Container tube = Container::tube(4.0); // radius 2
     std::mt19937_64 rng(5);

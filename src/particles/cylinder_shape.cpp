@@ -624,9 +624,9 @@ namespace {
 /// The volume of the cylinder in the container `c` between two heights: none where its
 /// bounding sphere misses the heights, the slab's closed-form sections where the sphere keeps
 /// clear of the side, the region's otherwise (in a tube, its closed-form sections met with the
-/// wall's circle where `disc_sections`).
+/// wall's circle).
 double cylinder_in(const CylinderShape& shape, const Container& c, const Placement& p, double z_low,
-                   double z_high, bool disc_sections = true) {
+                   double z_high) {
     const double reach = shape.bounding_radius(p.size);
     const double low = std::max(z_low, p.position.z - reach);
     const double high = std::min(z_high, p.position.z + reach);
@@ -637,7 +637,7 @@ double cylinder_in(const CylinderShape& shape, const Container& c, const Placeme
     if (c.wall_overlap(p.position, reach) <= 0.0 &&
         c.contains({p.position.x, p.position.y, std::max(p.position.z, 0.0)}))
         return slab_volume(f, p.position, r, h, low, high);
-    if (const std::optional<double> tube = c.tube_diameter(); tube && disc_sections)
+    if (const std::optional<double> tube = c.tube_diameter())
         return disc_volume(f, p.position, r, h, low, high, 0.5 * *tube);
     return region_volume(
         f, p.position, h, low, high,
@@ -649,13 +649,10 @@ double cylinder_in(const CylinderShape& shape, const Container& c, const Placeme
 
 double CylinderShape::volume_in(const Container& c, const Placement& p, double z_low,
                                 double z_high) const {
-    // A ring's by the region's integral: a ring lying flat against a tube's wall (its axis
-    // vertical but for 1e-7) cuts sections nearly tangent to the wall profiles' circles, whose
-    // crossings the tube's closed-form sections search through their whole budget
-    // (docs/notes/pellets.md, "Rings: what their beds needed").
+    // A ring: its outer cylinder less its bore.
     if (bore > 0.0)
-        return cylinder_in({radius, half_length}, c, p, z_low, z_high, false) -
-               cylinder_in({bore, half_length}, c, p, z_low, z_high, false);
+        return cylinder_in({radius, half_length}, c, p, z_low, z_high) -
+               cylinder_in({bore, half_length}, c, p, z_low, z_high);
     return cylinder_in(*this, c, p, z_low, z_high);
 }
 
