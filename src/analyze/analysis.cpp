@@ -65,7 +65,7 @@ private:
 
 /// Chunks fewer than this (a bed of fewer than about 500 particles) leave threads idle; each
 /// particle is then computed alone into its own row, in parallel, and the rows are added in
-/// the chunks' order (parallel_rows).
+/// the chunks' order (histogram_over_spheres, axial_void_fraction).
 constexpr std::size_t few_chunks = 16;
 
 /// Run `per_sphere(i, row)` for every sphere, `row` being its chunk's partial histogram of

@@ -116,10 +116,10 @@ double section_in_disc(const Frame& f, const Vec3& c, double r, double h, double
     // The disc's centre (the z axis) in the ellipse's frame.
     const double dx = -(qx * u.x + qy * u.y), dy = -(qx * v.x + qy * v.y);
     bool clear = false;
-    // The section lies in the box [x_lo, x_hi] x [-r, r]: a box that keeps clear of the
-    // circle (all inside the disc, or all outside it, by 1e-9 of its radius squared) has no
-    // crossing that bounds a piece of the section, and the search below is skipped (the sum
-    // is the same: the crossings it would find lie outside the strip, on arcs not counted).
+    // The section lies in the box [x_lo, x_hi] x [-r, r]. A box all outside the disc (by 1e-9
+    // of its radius squared) holds none of it; one all inside has no crossing that bounds a
+    // piece of the section, and the search below is skipped (the sum is the same: the
+    // crossings it would find lie outside the strip, on arcs not counted).
     {
         const double near_x = std::clamp(dx, x_lo, x_hi), near_y = std::clamp(dy, -r, r);
         const double far_x = std::max(std::abs(x_lo - dx), std::abs(x_hi - dx));
