@@ -5,8 +5,10 @@
 
 #include <algorithm>
 #include <array>
+#include <bit>
 #include <cmath>
 #include <cstddef>
+#include <cstdint>
 #include <initializer_list>
 #include <numbers>
 #include <vector>
@@ -107,24 +109,71 @@ inline double slab_volume(const Frame& f, const Vec3& centre, double r, double h
     return total;
 }
 
-/// The volume of a solid about the axis f.axis through `centre` between the axial positions
-/// t_low and t_high, its section at t the points at rho <= radius_at(t, phi) along w(phi) =
-/// cos(phi) e1 + sin(phi) e2 from the axis, inside a region: the heights z_low..z_high and the side
-/// whose chords `chord(p, u)` gives (Chord). By polar coordinates on each cross-section: the part
-/// of the ray from the axis point c(t) along w(phi) inside the region is a few intervals of rho,
-/// their integral of rho d rho in closed form; the angle and the axis by adaptive Gauss-Kronrod (15
-/// points, Boost.Math), the angle from `pieces` pieces of each interval between the angles `cuts`
-/// (where radius_at has a kink), the axis from `axis_pieces` pieces, relative tolerance `tolerance`
-/// and six halvings each.
-template <class ChordOf, class RadiusOf>
-double region_volume_over(const Frame& f, const Vec3& centre, double t_low, double t_high,
-                          int axis_pieces, double z_low, double z_high, ChordOf&& chord,
-                          RadiusOf&& radius_at, const std::vector<double>& cuts, int pieces_per_cut,
-                          double tolerance = 1e-8) {
+/// A direction across a pellet's axis, w(phi) = cos(phi) e1 + sin(phi) e2, by its cosine and
+/// sine, and the section's radius along it.
+struct AngleAt {
+    double cos, sin, radius;
+};
+
+/// The AngleAt of each angle a prism's region integral asks, remembered by the angle's bits:
+/// its angle integral meets the same nodes at every section along the axis, and a cosine, a
+/// sine and a multilobe's radius cost more than the rest of a node. The same values as
+/// computed afresh, so the same bits.
+class AngleCache {
+public:
+    template <class RadiusOf> const AngleAt& at(double phi, RadiusOf&& radius_of) {
+        if (2 * (m_count + 1) > m_slots.size())
+            grow();
+        const std::uint64_t key = std::bit_cast<std::uint64_t>(phi);
+        std::size_t i = slot_of(key);
+        for (;; i = (i + 1) & (m_slots.size() - 1)) {
+            Slot& slot = m_slots[i];
+            if (!slot.used) {
+                slot = {key, {std::cos(phi), std::sin(phi), radius_of(phi)}, true};
+                ++m_count;
+                return slot.value;
+            }
+            if (slot.key == key)
+                return slot.value;
+        }
+    }
+
+private:
+    struct Slot {
+        std::uint64_t key = 0;
+        AngleAt value{};
+        bool used = false;
+    };
+    std::size_t slot_of(std::uint64_t key) const {
+        return static_cast<std::size_t>((key * 0x9E3779B97F4A7C15ull) >> 20) & (m_slots.size() - 1);
+    }
+    void grow() {
+        std::vector<Slot> old(m_slots.empty() ? 1024 : 2 * m_slots.size());
+        old.swap(m_slots);
+        for (const Slot& slot : old)
+            if (slot.used)
+                for (std::size_t i = slot_of(slot.key);; i = (i + 1) & (m_slots.size() - 1))
+                    if (!m_slots[i].used) {
+                        m_slots[i] = slot;
+                        break;
+                    }
+    }
+    std::vector<Slot> m_slots;
+    std::size_t m_count = 0;
+};
+
+/// region_volume_over with the direction and the radius at (t, phi) from `angle_at(t, phi)`
+/// (an AngleAt).
+template <class ChordOf, class AngleOf>
+double region_volume_by(const Frame& f, const Vec3& centre, double t_low, double t_high,
+                        int axis_pieces, double z_low, double z_high, ChordOf&& chord,
+                        AngleOf&& angle_at, const std::vector<double>& cuts, int pieces_per_cut,
+                        double tolerance) {
     auto ring = [&](double t, double phi) {
         const Vec3 c = centre + t * f.axis;
-        const Vec3 w = std::cos(phi) * f.e1 + std::sin(phi) * f.e2;
-        double lo = 0.0, hi = radius_at(t, phi);
+        const AngleAt& angle = angle_at(t, phi);
+        const Vec3 w = angle.cos * f.e1 + angle.sin * f.e2;
+        double lo = 0.0, hi = angle.radius;
         if (w.z > 0.0) {
             lo = std::max(lo, (z_low - c.z) / w.z);
             hi = std::min(hi, (z_high - c.z) / w.z);
@@ -152,7 +201,7 @@ double region_volume_over(const Frame& f, const Vec3& centre, double t_low, doub
     double s = 0.0;
     for (const double t : {t_low, 0.5 * (t_low + t_high), t_high})
         for (std::size_t k = 0; k + 1 < cuts.size(); ++k)
-            s = std::max(s, radius_at(t, 0.5 * (cuts[k] + cuts[k + 1])));
+            s = std::max(s, angle_at(t, 0.5 * (cuts[k] + cuts[k + 1])).radius);
     auto pieces = [tolerance](auto&& integrand, double a, double b, int n, double floor) {
         double sum = 0.0;
         for (int k = 0; k < n; ++k) {
@@ -171,15 +220,41 @@ double region_volume_over(const Frame& f, const Vec3& centre, double t_low, doub
     return pieces(section, t_low, t_high, axis_pieces, 1e-13 * s * s * s);
 }
 
+/// The volume of a solid about the axis f.axis through `centre` between the axial positions
+/// t_low and t_high, its section at t the points at rho <= radius_at(t, phi) along w(phi) =
+/// cos(phi) e1 + sin(phi) e2 from the axis, inside a region: the heights z_low..z_high and the side
+/// whose chords `chord(p, u)` gives (Chord). By polar coordinates on each cross-section: the part
+/// of the ray from the axis point c(t) along w(phi) inside the region is a few intervals of rho,
+/// their integral of rho d rho in closed form; the angle and the axis by adaptive Gauss-Kronrod (15
+/// points, Boost.Math), the angle from `pieces` pieces of each interval between the angles `cuts`
+/// (where radius_at has a kink), the axis from `axis_pieces` pieces, relative tolerance `tolerance`
+/// and six halvings each.
+template <class ChordOf, class RadiusOf>
+double region_volume_over(const Frame& f, const Vec3& centre, double t_low, double t_high,
+                          int axis_pieces, double z_low, double z_high, ChordOf&& chord,
+                          RadiusOf&& radius_at, const std::vector<double>& cuts, int pieces_per_cut,
+                          double tolerance = 1e-8) {
+    AngleAt angle{};
+    return region_volume_by(
+        f, centre, t_low, t_high, axis_pieces, z_low, z_high, chord,
+        [&](double t, double phi) -> const AngleAt& {
+            angle = {std::cos(phi), std::sin(phi), radius_at(t, phi)};
+            return angle;
+        },
+        cuts, pieces_per_cut, tolerance);
+}
+
 /// region_volume_over the prism's whole length, -h .. h in 16 pieces, its section the same at
-/// every t.
+/// every t (each angle's direction and radius computed once: AngleCache).
 template <class ChordOf, class RadiusOf>
 double region_volume(const Frame& f, const Vec3& centre, double h, double z_low, double z_high,
                      ChordOf&& chord, RadiusOf&& radius_at, const std::vector<double>& cuts,
                      int pieces_per_cut, double tolerance = 1e-8) {
-    return region_volume_over(
+    AngleCache cache;
+    return region_volume_by(
         f, centre, -h, h, 16, z_low, z_high, chord,
-        [&](double, double phi) { return radius_at(phi); }, cuts, pieces_per_cut, tolerance);
+        [&](double, double phi) -> const AngleAt& { return cache.at(phi, radius_at); }, cuts,
+        pieces_per_cut, tolerance);
 }
 
 /// A convex polygon in a pellet's cross-section, (u, v) along its frame's e1 and e2 from the
