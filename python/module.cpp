@@ -230,15 +230,15 @@ Bed generate_pellets(std::optional<double> aspect_ratio,
                      const py::object& seed, double band_clearance,
                      std::optional<long long> threads, const py::object& progress,
                      const std::optional<std::filesystem::path>& out, bool force,
-                     const std::string& shape,
+                     const std::string& shape, double friction, double wall_friction,
                      const std::vector<std::pair<std::string, bool>>& sphere_only) {
     namespace range = option_range;
     for (const auto& [name, given] : sphere_only)
         if (given)
             throw InvalidInput(fmt::format(
                 "{} is not allowed with shape='{}'; allowed with a pellet: aspect_ratio, "
-                "container, particles, seed, band_clearance, threads, progress, out, force "
-                "(docs/generate.md, \"Pellets\")",
+                "container, particles, seed, band_clearance, friction, wall_friction, threads, "
+                "progress, out, force (docs/generate.md, \"Pellets\")",
                 name, printable(std::string_view(shape).substr(0, 80))));
     if (aspect_ratio && container)
         throw InvalidInput(fmt::format("--aspect-ratio {} and --container {} are both given; "
@@ -252,6 +252,8 @@ Bed generate_pellets(std::optional<double> aspect_ratio,
         request.aspect_ratio = check_option("aspect-ratio", *aspect_ratio, range::aspect_ratio);
     request.container = container.value_or("");
     request.band_clearance = check_option("band-clearance", band_clearance, range::band_clearance);
+    request.friction = check_option("friction", friction, range::friction);
+    request.wall_friction = check_option("wall-friction", wall_friction, range::friction);
     const PreparedPellets prepared = prepare_pellets(request);
     std::optional<OutputDirectory> directory;
     if (out)
@@ -311,7 +313,7 @@ Bed generate(std::optional<double> aspect_ratio, const std::optional<std::string
     const SoftSphereParameters defaults;
     if (shape != "sphere")
         return generate_pellets(aspect_ratio, container, particles, seed, band_clearance, threads,
-                                progress, out, force, shape,
+                                progress, out, force, shape, friction, wall_friction,
                                 {{"diameter", diameter != defaults.diameter},
                                  {"sizes", sizes != "mono"},
                                  {"fractions", fractions != "volume"},
@@ -328,8 +330,6 @@ Bed generate(std::optional<double> aspect_ratio, const std::optional<std::string
                                  {"solver", solver != to_string(defaults.solver)},
                                  {"skin", skin.has_value()},
                                  {"layer_height", layer_height != defaults.layer_height},
-                                 {"friction", friction != defaults.friction},
-                                 {"wall_friction", wall_friction != defaults.friction},
                                  {"target_void_fraction", target_void_fraction.has_value()},
                                  {"checkpoint", checkpoint.has_value()},
                                  {"max_iterations", max_iterations.has_value()},
@@ -1201,8 +1201,8 @@ by LAMMPS, docs/lammps.md) with ranks (mpirun -np ranks), mpi_command (a launche
 instead) and lmp (the LAMMPS program); with out, LAMMPS's files are kept in out/lammps/.
 shape: 'sphere', or a pellet ('cylinder:D,L', 'ring:D,DI,L', 'trilobe:DL,DC,L',
 'multilobe:N,DL,DC,L', 'spherocylinder:D,L') for a bed of pellets as `packbed generate --shape` makes it (docs/generate.md, "Pellets"): with aspect_ratio (over the pellet's volume-equivalent
-diameter) or container (in the unit of D and L), particles, seed, band_clearance, threads,
-progress, out and force; the Bed's orientations hold each pellet's quaternion, and write,
+diameter) or container (in the unit of D and L), particles, seed, band_clearance, friction,
+wall_friction, threads, progress, out and force; the Bed's orientations hold each pellet's quaternion, and write,
 analyze, export and voxelize refuse it (out= writes its files for the command line).
 
 Returns a Bed (same seed and options: the same bits as the command line). Raises ValueError

@@ -487,11 +487,13 @@ INSTANTIATE_TEST_SUITE_P(
                {"--shape", "spherocylinder:1,11", "L / D at most 10"}),
         naming("generate --shape spherocylinder:1",
                {"--shape", "spherocylinder:1", "spherocylinder:D,L"}),
-        exact("generate --shape cylinder:1,1 --friction 0.3",
-              "packbed generate: --friction is not allowed with --shape cylinder:1,1; allowed "
-              "with a pellet: --aspect-ratio, --container, --particles, --seed, --shape, --out, "
-              "--force, --threads, --quiet, --band-clearance, --no-analysis, --config "
-              "(docs/generate.md, \"Pellets\")"),
+        exact("generate --shape cylinder:1,1 --target-void-fraction 0.4",
+              "packbed generate: --target-void-fraction is not allowed with --shape "
+              "cylinder:1,1; allowed with a pellet: --aspect-ratio, --container, --particles, "
+              "--seed, --shape, --out, --force, --threads, --quiet, --band-clearance, "
+              "--no-analysis, --config, --friction, --wall-friction (docs/generate.md, "
+              "\"Pellets\")"),
+        naming("generate --shape cylinder:1,1 --friction -0.1", {"--friction", "-0.1"}),
         naming("generate --shape cylinder:1,1 --container cylinder:1",
                {"--shape", "cylinder:1,1", "does not fit"}),
         naming("generate --container annulus:10", {"--container", "annulus:10", "annulus:D,DI"}),

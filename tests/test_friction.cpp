@@ -52,6 +52,19 @@ TEST(Friction, CoulombCapOfOneContact) {
     EXPECT_EQ(norm(tangential_spring(none, n, {}, 0.0)), 0.0);
 }
 
+TEST(Friction, CoulombCapOfAContactOfItsOwnStiffness) {
+    // A pellet's contact takes its own k_t (2/7 of its secant normal stiffness): k_t = 3, the
+    // same contact as above, reaches its cap 0.05 after 0.05 / (3 * 0.01) = 1.67 steps.
+    const Vec3 n{0.0, 0.0, 1.0};
+    const double cap = 0.05, k = 3.0;
+    Vec3 spring{};
+    EXPECT_NEAR(tangential_spring(spring, n, {0.01, 0.0, 0.0}, cap, k).x, 0.03, 1e-15);
+    EXPECT_NEAR(spring.x, 0.01, 1e-15);
+    EXPECT_NEAR(tangential_spring(spring, n, {0.01, 0.0, 0.0}, cap, k).x, cap, 1e-15);
+    EXPECT_NEAR(spring.x, cap / k, 1e-15); // held at the cap's length: it slid
+    EXPECT_NEAR(tangential_spring(spring, n, {-0.01, 0.0, 0.0}, cap, k).x, cap - 0.03, 1e-15);
+}
+
 /// Plain Newtonian dynamics (semi-implicit Euler, optional viscous damping) of spheres of
 /// radius 0.5 and unit mass through the solver's contact terms (FrictionalContacts): spheres
 /// of generation index below `fixed` stay put. Gravity is an acceleration vector here, so that

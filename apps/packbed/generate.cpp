@@ -55,10 +55,10 @@ struct GenerateOptions {
 };
 
 /// The options a pellet bed takes; every other generate option is the spheres' alone.
-constexpr std::array pellet_options{"--aspect-ratio",   "--container",   "--particles",
-                                    "--seed",           "--shape",       "--out",
-                                    "--force",          "--threads",     "--quiet",
-                                    "--band-clearance", "--no-analysis", "--config"};
+constexpr std::array pellet_options{
+    "--aspect-ratio", "--container", "--particles", "--seed",         "--shape",
+    "--out",          "--force",     "--threads",   "--quiet",        "--band-clearance",
+    "--no-analysis",  "--config",    "--friction",  "--wall-friction"};
 
 /// --shape PELLET: a bed of pellets (docs/generate.md, "Pellets").
 int run_pellets(const GenerateOptions& o) {
@@ -79,6 +79,8 @@ int run_pellets(const GenerateOptions& o) {
     request.aspect_ratio = o.aspect_ratio;
     request.container = o.container;
     request.band_clearance = o.band_clearance;
+    request.friction = o.params.friction;
+    request.wall_friction = o.params.wall_friction;
     const PreparedPellets prepared = prepare_pellets(request);
     OutputDirectory out(o.out, "--out", OutputKind::directory, o.force);
     const int threads = use_threads(o.threads);

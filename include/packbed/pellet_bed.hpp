@@ -48,6 +48,10 @@ struct PelletBedParameters {
     /// units of its weight; (0, 1].
     double force_tolerance = 1e-2;
     std::uint64_t max_steps = 2'000'000; ///< give up (ConvergenceError) beyond this
+    /// Coulomb's friction coefficient between pellets and between a pellet and the walls and
+    /// floor (docs/generate.md, "Friction"): tangential springs at the contacts, capped by mu
+    /// times the normal load; 0, the default, is the frictionless bed; [0, 100].
+    double friction = 0.0, wall_friction = 0.0;
 
     /// \throws InvalidInput naming the parameter, its value and the allowed range.
     void validate() const;
@@ -80,6 +84,10 @@ struct PelletBed {
     double max_depth_pair = 0.0, max_depth_wall = 0.0;
     /// The largest force and torque over the bounding radius left on a pellet, in weights.
     double residual_force = 0.0, residual_torque = 0.0;
+    /// With friction: the pairs and the pellets at a wall whose friction the final stage let go
+    /// (their overlap above tolerance held by it), and whether the rest kept it to the end.
+    std::size_t sliding_pairs = 0, sliding_walls = 0;
+    bool friction_kept = false;
 };
 
 /// Pour and settle a bed of pellets: insertion at random positions (uniform over the

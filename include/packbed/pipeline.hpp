@@ -148,6 +148,8 @@ struct PelletRequest {
     double aspect_ratio = 5.0;     ///< a tube of a d_v, where `container` is ""
     std::string container;         ///< --container SPEC in length units; "": aspect_ratio
     double band_clearance = 1.0;   ///< of the void-fraction band, d_v
+    double friction = 0.0;         ///< --friction, between pellets
+    double wall_friction = 0.0;    ///< --wall-friction, at the walls and the floor
 };
 
 /// A pellet request checked and resolved: the solver's parameters (lengths in d_v).

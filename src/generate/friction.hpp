@@ -34,15 +34,16 @@ inline constexpr double tangential_stiffness = 2.0 / 7.0;
 /// plane of `normal` (as LAMMPS's gran/hooke/history turns its shear history; the normal turns
 /// by at most about 0.02 rad in a step, each sphere moving at most 0.01 Dp). \return the tangential
 /// force on this body (k_t xi: it is dragged along the other's displacement); the other body gets
-/// its opposite.
-inline Vec3 tangential_spring(Vec3& spring, const Vec3& normal, const Vec3& slip, double cap) {
+/// its opposite. `stiffness` is k_t (the pellets' contacts give each its own).
+inline Vec3 tangential_spring(Vec3& spring, const Vec3& normal, const Vec3& slip, double cap,
+                              double stiffness = tangential_stiffness) {
     Vec3 xi = spring + slip;
     xi -= normal * dot(xi, normal);
-    const double force2 = tangential_stiffness * tangential_stiffness * norm2(xi);
+    const double force2 = stiffness * stiffness * norm2(xi);
     if (force2 > cap * cap) [[unlikely]] // Coulomb: the contact slides, the spring holds mu F_n
         xi *= cap / std::sqrt(force2);
     spring = xi;
-    return xi * tangential_stiffness;
+    return xi * stiffness;
 }
 
 /// The springs of a sphere's contacts with the container's walls: one per wall it touches,

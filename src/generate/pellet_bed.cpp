@@ -18,6 +18,7 @@
 
 #include "../base/parallel.hpp"
 #include "../base/require.hpp"
+#include "generate/friction.hpp"
 #include "packbed/error.hpp"
 #include "packbed/neighbor_list.hpp"
 #include "packbed/quaternion.hpp"
@@ -65,6 +66,9 @@ void PelletBedParameters::validate() const {
             "0.01 to 0.2 d_v");
     require(force_tolerance > 0.0 && force_tolerance <= 1.0, "force tolerance", force_tolerance,
             "0 < force tolerance <= 1");
+    require(friction >= 0.0 && friction <= 100.0, "friction", friction, "0 to 100");
+    require(wall_friction >= 0.0 && wall_friction <= 100.0, "wall friction", wall_friction,
+            "0 to 100");
 }
 
 double PelletBedParameters::smallest_dimension() const {
@@ -100,10 +104,45 @@ struct Rotation {
 };
 
 /// What one pair of pellets does to each other: the force on the first (the second gets its
-/// opposite), the torques about each one's centroid, the deepest node.
+/// opposite), the torques about each one's centroid, the deepest node; and where it presses:
+/// the sum of its pushes' sizes (`load`) and of each size times its point from the first's
+/// centroid (`lever`): the contact point, lever / load, of a frictional pair's spring.
 struct PairPush {
-    Vec3 force, torque_first, torque_second;
-    double depth = 0.0;
+    Vec3 force, torque_first, torque_second, lever;
+    double depth = 0.0, load = 0.0;
+
+    /// One push of `size` at `point` from the first's centroid, `depth_here` deep.
+    void add_load(double size, const Vec3& point, double depth_here) {
+        load += size;
+        lever += point * size;
+        depth = std::max(depth, depth_here);
+    }
+};
+
+/// A pellet's contacts with the walls and the floor, one per wall (told apart by their push's
+/// direction, as detail::WallSprings does): each one's force, load and lever as PairPush's.
+struct WallTouches {
+    static constexpr std::size_t capacity = detail::WallSprings::capacity;
+    std::array<Vec3, capacity> direction{}, force{}, lever{};
+    std::array<double, capacity> load{}, depth{};
+    std::size_t count = 0;
+
+    /// A push `f` along the unit `push` at `point` from the centroid, `d` deep.
+    void add(const Vec3& f, const Vec3& push, const Vec3& point, double d) {
+        std::size_t w = 0;
+        while (w < count && dot(direction[w], push) <= 0.9)
+            ++w;
+        if (w == count) {
+            if (count == capacity)
+                return;
+            direction[count++] = push;
+        }
+        const double size = norm(f);
+        force[w] += f;
+        lever[w] += point * size;
+        load[w] += size;
+        depth[w] = std::max(depth[w], d);
+    }
 };
 
 /// Nodes begin .. end of a pellet's list, all within `radius` of the body-frame `centre`.
@@ -137,7 +176,9 @@ public:
         , m_shape(shape)
         , m_control(control)
         , m_container(params.container)
-        , m_cell(params.container.periods()) {
+        , m_cell(params.container.periods())
+        , m_mu(params.friction)
+        , m_wall_mu(params.wall_friction) {
         params.validate();
         m_size = 0.5; // d_v = 1
         m_reach = m_shape.bounding_radius(m_size);
@@ -151,9 +192,14 @@ public:
     PelletBed run() {
         insert();
         PelletBed out;
-        if (ring())
+        // A frictional bed pours and goes to the final stage: the settling's band of depths,
+        // 15-30 times the tolerance, would lock overlaps that friction holds at any gravity
+        // (docs/notes/pellets.md, "Friction: overlaps that friction locks").
+        const bool frictional_bed = frictional();
+        if (ring() || frictional_bed)
             pour();
-        settle();
+        if (!frictional_bed)
+            settle();
         lower();
         out.stages = m_stages;
         out.steps = m_steps;
@@ -161,6 +207,10 @@ public:
         out.nodes = m_nodes.size();
         forces();
         out.max_depth_nodes = m_depth;
+        out.sliding_pairs = m_sliding.size();
+        out.sliding_walls = static_cast<std::size_t>(
+            std::count(m_sliding_wall.begin(), m_sliding_wall.end(), char{1}));
+        out.friction_kept = frictional();
         std::tie(out.residual_force, out.residual_torque) = residual();
         measure_exact(out);
         out.packing.centers = m_centre;
@@ -322,6 +372,15 @@ private:
         m_spin.assign(n, Vec3{});
         m_force.assign(n, Vec3{});
         m_torque.assign(n, Vec3{});
+        if (frictional()) {
+            m_moved.assign(n, Vec3{});
+            m_turned.assign(n, Vec3{});
+            m_wall_springs.assign(n, detail::WallSprings{});
+            m_sliding_wall.assign(n, 0);
+            m_order.resize(n);
+            for (std::size_t i = 0; i < n; ++i)
+                m_order[i] = static_cast<std::uint32_t>(i);
+        }
     }
 
     /// Nodes of pellet a pressed out of pellet b, b's centroid at u from a's: adds to `push`
@@ -349,7 +408,7 @@ private:
                 push.force += f * sign;
                 (sign > 0 ? push.torque_first : push.torque_second) += cross(p, f);
                 (sign > 0 ? push.torque_second : push.torque_first) -= cross(d, f);
-                push.depth = std::max(push.depth, depth);
+                push.add_load(node.area * depth, sign > 0 ? p : d, depth);
             }
         }
     }
@@ -496,7 +555,7 @@ private:
                     push.force += f * sign;
                     (sign > 0 ? push.torque_first : push.torque_second) += cross(from_a, f);
                     (sign > 0 ? push.torque_second : push.torque_first) -= cross(from_b, f);
-                    push.depth = std::max(push.depth, depth);
+                    push.add_load(weight * depth, sign > 0 ? from_a : from_b, depth);
                 }
             }
         }
@@ -511,6 +570,8 @@ private:
             pa, m_shape, pb, u, [&](double spring, const Vec3& normal, const Vec3& point) {
                 const Vec3 f = normal * (exact_contact_stiffness * spring); // on b, from a
                 push.force -= f;
+                push.load += exact_contact_stiffness * spring;
+                push.lever += point * (exact_contact_stiffness * spring);
                 push.torque_first -= cross(point, f);
                 push.torque_second += cross(point - u, f);
             });
@@ -521,13 +582,16 @@ private:
     /// (SpherocylinderShape::wall_springs): adds to `force` and `torque`; \return the deepest
     /// exact depth (the side walls' by the springs' law, exact where they are convex towards
     /// the inside; measure_exact's search at the end).
-    double press_walls_exact(std::size_t i, Vec3& force, Vec3& torque) const {
+    double press_walls_exact(std::size_t i, Vec3& force, Vec3& torque, WallTouches& touches) const {
         const Placement p{m_centre[i], m_turn[i], m_size};
         const double side = m_shape.wall_springs(
             m_container, p, [&](double depth, const Vec3& push, const Vec3& at) {
                 const Vec3 f = push * (exact_contact_stiffness * depth);
                 force += f;
                 torque += cross(at - p.position, f);
+                // Where friction grips: the pellet's point farthest into the wall.
+                if (frictional())
+                    touches.add(f, push, m_shape.support(p, -push) - p.position, depth);
             });
         return std::max(side, -m_shape.support(p, {0, 0, -1}).z);
     }
@@ -545,8 +609,17 @@ private:
                     c = m_cell->wrapped(c);
             if (m_cell)
                 m_list.wrap(*m_cell);
+            if (frictional())
+                m_carry.save(m_list.pair_first(), m_list.pair_second(), m_pair_spring, m_order);
             const std::vector<double> radii(n, m_reach);
             m_list.build(m_centre, radii, skin);
+            if (frictional()) {
+                m_pair_spring.resize(m_list.pairs());
+                const auto first = m_list.pair_first();
+                const auto second = m_list.pair_second();
+                for (std::size_t k = 0; k < m_list.pairs(); ++k)
+                    m_pair_spring[k] = m_carry.find(first[k], second[k]);
+            }
         }
         std::vector<Rotation> turn;
         turn.reserve(n);
@@ -579,9 +652,10 @@ private:
             Vec3 force{0.0, 0.0, -weight}, torque;
             const Vec3& c = m_centre[i];
             const bool floor = c.z < m_reach;
+            WallTouches touches;
             if constexpr (!level_set) {
                 if (floor || m_container.wall_overlap(c, m_reach) > 0.0)
-                    m_wall_depth[i] = press_walls_exact(i, force, torque);
+                    m_wall_depth[i] = press_walls_exact(i, force, torque, touches);
             } else if (floor || m_container.wall_overlap(c, m_reach) > 0.0) {
                 double deepest = 0.0;
                 for (const SurfaceNode& node : m_wall_nodes) {
@@ -592,6 +666,8 @@ private:
                         force += f;
                         torque += cross(p, f);
                         deepest = std::max(deepest, depth);
+                        if (frictional())
+                            touches.add(f, push, p, depth);
                     };
                     if (at.z < 0.0)
                         add(-at.z, {0.0, 0.0, 1.0});
@@ -599,6 +675,8 @@ private:
                 }
                 m_wall_depth[i] = deepest;
             }
+            if (frictional())
+                wall_friction(i, touches, force, torque);
             m_force[i] = force;
             m_torque[i] = torque;
         }
@@ -611,8 +689,14 @@ private:
             m_torque[first[k]] += p.torque_first;
             m_torque[second[k]] += p.torque_second;
             deepest = std::max(deepest, p.depth);
+            if (frictional())
+                pair_friction(k);
         }
         m_pair_depth = deepest;
+        if (frictional()) { // each step's moves are slipped once
+            std::fill(m_moved.begin(), m_moved.end(), Vec3{});
+            std::fill(m_turned.begin(), m_turned.end(), Vec3{});
+        }
         // The pairs whose exact depth the nodes leave above tolerance (lower()): a spring on
         // the depth's excess over half the tolerance, along the normal at the contact point.
         for (const auto& [a, b] : m_exact_pairs) {
@@ -632,6 +716,87 @@ private:
         for (const double d : m_wall_depth)
             m_wall_max = std::max(m_wall_max, d);
         m_depth = std::max(m_pair_depth, m_wall_max);
+    }
+
+    /// Whether the contacts carry tangential springs (PelletBedParameters::friction,
+    /// wall_friction), until lower() lets them go.
+    bool frictional() const {
+        return m_mu > 0.0 || m_wall_mu > 0.0;
+    }
+
+    /// The tangential spring's stiffness of a contact that bears `load` at `depth`: 2/7 of its
+    /// normal stiffness, as detail::tangential_stiffness for two spheres, the normal stiffness
+    /// taken as the secant load / depth (a node's push is its area times its depth: a contact's
+    /// stiffness is about the area it presses over, which grows with its depth).
+    static double tangential_stiffness(double load, double depth) {
+        return detail::tangential_stiffness * load / depth;
+    }
+
+    /// Listed pair k's tangential spring (detail::tangential_spring: Cundall & Strack's, capped
+    /// at mu F_n), at the pair's contact point (its pushes' centre, PairPush's lever / load),
+    /// along the plane normal to its net push F_n, moved on by the slip of the two pellets'
+    /// material points there in the last step; its force and torques added to both pellets. A
+    /// pair that presses in two places (a ring across another's rim) has one spring at their
+    /// centre.
+    void pair_friction(std::size_t k) {
+        const PairPush& p = m_push[k];
+        const double normal = norm(p.force);
+        if (!(p.load > 0.0) || !(normal > 0.0) || !(p.depth > 0.0) || m_mu == 0.0) {
+            m_pair_spring[k] = Vec3{};
+            return;
+        }
+        const std::size_t a = m_list.pair_first()[k], b = m_list.pair_second()[k];
+        if (!m_sliding.empty() &&
+            std::binary_search(m_sliding.begin(), m_sliding.end(),
+                               std::pair{static_cast<std::uint32_t>(std::min(a, b)),
+                                         static_cast<std::uint32_t>(std::max(a, b))})) {
+            m_pair_spring[k] = Vec3{};
+            return;
+        }
+        const Vec3 on_a = p.lever * (1.0 / p.load), on_b = on_a - separation(a, b);
+        const Vec3 slip =
+            m_moved[b] + cross(m_turned[b], on_b) - m_moved[a] - cross(m_turned[a], on_a);
+        const Vec3 f =
+            detail::tangential_spring(m_pair_spring[k], p.force * (1.0 / normal), slip,
+                                      m_mu * normal, tangential_stiffness(p.load, p.depth));
+        m_force[a] += f;
+        m_force[b] -= f;
+        m_torque[a] += cross(on_a, f);
+        m_torque[b] -= cross(on_b, f);
+    }
+
+    /// Pellet i's springs against the walls and the floor (one per wall it touches, as a
+    /// sphere's: detail::WallSprings), as pair_friction's, the wall's point held still.
+    void wall_friction(std::size_t i, const WallTouches& touches, Vec3& force, Vec3& torque) {
+        detail::WallSprings kept;
+        for (std::size_t w = 0; w < touches.count && m_wall_mu > 0.0 && !m_sliding_wall[i]; ++w) {
+            const double normal = norm(touches.force[w]);
+            if (!(touches.load[w] > 0.0) || !(normal > 0.0) || !(touches.depth[w] > 0.0))
+                continue;
+            const Vec3 n = touches.force[w] * (1.0 / normal);
+            const Vec3 at = touches.lever[w] * (1.0 / touches.load[w]);
+            Vec3 spring = m_wall_springs[i].along(n);
+            const Vec3 slip = -(m_moved[i] + cross(m_turned[i], at)); // the wall's, from ours
+            const Vec3 f =
+                detail::tangential_spring(spring, n, slip, m_wall_mu * normal,
+                                          tangential_stiffness(touches.load[w], touches.depth[w]));
+            kept.add(n, spring);
+            force += f;
+            torque += cross(at, f);
+        }
+        m_wall_springs[i] = kept;
+    }
+
+    /// Every spring times `factor` (lower()'s cut of the gravity: the loads it bears scale by
+    /// it); 0 lets friction go for the rest of the run.
+    void scale_springs(double factor) {
+        for (Vec3& s : m_pair_spring)
+            s *= factor;
+        for (detail::WallSprings& w : m_wall_springs)
+            for (Vec3& s : w.spring)
+                s *= factor;
+        if (factor == 0.0)
+            m_mu = m_wall_mu = 0.0;
     }
 
     /// The largest force and torque over the bounding radius on a pellet, in weights.
@@ -712,6 +877,10 @@ private:
         }
         m_centre[i] += shift;
         m_turn[i] = normalized(rotation_by(arc * (1.0 / m_reach)) * m_turn[i]);
+        if (frictional()) {
+            m_moved[i] += shift;
+            m_turned[i] += arc * (1.0 / m_reach);
+        }
     }
 
     void report(std::string_view stage) const {
@@ -721,7 +890,9 @@ private:
         m_control.on_progress(p);
     }
 
-    /// A ring column's pour (the loosened columns, insert()): the pellets fall at a held
+    /// A ring column's pour (the loosened columns, insert()), and every frictional bed's (its
+    /// contacts form at depths near the pour's, about a third of the settling band's): the
+    /// pellets fall at a held
     /// gravity, each one's velocity and spin zeroed alone when its own power turns negative
     /// (so that a landing stops the pellet that lands, not the whole column, as FIRE's reset
     /// does), the step pour_dt, until every pellet touches a neighbour or a wall and the mass
@@ -737,6 +908,7 @@ private:
         m_gravity = std::min(settle_gravity, pour_load * m_params.band_high * m_dmin / height);
         const std::uint64_t start = m_steps;
         const double inv_reach = 1.0 / m_reach;
+        const double dt = level_set ? pour_dt : Fire::dt_max;
         std::vector<char> touching(n);
         double last = mass_centre_z();
         for (;;) {
@@ -760,9 +932,9 @@ private:
                     m_velocity[i] = Vec3{};
                     m_spin[i] = Vec3{};
                 }
-                m_velocity[i] += m_force[i] * pour_dt;
-                m_spin[i] += m_torque[i] * (inv_reach * pour_dt);
-                move(i, m_velocity[i] * pour_dt, m_spin[i] * pour_dt);
+                m_velocity[i] += m_force[i] * dt;
+                m_spin[i] += m_torque[i] * (inv_reach * dt);
+                move(i, m_velocity[i] * dt, m_spin[i] * dt);
             }
             report("pour");
             if (!check)
@@ -819,6 +991,7 @@ private:
         const double tol = m_tol;
         const std::uint64_t start = m_steps;
         std::vector<double> rounds; // the deepest exact depth after each relaxation
+        double last_cut = 1.0;      // the gravity's last factor
         for (;;) {
             m_dt = Fire::dt_start;
             m_alpha = Fire::alpha_start;
@@ -843,13 +1016,30 @@ private:
             }
             PelletBed exact;
             std::vector<std::pair<std::uint32_t, std::uint32_t>> over;
-            measure_exact(exact, tol, &over);
+            std::vector<std::uint32_t> over_wall;
+            measure_exact(exact, tol, &over, &over_wall);
             const double deepest = std::max(exact.max_depth_pair, exact.max_depth_wall);
             if (deepest <= tol)
                 break;
+            rounds.push_back(deepest);
+            // Friction holds the overlap: the last cut of the gravity took the deepest depth
+            // down less than a contact stiffening up to cubically with its depth would have
+            // gone (a linear one falls with the load c, an edge's crossing about as sqrt(c)).
+            // A ring of pellets wedged across a narrow tube holds its overlaps by friction at
+            // any gravity. The contacts above tolerance let go of their friction, the rest of
+            // the bed keeps it, and the bed relaxes again at the same gravity; where every
+            // such contact already slides, friction goes everywhere (as in the sphere beds'
+            // final stage, detail::Fire).
+            if (frictional() && rounds.size() >= 2 &&
+                deepest > std::cbrt(last_cut) * rounds[rounds.size() - 2]) {
+                if (!let_go(over, over_wall))
+                    scale_springs(0.0);
+                rounds.assign(1, deepest);
+                last_cut = 1.0;
+                continue;
+            }
             // An overlap that lowering the gravity does not relieve: the bed is jammed without
             // it, and more relaxations would run on without end.
-            rounds.push_back(deepest);
             if (rounds.size() > stalled_rounds &&
                 deepest > 0.99 * rounds[rounds.size() - 1 - stalled_rounds])
                 throw ConvergenceError(fmt::format(
@@ -866,15 +1056,42 @@ private:
                         m_exact_pairs.end())
                         m_exact_pairs.push_back(pair);
             const double excess = 0.8 * tol / deepest;
-            m_gravity *= std::max(0.1, excess * excess);
+            last_cut = std::max(0.1, excess * excess);
+            m_gravity *= last_cut;
+            if (frictional()) // the springs bear loads that scale with it
+                scale_springs(last_cut);
         }
         m_stages.push_back({"final", m_steps - start, m_gravity, m_depth, mass_centre_z()});
     }
 
+    /// Friction let go at the pairs `over` and at the walls of the pellets `over_wall`: their
+    /// contacts slide freely from now on. \return whether any of them still held friction.
+    bool let_go(const std::vector<std::pair<std::uint32_t, std::uint32_t>>& over,
+                const std::vector<std::uint32_t>& over_wall) {
+        bool any = false;
+        for (const auto& [a, b] : over) {
+            const std::pair key{std::min(a, b), std::max(a, b)};
+            const auto at = std::lower_bound(m_sliding.begin(), m_sliding.end(), key);
+            if (m_mu > 0.0 && (at == m_sliding.end() || *at != key)) {
+                m_sliding.insert(at, key);
+                any = true;
+            }
+        }
+        for (const std::uint32_t i : over_wall)
+            if (m_wall_mu > 0.0 && !m_sliding_wall[i]) {
+                m_sliding_wall[i] = 1;
+                m_wall_springs[i] = detail::WallSprings{};
+                any = true;
+            }
+        return any;
+    }
+
     /// The exact depths of every pair and at the walls into `out`; the pairs deeper than
-    /// `over_depth` appended to `over` (in pair order).
+    /// `over_depth` appended to `over` (in pair order), the pellets deeper than it into a wall
+    /// or the floor to `over_wall`.
     void measure_exact(PelletBed& out, double over_depth = 0.0,
-                       std::vector<std::pair<std::uint32_t, std::uint32_t>>* over = nullptr) const {
+                       std::vector<std::pair<std::uint32_t, std::uint32_t>>* over = nullptr,
+                       std::vector<std::uint32_t>* over_wall = nullptr) const {
         const S& shape = m_shape;
         const auto first = m_list.pair_first();
         const auto second = m_list.pair_second();
@@ -898,16 +1115,21 @@ private:
         }
         for (std::size_t i = 0; i < m_centre.size(); ++i) {
             const Placement p{m_centre[i], m_turn[i], m_size};
-            out.max_depth_wall = std::max(out.max_depth_wall, shape.wall_overlap(m_container, p));
-            out.max_depth_wall = std::max(out.max_depth_wall, -shape.support(p, {0, 0, -1}).z);
+            const double wall =
+                std::max(shape.wall_overlap(m_container, p), -shape.support(p, {0, 0, -1}).z);
+            out.max_depth_wall = std::max(out.max_depth_wall, wall);
+            if (over_wall && wall > over_depth)
+                over_wall->push_back(static_cast<std::uint32_t>(i));
         }
     }
 
     static constexpr double skin = 0.3; // d_v
     /// The settle stage's gravity at its start (where no pour ran before it).
     static constexpr double settle_gravity = 1e-3;
-    /// pour()'s step: four times FIRE's largest, which the pour's per-pellet stop keeps stable
-    /// (a ring column's deepest node stayed within the settling band); its gravity's load
+    /// pour()'s step for the level-set contact: four times FIRE's largest, which the pour's
+    /// per-pellet stop keeps stable (a ring column's deepest node stayed within the settling
+    /// band); FIRE's largest for a spherocylinder's stiffer springs, which at pour_dt kept 40
+    /// frictional rods in a tube of a = 4 jittering in and out of contact; its gravity's load
     /// factor, and the steps between its tests of the mass centre.
     static constexpr double pour_dt = 1.0, pour_load = 3e-3;
     static constexpr std::uint64_t pour_check = 500;
@@ -958,6 +1180,19 @@ private:
     std::vector<Vec3> m_centre, m_velocity, m_spin, m_force, m_torque;
     std::vector<Quaternion> m_turn;
     std::vector<PairPush> m_push;
+    /// Friction (frictional()): the coefficients, each pellet's shift and turn (radians)
+    /// since the last forces(), the springs of the listed pairs (seen from the first) and of
+    /// each pellet's walls, the pairs' springs carried over a rebuild of the list (keyed by
+    /// the pellets' indices, m_order, which never change).
+    double m_mu = 0.0, m_wall_mu = 0.0;
+    std::vector<Vec3> m_moved, m_turned, m_pair_spring;
+    std::vector<detail::WallSprings> m_wall_springs;
+    /// The pairs (lower index first, sorted) and the pellets' walls whose friction lower() let
+    /// go (let_go).
+    std::vector<std::pair<std::uint32_t, std::uint32_t>> m_sliding;
+    std::vector<char> m_sliding_wall;
+    std::vector<std::uint32_t> m_order;
+    detail::PairSpringCarry m_carry;
     std::vector<double> m_wall_depth;
     NeighborList m_list;
     std::vector<PelletStage> m_stages;

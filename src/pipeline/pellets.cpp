@@ -140,6 +140,8 @@ PreparedPellets prepare_pellets(const PelletRequest& request) {
     p.particles = request.particles;
     p.seed = request.seed;
     p.shape = pellet->shape;
+    p.friction = request.friction;
+    p.wall_friction = request.wall_friction;
     if (request.container.empty()) {
         p.container = Container::tube(request.aspect_ratio);
     } else {
@@ -225,6 +227,16 @@ GeneratedPellets run_pellets(const PreparedPellets& prepared, const RunControl& 
     s["particles"] = p.particles;
     s["seed"] = p.seed;
     s["threads"] = threads;
+    s["friction"] = p.friction;
+    s["wall_friction"] = p.wall_friction;
+    if (p.friction > 0.0 || p.wall_friction > 0.0)
+        s["friction_let_go"] = {
+            {"pairs", bed.sliding_pairs},
+            {"walls", bed.sliding_walls},
+            {"everywhere", !bed.friction_kept},
+            {"note", "contacts whose overlap above the tolerance friction held at the end: "
+                     "their friction was let go for the final relaxation (docs/generate.md, "
+                     "\"Friction of pellets\")"}};
     const double top = std::visit(
         [&](const auto& shape) { return bed_top(shaped_bed(out.packing, shape)); }, pellet.shape);
     s["container"] = out.container.summary_json();
