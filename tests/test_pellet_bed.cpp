@@ -9,6 +9,7 @@
 #include <limits>
 #include <numbers>
 #include <random>
+#include <type_traits>
 #include <variant>
 #include <vector>
 
@@ -529,6 +530,18 @@ TEST(SpherocylinderBed, TheSameBitsOnOneThreadAndOnTwo) {
         [](const PelletBedParameters& p) { return generate_pellet_bed(p); });
 }
 
+/// The void fraction of `bed` (poured by `params`) between the heights low and high, by the
+/// exact volumes.
+double band_void_fraction(const PelletBedParameters& params, const PelletBed& bed, double low,
+                          double high) {
+    return std::visit(
+        [&](const auto& shape) {
+            using S = std::decay_t<decltype(shape)>;
+            return void_fraction(ShapedBed<S>(bed.packing, {shape}), params.container, low, high);
+        },
+        params.shape);
+}
+
 /// Friction (mu = 0.5 between pellets and at the walls and floor): 40 spherocylinders poured
 /// into a tube of a = 4 stand looser than without it (a poured bed against the dense limit:
 /// 0.574 against 0.367 in the band 0.5-2.5 d_v, measured), end below the tolerance by the
@@ -542,11 +555,8 @@ TEST(FrictionalPelletBed, SpherocylindersPourLooserWithTheSameBitsOnAnyThreads) 
     params.friction = params.wall_friction = 0.5;
     const PelletBed two = same_bits_on_one_thread_and_two(
         params, [](const PelletBedParameters& p) { return expect_below_tolerance(p); });
-    const SpherocylinderShape& shape = std::get<SpherocylinderShape>(params.shape);
-    const double loose = void_fraction(ShapedBed<SpherocylinderShape>(two.packing, {shape}),
-                                       params.container, 0.5, 2.5);
-    const double packed = void_fraction(ShapedBed<SpherocylinderShape>(dense.packing, {shape}),
-                                        params.container, 0.5, 2.5);
+    const double loose = band_void_fraction(params, two, 0.5, 2.5);
+    const double packed = band_void_fraction(params, dense, 0.5, 2.5);
     EXPECT_GT(loose, packed + 0.05) << loose << " " << packed;
 }
 
@@ -561,11 +571,8 @@ TEST(FrictionalPelletBed, CylindersEndBelowTheToleranceAndLooser) {
     const PelletBed dense = generate_pellet_bed(params);
     params.friction = params.wall_friction = 0.5;
     const PelletBed loose = expect_below_tolerance(params);
-    const MultilobeShape& shape = std::get<MultilobeShape>(params.shape);
-    const double e_loose = void_fraction(ShapedBed<MultilobeShape>(loose.packing, {shape}),
-                                         params.container, 0.2, 1.2);
-    const double e_dense = void_fraction(ShapedBed<MultilobeShape>(dense.packing, {shape}),
-                                         params.container, 0.2, 1.2);
+    const double e_loose = band_void_fraction(params, loose, 0.2, 1.2);
+    const double e_dense = band_void_fraction(params, dense, 0.2, 1.2);
     EXPECT_GT(e_loose, e_dense + 0.05) << e_loose << " " << e_dense;
 }
 
