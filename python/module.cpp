@@ -592,13 +592,18 @@ Bed from_arrays(const py::object& centers_given, const std::optional<py::object>
     return bed;
 }
 
-/// The friction between spheres the bed's summary records (packbed generate's
-/// parameters.friction); none where it records none.
+/// The friction between particles the bed's summary records (packbed generate's
+/// parameters.friction, or a pellet bed's friction beside its shape); none where it records
+/// none.
 std::optional<double> bed_friction(const Bed& bed) {
-    if (bed.summary.is_object() && bed.summary.contains("parameters") &&
-        bed.summary["parameters"].contains("friction") &&
+    if (!bed.summary.is_object())
+        return std::nullopt;
+    if (bed.summary.contains("parameters") && bed.summary["parameters"].contains("friction") &&
         bed.summary["parameters"]["friction"].is_number())
         return bed.summary["parameters"]["friction"].get<double>();
+    if (bed.summary.contains("shape") && bed.summary.contains("friction") &&
+        bed.summary["friction"].is_number())
+        return bed.summary["friction"].get<double>();
     return std::nullopt;
 }
 

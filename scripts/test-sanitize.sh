@@ -58,6 +58,10 @@ cmake --build "$build" -j"$jobs"
 #   sanitized), TrilobeBed.* and PouredBed.* (the same solver's loops); and for the same
 #   reason Cli.GenerateShapeRingWritesItsBoreAndReadsBack (47 s); kept: CliBadInput's ring
 #   refusals, Cli.GenerateShapeTrilobeWritesItsLobesAndReadsBack (the same pipeline).
+# - FrictionalPelletBed.CylindersEndBelowTheToleranceAndLooser (24-50 s in the release build,
+#   past ctest's 300 s sanitized: 12 cylinders poured and relaxed twice); kept:
+#   FrictionalPelletBed.SpherocylindersPourLooserWithTheSameBitsOnAnyThreads (164 s sanitized:
+#   the same pour, springs, carry and final stage), PouredBed.* (the level-set loops).
 # The release suite (ctest in build/) runs every one of them. Run all of them sanitized:
 #   PACKBED_SANITIZE_ALL=1 scripts/test-sanitize.sh
 # (A parameterised test's ctest name ends in "  # GetParam() = ...": hence "( |$)".)
@@ -76,6 +80,7 @@ skip=(
   'Cli\.TargetVoidFractionReachedByCalibratedFriction$'
   'RingBed\.'
   'Cli\.GenerateShapeRingWritesItsBoreAndReadsBack$'
+  'FrictionalPelletBed\.CylindersEndBelowTheToleranceAndLooser$'
 )
 exclude=()
 if [[ -z ${PACKBED_SANITIZE_ALL:-} ]]; then

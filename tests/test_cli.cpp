@@ -163,6 +163,29 @@ TEST(Cli, FireSolverInLayersSameBytesWhateverTheThreads) {
     EXPECT_LT(s["max_overlap_wall"].get<double>(), 1e-4);
 }
 
+TEST(Cli, AFrictionalPelletBedsDemInputKeepsTheFriction) {
+    // 12 spherocylinders poured with friction 0.3 at pellets and walls: summary.json records
+    // it beside the shape, and the example input of the bed's LAMMPS data file (its pellets as
+    // clumps) settles with it, as a frictional sphere bed's does.
+    const fs::path dir = scratch("rods");
+    ASSERT_EQ(packbed("generate --shape spherocylinder:1,1 -a 3 -n 12 -s 3 --friction 0.3 "
+                      "--wall-friction 0.3 --quiet --out " +
+                      dir.string())
+                  .status,
+              0);
+    const auto s = nlohmann::json::parse(slurp(dir / "summary.json"));
+    EXPECT_EQ(s["friction"], 0.3);
+    EXPECT_EQ(s["wall_friction"], 0.3);
+    EXPECT_EQ(s["friction_let_go"]["everywhere"], false);
+    const fs::path data = dir / "rods.data";
+    const Outcome o = packbed("export " + (dir / "particles.csv").string() +
+                              " --format lammps-data --quiet --out " + data.string());
+    ASSERT_EQ(o.status, 0) << o.err;
+    const std::string input = slurp(data.string() + ".lammps.in");
+    EXPECT_NE(input.find("variable        friction equal 0.3\n"), std::string::npos) << input;
+    EXPECT_NE(input.find("the bed's own"), std::string::npos) << input;
+}
+
 TEST(Cli, FrictionalBedInLayersResumesToTheSameBytesAndItsDemInputKeepsTheFriction) {
     // The checkpoint test's bed with friction (mu = 0.3 at spheres, walls and floor): layers,
     // a stop and a resume end in the bytes of the run never stopped; summary.json records the

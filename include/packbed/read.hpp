@@ -141,8 +141,8 @@ struct BedSummary {
     std::optional<double> porosity; ///< a lattice's exact porosity or the void fraction
     /// "the porosity of the TYPE lattice" or "the overall void fraction", when porosity is set
     std::string porosity_source;
-    /// the friction between spheres the bed was generated with (parameters.friction), when
-    /// present
+    /// the friction the bed was generated with (parameters.friction; a pellet bed's friction
+    /// beside its shape), when present
     std::optional<double> friction;
     /// the period along z of a cell periodic on all six faces (`period_z`, packbed
     /// random-array), when present

@@ -1107,14 +1107,19 @@ BedSummary read_bed_summary(std::istream& input, std::string_view name) {
                                                   ? printable(type->get<std::string>())
                                                   : "?");
     }
-    if (const auto parameters = json.find("parameters");
-        parameters != json.end() && parameters->is_object() && parameters->contains("friction")) {
-        const nlohmann::json& v = (*parameters)["friction"];
+    // A sphere bed's friction under its parameters, a pellet bed's beside its shape.
+    const auto parameters = json.find("parameters");
+    const bool of_spheres =
+        parameters != json.end() && parameters->is_object() && parameters->contains("friction");
+    const bool of_pellets = !of_spheres && json.contains("shape") && json.contains("friction");
+    if (of_spheres || of_pellets) {
+        const nlohmann::json& v = of_spheres ? (*parameters)["friction"] : json["friction"];
         const double value = v.is_number() ? v.get<double>() : std::nan("");
         if (!(value >= 0.0 && value <= 100.0))
-            throw InvalidInput(fmt::format("{}: parameters.friction = {} is not allowed; "
-                                           "allowed: a number in [0, 100]",
-                                           shown, json_excerpt(v, 40)));
+            throw InvalidInput(fmt::format("{}: {} = {} is not allowed; allowed: a number in "
+                                           "[0, 100]",
+                                           shown, of_spheres ? "parameters.friction" : "friction",
+                                           json_excerpt(v, 40)));
         out.friction = value;
     }
     if (const auto shape = json.find("shape"); shape != json.end() && shape->is_object()) {

@@ -268,6 +268,10 @@ def test_a_frictional_pellet_bed_has_the_command_lines_bytes_and_stands_looser(t
     assert "friction_let_go" in loose.summary and "friction_let_go" not in dense.summary
     assert dense.summary["friction"] == 0.0
     assert loose.centers[:, 2].mean() > dense.centers[:, 2].mean() + 0.1
+    # Its LAMMPS data file's example input settles with the bed's friction.
+    packbed.export(loose, str(tmp_path / "rods.data"))
+    text = (tmp_path / "rods.data.lammps.in").read_text()
+    assert "variable        friction equal 0.5\n" in text
 
 
 def test_a_pellet_bed_is_read_measured_written_and_exported_as_the_command_line_does(tmp_path):
