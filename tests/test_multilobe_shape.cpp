@@ -3,7 +3,8 @@
 // ball's volume, the overlap of two trilobes lobe to lobe, how far a lobe reaches into a wall,
 // the volume upright in a slab and in a cylindrical shell and turned at the tube's wall, the
 // surface nodes and circles on the union's surface (never inside another lobe), and the
-// triangulated surface; the cylinder as its one-lobe case answers as CylinderShape does.
+// triangulated surface; the cylinder as its one-lobe case answers as CylinderShape does; the
+// pellet solver's hull tests (pellet_hull.hpp) against the exact gaps and sampled depths.
 #include <cmath>
 #include <numbers>
 #include <random>
@@ -13,6 +14,7 @@
 
 #include "rotations.hpp"
 
+#include "generate/pellet_hull.hpp"
 #include "packbed/box.hpp"
 #include "packbed/container.hpp"
 #include "packbed/cylinder_shape.hpp"
@@ -276,4 +278,96 @@ TEST(MultilobeShape, OneLobeAnswersAsTheCylinder) {
     EXPECT_EQ(one.surface_nodes(0.05).size(), c.surface_nodes(0.05).size());
     const Container tube = Container::tube(3.0);
     EXPECT_EQ(one.volume_in(tube, a, 0.8, 1.2), c.volume_in(tube, a, 0.8, 1.2));
+}
+
+namespace {
+
+/// A rotation drawn from `rng`: about a direction uniform on the sphere by an angle uniform in
+/// [0, pi].
+Quaternion random_turn(std::mt19937_64& rng) {
+    std::normal_distribution<double> g;
+    std::uniform_real_distribution<double> angle(0.0, pi);
+    Vec3 axis{g(rng), g(rng), g(rng)};
+    return about(axis * (1.0 / norm(axis)), angle(rng));
+}
+
+/// The hull the pellet solver takes for `s` at `size`: its length, the lobes' circle widened by
+/// a lobe's radius.
+detail::HullCylinder hull_of(const MultilobeShape& s, double size) {
+    return {s.lobe.half_length * size, (s.circle + s.lobe.radius) * size};
+}
+
+} // namespace
+
+// A plane the hull test finds between two pellets parts them: their exact gap (the least
+// support of their lobes' Minkowski difference, cylinder_depth, which shares no code with the
+// test) is positive every time; and the test finds such a plane for most pairs whose bounding
+// spheres meet but that are apart by more than a tenth of d_v.
+TEST(PelletHull, APlaneItFindsPartsThePelletsAsTheirExactGapSays) {
+    std::mt19937_64 rng(7);
+    std::uniform_real_distribution<double> uniform(0.0, 1.0);
+    for (const MultilobeShape& s : {MultilobeShape::cylinder(CylinderShape::of_aspect(1.0)),
+                                    MultilobeShape::cylinder(CylinderShape::ring(1.0, 0.5, 1.0)),
+                                    MultilobeShape::of(3, 1.0, 0.8, 1.5)}) {
+        const double reach = 2.0 * s.bounding_radius(1.0);
+        int apart = 0, wide = 0, found = 0;
+        for (int trial = 0; trial < 3000; ++trial) {
+            const Quaternion qa = random_turn(rng), qb = random_turn(rng);
+            Vec3 dir{uniform(rng) - 0.5, uniform(rng) - 0.5, uniform(rng) - 0.5};
+            const Vec3 u = dir * (reach * (0.3 + 0.7 * uniform(rng)) / norm(dir));
+            const Placement a{{0.0, 0.0, 0.0}, qa, 1.0}, b{u, qb, 1.0};
+            const bool parted = detail::hulls_apart(hull_of(s, 1.0), rotate(qa, {0.0, 0.0, 1.0}),
+                                                    rotate(qb, {0.0, 0.0, 1.0}), u, 1e-9);
+            const double gap = s.pair_gap(a, s, b, u);
+            if (parted) {
+                ++apart;
+                EXPECT_GT(gap, 0.0) << trial;
+            }
+            if (gap > 0.2) { // a tenth of d_v = 2
+                ++wide;
+                found += parted ? 1 : 0;
+            }
+        }
+        EXPECT_GT(apart, 300);
+        EXPECT_GT(found, wide / 2) << found << " of " << wide;
+    }
+}
+
+// A circle or a sphere the hull test calls clear of a pellet holds no point inside it: 720
+// points about each circle (and the sphere's poles and equator) have a signed depth of at most
+// zero in the pellet (its own signed_depth, in its body frame).
+TEST(PelletHull, ACircleOrSphereClearOfTheHullHasNoPointInThePellet) {
+    std::mt19937_64 rng(11);
+    std::uniform_real_distribution<double> uniform(-1.0, 1.0);
+    for (const MultilobeShape& s : {MultilobeShape::cylinder(CylinderShape::of_aspect(1.0)),
+                                    MultilobeShape::of(3, 1.0, 0.8, 1.5)}) {
+        const detail::HullCylinder hull = hull_of(s, 1.0);
+        const Vec3 axis{0.0, 0.0, 1.0}; // the pellet in its own frame
+        int clear = 0;
+        for (int trial = 0; trial < 4000; ++trial) {
+            const Vec3 centre{2.0 * uniform(rng), 2.0 * uniform(rng), 2.0 * uniform(rng)};
+            Vec3 m{uniform(rng), uniform(rng), uniform(rng)};
+            m = m * (1.0 / norm(m));
+            const double radius = 0.2 + 0.6 * std::abs(uniform(rng));
+            const Vec3 side = cross(m, std::abs(m.x) < 0.9 ? Vec3{1, 0, 0} : Vec3{0, 1, 0});
+            const Vec3 e1 = side * (1.0 / norm(side));
+            const Vec3 e2 = cross(m, e1);
+            const double tilt = dot(m, axis);
+            if (detail::clear_of_hull(hull, axis, centre, radius,
+                                      radius * std::sqrt(std::max(0.0, 1.0 - tilt * tilt)), 1e-9)) {
+                ++clear;
+                for (int k = 0; k < 720; ++k) {
+                    const double t = 2.0 * pi * k / 720;
+                    const Vec3 q =
+                        centre + e1 * (radius * std::cos(t)) + e2 * (radius * std::sin(t));
+                    ASSERT_LE(s.signed_depth(q), 0.0) << trial << " " << k;
+                }
+            }
+            if (detail::clear_of_hull(hull, axis, centre, radius, radius, 1e-9)) {
+                for (const Vec3& v : {e1, e2, m, -1.0 * e1, -1.0 * e2, -1.0 * m})
+                    ASSERT_LE(s.signed_depth(centre + v * radius), 0.0) << trial;
+            }
+        }
+        EXPECT_GT(clear, 1000);
+    }
 }

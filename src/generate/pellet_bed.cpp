@@ -19,6 +19,7 @@
 #include "../base/parallel.hpp"
 #include "../base/require.hpp"
 #include "generate/friction.hpp"
+#include "generate/pellet_hull.hpp"
 #include "packbed/error.hpp"
 #include "packbed/neighbor_list.hpp"
 #include "packbed/quaternion.hpp"
@@ -383,15 +384,26 @@ private:
         }
     }
 
+    /// The cylinder that holds a pellet (detail::HullCylinder), in the bed's lengths.
+    detail::HullCylinder hull() const {
+        return {m_shape.lobe.half_length * m_size, (m_shape.circle + m_shape.lobe.radius) * m_size};
+    }
+
     /// Nodes of pellet a pressed out of pellet b, b's centroid at u from a's: adds to `push`
     /// (force on a, torques on a and b).
     void press(const Rotation& ra, const Rotation& rb, const Vec3& u, double sign,
                PairPush& push) const {
         const double reach2 = m_reach * m_reach;
         const MultilobeShape& shape = m_shape;
-        // The nodes in groups (an end's disc) whose bounding sphere is skipped when it misses b's.
+        const Vec3 b_axis = rb(Vec3{0.0, 0.0, 1.0});
+        const detail::HullCylinder hull = this->hull();
+        // The nodes in groups (an end's disc) whose bounding sphere is skipped when it misses
+        // b's or b's hull.
         for (const NodeGroup& group : m_groups) {
-            if (norm(ra(group.centre) - u) >= group.radius + m_reach)
+            const Vec3 centre = ra(group.centre) - u;
+            if (norm(centre) >= group.radius + m_reach ||
+                detail::clear_of_hull(hull, b_axis, centre, group.radius, group.radius,
+                                      hull_margin * m_size))
                 continue;
             for (std::size_t g = group.begin; g < group.end; ++g) {
                 const SurfaceNode& node = m_nodes[g];
@@ -426,7 +438,8 @@ private:
                        PairPush& push) const {
         const MultilobeShape& shape = m_shape;
         const Vec3 axis = ra(Vec3{0.0, 0.0, 1.0}), x = ra(Vec3{1.0, 0.0, 0.0}),
-                   y = ra(Vec3{0.0, 1.0, 0.0});
+                   y = ra(Vec3{0.0, 1.0, 0.0}), b_axis = rb(Vec3{0.0, 0.0, 1.0});
+        const detail::HullCylinder hull = this->hull();
         // cos and sin of the fixed sample angles k 2 pi / circle_samples.
         constexpr double step = 2.0 * std::numbers::pi / circle_samples;
         static const std::array<std::pair<double, double>, circle_samples> around = [] {
@@ -444,7 +457,14 @@ private:
             const double h = dot(centre, axis);
             if (h * h >= reach2)
                 continue;
-            const double disc = std::sqrt(reach2 - h * h), radius = circle.radius * m_size;
+            // A circle outside b's hull: by its centre's distance less its radius from b's
+            // axis, or beyond an end plane by its reach along b's axis.
+            const double radius = circle.radius * m_size, tilt = dot(axis, b_axis);
+            if (detail::clear_of_hull(hull, b_axis, centre, radius,
+                                      radius * std::sqrt(std::max(0.0, 1.0 - tilt * tilt)),
+                                      hull_margin * m_size))
+                continue;
+            const double disc = std::sqrt(reach2 - h * h);
             const Vec3 towards = axis * h - centre; // to b's centre, in the plane
             const double d = norm(towards);
             if (d - radius >= disc || radius - d >= disc)
@@ -637,6 +657,10 @@ private:
             if (norm2(u) >= cut2)
                 continue;
             if constexpr (level_set) {
+                // A pair whose hulls a plane parts presses nothing: skipped.
+                if (detail::hulls_apart(hull(), turn[a](Vec3{0.0, 0.0, 1.0}),
+                                        turn[b](Vec3{0.0, 0.0, 1.0}), u, hull_margin * m_size))
+                    continue;
                 press(turn[a], turn[b], u, 1.0, m_push[k]);
                 press(turn[b], turn[a], -u, -1.0, m_push[k]);
                 press_circles(turn[a], turn[b], u, 1.0, m_push[k]);
@@ -1164,6 +1188,10 @@ private:
     static constexpr double edge_blend = 4e-3;
     /// Points about a circle searched for its part inside a neighbour.
     static constexpr int circle_samples = 64;
+    /// The room, in units of the size, by which a pellet's part must clear a neighbour's hull
+    /// to be skipped (hulls_apart, clear_of_hull): far above the rounding of the nodes'
+    /// places, so that a skipped part would have pressed nothing.
+    static constexpr double hull_margin = 1e-9;
 
     const PelletBedParameters& m_params;
     const S& m_shape;
