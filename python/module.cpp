@@ -1126,7 +1126,7 @@ generate --shape` writes them.)");
             [](const PelletAnalysisResult& a) {
                 const std::vector<OrientationBin>& bins = a.analysis.orientation;
                 const auto n = static_cast<py::ssize_t>(bins.size());
-                py::array_t<double> low(n), high(n), cos2(n), order(n);
+                py::array_t<double> low(n), high(n), cos2(n), order(n), cos2_wall(n);
                 py::array_t<std::int64_t> count(n);
                 for (py::ssize_t k = 0; k < n; ++k) {
                     const OrientationBin& b = bins[static_cast<std::size_t>(k)];
@@ -1135,6 +1135,7 @@ generate --shape` writes them.)");
                     count.mutable_at(k) = static_cast<std::int64_t>(b.pellets);
                     cos2.mutable_at(k) = b.mean_cos2;
                     order.mutable_at(k) = b.order;
+                    cos2_wall.mutable_at(k) = b.mean_cos2_wall;
                 }
                 py::dict out;
                 out["low"] = low;
@@ -1142,18 +1143,25 @@ generate --shape` writes them.)");
                 out["pellets"] = count;
                 out["mean_cos2"] = cos2;
                 out["order"] = order;
+                out["mean_cos2_wall"] = cos2_wall;
                 return out;
             },
             "The axes' orientation against the centroid's distance from the wall (bins of 0.1 "
             "d_v; empty without one wall): a dict of numpy arrays low, high (length), pellets, "
-            "mean_cos2 (<cos^2 theta>, theta from the container's z axis) and order (S = "
-            "(3 <cos^2> - 1) / 2).")
+            "mean_cos2 (<cos^2 theta>, theta from the container's z axis), order (S = "
+            "(3 <cos^2> - 1) / 2) and mean_cos2_wall (<cos^2 psi>, psi from the wall's normal "
+            "at the centroid: 1 pointing at the wall, 0 parallel to it, 1/3 at random).")
         .def_property_readonly(
             "order", [](const PelletAnalysisResult& a) { return a.analysis.overall.order; },
             "S over every pellet with its centroid in the band: 1 upright, -1/2 lying, 0 random.")
         .def_property_readonly(
             "mean_cos2", [](const PelletAnalysisResult& a) { return a.analysis.overall.mean_cos2; },
             "<cos^2 theta> over every pellet with its centroid in the band (1/3 at random).")
+        .def_property_readonly(
+            "mean_cos2_wall",
+            [](const PelletAnalysisResult& a) { return a.analysis.overall.mean_cos2_wall; },
+            "<cos^2 psi> over every pellet with its centroid in the band, psi between its axis "
+            "and the wall's normal at its centroid (1/3 at random; 0 without one wall).")
         .def_property_readonly(
             "coordination_histogram",
             [](const PelletAnalysisResult& a) { return counts(a.analysis.coordination.histogram); },

@@ -672,6 +672,47 @@ TEST(PelletAnalysis, TwoPelletsByHand) {
                 1e-9);
 }
 
+TEST(PelletAnalysis, TheAxesAgainstTheWallsNormalByHand) {
+    // Four cylinders (size 0.5) in a tube of radius 3, each at its own distance from the wall
+    // and height: the axis along the radius (pointing at the wall: cos^2 psi = 1), level along
+    // the wall (0), upright (0), and 45 degrees between the radius and z (1/2). Each one's bin
+    // of 0.1 d_v holds it alone; over all four, (1 + 0 + 0 + 1/2) / 4.
+    const CylinderShape c = CylinderShape::of_aspect(1.0);
+    Packing p;
+    p.add({1.0, 0.0, 1.0}, 0.5);  // 2.0 from the wall, axis along x: radial
+    p.add({0.0, 1.5, 3.0}, 0.5);  // 1.5 from the wall, axis along x: along the wall
+    p.add({0.0, -2.0, 5.0}, 0.5); // 1.0 from the wall, upright
+    p.add({-0.5, 0.0, 7.0}, 0.5); // 2.5 from the wall, halfway between -x (radial) and z
+    const Quaternion level = about({0.0, 1.0, 0.0}, 0.5 * pi);
+    p.orientations = {level, level, Quaternion{}, about({0.0, 1.0, 0.0}, -0.25 * pi)};
+    AnalysisOptions o;
+    o.band = Band{0.0, 8.0};
+    o.shell_width = 0.5;
+    const PelletAnalysis a =
+        analyze_pellet_bed(p, MultilobeShape::cylinder(c), Container::tube_of_radius(3.0), o);
+    EXPECT_NEAR(a.overall.mean_cos2_wall, 1.5 / 4.0, 1e-9);
+    const std::vector<std::pair<double, double>> expected{
+        {2.0, 1.0}, {1.5, 0.0}, {1.0, 0.0}, {2.5, 0.5}};
+    for (const auto& [d, cos2] : expected) {
+        bool found = false;
+        for (const OrientationBin& b : a.orientation)
+            if (b.pellets > 0 && b.low <= d && d < b.high) {
+                EXPECT_EQ(b.pellets, 1u) << d;
+                EXPECT_NEAR(b.mean_cos2_wall, cos2, 1e-9) << d;
+                found = true;
+            }
+        EXPECT_TRUE(found) << d;
+    }
+    // In a box the normal is the nearest face's: a level pellet along x, 1 from the face x = 0
+    // and 2.5 from the others, points at it.
+    Packing q;
+    q.add({1.0, 3.5, 1.0}, 0.5);
+    q.orientations = {level};
+    const PelletAnalysis in_box =
+        analyze_pellet_bed(q, MultilobeShape::cylinder(c), Container(Box(6.0, 7.0)), o);
+    EXPECT_NEAR(in_box.overall.mean_cos2_wall, 1.0, 1e-9);
+}
+
 TEST(PelletAnalysis, SameBitsWhateverTheThreads) {
     // Four cylinders (d_v = 1) in a tube of radius 1.5, each profile's pellets computed on
     // their own in parallel and added in order: one lying on the floor 2e-5 rad from level and

@@ -207,12 +207,17 @@ BedAnalysis analyze_bed(const Packing& packing, const Container& container,
                         const AnalysisOptions& options = {});
 
 /// The orientation of the pellets whose centroid lies between two distances from the wall:
-/// cos(theta) is the component of a pellet's axis along the container's axis z.
+/// cos(theta) is the component of a pellet's axis along the container's axis z, cos(psi) its
+/// component along the wall's normal at the centroid (the direction in which the distance from
+/// the wall grows fastest: the radius in a tube).
 struct OrientationBin {
     double low = 0.0, high = 0.0; ///< distances of the centroids from the wall (length)
     std::uint64_t pellets = 0;    ///< pellets with their centroid in the band and the bin
     double mean_cos2 = 0.0;       ///< <cos^2 theta>: 1/3 for random orientations
     double order = 0.0; ///< S = (3 <cos^2 theta> - 1) / 2: 1 upright, -1/2 lying, 0 random
+    /// <cos^2 psi>: 1 when every axis points at the wall (an end facing it), 0 when every axis
+    /// lies parallel to it (upright or level along it), 1/3 at random; 0 without one wall
+    double mean_cos2_wall = 0.0;
 };
 
 /// What analyze_pellet_bed measures.

@@ -942,6 +942,18 @@ Coordination pellet_coordination(const ShapedBed<S>& bed, const Container& conta
     return out;
 }
 
+/// The unit normal of the container's one wall at p: the gradient of the distance from it (by
+/// central differences `h` apart), which points away from the wall; the zero vector where the
+/// gradient vanishes (the axis of a tube).
+Vec3 wall_normal(const Container& container, const Vec3& p, double h) {
+    const auto d = [&](const Vec3& q) { return container.wall_distances_from(0, q, 0.0).first; };
+    const Vec3 g{d(p + Vec3{h, 0.0, 0.0}) - d(p - Vec3{h, 0.0, 0.0}),
+                 d(p + Vec3{0.0, h, 0.0}) - d(p - Vec3{0.0, h, 0.0}),
+                 d(p + Vec3{0.0, 0.0, h}) - d(p - Vec3{0.0, 0.0, h})};
+    const double length = norm(g);
+    return length > 0.0 ? g * (1.0 / length) : Vec3{};
+}
+
 /// analyze_pellet_bed for pellets of shape class S.
 template <class S>
 PelletAnalysis analyze_pellets(const Packing& packing, const S& shape, const Container& container,
@@ -967,37 +979,48 @@ PelletAnalysis analyze_pellets(const Packing& packing, const S& shape, const Con
     const auto slabs = static_cast<std::size_t>(std::ceil(top / (options.slab_height * dv)));
     out.axial_void_fraction = axial_void_fraction(bed, container, options.slab_height * dv,
                                                   std::max<std::size_t>(slabs, 1));
-    const auto orientation = [](double sum, std::uint64_t n, double low, double high) {
-        const double mean = n > 0 ? sum / static_cast<double>(n) : 0.0;
-        return OrientationBin{low, high, n, mean, n > 0 ? 1.5 * mean - 0.5 : 0.0};
+    // Sums of cos^2 theta and cos^2 psi over the pellets of a bin.
+    struct Sums {
+        double cos2 = 0.0, cos2_wall = 0.0;
+        std::uint64_t pellets = 0;
     };
-    double all = 0.0;
-    std::uint64_t counted = 0;
+    const auto orientation = [](const Sums& s, double low, double high) {
+        const double n = static_cast<double>(s.pellets);
+        const double mean = s.pellets > 0 ? s.cos2 / n : 0.0;
+        return OrientationBin{low,
+                              high,
+                              s.pellets,
+                              mean,
+                              s.pellets > 0 ? 1.5 * mean - 0.5 : 0.0,
+                              s.pellets > 0 ? s.cos2_wall / n : 0.0};
+    };
+    Sums all;
     const bool one_wall = container.profile_walls().size() == 1;
     const double depth = container.depth(out.band.z_low, out.band.z_high);
     const double bin = 0.1 * dv;
     const auto bins = static_cast<std::size_t>(std::ceil(depth / bin));
-    std::vector<double> sums(one_wall ? bins : 0, 0.0);
-    std::vector<std::uint64_t> counts(sums.size(), 0);
+    std::vector<Sums> sums(one_wall ? bins : 0);
     for (std::size_t i = 0; i < packing.size(); ++i) {
         const Vec3& c = packing.centers[i];
         if (c.z < out.band.z_low || c.z >= out.band.z_high)
             continue;
-        const double cz = rotate(packing.orientations[i], Vec3{0.0, 0.0, 1.0}).z;
-        all += cz * cz;
-        ++counted;
+        const Vec3 axis = rotate(packing.orientations[i], Vec3{0.0, 0.0, 1.0});
+        all.cos2 += axis.z * axis.z;
+        ++all.pellets;
         if (one_wall) {
             const double d = container.wall_distances_from(0, c, 0.0).first;
+            const double towards = dot(axis, wall_normal(container, c, 1e-6 * dv));
             const auto k = static_cast<std::size_t>(
                 std::clamp(std::floor(d / bin), 0.0, static_cast<double>(bins - 1)));
-            sums[k] += cz * cz;
-            ++counts[k];
+            sums[k].cos2 += axis.z * axis.z;
+            sums[k].cos2_wall += towards * towards;
+            ++sums[k].pellets;
+            all.cos2_wall += towards * towards;
         }
     }
-    out.overall = orientation(all, counted, 0.0, depth);
+    out.overall = orientation(all, 0.0, depth);
     for (std::size_t k = 0; k < sums.size(); ++k)
-        out.orientation.push_back(
-            orientation(sums[k], counts[k], k * bin, std::min(depth, (k + 1) * bin)));
+        out.orientation.push_back(orientation(sums[k], k * bin, std::min(depth, (k + 1) * bin)));
     if (one_wall) {
         const auto shells = static_cast<std::size_t>(std::ceil(depth / (options.shell_width * dv)));
         out.radial_void_fraction =

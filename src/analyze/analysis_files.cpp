@@ -125,11 +125,12 @@ std::vector<std::pair<std::string, std::string>> pellet_analysis_files(const Pel
                             fmt::format("{},x_from_wall_d,void_fraction", position),
                             a.radial_void_fraction,
                             [&](double d) { return container.profile_position(d); }, in_dv));
-    std::string orientation = fmt::format("{},x_from_wall_d,pellets,mean_cos2,order\n", position);
+    std::string orientation =
+        fmt::format("{},x_from_wall_d,pellets,mean_cos2,order,mean_cos2_wall\n", position);
     for (const OrientationBin& b : a.orientation) {
         const double mid = 0.5 * (b.low + b.high);
-        orientation += fmt::format("{:.12g},{:.12g},{},{},{}\n", container.profile_position(mid),
-                                   mid / dv, b.pellets, b.mean_cos2, b.order);
+        orientation += fmt::format("{:.12g},{:.12g},{},{},{},{}\n", container.profile_position(mid),
+                                   mid / dv, b.pellets, b.mean_cos2, b.order, b.mean_cos2_wall);
     }
     tables.emplace_back("orientation_profile.csv", orientation);
     return tables;
@@ -147,11 +148,14 @@ nlohmann::ordered_json pellet_analysis_summary(const PelletAnalysis& a, std::str
     summary["void_fraction"] = a.void_fraction;
     summary["orientation"] = {{"pellets", a.overall.pellets},
                               {"mean_cos2", a.overall.mean_cos2},
-                              {"order", a.overall.order},
-                              {"about", "theta between a pellet's axis and the container's z "
-                                        "axis, over the pellets with their centroid in the "
-                                        "band; S = (3 <cos^2> - 1) / 2: 1 upright, -1/2 lying, "
-                                        "0 at random"}};
+                              {"order", a.overall.order}};
+    if (!a.orientation.empty()) // a container of one wall
+        summary["orientation"]["mean_cos2_wall"] = a.overall.mean_cos2_wall;
+    summary["orientation"]["about"] =
+        "theta between a pellet's axis and the container's z axis, over the pellets with their "
+        "centroid in the band; S = (3 <cos^2> - 1) / 2: 1 upright, -1/2 lying, 0 at random; psi "
+        "(mean_cos2_wall, with one wall) between the axis and the wall's normal at the "
+        "centroid: 1 pointing at the wall, 0 parallel to it, 1/3 at random";
     const Coordination& c = a.coordination;
     summary["coordination"] = {{"mean", c.mean},
                                {"mean_without_rattlers", c.mean_without_rattlers},

@@ -278,7 +278,8 @@ def test_a_pellet_bed_is_read_measured_written_and_exported_as_the_command_line_
     # 12 cylinders L = D in a tube of a = 3 (seed 3), written by the command line: read() keeps
     # their orientations and shape; analyze() measures them as `packbed analyze` does (the same
     # numbers and tables; in generate's band, generate's void fraction), and the orientation
-    # is the quaternions' (a pellet's axis along z is 1 - 2 (qx^2 + qy^2)); write() gives back
+    # is the quaternions' (a pellet's axis along z is 1 - 2 (qx^2 + qy^2), along the radius the
+    # rotation's third column's part along it); write() gives back
     # the table's bytes, export() the command line's STL.
     status, _, err = cli("generate", "--shape", "cylinder:1,1", "-a", 3, "-n", 12, "-s", 3, "-q",
                          "--out", tmp_path / "cli")
@@ -313,6 +314,15 @@ def test_a_pellet_bed_is_read_measured_written_and_exported_as_the_command_line_
     assert analysis.mean_cos2 == pytest.approx(np.mean(cos_theta**2), abs=1e-12)
     assert analysis.order == pytest.approx(1.5 * np.mean(cos_theta**2) - 0.5, abs=1e-12)
     assert analysis.orientation["pellets"].sum() == inside.sum()
+    # cos psi: the axis (the rotation matrix's third column) along the radius at the centroid.
+    w, x, y, zq = q[:, 0], q[:, 1], q[:, 2], q[:, 3]
+    axis_x, axis_y = 2.0 * (x * zq + w * y), 2.0 * (y * zq - w * x)
+    c = bed.centers[inside]
+    cos_psi = (axis_x * c[:, 0] + axis_y * c[:, 1]) / np.hypot(c[:, 0], c[:, 1])
+    assert analysis.mean_cos2_wall == pytest.approx(np.mean(cos_psi**2), abs=1e-6)
+    counts = analysis.orientation["pellets"]
+    assert np.sum(analysis.orientation["mean_cos2_wall"] * counts) == \
+        pytest.approx(np.sum(cos_psi**2), abs=1e-5)
     assert analysis.coordination_histogram.sum() == inside.sum()
     # Lengths in d_v: shells of 0.02 d_v from the wall.
     radial = analysis.radial_void_fraction
