@@ -291,6 +291,44 @@ private:
             e0 = std::max(e0,
                           1.0 - 0.25 * m_volume /
                                     (4.0 / 3.0 * std::numbers::pi * m_reach * m_reach * m_reach));
+        // Random addition jams below the column's e0 where the tube is narrow beside the
+        // pellet (rings at a = 3: no room for the 19th of 20 in 10 000 draws): the column is
+        // then drawn again from the start with its solid fraction halved, up to
+        // column_loosenings times. A column that draws at the first try keeps its bits.
+        for (int loosened = 0;; ++loosened) {
+            if (draw_column(e0))
+                break;
+            if (loosened == column_loosenings)
+                throw InvalidInput(fmt::format(
+                    "particles = {} is not allowed in {}: {} draws found no room for a pellet "
+                    "even in a column of void fraction {:.6g}; allowed: fewer pellets or a "
+                    "wider container",
+                    n, m_container.describe(), insert_attempts, e0));
+            e0 = 1.0 - 0.5 * (1.0 - e0);
+        }
+        m_velocity.assign(n, Vec3{});
+        m_spin.assign(n, Vec3{});
+        m_force.assign(n, Vec3{});
+        m_torque.assign(n, Vec3{});
+        if (frictional()) {
+            m_moved.assign(n, Vec3{});
+            m_turned.assign(n, Vec3{});
+            m_wall_springs.assign(n, detail::WallSprings{});
+            m_sliding_wall.assign(n, 0);
+            m_order.resize(n);
+            for (std::size_t i = 0; i < n; ++i)
+                m_order[i] = static_cast<std::uint32_t>(i);
+        }
+    }
+
+    /// Random sequential addition of the pellets into the column of void fraction e0 (insert()):
+    /// each one's position (and a spherocylinder's orientation) drawn until it keeps apart from
+    /// the earlier ones. \return false, with nothing placed, where a pellet finds no room in
+    /// insert_attempts draws.
+    bool draw_column(double e0) {
+        const std::size_t n = m_params.particles;
+        m_centre.clear();
+        m_turn.clear();
         const double height = m_container.fill_height(static_cast<double>(n), e0);
         if (const auto top = m_container.top(); top && height + 2.0 * m_reach > *top)
             throw InvalidInput(fmt::format(
@@ -340,17 +378,16 @@ private:
                     }
             return true;
         };
-        constexpr int attempts = 10'000;
         for (std::size_t i = 0; i < n; ++i) {
             Vec3 p;
             Quaternion turn;
             int tries = 0;
             do {
-                if (++tries > attempts)
-                    throw InvalidInput(fmt::format(
-                        "e0 = {} is not allowed for {} pellets in {}: {} draws found no room "
-                        "for pellet {}; allowed: a looser column (a larger e0)",
-                        e0, n, m_container.describe(), attempts, i + 1));
+                if (++tries > insert_attempts) {
+                    m_centre.clear();
+                    m_turn.clear();
+                    return false;
+                }
                 const double u = uniform01(rng), v = uniform01(rng);
                 const double z = height * uniform01(rng) + m_reach;
                 p = m_container.uniform_point(m_reach, u, v, z);
@@ -369,19 +406,7 @@ private:
             }
             m_turn.push_back(turn);
         }
-        m_velocity.assign(n, Vec3{});
-        m_spin.assign(n, Vec3{});
-        m_force.assign(n, Vec3{});
-        m_torque.assign(n, Vec3{});
-        if (frictional()) {
-            m_moved.assign(n, Vec3{});
-            m_turned.assign(n, Vec3{});
-            m_wall_springs.assign(n, detail::WallSprings{});
-            m_sliding_wall.assign(n, 0);
-            m_order.resize(n);
-            for (std::size_t i = 0; i < n; ++i)
-                m_order[i] = static_cast<std::uint32_t>(i);
-        }
+        return true;
     }
 
     /// The cylinder that holds a pellet (detail::HullCylinder), in the bed's lengths.
@@ -1180,6 +1205,9 @@ private:
     static constexpr double exact_band_scale = 0.5;
     /// The least gap between two spherocylinders at insertion, d_v.
     static constexpr double insert_gap = 0.02;
+    /// Draws for one pellet's room before the column is loosened (insert()), and how many
+    /// times it may be (each halving its solid fraction).
+    static constexpr int insert_attempts = 10'000, column_loosenings = 3;
     /// The width of the smooth minimum of a point's distances to a side and an end (inside's
     /// blend), in units of the size: the pushing face turns over this width instead of at
     /// once. An edge is then 1e-3 of the size (5e-4 d_v) shallower than it is. A ring's
