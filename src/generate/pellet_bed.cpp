@@ -323,8 +323,8 @@ private:
 
     /// Random sequential addition of the pellets into the column of void fraction e0 (insert()):
     /// each one's position (and a spherocylinder's orientation) drawn until it keeps apart from
-    /// the earlier ones. \return false, with nothing placed, where a pellet finds no room in
-    /// insert_attempts draws.
+    /// the earlier ones (a draw that failed before is cleared first). \return false where a
+    /// pellet finds no room in insert_attempts draws.
     bool draw_column(double e0) {
         const std::size_t n = m_params.particles;
         m_centre.clear();
@@ -383,11 +383,8 @@ private:
             Quaternion turn;
             int tries = 0;
             do {
-                if (++tries > insert_attempts) {
-                    m_centre.clear();
-                    m_turn.clear();
+                if (++tries > insert_attempts)
                     return false;
-                }
                 const double u = uniform01(rng), v = uniform01(rng);
                 const double z = height * uniform01(rng) + m_reach;
                 p = m_container.uniform_point(m_reach, u, v, z);
