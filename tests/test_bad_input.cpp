@@ -137,6 +137,10 @@ void prepare_nothing_lost(const fs::path& d) {
           "x,y,z,r,qw,qx,qy,qz\n0,0,0.6,0.5724,1,0,0,0\n0,0,1.8,0.5724,1,0,0,0\n");
     write(d / "pel" / "summary.json", R"({"container": {"shape": "cylinder", "radius": 2}, )"
                                       R"("shape": {"kind": "cylinder", "spec": "cylinder:1,1"}})");
+    // The same pellets without their summary.
+    fs::create_directory(d / "pelraw");
+    write(d / "pelraw" / "particles.csv",
+          "x,y,z,r,qw,qx,qy,qz\n0,0,0.6,0.5724,1,0,0,0\n0,0,1.8,0.5724,1,0,0,0\n");
     fs::create_directory(d / "cone");
     write(d / "cone" / "particles.csv", "x,y,z,r\n0,0,0.6,0.5\n");
     write(d / "cone" / "summary.json", R"({"shape": {"spec": "cone:1,1"}})");
@@ -473,7 +477,8 @@ INSTANTIATE_TEST_SUITE_P(
               "(three cylinders of diameter DL, their axes on a circle of diameter DC, 0 < DC <= "
               "DL); multilobe:N,DL,DC,L (N = 2 to 8 such lobes); each length > 0 and at most "
               "1e+15, L / D (L / DL) from 0.1 to 10; or spherocylinder:D,L (a cylinder of "
-              "diameter D and length L capped by two hemispheres, L >= 0, L / D at most 10)"),
+              "diameter D and length L capped by two hemispheres, L >= 0, L / D at most 10); "
+              "the volume-equivalent diameter d_v from 1e-12 to 1e+12"),
         naming("generate --shape trilobe:1,1.2,2", {"--shape", "trilobe:1,1.2,2", "DC <= DL"}),
         naming("generate --shape ring:1,1,1", {"--shape", "ring:1,1,1", "DI <= 0.9 D"}),
         naming("generate --shape ring:1,0.95,1", {"--shape", "ring:1,0.95,1", "DI <= 0.9 D"}),
@@ -1432,7 +1437,39 @@ INSTANTIATE_TEST_SUITE_P(
                {"cone/summary.json", "shape 'cone:1,1'", "cylinder:D,L"}),
         naming("export pel/particles.csv -f stl --contacts shrink:0.01 --container cylinder:0.9 "
                "-o p.stl",
-               {"--contacts shrink:0.01", "pel/particles.csv", "wall"})));
+               {"--contacts shrink:0.01", "pel/particles.csv", "wall"}),
+        // A pellet's size out of a sphere's range, a shape that is not the bed's, a table of
+        // pellets exported as spheres, the spheres' options and a container the pellets do
+        // not fit (upright, of radius 0.50004, in a tube of radius 0.45: 0.05004 out, tolerance
+        // 0.01 d_v = 0.0114).
+        naming("generate --shape cylinder:1e-13,1e-13",
+               {"--shape", "cylinder:1e-13,1e-13", "d_v from 1e-12 to 1e+12"}),
+        naming("generate --shape spherocylinder:1e13,1e13",
+               {"--shape", "spherocylinder:1e13,1e13", "d_v from 1e-12 to 1e+12"}),
+        exact("export pel/particles.csv -f stl --shape ring:1,0.5,1 -o p.stl",
+              "packbed export: --shape 'ring:1,0.5,1' is not allowed for pel/particles.csv: the "
+              "summary.json beside it records its pellets as 'cylinder:1,1'; allowed: that "
+              "shape, or no --shape"),
+        exact("export pelraw/particles.csv -f stl -o p.stl",
+              "packbed export: pelraw/particles.csv: its particles have orientations (qw, qx, "
+              "qy, qz: a bed of pellets) but no shape is given; allowed: --shape SPEC naming its "
+              "pellets (a bed from generate --shape has it in the summary.json beside it)"),
+        exact("export pelraw/particles.csv -f stl --shape cylinder:2,2 -o p.stl",
+              "packbed export: pelraw/particles.csv:2: r = 0.5724 is not allowed for "
+              "cylinder:2,2 pellets; allowed: r = d_v / 2 = 1.1447142425533317 within 0.1 % (a "
+              "pellet's size in the table: give the shape's lengths in the table's units)"),
+        exact("analyze pel/particles.csv --friction 0.3",
+              "packbed analyze: --friction is not allowed for a bed of cylinder:1,1 pellets; "
+              "allowed with pellets: --container, --band, --band-clearance, --shell-width, "
+              "--slab-height, --contact-tolerance, --outside-tolerance (lengths in d_v), "
+              "--format, --frame, --axis, --floor, --out, --force, --threads, --quiet"),
+        naming("analyze pel/particles.csv --rdf-bin 0.1", {"--rdf-bin is not allowed"}),
+        naming("analyze pel/particles.csv -d 2", {"--diameter is not allowed"}),
+        naming("analyze pel/particles.csv --container cylinder:0.9",
+               {"pel/particles.csv:2: the pellet at (0, 0, 0.6) reaches out of the container",
+                "by 0.05004; allowed: up to 0.01145 (--outside-tolerance times d_v"}),
+        naming("voxelize pel/particles.csv --voxel-size 0.1 --container cylinder:0.9 -o v.npy",
+               {"pel/particles.csv:2: the pellet at (0, 0, 0.6) reaches out"})));
 
 INSTANTIATE_TEST_SUITE_P(
     NothingLost, CliBadInput,

@@ -1,4 +1,5 @@
 // `packbed analyze`: structure of a bed from any source (ours, LAMMPS, LIGGGHTS, XYZ).
+#include <array>
 #include <charconv>
 #include <filesystem>
 #include <memory>
@@ -43,7 +44,13 @@ struct AnalyzeOptions {
     unsigned long long threads = static_cast<unsigned long long>(omp_get_num_procs());
     bool quiet = false;
     bool force = false;
+    const CLI::App* app = nullptr; // which options were given (those a pellet bed refuses)
 };
+
+/// The spheres' options that a bed of pellets has no use for (Python's analyze refuses the
+/// same).
+constexpr std::array sphere_only_options{"--diameter", "--centre-bin", "--rdf-range", "--rdf-bin",
+                                         "--friction"};
 
 /// "N spheres touch the wall"; for an annulus each wall's count; in a periodic cell, that it
 /// has no wall (nor wall profiles).
@@ -68,12 +75,21 @@ int run_pellet_analyze(const AnalyzeOptions& o, const fs::path& path, const Read
         throw InvalidInput(fmt::format("--frames all is not allowed for a bed of {} pellets; "
                                        "allowed: one frame",
                                        pellet.text));
+    for (const char* name : sphere_only_options)
+        if (o.app && o.app->get_option(name)->count() > 0)
+            throw InvalidInput(fmt::format(
+                "{} is not allowed for a bed of {} pellets; allowed with pellets: --container, "
+                "--band, --band-clearance, --shell-width, --slab-height, --contact-tolerance, "
+                "--outside-tolerance (lengths in d_v), --format, --frame, --axis, --floor, "
+                "--out, --force, --threads, --quiet",
+                name, pellet.text));
     const ParticleFile file = read_particles(path, read);
     const std::optional<Container> found = find_container(path, o.container, o.container_radius);
     if (!found)
         throw InvalidInput(fmt::format("--container (or --container-radius) is needed: no "
                                        "summary.json with a container next to {}",
                                        printable(path.native())));
+    check_pellets_inside(file, path.string(), *found, pellet, o.outside_tolerance);
     const fs::path out_dir = o.out.empty() ? path.parent_path() / "analysis" : fs::path(o.out);
     OutputDirectory out(out_dir, "--out", OutputKind::directory, o.force);
     use_threads(o.threads);
@@ -266,10 +282,11 @@ Command register_analyze(CLI::App& parent) {
         ->check(one_of({"all"}))
         ->excludes(frame);
     app->add_option("--outside-tolerance", o.outside_tolerance,
-                    "how far a sphere may stick out of the wall or floor, Dp")
+                    "how far a sphere may stick out of the wall or floor, Dp (a pellet: d_v)")
         ->check(real_in(option_range::outside_tolerance));
     add_threads_option(*app, o.threads);
     app->add_flag("-q,--quiet", o.quiet, "no report on the terminal");
+    o.app = app;
     return {app, [options] { return run_analyze(*options); }};
 }
 

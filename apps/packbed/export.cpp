@@ -53,6 +53,12 @@ int run_export(ExportOptions& o) {
         if (!request.pellet)
             throw InvalidInput(fmt::format("--shape '{}' is not allowed; allowed: {}",
                                            printable(o.shape), allowed_shapes()));
+        if (const std::optional<PelletSpec> recorded = shape_beside(o.particles);
+            recorded && !recorded->same_as(*request.pellet))
+            throw InvalidInput(fmt::format(
+                "--shape '{}' is not allowed for {}: the summary.json beside it records its "
+                "pellets as '{}'; allowed: that shape, or no --shape",
+                printable(o.shape), printable(o.particles), printable(recorded->text)));
     } else if (o.shape.empty()) {
         request.pellet = shape_beside(o.particles);
     }

@@ -134,6 +134,9 @@ struct PelletSpec {
     double length = 0.0;          ///< L
     double volume_diameter = 0.0; ///< d_v = (6 V / pi)^(1/3), the bed's unit
     std::string text;             ///< as given
+
+    /// The same pellet, its lengths within 1e-9 of each other's (however they were written).
+    bool same_as(const PelletSpec& other) const;
 };
 /// \return the pellet of `text`, or nothing when it is not one ("sphere" is not a pellet).
 std::optional<PelletSpec> parse_pellet_shape(std::string_view text);
@@ -331,12 +334,20 @@ BedInContainer read_bed_in_container(const std::filesystem::path& particles,
                                      double cylinder_radius, double outside_tolerance);
 
 /// read_bed_in_container, or, where summary.json beside the file records a pellet
-/// (shape_beside), the pellets (their orientations) in their container with `pellet` set: the
-/// spheres' check that nothing sticks out is not made, since r is a pellet's d_v / 2 and not
-/// its extent.
+/// (shape_beside), the pellets (their orientations) in their container with `pellet` set,
+/// checked by their exact shapes (check_pellets_inside at `outside_tolerance` d_v) instead of
+/// the spheres' check: r is a pellet's d_v / 2, not its extent.
 BedInContainer read_bed_or_pellets(const std::filesystem::path& particles,
                                    const ReadOptions& options, const std::string& container,
                                    double cylinder_radius, double outside_tolerance);
+
+/// Refuse pellets that reach beyond the container's walls or below its floor by more than
+/// `outside_tolerance` d_v (the shape's exact wall_overlap, its lowest point), or whose
+/// centroid lies outside a periodic cell by more than that.
+/// \throws InvalidInput naming the file, the line, the pellet and the allowed tolerance
+void check_pellets_inside(const ParticleFile& file, std::string_view name,
+                          const Container& container, const PelletSpec& pellet,
+                          double outside_tolerance);
 
 /// check_inside for a file read with `options`, at `outside_tolerance` Dp (Dp: the file's
 /// given diameter, else the spheres' mean), saying whether --axis and --floor moved it.

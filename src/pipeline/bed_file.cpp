@@ -1,6 +1,7 @@
 // A bed read from a file: its container and the check that it fits (pipeline.hpp).
 #include <algorithm>
 #include <filesystem>
+#include <variant>
 
 #include <fmt/format.h>
 
@@ -104,8 +105,39 @@ BedInContainer read_bed_or_pellets(const std::filesystem::path& particles,
     if (!pellet)
         return read_bed_in_container(particles, options, container, cylinder_radius,
                                      outside_tolerance);
-    return {read_particles(particles, options),
-            find_container(particles, container, cylinder_radius), std::move(pellet)};
+    BedInContainer bed{read_particles(particles, options),
+                       find_container(particles, container, cylinder_radius), std::move(pellet)};
+    if (bed.container)
+        check_pellets_inside(bed.file, particles.string(), *bed.container, *bed.pellet,
+                             outside_tolerance);
+    return bed;
+}
+
+void check_pellets_inside(const ParticleFile& file, std::string_view name,
+                          const Container& container, const PelletSpec& pellet,
+                          double outside_tolerance) {
+    const Packing& packing = file.packing;
+    if (packing.orientations.size() != packing.size())
+        return; // read_particles gives every pellet its orientation
+    const double tolerance = outside_tolerance * pellet.volume_diameter;
+    std::visit(
+        [&](const auto& shape) {
+            for (std::size_t i = 0; i < packing.size(); ++i) {
+                const Placement p{packing.centers[i], packing.orientations[i], packing.radii[i]};
+                const double out =
+                    std::max({shape.wall_overlap(container, p), -shape.support(p, {0, 0, -1}).z,
+                              container.sticks_out(p.position, 0.0)});
+                if (out > tolerance)
+                    throw InvalidInput(fmt::format(
+                        "{}:{}: the pellet at ({}, {}, {}) reaches out of the container ({}, "
+                        "floor z = 0) by {:.4g}; allowed: up to {:.4g} (--outside-tolerance "
+                        "times d_v, in the file's units)",
+                        printable(name), i < file.lines.size() ? file.lines[i] : i + 1,
+                        p.position.x, p.position.y, p.position.z, describe(container), out,
+                        tolerance));
+            }
+        },
+        pellet.shape);
 }
 
 void check_file_inside(const ParticleFile& file, const ReadOptions& options, std::string_view name,

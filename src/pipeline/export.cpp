@@ -886,6 +886,26 @@ std::string export_bed(const Packing& packing, const std::vector<std::size_t>& l
                 printable(request.source), i < lines.size() ? lines[i] : i + 1, c.x, c.y, c.z,
                 reach / dp, limits::max_export_reach));
     }
+    if (!request.pellet && !packing.orientations.empty())
+        throw InvalidInput(fmt::format(
+            "{}: its particles have orientations (qw, qx, qy, qz: a bed of pellets) but no "
+            "shape is given; allowed: --shape SPEC naming its pellets (a bed from generate "
+            "--shape has it in the summary.json beside it)",
+            printable(request.source)));
+    // A pellet's size is its table's r, d_v / 2: a shape of another size (beyond the digits a
+    // table written by hand keeps) is not its shape. (A table without orientations is refused
+    // as such by pellet_export.)
+    if (request.pellet && !packing.orientations.empty())
+        for (std::size_t i = 0; i < packing.size(); ++i) {
+            const double r = packing.radii[i], half = 0.5 * request.pellet->volume_diameter;
+            if (!(std::abs(r - half) <= 1e-3 * half))
+                throw InvalidInput(fmt::format(
+                    "{}:{}: r = {} is not allowed for {} pellets; allowed: r = d_v / 2 = {} within "
+                    "0.1 % (a pellet's size in the table: give the shape's lengths in the table's "
+                    "units)",
+                    printable(request.source), i < lines.size() ? lines[i] : i + 1, r,
+                    printable(request.pellet->text), half));
+        }
     if (request.pellet)
         return std::visit(
             [&](const auto& shape) {

@@ -33,9 +33,8 @@ constexpr double min_aspect = 0.1, max_aspect = 10.0; // L / D of a cylinder pel
 /// tolerance (1e-3 of the wall) below what the nodes resolve.
 constexpr double max_bore = 0.9;
 
-} // namespace
-
-std::optional<PelletSpec> parse_pellet_shape(std::string_view text) {
+/// The shape `text` names, its lengths each checked (parse_pellet_shape).
+std::optional<PelletSpec> parse_lengths(std::string_view text) {
     const KindSpec spec = split_kind(text);
     if (!spec.parameters)
         return std::nullopt;
@@ -116,6 +115,30 @@ std::optional<PelletSpec> parse_pellet_shape(std::string_view text) {
     return out;
 }
 
+} // namespace
+
+std::optional<PelletSpec> parse_pellet_shape(std::string_view text) {
+    std::optional<PelletSpec> out = parse_lengths(text);
+    // Its size, d_v, in the range of a sphere's diameter: what the readers take back as r.
+    if (out && !(out->volume_diameter >= limits::min_diameter &&
+                 out->volume_diameter <= limits::max_diameter))
+        return std::nullopt;
+    return out;
+}
+
+bool PelletSpec::same_as(const PelletSpec& other) const {
+    const auto near = [](double x, double y) {
+        return std::abs(x - y) <= 1e-9 * std::max(std::abs(x), std::abs(y));
+    };
+    const auto lobes = [](const PelletSpec& p) {
+        const auto* lobed = std::get_if<MultilobeShape>(&p.shape);
+        return lobed ? lobed->lobes : 0;
+    };
+    return kind == other.kind && lobes(*this) == lobes(other) && near(diameter, other.diameter) &&
+           near(circle_diameter, other.circle_diameter) &&
+           near(inner_diameter, other.inner_diameter) && near(length, other.length);
+}
+
 std::string allowed_shapes() {
     return fmt::format(
         "sphere (the default); cylinder:D,L (a cylinder of diameter D and length L); "
@@ -123,8 +146,10 @@ std::string allowed_shapes() {
         "trilobe:DL,DC,L (three cylinders of diameter DL, their axes on a circle of diameter "
         "DC, 0 < DC <= DL); multilobe:N,DL,DC,L (N = 2 to 8 such lobes); each length > 0 and "
         "at most {:g}, L / D (L / DL) from {:g} to {:g}; or spherocylinder:D,L (a cylinder of "
-        "diameter D and length L capped by two hemispheres, L >= 0, L / D at most {:g})",
-        max_bore, limits::max_length, min_aspect, max_aspect, max_aspect);
+        "diameter D and length L capped by two hemispheres, L >= 0, L / D at most {:g}); the "
+        "volume-equivalent diameter d_v from {:g} to {:g}",
+        max_bore, limits::max_length, min_aspect, max_aspect, max_aspect, limits::min_diameter,
+        limits::max_diameter);
 }
 
 PreparedPellets prepare_pellets(const PelletRequest& request) {
