@@ -15,6 +15,7 @@
 #include "packbed/container.hpp"
 #include "packbed/quaternion.hpp"
 #include "packbed/spherocylinder_shape.hpp"
+#include "packbed/volume.hpp"
 #include "rotations.hpp"
 
 using namespace packbed;
@@ -249,6 +250,33 @@ TEST(SpherocylinderShape, VolumeCutByAWallByClosedFormsAndAGrid) {
     // The volume from the wall: the tube shrunk by 0.2 (a shell's outer part).
     EXPECT_NEAR(rod.volume_from_wall(tube, 0, 0.2, p, 0.8, 5.0),
                 grid_volume(p, Container::tube(2.6), 0.8, 5.0, 140), 4e-3 * whole);
+}
+
+TEST(SpherocylinderShape, CapsInATubeMakeTheSphereTheWallCuts) {
+    // L = 0: the two caps are a ball of radius 0.5, whatever the turn that parts them; its
+    // volume in a tube and a slab against the sphere's own (volume.hpp, no code shared with
+    // the caps' sections), cut by the wall and by the slab, the flat faces upright, level and
+    // turned, the ball's centre inside the tube and beyond its wall.
+    const SpherocylinderShape ball{0.5, 0.0};
+    const Container tube = Container::tube(3.0);
+    const std::vector<Quaternion> turns{{},
+                                        along_x,
+                                        rotation_by(Vec3{0.33, -1.1, 0.44}),
+                                        rotation_by(Vec3{1e-9, 0.0, 0.0}),
+                                        rotation_by(Vec3{0.5 * pi - 1e-7, 0.0, 0.0})};
+    int cut = 0;
+    for (const Vec3& centre :
+         {Vec3{1.3, 0.0, 1.0}, Vec3{0.9, 1.0, 1.0}, Vec3{-1.6, 0.2, 0.8}, Vec3{0.0, 1.2, 1.3}})
+        for (const Quaternion& turn : turns)
+            for (const auto& [low, high] : {std::pair{0.0, 5.0}, std::pair{0.8, 1.1}}) {
+                const double exact = sphere_volume_in_cylinder_slab(centre, 0.5, 1.5, low, high);
+                cut += exact < 0.99 * ball.volume(1.0) ? 1 : 0;
+                EXPECT_NEAR(ball.volume_in(tube, at(centre, turn), low, high), exact, 1e-9)
+                    << centre.x << " " << centre.y << " " << low;
+                EXPECT_NEAR(ball.volume_from_wall(tube, 0, 0.2, at(centre, turn), low, high),
+                            sphere_volume_in_cylinder_slab(centre, 0.5, 1.3, low, high), 1e-9);
+            }
+    EXPECT_EQ(cut, 40); // every case cut by the wall or the slab
 }
 
 TEST(SpherocylinderShape, SurfaceIsClosedOutwardAndInside) {

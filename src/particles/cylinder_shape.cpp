@@ -54,17 +54,6 @@ void ccd_first_direction(const void* a, const void* b, ccd_vec3_t* out) {
         ccdVec3Set(out, 1.0, 0.0, 0.0);
 }
 
-/// f(a, b) for each piece [a, b] of the turn [0, 2 pi] between the angles `cuts` (each in
-/// [0, 2 pi]), in order.
-template <class F> void for_each_arc(std::vector<double> cuts, F&& f) {
-    cuts.push_back(0.0);
-    cuts.push_back(2.0 * pi);
-    std::sort(cuts.begin(), cuts.end());
-    for (std::size_t k = 0; k + 1 < cuts.size(); ++k)
-        if (cuts[k + 1] > cuts[k])
-            f(cuts[k], cuts[k + 1]);
-}
-
 /// The area of the section at height z of a cylinder (radius r, half-length h, frame f, centre
 /// c) inside the disc of radius `radius` about the z axis, in closed form.
 /// - An upright axis: the section is a disc of radius r (or nothing), its lens with the disc.
@@ -141,23 +130,41 @@ double section_in_disc(const Frame& f, const Vec3& c, double r, double h, double
     // meet = (big cos - dx)^2 + (r sin - dy)^2 - radius^2
     //      = (big^2 - r^2) cos(2 theta) / 2 - 2 big dx cos - 2 r dy sin + const.
     // meet and its derivative from one sine and cosine of the angle.
+    // With its second and third derivatives:
+    // meet'' = -2 A cos(2 theta) + 2 big dx cos + 2 r dy sin,
+    // meet''' = 4 A sin(2 theta) - 2 big dx sin + 2 r dy cos, A = big^2 - r^2.
     struct Value {
-        double f, df;
+        double f, df, d2, d3;
     };
+    const double a2 = big * big - r * r, bx = 2.0 * big * dx, ry = 2.0 * r * dy;
     const auto at = [&](double cos_t, double sin_t) {
         const double x = big * cos_t - dx, y = r * sin_t - dy;
-        return Value{x * x + y * y - radius * radius, 2.0 * (r * cos_t * y - big * sin_t * x)};
+        const double cos2 = (cos_t - sin_t) * (cos_t + sin_t), sin2 = 2.0 * sin_t * cos_t;
+        return Value{x * x + y * y - radius * radius, 2.0 * (r * cos_t * y - big * sin_t * x),
+                     -2.0 * a2 * cos2 + bx * cos_t + ry * sin_t,
+                     4.0 * a2 * sin2 - bx * sin_t + ry * cos_t};
     };
     const auto meet = [&](double theta) { return at(std::cos(theta), std::sin(theta)); };
-    // A bound on |meet''|: about an interval's middle m, meet differs from its tangent there by
-    // at most second w^2 / 8 (w its width), so the interval holds no root where |meet(m)|
-    // exceeds |meet'(m)| w / 2 + second w^2 / 8, and at most one where meet' keeps its sign
-    // (|meet'(m)| > second w / 2), found by Newton's steps kept inside the bracket (halving it
-    // where a step would leave it) where the ends' signs differ. Others are halved: a pellet
-    // that pokes a little through the wall meets it twice within a small angle, between any
-    // fixed samples. (A bounded count of halvings: a circle that is the ellipse itself has
-    // meet = 0 throughout.)
-    const double second = 2.0 * std::abs(big * big - r * r) + 2.0 * std::hypot(big * dx, r * dy);
+    // A bound on |meet''| over an interval of width w about its middle m: the least of its
+    // amplitudes' sum, `second`, and Taylor's |meet''(m)| + |meet'''(m)| w / 2 + fourth w^2 / 8,
+    // `fourth` the amplitudes' bound on |meet''''| (with a margin of 1e-12 second for the
+    // rounding of meet''(m)). Taylor's is far the smaller near the tip of a long ellipse (a
+    // pellet lying 1e-6 from level: big 4.6e5 r, where the cos(2 theta) and cos terms of meet''
+    // cancel; there `second` alone had each section halved thousands of times). meet differs
+    // from its tangent at m by at most that bound times w^2 / 8, so the interval holds no root
+    // where |meet(m)| exceeds |meet'(m)| w / 2 + bound w^2 / 8, and at most one where meet'
+    // keeps its sign (|meet'(m)| > bound w / 2), found by Newton's steps kept inside the bracket
+    // (halving it where a step would leave it) where the ends' signs differ. Others are halved:
+    // a pellet that pokes a little through the wall meets it twice within a small angle,
+    // between any fixed samples. (A bounded count of halvings: a circle that is the ellipse
+    // itself has meet = 0 throughout.)
+    const double amplitude = std::hypot(bx, ry);
+    const double second = 2.0 * std::abs(a2) + amplitude;
+    const double fourth = 8.0 * std::abs(a2) + amplitude;
+    const auto curvature = [&](const Value& m, double w) {
+        return std::min(second, std::abs(m.d2) + 0.5 * std::abs(m.d3) * w + 0.125 * fourth * w * w +
+                                    1e-12 * second);
+    };
     std::vector<double> crossings; // ellipse angles
     const auto root = [&](double lo, double hi, double flo, double x, Value val) {
         for (int it = 0; it < 100 && val.f != 0.0 && hi - lo > 1e-15; ++it) {
@@ -191,10 +198,10 @@ double section_in_disc(const Frame& f, const Vec3& c, double r, double h, double
             return;
         const double width = hi - lo, mid = 0.5 * (lo + hi);
         const bool change = (flo < 0.0) != (fhi < 0.0);
-        if (!change &&
-            std::abs(m.f) > 0.5 * std::abs(m.df) * width + 0.125 * second * width * width)
+        const double bound = curvature(m, width);
+        if (!change && std::abs(m.f) > 0.5 * std::abs(m.df) * width + 0.125 * bound * width * width)
             return;
-        if (std::abs(m.df) > 0.5 * second * width || depth >= 48 || --budget < 0) {
+        if (std::abs(m.df) > 0.5 * bound * width || depth >= 48 || --budget < 0) {
             if (change)
                 root(lo, hi, flo, mid, m);
             return;
@@ -233,7 +240,7 @@ double section_in_disc(const Frame& f, const Vec3& c, double r, double h, double
                 cuts.push_back(theta);
                 cuts.push_back(2.0 * pi - theta);
             }
-        for_each_arc(cuts, [&](double t1, double t2) {
+        detail::for_each_arc(cuts, [&](double t1, double t2) {
             const double mid = 0.5 * (t1 + t2);
             const double x = big * std::cos(mid), y = r * std::sin(mid);
             if (in_strip(x) && in_disc(x, y)) { // the segment, then the chord about the centre
@@ -277,7 +284,7 @@ double section_in_disc(const Frame& f, const Vec3& c, double r, double h, double
         for (double& phi : cuts)
             if (phi < 0.0)
                 phi += 2.0 * pi;
-        for_each_arc(cuts, [&](double p1, double p2) {
+        detail::for_each_arc(cuts, [&](double p1, double p2) {
             const double mid = 0.5 * (p1 + p2);
             const double x = dx + radius * std::cos(mid), y = dy + radius * std::sin(mid);
             if (in_strip(x) && in_ellipse(x, y))

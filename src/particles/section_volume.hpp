@@ -52,6 +52,17 @@ double integrate_with_floor(F&& f, double a, double b, unsigned depth, double to
     return piece(piece, a, b, depth, 0.0, floor);
 }
 
+/// f(a, b) for each piece [a, b] of the turn [0, 2 pi] between the angles `cuts` (each in
+/// [0, 2 pi]), in order.
+template <class F> void for_each_arc(std::vector<double> cuts, F&& f) {
+    cuts.push_back(0.0);
+    cuts.push_back(2.0 * std::numbers::pi);
+    std::sort(cuts.begin(), cuts.end());
+    for (std::size_t k = 0; k + 1 < cuts.size(); ++k)
+        if (cuts[k + 1] > cuts[k])
+            f(cuts[k], cuts[k + 1]);
+}
+
 /// A pellet's body frame in the bed: its axis and two directions across it.
 struct Frame {
     Vec3 e1, e2, axis;

@@ -3,12 +3,15 @@
 #include <algorithm>
 #include <cmath>
 #include <numbers>
+#include <optional>
+#include <utility>
 #include <vector>
 
 #include <boost/math/quadrature/gauss_kronrod.hpp>
 
 #include "packbed/box.hpp"
 #include "packbed/cylinder_shape.hpp"
+#include "packbed/volume.hpp"
 #include "section_volume.hpp"
 
 namespace packbed {
@@ -78,6 +81,121 @@ double cap_in_slab(const Frame& f, const Vec3& centre, double r, double base, do
     };
     using Kronrod = boost::math::quadrature::gauss_kronrod<double, 15>;
     return Kronrod::integrate(area, 0.0, r, 10, 1e-12);
+}
+
+/// The area of the part of the disc of radius ra about a (in a plane) on the side n . (p - a)
+/// <= k of a line (n a unit vector) that lies inside the disc of radius rb about the origin:
+/// one horizontal section of a cap in a tube. In closed form by Green's theorem, the integral
+/// of (x dy - y dx) / 2 about the origin over the boundary of the region, counter-clockwise:
+/// the arcs of each circle that lie inside the other circle and on the line's side (each
+/// circle split at its crossings with the other and with the line, each arc tested at its
+/// middle), (ra^2 dphi + ra (a_x d sin - a_y d cos)) / 2 and rb^2 dphi / 2; and the line's
+/// segment inside both discs, from P to Q along (-n_y, n_x) (the region on its left),
+/// (P_x Q_y - P_y Q_x) / 2.
+double cap_section_in_disc(double ax, double ay, double ra, double nx, double ny, double k,
+                           double rb) {
+    if (!(ra > 0.0) || k <= -ra)
+        return 0.0;
+    const double d = std::hypot(ax, ay);
+    if (d >= ra + rb)
+        return 0.0;
+    if (k >= ra)
+        return disk_intersection_area(ra, rb, d);
+    // The arcs of a circle between its cut angles (taken into [0, 2 pi)), each as f(from, to).
+    const auto arcs = [](std::vector<double>& cuts, auto&& f) {
+        for (double& phi : cuts)
+            phi = phi < 0.0 ? phi + 2.0 * pi : (phi >= 2.0 * pi ? phi - 2.0 * pi : phi);
+        detail::for_each_arc(std::move(cuts), f);
+    };
+    const double phi_n = std::atan2(ny, nx), phi_a = std::atan2(ay, ax);
+    const auto in_half = [&](double x, double y) { return nx * (x - ax) + ny * (y - ay) <= k; };
+    double area = 0.0;
+    // Circle a: the line at cos(phi - phi_n) = k / ra, circle b at cos(phi - phi_a) =
+    // (rb^2 - d^2 - ra^2) / (2 ra d).
+    {
+        const double across = std::acos(std::clamp(k / ra, -1.0, 1.0));
+        std::vector<double> cuts{phi_n - across, phi_n + across};
+        if (d > 0.0)
+            if (const double c = (rb * rb - d * d - ra * ra) / (2.0 * ra * d); std::abs(c) < 1.0) {
+                const double t = std::acos(c);
+                cuts.insert(cuts.end(), {phi_a - t, phi_a + t});
+            }
+        arcs(cuts, [&](double p1, double p2) {
+            const double m = 0.5 * (p1 + p2);
+            const double x = ax + ra * std::cos(m), y = ay + ra * std::sin(m);
+            if (x * x + y * y <= rb * rb && in_half(x, y))
+                area += 0.5 * (ra * ra * (p2 - p1) + ra * (ax * (std::sin(p2) - std::sin(p1)) -
+                                                           ay * (std::cos(p2) - std::cos(p1))));
+        });
+    }
+    // Circle b: the line at cos(theta - phi_n) = (k + n . a) / rb, circle a at
+    // cos(theta - phi_a) = (rb^2 + d^2 - ra^2) / (2 rb d).
+    {
+        std::vector<double> cuts;
+        if (const double c = (k + nx * ax + ny * ay) / rb; std::abs(c) < 1.0) {
+            const double t = std::acos(c);
+            cuts.insert(cuts.end(), {phi_n - t, phi_n + t});
+        }
+        if (d > 0.0)
+            if (const double c = (rb * rb + d * d - ra * ra) / (2.0 * rb * d); std::abs(c) < 1.0) {
+                const double t = std::acos(c);
+                cuts.insert(cuts.end(), {phi_a - t, phi_a + t});
+            }
+        arcs(cuts, [&](double p1, double p2) {
+            const double m = 0.5 * (p1 + p2);
+            const double x = rb * std::cos(m), y = rb * std::sin(m);
+            if ((x - ax) * (x - ax) + (y - ay) * (y - ay) <= ra * ra && in_half(x, y))
+                area += 0.5 * rb * rb * (p2 - p1);
+        });
+    }
+    // The line: from its foot p0 = a + k n along t = (-n_y, n_x), within sqrt(ra^2 - k^2) of
+    // p0 (circle a) and where |p0 + tau t| <= rb (circle b).
+    {
+        const double x0 = ax + k * nx, y0 = ay + k * ny, tx = -ny, ty = nx;
+        const double half = std::sqrt(std::max(0.0, (ra - k) * (ra + k)));
+        const double b = x0 * tx + y0 * ty, disc = b * b - (x0 * x0 + y0 * y0 - rb * rb);
+        if (disc > 0.0) {
+            const double lo = std::max(-half, -b - std::sqrt(disc));
+            const double hi = std::min(half, -b + std::sqrt(disc));
+            if (hi > lo)
+                area += 0.5 * ((x0 + lo * tx) * (y0 + hi * ty) - (y0 + lo * ty) * (x0 + hi * tx));
+        }
+    }
+    return area;
+}
+
+/// The volume of a cap (the half of the ball of radius r about q on the side of the unit
+/// vector w) inside the tube of radius `radius` about the z axis between two heights: its
+/// horizontal sections (cap_section_in_disc: a disc cut by the line where the flat face
+/// meets the plane) integrated over the height by adaptive Gauss-Kronrod (15 points, relative
+/// tolerance 1e-9 above an absolute floor `floor`, ten halvings) on the pieces between the
+/// heights where the section changes its kind (the ball's top and bottom, the face's rim's
+/// highest and lowest points).
+double cap_in_tube(const Vec3& q, const Vec3& w, double r, double radius, double z_low,
+                   double z_high, double floor) {
+    const double low = std::max(z_low, q.z - r), high = std::min(z_high, q.z + r);
+    if (!(high > low))
+        return 0.0;
+    const double g = std::hypot(w.x, w.y);
+    const double nx = g > 0.0 ? -w.x / g : 1.0, ny = g > 0.0 ? -w.y / g : 0.0;
+    // At height z the cap's side of its face is w_xy . (p - q_xy) >= -w_z (z - q_z), that is
+    // n . (p - q_xy) <= w_z (z - q_z) / g; a level face (g = 0) keeps all or nothing.
+    const auto area = [&](double z) {
+        const double dz = z - q.z;
+        const double rho = std::sqrt(std::max(0.0, (r - dz) * (r + dz)));
+        const double k = g > 0.0 ? w.z * dz / g : (w.z * dz >= 0.0 ? rho : -rho);
+        return cap_section_in_disc(q.x, q.y, rho, nx, ny, k, radius);
+    };
+    std::vector<double> cuts{low, high};
+    for (const double z : {q.z - r * g, q.z + r * g})
+        if (z > low && z < high)
+            cuts.push_back(z);
+    std::sort(cuts.begin(), cuts.end());
+    double total = 0.0;
+    for (std::size_t j = 0; j + 1 < cuts.size(); ++j)
+        if (cuts[j + 1] > cuts[j])
+            total += detail::integrate_with_floor(area, cuts[j], cuts[j + 1], 10, 1e-9, floor);
+    return total;
 }
 
 } // namespace
@@ -173,8 +291,19 @@ double SpherocylinderShape::volume_in(const Container& c, const Placement& p, do
                cap_in_slab(f, p.position, r, h, 1.0, low, high) +
                cap_in_slab(f, p.position, r, -h, -1.0, low, high);
     }
-    // The cylinder's own (closed-form sections in a tube, the region's integral otherwise),
-    // and each cap's sections by the region's integral (8 pieces along the axis, 32 about it,
+    const double side =
+        half_length > 0.0 ? CylinderShape{radius, half_length}.volume_in(c, p, z_low, z_high) : 0.0;
+    // In a tube, each cap's sections in closed form (cap_in_tube; the floor 1e-13 of the
+    // pellet's volume, as the cylinder's).
+    if (const std::optional<double> tube = c.tube_diameter()) {
+        const double floor = 1e-13 * volume(p.size);
+        return side +
+               cap_in_tube(p.position + h * f.axis, f.axis, r, 0.5 * *tube, low, high, floor) +
+               cap_in_tube(p.position - h * f.axis, -1.0 * f.axis, r, 0.5 * *tube, low, high,
+                           floor);
+    }
+    // Elsewhere the cylinder's own (the region's integral), and each cap's sections by the
+    // region's integral (8 pieces along the axis, 32 about it,
     // relative tolerance 1e-8). A cap that barely reaches into the region can be missed in part
     // between the rule's first nodes: on 12 placements cut by a tube's or a box's wall, the
     // caps were at most 1.7e-6 d_v^3 (3e-6 of the pellet) below the same integral from 32 and
@@ -190,8 +319,6 @@ double SpherocylinderShape::volume_in(const Container& c, const Placement& p, do
             },
             whole, 32);
     };
-    const double side =
-        half_length > 0.0 ? CylinderShape{radius, half_length}.volume_in(c, p, z_low, z_high) : 0.0;
     return side + cap(h, h + r, h) + cap(-h - r, -h, -h);
 }
 
