@@ -501,6 +501,18 @@ INSTANTIATE_TEST_SUITE_P(
         naming("generate --shape cylinder:1,1 --friction -0.1", {"--friction", "-0.1"}),
         naming("generate --shape cylinder:1,1 --container cylinder:1",
                {"--shape", "cylinder:1,1", "does not fit"}),
+        // A pellet's fit in the units the container was given in: --container's lengths (the
+        // bounding diameter of cylinder:1,1 is sqrt(2); 1e4 d_v = 11447.1), or d_v for -a.
+        exact("generate --shape cylinder:1,1 --container box:0.5,3",
+              "packbed generate: --shape: 'cylinder:1,1' does not fit in box:0.5,3: widths from "
+              "1.41421 (the pellet's bounding diameter) to 11447.1"),
+        exact("generate --shape cylinder:1,1 --container periodic:0.5,3",
+              "packbed generate: --shape: 'cylinder:1,1' does not fit in periodic:0.5,3: widths "
+              "from 2.82843 (twice the pellet's bounding diameter, for the minimum image) to "
+              "11447.1"),
+        exact("generate --shape cylinder:1,1 -a 1.1",
+              "packbed generate: --shape: 'cylinder:1,1' does not fit in a tube of a = 1.1: a tube "
+              "diameter from 1.23543 d_v (the pellet's bounding diameter) to 10000 d_v"),
         naming("generate --container annulus:10", {"--container", "annulus:10", "annulus:D,DI"}),
         naming("generate --container annulus:4,6", {"--container", "annulus:4,6", "DI < D"}),
         exact("generate --container box:6,6 --aspect-ratio 5",

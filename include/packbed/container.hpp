@@ -154,7 +154,7 @@ public:
     /// periodic cell two (the minimum image), an annulus whose gap (D - DI) / 2 holds one
     /// sphere; no width above 10^4 Dp. The answer is what is allowed, for a message naming
     /// the container.
-    std::string fit_problem(double largest) const;
+    std::string fit_problem(double largest, const FitWords& words = {}) const;
     /// The height of a bed of spheres whose diameters cubed (in Dp) add to `solid`, at void
     /// fraction e0: (pi / 6) solid / (A (1 - e0)); the paper's eq. (6) for a tube.
     double fill_height(double solid, double e0) const;

@@ -35,6 +35,16 @@ struct WallContact {
 };
 
 /// The rectangle [x_low, x_high] x [y_low, y_high] a container's cross-section lies in.
+/// How a container's fit problem (Container::fit_problem) names sizes: a size of 1 is `scale`
+/// of the text's unit, written after each number as `unit`, and the particle whose size is
+/// checked is `particle`. Spheres': Dp and the largest sphere; a pellet's: the length units of
+/// its --shape and its bounding sphere.
+struct FitWords {
+    double scale = 1.0;
+    std::string_view unit = " Dp";
+    std::string_view particle = "the largest sphere";
+};
+
 struct Rectangle {
     double x_low = 0.0;
     double x_high = 0.0;
@@ -236,7 +246,7 @@ struct FillWindow {
     std::optional<Periods> periods() const;                                                        \
     HydraulicDiameter hydraulic_diameter() const;                                                  \
     BoxMargin box_margin() const;                                                                  \
-    std::string fit_problem(double largest) const;                                                 \
+    std::string fit_problem(double largest, const FitWords& words = {}) const;                     \
     double fill_height(double solid, double e0) const;                                             \
     Vec3 uniform_point(double radius, double u, double v, double z) const;                         \
     std::optional<double> top() const;                                                             \

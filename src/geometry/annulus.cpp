@@ -96,12 +96,16 @@ BoxMargin Annulus::box_margin() const {
     return {m_outer, "the tube's radius/100", spec()};
 }
 
-std::string Annulus::fit_problem(double largest) const {
+std::string Annulus::fit_problem(double largest, const FitWords& words) const {
     const double outer = 2.0 * m_outer, inner = 2.0 * m_inner;
-    if (!(outer <= detail::widest && inner >= 0.0 && outer - inner >= 2.0 * largest))
-        return fmt::format("D up to {:g} Dp and DI <= D - {:.6g} Dp: the gap between rod and "
-                           "tube, (D - DI) / 2, at least the largest sphere ({:.6g} Dp)",
-                           detail::widest, 2.0 * largest, largest);
+    if (!(outer <= detail::widest && inner >= 0.0 && outer - inner >= 2.0 * largest)) {
+        const double s = words.scale;
+        const std::string_view u = words.unit;
+        return fmt::format("D up to {:g}{} and DI <= D - {:.6g}{}: the gap between rod and "
+                           "tube, (D - DI) / 2, at least {} ({:.6g}{})",
+                           detail::widest * s, u, 2.0 * largest * s, u, words.particle, largest * s,
+                           u);
+    }
     return {};
 }
 

@@ -76,8 +76,8 @@ BoxMargin Box::box_margin() const {
     return {depth(), "a hundredth of half the narrower width", spec()};
 }
 
-std::string Box::fit_problem(double largest) const {
-    return detail::widths_problem(bounds(), largest, "the largest sphere");
+std::string Box::fit_problem(double largest, const FitWords& words) const {
+    return detail::widths_problem(bounds(), largest, words.particle, words);
 }
 
 double Box::fill_height(double solid, double e0) const {

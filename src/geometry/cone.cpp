@@ -89,12 +89,12 @@ BoxMargin Cone::box_margin() const {
     return {m_reach, "a hundredth of its widest radius", spec()};
 }
 
-std::string Cone::fit_problem(double largest) const {
+std::string Cone::fit_problem(double largest, const FitWords& words) const {
     const double low = 2.0 * std::min(m_rb, m_rt), high = 2.0 * m_reach;
     if (!(low >= largest && high <= detail::widest))
-        return fmt::format("floor and top diameters from {:.6g} Dp (the largest sphere) to {:g} "
-                           "Dp",
-                           largest, detail::widest);
+        return fmt::format("floor and top diameters from {:.6g}{} ({}) to {:g}{}",
+                           largest * words.scale, words.unit, words.particle,
+                           detail::widest * words.scale, words.unit);
     return {};
 }
 

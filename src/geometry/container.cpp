@@ -43,8 +43,8 @@ BoxMargin Container::box_margin() const {
     return ask(m_shape, [](const auto& s) { return s.box_margin(); });
 }
 
-std::string Container::fit_problem(double largest) const {
-    return ask(m_shape, [&](const auto& s) { return s.fit_problem(largest); });
+std::string Container::fit_problem(double largest, const FitWords& words) const {
+    return ask(m_shape, [&](const auto& s) { return s.fit_problem(largest, words); });
 }
 
 double Container::fill_height(double solid, double e0) const {

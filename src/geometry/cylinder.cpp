@@ -66,11 +66,11 @@ BoxMargin Cylinder::box_margin() const {
     return {m_radius, "Rt/100", fmt::format("radius {:.9g}", m_radius)};
 }
 
-std::string Cylinder::fit_problem(double largest) const {
+std::string Cylinder::fit_problem(double largest, const FitWords& words) const {
     const double a = 2.0 * m_radius;
     if (!(a >= largest && a <= detail::widest))
-        return fmt::format("a tube diameter from {:.6g} Dp (the largest sphere) to {:g} Dp",
-                           largest, detail::widest);
+        return fmt::format("a tube diameter from {:.6g}{} ({}) to {:g}{}", largest * words.scale,
+                           words.unit, words.particle, detail::widest * words.scale, words.unit);
     return {};
 }
 

@@ -39,9 +39,10 @@ BoxMargin Periodic::box_margin() const {
 
 /// Two spheres across, so that two spheres in contact have one nearest copy (the minimum
 /// image).
-std::string Periodic::fit_problem(double largest) const {
+std::string Periodic::fit_problem(double largest, const FitWords& words) const {
     return detail::widths_problem(bounds(), 2.0 * largest,
-                                  "twice the largest sphere, for the minimum image");
+                                  fmt::format("twice {}, for the minimum image", words.particle),
+                                  words);
 }
 
 double Periodic::fill_height(double solid, double e0) const {

@@ -74,11 +74,13 @@ inline std::string widths_record_allowed() {
                        limits::max_length);
 }
 
-/// A box's or a periodic cell's fit: widths from `least` to `widest` Dp.
-inline std::string widths_problem(const Rectangle& b, double least, std::string_view why) {
+/// A box's or a periodic cell's fit: widths from `least` to `widest` (in `words`' unit).
+inline std::string widths_problem(const Rectangle& b, double least, std::string_view why,
+                                  const FitWords& words) {
     const double lx = b.x_high - b.x_low, ly = b.y_high - b.y_low;
     if (!(lx >= least && ly >= least && lx <= widest && ly <= widest))
-        return fmt::format("widths from {:.6g} Dp ({}) to {:g} Dp", least, why, widest);
+        return fmt::format("widths from {:.6g}{} ({}) to {:g}{}", least * words.scale, words.unit,
+                           why, widest * words.scale, words.unit);
     return {};
 }
 

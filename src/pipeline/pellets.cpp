@@ -175,10 +175,18 @@ PreparedPellets prepare_pellets(const PelletRequest& request) {
             throw InvalidInput(container_not_allowed("--container", request.container));
         p.container = c->scaled(1.0 / dv);
     }
-    if (const auto largest = p.container.fit_problem(2.0 * bounding_radius(p.shape, 0.5));
-        !largest.empty())
-        throw InvalidInput(fmt::format("--shape: '{}' does not fit in {}: {}",
-                                       printable(request.shape), p.container.describe(), largest));
+    // The sizes in the units the container was given in: --container's lengths (those of
+    // --shape), or d_v for --aspect-ratio.
+    const bool lengths = !request.container.empty();
+    const FitWords words{lengths ? dv : 1.0, lengths ? "" : " d_v",
+                         "the pellet's bounding diameter"};
+    if (const auto problem = p.container.fit_problem(2.0 * bounding_radius(p.shape, 0.5), words);
+        !problem.empty())
+        throw InvalidInput(
+            fmt::format("--shape: '{}' does not fit in {}: {}", printable(request.shape),
+                        lengths ? printable(request.container)
+                                : fmt::format("a tube of a = {:g}", request.aspect_ratio),
+                        problem));
     p.validate();
     return out;
 }
