@@ -231,14 +231,15 @@ Bed generate_pellets(std::optional<double> aspect_ratio,
                      std::optional<long long> threads, const py::object& progress,
                      const std::optional<std::filesystem::path>& out, bool force,
                      const std::string& shape, double friction, double wall_friction,
+                     std::optional<long long> max_iterations,
                      const std::vector<std::pair<std::string, bool>>& sphere_only) {
     namespace range = option_range;
     for (const auto& [name, given] : sphere_only)
         if (given)
             throw InvalidInput(fmt::format(
                 "{} is not allowed with shape='{}'; allowed with a pellet: aspect_ratio, "
-                "container, particles, seed, band_clearance, friction, wall_friction, threads, "
-                "progress, out, force (docs/generate.md, \"Pellets\")",
+                "container, particles, seed, band_clearance, friction, wall_friction, "
+                "max_iterations, threads, progress, out, force (docs/generate.md, \"Pellets\")",
                 name, printable(std::string_view(shape).substr(0, 80))));
     if (aspect_ratio && container)
         throw InvalidInput(fmt::format("--aspect-ratio {} and --container {} are both given; "
@@ -254,6 +255,8 @@ Bed generate_pellets(std::optional<double> aspect_ratio,
     request.band_clearance = check_option("band-clearance", band_clearance, range::band_clearance);
     request.friction = check_option("friction", friction, range::friction);
     request.wall_friction = check_option("wall-friction", wall_friction, range::friction);
+    if (max_iterations)
+        request.max_steps = check_option("max-iterations", *max_iterations, range::max_iterations);
     const PreparedPellets prepared = prepare_pellets(request);
     std::optional<OutputDirectory> directory;
     if (out)
@@ -314,6 +317,7 @@ Bed generate(std::optional<double> aspect_ratio, const std::optional<std::string
     if (shape != "sphere")
         return generate_pellets(aspect_ratio, container, particles, seed, band_clearance, threads,
                                 progress, out, force, shape, friction, wall_friction,
+                                max_iterations,
                                 {{"diameter", diameter != defaults.diameter},
                                  {"sizes", sizes != "mono"},
                                  {"fractions", fractions != "volume"},
@@ -332,7 +336,6 @@ Bed generate(std::optional<double> aspect_ratio, const std::optional<std::string
                                  {"layer_height", layer_height != defaults.layer_height},
                                  {"target_void_fraction", target_void_fraction.has_value()},
                                  {"checkpoint", checkpoint.has_value()},
-                                 {"max_iterations", max_iterations.has_value()},
                                  {"engine", engine != to_string(Engine::packbed)},
                                  {"ranks", ranks != 1},
                                  {"mpi_command", mpi_command.has_value()},
@@ -1215,7 +1218,7 @@ instead) and lmp (the LAMMPS program); with out, LAMMPS's files are kept in out/
 shape: 'sphere', or a pellet ('cylinder:D,L', 'ring:D,DI,L', 'trilobe:DL,DC,L',
 'multilobe:N,DL,DC,L', 'spherocylinder:D,L') for a bed of pellets as `packbed generate --shape` makes it (docs/generate.md, "Pellets"): with aspect_ratio (over the pellet's volume-equivalent
 diameter) or container (in the unit of D and L), particles, seed, band_clearance, friction,
-wall_friction, threads, progress, out and force; the Bed's orientations hold each pellet's quaternion, and write,
+wall_friction, max_iterations, threads, progress, out and force; the Bed's orientations hold each pellet's quaternion, and write,
 analyze, export and voxelize refuse it (out= writes its files for the command line).
 
 Returns a Bed (same seed and options: the same bits as the command line). Raises ValueError

@@ -496,8 +496,8 @@ INSTANTIATE_TEST_SUITE_P(
               "packbed generate: --target-void-fraction is not allowed with --shape "
               "cylinder:1,1; allowed with a pellet: --aspect-ratio, --container, --particles, "
               "--seed, --shape, --out, --force, --threads, --quiet, --band-clearance, "
-              "--no-analysis, --config, --friction, --wall-friction (docs/generate.md, "
-              "\"Pellets\")"),
+              "--no-analysis, --config, --friction, --wall-friction, --max-iterations "
+              "(docs/generate.md, \"Pellets\")"),
         naming("generate --shape cylinder:1,1 --friction -0.1", {"--friction", "-0.1"}),
         naming("generate --shape cylinder:1,1 --container cylinder:1",
                {"--shape", "cylinder:1,1", "does not fit"}),

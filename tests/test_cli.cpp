@@ -186,6 +186,28 @@ TEST(Cli, AFrictionalPelletBedsDemInputKeepsTheFriction) {
     EXPECT_NE(input.find("the bed's own"), std::string::npos) << input;
 }
 
+TEST(Cli, APelletBedGivesUpAfterMaxIterations) {
+    // 12 spherocylinders: --max-iterations at the steps the bed takes ends with the same bytes
+    // as without it; one step fewer gives up (exit 1, no output).
+    const fs::path whole = scratch("rods-whole"), capped = scratch("rods-capped"),
+                   short_of = scratch("rods-short") / "bed";
+    const std::string bed = "generate --shape spherocylinder:1,1 -a 3 -n 12 -s 3 --quiet ";
+    ASSERT_EQ(packbed(bed + "--out " + whole.string()).status, 0);
+    const auto steps = nlohmann::json::parse(slurp(whole / "summary.json"))["steps"].get<long>();
+    ASSERT_GT(steps, 100);
+    const Outcome at =
+        packbed(bed + "--max-iterations " + std::to_string(steps) + " --out " + capped.string());
+    ASSERT_EQ(at.status, 0) << at.err;
+    EXPECT_EQ(slurp(whole / "particles.csv"), slurp(capped / "particles.csv"));
+    const Outcome below = packbed(bed + "--max-iterations " + std::to_string(steps - 1) +
+                                  " --out " + short_of.string());
+    EXPECT_EQ(below.status, 1) << below.err;
+    EXPECT_NE(below.err.find("did not settle within " + std::to_string(steps - 1) + " steps"),
+              std::string::npos)
+        << below.err;
+    EXPECT_FALSE(fs::exists(short_of));
+}
+
 TEST(Cli, FrictionalBedInLayersResumesToTheSameBytesAndItsDemInputKeepsTheFriction) {
     // The checkpoint test's bed with friction (mu = 0.3 at spheres, walls and floor): layers,
     // a stop and a resume end in the bytes of the run never stopped; summary.json records the

@@ -56,9 +56,9 @@ struct GenerateOptions {
 
 /// The options a pellet bed takes; every other generate option is the spheres' alone.
 constexpr std::array pellet_options{
-    "--aspect-ratio", "--container", "--particles", "--seed",         "--shape",
-    "--out",          "--force",     "--threads",   "--quiet",        "--band-clearance",
-    "--no-analysis",  "--config",    "--friction",  "--wall-friction"};
+    "--aspect-ratio", "--container", "--particles", "--seed",          "--shape",
+    "--out",          "--force",     "--threads",   "--quiet",         "--band-clearance",
+    "--no-analysis",  "--config",    "--friction",  "--wall-friction", "--max-iterations"};
 
 /// --shape PELLET: a bed of pellets (docs/generate.md, "Pellets").
 int run_pellets(const GenerateOptions& o) {
@@ -81,6 +81,8 @@ int run_pellets(const GenerateOptions& o) {
     request.band_clearance = o.band_clearance;
     request.friction = o.params.friction;
     request.wall_friction = o.params.wall_friction;
+    if (o.app->count("--max-iterations") > 0)
+        request.max_steps = o.params.max_iterations;
     const PreparedPellets prepared = prepare_pellets(request);
     OutputDirectory out(o.out, "--out", OutputKind::directory, o.force);
     const int threads = use_threads(o.threads);

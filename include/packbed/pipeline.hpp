@@ -153,6 +153,8 @@ struct PelletRequest {
     double band_clearance = 1.0;   ///< of the void-fraction band, d_v
     double friction = 0.0;         ///< --friction, between pellets
     double wall_friction = 0.0;    ///< --wall-friction, at the walls and the floor
+    /// --max-iterations: the solver's steps before it gives up (ConvergenceError, exit 1).
+    std::uint64_t max_steps = PelletBedParameters{}.max_steps;
 };
 
 /// A pellet request checked and resolved: the solver's parameters (lengths in d_v).

@@ -167,6 +167,7 @@ PreparedPellets prepare_pellets(const PelletRequest& request) {
     p.shape = pellet->shape;
     p.friction = request.friction;
     p.wall_friction = request.wall_friction;
+    p.max_steps = request.max_steps;
     if (request.container.empty()) {
         p.container = Container::tube(request.aspect_ratio);
     } else {

@@ -406,6 +406,13 @@ def test_a_run_that_does_not_converge_raises_convergence_error(tmp_path):
     assert issubclass(packbed.ConvergenceError, RuntimeError)
 
 
+def test_a_pellet_bed_that_does_not_settle_raises_convergence_error(tmp_path):
+    with pytest.raises(packbed.ConvergenceError, match="within 100 steps"):
+        packbed.generate(shape="spherocylinder:1,1", aspect_ratio=3, particles=12, seed=3,
+                         max_iterations=100, out=str(tmp_path / "rods"))
+    assert not (tmp_path / "rods").exists()
+
+
 def test_progress_is_reported_and_its_exceptions_go_through():
     reports = []
     packbed.generate(particles=50, progress=reports.append)
