@@ -1218,8 +1218,8 @@ instead) and lmp (the LAMMPS program); with out, LAMMPS's files are kept in out/
 shape: 'sphere', or a pellet ('cylinder:D,L', 'ring:D,DI,L', 'trilobe:DL,DC,L',
 'multilobe:N,DL,DC,L', 'spherocylinder:D,L') for a bed of pellets as `packbed generate --shape` makes it (docs/generate.md, "Pellets"): with aspect_ratio (over the pellet's volume-equivalent
 diameter) or container (in the unit of D and L), particles, seed, band_clearance, friction,
-wall_friction, max_iterations, threads, progress, out and force; the Bed's orientations hold each pellet's quaternion, and write,
-analyze, export and voxelize refuse it (out= writes its files for the command line).
+wall_friction, max_iterations, threads, progress, out and force; the Bed's orientations hold each pellet's quaternion, and
+Bed.write, analyze, export and voxelize take it as they take a bed that read() gives.
 
 Returns a Bed (same seed and options: the same bits as the command line). Raises ValueError
 for a bad value (the message names the option, the value and what is allowed),
