@@ -595,18 +595,17 @@ Bed from_arrays(const py::object& centers_given, const std::optional<py::object>
     return bed;
 }
 
-/// The friction between particles the bed's summary records (packbed generate's
-/// parameters.friction, or a pellet bed's friction beside its shape); none where it records
-/// none.
-std::optional<double> bed_friction(const Bed& bed) {
+/// A friction coefficient the bed's summary records, `key` "friction" (between particles) or
+/// "wall_friction" (packbed generate's parameters.KEY, or a pellet bed's KEY beside its
+/// shape); none where it records none.
+std::optional<double> bed_friction(const Bed& bed, const char* key = "friction") {
     if (!bed.summary.is_object())
         return std::nullopt;
-    if (bed.summary.contains("parameters") && bed.summary["parameters"].contains("friction") &&
-        bed.summary["parameters"]["friction"].is_number())
-        return bed.summary["parameters"]["friction"].get<double>();
-    if (bed.summary.contains("shape") && bed.summary.contains("friction") &&
-        bed.summary["friction"].is_number())
-        return bed.summary["friction"].get<double>();
+    if (bed.summary.contains("parameters") && bed.summary["parameters"].contains(key) &&
+        bed.summary["parameters"][key].is_number())
+        return bed.summary["parameters"][key].get<double>();
+    if (bed.summary.contains("shape") && bed.summary.contains(key) && bed.summary[key].is_number())
+        return bed.summary[key].get<double>();
     return std::nullopt;
 }
 
@@ -880,6 +879,7 @@ std::string export_bed_to(const Bed& bed, const std::filesystem::path& out,
     request.container =
         container ? std::optional(container_from_spec("--container", *container)) : bed.container;
     request.friction = bed_friction(bed);
+    request.wall_friction = bed_friction(bed, "wall_friction");
     if (container_height)
         request.container_height =
             check_option("container-height", *container_height, range::container_height);

@@ -11,6 +11,7 @@
 #include <cstring>
 #include <filesystem>
 #include <fstream>
+#include <map>
 #include <numbers>
 #include <set>
 #include <sstream>
@@ -1471,6 +1472,65 @@ TEST(Cli, ExportedLiggghtsSettleRunsInItsContainer) {
         corner = std::max(corner, std::hypot(v[0], v[1]));
     EXPECT_LT(corner, g.radius * 1.003);
     expect_settled(d / "bed.data.liggghts.dump", g, corner);
+}
+
+TEST(Cli, ABedsOwnWallFrictionGoesToItsDemInputs) {
+    // A bed poured with friction 0.3 and walls of 0.1, and the same bed with its summary.json
+    // saying walls of 0.3: the first one's inputs give the walls their own coefficient (LAMMPS
+    // their wall/gran's, LIGGGHTS an atom type of their own, declared in the data file), and
+    // the two settles differ in both programs; the second one's are written as before, one
+    // friction for all.
+    const bool lmp = std::system("command -v lmp >/dev/null 2>&1") == 0;
+    const bool liggghts = std::system("command -v liggghts >/dev/null 2>&1") == 0;
+    if (!lmp || !liggghts)
+        GTEST_SKIP() << "lmp and liggghts (Debian packages lammps, liggghts) are not installed";
+    const fs::path poured = scratch("walls-0.1") / "bed";
+    ASSERT_EQ(packbed("generate -a 4 -n 60 --diameter 0.003 --seed 1 --friction 0.3 "
+                      "--wall-friction 0.1 --quiet --out " +
+                      poured.string())
+                  .status,
+              0);
+    const fs::path same = scratch("walls-0.3") / "bed";
+    fs::create_directories(same);
+    fs::copy_file(poured / "particles.csv", same / "particles.csv");
+    auto summary = nlohmann::json::parse(slurp(poured / "summary.json"));
+    summary["parameters"]["wall_friction"] = 0.3;
+    std::ofstream(same / "summary.json") << summary.dump(2);
+    std::map<std::string, std::string> dumps;
+    for (const std::string walls : {"0.1", "0.3"}) {
+        const fs::path d = walls == "0.1" ? poured : same;
+        for (const std::string program : {"lammps", "liggghts"}) {
+            const Outcome e =
+                packbed("export " + (d / "particles.csv").string() + " --format " + program +
+                        "-data --out " + (d / "bed.data").string() + " -q --force");
+            ASSERT_EQ(e.status, 0) << e.err;
+            const std::string input = slurp(d / ("bed.data." + program + ".in"));
+            const bool own = walls == "0.1";
+            EXPECT_EQ(input.find("variable        wall_friction equal 0.1\n") != std::string::npos,
+                      own)
+                << input;
+            EXPECT_EQ(slurp(d / "bed.data").find("\n2 atom types\n") != std::string::npos,
+                      own && program == "liggghts");
+            const std::string run = program == "lammps" ? "lmp -in bed.data.lammps.in"
+                                                        : "liggghts -in bed.data.liggghts.in";
+            const std::string cmd =
+                "cd " + d.string() + " && stdbuf -oL " + run + " -log none > run.out 2>&1";
+            ASSERT_EQ(std::system(cmd.c_str()), 0) << slurp(d / "run.out");
+            EXPECT_NE(slurp(d / "run.out").find("packbed settle: 60 atoms after 2000 steps"),
+                      std::string::npos)
+                << slurp(d / "run.out");
+            dumps[program + walls] = slurp(d / ("bed.data." + program + ".dump"));
+        }
+    }
+    const auto last = [&](const std::string& run) {
+        const std::vector<DumpFrame> frames = dump_frames(dumps[run]);
+        EXPECT_EQ(frames.size(), 2u) << run;
+        return frames.empty() ? std::vector<std::array<double, 4>>{} : frames.back().spheres;
+    };
+    for (const std::string program : {"lammps", "liggghts"}) {
+        EXPECT_EQ(last(program + "0.1").size(), 60u);
+        EXPECT_NE(last(program + "0.1"), last(program + "0.3")) << program;
+    }
 }
 
 TEST(Cli, ExportedLammpsSettleRunsInItsContainer) {

@@ -3,6 +3,7 @@
 #pragma once
 
 #include <filesystem>
+#include <optional>
 #include <string>
 #include <string_view>
 #include <utility>
@@ -53,8 +54,8 @@ AxisBox bounding_box(const Packing& packing);
 /// line (the comment, a note) is longer than max_data_header_line (or holds a newline)
 std::string lammps_data(const Packing& packing, double density, const AxisBox& box,
                         std::string_view comment, const std::vector<std::string>& notes = {},
-                        const std::vector<std::uint32_t>& types = {},
-                        std::size_t clump_spheres = 0);
+                        const std::vector<std::uint32_t>& types = {}, std::size_t clump_spheres = 0,
+                        std::uint32_t atom_types = 1);
 
 /// The longest header line LAMMPS (2022) and LIGGGHTS (3.8) read whole: both read the data
 /// file's lines into 256-byte buffers, and go on reading the rest of a longer title as a header
@@ -105,6 +106,10 @@ struct DemMaterial {
     double restitution = 0.5;     ///< coefficient of restitution
     double friction = 0.5;        ///< sliding friction coefficient, sphere-sphere and wall
     bool friction_of_bed = false; ///< `friction` is the bed's own (generate --friction)
+    /// The walls' and the floor's, where the bed's differs from `friction` (generate
+    /// --wall-friction); none: `friction`. LAMMPS gives them their own `wall/gran`
+    /// coefficients, LIGGGHTS their own atom type (2, the data file declaring two types).
+    std::optional<double> wall_friction;
 };
 
 /// What the example DEM inputs (LAMMPS, LIGGGHTS) need: a short settle of the bed under

@@ -294,6 +294,9 @@ std::optional<Container> container_beside(const std::filesystem::path& particles
 /// generate's parameters.friction). \return nothing when there is no such file or it records
 /// none. \throws InvalidInput as container_beside
 std::optional<double> friction_beside(const std::filesystem::path& particles);
+/// The walls' and floor's friction recorded beside a particle file (parameters.wall_friction,
+/// a pellet bed's wall_friction), as friction_beside.
+std::optional<double> wall_friction_beside(const std::filesystem::path& particles);
 
 /// The period along z recorded in `summary.json` beside a particle file (a random array's
 /// period_z). \return nothing when there is no such file or it records none.
@@ -408,6 +411,10 @@ struct ExportRequest {
     /// the friction the bed was generated with; none: the one summary.json beside `keep`
     /// records (friction_beside). Above 0, the example DEM input's friction.
     std::optional<double> friction;
+    /// the walls' and floor's friction; none: the one summary.json beside `keep` records
+    /// (wall_friction_beside). Where it differs from the bed's friction, the example DEM
+    /// input's walls have it.
+    std::optional<double> wall_friction;
     std::optional<Container> container; ///< the bed's; none: no wall treatment, no example
     /// the particles' shape (shape_beside, or export --shape); none: spheres. Pellets are
     /// written as surfaces (STL, OBJ, openfoam) with the contacts none or shrink:F

@@ -144,6 +144,9 @@ struct BedSummary {
     /// the friction the bed was generated with (parameters.friction; a pellet bed's friction
     /// beside its shape), when present
     std::optional<double> friction;
+    /// the walls' and floor's friction (parameters.wall_friction; a pellet bed's beside its
+    /// shape), when present
+    std::optional<double> wall_friction;
     /// the period along z of a cell periodic on all six faces (`period_z`, packbed
     /// random-array), when present
     std::optional<double> period_z;

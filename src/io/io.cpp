@@ -48,7 +48,8 @@ AxisBox bounding_box(const Packing& packing) {
 
 std::string lammps_data(const Packing& packing, double density, const AxisBox& box,
                         std::string_view comment, const std::vector<std::string>& notes,
-                        const std::vector<std::uint32_t>& types, std::size_t clump_spheres) {
+                        const std::vector<std::uint32_t>& types, std::size_t clump_spheres,
+                        std::uint32_t atom_types) {
     if (!(std::isfinite(density) && density > 0.0))
         throw InvalidInput(
             fmt::format("density = {} is not allowed; allowed: a number > 0", density));
@@ -82,7 +83,8 @@ std::string lammps_data(const Packing& packing, double density, const AxisBox& b
             ++atoms;
         });
     fmt::memory_buffer out;
-    const std::uint32_t ntypes = types.empty() ? 1u : *std::max_element(types.begin(), types.end());
+    const std::uint32_t ntypes =
+        std::max(atom_types, types.empty() ? 1u : *std::max_element(types.begin(), types.end()));
     fmt::format_to(std::back_inserter(out), "{}\n\n{} atoms\n{} atom types\n\n", header, atoms,
                    ntypes);
     fmt::format_to(std::back_inserter(out), "{} {} xlo xhi\n{} {} ylo yhi\n{} {} zlo zhi\n\n",
@@ -206,6 +208,9 @@ SettleNumbers settle_numbers(const DemSettle& s) {
     if (!(m.friction >= 0.0 && std::isfinite(m.friction)))
         throw InvalidInput(
             fmt::format("friction = {} is not allowed; allowed: a number >= 0", m.friction));
+    if (m.wall_friction && !(*m.wall_friction >= 0.0 && std::isfinite(*m.wall_friction)))
+        throw InvalidInput(fmt::format("wall friction = {} is not allowed; allowed: a number >= 0",
+                                       *m.wall_friction));
     if (!(s.steps >= 1))
         throw InvalidInput(fmt::format("steps = {} is not allowed; allowed: 1 or more", s.steps));
     if (!(s.time_step_fraction > 0.0 && s.time_step_fraction <= 1.0))
@@ -245,6 +250,7 @@ std::string settle_head(const DemSettle& s, const SettleNumbers& n, std::string_
         "variable        poisson equal {8}\n"
         "variable        restitution equal {13}\n"
         "variable        friction equal {14}\n"
+        "{16}"
         "variable        density equal {6}\n"
         "variable        radius equal {5}\n"
         "variable        shear equal v_youngs/(2*(1+v_poisson))\n"
@@ -255,7 +261,9 @@ std::string settle_head(const DemSettle& s, const SettleNumbers& n, std::string_
         s.density, m.youngs_modulus, m.poisson_ratio, n.rayleigh, n.time_step, s.steps,
         s.steps * n.time_step, m.restitution, m.friction,
         m.friction_of_bed ? "# Friction: the bed's own, as packbed generate --friction made it.\n"
-                          : "");
+                          : "",
+        m.wall_friction ? fmt::format("variable        wall_friction equal {}\n", *m.wall_friction)
+                        : std::string());
 }
 
 /// The run and its report, the same in both programs.
@@ -317,9 +325,16 @@ std::string settle_box(std::string_view atom_style, std::string_view boundary,
 
 std::string lammps_settle_input(const DemSettle& s) {
     const SettleNumbers n = settle_numbers(s);
-    const std::string contact = "hertz/material ${youngs} ${restitution} ${poisson} tangential "
-                                "mindlin NULL 1.0 ${friction} damping tsuji";
-    const DemSettleWall wall = settle_wall(s, contact);
+    const auto contact_with = [](std::string_view friction) {
+        return fmt::format("hertz/material ${{youngs}} ${{restitution}} ${{poisson}} tangential "
+                           "mindlin NULL 1.0 ${{{}}} damping tsuji",
+                           friction);
+    };
+    const std::string contact = contact_with("friction");
+    // The walls and the floor with the bed's own wall friction where it differs.
+    const std::string wall_contact =
+        s.material.wall_friction ? contact_with("wall_friction") : contact;
+    const DemSettleWall wall = settle_wall(s, wall_contact);
     return settle_head(s, n, "LAMMPS (2022, GRANULAR package)",
                        fmt::format("lmp -in {}.lammps.in", s.data_file)) +
            settle_box("sphere", wall.boundary,
@@ -336,8 +351,8 @@ std::string lammps_settle_input(const DemSettle& s) {
                "pair_style      granular\n"
                "pair_coeff      * * {0}\n"
                "{1}"
-               "fix             floor all wall/gran granular {0} zplane 0.0 NULL\n",
-               contact, wall.lammps) +
+               "fix             floor all wall/gran granular {2} zplane 0.0 NULL\n",
+               contact, wall.lammps, wall_contact) +
            settle_run(s, n);
 }
 
@@ -353,35 +368,52 @@ std::string liggghts_settle_input(const DemSettle& s) {
         require_input_word("the wall STL", s.wall_stl);
         require_input_word("the bottom STL", s.bottom_stl);
     }
+    // The walls of their own atom type (2) where their friction is the bed's own and differs.
+    const bool own = s.material.wall_friction.has_value();
+    const int type = own ? 2 : 1;
     const std::string container =
         stl ? fmt::format(
                   "# The container from packbed's STL: its side ({2}) and floor.\n"
-                  "fix             side all mesh/surface file {0} type 1\n"
-                  "fix             floor all mesh/surface file {1} type 1\n"
+                  "fix             side all mesh/surface file {0} type {3}\n"
+                  "fix             floor all mesh/surface file {1} type {3}\n"
                   "fix             container all wall/gran model hertz tangential history mesh "
                   "n_meshes 2 meshes side floor\n",
-                  s.wall_stl, s.bottom_stl, wall.liggghts_stl)
-            : std::string("# The container: periodic in x and y (boundary p p f), no side wall; "
+                  s.wall_stl, s.bottom_stl, wall.liggghts_stl, type)
+            : fmt::format("# The container: periodic in x and y (boundary p p f), no side wall; "
                           "the floor as the plane z = 0.\n"
                           "fix             floor all wall/gran model hertz tangential history "
-                          "primitive type 1 zplane 0.0\n");
+                          "primitive type {} zplane 0.0\n",
+                          type);
+    // Per atom type (and pair of types): the spheres 1, the walls 2 where they have their own.
+    const std::string materials =
+        own ? std::string(
+                  "# Atom type 2: the walls and the floor, with the bed's own wall friction.\n"
+                  "fix             m1 all property/global youngsModulus peratomtype ${youngs} "
+                  "${youngs}\n"
+                  "fix             m2 all property/global poissonsRatio peratomtype ${poisson} "
+                  "${poisson}\n"
+                  "fix             m3 all property/global coefficientRestitution peratomtypepair 2 "
+                  "${restitution} ${restitution} ${restitution} ${restitution}\n"
+                  "fix             m4 all property/global coefficientFriction peratomtypepair 2 "
+                  "${friction} ${wall_friction} ${wall_friction} ${wall_friction}\n")
+            : std::string(
+                  "fix             m1 all property/global youngsModulus peratomtype ${youngs}\n"
+                  "fix             m2 all property/global poissonsRatio peratomtype ${poisson}\n"
+                  "fix             m3 all property/global coefficientRestitution peratomtypepair 1 "
+                  "${restitution}\n"
+                  "fix             m4 all property/global coefficientFriction peratomtypepair 1 "
+                  "${friction}\n");
     return settle_head(s, n, "LIGGGHTS 3.8",
                        fmt::format("liggghts -in {}.liggghts.in", s.data_file)) +
            settle_box("granular", wall.boundary,
                       "newton          off\ncommunicate     single vel yes\n", s, n) +
-           fmt::format(
-               "fix             m1 all property/global youngsModulus peratomtype ${{youngs}}\n"
-               "fix             m2 all property/global poissonsRatio peratomtype ${{poisson}}\n"
-               "fix             m3 all property/global coefficientRestitution peratomtypepair 1 "
-               "${{restitution}}\n"
-               "fix             m4 all property/global coefficientFriction peratomtypepair 1 "
-               "${{friction}}\n"
-               "pair_style      gran model hertz tangential history\n"
-               "pair_coeff      * *\n"
-               "{0}"
-               "# Warns if dt exceeds a quarter of the Rayleigh or Hertz time.\n"
-               "fix             dt_check all check/timestep/gran {1} 0.25 0.25\n",
-               container, std::max(1, s.steps / 2)) +
+           materials +
+           fmt::format("pair_style      gran model hertz tangential history\n"
+                       "pair_coeff      * *\n"
+                       "{0}"
+                       "# Warns if dt exceeds a quarter of the Rayleigh or Hertz time.\n"
+                       "fix             dt_check all check/timestep/gran {1} 0.25 0.25\n",
+                       container, std::max(1, s.steps / 2)) +
            settle_run(s, n);
 }
 

@@ -1107,21 +1107,25 @@ BedSummary read_bed_summary(std::istream& input, std::string_view name) {
                                                   ? printable(type->get<std::string>())
                                                   : "?");
     }
-    // A sphere bed's friction under its parameters, a pellet bed's beside its shape.
+    // A sphere bed's friction and wall friction under its parameters, a pellet bed's beside
+    // its shape.
     const auto parameters = json.find("parameters");
-    const bool of_spheres =
-        parameters != json.end() && parameters->is_object() && parameters->contains("friction");
-    const bool of_pellets = !of_spheres && json.contains("shape") && json.contains("friction");
-    if (of_spheres || of_pellets) {
-        const nlohmann::json& v = of_spheres ? (*parameters)["friction"] : json["friction"];
+    const auto coefficient = [&](const char* key) -> std::optional<double> {
+        const bool of_spheres =
+            parameters != json.end() && parameters->is_object() && parameters->contains(key);
+        const bool of_pellets = !of_spheres && json.contains("shape") && json.contains(key);
+        if (!of_spheres && !of_pellets)
+            return std::nullopt;
+        const nlohmann::json& v = of_spheres ? (*parameters)[key] : json[key];
         const double value = v.is_number() ? v.get<double>() : std::nan("");
         if (!(value >= 0.0 && value <= 100.0))
-            throw InvalidInput(fmt::format("{}: {} = {} is not allowed; allowed: a number in "
-                                           "[0, 100]",
-                                           shown, of_spheres ? "parameters.friction" : "friction",
-                                           json_excerpt(v, 40)));
-        out.friction = value;
-    }
+            throw InvalidInput(
+                fmt::format("{}: {}{} = {} is not allowed; allowed: a number in [0, 100]", shown,
+                            of_spheres ? "parameters." : "", key, json_excerpt(v, 40)));
+        return value;
+    };
+    out.friction = coefficient("friction");
+    out.wall_friction = coefficient("wall_friction");
     if (const auto shape = json.find("shape"); shape != json.end() && shape->is_object()) {
         const auto spec = shape->find("spec");
         if (spec == shape->end() || !spec->is_string() || spec->get<std::string>().empty() ||

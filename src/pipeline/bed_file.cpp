@@ -39,6 +39,11 @@ std::optional<double> friction_beside(const std::filesystem::path& particles) {
     return summary ? summary->friction : std::nullopt;
 }
 
+std::optional<double> wall_friction_beside(const std::filesystem::path& particles) {
+    const std::optional<BedSummary> summary = summary_beside(particles);
+    return summary ? summary->wall_friction : std::nullopt;
+}
+
 std::optional<double> period_z_beside(const std::filesystem::path& particles) {
     const std::optional<BedSummary> summary = summary_beside(particles);
     return summary ? summary->period_z : std::nullopt;

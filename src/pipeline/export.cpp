@@ -477,8 +477,18 @@ std::string data_export(const ExportRequest& o, ExportFormat format, const Packi
         notes.push_back(fmt::format("each sphere of density {:.9g}: a clump weighs what its "
                                     "pellet of density {:.9g} does",
                                     density, o.density));
-    out->stage(
-        name, lammps_data(wrapped, density, box, comment, notes, {}, clumps ? clumps->spheres : 0));
+    // The bed's own friction (the example input's), and the walls' where it differs: in
+    // LIGGGHTS of their own atom type, which the data file declares.
+    const std::optional<double> friction =
+        o.friction ? o.friction : (o.keep.empty() ? std::nullopt : friction_beside(o.keep));
+    const std::optional<double> wall_friction =
+        o.wall_friction ? o.wall_friction
+                        : (o.keep.empty() ? std::nullopt : wall_friction_beside(o.keep));
+    const bool of_bed = (friction && *friction > 0.0) || (wall_friction && *wall_friction > 0.0);
+    const bool own_walls =
+        of_bed && container && wall_friction && *wall_friction != friction.value_or(0.0);
+    out->stage(name, lammps_data(wrapped, density, box, comment, notes, {},
+                                 clumps ? clumps->spheres : 0, own_walls && !lammps ? 2 : 1));
     if (o.fluid_velocity >= 0.0)
         out->stage(name + ".fluid.in",
                    fmt::format("# for the coupling: include this file in the {} input\n"
@@ -500,11 +510,11 @@ std::string data_export(const ExportRequest& o, ExportFormat format, const Packi
         settle.density = density;
         settle.clump_spheres = clumps ? clumps->spheres : 0;
         settle.clump_reach = clumps ? clumps->reach : 0.0;
-        const std::optional<double> friction =
-            o.friction ? o.friction : (o.keep.empty() ? std::nullopt : friction_beside(o.keep));
-        if (friction && *friction > 0.0) {
-            settle.material.friction = *friction;
+        if (of_bed) {
+            settle.material.friction = friction.value_or(0.0);
             settle.material.friction_of_bed = true;
+            if (own_walls)
+                settle.material.wall_friction = *wall_friction;
         }
         // The container's side (every solid but the floor and the top: an annulus' tube and
         // rod in one) and floor as LIGGGHTS walls, triangles about 1 Dp wide.

@@ -709,6 +709,23 @@ def test_export_writes_the_command_lines_files(cli_bed, tmp_path, format, name, 
         assert (tmp_path / "py" / f).read_bytes() == (tmp_path / "cli" / f).read_bytes(), f
 
 
+def test_export_of_a_generated_bed_keeps_its_own_wall_friction(tmp_path):
+    # A Bed made with walls of 0.1 and spheres of 0.3: its LIGGGHTS input gives the walls their
+    # own atom type and coefficient, as the command line's export of its files does.
+    bed = packbed.generate(aspect_ratio=4, particles=60, seed=1, diameter=0.003, friction=0.3,
+                           wall_friction=0.1, out=str(tmp_path / "bed"))
+    packbed.export(bed, str(tmp_path / "py.data"), format="liggghts-data")
+    text = (tmp_path / "py.data.liggghts.in").read_text()
+    assert "variable        wall_friction equal 0.1\n" in text
+    assert ("peratomtypepair 2 ${friction} ${wall_friction} ${wall_friction} ${wall_friction}"
+            in text)
+    assert "\n2 atom types\n" in (tmp_path / "py.data").read_text()
+    status, _, err = cli("export", tmp_path / "bed" / "particles.csv", "-f", "liggghts-data",
+                         "-q", "-o", tmp_path / "cli.data")
+    assert status == 0, err
+    assert (tmp_path / "cli.data.liggghts.in").read_text().replace("cli.data", "py.data") == text
+
+
 def test_export_writes_the_command_lines_openfoam_case(cli_bed, tmp_path):
     # the flow's options by keyword: the same case, file by file, Allrun executable
     particles = str(cli_bed / "particles.csv")
