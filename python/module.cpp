@@ -595,18 +595,10 @@ Bed from_arrays(const py::object& centers_given, const std::optional<py::object>
     return bed;
 }
 
-/// A friction coefficient the bed's summary records, `key` "friction" (between particles) or
-/// "wall_friction" (packbed generate's parameters.KEY, or a pellet bed's KEY beside its
-/// shape); none where it records none.
-std::optional<double> bed_friction(const Bed& bed, const char* key = "friction") {
-    if (!bed.summary.is_object())
-        return std::nullopt;
-    if (bed.summary.contains("parameters") && bed.summary["parameters"].contains(key) &&
-        bed.summary["parameters"][key].is_number())
-        return bed.summary["parameters"][key].get<double>();
-    if (bed.summary.contains("shape") && bed.summary.contains(key) && bed.summary[key].is_number())
-        return bed.summary[key].get<double>();
-    return std::nullopt;
+/// What the bed's summary records (read_bed_summary: its friction and wall friction, checked
+/// as packbed export checks a summary.json).
+BedSummary recorded(const Bed& bed) {
+    return read_bed_summary(bed.summary, "the bed's summary");
 }
 
 /// analyze() of a bed of pellets, as `packbed analyze` measures one (analyze_pellet_bed):
@@ -676,7 +668,7 @@ py::object analyze(const Bed& bed, const std::optional<std::string>& container,
     if (rdf_bin)
         options.rdf_bin = check_option("rdf-bin", *rdf_bin, range::rdf_bin);
     options.frictional = (friction ? check_option("friction", *friction, range::friction)
-                                   : bed_friction(bed).value_or(0.0)) > 0.0;
+                                   : recorded(bed).friction.value_or(0.0)) > 0.0;
     std::optional<OutputDirectory> directory;
     if (out)
         directory.emplace(*out, "--out", OutputKind::directory, force);
@@ -878,8 +870,9 @@ std::string export_bed_to(const Bed& bed, const std::filesystem::path& out,
         request.keep = request.source;
     request.container =
         container ? std::optional(container_from_spec("--container", *container)) : bed.container;
-    request.friction = bed_friction(bed);
-    request.wall_friction = bed_friction(bed, "wall_friction");
+    const BedSummary summary = recorded(bed);
+    request.friction = summary.friction;
+    request.wall_friction = summary.wall_friction;
     if (container_height)
         request.container_height =
             check_option("container-height", *container_height, range::container_height);

@@ -15,6 +15,8 @@
 #include <utility>
 #include <vector>
 
+#include <nlohmann/json_fwd.hpp>
+
 #include "packbed/container.hpp"
 #include "packbed/limits.hpp"
 #include "packbed/packing.hpp"
@@ -161,6 +163,10 @@ struct BedSummary {
 /// a number in (0, limits::max_length], the diameter not one in (0, limits::max_diameter] or
 /// the porosity not a number in (0, 1)
 BedSummary read_bed_summary(std::istream& input, std::string_view name);
+
+/// Read a summary already parsed (a Python bed's, kept in memory): the same checks as above.
+/// \throws InvalidInput as above
+BedSummary read_bed_summary(const nlohmann::json& json, std::string_view name);
 
 /// Read a summary.json file (at most limits::max_small_file bytes; a regular file, see
 /// open_regular_file). \throws InvalidInput as above

@@ -1057,7 +1057,11 @@ BedSummary read_bed_summary(std::istream& input, std::string_view name) {
         throw InvalidInput(fmt::format("{}: not a summary.json ({}); allowed: the summary.json of "
                                        "packbed generate, lattice or analyze",
                                        shown, parsed.error));
-    const nlohmann::json& json = parsed.value;
+    return read_bed_summary(parsed.value, name);
+}
+
+BedSummary read_bed_summary(const nlohmann::json& json, std::string_view name) {
+    const std::string shown = printable(name);
     if (!json.is_object())
         throw InvalidInput(fmt::format("{}: not a summary.json (not a JSON object); allowed: the "
                                        "summary.json of packbed generate, lattice or analyze",

@@ -307,17 +307,11 @@ double disc_volume(const Frame& f, const Vec3& centre, double r, double h, doubl
         for (const double side : {-r, r})
             if (const double z = centre.z + end * f.axis.z + side * g; z > z_low && z < z_high)
                 cuts.push_back(z);
-    std::sort(cuts.begin(), cuts.end());
     auto area = [&](double z) { return section_in_disc(f, centre, r, h, z, radius); };
     // An absolute floor of 1e-13 of the pellet's volume under the relative tolerance: a piece
     // holding 1e-9 of it (the thin pieces at the top and bottom of a pellet lying near level)
     // asks 1e-18, below the sections' rounding, and would run its whole tree of halvings.
-    const double floor = 1e-13 * 2.0 * pi * r * r * h;
-    double total = 0.0;
-    for (std::size_t k = 0; k + 1 < cuts.size(); ++k)
-        if (cuts[k + 1] > cuts[k])
-            total += detail::integrate_with_floor(area, cuts[k], cuts[k + 1], 10, 1e-9, floor);
-    return total;
+    return detail::integrate_between_cuts(area, std::move(cuts), 1e-13 * 2.0 * pi * r * r * h);
 }
 
 /// Two cylinders as the penetration depth sees them: each one's axis, radius and half-length,

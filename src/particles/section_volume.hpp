@@ -52,6 +52,19 @@ double integrate_with_floor(F&& f, double a, double b, unsigned depth, double to
     return piece(piece, a, b, depth, 0.0, floor);
 }
 
+/// The integral of the section `area` over the heights from the least to the greatest of
+/// `cuts` (which hold both ends and the heights between where the section changes its kind),
+/// integrate_with_floor on each piece between neighbouring cuts (ten halvings, relative
+/// tolerance 1e-9 above the absolute `floor`), added from the bottom.
+template <class F> double integrate_between_cuts(F&& area, std::vector<double> cuts, double floor) {
+    std::sort(cuts.begin(), cuts.end());
+    double total = 0.0;
+    for (std::size_t k = 0; k + 1 < cuts.size(); ++k)
+        if (cuts[k + 1] > cuts[k])
+            total += integrate_with_floor(area, cuts[k], cuts[k + 1], 10, 1e-9, floor);
+    return total;
+}
+
 /// f(a, b) for each piece [a, b] of the turn [0, 2 pi] between the angles `cuts` (each in
 /// [0, 2 pi]), in order.
 template <class F> void for_each_arc(std::vector<double> cuts, F&& f) {

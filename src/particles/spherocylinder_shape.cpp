@@ -190,12 +190,7 @@ double cap_in_tube(const Vec3& q, const Vec3& w, double r, double radius, double
     for (const double z : {q.z - r * g, q.z + r * g})
         if (z > low && z < high)
             cuts.push_back(z);
-    std::sort(cuts.begin(), cuts.end());
-    double total = 0.0;
-    for (std::size_t j = 0; j + 1 < cuts.size(); ++j)
-        if (cuts[j + 1] > cuts[j])
-            total += detail::integrate_with_floor(area, cuts[j], cuts[j + 1], 10, 1e-9, floor);
-    return total;
+    return detail::integrate_between_cuts(area, std::move(cuts), floor);
 }
 
 } // namespace
