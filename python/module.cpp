@@ -231,15 +231,17 @@ Bed generate_pellets(std::optional<double> aspect_ratio,
                      std::optional<long long> threads, const py::object& progress,
                      const std::optional<std::filesystem::path>& out, bool force,
                      const std::string& shape, double friction, double wall_friction,
-                     std::optional<long long> max_iterations,
+                     std::optional<long long> max_iterations, const std::string& sizes,
+                     const std::string& fractions,
                      const std::vector<std::pair<std::string, bool>>& sphere_only) {
     namespace range = option_range;
     for (const auto& [name, given] : sphere_only)
         if (given)
             throw InvalidInput(fmt::format(
                 "{} is not allowed with shape='{}'; allowed with a pellet: aspect_ratio, "
-                "container, particles, seed, band_clearance, friction, wall_friction, "
-                "max_iterations, threads, progress, out, force (docs/generate.md, \"Pellets\")",
+                "container, particles, seed, sizes, fractions, band_clearance, friction, "
+                "wall_friction, max_iterations, threads, progress, out, force (docs/generate.md, "
+                "\"Pellets\")",
                 name, printable(std::string_view(shape).substr(0, 80))));
     if (aspect_ratio && container)
         throw InvalidInput(fmt::format("--aspect-ratio {} and --container {} are both given; "
@@ -257,6 +259,8 @@ Bed generate_pellets(std::optional<double> aspect_ratio,
     request.wall_friction = check_option("wall-friction", wall_friction, range::friction);
     if (max_iterations)
         request.max_steps = check_option("max-iterations", *max_iterations, range::max_iterations);
+    request.sizes = sizes;
+    request.fractions = fraction_bases().at(fractions);
     const PreparedPellets prepared = prepare_pellets(request);
     std::optional<OutputDirectory> directory;
     if (out)
@@ -282,6 +286,12 @@ void refuse_pellets(const Bed& bed, std::string_view what) {
         what));
 }
 
+/// What the bed's summary records (read_bed_summary: its friction and wall friction, checked
+/// as packbed export checks a summary.json).
+BedSummary recorded(const Bed& bed) {
+    return read_bed_summary(bed.summary, "the bed's summary");
+}
+
 /// The pellet of a bed with orientations (its summary's shape.spec: generate(shape=...) and
 /// read() of a pellet bed record it); nothing for a bed of spheres. Raises ValueError for
 /// orientations without a shape that `what` can read.
@@ -295,6 +305,9 @@ std::optional<PelletSpec> bed_pellet(const Bed& bed, std::string_view what) {
         pellet = parse_pellet_shape((*spec)["spec"].get<std::string>());
     if (!pellet)
         refuse_pellets(bed, what);
+    // A bed with sizes: its pellets' D from the smallest to the largest drawn.
+    if (const auto range = recorded(bed).size_range)
+        pellet->scales = {range->first / pellet->diameter, range->second / pellet->diameter};
     return pellet;
 }
 
@@ -317,10 +330,8 @@ Bed generate(std::optional<double> aspect_ratio, const std::optional<std::string
     if (shape != "sphere")
         return generate_pellets(aspect_ratio, container, particles, seed, band_clearance, threads,
                                 progress, out, force, shape, friction, wall_friction,
-                                max_iterations,
+                                max_iterations, sizes, fractions,
                                 {{"diameter", diameter != defaults.diameter},
-                                 {"sizes", sizes != "mono"},
-                                 {"fractions", fractions != "volume"},
                                  {"e0", e0 != defaults.e0},
                                  {"ck", ck != defaults.ck},
                                  {"cg_step", cg_step != defaults.cg_step},
@@ -472,8 +483,14 @@ Bed read_bed(const std::filesystem::path& path, const std::string& format, long 
     BedInContainer read =
         read_bed_or_pellets(path, options, container.value_or(""), 0.0, outside_tolerance);
     Bed bed = file_bed(path, std::move(read.file), std::move(read.container));
-    if (read.pellet)
+    if (read.pellet) {
         bed.summary["shape"] = pellet_shape_summary(*read.pellet);
+        if (read.pellet->scales != std::pair{1.0, 1.0}) // the sizes recorded beside the file
+            bed.summary["sizes"] = {
+                {"statistics",
+                 {{"smallest", read.pellet->scales.first * read.pellet->diameter},
+                  {"largest", read.pellet->scales.second * read.pellet->diameter}}}};
+    }
     return bed;
 }
 
@@ -593,12 +610,6 @@ Bed from_arrays(const py::object& centers_given, const std::optional<py::object>
     }
     bed.summary["particles"] = n;
     return bed;
-}
-
-/// What the bed's summary records (read_bed_summary: its friction and wall friction, checked
-/// as packbed export checks a summary.json).
-BedSummary recorded(const Bed& bed) {
-    return read_bed_summary(bed.summary, "the bed's summary");
 }
 
 /// analyze() of a bed of pellets, as `packbed analyze` measures one (analyze_pellet_bed):

@@ -496,8 +496,15 @@ INSTANTIATE_TEST_SUITE_P(
               "packbed generate: --target-void-fraction is not allowed with --shape "
               "cylinder:1,1; allowed with a pellet: --aspect-ratio, --container, --particles, "
               "--seed, --shape, --out, --force, --threads, --quiet, --band-clearance, "
-              "--no-analysis, --config, --friction, --wall-friction, --max-iterations "
-              "(docs/generate.md, \"Pellets\")"),
+              "--no-analysis, --config, --friction, --wall-friction, --max-iterations, "
+              "--sizes, --fractions (docs/generate.md, \"Pellets\")"),
+        // Sizes on the pellet's D: parse_sizes' refusal; the largest pellet must fit (the
+        // largest of 100 D drawn from uniform:1,3 is 2.977, its bounding diameter 2.977 sqrt(2)).
+        naming("generate --shape cylinder:1,1 --sizes uniform:1,20",
+               {"--sizes", "uniform:1,20", "MAX <= 10 MIN"}),
+        exact("generate --shape cylinder:1,1 --sizes uniform:1,3 --container cylinder:3",
+              "packbed generate: --shape: 'cylinder:1,1' does not fit in cylinder:3: a tube "
+              "diameter from 4.21029 (the largest pellet's bounding diameter) to 20835.8"),
         naming("generate --shape cylinder:1,1 --friction -0.1", {"--friction", "-0.1"}),
         naming("generate --shape cylinder:1,1 --container cylinder:1",
                {"--shape", "cylinder:1,1", "does not fit"}),

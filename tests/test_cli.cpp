@@ -209,6 +209,64 @@ TEST(Cli, APelletBedGivesUpAfterMaxIterations) {
     EXPECT_FALSE(fs::exists(short_of));
 }
 
+TEST(Cli, ASizedPelletBedRecordsItsSizesAndExportsEachPelletAtItsOwnSize) {
+    // 20 rods (spherocylinder:1,1, d_v = 2.5^(1/3) at D = 1) of D = 0.8 and 1.2, half of the
+    // volume each: 15 and 5 of them (the number fractions 0.5 / 0.8^3 and 0.5 / 1.2^3 of their
+    // sum, times 20, rounded by the largest remainder), whose Sauter mean d32 = 16.32 / 16.8 sets
+    // the reference pellet: the tube of a = 4 is 4 d32 2.5^(1/3) across, and each r is
+    // 0.5 D 2.5^(1/3).
+    const fs::path bed = scratch("sized-rods"), refused = scratch("sized-rods-edited");
+    const Outcome made = packbed("generate --shape spherocylinder:1,1 --sizes "
+                                 "discrete:0.8:0.5,1.2:0.5 -a 4 -n 20 -s 1 --quiet --out " +
+                                 bed.string());
+    ASSERT_EQ(made.status, 0) << made.err;
+    const auto summary = nlohmann::json::parse(slurp(bed / "summary.json"));
+    const double dv = std::cbrt(2.5), d32 = 16.32 / 16.8;
+    EXPECT_EQ(summary["sizes"]["statistics"]["smallest"].get<double>(), 0.8);
+    EXPECT_EQ(summary["sizes"]["statistics"]["largest"].get<double>(), 1.2);
+    EXPECT_NEAR(summary["sizes"]["volume_equivalent_diameter"].get<double>(), dv * d32, 1e-12);
+    EXPECT_NEAR(summary["container"]["radius"].get<double>(), 2.0 * dv * d32, 1e-12);
+    EXPECT_NEAR(summary["tolerance"].get<double>(), 1e-3 * 0.8, 1e-15); // the smallest rod's D
+    std::map<long, int> counts;                                         // by r / (0.05 d_v)
+    std::istringstream rows(slurp(bed / "particles.csv"));
+    std::string row;
+    std::getline(rows, row);
+    while (std::getline(rows, row)) {
+        std::vector<double> v;
+        std::istringstream cells(row);
+        for (std::string cell; std::getline(cells, cell, ',');)
+            v.push_back(std::stod(cell));
+        ASSERT_EQ(v.size(), 8u) << row;
+        const double tenths = v[3] / (0.05 * dv);
+        EXPECT_NEAR(tenths, std::round(tenths), 1e-9) << row;
+        ++counts[std::lround(tenths)];
+    }
+    EXPECT_EQ(counts, (std::map<long, int>{{8, 15}, {12, 5}}));
+    // Its surfaces take each rod at its own size; a table whose r leaves the sizes' range is
+    // refused, naming it.
+    const Outcome stl =
+        packbed("export " + (bed / "particles.csv").string() + " --format stl -q -o " +
+                (scratch("sized-rods-stl") / "bed.stl").string());
+    EXPECT_EQ(stl.status, 0) << stl.err;
+    fs::create_directories(refused);
+    fs::copy_file(bed / "summary.json", refused / "summary.json");
+    std::string table = slurp(bed / "particles.csv");
+    const std::size_t line = table.find('\n') + 1;
+    std::size_t r = line;
+    for (int comma = 0; comma < 3; ++comma)
+        r = table.find(',', r) + 1;
+    table.replace(r, table.find(',', r) - r, fmt::format("{}", 0.65 * dv));
+    std::ofstream(refused / "particles.csv") << table;
+    const Outcome edited = packbed("export " + (refused / "particles.csv").string() +
+                                   " --format stl -q -o " + (refused / "bed.stl").string());
+    EXPECT_EQ(edited.status, 2);
+    EXPECT_NE(edited.err.find("is not allowed for spherocylinder:1,1 pellets; allowed: r from "),
+              std::string::npos)
+        << edited.err;
+    EXPECT_NE(edited.err.find("(d_v / 2 of the sizes recorded beside it)"), std::string::npos)
+        << edited.err;
+}
+
 TEST(Cli, FrictionalBedInLayersResumesToTheSameBytesAndItsDemInputKeepsTheFriction) {
     // The checkpoint test's bed with friction (mu = 0.3 at spheres, walls and floor): layers,
     // a stop and a resume end in the bytes of the run never stopped; summary.json records the

@@ -302,7 +302,8 @@ detail::HullCylinder hull_of(const MultilobeShape& s, double size) {
 // A plane the hull test finds between two pellets parts them: their exact gap (the least
 // support of their lobes' Minkowski difference, cylinder_depth, which shares no code with the
 // test) is positive every time; and the test finds such a plane for most pairs whose bounding
-// spheres meet but that are apart by more than a tenth of d_v.
+// spheres meet but that are apart by more than a tenth of d_v. Every third pair has its second
+// pellet at 0.6 of the first's size (the hulls of a bed with sizes).
 TEST(PelletHull, APlaneItFindsPartsThePelletsAsTheirExactGapSays) {
     std::mt19937_64 rng(7);
     std::uniform_real_distribution<double> uniform(0.0, 1.0);
@@ -315,8 +316,10 @@ TEST(PelletHull, APlaneItFindsPartsThePelletsAsTheirExactGapSays) {
             const Quaternion qa = random_turn(rng), qb = random_turn(rng);
             Vec3 dir{uniform(rng) - 0.5, uniform(rng) - 0.5, uniform(rng) - 0.5};
             const Vec3 u = dir * (reach * (0.3 + 0.7 * uniform(rng)) / norm(dir));
-            const Placement a{{0.0, 0.0, 0.0}, qa, 1.0}, b{u, qb, 1.0};
-            const bool parted = detail::hulls_apart(hull_of(s, 1.0), rotate(qa, {0.0, 0.0, 1.0}),
+            const double size_b = trial % 3 == 2 ? 0.6 : 1.0;
+            const Placement a{{0.0, 0.0, 0.0}, qa, 1.0}, b{u, qb, size_b};
+            const bool parted = detail::hulls_apart(hull_of(s, 1.0), hull_of(s, size_b),
+                                                    rotate(qa, {0.0, 0.0, 1.0}),
                                                     rotate(qb, {0.0, 0.0, 1.0}), u, 1e-9);
             const double gap = s.pair_gap(a, s, b, u);
             if (parted) {

@@ -9,6 +9,7 @@
 #include <limits>
 #include <numbers>
 #include <random>
+#include <string>
 #include <type_traits>
 #include <variant>
 #include <vector>
@@ -416,7 +417,8 @@ PelletBedParameters trilobe_bed(std::uint64_t particles, const Container& contai
 /// and in a cell at least two pairs meet only across its sides.
 PelletBed expect_below_tolerance(const PelletBedParameters& params, double period = 0.0) {
     const PelletBed bed = generate_pellet_bed(params);
-    const double tol = params.tolerance * params.smallest_dimension();
+    // The smallest pellet's (PelletBedParameters::scales).
+    const double tol = params.tolerance * params.smallest_dimension() * params.scale_range().first;
     EXPECT_LE(bed.max_depth_pair, tol);
     EXPECT_LE(bed.max_depth_wall, tol);
     EXPECT_GT(bed.max_depth_pair, 0.0);
@@ -505,6 +507,67 @@ TEST(SpherocylinderBed, EndsBelowTheToleranceAcrossTheCellsSides) {
     expect_below_tolerance(spherocylinder_bed(16, Container(Periodic(period, period)), 2), period);
 }
 
+/// Pellets of two sizes, 0.8 and 1.25 of the reference (a ratio of 1.5625) in turn: each one's
+/// size in the packing is its scale's, and the bed ends below the smallest pellet's tolerance
+/// by the exact depths and by the brute force's points (each pellet drawn at its own size).
+PelletBedParameters two_sizes(PelletBedParameters p) {
+    p.scales.resize(p.particles);
+    for (std::size_t i = 0; i < p.scales.size(); ++i)
+        p.scales[i] = i % 2 == 0 ? 0.8 : 1.25;
+    return p;
+}
+
+void expect_sizes(const PelletBedParameters& params, const PelletBed& bed) {
+    ASSERT_EQ(bed.packing.size(), params.scales.size());
+    for (std::size_t i = 0; i < bed.packing.size(); ++i)
+        EXPECT_EQ(bed.packing.radii[i], 0.5 * params.scales[i]) << i;
+}
+
+TEST(SizedPelletBed, CylindersOfTwoSizesEndBelowTheSmallestsTolerance) {
+    PelletBedParameters p;
+    p.particles = 12;
+    p.seed = 2;
+    p.container = Container::tube(4.0);
+    const PelletBedParameters params = two_sizes(p);
+    EXPECT_EQ(params.scale_range(), (std::pair{0.8, 1.25}));
+    expect_sizes(params, expect_below_tolerance(params));
+}
+
+// Scales of 1 are the bed without scales, bit for bit.
+TEST(SizedPelletBed, ScalesOfOneGiveTheBedWithoutScales) {
+    PelletBedParameters params = spherocylinder_bed(12, Container::tube(4.0), 4);
+    const PelletBed plain = generate_pellet_bed(params);
+    params.scales.assign(params.particles, 1.0);
+    const PelletBed ones = generate_pellet_bed(params);
+    EXPECT_EQ(plain.steps, ones.steps);
+    ASSERT_EQ(plain.packing.size(), ones.packing.size());
+    for (std::size_t i = 0; i < plain.packing.size(); ++i) {
+        EXPECT_EQ(plain.packing.centers[i], ones.packing.centers[i]);
+        EXPECT_EQ(plain.packing.orientations[i].w, ones.packing.orientations[i].w);
+    }
+}
+
+TEST(PelletBedInput, RefusesScalesThatAreNotOnePerPelletOrTooFarApart) {
+    PelletBedParameters p;
+    p.particles = 3;
+    const auto refusal = [&] {
+        try {
+            p.validate();
+        } catch (const InvalidInput& e) {
+            return std::string(e.what());
+        }
+        return std::string("accepted");
+    };
+    p.scales = {1.0, 1.0};
+    EXPECT_EQ(refusal(), "scales = 2 is not allowed; allowed: one per pellet");
+    p.scales = {1.0, 0.0, 1.0};
+    EXPECT_EQ(refusal(), "scale = 0 is not allowed; allowed: a finite number > 0");
+    p.scales = {0.5, 1.0, 5.5};
+    EXPECT_EQ(refusal(), "size ratio = 11 is not allowed; allowed: at most 10");
+    p.scales = {0.5, 1.0, 5.0};
+    EXPECT_EQ(refusal(), "accepted");
+}
+
 /// The bed of `params` made on one thread (generate_pellet_bed) and on two (by `make`),
 /// asserted to be the same bits. \return the second.
 template <class Make>
@@ -522,6 +585,13 @@ PelletBed same_bits_on_one_thread_and_two(const PelletBedParameters& params, Mak
         EXPECT_EQ(one.packing.orientations[i].x, two.packing.orientations[i].x);
     }
     return two;
+}
+
+TEST(SizedPelletBed, SpherocylindersOfTwoSizesEndBelowTheSmallestsToleranceOnAnyThreads) {
+    const PelletBedParameters params = two_sizes(spherocylinder_bed(16, Container::tube(4.0), 2));
+    expect_sizes(params, same_bits_on_one_thread_and_two(params, [](const PelletBedParameters& p) {
+                     return expect_below_tolerance(p);
+                 }));
 }
 
 TEST(SpherocylinderBed, TheSameBitsOnOneThreadAndOnTwo) {

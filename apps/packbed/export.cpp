@@ -59,6 +59,8 @@ int run_export(ExportOptions& o) {
                 "--shape '{}' is not allowed for {}: the summary.json beside it records its "
                 "pellets as '{}'; allowed: that shape, or no --shape",
                 printable(o.shape), printable(o.particles), printable(recorded->text)));
+        else if (recorded)
+            request.pellet->scales = recorded->scales; // its sizes
     } else if (o.shape.empty()) {
         request.pellet = shape_beside(o.particles);
     }

@@ -58,7 +58,8 @@ struct GenerateOptions {
 constexpr std::array pellet_options{
     "--aspect-ratio", "--container", "--particles", "--seed",          "--shape",
     "--out",          "--force",     "--threads",   "--quiet",         "--band-clearance",
-    "--no-analysis",  "--config",    "--friction",  "--wall-friction", "--max-iterations"};
+    "--no-analysis",  "--config",    "--friction",  "--wall-friction", "--max-iterations",
+    "--sizes",        "--fractions"};
 
 /// --shape PELLET: a bed of pellets (docs/generate.md, "Pellets").
 int run_pellets(const GenerateOptions& o) {
@@ -83,6 +84,8 @@ int run_pellets(const GenerateOptions& o) {
     request.wall_friction = o.params.wall_friction;
     if (o.app->count("--max-iterations") > 0)
         request.max_steps = o.params.max_iterations;
+    request.sizes = o.sizes;
+    request.fractions = fraction_bases().at(o.fractions);
     const PreparedPellets prepared = prepare_pellets(request);
     OutputDirectory out(o.out, "--out", OutputKind::directory, o.force);
     const int threads = use_threads(o.threads);
@@ -115,10 +118,10 @@ int run_pellets(const GenerateOptions& o) {
         const auto& s = pellets.summary;
         fmt::print("packbed generate: {} pellets {}, {}, seed {}: {} steps\n", request.particles,
                    prepared.pellet.text,
-                   s.contains("aspect_ratio") ? fmt::format("a = {:g} (tube over d_v = {:.6g})",
-                                                            s["aspect_ratio"].get<double>(),
-                                                            prepared.pellet.volume_diameter)
-                                              : pellets.container.spec(),
+                   s.contains("aspect_ratio")
+                       ? fmt::format("a = {:g} (tube over d_v = {:.6g})",
+                                     s["aspect_ratio"].get<double>(), prepared.unit)
+                       : pellets.container.spec(),
                    request.seed, pellets.bed.steps);
         fmt::print("largest penetration: pellet-pellet {:.3e}, pellet-wall {:.3e} (tolerance "
                    "{:.3e}); forces left {:.3g} weights, torques {:.3g}\n",

@@ -9,6 +9,7 @@
 
 #include <cstdint>
 #include <string>
+#include <utility>
 #include <vector>
 
 #include "packbed/container.hpp"
@@ -52,11 +53,21 @@ struct PelletBedParameters {
     /// floor (docs/generate.md, "Friction"): tangential springs at the contacts, capped by mu
     /// times the normal load; 0, the default, is the frictionless bed; [0, 100].
     double friction = 0.0, wall_friction = 0.0;
+    /// Each pellet's size over the reference pellet's (the `shape` at size 1, d_v = 1), in
+    /// insertion order: pellet i is the shape scaled by scales[i] (docs/generate.md, "Sizes of
+    /// pellets"). Empty: every pellet 1. Else one per pellet, each finite and > 0, the largest
+    /// over the smallest at most max_size_ratio. The tolerance, the settling band and the
+    /// nodes' spacing hold for the smallest and the largest pellet alike: the depths are
+    /// measured against the smallest pellet's smallest dimension, the nodes placed at the
+    /// spacing on the largest.
+    std::vector<double> scales;
 
     /// \throws InvalidInput naming the parameter, its value and the allowed range.
     void validate() const;
     /// \return min(D, L) in units of d_v (a ring's min(L, (D - DI) / 2), a spherocylinder's D).
     double smallest_dimension() const;
+    /// \return the smallest and the largest of `scales` (1 and 1 where it is empty).
+    std::pair<double, double> scale_range() const;
 };
 
 /// The state at the end of one stage: "settle" (the gravity held in the band until the mass

@@ -134,6 +134,10 @@ struct PelletSpec {
     double length = 0.0;          ///< L
     double volume_diameter = 0.0; ///< d_v = (6 V / pi)^(1/3), the bed's unit
     std::string text;             ///< as given
+    /// A bed's pellets are the shape scaled by factors from the first to the second (a bed
+    /// generated with --sizes: its drawn D's over the shape's, shape_beside); 1 and 1: all
+    /// the shape's size.
+    std::pair<double, double> scales{1.0, 1.0};
 
     /// The same pellet, its lengths within 1e-9 of each other's (however they were written).
     bool same_as(const PelletSpec& other) const;
@@ -155,6 +159,10 @@ struct PelletRequest {
     double wall_friction = 0.0;    ///< --wall-friction, at the walls and the floor
     /// --max-iterations: the solver's steps before it gives up (ConvergenceError, exit 1).
     std::uint64_t max_steps = PelletBedParameters{}.max_steps;
+    /// --sizes on the pellet's D (a multilobe's DL; parse_sizes, mono: the --shape's D): each
+    /// pellet is the --shape scaled by its D over the shape's.
+    std::string sizes = "mono";
+    FractionBasis fractions = FractionBasis::volume; ///< --fractions
 };
 
 /// A pellet request checked and resolved: the solver's parameters (lengths in d_v).
@@ -162,6 +170,12 @@ struct PreparedPellets {
     PelletRequest request;
     PelletSpec pellet;
     PelletBedParameters params;
+    /// The drawn D's statistics (none for `mono`): the reference pellet is the --shape scaled
+    /// to their Sauter mean d32, each pellet's scale its D over d32.
+    std::optional<SizeStatistics> drawn;
+    /// The bed's unit, the reference pellet's volume-equivalent diameter d_v (the --shape's,
+    /// times d32 / D with sizes): a = D_tube / d_v.
+    double unit = 0.0;
 };
 /// \throws InvalidInput naming the option, the value and what is allowed
 PreparedPellets prepare_pellets(const PelletRequest& request);

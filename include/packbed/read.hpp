@@ -155,6 +155,9 @@ struct BedSummary {
     /// the particles' shape as `generate --shape` wrote it (`shape.spec`: "cylinder:D,L"),
     /// when the bed is not of spheres
     std::optional<std::string> shape;
+    /// the smallest and the largest drawn size (`sizes.statistics`: a sphere's diameter, a
+    /// pellet's D), when the bed has sizes
+    std::optional<std::pair<double, double>> size_range;
 };
 
 /// Read a summary.json. Absent keys are left empty; present ones must be right.

@@ -155,6 +155,13 @@ std::vector<std::size_t> discrete_counts(const SizeDistribution& sizes, Fraction
 std::vector<double> draw_diameters(const SizeDistribution& sizes, std::size_t count,
                                    FractionBasis basis, std::uint64_t seed);
 
+/// The seed of a bed's sizes (draw_diameters) from its --seed: the seed XOR the golden-ratio
+/// constant 0x9E3779B97F4A7C15, a stream of its own, so that the positions are drawn from the
+/// same numbers whatever the sizes.
+constexpr std::uint64_t sizes_seed(std::uint64_t seed) {
+    return seed ^ 0x9E3779B97F4A7C15ull;
+}
+
 /// One size class of a set of diameters.
 struct SizeClass {
     double low = 0.0;           ///< smallest diameter of the class (discrete: the size)

@@ -5,6 +5,7 @@
 #include <cmath>
 #include <cstdint>
 #include <exception>
+#include <functional>
 #include <limits>
 #include <span>
 #include <string>
@@ -965,7 +966,18 @@ PelletAnalysis analyze_pellets(const Packing& packing, const S& shape, const Con
                            "the columns qw, qx, qy, qz");
     const ShapedBed<S> bed(packing, {shape});
     PelletAnalysis out;
-    const double dv = packing.mean_diameter();
+    // The unit: the pellets' d_v, or with sizes their Sauter mean sum d_v^3 / sum d_v^2 (the
+    // reference pellet's, as generate --sizes makes it).
+    double dv = packing.mean_diameter();
+    if (std::adjacent_find(packing.radii.begin(), packing.radii.end(), std::not_equal_to<>()) !=
+        packing.radii.end()) {
+        double cubes = 0.0, squares = 0.0;
+        for (const double r : packing.radii) {
+            cubes += r * r * r;
+            squares += r * r;
+        }
+        dv = 2.0 * cubes / squares;
+    }
     out.diameter = dv;
     const double top = bed_top(bed);
     out.band = options.band ? *options.band

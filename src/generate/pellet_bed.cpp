@@ -23,6 +23,7 @@
 #include "packbed/error.hpp"
 #include "packbed/neighbor_list.hpp"
 #include "packbed/quaternion.hpp"
+#include "packbed/sizes.hpp"
 #include "random.hpp"
 
 using packbed::portable_random::uniform01;
@@ -70,6 +71,22 @@ void PelletBedParameters::validate() const {
     require(friction >= 0.0 && friction <= 100.0, "friction", friction, "0 to 100");
     require(wall_friction >= 0.0 && wall_friction <= 100.0, "wall friction", wall_friction,
             "0 to 100");
+    if (scales.empty())
+        return;
+    require(scales.size() == particles, "scales", static_cast<double>(scales.size()),
+            "one per pellet");
+    for (const double s : scales)
+        require(std::isfinite(s) && s > 0.0, "scale", s, "a finite number > 0");
+    const auto [low, high] = scale_range();
+    require(high <= max_size_ratio * low, "size ratio", high / low,
+            fmt::format("at most {:g}", max_size_ratio));
+}
+
+std::pair<double, double> PelletBedParameters::scale_range() const {
+    if (scales.empty())
+        return {1.0, 1.0};
+    const auto [low, high] = std::minmax_element(scales.begin(), scales.end());
+    return {*low, *high};
 }
 
 double PelletBedParameters::smallest_dimension() const {
@@ -184,7 +201,10 @@ public:
         m_size = 0.5; // d_v = 1
         m_reach = m_shape.bounding_radius(m_size);
         m_volume = m_shape.volume(m_size);
-        m_dmin = params.smallest_dimension();
+        std::tie(m_scale_low, m_scale_high) = params.scale_range();
+        m_scale =
+            params.scales.empty() ? std::vector<double>(params.particles, 1.0) : params.scales;
+        m_dmin = params.smallest_dimension() * m_scale_low;
         m_tol = m_params.tolerance * m_dmin;
         if constexpr (level_set)
             place_nodes();
@@ -216,7 +236,9 @@ public:
         measure_exact(out);
         out.packing.centers = m_centre;
         out.packing.orientations = m_turn;
-        out.packing.radii.assign(m_centre.size(), m_size);
+        out.packing.radii.resize(m_centre.size());
+        for (std::size_t i = 0; i < m_centre.size(); ++i)
+            out.packing.radii[i] = size(i);
         if (m_cell)
             for (Vec3& c : out.packing.centers)
                 c = m_cell->wrapped(c);
@@ -235,13 +257,15 @@ private:
     /// The level-set contact's nodes, circles and node groups, and a ring's blend.
     void place_nodes() {
         const bool ring = this->ring();
-        const double spacing = m_params.node_spacing / m_size;
+        // At size 1 the spacing the largest pellet's nodes have in the bed, and the tolerance of
+        // the smallest one's depths.
+        const double spacing = m_params.node_spacing / (m_size * m_scale_high);
         // A multilobe's and a ring's wall nodes close enough that a rim between two of them
         // reaches at most half the tolerance past them (a chord s of a circle of radius R lies
         // s^2 / (8 R) inside it): s = sqrt(4 R tol), both at size 1. Coarser, a rim can press
         // a wall deeper than the tolerance while no node feels it (docs/notes/pellets.md,
         // "Wall nodes"). A cylinder's keep the spacing its beds were measured with.
-        const double tol_at_size = m_params.tolerance * m_params.smallest_dimension() / m_size;
+        const double tol_at_size = m_tol / (m_size * m_scale_high);
         const double wall_spacing =
             m_shape.lobes > 1 || ring
                 ? std::min(spacing, std::sqrt(4.0 * m_shape.lobe.radius * tol_at_size))
@@ -329,14 +353,15 @@ private:
         const std::size_t n = m_params.particles;
         m_centre.clear();
         m_turn.clear();
-        const double height = m_container.fill_height(static_cast<double>(n), e0);
-        if (const auto top = m_container.top(); top && height + 2.0 * m_reach > *top)
+        const double reach = m_reach * m_scale_high; // the largest pellet's
+        const double height = m_container.fill_height(column_volume(), e0);
+        if (const auto top = m_container.top(); top && height + 2.0 * reach > *top)
             throw InvalidInput(fmt::format(
                 "particles = {} is not allowed in {}: the pellets' column ({:.6g} d_v at e0 = "
                 "{}) reaches above its top; allowed: fewer pellets or a taller container",
-                n, m_container.describe(), height + 2.0 * m_reach, e0));
+                n, m_container.describe(), height + 2.0 * reach, e0));
         std::mt19937_64 rng(m_params.seed);
-        const double cell = 2.0 * m_reach;
+        const double cell = 2.0 * reach;
         const auto key = [cell](const Vec3& p) {
             return std::array<long, 3>{static_cast<long>(std::floor(p.x / cell)),
                                        static_cast<long>(std::floor(p.y / cell)),
@@ -347,20 +372,22 @@ private:
         // insert_gap (a spherocylinder, whose bounding sphere holds 3.2 times its volume at
         // L = D and more as it grows longer: the spheres' addition would jam far below the
         // column's e0).
-        const auto apart = [&](const Vec3& p, const Quaternion& turn, std::uint32_t j,
-                               const Vec3& d) {
-            if (!(norm2(d) < cell * cell))
+        // Pellet i (the one drawn) apart from the earlier j, d from i's centroid to j's.
+        const auto apart = [&](std::size_t i, const Vec3& p, const Quaternion& turn,
+                               std::uint32_t j, const Vec3& d) {
+            const double both = reach_of(i) + reach_of(j);
+            if (!(norm2(d) < both * both))
                 return true;
             if constexpr (level_set)
                 return false;
             else
-                return m_shape.pair_gap({p, turn, m_size}, m_shape, {p + d, m_turn[j], m_size},
+                return m_shape.pair_gap({p, turn, size(i)}, m_shape, {p + d, m_turn[j], size(j)},
                                         d) >= insert_gap;
         };
-        const auto clear = [&](const Vec3& p, const Quaternion& turn) {
+        const auto clear = [&](std::size_t i, const Vec3& p, const Quaternion& turn) {
             if (m_cell) { // the minimum image: every earlier pellet (the grid's cells do not wrap)
                 for (std::size_t j = 0; j < m_centre.size(); ++j)
-                    if (!apart(p, turn, static_cast<std::uint32_t>(j),
+                    if (!apart(i, p, turn, static_cast<std::uint32_t>(j),
                                m_cell->separation(p, m_centre[j])))
                         return false;
                 return true;
@@ -373,7 +400,7 @@ private:
                         if (found == grid.end())
                             continue;
                         for (const std::uint32_t j : found->second)
-                            if (!apart(p, turn, j, m_centre[j] - p))
+                            if (!apart(i, p, turn, j, m_centre[j] - p))
                                 return false;
                     }
             return true;
@@ -386,13 +413,13 @@ private:
                 if (++tries > insert_attempts)
                     return false;
                 const double u = uniform01(rng), v = uniform01(rng);
-                const double z = height * uniform01(rng) + m_reach;
-                p = m_container.uniform_point(m_reach, u, v, z);
+                const double z = height * uniform01(rng) + reach_of(i);
+                p = m_container.uniform_point(reach_of(i), u, v, z);
                 if constexpr (!level_set) { // drawn with the position: the gap depends on it
                     const double u1 = uniform01(rng), u2 = uniform01(rng), u3 = uniform01(rng);
                     turn = uniform_rotation(u1, u2, u3);
                 }
-            } while (!clear(m_cell ? m_cell->wrapped(p) : p, turn));
+            } while (!clear(i, m_cell ? m_cell->wrapped(p) : p, turn));
             if (m_cell)
                 p = m_cell->wrapped(p);
             grid[key(p)].push_back(static_cast<std::uint32_t>(i));
@@ -406,43 +433,61 @@ private:
         return true;
     }
 
-    /// The cylinder that holds a pellet (detail::HullCylinder), in the bed's lengths.
-    detail::HullCylinder hull() const {
-        return {m_shape.lobe.half_length * m_size, (m_shape.circle + m_shape.lobe.radius) * m_size};
+    /// Pellet i's size (Placement::size: d_v / 2 of the reference pellet times its scale) and
+    /// its bounding radius.
+    double size(std::size_t i) const { return m_size * m_scale[i]; }
+    double reach_of(std::size_t i) const { return m_reach * m_scale[i]; }
+
+    /// The pellets' volume in units of the reference pellet's: their number, or the sum of
+    /// their scales cubed.
+    double column_volume() const {
+        if (m_params.scales.empty())
+            return static_cast<double>(m_params.particles);
+        double volume = 0.0;
+        for (const double s : m_scale)
+            volume += s * s * s;
+        return volume;
     }
 
-    /// Nodes of pellet a pressed out of pellet b, b's centroid at u from a's: adds to `push`
-    /// (force on a, torques on a and b).
-    void press(const Rotation& ra, const Rotation& rb, const Vec3& u, double sign,
-               PairPush& push) const {
-        const double reach2 = m_reach * m_reach;
+    /// The cylinder that holds a pellet of scale `scale` (detail::HullCylinder), in the bed's
+    /// lengths.
+    detail::HullCylinder hull(double scale) const {
+        return {m_shape.lobe.half_length * m_size * scale,
+                (m_shape.circle + m_shape.lobe.radius) * m_size * scale};
+    }
+
+    /// Nodes of pellet a (scale sa) pressed out of pellet b (scale sb), b's centroid at u from
+    /// a's: adds to `push` (force on a, torques on a and b).
+    void press(const Rotation& ra, const Rotation& rb, double sa, double sb, const Vec3& u,
+               double sign, PairPush& push) const {
+        const double reach_b = m_reach * sb, reach2 = reach_b * reach_b, size_b = m_size * sb;
         const MultilobeShape& shape = m_shape;
         const Vec3 b_axis = rb(Vec3{0.0, 0.0, 1.0});
-        const detail::HullCylinder hull = this->hull();
+        const detail::HullCylinder hull = this->hull(sb);
         // The nodes in groups (an end's disc) whose bounding sphere is skipped when it misses
         // b's or b's hull.
         for (const NodeGroup& group : m_groups) {
-            const Vec3 centre = ra(group.centre) - u;
-            if (norm(centre) >= group.radius + m_reach ||
-                detail::clear_of_hull(hull, b_axis, centre, group.radius, group.radius,
-                                      hull_margin * m_size))
+            const Vec3 centre = ra(group.centre * sa) - u;
+            const double radius = group.radius * sa;
+            if (norm(centre) >= radius + reach_b ||
+                detail::clear_of_hull(hull, b_axis, centre, radius, radius, hull_margin * size_b))
                 continue;
             for (std::size_t g = group.begin; g < group.end; ++g) {
                 const SurfaceNode& node = m_nodes[g];
-                const Vec3 p = ra(node.point);
+                const Vec3 p = ra(node.point * sa);
                 const Vec3 d = p - u;
                 if (norm2(d) >= reach2)
                     continue;
-                const InsideDepth in = shape.inside(rb.inverse(d) * (1.0 / m_size), m_blend);
+                const InsideDepth in = shape.inside(rb.inverse(d) * (1.0 / size_b), m_blend);
                 if (in.depth <= 0.0)
                     continue;
-                const double depth = in.depth * m_size;
-                const Vec3 f = rb(in.normal) * (node.area * depth);
+                const double depth = in.depth * size_b;
+                const Vec3 f = rb(in.normal) * (node.area * (sa * sa) * depth);
                 // f pushes a's node out of b: on a at p, on b (opposite) at d from b's centroid.
                 push.force += f * sign;
                 (sign > 0 ? push.torque_first : push.torque_second) += cross(p, f);
                 (sign > 0 ? push.torque_second : push.torque_first) -= cross(d, f);
-                push.add_load(node.area * depth, sign > 0 ? p : d, depth);
+                push.add_load(node.area * (sa * sa) * depth, sign > 0 ? p : d, depth);
             }
         }
     }
@@ -456,12 +501,13 @@ private:
     /// crossing shorter than the step), the ends of the parts
     /// inside by bisection; each piece between found points is integrated by 4-point
     /// Gauss-Legendre.
-    void press_circles(const Rotation& ra, const Rotation& rb, const Vec3& u, double sign,
-                       PairPush& push) const {
+    void press_circles(const Rotation& ra, const Rotation& rb, double sa, double sb, const Vec3& u,
+                       double sign, PairPush& push) const {
         const MultilobeShape& shape = m_shape;
         const Vec3 axis = ra(Vec3{0.0, 0.0, 1.0}), x = ra(Vec3{1.0, 0.0, 0.0}),
                    y = ra(Vec3{0.0, 1.0, 0.0}), b_axis = rb(Vec3{0.0, 0.0, 1.0});
-        const detail::HullCylinder hull = this->hull();
+        const detail::HullCylinder hull = this->hull(sb);
+        const double size_a = m_size * sa, size_b = m_size * sb;
         // cos and sin of the fixed sample angles k 2 pi / circle_samples.
         constexpr double step = 2.0 * std::numbers::pi / circle_samples;
         static const std::array<std::pair<double, double>, circle_samples> around = [] {
@@ -470,21 +516,21 @@ private:
                 out[k] = {std::cos(k * step), std::sin(k * step)};
             return out;
         }();
-        const double reach2 = m_reach * m_reach;
+        const double reach_b = m_reach * sb, reach2 = reach_b * reach_b;
         for (const SurfaceCircle& circle : m_circles) {
             // The circle's centre from b's, and the disc b's bounding sphere cuts its plane in.
             const bool off_axis = circle.x != 0.0 || circle.y != 0.0;
-            const Vec3 centre = off_axis ? ra(Vec3{circle.x, circle.y, circle.z} * m_size) - u
-                                         : axis * (circle.z * m_size) - u;
+            const Vec3 centre = off_axis ? ra(Vec3{circle.x, circle.y, circle.z} * size_a) - u
+                                         : axis * (circle.z * size_a) - u;
             const double h = dot(centre, axis);
             if (h * h >= reach2)
                 continue;
             // A circle outside b's hull: by its centre's distance less its radius from b's
             // axis, or beyond an end plane by its reach along b's axis.
-            const double radius = circle.radius * m_size, tilt = dot(axis, b_axis);
+            const double radius = circle.radius * size_a, tilt = dot(axis, b_axis);
             if (detail::clear_of_hull(hull, b_axis, centre, radius,
                                       radius * std::sqrt(std::max(0.0, 1.0 - tilt * tilt)),
-                                      hull_margin * m_size))
+                                      hull_margin * size_b))
                 continue;
             const double disc = std::sqrt(reach2 - h * h);
             const Vec3 towards = axis * h - centre; // to b's centre, in the plane
@@ -497,10 +543,10 @@ private:
                     ? std::numbers::pi
                     : std::acos(std::clamp(
                           (radius * radius + d * d - disc * disc) / (2.0 * radius * d), -1.0, 1.0));
-            // The circle in b's body frame at size 1 (both at the same size): q(t) = q0 +
-            // e1 cos t + e2 sin t.
-            const Vec3 q0 = rb.inverse(centre) * (1.0 / m_size);
-            const Vec3 e1 = rb.inverse(x) * circle.radius, e2 = rb.inverse(y) * circle.radius;
+            // The circle in b's body frame at b's size 1: q(t) = q0 + e1 cos t + e2 sin t.
+            const Vec3 q0 = rb.inverse(centre) * (1.0 / size_b);
+            const double across = circle.radius * (sa / sb);
+            const Vec3 e1 = rb.inverse(x) * across, e2 = rb.inverse(y) * across;
             const auto at = [&](double t) { return q0 + e1 * std::cos(t) + e2 * std::sin(t); };
             // Off the circle's arc (a lobe's side inside its neighbours) nothing presses.
             const bool whole = circle.arc_half >= std::numbers::pi;
@@ -510,7 +556,7 @@ private:
             };
             constexpr double off = -std::numeric_limits<double>::infinity();
             const auto depth_at = [&](double t) {
-                return on_arc(t) ? shape.signed_depth(at(t)) * m_size : off;
+                return on_arc(t) ? shape.signed_depth(at(t)) * size_b : off;
             };
             // The samples at fixed angles k 2 pi / circle_samples, from the last before the
             // arc to the first after it: they do not move with the pellets, so neither do the
@@ -526,7 +572,7 @@ private:
                     ((k % circle_samples) + circle_samples) % circle_samples)];
                 points.emplace_back(
                     k * step,
-                    on_arc(k * step) ? shape.signed_depth(q0 + e1 * c + e2 * s) * m_size : off);
+                    on_arc(k * step) ? shape.signed_depth(q0 + e1 * c + e2 * s) * size_b : off);
                 best = std::max(best, points.back().second);
             }
             const int n = static_cast<int>(points.size()) - 1;
@@ -589,10 +635,10 @@ private:
                     const InsideDepth in = shape.inside(q, m_blend);
                     if (in.depth <= 0.0)
                         continue;
-                    const double depth = in.depth * m_size;
-                    const double weight = gw[g] * span * radius * circle.area_per_length * m_size;
+                    const double depth = in.depth * size_b;
+                    const double weight = gw[g] * span * radius * circle.area_per_length * size_a;
                     const Vec3 f = rb(in.normal) * (weight * depth);
-                    const Vec3 from_b = rb(q) * m_size;
+                    const Vec3 from_b = rb(q) * size_b;
                     const Vec3 from_a = from_b + u;
                     push.force += f * sign;
                     (sign > 0 ? push.torque_first : push.torque_second) += cross(from_a, f);
@@ -607,7 +653,8 @@ private:
     /// exact_contact_stiffness along its normal at its point, as two soft spheres; the depth
     /// recorded is the exact one (pair_overlap).
     void press_exact(std::size_t a, std::size_t b, const Vec3& u, PairPush& push) const {
-        const Placement pa{m_centre[a], m_turn[a], m_size}, pb{m_centre[a] + u, m_turn[b], m_size};
+        const Placement pa{m_centre[a], m_turn[a], size(a)},
+            pb{m_centre[a] + u, m_turn[b], size(b)};
         const double depth = m_shape.pair_springs(
             pa, m_shape, pb, u, [&](double spring, const Vec3& normal, const Vec3& point) {
                 const Vec3 f = normal * (exact_contact_stiffness * spring); // on b, from a
@@ -625,7 +672,7 @@ private:
     /// exact depth (the side walls' by the springs' law, exact where they are convex towards
     /// the inside; measure_exact's search at the end).
     double press_walls_exact(std::size_t i, Vec3& force, Vec3& torque, WallTouches& touches) const {
-        const Placement p{m_centre[i], m_turn[i], m_size};
+        const Placement p{m_centre[i], m_turn[i], size(i)};
         const double side = m_shape.wall_springs(
             m_container, p, [&](double depth, const Vec3& push, const Vec3& at) {
                 const Vec3 f = push * (exact_contact_stiffness * depth);
@@ -636,6 +683,13 @@ private:
                     touches.add(f, push, m_shape.support(p, -push) - p.position, depth);
             });
         return std::max(side, -m_shape.support(p, {0, 0, -1}).z);
+    }
+
+    /// Whether pellets a and b, b's centroid at u from a's, are closer than their bounding
+    /// radii together.
+    bool within_reach(std::size_t a, std::size_t b, const Vec3& u) const {
+        const double both = reach_of(a) + reach_of(b);
+        return norm2(u) < both * both;
     }
 
     Vec3 separation(std::size_t a, std::size_t b) const {
@@ -653,7 +707,9 @@ private:
                 m_list.wrap(*m_cell);
             if (frictional())
                 m_carry.save(m_list.pair_first(), m_list.pair_second(), m_pair_spring, m_order);
-            const std::vector<double> radii(n, m_reach);
+            std::vector<double> radii(n);
+            for (std::size_t i = 0; i < n; ++i)
+                radii[i] = reach_of(i);
             m_list.build(m_centre, radii, skin);
             if (frictional()) {
                 m_pair_spring.resize(m_list.pairs());
@@ -671,22 +727,23 @@ private:
         m_push.assign(pairs, PairPush{});
         const auto first = m_list.pair_first();
         const auto second = m_list.pair_second();
-        const double cut2 = 4.0 * m_reach * m_reach;
 #pragma omp parallel for schedule(dynamic, 4) if (pairs >= parallel_min_pellets)
         for (std::size_t k = 0; k < pairs; ++k) {
             const std::size_t a = first[k], b = second[k];
             const Vec3 u = separation(a, b);
-            if (norm2(u) >= cut2)
+            if (!within_reach(a, b, u))
                 continue;
             if constexpr (level_set) {
                 // A pair whose hulls a plane parts presses nothing: skipped.
-                if (detail::hulls_apart(hull(), turn[a](Vec3{0.0, 0.0, 1.0}),
-                                        turn[b](Vec3{0.0, 0.0, 1.0}), u, hull_margin * m_size))
+                const double sa = m_scale[a], sb = m_scale[b];
+                if (detail::hulls_apart(hull(sa), hull(sb), turn[a](Vec3{0.0, 0.0, 1.0}),
+                                        turn[b](Vec3{0.0, 0.0, 1.0}), u,
+                                        hull_margin * m_size * std::min(sa, sb)))
                     continue;
-                press(turn[a], turn[b], u, 1.0, m_push[k]);
-                press(turn[b], turn[a], -u, -1.0, m_push[k]);
-                press_circles(turn[a], turn[b], u, 1.0, m_push[k]);
-                press_circles(turn[b], turn[a], -u, -1.0, m_push[k]);
+                press(turn[a], turn[b], sa, sb, u, 1.0, m_push[k]);
+                press(turn[b], turn[a], sb, sa, -u, -1.0, m_push[k]);
+                press_circles(turn[a], turn[b], sa, sb, u, 1.0, m_push[k]);
+                press_circles(turn[b], turn[a], sb, sa, -u, -1.0, m_push[k]);
             } else {
                 press_exact(a, b, u, m_push[k]);
             }
@@ -695,20 +752,21 @@ private:
         const double weight = m_gravity * m_volume;
 #pragma omp parallel for schedule(dynamic, 4) if (n >= parallel_min_pellets)
         for (std::size_t i = 0; i < n; ++i) {
-            Vec3 force{0.0, 0.0, -weight}, torque;
+            const double s = m_scale[i], reach = reach_of(i);
+            Vec3 force{0.0, 0.0, -weight * (s * s * s)}, torque;
             const Vec3& c = m_centre[i];
-            const bool floor = c.z < m_reach;
+            const bool floor = c.z < reach;
             WallTouches touches;
             if constexpr (!level_set) {
-                if (floor || m_container.wall_overlap(c, m_reach) > 0.0)
+                if (floor || m_container.wall_overlap(c, reach) > 0.0)
                     m_wall_depth[i] = press_walls_exact(i, force, torque, touches);
-            } else if (floor || m_container.wall_overlap(c, m_reach) > 0.0) {
+            } else if (floor || m_container.wall_overlap(c, reach) > 0.0) {
                 double deepest = 0.0;
                 for (const SurfaceNode& node : m_wall_nodes) {
-                    const Vec3 p = turn[i](node.point);
+                    const Vec3 p = turn[i](node.point * s);
                     const Vec3 at = c + p;
                     const auto add = [&](double depth, const Vec3& push) {
-                        const Vec3 f = push * (node.area * depth);
+                        const Vec3 f = push * (node.area * (s * s) * depth);
                         force += f;
                         torque += cross(p, f);
                         deepest = std::max(deepest, depth);
@@ -747,8 +805,8 @@ private:
         // the depth's excess over half the tolerance, along the normal at the contact point.
         for (const auto& [a, b] : m_exact_pairs) {
             const Vec3 u = separation(a, b);
-            const PairOverlap o = m_shape.pair_overlap({m_centre[a], m_turn[a], m_size}, m_shape,
-                                                       {m_centre[a] + u, m_turn[b], m_size}, u);
+            const PairOverlap o = m_shape.pair_overlap({m_centre[a], m_turn[a], size(a)}, m_shape,
+                                                       {m_centre[a] + u, m_turn[b], size(b)}, u);
             const double excess = o.depth - 0.5 * m_tol;
             if (!(excess > 0.0))
                 continue;
@@ -845,12 +903,13 @@ private:
             m_mu = m_wall_mu = 0.0;
     }
 
-    /// The largest force and torque over the bounding radius on a pellet, in weights.
+    /// The largest force and torque over the bounding radius on a pellet, in its own weights.
     std::pair<double, double> residual() const {
         double f = 0.0, t = 0.0;
         for (std::size_t i = 0; i < m_force.size(); ++i) {
-            f = std::max(f, norm2(m_force[i]));
-            t = std::max(t, norm2(m_torque[i]));
+            const double s = m_scale[i], s3 = s * s * s;
+            f = std::max(f, norm2(m_force[i]) / (s3 * s3));
+            t = std::max(t, norm2(m_torque[i]) / (s3 * s3 * s * s));
         }
         const double weight = m_gravity * m_volume;
         return {std::sqrt(f) / weight, std::sqrt(t) / (weight * m_reach)};
@@ -882,10 +941,10 @@ private:
     void step() {
         count_step();
         const std::size_t n = m_centre.size();
-        const double inv_reach = 1.0 / m_reach;
         double power = 0.0;
         for (std::size_t i = 0; i < n; ++i)
-            power += dot(m_force[i], m_velocity[i]) + dot(m_torque[i], m_spin[i]) * inv_reach;
+            power +=
+                dot(m_force[i], m_velocity[i]) + dot(m_torque[i], m_spin[i]) * (1.0 / reach_of(i));
         if (power > 0.0) {
             if (++m_positive > Fire::delay) {
                 m_dt = std::min(m_dt * Fire::grow, Fire::dt_max);
@@ -900,6 +959,7 @@ private:
         }
         double v2 = 0.0, f2 = 0.0;
         for (std::size_t i = 0; i < n; ++i) {
+            const double inv_reach = 1.0 / reach_of(i);
             m_velocity[i] += m_force[i] * m_dt;
             m_spin[i] += m_torque[i] * (inv_reach * m_dt);
             v2 += norm2(m_velocity[i]) + norm2(m_spin[i]);
@@ -907,6 +967,7 @@ private:
         }
         const double mix = f2 > 0.0 ? m_alpha * std::sqrt(v2 / f2) : 0.0;
         for (std::size_t i = 0; i < n; ++i) {
+            const double inv_reach = 1.0 / reach_of(i);
             m_velocity[i] = m_velocity[i] * (1.0 - m_alpha) + m_force[i] * mix;
             m_spin[i] = m_spin[i] * (1.0 - m_alpha) + m_torque[i] * (inv_reach * mix);
             move(i, m_velocity[i] * m_dt, m_spin[i] * m_dt);
@@ -922,10 +983,10 @@ private:
             arc = arc * (Fire::max_move / longest);
         }
         m_centre[i] += shift;
-        m_turn[i] = normalized(rotation_by(arc * (1.0 / m_reach)) * m_turn[i]);
+        m_turn[i] = normalized(rotation_by(arc * (1.0 / reach_of(i))) * m_turn[i]);
         if (frictional()) {
             m_moved[i] += shift;
-            m_turned[i] += arc * (1.0 / m_reach);
+            m_turned[i] += arc * (1.0 / reach_of(i));
         }
     }
 
@@ -950,10 +1011,9 @@ private:
     /// D = L = 2 DI in a tube of a = 4), at most the settle stage's start.
     void pour() {
         const std::size_t n = m_centre.size();
-        const double height = m_container.fill_height(static_cast<double>(n), 0.6);
+        const double height = m_container.fill_height(column_volume(), 0.6);
         m_gravity = std::min(settle_gravity, pour_load * m_params.band_high * m_dmin / height);
         const std::uint64_t start = m_steps;
-        const double inv_reach = 1.0 / m_reach;
         const double dt = level_set ? pour_dt : Fire::dt_max;
         std::vector<char> touching(n);
         double last = mass_centre_z();
@@ -973,6 +1033,7 @@ private:
                     all = all && (touching[i] || m_wall_depth[i] > 0.0);
             }
             for (std::size_t i = 0; i < n; ++i) {
+                const double inv_reach = 1.0 / reach_of(i);
                 if (dot(m_force[i], m_velocity[i]) + dot(m_torque[i], m_spin[i]) * inv_reach <
                     0.0) {
                     m_velocity[i] = Vec3{};
@@ -1147,10 +1208,10 @@ private:
         for (std::size_t k = 0; k < pairs; ++k) {
             const std::size_t a = first[k], b = second[k];
             const Vec3 u = separation(a, b);
-            if (norm2(u) >= 4.0 * m_reach * m_reach)
+            if (!within_reach(a, b, u))
                 continue;
-            const Placement pa{m_centre[a], m_turn[a], m_size};
-            const Placement pb{m_centre[a] + u, m_turn[b], m_size};
+            const Placement pa{m_centre[a], m_turn[a], size(a)};
+            const Placement pb{m_centre[a] + u, m_turn[b], size(b)};
             depth[k] = shape.pair_overlap(pa, shape, pb, u).depth;
         }
         for (std::size_t k = 0; k < pairs; ++k) {
@@ -1160,7 +1221,7 @@ private:
                                    static_cast<std::uint32_t>(second[k]));
         }
         for (std::size_t i = 0; i < m_centre.size(); ++i) {
-            const Placement p{m_centre[i], m_turn[i], m_size};
+            const Placement p{m_centre[i], m_turn[i], size(i)};
             const double wall =
                 std::max(shape.wall_overlap(m_container, p), -shape.support(p, {0, 0, -1}).z);
             out.max_depth_wall = std::max(out.max_depth_wall, wall);
@@ -1224,6 +1285,10 @@ private:
     const Container& m_container;
     std::optional<Periods> m_cell;
     double m_size = 0.5, m_reach = 0.0, m_volume = 0.0, m_dmin = 0.0;
+    /// Each pellet's scale (PelletBedParameters::scales, 1 where it is empty), the least and
+    /// the greatest.
+    std::vector<double> m_scale;
+    double m_scale_low = 1.0, m_scale_high = 1.0;
     double m_tol = 0.0;                             ///< the final depth tolerance, d_v
     double m_blend = edge_blend;                    ///< inside's blend (edge_blend)
     std::vector<SurfaceNode> m_nodes, m_wall_nodes; // without and with the side's rows

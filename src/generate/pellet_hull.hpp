@@ -28,18 +28,18 @@ struct HullCylinder {
     }
 };
 
-/// Whether a plane parts two equal hulls (axes a and b, b's centre at u from a's) with more than
-/// `margin` between them. Tried across the centres' line, each axis and the axes' cross product:
-/// the planes that part two cylinders end to end, end to side and side across side. A false
-/// answer does not say that they meet.
-inline bool hulls_apart(const HullCylinder& hull, const Vec3& a, const Vec3& b, const Vec3& u,
-                        double margin) {
+/// Whether a plane parts two hulls (`first` about the axis a, `second` about b, b's centre at u
+/// from a's) with more than `margin` between them. Tried across the centres' line, each axis and
+/// the axes' cross product: the planes that part two cylinders end to end, end to side and side
+/// across side. A false answer does not say that they meet.
+inline bool hulls_apart(const HullCylinder& first, const HullCylinder& second, const Vec3& a,
+                        const Vec3& b, const Vec3& u, double margin) {
     const auto apart_across = [&](const Vec3& v) {
         const double length = norm(v);
         if (!(length > 1e-9))
             return false;
         const Vec3 n = v * (1.0 / length);
-        return std::abs(dot(n, u)) - hull.extent(a, n) - hull.extent(b, n) > margin;
+        return std::abs(dot(n, u)) - first.extent(a, n) - second.extent(b, n) > margin;
     };
     return apart_across(u) || apart_across(a) || apart_across(b) || apart_across(cross(a, b));
 }

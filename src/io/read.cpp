@@ -1088,6 +1088,21 @@ BedSummary read_bed_summary(const nlohmann::json& json, std::string_view name) {
     out.diameter = number(json, "diameter", "diameter", limits::max_diameter);
     out.period_z = number(json, "period_z", "period_z", limits::max_length);
     out.sauter_mean = json.contains("sizes") && json["sizes"].is_object();
+    if (out.sauter_mean && json["sizes"].contains("statistics")) {
+        const nlohmann::json& statistics = json["sizes"]["statistics"];
+        const auto smallest =
+            number(statistics, "smallest", "sizes.statistics.smallest", limits::max_diameter);
+        const auto largest =
+            number(statistics, "largest", "sizes.statistics.largest", limits::max_diameter);
+        if (smallest && largest) {
+            if (!(*largest >= *smallest))
+                throw InvalidInput(fmt::format(
+                    "{}: sizes.statistics.largest = {} is not allowed; allowed: at least "
+                    "sizes.statistics.smallest = {}",
+                    shown, *largest, *smallest));
+            out.size_range = std::pair{*smallest, *largest};
+        }
+    }
     // The container, read back by its shape (Container::summary_json's record; a lattice
     // without a container record: its region's, region_json).
     for (const char* key : {"container", "region"}) {

@@ -59,6 +59,9 @@ std::optional<PelletSpec> shape_beside(const std::filesystem::path& particles) {
             fmt::format("{}: shape '{}' is not allowed; allowed: {}",
                         printable((particles.parent_path() / "summary.json").native()),
                         printable(*summary->shape), allowed_shapes()));
+    if (summary->size_range)
+        pellet->scales = {summary->size_range->first / pellet->diameter,
+                          summary->size_range->second / pellet->diameter};
     return pellet;
 }
 

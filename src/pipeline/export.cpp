@@ -903,19 +903,25 @@ std::string export_bed(const Packing& packing, const std::vector<std::size_t>& l
             "--shape has it in the summary.json beside it)",
             printable(request.source)));
     // A pellet's size is its table's r, d_v / 2: a shape of another size (beyond the digits a
-    // table written by hand keeps) is not its shape. (A table without orientations is refused
-    // as such by pellet_export.)
-    if (request.pellet && !packing.orientations.empty())
+    // table written by hand keeps; with sizes, outside their range) is not its shape. (A table
+    // without orientations is refused as such by pellet_export.)
+    if (request.pellet && !packing.orientations.empty()) {
+        const double half = 0.5 * request.pellet->volume_diameter;
+        const auto [low, high] = request.pellet->scales;
         for (std::size_t i = 0; i < packing.size(); ++i) {
-            const double r = packing.radii[i], half = 0.5 * request.pellet->volume_diameter;
-            if (!(std::abs(r - half) <= 1e-3 * half))
+            const double r = packing.radii[i];
+            if (!(r >= (1.0 - 1e-3) * low * half && r <= (1.0 + 1e-3) * high * half))
                 throw InvalidInput(fmt::format(
-                    "{}:{}: r = {} is not allowed for {} pellets; allowed: r = d_v / 2 = {} within "
-                    "0.1 % (a pellet's size in the table: give the shape's lengths in the table's "
-                    "units)",
+                    "{}:{}: r = {} is not allowed for {} pellets; allowed: {} within 0.1 % (a "
+                    "pellet's size in the table: give the shape's lengths in the table's units)",
                     printable(request.source), i < lines.size() ? lines[i] : i + 1, r,
-                    printable(request.pellet->text), half));
+                    printable(request.pellet->text),
+                    low == high ? fmt::format("r = d_v / 2 = {}", half * low)
+                                : fmt::format("r from {} to {} (d_v / 2 of the sizes recorded "
+                                              "beside it)",
+                                              half * low, half * high)));
         }
+    }
     if (request.pellet)
         return std::visit(
             [&](const auto& shape) {

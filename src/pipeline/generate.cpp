@@ -26,17 +26,6 @@
 
 namespace packbed {
 
-namespace {
-
-/// The seed of the sizes' random numbers: --seed XOR the golden-ratio constant 0x9E3779B97F4A7C15,
-/// a stream of its own, so that the centres of the generation stage are drawn from the same
-/// numbers whatever the sizes.
-std::uint64_t sizes_seed(std::uint64_t seed) {
-    return seed ^ 0x9E3779B97F4A7C15ull;
-}
-
-} // namespace
-
 int use_threads(unsigned long long threads) {
     omp_set_num_threads(static_cast<int>(threads));
     return threads_in_use();

@@ -160,8 +160,22 @@ PreparedPellets prepare_pellets(const PelletRequest& request) {
         throw InvalidInput(fmt::format("--shape: '{}' is not allowed; allowed: {}",
                                        printable(request.shape), allowed_shapes()));
     out.pellet = *pellet;
-    const double dv = pellet->volume_diameter;
     PelletBedParameters& p = out.params;
+    // Pellets of many sizes (docs/generate.md, "Sizes of pellets"): D drawn from --sizes as a
+    // sphere bed's diameters, the reference pellet the shape at their Sauter mean d32, each
+    // pellet's scale its D over d32. `mono` draws nothing: the bed of --shape, bit for bit.
+    double dv = pellet->volume_diameter;
+    if (request.sizes != "mono") {
+        const SizeDistribution distribution = parse_sizes(request.sizes, pellet->diameter);
+        const std::vector<double> drawn = draw_diameters(
+            distribution, request.particles, request.fractions, sizes_seed(request.seed));
+        out.drawn = size_statistics(drawn);
+        dv *= out.drawn->sauter_mean / pellet->diameter;
+        p.scales.reserve(drawn.size());
+        for (const double d : drawn)
+            p.scales.push_back(d / out.drawn->sauter_mean);
+    }
+    out.unit = dv;
     p.particles = request.particles;
     p.seed = request.seed;
     p.shape = pellet->shape;
@@ -180,8 +194,10 @@ PreparedPellets prepare_pellets(const PelletRequest& request) {
     // --shape), or d_v for --aspect-ratio.
     const bool lengths = !request.container.empty();
     const FitWords words{lengths ? dv : 1.0, lengths ? "" : " d_v",
-                         "the pellet's bounding diameter"};
-    if (const auto problem = p.container.fit_problem(2.0 * bounding_radius(p.shape, 0.5), words);
+                         out.drawn ? "the largest pellet's bounding diameter"
+                                   : "the pellet's bounding diameter"};
+    if (const auto problem = p.container.fit_problem(
+            2.0 * bounding_radius(p.shape, 0.5 * p.scale_range().second), words);
         !problem.empty())
         throw InvalidInput(
             fmt::format("--shape: '{}' does not fit in {}: {}", printable(request.shape),
@@ -236,7 +252,7 @@ GeneratedPellets run_pellets(const PreparedPellets& prepared, const RunControl& 
     out.bed = generate_pellet_bed(prepared.params, control);
     const double seconds =
         std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
-    const double dv = prepared.pellet.volume_diameter;
+    const double dv = prepared.unit;
     out.packing = out.bed.packing;
     for (Vec3& c : out.packing.centers)
         c = c * dv;
@@ -256,6 +272,20 @@ GeneratedPellets run_pellets(const PreparedPellets& prepared, const RunControl& 
                          : "pellets: springs on the exact depths and FIRE on positions and "
                            "rotations (docs/design.md, \"A bed of cylinder pellets\")";
     s["shape"] = pellet_shape_summary(pellet);
+    if (prepared.drawn)
+        s["sizes"] = {
+            {"spec", prepared.request.sizes},
+            {"fractions", to_string(prepared.request.fractions)},
+            {"of", pellet.kind == "trilobe" || pellet.kind == "multilobe"
+                       ? "DL, the lobes' diameter: each pellet is the shape scaled by its DL over "
+                         "the shape's"
+                       : "D, the pellet's diameter: each pellet is the shape scaled by its D over "
+                         "the shape's"},
+            {"reference_diameter",
+             "d_v of the pellet at the Sauter mean d32 of the drawn sizes: a = D_tube / d_v, and "
+             "particles.csv's r is each pellet's own d_v / 2"},
+            {"volume_equivalent_diameter", dv},
+            {"statistics", size_statistics_summary(*prepared.drawn)}};
     if (const auto a = p.container.tube_diameter())
         s["aspect_ratio"] = *a; // D_tube / d_v
     s["particles"] = p.particles;
@@ -276,7 +306,8 @@ GeneratedPellets run_pellets(const PreparedPellets& prepared, const RunControl& 
     s["container"] = out.container.summary_json();
     s["container"]["height"] = top;
     s["container"]["bottom"] = 0.0;
-    const double tol = p.tolerance * p.smallest_dimension() * dv;
+    // The smallest pellet's (PelletBedParameters::scales).
+    const double tol = p.tolerance * p.smallest_dimension() * p.scale_range().first * dv;
     s["tolerance"] = tol;
     s["max_penetration_pair"] = bed.max_depth_pair * dv;
     s["max_penetration_wall"] = bed.max_depth_wall * dv;

@@ -211,16 +211,17 @@ def test_bad_values_raise_value_error_with_one_line(call, words):
         assert word in message
 
 
-def pellets_from_both(tmp_path, shape, particles, seed, aspect_ratio=4, friction=0.0):
-    """A pellet bed in a tube (a = 4 unless given; friction between pellets and at the walls)
-    from the command line (tmp_path/cli) and from Python (tmp_path/py): asserts their
-    particles.csv and particles.vtu are the same bytes, returns the Python bed."""
+def pellets_from_both(tmp_path, shape, particles, seed, aspect_ratio=4, friction=0.0,
+                      sizes="mono"):
+    """A pellet bed in a tube (a = 4 unless given; friction between pellets and at the walls;
+    sizes on D) from the command line (tmp_path/cli) and from Python (tmp_path/py): asserts
+    their particles.csv and particles.vtu are the same bytes, returns the Python bed."""
     status, _, err = cli("generate", "--shape", shape, "-a", aspect_ratio, "-n", particles,
-                         "-s", seed, "--friction", friction, "--wall-friction", friction, "-q",
-                         "--out", tmp_path / "cli")
+                         "-s", seed, "--friction", friction, "--wall-friction", friction,
+                         "--sizes", sizes, "-q", "--out", tmp_path / "cli")
     assert status == 0, err
     bed = packbed.generate(shape=shape, aspect_ratio=aspect_ratio, particles=particles,
-                           seed=seed, friction=friction, wall_friction=friction,
+                           seed=seed, friction=friction, wall_friction=friction, sizes=sizes,
                            out=str(tmp_path / "py"))
     for name in ["particles.csv", "particles.vtu"]:
         assert (tmp_path / "py" / name).read_bytes() == (tmp_path / "cli" / name).read_bytes()
@@ -272,6 +273,28 @@ def test_a_frictional_pellet_bed_has_the_command_lines_bytes_and_stands_looser(t
     packbed.export(loose, str(tmp_path / "rods.data"))
     text = (tmp_path / "rods.data.lammps.in").read_text()
     assert "variable        friction equal 0.5\n" in text
+
+
+def test_a_sized_pellet_bed_has_the_command_lines_bytes_and_each_pellets_own_size(tmp_path):
+    # 20 rods of D = 0.8 and 1.2 (half of the volume each: 15 and 5 of them, the command line's
+    # test Cli.ASizedPelletBed...): Python's files are the command line's bytes, each r is
+    # 0.5 D d_v / D with d_v = 2.5^(1/3) at D = 1, and the bed, read back, exports its STL as
+    # the command line does (each rod at its own size).
+    bed = pellets_from_both(tmp_path, "spherocylinder:1,1", 20, 1,
+                            sizes="discrete:0.8:0.5,1.2:0.5")
+    dv = 2.5 ** (1 / 3)
+    radii = np.sort(bed.radii)
+    assert np.allclose(radii[:15], 0.4 * dv, rtol=1e-12)
+    assert np.allclose(radii[15:], 0.6 * dv, rtol=1e-12)
+    assert bed.summary["sizes"]["statistics"]["largest"] == 1.2
+    packbed.export(packbed.read(str(tmp_path / "cli" / "particles.csv")), str(tmp_path / "py.stl"),
+                   format="stl")
+    status, _, err = cli("export", tmp_path / "cli" / "particles.csv", "-f", "stl", "-q", "-o",
+                         tmp_path / "cli.stl")
+    assert status == 0, err
+    assert (tmp_path / "py.stl").read_bytes() == (tmp_path / "cli.stl").read_bytes()
+    packbed.export(bed, str(tmp_path / "generated.stl"), format="stl")
+    assert (tmp_path / "generated.stl").read_bytes() == (tmp_path / "cli.stl").read_bytes()
 
 
 def test_a_pellet_bed_is_read_measured_written_and_exported_as_the_command_line_does(tmp_path):
