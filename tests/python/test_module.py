@@ -295,6 +295,11 @@ def test_a_sized_pellet_bed_has_the_command_lines_bytes_and_each_pellets_own_siz
     assert (tmp_path / "py.stl").read_bytes() == (tmp_path / "cli.stl").read_bytes()
     packbed.export(bed, str(tmp_path / "generated.stl"), format="stl")
     assert (tmp_path / "generated.stl").read_bytes() == (tmp_path / "cli.stl").read_bytes()
+    # The image's fractions add up to the rods' volumes, each pi d_v^3 / 6 at its own size.
+    region = (-2.8, -2.8, -0.1, 2.8, 2.8, 8.0)
+    image = packbed.voxelize(bed, voxel_size=0.1, kind="fraction", region=region)
+    assert image.sum() * 1e-3 == pytest.approx(np.sum(np.pi / 6 * (2 * bed.radii) ** 3),
+                                               rel=0, abs=1e-9)
 
 
 def test_a_pellet_bed_is_read_measured_written_and_exported_as_the_command_line_does(tmp_path):
