@@ -232,16 +232,16 @@ Bed generate_pellets(std::optional<double> aspect_ratio,
                      const std::optional<std::filesystem::path>& out, bool force,
                      const std::string& shape, double friction, double wall_friction,
                      std::optional<long long> max_iterations, const std::string& sizes,
-                     const std::string& fractions,
+                     const std::string& fractions, std::optional<double> layer_height,
                      const std::vector<std::pair<std::string, bool>>& sphere_only) {
     namespace range = option_range;
     for (const auto& [name, given] : sphere_only)
         if (given)
             throw InvalidInput(fmt::format(
                 "{} is not allowed with shape='{}'; allowed with a pellet: aspect_ratio, "
-                "container, particles, seed, sizes, fractions, band_clearance, friction, "
-                "wall_friction, max_iterations, threads, progress, out, force (docs/generate.md, "
-                "\"Pellets\")",
+                "container, particles, seed, sizes, fractions, layer_height, band_clearance, "
+                "friction, wall_friction, max_iterations, threads, progress, out, force "
+                "(docs/generate.md, \"Pellets\")",
                 name, printable(std::string_view(shape).substr(0, 80))));
     if (aspect_ratio && container)
         throw InvalidInput(fmt::format("--aspect-ratio {} and --container {} are both given; "
@@ -261,6 +261,9 @@ Bed generate_pellets(std::optional<double> aspect_ratio,
         request.max_steps = check_option("max-iterations", *max_iterations, range::max_iterations);
     request.sizes = sizes;
     request.fractions = fraction_bases().at(fractions);
+    if (layer_height)
+        request.layer_height =
+            check_option("layer-height", *layer_height, option_range::layer_height);
     const PreparedPellets prepared = prepare_pellets(request);
     std::optional<OutputDirectory> directory;
     if (out)
@@ -317,8 +320,9 @@ Bed generate(std::optional<double> aspect_ratio, const std::optional<std::string
              std::optional<double> overlap_low, std::optional<double> overlap_high,
              double tolerance, long long mc_period, long long mc_window,
              std::optional<double> mc_tolerance, const std::string& update,
-             const std::string& solver, std::optional<double> skin, double layer_height,
-             double friction, double wall_friction, std::optional<double> target_void_fraction,
+             const std::string& solver, std::optional<double> skin,
+             std::optional<double> layer_height, double friction, double wall_friction,
+             std::optional<double> target_void_fraction,
              const std::optional<std::filesystem::path>& checkpoint,
              std::optional<long long> max_iterations, double band_clearance,
              std::optional<long long> threads, const py::object& progress,
@@ -330,7 +334,7 @@ Bed generate(std::optional<double> aspect_ratio, const std::optional<std::string
     if (shape != "sphere")
         return generate_pellets(aspect_ratio, container, particles, seed, band_clearance, threads,
                                 progress, out, force, shape, friction, wall_friction,
-                                max_iterations, sizes, fractions,
+                                max_iterations, sizes, fractions, layer_height,
                                 {{"diameter", diameter != defaults.diameter},
                                  {"e0", e0 != defaults.e0},
                                  {"ck", ck != defaults.ck},
@@ -344,7 +348,6 @@ Bed generate(std::optional<double> aspect_ratio, const std::optional<std::string
                                  {"update", update != to_string(defaults.update)},
                                  {"solver", solver != to_string(defaults.solver)},
                                  {"skin", skin.has_value()},
-                                 {"layer_height", layer_height != defaults.layer_height},
                                  {"target_void_fraction", target_void_fraction.has_value()},
                                  {"checkpoint", checkpoint.has_value()},
                                  {"engine", engine != to_string(Engine::packbed)},
@@ -381,7 +384,8 @@ Bed generate(std::optional<double> aspect_ratio, const std::optional<std::string
     p.solver = solvers().at(solver);
     if (skin)
         p.skin = check_option("skin", *skin, range::skin);
-    p.layer_height = check_option("layer-height", layer_height, range::layer_height);
+    if (layer_height)
+        p.layer_height = check_option("layer-height", *layer_height, range::layer_height);
     p.friction = check_option("friction", friction, range::friction);
     p.wall_friction = check_option("wall-friction", wall_friction, range::friction);
     if (target_void_fraction)
@@ -1193,8 +1197,7 @@ generate --shape` writes them.)");
           py::arg("mc_tolerance") = py::none(),
           py::arg("update") = to_string(SoftSphereParameters{}.update),
           py::arg("solver") = to_string(SoftSphereParameters{}.solver),
-          py::arg("skin") = py::none(),
-          py::arg("layer_height") = SoftSphereParameters{}.layer_height,
+          py::arg("skin") = py::none(), py::arg("layer_height") = py::none(),
           py::arg("friction") = SoftSphereParameters{}.friction,
           py::arg("wall_friction") = SoftSphereParameters{}.wall_friction,
           py::arg("target_void_fraction") = py::none(), py::arg("checkpoint") = py::none(),
@@ -1211,7 +1214,7 @@ The keyword arguments are `packbed generate`'s options in snake_case, with the s
 unit of diameter, docs/containers.md), particles Np, seed, diameter Dp, sizes (a --sizes spec, docs/sizes.md), fractions
 ('volume' or 'number'), e0, ck, cg_step, overlap_low, overlap_high, tolerance, mc_period,
 mc_window, mc_tolerance (None: the solver's schedule), update ('in-place' or 'simultaneous'),
-solver ('fire' or 'paper'), skin, layer_height, friction, wall_friction, target_void_fraction
+solver ('fire' or 'paper'), skin, layer_height (None: 30 Dp for spheres, one piece for pellets), friction, wall_friction, target_void_fraction
 (None: none), checkpoint (a file), max_iterations, band_clearance. threads: at most this many threads (None: all; the result does not depend on
 it). progress: called as progress(report) every mc_period iterations with a dict (stage,
 iteration, cg, max_overlap_pair, max_overlap_wall, mass_centre_z, layer, layers). out: a

@@ -497,7 +497,7 @@ INSTANTIATE_TEST_SUITE_P(
               "cylinder:1,1; allowed with a pellet: --aspect-ratio, --container, --particles, "
               "--seed, --shape, --out, --force, --threads, --quiet, --band-clearance, "
               "--no-analysis, --config, --friction, --wall-friction, --max-iterations, "
-              "--sizes, --fractions (docs/generate.md, \"Pellets\")"),
+              "--sizes, --fractions, --layer-height (docs/generate.md, \"Pellets\")"),
         // Sizes on the pellet's D: parse_sizes' refusal; the largest pellet must fit (the
         // largest of 100 D drawn from uniform:1,3 is 2.977, its bounding diameter 2.977 sqrt(2)).
         naming("generate --shape cylinder:1,1 --sizes uniform:1,20",

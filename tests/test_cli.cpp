@@ -267,6 +267,24 @@ TEST(Cli, ASizedPelletBedRecordsItsSizesAndExportsEachPelletAtItsOwnSize) {
         << edited.err;
 }
 
+TEST(Cli, ATallPelletBedInLayersRecordsItsLayers) {
+    // 100 rods in a tube of a = 3 (the library's SpherocylinderBed.ATallBedInLayers...): with
+    // --layer-height 10 five layers, each stage recorded with its layer; without it one piece.
+    const fs::path layered = scratch("rods-layers"), whole = scratch("rods-one-piece");
+    const std::string bed = "generate --shape spherocylinder:1,1 -a 3 -n 100 -s 1 --quiet ";
+    ASSERT_EQ(packbed(bed + "--layer-height 10 --out " + layered.string()).status, 0);
+    const auto summary = nlohmann::json::parse(slurp(layered / "summary.json"));
+    EXPECT_EQ(summary["layers"].get<int>(), 5);
+    EXPECT_EQ(summary["layer_height"].get<double>(), 10.0);
+    ASSERT_EQ(summary["stages"].size(), 10u);
+    EXPECT_EQ(summary["stages"][9]["layer"].get<int>(), 4);
+    EXPECT_LE(summary["max_penetration_pair"].get<double>(), summary["tolerance"].get<double>());
+    ASSERT_EQ(packbed(bed + "--out " + whole.string()).status, 0);
+    const auto one = nlohmann::json::parse(slurp(whole / "summary.json"));
+    EXPECT_FALSE(one.contains("layers"));
+    EXPECT_EQ(one["stages"].size(), 2u);
+}
+
 TEST(Cli, FrictionalBedInLayersResumesToTheSameBytesAndItsDemInputKeepsTheFriction) {
     // The checkpoint test's bed with friction (mu = 0.3 at spheres, walls and floor): layers,
     // a stop and a resume end in the bytes of the run never stopped; summary.json records the

@@ -594,6 +594,26 @@ TEST(SizedPelletBed, SpherocylindersOfTwoSizesEndBelowTheSmallestsToleranceOnAny
                  }));
 }
 
+// A tall bed in layers: 100 rods in a tube of a = 3 inserted over a column of 57 d_v, in layers
+// of 10 d_v: five layers, each relaxed by its two stages; the whole bed (its seams included)
+// ends below the tolerance by the exact depths and by the brute force, with the same bits on
+// one thread and on two.
+TEST(SpherocylinderBed, ATallBedInLayersEndsBelowTheToleranceOnAnyThreads) {
+    PelletBedParameters params = spherocylinder_bed(100, Container::tube(3.0), 1);
+    params.layer_height = 10.0;
+    EXPECT_EQ(pellet_layers(params, 57.0), 5u);
+    EXPECT_EQ(pellet_layers(params, 20.0), 1u);
+    const PelletBed bed = same_bits_on_one_thread_and_two(
+        params, [](const PelletBedParameters& p) { return expect_below_tolerance(p); });
+    EXPECT_EQ(bed.layers, 5u);
+    ASSERT_EQ(bed.stages.size(), 10u);
+    for (std::uint32_t l = 0; l < 5; ++l) {
+        EXPECT_EQ(bed.stages[2 * l].name, "settle");
+        EXPECT_EQ(bed.stages[2 * l + 1].name, "final");
+        EXPECT_EQ(bed.stages[2 * l + 1].layer, l);
+    }
+}
+
 TEST(SpherocylinderBed, TheSameBitsOnOneThreadAndOnTwo) {
     same_bits_on_one_thread_and_two(
         spherocylinder_bed(20, Container::tube(4.0), 1),

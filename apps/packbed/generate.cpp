@@ -56,10 +56,10 @@ struct GenerateOptions {
 
 /// The options a pellet bed takes; every other generate option is the spheres' alone.
 constexpr std::array pellet_options{
-    "--aspect-ratio", "--container", "--particles", "--seed",          "--shape",
-    "--out",          "--force",     "--threads",   "--quiet",         "--band-clearance",
-    "--no-analysis",  "--config",    "--friction",  "--wall-friction", "--max-iterations",
-    "--sizes",        "--fractions"};
+    "--aspect-ratio", "--container", "--particles",   "--seed",          "--shape",
+    "--out",          "--force",     "--threads",     "--quiet",         "--band-clearance",
+    "--no-analysis",  "--config",    "--friction",    "--wall-friction", "--max-iterations",
+    "--sizes",        "--fractions", "--layer-height"};
 
 /// --shape PELLET: a bed of pellets (docs/generate.md, "Pellets").
 int run_pellets(const GenerateOptions& o) {
@@ -86,6 +86,10 @@ int run_pellets(const GenerateOptions& o) {
         request.max_steps = o.params.max_iterations;
     request.sizes = o.sizes;
     request.fractions = fraction_bases().at(o.fractions);
+    // A pellet bed is relaxed in one piece unless --layer-height is given (the spheres' default
+    // of 30 Dp does not apply).
+    if (o.app->count("--layer-height") > 0)
+        request.layer_height = o.params.layer_height;
     const PreparedPellets prepared = prepare_pellets(request);
     OutputDirectory out(o.out, "--out", OutputKind::directory, o.force);
     const int threads = use_threads(o.threads);

@@ -61,6 +61,10 @@ struct PelletBedParameters {
     /// measured against the smallest pellet's smallest dimension, the nodes placed at the
     /// spacing on the largest.
     std::vector<double> scales;
+    /// A bed whose column (the height the pellets are inserted over) exceeds twice this, d_v,
+    /// is relaxed in layers of about this height (docs/generate.md, "Tall pellet beds in
+    /// layers"); 0, the default, relaxes every bed in one piece; 0 or [10, 1e6].
+    double layer_height = 0.0;
 
     /// \throws InvalidInput naming the parameter, its value and the allowed range.
     void validate() const;
@@ -75,9 +79,10 @@ struct PelletBedParameters {
 struct PelletStage {
     std::string name;
     std::uint64_t steps = 0;
-    double gravity = 0.0;   ///< the gravity parameter at its end (weight over stiffness)
-    double max_depth = 0.0; ///< the nodes' deepest penetration at its end, d_v
-    double mass_centre_z = 0.0;
+    double gravity = 0.0;       ///< the gravity parameter at its end (weight over stiffness)
+    double max_depth = 0.0;     ///< the nodes' deepest penetration at its end, d_v
+    double mass_centre_z = 0.0; ///< of the pellets that moved
+    std::uint32_t layer = 0;    ///< in a bed in layers, the layer relaxed, from 0
 };
 
 /// A settled pellet bed.
@@ -88,6 +93,7 @@ struct PelletBed {
     std::vector<PelletStage> stages;
     std::uint64_t steps = 0;
     std::uint64_t neighbor_builds = 0;
+    std::uint32_t layers = 1;     ///< the layers it was relaxed in (1: in one piece)
     std::size_t nodes = 0;        ///< nodes on each pellet's surface (0: a spherocylinder)
     double max_depth_nodes = 0.0; ///< the deepest node, pair or wall, d_v
     /// The exact penetration depths (the shape's pair_overlap and wall_overlap, the floor by
@@ -100,6 +106,11 @@ struct PelletBed {
     std::size_t sliding_pairs = 0, sliding_walls = 0;
     bool friction_kept = false;
 };
+
+/// \return the layers generate_pellet_bed relaxes a bed of `params` in, its pellets inserted
+/// over `column` d_v: floor(column / layer_height) where the column exceeds twice the layer
+/// height, else 1 (and 1 for a layer height of 0).
+std::uint32_t pellet_layers(const PelletBedParameters& params, double column);
 
 /// Pour and settle a bed of pellets: insertion at random positions (uniform over the
 /// container's cross-section, uniform in height over the column of void fraction e0) with

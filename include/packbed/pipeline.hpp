@@ -163,6 +163,9 @@ struct PelletRequest {
     /// pellet is the --shape scaled by its D over the shape's.
     std::string sizes = "mono";
     FractionBasis fractions = FractionBasis::volume; ///< --fractions
+    /// --layer-height, d_v: a tall bed relaxed in layers (PelletBedParameters::layer_height);
+    /// 0: in one piece.
+    double layer_height = 0.0;
 };
 
 /// A pellet request checked and resolved: the solver's parameters (lengths in d_v).

@@ -41,6 +41,7 @@
 
 #include "base/parallel.hpp"
 #include "generate/friction.hpp"
+#include "generate/layers.hpp"
 #include "generate/soft_bed.hpp"
 #include "packbed/error.hpp"
 #include "packbed/soft_sphere.hpp"
@@ -708,30 +709,11 @@ SoftSphereResult relax_with_fire(const SoftSphereParameters& parameters,
             if (members[l].empty())
                 continue;
             // the part's spheres: fixed shell, free band, new slice (each in a fixed order).
-            // The band: the last layer relaxed (`previous`) and the top layer_band of the
-            // layers under it; nothing is fixed while those hold no sphere.
-            std::uint32_t previous = l;
-            for (std::uint32_t below = 0; below < l; ++below)
-                if (!members[below].empty())
-                    previous = below;
-            bool under = false;
-            double under_top = 0.0; // highest centre under the previous layer
-            for (std::uint32_t below = 0; below < previous; ++below)
-                for (const std::uint32_t i : members[below]) {
-                    under_top = under ? std::max(under_top, position[i].z) : position[i].z;
-                    under = true;
-                }
-            const double datum = under ? under_top - layer_band : 0.0;
-            std::vector<std::uint32_t> ids, band;
-            for (std::uint32_t below = 0; below < l; ++below) // the settled layers
-                for (const std::uint32_t i : members[below]) {
-                    if (below == previous || position[i].z > datum)
-                        band.push_back(i);
-                    else if (position[i].z > datum - shell)
-                        ids.push_back(i);
-                }
-            const auto fixed = static_cast<std::uint32_t>(ids.size());
-            ids.insert(ids.end(), band.begin(), band.end());
+            detail::LayerPart layer = detail::layer_part(
+                members, l, [&](std::uint32_t i) { return position[i].z; }, layer_band, shell);
+            std::vector<std::uint32_t>& ids = layer.ids;
+            const auto fixed = static_cast<std::uint32_t>(layer.fixed);
+            const double datum = layer.datum;
             const double base = on_floor ? 0.0 : top + largest; // where the slice's bottom goes
             const double lift = base - l * slice;
             for (const std::uint32_t i : members[l]) {

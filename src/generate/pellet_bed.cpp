@@ -19,6 +19,7 @@
 #include "../base/parallel.hpp"
 #include "../base/require.hpp"
 #include "generate/friction.hpp"
+#include "generate/layers.hpp"
 #include "generate/pellet_hull.hpp"
 #include "packbed/error.hpp"
 #include "packbed/neighbor_list.hpp"
@@ -71,6 +72,8 @@ void PelletBedParameters::validate() const {
     require(friction >= 0.0 && friction <= 100.0, "friction", friction, "0 to 100");
     require(wall_friction >= 0.0 && wall_friction <= 100.0, "wall friction", wall_friction,
             "0 to 100");
+    require(layer_height == 0.0 || (layer_height >= 10.0 && layer_height <= 1e6), "layer height",
+            layer_height, "0 (one piece) or 10 to 1000000 d_v");
     if (scales.empty())
         return;
     require(scales.size() == particles, "scales", static_cast<double>(scales.size()),
@@ -181,6 +184,18 @@ struct Fire {
     static constexpr double max_move = 0.02;
 };
 
+/// A part of a bed in layers (generate_pellet_bed): its pellets' centroids and orientations,
+/// the first `fixed` of them held still, the whole bed's least and greatest scale (so that each
+/// part has the bed's tolerance and nodes), and the steps run before it.
+struct Part {
+    std::vector<Vec3> centre;
+    std::vector<Quaternion> turn;
+    std::size_t fixed = 0;
+    std::pair<double, double> scale_range{1.0, 1.0};
+    std::uint64_t steps = 0;
+    std::uint32_t layer = 0, layers = 1;
+};
+
 /// The solver for pellets of shape S: MultilobeShape (cylinders, rings, multilobes) pressed
 /// by its surface's nodes and circles (the level-set contact), SpherocylinderShape by springs
 /// on exact depths (its pair_springs and wall_springs).
@@ -189,7 +204,9 @@ public:
     /// Whether the pellets touch by their surfaces' nodes (else by their exact depths).
     static constexpr bool level_set = std::is_same_v<S, MultilobeShape>;
 
-    PelletSolver(const PelletBedParameters& params, const S& shape, const RunControl& control)
+    /// \param part a part of a bed in layers: its pellets are placed, not inserted
+    PelletSolver(const PelletBedParameters& params, const S& shape, const RunControl& control,
+                 const Part* part = nullptr)
         : m_params(params)
         , m_shape(shape)
         , m_control(control)
@@ -201,17 +218,46 @@ public:
         m_size = 0.5; // d_v = 1
         m_reach = m_shape.bounding_radius(m_size);
         m_volume = m_shape.volume(m_size);
-        std::tie(m_scale_low, m_scale_high) = params.scale_range();
+        std::tie(m_scale_low, m_scale_high) = part ? part->scale_range : params.scale_range();
         m_scale =
             params.scales.empty() ? std::vector<double>(params.particles, 1.0) : params.scales;
         m_dmin = params.smallest_dimension() * m_scale_low;
         m_tol = m_params.tolerance * m_dmin;
         if constexpr (level_set)
             place_nodes();
+        if (part) {
+            m_centre = part->centre;
+            m_turn = part->turn;
+            m_fixed = part->fixed;
+            m_steps = part->steps;
+            m_layer = part->layer;
+            m_layers = part->layers;
+        }
+    }
+
+    /// The pellets as insert() places them: centroids and orientations.
+    std::pair<std::vector<Vec3>, std::vector<Quaternion>> inserted() {
+        insert();
+        return {m_centre, m_turn};
+    }
+
+    /// The bed as it stands (its depths measured, nothing moved): the packing, the deepest
+    /// node and the exact depths.
+    PelletBed measured() {
+        start_motion();
+        forces();
+        PelletBed out;
+        out.max_depth_nodes = m_depth;
+        measure_exact(out);
+        fill_packing(out);
+        return out;
     }
 
     PelletBed run() {
-        insert();
+        if (m_fixed == 0 && m_centre.empty())
+            insert();
+        else
+            start_motion();
         PelletBed out;
         // A frictional bed pours and goes to the final stage: the settling's band of depths,
         // 15-30 times the tolerance, would lock overlaps that friction holds at any gravity
@@ -234,6 +280,13 @@ public:
         out.friction_kept = frictional();
         std::tie(out.residual_force, out.residual_torque) = residual();
         measure_exact(out);
+        fill_packing(out);
+        return out;
+    }
+
+private:
+    /// The pellets' centroids (wrapped into a periodic cell), orientations and sizes.
+    void fill_packing(PelletBed& out) const {
         out.packing.centers = m_centre;
         out.packing.orientations = m_turn;
         out.packing.radii.resize(m_centre.size());
@@ -242,10 +295,8 @@ public:
         if (m_cell)
             for (Vec3& c : out.packing.centers)
                 c = m_cell->wrapped(c);
-        return out;
     }
 
-private:
     /// A ring: a cylinder with a bore (its tolerance is of its wall).
     bool ring() const {
         if constexpr (level_set)
@@ -330,6 +381,12 @@ private:
                     n, m_container.describe(), insert_attempts, e0));
             e0 = 1.0 - 0.5 * (1.0 - e0);
         }
+        start_motion();
+    }
+
+    /// Every pellet at rest, its friction's springs unstretched.
+    void start_motion() {
+        const std::size_t n = m_centre.size();
         m_velocity.assign(n, Vec3{});
         m_spin.assign(n, Vec3{});
         m_force.assign(n, Vec3{});
@@ -730,6 +787,8 @@ private:
 #pragma omp parallel for schedule(dynamic, 4) if (pairs >= parallel_min_pellets)
         for (std::size_t k = 0; k < pairs; ++k) {
             const std::size_t a = first[k], b = second[k];
+            if (a < m_fixed && b < m_fixed) // two held pellets: nothing of theirs moves
+                continue;
             const Vec3 u = separation(a, b);
             if (!within_reach(a, b, u))
                 continue;
@@ -751,7 +810,7 @@ private:
         m_wall_depth.assign(n, 0.0);
         const double weight = m_gravity * m_volume;
 #pragma omp parallel for schedule(dynamic, 4) if (n >= parallel_min_pellets)
-        for (std::size_t i = 0; i < n; ++i) {
+        for (std::size_t i = m_fixed; i < n; ++i) {
             const double s = m_scale[i], reach = reach_of(i);
             Vec3 force{0.0, 0.0, -weight * (s * s * s)}, torque;
             const Vec3& c = m_centre[i];
@@ -906,7 +965,7 @@ private:
     /// The largest force and torque over the bounding radius on a pellet, in its own weights.
     std::pair<double, double> residual() const {
         double f = 0.0, t = 0.0;
-        for (std::size_t i = 0; i < m_force.size(); ++i) {
+        for (std::size_t i = m_fixed; i < m_force.size(); ++i) {
             const double s = m_scale[i], s3 = s * s * s;
             f = std::max(f, norm2(m_force[i]) / (s3 * s3));
             t = std::max(t, norm2(m_torque[i]) / (s3 * s3 * s * s));
@@ -915,11 +974,12 @@ private:
         return {std::sqrt(f) / weight, std::sqrt(t) / (weight * m_reach)};
     }
 
+    /// The mean height of the pellets that move.
     double mass_centre_z() const {
         double z = 0.0;
-        for (const Vec3& c : m_centre)
-            z += c.z;
-        return z / static_cast<double>(m_centre.size());
+        for (std::size_t i = m_fixed; i < m_centre.size(); ++i)
+            z += m_centre[i].z;
+        return z / static_cast<double>(m_centre.size() - m_fixed);
     }
 
     /// The forces of one more step, counted. \throws Cancelled when the run is stopped,
@@ -942,7 +1002,7 @@ private:
         count_step();
         const std::size_t n = m_centre.size();
         double power = 0.0;
-        for (std::size_t i = 0; i < n; ++i)
+        for (std::size_t i = m_fixed; i < n; ++i)
             power +=
                 dot(m_force[i], m_velocity[i]) + dot(m_torque[i], m_spin[i]) * (1.0 / reach_of(i));
         if (power > 0.0) {
@@ -958,7 +1018,7 @@ private:
             std::fill(m_spin.begin(), m_spin.end(), Vec3{});
         }
         double v2 = 0.0, f2 = 0.0;
-        for (std::size_t i = 0; i < n; ++i) {
+        for (std::size_t i = m_fixed; i < n; ++i) {
             const double inv_reach = 1.0 / reach_of(i);
             m_velocity[i] += m_force[i] * m_dt;
             m_spin[i] += m_torque[i] * (inv_reach * m_dt);
@@ -966,7 +1026,7 @@ private:
             f2 += norm2(m_force[i]) + norm2(m_torque[i]) * inv_reach * inv_reach;
         }
         const double mix = f2 > 0.0 ? m_alpha * std::sqrt(v2 / f2) : 0.0;
-        for (std::size_t i = 0; i < n; ++i) {
+        for (std::size_t i = m_fixed; i < n; ++i) {
             const double inv_reach = 1.0 / reach_of(i);
             m_velocity[i] = m_velocity[i] * (1.0 - m_alpha) + m_force[i] * mix;
             m_spin[i] = m_spin[i] * (1.0 - m_alpha) + m_torque[i] * (inv_reach * mix);
@@ -993,7 +1053,8 @@ private:
     void report(std::string_view stage) const {
         if (!m_control.on_progress || m_steps % 100 != 0)
             return;
-        Progress p{stage, m_steps, m_gravity, m_pair_depth, m_wall_max, mass_centre_z()};
+        Progress p{stage,      m_steps,         m_gravity, m_pair_depth,
+                   m_wall_max, mass_centre_z(), m_layer,   m_layers};
         m_control.on_progress(p);
     }
 
@@ -1029,10 +1090,10 @@ private:
                 for (std::size_t k = 0; k < m_list.pairs(); ++k)
                     if (m_push[k].depth > 0.0)
                         touching[first[k]] = touching[second[k]] = 1;
-                for (std::size_t i = 0; i < n; ++i)
+                for (std::size_t i = m_fixed; i < n; ++i)
                     all = all && (touching[i] || m_wall_depth[i] > 0.0);
             }
-            for (std::size_t i = 0; i < n; ++i) {
+            for (std::size_t i = m_fixed; i < n; ++i) {
                 const double inv_reach = 1.0 / reach_of(i);
                 if (dot(m_force[i], m_velocity[i]) + dot(m_torque[i], m_spin[i]) * inv_reach <
                     0.0) {
@@ -1053,7 +1114,7 @@ private:
         }
         std::fill(m_velocity.begin(), m_velocity.end(), Vec3{});
         std::fill(m_spin.begin(), m_spin.end(), Vec3{});
-        m_stages.push_back({"pour", m_steps - start, m_gravity, m_depth, mass_centre_z()});
+        m_stages.push_back({"pour", m_steps - start, m_gravity, m_depth, mass_centre_z(), m_layer});
     }
 
     /// The paper's initial and intermediate stages in one: gravity raised while the deepest
@@ -1086,7 +1147,8 @@ private:
             if (*hi - *lo <= spread * mean && m_depth <= 1.5 * high)
                 break;
         }
-        m_stages.push_back({"settle", m_steps - start, m_gravity, m_depth, mass_centre_z()});
+        m_stages.push_back(
+            {"settle", m_steps - start, m_gravity, m_depth, mass_centre_z(), m_layer});
     }
 
     /// The final stage: relaxed until every force and torque is below force_tolerance
@@ -1168,7 +1230,8 @@ private:
             if (frictional()) // the springs bear loads that scale with it
                 scale_springs(last_cut);
         }
-        m_stages.push_back({"final", m_steps - start, m_gravity, m_depth, mass_centre_z()});
+        m_stages.push_back(
+            {"final", m_steps - start, m_gravity, m_depth, mass_centre_z(), m_layer});
     }
 
     /// Friction let go at the pairs `over` and at the walls of the pellets `over_wall`: their
@@ -1208,7 +1271,7 @@ private:
         for (std::size_t k = 0; k < pairs; ++k) {
             const std::size_t a = first[k], b = second[k];
             const Vec3 u = separation(a, b);
-            if (!within_reach(a, b, u))
+            if ((a < m_fixed && b < m_fixed) || !within_reach(a, b, u))
                 continue;
             const Placement pa{m_centre[a], m_turn[a], size(a)};
             const Placement pb{m_centre[a] + u, m_turn[b], size(b)};
@@ -1220,7 +1283,7 @@ private:
                 over->emplace_back(static_cast<std::uint32_t>(first[k]),
                                    static_cast<std::uint32_t>(second[k]));
         }
-        for (std::size_t i = 0; i < m_centre.size(); ++i) {
+        for (std::size_t i = m_fixed; i < m_centre.size(); ++i) {
             const Placement p{m_centre[i], m_turn[i], size(i)};
             const double wall =
                 std::max(shape.wall_overlap(m_container, p), -shape.support(p, {0, 0, -1}).z);
@@ -1289,6 +1352,9 @@ private:
     /// the greatest.
     std::vector<double> m_scale;
     double m_scale_low = 1.0, m_scale_high = 1.0;
+    /// A part of a bed in layers: the first m_fixed pellets are held still (Part).
+    std::size_t m_fixed = 0;
+    std::uint32_t m_layer = 0, m_layers = 1;
     double m_tol = 0.0;                             ///< the final depth tolerance, d_v
     double m_blend = edge_blend;                    ///< inside's blend (edge_blend)
     std::vector<SurfaceNode> m_nodes, m_wall_nodes; // without and with the side's rows
@@ -1326,13 +1392,128 @@ private:
 
 template <class S> thread_local std::vector<std::pair<double, double>> PelletSolver<S>::m_points;
 
+/// A pellet bed in layers, as relax_with_fire builds a tall sphere bed (fire.cpp): the inserted
+/// column cut into `layers` slices of equal height; each slice, moved down to just above the
+/// bed below, relaxed by the stages with the last layer below it and the top layer_band d_v of
+/// the layers under that free, over a shell of held pellets.
+template <class S>
+PelletBed pellets_in_layers(const PelletBedParameters& params, const S& shape,
+                            const RunControl& control, std::vector<Vec3> centre,
+                            std::vector<Quaternion> turn, std::uint32_t layers) {
+    constexpr double layer_band = 4.0; // d_v
+    const std::size_t n = centre.size();
+    const auto [low, high] = params.scale_range();
+    const auto scale = [&](std::size_t i) {
+        return params.scales.empty() ? 1.0 : params.scales[i];
+    };
+    const auto reach = [&](std::size_t i) { return shape.bounding_radius(0.5 * scale(i)); };
+    // The shell holds every pellet a free one can touch: two of the largest bounding radii,
+    // and a quarter more for the moves of the relaxation.
+    const double largest = shape.bounding_radius(0.5 * high), shell = 2.5 * largest;
+    double column = 0.0;
+    for (std::size_t i = 0; i < n; ++i)
+        column = std::max(column, centre[i].z + reach(i));
+    const double slice = column / layers;
+    std::vector<std::vector<std::uint32_t>> members(layers);
+    for (std::uint32_t i = 0; i < n; ++i) {
+        const double z = centre[i].z - reach(i);
+        members[static_cast<std::uint32_t>(std::clamp(z / slice, 0.0, layers - 1.0))].push_back(i);
+    }
+    PelletBed out;
+    out.layers = layers;
+    double top = 0.0; // the highest settled centroid
+    bool on_floor = true;
+    double force = 0.0, torque = 0.0;
+    for (std::uint32_t l = 0; l < layers; ++l) {
+        if (members[l].empty())
+            continue;
+        detail::LayerPart layer = detail::layer_part(
+            members, l, [&](std::uint32_t i) { return centre[i].z; }, layer_band, shell);
+        std::vector<std::uint32_t>& ids = layer.ids;
+        Part part;
+        part.fixed = layer.fixed;
+        const double lift = (on_floor ? 0.0 : top + 2.0 * largest) - l * slice;
+        for (const std::uint32_t i : members[l]) {
+            centre[i].z += lift;
+            ids.push_back(i);
+        }
+        PelletBedParameters p = params;
+        p.particles = ids.size();
+        p.layer_height = 0.0;
+        if (!params.scales.empty()) {
+            p.scales.clear();
+            for (const std::uint32_t i : ids)
+                p.scales.push_back(params.scales[i]);
+        }
+        for (const std::uint32_t i : ids) {
+            part.centre.push_back(centre[i]);
+            part.turn.push_back(turn[i]);
+        }
+        part.scale_range = {low, high};
+        part.steps = out.steps;
+        part.layer = l;
+        part.layers = layers;
+        const PelletBed relaxed = PelletSolver<S>(p, shape, control, &part).run();
+        for (std::size_t k = part.fixed; k < ids.size(); ++k) {
+            centre[ids[k]] = relaxed.packing.centers[k];
+            turn[ids[k]] = relaxed.packing.orientations[k];
+            top = std::max(top, relaxed.packing.centers[k].z);
+        }
+        out.steps = relaxed.steps;
+        out.neighbor_builds += relaxed.neighbor_builds;
+        out.nodes = relaxed.nodes;
+        out.stages.insert(out.stages.end(), relaxed.stages.begin(), relaxed.stages.end());
+        out.sliding_pairs += relaxed.sliding_pairs;
+        out.sliding_walls += relaxed.sliding_walls;
+        out.friction_kept = relaxed.friction_kept;
+        force = std::max(force, relaxed.residual_force);
+        torque = std::max(torque, relaxed.residual_torque);
+        on_floor = false;
+    }
+    // The whole bed measured as it stands: its depths across the layers' seams too.
+    Part whole;
+    whole.centre = std::move(centre);
+    whole.turn = std::move(turn);
+    whole.scale_range = {low, high};
+    PelletBedParameters p = params;
+    p.layer_height = 0.0;
+    PelletBed measured = PelletSolver<S>(p, shape, control, &whole).measured();
+    out.packing = std::move(measured.packing);
+    out.max_depth_nodes = measured.max_depth_nodes;
+    out.max_depth_pair = measured.max_depth_pair;
+    out.max_depth_wall = measured.max_depth_wall;
+    out.residual_force = force;
+    out.residual_torque = torque;
+    return out;
+}
+
 } // namespace
 
+std::uint32_t pellet_layers(const PelletBedParameters& params, double column) {
+    if (params.layer_height <= 0.0 || column <= 2.0 * params.layer_height)
+        return 1;
+    return static_cast<std::uint32_t>(std::min(column / params.layer_height, 1e6));
+}
+
 PelletBed generate_pellet_bed(const PelletBedParameters& params, const RunControl& control) {
+    params.validate();
     return std::visit(
         [&](const auto& shape) {
             using S = std::decay_t<decltype(shape)>;
-            return PelletSolver<S>(params, shape, control).run();
+            if (params.layer_height <= 0.0)
+                return PelletSolver<S>(params, shape, control).run();
+            auto [centre, turn] = PelletSolver<S>(params, shape, control).inserted();
+            double column = 0.0;
+            for (std::size_t i = 0; i < centre.size(); ++i)
+                column = std::max(column,
+                                  centre[i].z +
+                                      shape.bounding_radius(
+                                          0.5 * (params.scales.empty() ? 1.0 : params.scales[i])));
+            const std::uint32_t layers = pellet_layers(params, column);
+            if (layers == 1)
+                return PelletSolver<S>(params, shape, control).run();
+            return pellets_in_layers(params, shape, control, std::move(centre), std::move(turn),
+                                     layers);
         },
         params.shape);
 }

@@ -182,6 +182,7 @@ PreparedPellets prepare_pellets(const PelletRequest& request) {
     p.friction = request.friction;
     p.wall_friction = request.wall_friction;
     p.max_steps = request.max_steps;
+    p.layer_height = request.layer_height;
     if (request.container.empty()) {
         p.container = Container::tube(request.aspect_ratio);
     } else {
@@ -316,15 +317,22 @@ GeneratedPellets run_pellets(const PreparedPellets& prepared, const RunControl& 
     s["torque_residual"] = bed.residual_torque;
     s["residual_unit"] = "a pellet's weight (torque: times its bounding radius)";
     s["steps"] = bed.steps;
+    if (p.layer_height > 0.0) {
+        s["layer_height"] = p.layer_height; // d_v
+        s["layers"] = bed.layers;
+    }
     s["seconds"] = seconds;
     s["nodes_per_pellet"] = bed.nodes;
     json stages = json::array();
-    for (const PelletStage& st : bed.stages)
+    for (const PelletStage& st : bed.stages) {
         stages.push_back({{"name", st.name},
                           {"steps", st.steps},
                           {"gravity", st.gravity},
                           {"max_node_depth", st.max_depth * dv},
                           {"mass_centre_z", st.mass_centre_z * dv}});
+        if (bed.layers > 1)
+            stages.back()["layer"] = st.layer;
+    }
     s["stages"] = stages;
     const double clearance = prepared.request.band_clearance * dv;
     if (top - clearance <= clearance)

@@ -302,6 +302,19 @@ def test_a_sized_pellet_bed_has_the_command_lines_bytes_and_each_pellets_own_siz
                                                rel=0, abs=1e-9)
 
 
+def test_a_tall_pellet_bed_in_layers_has_the_command_lines_bytes(tmp_path):
+    # 100 rods in a tube of a = 3 in layers of 10 d_v (the command line's test
+    # Cli.ATallPelletBedInLayers...): five layers, the same files from Python.
+    status, _, err = cli("generate", "--shape", "spherocylinder:1,1", "-a", 3, "-n", 100, "-s", 1,
+                         "--layer-height", 10, "-q", "--out", tmp_path / "cli")
+    assert status == 0, err
+    bed = packbed.generate(shape="spherocylinder:1,1", aspect_ratio=3, particles=100, seed=1,
+                           layer_height=10, out=str(tmp_path / "py"))
+    assert bed.summary["layers"] == 5
+    for name in ["particles.csv", "particles.vtu"]:
+        assert (tmp_path / "py" / name).read_bytes() == (tmp_path / "cli" / name).read_bytes()
+
+
 def test_a_pellet_bed_is_read_measured_written_and_exported_as_the_command_line_does(tmp_path):
     # 12 cylinders L = D in a tube of a = 3 (seed 3), written by the command line: read() keeps
     # their orientations and shape; analyze() measures them as `packbed analyze` does (the same
