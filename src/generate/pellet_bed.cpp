@@ -1393,26 +1393,33 @@ private:
 template <class S> thread_local std::vector<std::pair<double, double>> PelletSolver<S>::m_points;
 
 /// A pellet bed in layers, as relax_with_fire builds a tall sphere bed (fire.cpp): the inserted
-/// column cut into `layers` slices of equal height; each slice, moved down to just above the
-/// bed below, relaxed by the stages with the last layer below it and the top layer_band d_v of
-/// the layers under that free, over a shell of held pellets.
+/// column (in one piece where pellet_layers says 1) cut into slices of equal height; each slice,
+/// moved down to just above the bed below, relaxed by the stages with the last layer below it and
+/// the top layer_band d_v of the layers under that free, over a shell of held pellets.
 template <class S>
 PelletBed pellets_in_layers(const PelletBedParameters& params, const S& shape,
-                            const RunControl& control, std::vector<Vec3> centre,
-                            std::vector<Quaternion> turn, std::uint32_t layers) {
+                            const RunControl& control) {
     constexpr double layer_band = 4.0; // d_v
+    auto [centre, turn] = PelletSolver<S>(params, shape, control).inserted();
     const std::size_t n = centre.size();
     const auto [low, high] = params.scale_range();
-    const auto scale = [&](std::size_t i) {
-        return params.scales.empty() ? 1.0 : params.scales[i];
+    const auto reach = [&](std::size_t i) {
+        return shape.bounding_radius(0.5 * (params.scales.empty() ? 1.0 : params.scales[i]));
     };
-    const auto reach = [&](std::size_t i) { return shape.bounding_radius(0.5 * scale(i)); };
-    // The shell holds every pellet a free one can touch: two of the largest bounding radii,
-    // and a quarter more for the moves of the relaxation.
-    const double largest = shape.bounding_radius(0.5 * high), shell = 2.5 * largest;
     double column = 0.0;
     for (std::size_t i = 0; i < n; ++i)
         column = std::max(column, centre[i].z + reach(i));
+    const std::uint32_t layers = pellet_layers(params, column);
+    if (layers == 1) { // the inserted pellets relaxed in one piece
+        Part whole;
+        whole.centre = std::move(centre);
+        whole.turn = std::move(turn);
+        whole.scale_range = {low, high};
+        return PelletSolver<S>(params, shape, control, &whole).run();
+    }
+    // The shell holds every pellet a free one can touch: two of the largest bounding radii,
+    // and a quarter more for the moves of the relaxation.
+    const double largest = shape.bounding_radius(0.5 * high), shell = 2.5 * largest;
     const double slice = column / layers;
     std::vector<std::vector<std::uint32_t>> members(layers);
     for (std::uint32_t i = 0; i < n; ++i) {
@@ -1502,18 +1509,7 @@ PelletBed generate_pellet_bed(const PelletBedParameters& params, const RunContro
             using S = std::decay_t<decltype(shape)>;
             if (params.layer_height <= 0.0)
                 return PelletSolver<S>(params, shape, control).run();
-            auto [centre, turn] = PelletSolver<S>(params, shape, control).inserted();
-            double column = 0.0;
-            for (std::size_t i = 0; i < centre.size(); ++i)
-                column = std::max(column,
-                                  centre[i].z +
-                                      shape.bounding_radius(
-                                          0.5 * (params.scales.empty() ? 1.0 : params.scales[i])));
-            const std::uint32_t layers = pellet_layers(params, column);
-            if (layers == 1)
-                return PelletSolver<S>(params, shape, control).run();
-            return pellets_in_layers(params, shape, control, std::move(centre), std::move(turn),
-                                     layers);
+            return pellets_in_layers(params, shape, control);
         },
         params.shape);
 }
