@@ -233,14 +233,16 @@ Bed generate_pellets(std::optional<double> aspect_ratio,
                      const std::string& shape, double friction, double wall_friction,
                      std::optional<long long> max_iterations, const std::string& sizes,
                      const std::string& fractions, std::optional<double> layer_height,
+                     const std::optional<std::filesystem::path>& checkpoint,
                      const std::vector<std::pair<std::string, bool>>& sphere_only) {
     namespace range = option_range;
     for (const auto& [name, given] : sphere_only)
         if (given)
             throw InvalidInput(fmt::format(
                 "{} is not allowed with shape='{}'; allowed with a pellet: aspect_ratio, "
-                "container, particles, seed, sizes, fractions, layer_height, band_clearance, "
-                "friction, wall_friction, max_iterations, threads, progress, out, force "
+                "container, particles, seed, sizes, fractions, layer_height, checkpoint, "
+                "band_clearance, friction, wall_friction, max_iterations, threads, progress, "
+                "out, force "
                 "(docs/generate.md, \"Pellets\")",
                 name, printable(std::string_view(shape).substr(0, 80))));
     if (aspect_ratio && container)
@@ -264,6 +266,7 @@ Bed generate_pellets(std::optional<double> aspect_ratio,
     if (layer_height)
         request.layer_height =
             check_option("layer-height", *layer_height, option_range::layer_height);
+    request.checkpoint = checkpoint ? checkpoint->string() : std::string();
     const PreparedPellets prepared = prepare_pellets(request);
     std::optional<OutputDirectory> directory;
     if (out)
@@ -334,7 +337,7 @@ Bed generate(std::optional<double> aspect_ratio, const std::optional<std::string
     if (shape != "sphere")
         return generate_pellets(aspect_ratio, container, particles, seed, band_clearance, threads,
                                 progress, out, force, shape, friction, wall_friction,
-                                max_iterations, sizes, fractions, layer_height,
+                                max_iterations, sizes, fractions, layer_height, checkpoint,
                                 {{"diameter", diameter != defaults.diameter},
                                  {"e0", e0 != defaults.e0},
                                  {"ck", ck != defaults.ck},
@@ -349,7 +352,6 @@ Bed generate(std::optional<double> aspect_ratio, const std::optional<std::string
                                  {"solver", solver != to_string(defaults.solver)},
                                  {"skin", skin.has_value()},
                                  {"target_void_fraction", target_void_fraction.has_value()},
-                                 {"checkpoint", checkpoint.has_value()},
                                  {"engine", engine != to_string(Engine::packbed)},
                                  {"ranks", ranks != 1},
                                  {"mpi_command", mpi_command.has_value()},
@@ -1224,8 +1226,9 @@ by LAMMPS, docs/lammps.md) with ranks (mpirun -np ranks), mpi_command (a launche
 instead) and lmp (the LAMMPS program); with out, LAMMPS's files are kept in out/lammps/.
 shape: 'sphere', or a pellet ('cylinder:D,L', 'ring:D,DI,L', 'trilobe:DL,DC,L',
 'multilobe:N,DL,DC,L', 'spherocylinder:D,L') for a bed of pellets as `packbed generate --shape` makes it (docs/generate.md, "Pellets"): with aspect_ratio (over the pellet's volume-equivalent
-diameter) or container (in the unit of D and L), particles, seed, band_clearance, friction,
-wall_friction, max_iterations, threads, progress, out and force; the Bed's orientations hold each pellet's quaternion, and
+diameter) or container (in the unit of D and L), particles, seed, sizes, fractions,
+layer_height, checkpoint (a bed in layers), band_clearance, friction, wall_friction,
+max_iterations, threads, progress, out and force; the Bed's orientations hold each pellet's quaternion, and
 Bed.write, analyze, export and voxelize take it as they take a bed that read() gives.
 
 Returns a Bed (same seed and options: the same bits as the command line). Raises ValueError

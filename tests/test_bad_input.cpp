@@ -497,7 +497,12 @@ INSTANTIATE_TEST_SUITE_P(
               "cylinder:1,1; allowed with a pellet: --aspect-ratio, --container, --particles, "
               "--seed, --shape, --out, --force, --threads, --quiet, --band-clearance, "
               "--no-analysis, --config, --friction, --wall-friction, --max-iterations, "
-              "--sizes, --fractions, --layer-height (docs/generate.md, \"Pellets\")"),
+              "--sizes, --fractions, --layer-height, --checkpoint (docs/generate.md, "
+              "\"Pellets\")"),
+        exact("generate --shape cylinder:1,1 -n 20 -a 3 --layer-height 10 --checkpoint ck",
+              "packbed generate: --checkpoint ck: only a pellet bed in layers can be resumed, "
+              "this one is in one piece (its column 12.55 d_v, --layer-height 10); allowed: a "
+              "column above twice --layer-height, which is 10 or more"),
         // Sizes on the pellet's D: parse_sizes' refusal; the largest pellet must fit (the
         // largest of 100 D drawn from uniform:1,3 is 2.977, its bounding diameter 2.977 sqrt(2)).
         naming("generate --shape cylinder:1,1 --sizes uniform:1,20",

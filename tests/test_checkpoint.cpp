@@ -1,12 +1,15 @@
-// Checkpoints of the fire solver in layers: a real one reads back; one taken with other options,
-// damaged, or edited by hand (even with its hash recomputed) is refused naming what is wrong,
-// and never crashes or hangs the reader.
+// Checkpoints of the runs in layers (the fire solver's and the pellet beds'): a real one reads
+// back, and a pellet bed resumed from one has the bits of one never stopped; one taken with other
+// options, damaged, or edited by hand (even with its hash recomputed) is refused naming what is
+// wrong, and never crashes or hangs the reader.
 #include <cstdint>
 #include <cstring>
 #include <filesystem>
 #include <fstream>
 #include <iterator>
+#include <sstream>
 #include <string>
+#include <vector>
 
 #include <unistd.h>
 
@@ -16,6 +19,7 @@
 
 #include "packbed/checkpoint.hpp"
 #include "packbed/error.hpp"
+#include "packbed/pellet_bed.hpp"
 #include "packbed/soft_sphere.hpp"
 
 using namespace packbed;
@@ -222,4 +226,141 @@ TEST(Checkpoint, OtherFilesAreRefused) {
     } catch (const InvalidInput& e) {
         EXPECT_TRUE(says(e.what(), ": a directory; allowed: a readable regular file"));
     }
+}
+
+namespace {
+
+/// 100 rods (L = D) in a tube of a = 3, layers of 10 d_v: five layers, 66 318 steps
+/// (Cli.ATallPelletBedInLayers...).
+PelletBedParameters five_pellet_layers() {
+    PelletBedParameters p;
+    p.shape = SpherocylinderShape::of_aspect(1.0);
+    p.container = Container::tube(3.0);
+    p.particles = 100;
+    p.seed = 1;
+    p.layer_height = 10.0;
+    return p;
+}
+
+/// The bed never stopped and the state after each of its layers (computed once).
+struct PelletRun {
+    PelletBed bed;
+    std::vector<PelletCheckpoint> states;
+};
+
+const PelletRun& pellet_run() {
+    static const PelletRun run = [] {
+        PelletRun r;
+        PelletLayerHooks hooks;
+        hooks.on_layer = [&](const PelletCheckpoint& s) { r.states.push_back(s); };
+        r.bed = generate_pellet_bed(five_pellet_layers(), {}, hooks);
+        return r;
+    }();
+    return run;
+}
+
+/// The bytes of the pellet checkpoint after the second layer, as written.
+std::string pellet_checkpoint_bytes() {
+    const fs::path file = scratch_file("pellets.ckpt");
+    write_pellet_checkpoint(file, five_pellet_layers(), pellet_run().states.at(1));
+    std::ifstream in(file, std::ios::binary);
+    std::string read(std::istreambuf_iterator<char>(in), {});
+    fs::remove(file);
+    return read;
+}
+
+/// What reading `bytes` as a pellet checkpoint of five_pellet_layers() says.
+std::string pellet_verdict(const std::string& bytes) {
+    std::istringstream in(bytes);
+    try {
+        const PelletBedParameters p = five_pellet_layers();
+        read_pellet_checkpoint(in, "bed.ckpt", p, pellet_column(p));
+    } catch (const InvalidInput& e) {
+        return e.what();
+    }
+    return "accepted";
+}
+
+/// The pellet checkpoint with its header edited by `edit`, the hash recomputed.
+template <class F> std::string with_pellet_header(F&& edit) {
+    const Parts parts = split(pellet_checkpoint_bytes());
+    json header = json::parse(parts.header);
+    edit(header);
+    return pellet_verdict(
+        parts.format + "\n" + header.dump() + "\n" +
+        fmt::format("fnv1a64 {:016x}\n", fnv1a(parts.data, fnv1a(header.dump() + "\n"))) +
+        parts.data);
+}
+
+} // namespace
+
+TEST(PelletCheckpoint, ABedResumedAfterAnyLayerHasTheBitsOfOneNeverStopped) {
+    const PelletRun& run = pellet_run();
+    const PelletBedParameters p = five_pellet_layers();
+    ASSERT_EQ(run.bed.layers, 5u);
+    ASSERT_EQ(pellet_column(p).layers, 5u);
+    ASSERT_EQ(run.states.size(), 5u); // no layer of this bed is empty
+    for (std::uint32_t k = 0; k < 5; ++k)
+        EXPECT_EQ(run.states[k].layers_done, k + 1);
+    EXPECT_EQ(run.states.back().steps, run.bed.steps);
+    for (const std::size_t after : {std::size_t{1}, std::size_t{3}}) {
+        // Through the file: written, read back, resumed.
+        const fs::path file = scratch_file("resume.ckpt");
+        write_pellet_checkpoint(file, p, run.states[after]);
+        const PelletCheckpoint read = read_pellet_checkpoint(file, p, pellet_column(p));
+        fs::remove(file);
+        EXPECT_EQ(read.centre, run.states[after].centre);
+        EXPECT_EQ(read.turn, run.states[after].turn);
+        PelletLayerHooks hooks;
+        hooks.resume = &read;
+        const PelletBed resumed = generate_pellet_bed(p, {}, hooks);
+        EXPECT_EQ(resumed.packing.centers, run.bed.packing.centers) << "after layer " << after + 1;
+        EXPECT_EQ(resumed.packing.orientations, run.bed.packing.orientations);
+        EXPECT_EQ(resumed.steps, run.bed.steps);
+        EXPECT_EQ(resumed.stages.size(), run.bed.stages.size());
+        EXPECT_EQ(resumed.residual_force, run.bed.residual_force);
+        EXPECT_EQ(resumed.max_depth_pair, run.bed.max_depth_pair);
+    }
+}
+
+TEST(PelletCheckpoint, EditedFieldsAndOtherFilesAreRefusedNamingWhatIsWrong) {
+    const Parts parts = split(pellet_checkpoint_bytes());
+    EXPECT_EQ(parts.format, "packbed-pellet-checkpoint 1");
+    EXPECT_EQ(parts.data.size(), 100u * 7 * 8); // x, y, z, qw, qx, qy, qz
+    EXPECT_EQ(pellet_verdict(pellet_checkpoint_bytes()), "accepted");
+    EXPECT_EQ(with_pellet_header([](json&) {}), "accepted");
+    EXPECT_TRUE(says(with_pellet_header([](json& h) { h["layers_done"] = 6; }),
+                     "layers_done = 6 is not allowed; allowed: a whole number from 1 to 5"));
+    EXPECT_TRUE(says(with_pellet_header([](json& h) { h["parameters"]["seed"] = 2; }),
+                     "it was taken with seed = 2, this run has 1"));
+    EXPECT_TRUE(says(with_pellet_header([](json& h) { h["parameters"]["friction"] = 0.3; }),
+                     "it was taken with friction = 0.3, this run has 0.0"));
+    EXPECT_TRUE(says(with_pellet_header([](json& h) { h["stages"][0]["name"] = "pour"; }),
+                     "stages[0].name = \"pour\" is not allowed"));
+    EXPECT_TRUE(says(with_pellet_header([](json& h) { h["stages"][3]["layer"] = 2; }),
+                     "stages[3].layer = 2 is not allowed; allowed: a whole number from 0 to 1"));
+    EXPECT_TRUE(says(with_pellet_header([](json& h) { h["on_floor"] = 1; }),
+                     "on_floor = 1 is not allowed; allowed: true or false"));
+    EXPECT_TRUE(
+        says(with_pellet_header([](json& h) { h["top"] = 1e300; }), "top = 1e+300 is not allowed"));
+    // The data: a pellet far away, an orientation that is no rotation, a short file.
+    const auto forge = [&](const std::string& data) {
+        return pellet_verdict(
+            parts.format + "\n" + parts.header + "\n" +
+            fmt::format("fnv1a64 {:016x}\n", fnv1a(data, fnv1a(parts.header + "\n"))) + data);
+    };
+    std::string data = parts.data;
+    const double far = 1e300, two = 2.0;
+    std::memcpy(data.data() + 7 * 8 + 8, &far, sizeof far); // y of pellet 1
+    EXPECT_TRUE(says(forge(data), "corrupt checkpoint: pellet 1 is at ("));
+    data = parts.data;
+    std::memcpy(data.data() + 3 * 8, &two, sizeof two); // qw of pellet 0
+    EXPECT_TRUE(says(forge(data), "pellet 0's orientation (2, "));
+    EXPECT_TRUE(
+        says(forge(parts.data.substr(8)), "5592 bytes of data where 100 pellets need 5600"));
+    // A sphere bed's checkpoint, and a pellet bed's in a sphere run, named as such.
+    EXPECT_TRUE(says(pellet_verdict(real_checkpoint()),
+                     "a checkpoint of a sphere bed, this run is of pellets"));
+    EXPECT_TRUE(says(verdict(pellet_checkpoint_bytes()),
+                     "a checkpoint of a pellet bed, this run is of spheres"));
 }

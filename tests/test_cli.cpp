@@ -79,6 +79,24 @@ const std::string small = "generate --aspect-ratio 3 --particles 40 --seed 2 ";
 
 } // namespace
 
+/// `bed` run whole into `whole`; then with a checkpoint and --max-iterations `stop_at` into
+/// `resumed` (exit 1, nothing written, the checkpoint left); then again with the checkpoint.
+/// \return what the resumed run said
+Outcome stop_and_resume(const std::string& bed, std::uint64_t stop_at, const fs::path& whole,
+                        const fs::path& resumed, const std::string& checkpoint) {
+    EXPECT_EQ(packbed(bed + "--quiet --out " + whole.string()).status, 0);
+    const Outcome stopped = packbed(bed + "--quiet --max-iterations " + std::to_string(stop_at) +
+                                    " --checkpoint " + checkpoint + " --out " + resumed.string());
+    EXPECT_EQ(stopped.status, 1) << stopped.err;
+    EXPECT_TRUE(fs::exists(checkpoint));
+    EXPECT_FALSE(fs::exists(resumed / "particles.csv"));
+    const Outcome again =
+        packbed(bed + "--checkpoint " + checkpoint + " --out " + resumed.string());
+    EXPECT_EQ(again.status, 0) << again.err;
+    EXPECT_EQ(slurp(whole / "particles.csv"), slurp(resumed / "particles.csv"));
+    return again;
+}
+
 TEST(Cli, GenerateWritesTheThreeFiles) {
     const fs::path d = scratch("generate");
     const Outcome o = packbed(small + "--out " + d.string());
@@ -283,6 +301,45 @@ TEST(Cli, ATallPelletBedInLayersRecordsItsLayers) {
     const auto one = nlohmann::json::parse(slurp(whole / "summary.json"));
     EXPECT_FALSE(one.contains("layers"));
     EXPECT_EQ(one["stages"].size(), 2u);
+    // A bed in one piece has no checkpoint: refused before the run, naming its column.
+    const Outcome piece = packbed(bed + "--checkpoint " + (whole / "c.ckpt").string() +
+                                  " --force --out " + whole.string());
+    EXPECT_EQ(piece.status, 2);
+    EXPECT_NE(piece.err.find("only a pellet bed in layers can be resumed"), std::string::npos)
+        << piece.err;
+    EXPECT_FALSE(fs::exists(whole / "c.ckpt"));
+}
+
+TEST(Cli, APelletBedInLayersResumesFromItsCheckpointToTheSameBytes) {
+    // The five layers of rods above, 66 318 steps: stopped after 40 000 (exit 1, in the fourth
+    // layer), the run leaves the checkpoint of the third; resumed, it writes what the run never
+    // stopped writes. A sphere bed's checkpoint is refused, named as one.
+    const fs::path a = scratch("rods-whole"), b = scratch("rods-resumed"), c = scratch("ckpt");
+    const std::string bed = "generate --shape spherocylinder:1,1 -a 3 -n 100 -s 1 "
+                            "--layer-height 10 ";
+    const std::string checkpoint = (c / "bed.ckpt").string();
+    const Outcome resumed = stop_and_resume(bed, 40000, a, b, checkpoint);
+    EXPECT_NE(resumed.err.find("resuming from " + checkpoint + " after layer 3 of 5"),
+              std::string::npos)
+        << resumed.err;
+    auto sa = nlohmann::json::parse(slurp(a / "summary.json"));
+    auto sb = nlohmann::json::parse(slurp(b / "summary.json"));
+    sa.erase("seconds");
+    sb.erase("seconds");
+    EXPECT_EQ(sa, sb);
+    // Spheres in layers leave a sphere bed's checkpoint; the pellet run refuses it.
+    const std::string spheres = (c / "spheres.ckpt").string();
+    ASSERT_EQ(packbed("generate -a 5 -n 600 --layer-height 10 --max-iterations 12000 --quiet "
+                      "--checkpoint " +
+                      spheres + " --out " + (c / "s").string())
+                  .status,
+              1);
+    const Outcome other =
+        packbed(bed + "--quiet --checkpoint " + spheres + " --out " + (c / "p").string());
+    EXPECT_EQ(other.status, 2);
+    EXPECT_NE(other.err.find("a checkpoint of a sphere bed, this run is of pellets"),
+              std::string::npos)
+        << other.err;
 }
 
 TEST(Cli, FrictionalBedInLayersResumesToTheSameBytesAndItsDemInputKeepsTheFriction) {
@@ -368,19 +425,11 @@ TEST(Cli, CheckpointResumesToTheSameBytes) {
     const std::string bed = "generate --solver fire --aspect-ratio 5 --particles 600 --seed 1 "
                             "--layer-height 10 ";
     const std::string checkpoint = (c / "bed.ckpt").string();
-    ASSERT_EQ(packbed(bed + "--quiet --out " + a.string()).status, 0);
     // The second layer ends between steps 11 300 and 11 400, the whole run after 19 200.
-    const Outcome stopped = packbed(bed + "--quiet --max-iterations 15000 --checkpoint " +
-                                    checkpoint + " --out " + b.string());
-    EXPECT_EQ(stopped.status, 1) << stopped.err;
-    ASSERT_TRUE(fs::exists(checkpoint));
-    EXPECT_FALSE(fs::exists(b / "particles.csv"));
-    const Outcome resumed = packbed(bed + "--checkpoint " + checkpoint + " --out " + b.string());
-    ASSERT_EQ(resumed.status, 0) << resumed.err;
+    const Outcome resumed = stop_and_resume(bed, 15000, a, b, checkpoint);
     EXPECT_NE(resumed.err.find("resuming from " + checkpoint + " after layer 2 of 3"),
               std::string::npos)
         << resumed.err;
-    EXPECT_EQ(slurp(a / "particles.csv"), slurp(b / "particles.csv"));
     EXPECT_EQ(slurp(a / "particles.vtu"), slurp(b / "particles.vtu"));
     const auto sa = nlohmann::json::parse(slurp(a / "summary.json"));
     const auto sb = nlohmann::json::parse(slurp(b / "summary.json"));

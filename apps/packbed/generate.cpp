@@ -56,10 +56,10 @@ struct GenerateOptions {
 
 /// The options a pellet bed takes; every other generate option is the spheres' alone.
 constexpr std::array pellet_options{
-    "--aspect-ratio", "--container", "--particles",   "--seed",          "--shape",
-    "--out",          "--force",     "--threads",     "--quiet",         "--band-clearance",
-    "--no-analysis",  "--config",    "--friction",    "--wall-friction", "--max-iterations",
-    "--sizes",        "--fractions", "--layer-height"};
+    "--aspect-ratio", "--container", "--particles",    "--seed",          "--shape",
+    "--out",          "--force",     "--threads",      "--quiet",         "--band-clearance",
+    "--no-analysis",  "--config",    "--friction",     "--wall-friction", "--max-iterations",
+    "--sizes",        "--fractions", "--layer-height", "--checkpoint"};
 
 /// --shape PELLET: a bed of pellets (docs/generate.md, "Pellets").
 int run_pellets(const GenerateOptions& o) {
@@ -90,6 +90,7 @@ int run_pellets(const GenerateOptions& o) {
     // of 30 Dp does not apply).
     if (o.app->count("--layer-height") > 0)
         request.layer_height = o.params.layer_height;
+    request.checkpoint = o.checkpoint;
     const PreparedPellets prepared = prepare_pellets(request);
     OutputDirectory out(o.out, "--out", OutputKind::directory, o.force);
     const int threads = use_threads(o.threads);
@@ -110,7 +111,12 @@ int run_pellets(const GenerateOptions& o) {
              fmt::format("depth {:.2e} d_v", std::max(p.max_overlap_pair, p.max_overlap_wall)),
              fmt::format("gravity {:.2e}", p.cg)});
     };
-    const GeneratedPellets pellets = run_pellets(prepared, control, threads);
+    const GeneratedPellets pellets =
+        run_pellets(prepared, control, threads, [&](std::uint32_t done, std::uint32_t layers) {
+            if (!o.quiet)
+                fmt::print(stderr, "packbed generate: resuming from {} after layer {} of {}\n",
+                           o.checkpoint, done, layers);
+        });
     if (drawn) {
         fmt::print(stderr, "\r\033[K");
         std::fflush(stderr);

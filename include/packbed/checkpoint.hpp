@@ -1,11 +1,13 @@
-// Checkpoint files of the fire solver's runs in layers: the state after a whole layer, from
-// which a run resumes and ends with the same bits as one that was never stopped.
+// Checkpoint files of the runs in layers (the fire solver's and the pellet beds'): the state after
+// a whole layer, from which a run resumes and ends with the same bits as one that was never
+// stopped.
 #pragma once
 
 #include <filesystem>
 #include <istream>
 #include <string_view>
 
+#include "packbed/pellet_bed.hpp"
 #include "packbed/soft_sphere.hpp"
 
 namespace packbed {
@@ -36,5 +38,30 @@ LayerCheckpoint read_checkpoint(std::istream& input, std::string_view name,
 /// \throws InvalidInput as above
 LayerCheckpoint read_checkpoint(const std::filesystem::path& path,
                                 const SoftSphereParameters& parameters);
+
+/// Write a pellet bed's `checkpoint`, taken in a run with `parameters`, to `path` whole or not
+/// at all, as write_checkpoint does. Format: a line `packbed-pellet-checkpoint 1`; one line of
+/// JSON (pellet_bed_parameters_json, the counters, the stage records, the pellet count); the
+/// hash line as above; then x, y, z, qw, qx, qy and qz of every pellet in insertion order,
+/// little-endian IEEE doubles, lengths in d_v.
+/// \throws InvalidInput naming the file when it cannot be written
+void write_pellet_checkpoint(const std::filesystem::path& path,
+                             const PelletBedParameters& parameters,
+                             const PelletCheckpoint& checkpoint);
+
+/// Read a checkpoint written by write_pellet_checkpoint for a run with `parameters` whose
+/// insertion gives `column` (pellet_column), every field checked against what that run can
+/// have produced (layers_done from 1 to column.layers, stage records, each pellet near the
+/// container and turned by a unit quaternion).
+/// \throws InvalidInput as read_checkpoint (a sphere bed's checkpoint is refused as one)
+PelletCheckpoint read_pellet_checkpoint(std::istream& input, std::string_view name,
+                                        const PelletBedParameters& parameters,
+                                        const PelletColumn& column);
+
+/// Read the pellet checkpoint file `path` (a regular file, see open_regular_file).
+/// \throws InvalidInput as above
+PelletCheckpoint read_pellet_checkpoint(const std::filesystem::path& path,
+                                        const PelletBedParameters& parameters,
+                                        const PelletColumn& column);
 
 } // namespace packbed

@@ -8,6 +8,7 @@
 #pragma once
 
 #include <cstdint>
+#include <functional>
 #include <string>
 #include <utility>
 #include <vector>
@@ -72,6 +73,8 @@ struct PelletBedParameters {
     double smallest_dimension() const;
     /// \return the smallest and the largest of `scales` (1 and 1 where it is empty).
     std::pair<double, double> scale_range() const;
+    /// \return pellet i's scale (1 where `scales` is empty).
+    double scale(std::size_t i) const { return scales.empty() ? 1.0 : scales[i]; }
 };
 
 /// The state at the end of one stage: "settle" (the gravity held in the band until the mass
@@ -112,6 +115,42 @@ struct PelletBed {
 /// height, else 1 (and 1 for a layer height of 0).
 std::uint32_t pellet_layers(const PelletBedParameters& params, double column);
 
+/// The column a bed of `params` is inserted over and the layers it is relaxed in.
+struct PelletColumn {
+    double height = 0.0;        ///< the top of the highest pellet's bounding sphere, d_v
+    std::uint32_t layers = 1;   ///< pellet_layers(params, height)
+    double largest_reach = 0.0; ///< the largest pellet's bounding radius, d_v
+};
+/// \return the column of `params` (the insertion, run on its own: as fast as a bed's start).
+/// \throws InvalidInput for a parameter out of range
+PelletColumn pellet_column(const PelletBedParameters& params);
+
+/// The state of a pellet bed in layers after a whole layer: what a run needs to go on from
+/// there and end with the same bits as one never stopped (checkpoint.hpp writes and reads it).
+struct PelletCheckpoint {
+    std::uint32_t layers_done = 0; ///< layers relaxed, from the bottom (empty ones counted)
+    std::uint64_t steps = 0, neighbor_builds = 0; ///< so far, all layers
+    double top = 0.0;     ///< the highest centroid of the relaxed layers, d_v
+    bool on_floor = true; ///< no pellet relaxed yet: the next layer goes on the floor
+    /// Every pellet in insertion order, d_v: those of the relaxed layers where they settled,
+    /// the others where the insertion put them.
+    std::vector<Vec3> centre;
+    std::vector<Quaternion> turn;
+    std::vector<PelletStage> stages; ///< so far
+    std::size_t nodes = 0, sliding_pairs = 0, sliding_walls = 0;
+    bool friction_kept = false;
+    double residual_force = 0.0, residual_torque = 0.0; ///< the largest so far, weights
+};
+
+/// The hooks of a bed in layers (both optional).
+struct PelletLayerHooks {
+    /// Called after each layer with the state to save.
+    std::function<void(const PelletCheckpoint&)> on_layer;
+    /// Continue from this state (of the same parameters, its layers_done from 1 to the bed's
+    /// layers) instead of from the first layer.
+    const PelletCheckpoint* resume = nullptr;
+};
+
 /// Pour and settle a bed of pellets: insertion at random positions (uniform over the
 /// container's cross-section, uniform in height over the column of void fraction e0) with
 /// uniformly random orientations (Shoemake), then FIRE under gravity in two stages
@@ -119,6 +158,13 @@ std::uint32_t pellet_layers(const PelletBedParameters& params, double column);
 /// number of threads.
 /// \throws InvalidInput for a parameter out of range; ConvergenceError when max_steps pass;
 /// Cancelled when control.should_stop says so.
-PelletBed generate_pellet_bed(const PelletBedParameters& params, const RunControl& control = {});
+/// \param layers with a bed in layers (pellet_column's layers above 1): its checkpoints
+PelletBed generate_pellet_bed(const PelletBedParameters& params, const RunControl& control = {},
+                              const PelletLayerHooks& layers = {});
+
+/// The parameters that decide a pellet bed's bits, as JSON (all but max_steps, which only
+/// bounds the run): what a checkpoint records and a resumed run must match. The shape by its
+/// numbers, the container by its spec, the scales by their count and FNV-1a 64 hash.
+nlohmann::json pellet_bed_parameters_json(const PelletBedParameters& params);
 
 } // namespace packbed

@@ -166,6 +166,8 @@ struct PelletRequest {
     /// --layer-height, d_v: a tall bed relaxed in layers (PelletBedParameters::layer_height);
     /// 0: in one piece.
     double layer_height = 0.0;
+    /// --checkpoint file of a bed in layers (write_pellet_checkpoint); "": none
+    std::string checkpoint;
 };
 
 /// A pellet request checked and resolved: the solver's parameters (lengths in d_v).
@@ -179,8 +181,11 @@ struct PreparedPellets {
     /// The bed's unit, the reference pellet's volume-equivalent diameter d_v (the --shape's,
     /// times d32 / D with sizes): a = D_tube / d_v.
     double unit = 0.0;
+    /// With a checkpoint: the column and layers of the bed (pellet_column).
+    PelletColumn column;
 };
-/// \throws InvalidInput naming the option, the value and what is allowed
+/// \throws InvalidInput naming the option, the value and what is allowed (a checkpoint only
+/// for a bed in layers, its path checked)
 PreparedPellets prepare_pellets(const PelletRequest& request);
 
 /// A generated pellet bed in length units and its record.
@@ -193,9 +198,13 @@ struct GeneratedPellets {
 /// Run the pellet solver (generate_pellet_bed) and measure the bed: summary.json has the shape,
 /// the container, the stages, the exact depths and residuals, and the void fraction over the
 /// band clear of the floor and the top in a tube (the exact volumes, MultilobeShape::volume_in).
-/// \throws ConvergenceError, Cancelled
-GeneratedPellets run_pellets(const PreparedPellets& prepared, const RunControl& control,
-                             int threads);
+/// With a checkpoint: the file is checked for writing first; where it exists the run resumes
+/// from it (on_resume told the layers done and the bed's layers), and it is replaced after each
+/// layer.
+/// \throws ConvergenceError, Cancelled, InvalidInput (a bad checkpoint)
+GeneratedPellets
+run_pellets(const PreparedPellets& prepared, const RunControl& control, int threads,
+            const std::function<void(std::uint32_t, std::uint32_t)>& on_resume = {});
 /// particles.csv (with the orientations) and summary.json staged in `out`.
 void stage_pellet_bed(OutputDirectory& out, const GeneratedPellets& pellets);
 /// summary.json's `shape` of a bed of `pellet`s: its kind, spec and lengths, d_v, and what

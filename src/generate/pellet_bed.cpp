@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <array>
+#include <bit>
 #include <cmath>
 #include <limits>
 #include <map>
@@ -1392,46 +1393,76 @@ private:
 
 template <class S> thread_local std::vector<std::pair<double, double>> PelletSolver<S>::m_points;
 
+/// The pellets as the insertion places them and the column they stand in.
+struct InsertedColumn {
+    std::vector<Vec3> centre;
+    std::vector<Quaternion> turn;
+    PelletColumn column;
+};
+
+template <class S>
+InsertedColumn inserted_column(const PelletBedParameters& params, const S& shape,
+                               const RunControl& control) {
+    InsertedColumn out;
+    std::tie(out.centre, out.turn) = PelletSolver<S>(params, shape, control).inserted();
+    double height = 0.0;
+    for (std::size_t i = 0; i < out.centre.size(); ++i)
+        height = std::max(height, out.centre[i].z + shape.bounding_radius(0.5 * params.scale(i)));
+    out.column = {height, pellet_layers(params, height),
+                  shape.bounding_radius(0.5 * params.scale_range().second)};
+    return out;
+}
+
 /// A pellet bed in layers, as relax_with_fire builds a tall sphere bed (fire.cpp): the inserted
 /// column (in one piece where pellet_layers says 1) cut into slices of equal height; each slice,
 /// moved down to just above the bed below, relaxed by the stages with the last layer below it and
-/// the top layer_band d_v of the layers under that free, over a shell of held pellets.
+/// the top layer_band d_v of the layers under that free, over a shell of held pellets. After
+/// each layer the state goes to hooks.on_layer; hooks.resume starts after its layers.
 template <class S>
 PelletBed pellets_in_layers(const PelletBedParameters& params, const S& shape,
-                            const RunControl& control) {
+                            const RunControl& control, const PelletLayerHooks& hooks) {
     constexpr double layer_band = 4.0; // d_v
-    auto [centre, turn] = PelletSolver<S>(params, shape, control).inserted();
+    InsertedColumn inserted = inserted_column(params, shape, control);
+    std::vector<Vec3>& centre = inserted.centre;
+    std::vector<Quaternion>& turn = inserted.turn;
     const std::size_t n = centre.size();
-    const auto [low, high] = params.scale_range();
-    const auto reach = [&](std::size_t i) {
-        return shape.bounding_radius(0.5 * (params.scales.empty() ? 1.0 : params.scales[i]));
-    };
-    double column = 0.0;
-    for (std::size_t i = 0; i < n; ++i)
-        column = std::max(column, centre[i].z + reach(i));
-    const std::uint32_t layers = pellet_layers(params, column);
+    const std::pair<double, double> range = params.scale_range();
+    const std::uint32_t layers = inserted.column.layers;
     if (layers == 1) { // the inserted pellets relaxed in one piece
         Part whole;
         whole.centre = std::move(centre);
         whole.turn = std::move(turn);
-        whole.scale_range = {low, high};
+        whole.scale_range = range;
         return PelletSolver<S>(params, shape, control, &whole).run();
     }
     // The shell holds every pellet a free one can touch: two of the largest bounding radii,
     // and a quarter more for the moves of the relaxation.
-    const double largest = shape.bounding_radius(0.5 * high), shell = 2.5 * largest;
-    const double slice = column / layers;
+    const double largest = inserted.column.largest_reach, shell = 2.5 * largest;
+    const double slice = inserted.column.height / layers;
     std::vector<std::vector<std::uint32_t>> members(layers);
     for (std::uint32_t i = 0; i < n; ++i) {
-        const double z = centre[i].z - reach(i);
+        const double z = centre[i].z - shape.bounding_radius(0.5 * params.scale(i));
         members[static_cast<std::uint32_t>(std::clamp(z / slice, 0.0, layers - 1.0))].push_back(i);
     }
     PelletBed out;
     out.layers = layers;
-    double top = 0.0; // the highest settled centroid
-    bool on_floor = true;
-    double force = 0.0, torque = 0.0;
-    for (std::uint32_t l = 0; l < layers; ++l) {
+    PelletCheckpoint state; // all but the pellets, which stay in centre and turn
+    std::uint32_t first = 0;
+    if (hooks.resume) {
+        const PelletCheckpoint& resume = *hooks.resume;
+        if (resume.layers_done < 1 || resume.layers_done > layers || resume.centre.size() != n ||
+            resume.turn.size() != n)
+            throw InvalidInput(fmt::format("a checkpoint of {} pellets after layer {} is not "
+                                           "allowed; allowed: {} pellets, layers 1 to {}",
+                                           resume.centre.size(), resume.layers_done, n, layers));
+        state = resume;
+        centre = std::move(state.centre);
+        turn = std::move(state.turn);
+        state.centre.clear();
+        state.turn.clear();
+        first = resume.layers_done;
+    }
+    for (std::uint32_t l = first; l < layers; ++l) {
         if (members[l].empty())
             continue;
         detail::LayerPart layer = detail::layer_part(
@@ -1439,7 +1470,7 @@ PelletBed pellets_in_layers(const PelletBedParameters& params, const S& shape,
         std::vector<std::uint32_t>& ids = layer.ids;
         Part part;
         part.fixed = layer.fixed;
-        const double lift = (on_floor ? 0.0 : top + 2.0 * largest) - l * slice;
+        const double lift = (state.on_floor ? 0.0 : state.top + 2.0 * largest) - l * slice;
         for (const std::uint32_t i : members[l]) {
             centre[i].z += lift;
             ids.push_back(i);
@@ -1456,32 +1487,47 @@ PelletBed pellets_in_layers(const PelletBedParameters& params, const S& shape,
             part.centre.push_back(centre[i]);
             part.turn.push_back(turn[i]);
         }
-        part.scale_range = {low, high};
-        part.steps = out.steps;
+        part.scale_range = range;
+        part.steps = state.steps;
         part.layer = l;
         part.layers = layers;
         const PelletBed relaxed = PelletSolver<S>(p, shape, control, &part).run();
         for (std::size_t k = part.fixed; k < ids.size(); ++k) {
             centre[ids[k]] = relaxed.packing.centers[k];
             turn[ids[k]] = relaxed.packing.orientations[k];
-            top = std::max(top, relaxed.packing.centers[k].z);
+            state.top = std::max(state.top, relaxed.packing.centers[k].z);
         }
-        out.steps = relaxed.steps;
-        out.neighbor_builds += relaxed.neighbor_builds;
-        out.nodes = relaxed.nodes;
-        out.stages.insert(out.stages.end(), relaxed.stages.begin(), relaxed.stages.end());
-        out.sliding_pairs += relaxed.sliding_pairs;
-        out.sliding_walls += relaxed.sliding_walls;
-        out.friction_kept = relaxed.friction_kept;
-        force = std::max(force, relaxed.residual_force);
-        torque = std::max(torque, relaxed.residual_torque);
-        on_floor = false;
+        state.layers_done = l + 1;
+        state.steps = relaxed.steps;
+        state.neighbor_builds += relaxed.neighbor_builds;
+        state.nodes = relaxed.nodes;
+        state.stages.insert(state.stages.end(), relaxed.stages.begin(), relaxed.stages.end());
+        state.sliding_pairs += relaxed.sliding_pairs;
+        state.sliding_walls += relaxed.sliding_walls;
+        state.friction_kept = relaxed.friction_kept;
+        state.residual_force = std::max(state.residual_force, relaxed.residual_force);
+        state.residual_torque = std::max(state.residual_torque, relaxed.residual_torque);
+        state.on_floor = false;
+        if (hooks.on_layer) {
+            state.centre = centre;
+            state.turn = turn;
+            hooks.on_layer(state);
+            state.centre.clear();
+            state.turn.clear();
+        }
     }
+    out.steps = state.steps;
+    out.neighbor_builds = state.neighbor_builds;
+    out.nodes = state.nodes;
+    out.stages = std::move(state.stages);
+    out.sliding_pairs = state.sliding_pairs;
+    out.sliding_walls = state.sliding_walls;
+    out.friction_kept = state.friction_kept;
     // The whole bed measured as it stands: its depths across the layers' seams too.
     Part whole;
     whole.centre = std::move(centre);
     whole.turn = std::move(turn);
-    whole.scale_range = {low, high};
+    whole.scale_range = range;
     PelletBedParameters p = params;
     p.layer_height = 0.0;
     PelletBed measured = PelletSolver<S>(p, shape, control, &whole).measured();
@@ -1489,8 +1535,8 @@ PelletBed pellets_in_layers(const PelletBedParameters& params, const S& shape,
     out.max_depth_nodes = measured.max_depth_nodes;
     out.max_depth_pair = measured.max_depth_pair;
     out.max_depth_wall = measured.max_depth_wall;
-    out.residual_force = force;
-    out.residual_torque = torque;
+    out.residual_force = state.residual_force;
+    out.residual_torque = state.residual_torque;
     return out;
 }
 
@@ -1502,16 +1548,66 @@ std::uint32_t pellet_layers(const PelletBedParameters& params, double column) {
     return static_cast<std::uint32_t>(std::min(column / params.layer_height, 1e6));
 }
 
-PelletBed generate_pellet_bed(const PelletBedParameters& params, const RunControl& control) {
+PelletColumn pellet_column(const PelletBedParameters& params) {
+    params.validate();
+    return std::visit([&](const auto& shape) { return inserted_column(params, shape, {}).column; },
+                      params.shape);
+}
+
+PelletBed generate_pellet_bed(const PelletBedParameters& params, const RunControl& control,
+                              const PelletLayerHooks& layers) {
     params.validate();
     return std::visit(
         [&](const auto& shape) {
             using S = std::decay_t<decltype(shape)>;
             if (params.layer_height <= 0.0)
                 return PelletSolver<S>(params, shape, control).run();
-            return pellets_in_layers(params, shape, control);
+            return pellets_in_layers(params, shape, control, layers);
         },
         params.shape);
+}
+
+nlohmann::json pellet_bed_parameters_json(const PelletBedParameters& p) {
+    using nlohmann::json;
+    const json shape = std::visit(
+        [](const auto& s) {
+            if constexpr (std::is_same_v<std::decay_t<decltype(s)>, MultilobeShape>)
+                return json{{"kind", "multilobe"},
+                            {"lobes", s.lobes},
+                            {"circle", s.circle},
+                            {"radius", s.lobe.radius},
+                            {"half_length", s.lobe.half_length},
+                            {"bore", s.lobe.bore}};
+            else
+                return json{{"kind", "spherocylinder"},
+                            {"radius", s.radius},
+                            {"half_length", s.half_length}};
+        },
+        p.shape);
+    // FNV-1a 64 of the scales' bytes (little-endian doubles).
+    std::uint64_t hash = 0xcbf29ce484222325ULL;
+    for (const double scale : p.scales) {
+        const auto bits = std::bit_cast<std::uint64_t>(scale);
+        for (int b = 0; b < 8; ++b) {
+            hash ^= (bits >> (8 * b)) & 0xffU;
+            hash *= 0x100000001b3ULL;
+        }
+    }
+    return {{"particles", p.particles},
+            {"seed", p.seed},
+            {"shape", shape},
+            {"container", p.container.summary_json()},
+            {"e0", p.e0},
+            {"tolerance", p.tolerance},
+            {"band_low", p.band_low},
+            {"band_high", p.band_high},
+            {"node_spacing", p.node_spacing},
+            {"force_tolerance", p.force_tolerance},
+            {"friction", p.friction},
+            {"wall_friction", p.wall_friction},
+            {"layer_height", p.layer_height},
+            {"scales", p.scales.size()},
+            {"scales_fnv1a64", fmt::format("{:016x}", hash)}};
 }
 
 } // namespace packbed

@@ -1,6 +1,8 @@
 // generate --shape: a bed of pellets, from the request to its files (pipeline.hpp).
 #include <chrono>
 #include <cmath>
+#include <filesystem>
+#include <functional>
 #include <numbers>
 #include <optional>
 #include <string>
@@ -10,11 +12,13 @@
 #include <fmt/format.h>
 
 #include "packbed/bed_volume.hpp"
+#include "packbed/checkpoint.hpp"
 #include "packbed/error.hpp"
 #include "packbed/files.hpp"
 #include "packbed/io.hpp"
 #include "packbed/json_text.hpp"
 #include "packbed/limits.hpp"
+#include "packbed/output.hpp"
 #include "packbed/pipeline.hpp"
 #include "packbed/text.hpp"
 #include "packbed/version.hpp"
@@ -206,6 +210,17 @@ PreparedPellets prepare_pellets(const PelletRequest& request) {
                                 : fmt::format("a tube of a = {:g}", request.aspect_ratio),
                         problem));
     p.validate();
+    if (!request.checkpoint.empty()) {
+        check_path("--checkpoint", request.checkpoint);
+        out.column = pellet_column(p);
+        if (out.column.layers == 1)
+            throw InvalidInput(fmt::format(
+                "--checkpoint {}: only a pellet bed in layers can be resumed, this one is in "
+                "one piece (its column {:.4g} d_v, --layer-height {}); allowed: a column above "
+                "twice --layer-height, which is 10 or more",
+                printable(request.checkpoint), out.column.height,
+                p.layer_height > 0.0 ? fmt::format("{:g}", p.layer_height) : "none"));
+    }
     return out;
 }
 
@@ -247,10 +262,28 @@ nlohmann::json pellet_shape_summary(const PelletSpec& pellet) {
 }
 
 GeneratedPellets run_pellets(const PreparedPellets& prepared, const RunControl& control,
-                             int threads) {
+                             int threads,
+                             const std::function<void(std::uint32_t, std::uint32_t)>& on_resume) {
     GeneratedPellets out;
     const auto start = std::chrono::steady_clock::now();
-    out.bed = generate_pellet_bed(prepared.params, control);
+    const std::string& checkpoint = prepared.request.checkpoint;
+    PelletLayerHooks hooks;
+    std::optional<PelletCheckpoint> resume;
+    if (!checkpoint.empty()) {
+        // Now, not after the first layer; an output of the job from here on.
+        check_writable_file("--checkpoint", checkpoint);
+        std::error_code missing;
+        if (std::filesystem::exists(std::filesystem::symlink_status(checkpoint, missing))) {
+            resume = read_pellet_checkpoint(checkpoint, prepared.params, prepared.column);
+            hooks.resume = &*resume;
+            if (on_resume)
+                on_resume(resume->layers_done, prepared.column.layers);
+        }
+        hooks.on_layer = [&](const PelletCheckpoint& state) {
+            write_pellet_checkpoint(checkpoint, prepared.params, state);
+        };
+    }
+    out.bed = generate_pellet_bed(prepared.params, control, hooks);
     const double seconds =
         std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
     const double dv = prepared.unit;

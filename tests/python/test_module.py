@@ -302,7 +302,7 @@ def test_a_sized_pellet_bed_has_the_command_lines_bytes_and_each_pellets_own_siz
                                                rel=0, abs=1e-9)
 
 
-def test_a_tall_pellet_bed_in_layers_has_the_command_lines_bytes(tmp_path):
+def test_a_tall_pellet_bed_in_layers_has_the_command_lines_bytes_and_resumes(tmp_path):
     # 100 rods in a tube of a = 3 in layers of 10 d_v (the command line's test
     # Cli.ATallPelletBedInLayers...): five layers, the same files from Python.
     status, _, err = cli("generate", "--shape", "spherocylinder:1,1", "-a", 3, "-n", 100, "-s", 1,
@@ -313,6 +313,18 @@ def test_a_tall_pellet_bed_in_layers_has_the_command_lines_bytes(tmp_path):
     assert bed.summary["layers"] == 5
     for name in ["particles.csv", "particles.vtu"]:
         assert (tmp_path / "py" / name).read_bytes() == (tmp_path / "cli" / name).read_bytes()
+    # Stopped after 40 000 of its 66 318 steps (in the fourth layer), the run leaves the
+    # checkpoint of the third; resumed from it, it writes the same bytes.
+    checkpoint = tmp_path / "bed.ckpt"
+    with pytest.raises(packbed.ConvergenceError):
+        packbed.generate(shape="spherocylinder:1,1", aspect_ratio=3, particles=100, seed=1,
+                         layer_height=10, checkpoint=str(checkpoint), max_iterations=40000)
+    assert checkpoint.read_bytes().startswith(b"packbed-pellet-checkpoint 1\n")
+    packbed.generate(shape="spherocylinder:1,1", aspect_ratio=3, particles=100, seed=1,
+                     layer_height=10, checkpoint=str(checkpoint), out=str(tmp_path / "resumed"))
+    for name in ["particles.csv", "particles.vtu"]:
+        assert ((tmp_path / "resumed" / name).read_bytes() ==
+                (tmp_path / "cli" / name).read_bytes())
 
 
 def test_a_pellet_bed_is_read_measured_written_and_exported_as_the_command_line_does(tmp_path):
