@@ -6,8 +6,8 @@
 // would stop at the hash check. Each input is therefore read twice: as it is, and "re-signed"
 // (its third line replaced by the right hash of its second line and its data, as
 // src/generate/checkpoint.cpp computes it), which takes the fuzzer's changes to the range checks of
-// every field behind the hash. If the hash's definition changes, change resigned() with it.
-#include <cinttypes>
+// every field behind the hash. If the hash's definition changes, change fuzz::resigned() with
+// it.
 #include <optional>
 
 #include "fuzz_support.hpp"
@@ -25,35 +25,6 @@ packbed::SoftSphereParameters seed_parameters() {
 }
 
 const packbed::SoftSphereParameters parameters = seed_parameters();
-
-/// FNV-1a, 64 bits, continued from `h` (src/generate/checkpoint.cpp).
-std::uint64_t fnv1a(std::string_view bytes, std::uint64_t h = 0xcbf29ce484222325ULL) {
-    for (const char c : bytes) {
-        h ^= static_cast<unsigned char>(c);
-        h *= 0x100000001b3ULL;
-    }
-    return h;
-}
-
-/// `text` with its third line replaced by `fnv1a64 HEX`, the hash of the second line, a
-/// newline and everything after the third line; nothing when it has fewer than three lines.
-std::optional<std::string> resigned(std::string_view text) {
-    const auto first = text.find('\n');
-    if (first == std::string_view::npos)
-        return std::nullopt;
-    const auto second = text.find('\n', first + 1);
-    if (second == std::string_view::npos)
-        return std::nullopt;
-    const auto third = text.find('\n', second + 1);
-    if (third == std::string_view::npos)
-        return std::nullopt;
-    const std::string_view header = text.substr(first + 1, second - first - 1);
-    const std::string_view data = text.substr(third + 1);
-    char hash[40];
-    std::snprintf(hash, sizeof hash, "fnv1a64 %016" PRIx64 "\n",
-                  fnv1a(data, fnv1a("\n", fnv1a(header))));
-    return std::string(text.substr(0, second + 1)) + hash + std::string(data);
-}
 
 /// What a run resumes from: every sphere, finite, with a radius > 0, a layer count within the
 /// run's, the three stage records, finite values.
@@ -86,22 +57,11 @@ void check(const packbed::LayerCheckpoint& c) {
     }
 }
 
-void read(const std::string& text) {
-    std::istringstream input(text);
-    try {
-        check(packbed::read_checkpoint(input, "fuzz.checkpoint", parameters));
-    } catch (const packbed::InvalidInput&) {
-    } catch (...) {
-        packbed::fuzz::unexpected_exception();
-    }
-}
-
 } // namespace
 
 extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size) {
-    const std::string text = packbed::fuzz::text_of(data, size);
-    read(text);
-    if (const auto signed_text = resigned(text); signed_text && *signed_text != text)
-        read(*signed_text);
+    packbed::fuzz::read_as_is_and_resigned(data, size, [](std::istream& input) {
+        check(packbed::read_checkpoint(input, "fuzz.checkpoint", parameters));
+    });
     return 0;
 }

@@ -3,6 +3,7 @@
 // and aborts, and libFuzzer saves the input (crash-<hash>) and prints the stack.
 #pragma once
 
+#include <cinttypes>
 #include <cmath>
 #include <cstddef>
 #include <cstdint>
@@ -10,6 +11,7 @@
 #include <cstdlib>
 #include <exception>
 #include <memory>
+#include <optional>
 #include <sstream>
 #include <string>
 #include <string_view>
@@ -35,6 +37,42 @@ inline std::string text_of(const std::uint8_t* data, std::size_t size) {
     std::fflush(stderr);
     std::abort();
 }
+
+/// FNV-1a, 64 bits, continued from `h` (src/generate/checkpoint.cpp).
+inline std::uint64_t fnv1a(std::string_view bytes, std::uint64_t h = 0xcbf29ce484222325ULL) {
+    for (const char c : bytes) {
+        h ^= static_cast<unsigned char>(c);
+        h *= 0x100000001b3ULL;
+    }
+    return h;
+}
+
+/// A checkpoint's `text` with its third line replaced by `fnv1a64 HEX`, the hash of the second
+/// line, a newline and everything after the third line (as src/generate/checkpoint.cpp signs
+/// it); nothing when it has fewer than three lines.
+inline std::optional<std::string> resigned(std::string_view text) {
+    const auto first = text.find('\n');
+    if (first == std::string_view::npos)
+        return std::nullopt;
+    const auto second = text.find('\n', first + 1);
+    if (second == std::string_view::npos)
+        return std::nullopt;
+    const auto third = text.find('\n', second + 1);
+    if (third == std::string_view::npos)
+        return std::nullopt;
+    const std::string_view header = text.substr(first + 1, second - first - 1);
+    const std::string_view data = text.substr(third + 1);
+    char hash[40];
+    std::snprintf(hash, sizeof hash, "fnv1a64 %016" PRIx64 "\n",
+                  fnv1a(data, fnv1a("\n", fnv1a(header))));
+    return std::string(text.substr(0, second + 1)) + hash + std::string(data);
+}
+
+/// A fuzz input read as a checkpoint twice, as it is and re-signed (resigned): `read` is
+/// given a stream of each; an InvalidInput is the reader's refusal, any other exception a
+/// finding.
+template <class F>
+void read_as_is_and_resigned(const std::uint8_t* data, std::size_t size, F&& read);
 
 /// The demangled name of a type.
 inline std::string type_name(const std::type_info& type) {
@@ -128,6 +166,23 @@ inline void read_particles_or_invalid(const std::uint8_t* data, std::size_t size
     } catch (...) {
         unexpected_exception();
     }
+}
+
+template <class F>
+void read_as_is_and_resigned(const std::uint8_t* data, std::size_t size, F&& read) {
+    const auto once = [&](const std::string& text) {
+        std::istringstream input(text);
+        try {
+            read(input);
+        } catch (const InvalidInput&) {
+        } catch (...) {
+            unexpected_exception();
+        }
+    };
+    const std::string text = text_of(data, size);
+    once(text);
+    if (const auto signed_text = resigned(text); signed_text && *signed_text != text)
+        once(*signed_text);
 }
 
 } // namespace packbed::fuzz

@@ -26,6 +26,22 @@ head -2 final.ckpt >"$corpus/fuzz_checkpoint/no-hash-line.ckpt"
 head -c 300 final.ckpt >"$corpus/fuzz_checkpoint/cut-in-header.ckpt"
 { echo "packbed-checkpoint 2"; sed -n 2p final.ckpt; } >"$corpus/fuzz_checkpoint/format-2.ckpt"
 
+# Pellet checkpoints of the parameters fuzz_pellet_checkpoint.cpp reads them with (five layers):
+# after layer 1 and after the last; one of another seed (3: seed 2 jams in its first layer,
+# docs/generate.md); a sphere bed's.
+rods=(generate -q --shape spherocylinder:1,1 -a 3 -n 100 --layer-height 10 --threads 1)
+mkdir -p "$corpus/fuzz_pellet_checkpoint"
+"$packbed" "${rods[@]}" --checkpoint rods1.ckpt --max-iterations 15000 -o r1 2>/dev/null || true
+"$packbed" "${rods[@]}" --checkpoint rods.ckpt -o r
+"$packbed" "${rods[@]}" --seed 3 --checkpoint rods3.ckpt --max-iterations 30000 -o r3 \
+  2>/dev/null || true
+test -s rods1.ckpt && test -s rods.ckpt && test -s rods3.ckpt
+cp rods1.ckpt "$corpus/fuzz_pellet_checkpoint/rods-a3-n100-layer1.ckpt"
+cp rods.ckpt "$corpus/fuzz_pellet_checkpoint/rods-a3-n100-final.ckpt"
+cp rods3.ckpt "$corpus/fuzz_pellet_checkpoint/rods-a3-n100-seed3-other-parameters.ckpt"
+cp layer1.ckpt "$corpus/fuzz_pellet_checkpoint/a-sphere-bed.ckpt"
+head -c 400 rods.ckpt >"$corpus/fuzz_pellet_checkpoint/cut-in-header.ckpt"
+
 # summary.json of generate, lattice (a box and a cylinder) and analyze.
 "$packbed" lattice -q -t fcc -r box:3,3,3 -o lat-box
 "$packbed" lattice -q -t sc -r cylinder:6,4 -o lat-cyl

@@ -5,9 +5,8 @@
 #
 # Usage: scripts/fuzz.sh [SECONDS] [TARGET...]
 #   SECONDS  per target (default 600)
-#   TARGET   csv xyz dump data toml checkpoint summary lammps_log job (or fuzz_csv, ...);
-#            default:
-#            all
+#   TARGET   csv xyz dump data toml checkpoint pellet_checkpoint summary lammps_log job (or
+#            fuzz_csv, ...); default: all
 # Environment:
 #   PACKBED_FUZZ_BUILD  build folder (default build-fuzz)
 #   PACKBED_FUZZ_OUT    output folder (default BUILD/fuzz-out, ignored by git):
@@ -20,7 +19,7 @@
 set -euo pipefail
 cd "$(dirname "$0")/.."
 
-all=(csv xyz dump data toml checkpoint summary lammps_log job)
+all=(csv xyz dump data toml checkpoint pellet_checkpoint summary lammps_log job)
 seconds=600
 if [[ $# -gt 0 && $1 =~ ^[0-9]+$ ]]; then
   seconds=$1

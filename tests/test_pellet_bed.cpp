@@ -614,6 +614,20 @@ TEST(SpherocylinderBed, ATallBedInLayersEndsBelowTheToleranceOnAnyThreads) {
     }
 }
 
+/// Seed 2 of that bed locks its first layer: six rods lying flat on the floor, pressed edge to
+/// edge and against the wall in the floor's plane (every contact normal level, 0.0061 d_v deep
+/// at gravity 2.5e-8 of the stiffness), which lowering the gravity does not free. One tap (the
+/// rods tilted 0.02 rad, the gravity raised again) frees it, and the bed ends below the
+/// tolerance by the brute force's points, balanced within 0.02 weights.
+TEST(SpherocylinderBed, AFloorLayerLockedFlatIsTappedFree) {
+    PelletBedParameters params = spherocylinder_bed(100, Container::tube(3.0), 2);
+    params.layer_height = 10.0;
+    const PelletBed bed = expect_below_tolerance(params);
+    EXPECT_EQ(bed.kicks, 1u);
+    EXPECT_LT(bed.residual_force, 0.02);
+    EXPECT_LT(bed.residual_torque, 0.02);
+}
+
 TEST(SpherocylinderBed, TheSameBitsOnOneThreadAndOnTwo) {
     same_bits_on_one_thread_and_two(
         spherocylinder_bed(20, Container::tube(4.0), 1),

@@ -108,6 +108,9 @@ struct PelletBed {
     /// (their overlap above tolerance held by it), and whether the rest kept it to the end.
     std::size_t sliding_pairs = 0, sliding_walls = 0;
     bool friction_kept = false;
+    /// The taps the final stage gave a layer locked in a jam (docs/generate.md, "A floor layer
+    /// squeezed flat"), all layers together.
+    std::uint32_t kicks = 0;
 };
 
 /// \return the layers generate_pellet_bed relaxes a bed of `params` in, its pellets inserted
@@ -140,6 +143,7 @@ struct PelletCheckpoint {
     std::size_t nodes = 0, sliding_pairs = 0, sliding_walls = 0;
     bool friction_kept = false;
     double residual_force = 0.0, residual_torque = 0.0; ///< the largest so far, weights
+    std::uint32_t kicks = 0;                            ///< so far (PelletBed::kicks)
 };
 
 /// The hooks of a bed in layers (both optional).

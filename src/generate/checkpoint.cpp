@@ -375,6 +375,7 @@ void write_pellet_checkpoint(const std::filesystem::path& path,
         {"friction_kept", checkpoint.friction_kept},
         {"residual_force", checkpoint.residual_force},
         {"residual_torque", checkpoint.residual_torque},
+        {"kicks", checkpoint.kicks},
         {"stages", stages},
         {"pellets",
          checkpoint.centre.size()}}.dump();
@@ -411,6 +412,8 @@ PelletCheckpoint read_pellet_checkpoint(std::istream& in, std::string_view name,
     c.friction_kept = field.flag(header, "friction_kept");
     c.residual_force = field.real(header, "residual_force", 0.0, 1e12);
     c.residual_torque = field.real(header, "residual_torque", 0.0, 1e12);
+    c.kicks = static_cast<std::uint32_t>(
+        field.whole(header, "kicks", 0, std::min<std::uint64_t>(c.steps, 1U << 30)));
     field.whole(header, "pellets", n, n);
     const json& stages = field.at(header, "stages", "");
     if (!stages.is_array() || stages.size() > 2 * std::size_t{c.layers_done})

@@ -279,6 +279,7 @@ public:
         out.sliding_walls = static_cast<std::size_t>(
             std::count(m_sliding_wall.begin(), m_sliding_wall.end(), char{1}));
         out.friction_kept = frictional();
+        out.kicks = m_kicks;
         std::tie(out.residual_force, out.residual_torque) = residual();
         measure_exact(out);
         fill_packing(out);
@@ -1162,6 +1163,10 @@ private:
         const std::uint64_t start = m_steps;
         std::vector<double> rounds; // the deepest exact depth after each relaxation
         double last_cut = 1.0;      // the gravity's last factor
+        // After a kick (at the jam's low gravity), the gravity is raised again tenfold a
+        // relaxation, up to where the stalled relaxations began, while the depths stay below
+        // tolerance: a bed balanced at a weight it can be measured against.
+        double raise_to = 0.0, rounds_gravity = m_gravity;
         for (;;) {
             m_dt = Fire::dt_start;
             m_alpha = Fire::alpha_start;
@@ -1189,8 +1194,20 @@ private:
             std::vector<std::uint32_t> over_wall;
             measure_exact(exact, tol, &over, &over_wall);
             const double deepest = std::max(exact.max_depth_pair, exact.max_depth_wall);
-            if (deepest <= tol)
+            if (deepest <= tol) {
+                if (m_gravity < raise_to) {
+                    const double up = std::min(10.0, raise_to / m_gravity);
+                    if (frictional())
+                        scale_springs(up);
+                    m_gravity *= up;
+                    continue;
+                }
                 break;
+            }
+            if (raise_to > 0.0) // raised too far: lowered from here on, not raised again
+                raise_to = 0.0;
+            if (rounds.empty())
+                rounds_gravity = m_gravity;
             rounds.push_back(deepest);
             // Friction holds the overlap: the last cut of the gravity took the deepest depth
             // down less than a contact stiffening up to cubically with its depth would have
@@ -1210,6 +1227,15 @@ private:
             }
             // An overlap that lowering the gravity does not relieve: the bed is jammed without
             // it, and more relaxations would run on without end.
+            if (rounds.size() > stalled_rounds &&
+                deepest > 0.99 * rounds[rounds.size() - 1 - stalled_rounds] &&
+                m_kicks < max_kicks) {
+                kick(over, over_wall);
+                rounds.clear();
+                raise_to = rounds_gravity;
+                last_cut = 1.0;
+                continue;
+            }
             if (rounds.size() > stalled_rounds &&
                 deepest > 0.99 * rounds[rounds.size() - 1 - stalled_rounds])
                 throw ConvergenceError(fmt::format(
@@ -1233,6 +1259,35 @@ private:
         }
         m_stages.push_back(
             {"final", m_steps - start, m_gravity, m_depth, mass_centre_z(), m_layer});
+    }
+
+    /// A jam broken by a tap: each pellet of the pairs `over` and at the walls `over_wall` is
+    /// tilted by kick_angle about a horizontal axis at an azimuth from the seed, the pellet and
+    /// the kick (hash01: the same whatever the order or the threads). A layer of pellets lying
+    /// flat and pressed edge to edge in the floor's plane is a saddle of the energy that no
+    /// force leaves: every push is horizontal, and lifting one pellet, which relieves the
+    /// layer, meets no force until something tilts it.
+    void kick(const std::vector<std::pair<std::uint32_t, std::uint32_t>>& over,
+              const std::vector<std::uint32_t>& over_wall) {
+        std::vector<std::uint32_t> ids(over_wall);
+        for (const auto& [a, b] : over) {
+            ids.push_back(a);
+            ids.push_back(b);
+        }
+        std::sort(ids.begin(), ids.end());
+        ids.erase(std::unique(ids.begin(), ids.end()), ids.end());
+        for (const std::uint32_t i : ids) {
+            if (i < m_fixed)
+                continue;
+            const double phi = 2.0 * std::numbers::pi *
+                               portable_random::hash01(m_params.seed * 0x9E3779B97F4A7C15ull +
+                                                       (std::uint64_t{m_kicks} << 40) + i);
+            const Vec3 axis{std::cos(phi), std::sin(phi), 0.0};
+            m_turn[i] = normalized(rotation_by(axis * kick_angle) * m_turn[i]);
+        }
+        ++m_kicks;
+        m_velocity.assign(m_velocity.size(), Vec3{});
+        m_spin.assign(m_spin.size(), Vec3{});
     }
 
     /// Friction let go at the pairs `over` and at the walls of the pellets `over_wall`: their
@@ -1312,6 +1367,11 @@ private:
     /// Relaxations of the final stage whose deepest exact depth fell by less than 1 % in all
     /// (the gravity cut each time) before the bed is called jammed.
     static constexpr std::size_t stalled_rounds = 4;
+    /// The taps a jammed final stage gets (kick) before the bed is called jammed, and the
+    /// tilt of each, radians.
+    static constexpr std::uint32_t max_kicks = 2;
+    static constexpr double kick_angle = 0.02;
+    std::uint32_t m_kicks = 0;
     /// The spring on a held pair's exact depth (lower()), in the nodes' unit (a node's force is
     /// its area times its depth): the area of four nodes at the default spacing, d_v^2.
     static constexpr double exact_stiffness = 0.01;
@@ -1505,6 +1565,7 @@ PelletBed pellets_in_layers(const PelletBedParameters& params, const S& shape,
         state.sliding_pairs += relaxed.sliding_pairs;
         state.sliding_walls += relaxed.sliding_walls;
         state.friction_kept = relaxed.friction_kept;
+        state.kicks += relaxed.kicks;
         state.residual_force = std::max(state.residual_force, relaxed.residual_force);
         state.residual_torque = std::max(state.residual_torque, relaxed.residual_torque);
         state.on_floor = false;
@@ -1523,6 +1584,7 @@ PelletBed pellets_in_layers(const PelletBedParameters& params, const S& shape,
     out.sliding_pairs = state.sliding_pairs;
     out.sliding_walls = state.sliding_walls;
     out.friction_kept = state.friction_kept;
+    out.kicks = state.kicks;
     // The whole bed measured as it stands: its depths across the layers' seams too.
     Part whole;
     whole.centre = std::move(centre);

@@ -350,6 +350,11 @@ GeneratedPellets run_pellets(const PreparedPellets& prepared, const RunControl& 
     s["torque_residual"] = bed.residual_torque;
     s["residual_unit"] = "a pellet's weight (torque: times its bounding radius)";
     s["steps"] = bed.steps;
+    if (bed.kicks > 0)
+        s["kicks"] = {{"taps", bed.kicks},
+                      {"note", "a layer locked flat in the final stage was tapped free: its "
+                               "pellets tilted, the gravity raised again (docs/generate.md, "
+                               "\"A floor layer squeezed flat\")"}};
     if (p.layer_height > 0.0) {
         s["layer_height"] = p.layer_height; // d_v
         s["layers"] = bed.layers;
