@@ -21,6 +21,7 @@
 
 #include <fmt/format.h>
 
+#include "fnv1a.hpp"
 #include "packbed/error.hpp"
 #include "packbed/files.hpp"
 
@@ -78,16 +79,6 @@ std::string shown(const fs::path& path) {
 // ---------------------------------------------------------------------------------------------
 // Who made a temporary: the host (and PID namespace) and the process.
 
-/// FNV-1a, 64 bits.
-std::uint64_t fnv1a(std::string_view text) {
-    std::uint64_t h = 0xcbf29ce484222325ull;
-    for (const char c : text) {
-        h ^= static_cast<unsigned char>(c);
-        h *= 0x100000001b3ull;
-    }
-    return h;
-}
-
 /// This process's host, as 12 hex digits: a hash of the kernel's boot id and of the PID
 /// namespace, so that two processes share it exactly when a process id means the same process
 /// to both. Another machine on a shared disk, another container, or the same machine after a
@@ -99,7 +90,7 @@ std::string compute_host_identity() {
     const ssize_t n = ::readlink("/proc/self/ns/pid", ns, sizeof ns - 1);
     std::uint64_t h = 0;
     if (boot.size() >= 32 && n > 0)
-        h = fnv1a(boot + "/" + std::string(ns, static_cast<std::size_t>(n)));
+        h = detail::fnv1a(boot + "/" + std::string(ns, static_cast<std::size_t>(n)));
     else
         h = std::random_device()() * 0x100000000ull + std::random_device()();
     return fmt::format("{:012x}", h & 0xffffffffffffull);

@@ -15,6 +15,7 @@
 #include <fmt/format.h>
 #include <nlohmann/json.hpp>
 
+#include "base/fnv1a.hpp"
 #include "base/json_input.hpp"
 #include "packbed/error.hpp"
 #include "packbed/files.hpp"
@@ -65,14 +66,7 @@ json stage_json(const StageRecord& s) {
             {"mass_centre_window", s.mass_centre_window}};
 }
 
-/// FNV-1a, 64 bits, continued from `h`.
-std::uint64_t fnv1a(std::string_view bytes, std::uint64_t h = 0xcbf29ce484222325ULL) {
-    for (const char c : bytes) {
-        h ^= static_cast<unsigned char>(c);
-        h *= 0x100000001b3ULL;
-    }
-    return h;
-}
+using detail::fnv1a;
 
 /// The hash line of a header line and its data.
 std::string hash_line(std::string_view header, std::string_view data) {

@@ -17,6 +17,7 @@
 
 #include <fmt/format.h>
 
+#include "../base/fnv1a.hpp"
 #include "../base/parallel.hpp"
 #include "../base/require.hpp"
 #include "generate/friction.hpp"
@@ -1647,14 +1648,9 @@ nlohmann::json pellet_bed_parameters_json(const PelletBedParameters& p) {
         },
         p.shape);
     // FNV-1a 64 of the scales' bytes (little-endian doubles).
-    std::uint64_t hash = 0xcbf29ce484222325ULL;
-    for (const double scale : p.scales) {
-        const auto bits = std::bit_cast<std::uint64_t>(scale);
-        for (int b = 0; b < 8; ++b) {
-            hash ^= (bits >> (8 * b)) & 0xffU;
-            hash *= 0x100000001b3ULL;
-        }
-    }
+    static_assert(std::endian::native == std::endian::little);
+    const std::uint64_t hash = detail::fnv1a(
+        {reinterpret_cast<const char*>(p.scales.data()), p.scales.size() * sizeof(double)});
     return {{"particles", p.particles},
             {"seed", p.seed},
             {"shape", shape},
