@@ -1789,6 +1789,18 @@ TEST(Cli, ExportOfABoxLatticeKeepsItsBox) {
     EXPECT_FALSE(fs::exists(d / "rans" / "0.orig" / "omega"));
     EXPECT_NE(slurp(d / "rans" / "constant" / "turbulenceProperties").find("RASModel kEpsilon;"),
               std::string::npos);
+    // Laminar, U's residual is asked below 1e-6 at Re_p <= 10 and 1e-5 above, where it levels
+    // off between the two (6.2e-6 at Re_p 100 on a bed of 150 spheres).
+    const std::string stop = "residualControl { p 1e-6; U 1e-6; }";
+    EXPECT_NE(slurp(d / "case" / "system" / "fvSolution").find(stop), std::string::npos);
+    ASSERT_EQ(packbed("export " + csv +
+                      " --format openfoam --contacts caps:0.05 --reynolds 100 -q --out " +
+                      (d / "fast").string())
+                  .status,
+              0);
+    EXPECT_NE(
+        slurp(d / "fast" / "system" / "fvSolution").find("residualControl { p 1e-6; U 1e-5; }"),
+        std::string::npos);
 
     // The data files: the box holds the container with a margin of max(Dp/2, 2/100) = 0.5, the
     // LAMMPS settle walls it in with a block region, the LIGGGHTS one with the box's faces.

@@ -1168,12 +1168,17 @@ private:
         // relaxation, up to where the stalled relaxations began, while the depths stay below
         // tolerance: a bed balanced at a weight it can be measured against.
         double raise_to = 0.0, rounds_gravity = m_gravity;
+        // A relaxation that stalled with every depth below tolerance is run on with the
+        // patience of a bed that ends there (patience_at_rest).
+        bool at_rest = false;
         for (;;) {
             m_dt = Fire::dt_start;
             m_alpha = Fire::alpha_start;
             m_positive = 0;
             double least = std::numeric_limits<double>::infinity();
             std::uint64_t since = 0;
+            const std::uint64_t wait = at_rest ? patience_at_rest : patience;
+            bool stalled = false;
             for (;;) {
                 step();
                 report("final");
@@ -1186,7 +1191,8 @@ private:
                 if (worst < 0.99 * least) {
                     least = worst;
                     since = 0;
-                } else if (++since > patience) {
+                } else if (++since > wait) {
+                    stalled = true;
                     break;
                 }
             }
@@ -1203,8 +1209,13 @@ private:
                     m_gravity *= up;
                     continue;
                 }
+                if (stalled && !at_rest && patience_at_rest > patience) {
+                    at_rest = true;
+                    continue;
+                }
                 break;
             }
+            at_rest = false;
             if (raise_to > 0.0) // raised too far: lowered from here on, not raised again
                 raise_to = 0.0;
             if (rounds.empty())
@@ -1365,6 +1376,14 @@ private:
     /// for the threads' start (a sphere bed waits for detail::parallel_min_spheres).
     static constexpr std::size_t parallel_min_pellets = 8;
     static constexpr std::uint64_t patience = 5000;
+    /// The patience of a final relaxation that stalled with every exact depth below tolerance
+    /// (the bed it would end with). Spherocylinders' springs change smoothly and a step costs
+    /// little: their residual keeps falling there, slowly (100 rods in a tube of a = 3, layers
+    /// of 10 d_v, seeds 10-12: 0.054, 0.135 and 1.36 weights left at 5 000 steps, about 0.01
+    /// at 50 000). A node-pressed pellet's step costs thousands of times more and its
+    /// residual need not fall (40 cylinders at a = 4 with 50 000 for every relaxation: 0.50
+    /// weights left instead of 0.51, in 4.3 times the steps; docs/notes/pellets.md).
+    static constexpr std::uint64_t patience_at_rest = level_set ? patience : 50000;
     /// Relaxations of the final stage whose deepest exact depth fell by less than 1 % in all
     /// (the gravity cut each time) before the bed is called jammed.
     static constexpr std::size_t stalled_rounds = 4;

@@ -261,7 +261,7 @@ def test_a_frictional_pellet_bed_has_the_command_lines_bytes_and_stands_looser(t
     # 40 spherocylinders L = D in a tube of a = 4 (seed 1) with friction 0.5 at pellets and
     # walls: Python's files are the command line's bytes, the summary records the friction,
     # and the bed stands taller than the frictionless one (a poured bed against the dense
-    # limit: its void fraction in the band 0.5-2.5 d_v is 0.574 against 0.367, the C++
+    # limit: its void fraction in the band 0.5-2.5 d_v is 0.530 against 0.367, the C++
     # test FrictionalPelletBed's).
     loose = pellets_from_both(tmp_path / "mu", "spherocylinder:1,1", 40, 1, friction=0.5)
     dense = pellets_from_both(tmp_path / "zero", "spherocylinder:1,1", 40, 1)
