@@ -10,37 +10,40 @@ tmp=$(mktemp -d)
 trap 'rm -rf "$tmp"' EXIT
 cd "$tmp"
 
-# Checkpoints of the parameters fuzz_checkpoint.cpp reads them with: after layer 1 (a run cut
-# short by --max-iterations, which checkpoints may differ in) and after the last layer; and
-# one of another seed, refused for its parameters.
-fire=(generate -q --solver fire -a 3 -n 200 --layer-height 10 --threads 1)
-"$packbed" "${fire[@]}" --checkpoint layer1.ckpt --max-iterations 9000 -o g1 2>/dev/null || true
-"$packbed" "${fire[@]}" --checkpoint final.ckpt -o g
-"$packbed" "${fire[@]}" --seed 2 --checkpoint seed2.ckpt --max-iterations 9000 -o g2 \
-  2>/dev/null || true
-test -s layer1.ckpt && test -s final.ckpt && test -s seed2.ckpt
-cp layer1.ckpt "$corpus/fuzz_checkpoint/a3-n200-layer1.ckpt"
-cp final.ckpt "$corpus/fuzz_checkpoint/a3-n200-final.ckpt"
-cp seed2.ckpt "$corpus/fuzz_checkpoint/a3-n200-seed2-other-parameters.ckpt"
-head -2 final.ckpt >"$corpus/fuzz_checkpoint/no-hash-line.ckpt"
-head -c 300 final.ckpt >"$corpus/fuzz_checkpoint/cut-in-header.ckpt"
-{ echo "packbed-checkpoint 2"; sed -n 2p final.ckpt; } >"$corpus/fuzz_checkpoint/format-2.ckpt"
+# Three checkpoints of one bed in layers: NAME-layer1 (a run cut short by --max-iterations
+# FIRST, which checkpoints may differ in), NAME-final (after the last layer) and NAME-other (of
+# seed OTHER, cut at OTHER_MAX, refused for its parameters); the bed's own outputs in NAME/.
+# Usage: checkpoints NAME FIRST OTHER OTHER_MAX GENERATE-ARGS...
+checkpoints() {
+  local name=$1 first=$2 other=$3 other_max=$4
+  shift 4
+  "$packbed" "$@" --checkpoint "$name-layer1.ckpt" --max-iterations "$first" -o "$name-1" \
+    2>/dev/null || true
+  "$packbed" "$@" --checkpoint "$name-final.ckpt" -o "$name"
+  "$packbed" "$@" --seed "$other" --checkpoint "$name-other.ckpt" --max-iterations "$other_max" \
+    -o "$name-other" 2>/dev/null || true
+  test -s "$name-layer1.ckpt" && test -s "$name-final.ckpt" && test -s "$name-other.ckpt"
+}
 
-# Pellet checkpoints of the parameters fuzz_pellet_checkpoint.cpp reads them with (five layers):
-# after layer 1 and after the last; one of another seed (3: seed 2 jams in its first layer,
-# docs/generate.md); a sphere bed's.
-rods=(generate -q --shape spherocylinder:1,1 -a 3 -n 100 --layer-height 10 --threads 1)
+# Checkpoints of the parameters fuzz_checkpoint.cpp reads them with.
+checkpoints g 9000 2 9000 generate -q --solver fire -a 3 -n 200 --layer-height 10 --threads 1
+cp g-layer1.ckpt "$corpus/fuzz_checkpoint/a3-n200-layer1.ckpt"
+cp g-final.ckpt "$corpus/fuzz_checkpoint/a3-n200-final.ckpt"
+cp g-other.ckpt "$corpus/fuzz_checkpoint/a3-n200-seed2-other-parameters.ckpt"
+head -2 g-final.ckpt >"$corpus/fuzz_checkpoint/no-hash-line.ckpt"
+head -c 300 g-final.ckpt >"$corpus/fuzz_checkpoint/cut-in-header.ckpt"
+{ echo "packbed-checkpoint 2"; sed -n 2p g-final.ckpt; } >"$corpus/fuzz_checkpoint/format-2.ckpt"
+
+# Pellet checkpoints of the parameters fuzz_pellet_checkpoint.cpp reads them with (five layers),
+# the other of seed 3; and a sphere bed's.
 mkdir -p "$corpus/fuzz_pellet_checkpoint"
-"$packbed" "${rods[@]}" --checkpoint rods1.ckpt --max-iterations 15000 -o r1 2>/dev/null || true
-"$packbed" "${rods[@]}" --checkpoint rods.ckpt -o r
-"$packbed" "${rods[@]}" --seed 3 --checkpoint rods3.ckpt --max-iterations 30000 -o r3 \
-  2>/dev/null || true
-test -s rods1.ckpt && test -s rods.ckpt && test -s rods3.ckpt
-cp rods1.ckpt "$corpus/fuzz_pellet_checkpoint/rods-a3-n100-layer1.ckpt"
-cp rods.ckpt "$corpus/fuzz_pellet_checkpoint/rods-a3-n100-final.ckpt"
-cp rods3.ckpt "$corpus/fuzz_pellet_checkpoint/rods-a3-n100-seed3-other-parameters.ckpt"
-cp layer1.ckpt "$corpus/fuzz_pellet_checkpoint/a-sphere-bed.ckpt"
-head -c 400 rods.ckpt >"$corpus/fuzz_pellet_checkpoint/cut-in-header.ckpt"
+checkpoints r 15000 3 30000 generate -q --shape spherocylinder:1,1 -a 3 -n 100 --layer-height 10 \
+  --threads 1
+cp r-layer1.ckpt "$corpus/fuzz_pellet_checkpoint/rods-a3-n100-layer1.ckpt"
+cp r-final.ckpt "$corpus/fuzz_pellet_checkpoint/rods-a3-n100-final.ckpt"
+cp r-other.ckpt "$corpus/fuzz_pellet_checkpoint/rods-a3-n100-seed3-other-parameters.ckpt"
+cp g-layer1.ckpt "$corpus/fuzz_pellet_checkpoint/a-sphere-bed.ckpt"
+head -c 400 r-final.ckpt >"$corpus/fuzz_pellet_checkpoint/cut-in-header.ckpt"
 
 # summary.json of generate, lattice (a box and a cylinder) and analyze.
 "$packbed" lattice -q -t fcc -r box:3,3,3 -o lat-box
