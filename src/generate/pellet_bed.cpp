@@ -1239,17 +1239,16 @@ private:
             }
             // An overlap that lowering the gravity does not relieve: the bed is jammed without
             // it, and more relaxations would run on without end.
-            if (rounds.size() > stalled_rounds &&
-                deepest > 0.99 * rounds[rounds.size() - 1 - stalled_rounds] &&
-                m_kicks < max_kicks) {
+            const bool jammed = rounds.size() > stalled_rounds &&
+                                deepest > 0.99 * rounds[rounds.size() - 1 - stalled_rounds];
+            if (jammed && m_kicks < max_kicks) {
                 kick(over, over_wall);
                 rounds.clear();
                 raise_to = rounds_gravity;
                 last_cut = 1.0;
                 continue;
             }
-            if (rounds.size() > stalled_rounds &&
-                deepest > 0.99 * rounds[rounds.size() - 1 - stalled_rounds])
+            if (jammed)
                 throw ConvergenceError(fmt::format(
                     "the pellet bed is jammed: {} overlap of {:.3g} d_v (tolerance {:.3g}) "
                     "stayed through {} relaxations, the gravity lowered after each; allowed: a "
