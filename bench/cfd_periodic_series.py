@@ -10,9 +10,10 @@ inscribed polyhedron holds all but about 0.1 % of its volume), run by its Allrun
 the observed order, the Richardson extrapolation and the grid convergence index of the three
 finest levels (Celik et al. 2008, J. Fluids Eng. 130, 078001, the procedure of their section 2).
 
-Usage: bench/cfd_periodic_series.py PACKBED OUT PHI CPD [CPD ...]
+Usage: bench/cfd_periodic_series.py PACKBED OUT PHI CPD [CPD ...] [--refine N] [--facets MODE]
     PHI: a solid fraction (0.216), "touching" or "random:N:FRACTION:GAP:SEED"; CPD: --cells-per-diameter of each level
-    (level 1 at the spheres), coarse to fine. OUT is replaced. Prints a table and writes
+    (level 1 at the spheres), coarse to fine; --refine and --facets: export's (default 5 and
+    inscribed). OUT is replaced. Prints a table and writes
     OUT/series.json. Each level also records Allrun's wall time, snappyHexMesh's "Finished
     meshing in", simpleFoam's last ExecutionTime and the largest resident set of a process; a
     level that cfd-report refuses (a mesh that failed checkMesh) records its reason as
@@ -47,7 +48,14 @@ def celik(h, f):
 
 
 def main():
-    exe, out, phi_text, *levels = sys.argv[1:]
+    args = sys.argv[1:]
+    surface = {"--refine": "5", "--facets": "inscribed"}
+    for flag in surface:
+        if flag in args:
+            k = args.index(flag)
+            surface[flag] = args[k + 1]
+            del args[k:k + 2]
+    exe, out, phi_text, *levels = args
     shutil.rmtree(out, ignore_errors=True)
     # Touching spheres need a cell wider than 2 d each way (caps across a side and inside
     # both), so 3 x 3 x 3; a shrunk array fits in 2 x 2 x 2.
@@ -74,7 +82,8 @@ def main():
         case = f"{out}/cpd{cpd}"
         subprocess.run([exe, "export", f"{out}/lattice/particles.csv", "--format", "openfoam",
                         "--flow", "periodic", "--container-height", height, "--contacts", contacts,
-                        "--cells-per-diameter", cpd, "--particle-level", "1", "--refine", "5",
+                        "--cells-per-diameter", cpd, "--particle-level", "1",
+                        "--refine", surface["--refine"], "--facets", surface["--facets"],
                         "--reynolds", "0.01", "-q", "--out", case], check=True)
         start = time.time()
         # GNU time's %M: the largest resident set of the run's processes (one rank), kB
@@ -117,7 +126,8 @@ def main():
                "van_der_hoef_F": p["references"].get("van_der_hoef_random_F")}
         rows.append(row)
         print(json.dumps(row), flush=True)
-    result = {"phi": phi, "contacts": contacts, "levels": rows}
+    result = {"phi": phi, "contacts": contacts, "refine": int(surface["--refine"]),
+              "facets": surface["--facets"], "levels": rows}
     passed = [r for r in rows if "failed" not in r]
     if len(passed) >= 3:
         fine = passed[-3:][::-1]

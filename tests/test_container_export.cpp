@@ -201,6 +201,13 @@ Packing ring_of_balls() {
     return p;
 }
 
+/// The spheres tessellated at icosphere level 2.
+SurfaceOptions level_two() {
+    SurfaceOptions o;
+    o.level = 2;
+    return o;
+}
+
 } // namespace
 
 TEST(ContainerExport, OpenFoamCaseOfAnAnnulusCutsTheTubeAndTheRod) {
@@ -216,7 +223,7 @@ TEST(ContainerExport, OpenFoamCaseOfAnAnnulusCutsTheTubeAndTheRod) {
     const double solid = 12.0 * pi / 6.0 - 16.0 * cap(0.475) - 12.0 * cap(0.45);
     EXPECT_NEAR(v.container_volume, 16.0 * pi, 1e-12);
     EXPECT_NEAR(v.treated_solid, solid, 1e-12);
-    const OpenFoamCase c = openfoam_case(bed, container, v, "caps:0.05", 1.0, 2);
+    const OpenFoamCase c = openfoam_case(bed, container, v, "caps:0.05", 1.0, level_two());
     EXPECT_NEAR(c.fluid_volume, 16.0 * pi - solid, 1e-12);
     ASSERT_EQ(c.wall.size(), 1u);
     ASSERT_EQ(c.rod.size(), 1u);
@@ -270,7 +277,7 @@ TEST(ContainerExport, OpenFoamCaseOfAPeriodicCellHasCyclicSidesAndCopies) {
     EXPECT_EQ(imaged.bodies[5].center, (Vec3{3.2, 2.9, 1.5}));
     EXPECT_EQ(imaged.bodies[6].center, (Vec3{3.2, 2.9 - 3.0, 1.5}));
     // The case: the cell as background, its sides cyclic pairs; no wall surface.
-    const OpenFoamCase c = openfoam_case(bed, cell, v, "caps:0.05", 1.0, 2);
+    const OpenFoamCase c = openfoam_case(bed, cell, v, "caps:0.05", 1.0, level_two());
     EXPECT_TRUE(c.wall.empty());
     EXPECT_TRUE(c.rod.empty());
     std::map<std::string, std::string> files(c.files.begin(), c.files.end());

@@ -81,6 +81,92 @@ TEST(Surface, IcosphereIsAClosedPolyhedronInscribedInTheUnitSphere) {
     EXPECT_EQ(icosphere_level_for_edge(0.5, 0.05), 4);
 }
 
+TEST(Surface, VolumeFacetsHoldTheSpheresVolume) {
+    // Level 0 in closed form: the icosahedron inscribed in the unit sphere has the edge
+    // a = 4 / sqrt(10 + 2 sqrt 5) and the volume 5/12 (3 + sqrt 5) a^3.
+    const double a = 4.0 / std::sqrt(10.0 + 2.0 * std::sqrt(5.0));
+    const double icosahedron = 5.0 / 12.0 * (3.0 + std::sqrt(5.0)) * a * a * a;
+    EXPECT_NEAR(volume_facets_scale(0), std::cbrt(sphere_volume(1.0) / icosahedron), 1e-14);
+    EXPECT_NEAR(volume_facets_scale(0), 1.18206, 1e-5);
+    EXPECT_NEAR(volume_facets_scale(3), 1.00289, 1e-5); // 0.8606 % of the volume short
+    EXPECT_NEAR(volume_facets_scale(5), 1.00018, 1e-5); // 0.0541 %
+    // Two spheres far apart, whole: the surfaces hold exactly the spheres' volume, where the
+    // inscribed ones hold 0.86 % less.
+    Packing p;
+    p.add({-1.0, 0.0, 1.0}, 0.5);
+    p.add({1.0, 0.0, 1.0}, 0.5);
+    const SurfaceContainer c = cylinder(3.0, 2.0);
+    const TreatedBed bed = treat_contacts(p, {}, c);
+    SurfaceOptions o;
+    o.container = c;
+    o.write_container = false;
+    const double inscribed = bed_surface(bed, o)[0].mesh.volume();
+    o.facets = Facets::volume;
+    const double held = bed_surface(bed, o)[0].mesh.volume();
+    EXPECT_NEAR(held / (2.0 * sphere_volume(0.5)), 1.0, 1e-13);
+    EXPECT_NEAR(1.0 - inscribed / held, 0.008606, 1e-6);
+    // A touching pair with caps: each body keeps to its side of its plane, and the surface
+    // holds the exact capped volume to 1e-4 (the inscribed one 0.86 % less).
+    const Packing touching = two_touching();
+    const TreatedBed capped = treat_contacts(touching, parse_contacts("caps:0.02"), c);
+    const TreatmentVolumes v = treatment_volumes(touching, capped, c);
+    const TriangleMesh mesh = bed_surface(capped, o)[0].mesh;
+    EXPECT_TRUE(closed_and_oriented({&mesh}));
+    for (const Vec3& x : mesh.vertices)
+        EXPECT_GE(std::abs(x.x), 0.01 - 1e-15);
+    EXPECT_NEAR(mesh.volume() / v.treated_solid, 1.0, 1e-4);
+}
+
+TEST(Surface, VolumeFacetsAreRefusedWhereTheyWouldMeet) {
+    SurfaceOptions o;
+    o.facets = Facets::volume;
+    o.container = cylinder(3.0, 2.0);
+    const Packing touching = two_touching();
+    // Touching as they are: the grown facets would cross.
+    try {
+        bed_surface(treat_contacts(touching, {}, o.container), o);
+        FAIL() << "touching spheres accepted";
+    } catch (const InvalidInput& e) {
+        EXPECT_NE(std::string(e.what()).find("sphere 1's facets by 0.00144"), std::string::npos)
+            << e.what();
+        EXPECT_NE(std::string(e.what()).find("its gap to sphere 2 is 0"), std::string::npos)
+            << e.what();
+    }
+    // Shrunk by 0.1 %: a gap of 0.001 Dp, below the two growths of 0.00144 each (level 3);
+    // by 2 %: 0.02 Dp, room enough.
+    EXPECT_THROW(
+        bed_surface(treat_contacts(touching, parse_contacts("shrink:0.001"), o.container), o),
+        InvalidInput);
+    EXPECT_NO_THROW(
+        bed_surface(treat_contacts(touching, parse_contacts("shrink:0.02"), o.container), o));
+    // At the wall: shrink:0.002 leaves 0.001 Dp to it, below the growth; caps cut at the wall.
+    Packing wall;
+    wall.add({2.5, 0.0, 1.0}, 0.5);
+    try {
+        bed_surface(treat_contacts(wall, parse_contacts("shrink:0.002"), o.container), o);
+        FAIL() << "a sphere 0.001 from the wall accepted";
+    } catch (const InvalidInput& e) {
+        EXPECT_NE(std::string(e.what()).find("gap to the wall is 0.001"), std::string::npos)
+            << e.what();
+    }
+    EXPECT_NO_THROW(bed_surface(treat_contacts(wall, parse_contacts("caps:0.01"), o.container), o));
+    // On the floor, not cut: refused; capped: the cut keeps it clear.
+    Packing floor;
+    floor.add({0.0, 0.0, 0.5}, 0.5);
+    EXPECT_THROW(bed_surface(treat_contacts(floor, {}, o.container), o), InvalidInput);
+    EXPECT_NO_THROW(
+        bed_surface(treat_contacts(floor, parse_contacts("caps:0.01"), o.container), o));
+    // In a periodic cell a pair capped across a side is apart (its copy's cut moved with it).
+    Packing across;
+    across.add({0.4, 1.5, 1.0}, 0.5);
+    across.add({2.4, 1.5, 1.0}, 0.5); // touching its neighbour's image at x = -0.6
+    SurfaceOptions cell = o;
+    cell.container = SurfaceContainer{Periodic(3.0, 3.0), 2.0};
+    EXPECT_NO_THROW(
+        bed_surface(treat_contacts(across, parse_contacts("caps:0.02"), cell.container), cell));
+    EXPECT_THROW(bed_surface(treat_contacts(across, {}, cell.container), cell), InvalidInput);
+}
+
 TEST(Surface, ClippingKeepsTheMeshClosedAndCutsWhereAsked) {
     const TriangleMesh ball = icosphere(5);
     const TriangleMesh cut = clip_convex(ball, {{0.0, 0.0, 1.0}, 0.6}); // keep z <= 0.6

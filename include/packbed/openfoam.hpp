@@ -56,7 +56,7 @@ struct OpenFoamCase {
 };
 
 /// The case for `bed` (from treat_contacts) in `container`, surfaces tessellated with
-/// `level`. The box of blockMesh spans exactly the container's height, so its bottom and top
+/// `surface`. The box of blockMesh spans exactly the container's height, so its bottom and top
 /// faces become the patches "inlet" (z = 0) and "outlet" (z = height). For a cylinder it spans
 /// the cylinder with a margin of one background cell sideways, and snappyHexMesh cuts the wall
 /// (patch "wall", wall.stl: a surface open at both ends reaching half a cell beyond them) out
@@ -77,7 +77,8 @@ struct OpenFoamCase {
 /// or no point of the fluid clears every surface by two cells of the finest level
 OpenFoamCase openfoam_case(const TreatedBed& bed, const SurfaceContainer& container,
                            const TreatmentVolumes& volumes, const std::string& contacts,
-                           double diameter, int level, const OpenFoamMeshOptions& options = {},
+                           double diameter, const SurfaceOptions& surface,
+                           const OpenFoamMeshOptions& options = {},
                            const OpenFoamFlowOptions& flow = {});
 
 /// The particles as a case sees them, whatever their shape: what openfoam_case builds from a

@@ -105,9 +105,22 @@ struct SurfaceContainer {
     }
 };
 
+/// Where a sphere's polyhedron lies: `inscribed`, its vertices on the sphere (inside it, short
+/// of its volume by 0.86 % at icosphere level 3, 0.054 % at 5); `volume`, scaled about the
+/// centre to hold the sphere's volume (volume_facets_scale), its vertices a little outside.
+enum class Facets { inscribed, volume };
+
+/// The names users pick facets by ("inscribed", "volume"): the one registry.
+const Registry<Facets>& facet_modes();
+
+/// The factor that gives the icosphere of `level` the unit sphere's volume,
+/// \f$s = (4 \pi / 3 / V_{level})^{1/3}\f$ (1.00289 at level 3, 1.00018 at level 5).
+double volume_facets_scale(int level);
+
 /// What bed_surface builds.
 struct SurfaceOptions {
     int level = 3;                             ///< icosphere level of each sphere (see icosphere)
+    Facets facets = Facets::inscribed;         ///< where its polyhedron lies
     std::optional<SurfaceContainer> container; ///< the container whose solids are written
     bool write_container = true; ///< add the container's solids ("wall", "bottom", "top")
 };
@@ -189,13 +202,17 @@ double lens_volume(double r1, double r2, double distance);
 TreatedBed periodic_images(const TreatedBed& bed, const Periods& cell);
 
 /// The surface: solid "particles" (every treated body tessellated: the icosphere scaled and
-/// clipped by its cuts, vertices on the sphere, so each polyhedron lies inside its body; each
+/// clipped by its cuts, vertices on the sphere, so each polyhedron lies inside its body, or
+/// with Facets::volume a factor volume_facets_scale beyond it; each
 /// bridge a prism inscribed in its cylinder; for a bed to unite, the union of all of them by
 /// CGAL's corefinement), and
 /// where the options ask for it the container as "wall" (a prism circumscribed about the
 /// cylinder, so that no sphere inside the cylinder meets it; a box's four faces are "x_low",
 /// "x_high", "y_low", "y_high" instead), "bottom" and "top" (Container::solids). In a periodic
 /// cell the particles include the copies of periodic_images.
+/// \throws InvalidInput when facets grown to hold the volume would meet: two bodies not cut
+/// against each other (nor united) closer than their growth, or a body not cut at the wall,
+/// floor or top closer to it than its own
 std::vector<Solid> bed_surface(const TreatedBed& bed, const SurfaceOptions& options);
 
 /// Every particle of a bed of one shape class as one surface: its type's unit_surface(level)

@@ -202,6 +202,7 @@ def export(
     contacts: str = "none",
     refine: int = 3,
     edge: Optional[float] = None,
+    facets: str = "inscribed",
     cells_per_diameter: int = 4,
     particle_level: int = 2,
     wall_level: int = 1,

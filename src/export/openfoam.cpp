@@ -379,8 +379,8 @@ const Registry<Turbulence>& turbulence_models() {
 
 OpenFoamCase openfoam_case(const TreatedBed& bed, const SurfaceContainer& container,
                            const TreatmentVolumes& volumes, const std::string& contacts,
-                           double diameter, int level, const OpenFoamMeshOptions& options,
-                           const OpenFoamFlowOptions& flow) {
+                           double diameter, const SurfaceOptions& surface,
+                           const OpenFoamMeshOptions& options, const OpenFoamFlowOptions& flow) {
     CaseParticles particles;
     // In a periodic cell the fluid point keeps clear of the copies across the sides too.
     const std::optional<Periods> cell = container.periods();
@@ -395,12 +395,15 @@ OpenFoamCase openfoam_case(const TreatedBed& bed, const SurfaceContainer& contai
     double largest = 0.0;
     for (const TreatedBody& b : particles.bounds)
         largest = std::max(largest, b.radius);
-    particles.wall_edge = largest * icosphere_edge(level);
-    SurfaceOptions surface;
-    surface.level = level;
-    surface.container = container;
-    surface.write_container = false;
-    particles.surface = bed_surface(bed, surface);
+    particles.wall_edge = largest * icosphere_edge(surface.level);
+    // Facets grown to hold the volume reach that much beyond the balls.
+    if (surface.facets == Facets::volume)
+        particles.reach =
+            std::max(particles.reach, (volume_facets_scale(surface.level) - 1.0) * largest);
+    SurfaceOptions tessellation = surface;
+    tessellation.container = container;
+    tessellation.write_container = false;
+    particles.surface = bed_surface(bed, tessellation);
     return openfoam_case(particles, container, volumes, contacts, diameter, options, flow);
 }
 

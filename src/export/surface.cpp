@@ -158,6 +158,16 @@ TriangleMesh clip_convex(const TriangleMesh& mesh, const HalfSpace& half_space, 
     return out_mesh;
 }
 
+const Registry<Facets>& facet_modes() {
+    static const Registry<Facets> names(
+        "facets", {{"inscribed", Facets::inscribed}, {"volume", Facets::volume}});
+    return names;
+}
+
+double volume_facets_scale(int level) {
+    return std::cbrt(4.0 / 3.0 * std::numbers::pi / icosphere(level).volume());
+}
+
 const Registry<ContactTreatment>& contact_treatments() {
     static const Registry<ContactTreatment> names("contacts",
                                                   {{"none", ContactTreatment::none},
@@ -580,6 +590,88 @@ TreatedBed periodic_images(const TreatedBed& bed, const Periods& cell) {
     return out;
 }
 
+namespace {
+
+/// Whether a cut of `a` and one of `b` (moved by `shift`: its image across a periodic cell's
+/// side) face each other, b's beyond a's: the two bodies lie on the two sides of the slab
+/// between them (caps).
+bool cut_apart(const TreatedBody& a, const TreatedBody& b, const Vec3& shift) {
+    for (const HalfSpace& ha : a.cuts)
+        for (const HalfSpace& hb : b.cuts)
+            if (dot(ha.normal, hb.normal) < -1.0 + 1e-12 &&
+                -(hb.offset + dot(hb.normal, shift)) >= ha.offset)
+                return true;
+    return false;
+}
+
+/// Whether `b` has a cut along `normal` whose plane lies at `offset` or inside it (a wall's or
+/// the floor's cap).
+bool cut_at(const TreatedBody& b, const Vec3& normal, double offset) {
+    return std::ranges::any_of(b.cuts, [&](const HalfSpace& h) {
+        return dot(h.normal, normal) > 1.0 - 1e-12 && h.offset <= offset;
+    });
+}
+
+/// Refuse facets grown by `growth` (a fraction of each radius) where they would meet another
+/// body or leave the container (bed_surface's contract).
+void require_room_to_grow(const TreatedBed& bed, const std::optional<SurfaceContainer>& container,
+                          double growth) {
+    const std::vector<TreatedBody>& bodies = bed.bodies;
+    if (bodies.empty())
+        return;
+    double largest = 0.0;
+    for (const TreatedBody& b : bodies)
+        largest = std::max(largest, b.radius);
+    const auto refuse = [&](std::size_t i, const std::string& what, double gap) {
+        return InvalidInput(fmt::format(
+            "--facets volume is not allowed here: it grows sphere {}'s facets by {:.3g}, and its "
+            "gap to {} is {:.3g}; allowed: a contact treatment that leaves wider gaps (caps:H, "
+            "shrink:F), a finer --refine, or --facets inscribed",
+            i + 1, growth * bodies[i].radius, what, gap));
+    };
+    if (!bed.unite) {
+        const std::optional<Periods> cell = container ? container->periods() : std::nullopt;
+        std::vector<Vec3> centers;
+        std::vector<double> radii;
+        for (const TreatedBody& b : bodies) {
+            centers.push_back(b.center);
+            radii.push_back(b.radius);
+        }
+        NeighborList list;
+        if (cell)
+            list.wrap(*cell);
+        list.build(centers, radii, 2.0 * growth * largest);
+        for (std::size_t i = 0; i < bodies.size(); ++i)
+            for (const std::uint32_t j : list.upper_neighbors_of(i)) {
+                const Vec3 r =
+                    cell ? cell->separation(centers[i], centers[j]) : centers[j] - centers[i];
+                const double gap = norm(r) - radii[i] - radii[j];
+                if (gap < growth * (radii[i] + radii[j]) &&
+                    !cut_apart(bodies[i], bodies[j], centers[i] + r - centers[j]))
+                    throw refuse(i, fmt::format("sphere {}", j + 1), gap);
+            }
+    }
+    if (!container)
+        return;
+    for (std::size_t i = 0; i < bodies.size(); ++i) {
+        const TreatedBody& b = bodies[i];
+        const double grown = growth * b.radius;
+        if (!container->periodic_z) {
+            const double floor_gap = b.center.z - b.radius;
+            if (floor_gap < grown && !cut_at(b, {0.0, 0.0, -1.0}, 0.0))
+                throw refuse(i, "the floor", floor_gap);
+            const double top_gap = container->height - b.center.z - b.radius;
+            if (top_gap < grown)
+                throw refuse(i, "the top", top_gap);
+        }
+        for (const WallPlane& wall : container->container.walls_within(b.center, b.radius, grown))
+            if (!cut_at(b, wall.normal, wall.offset))
+                throw refuse(i, "the wall", wall.offset - dot(wall.normal, b.center) - b.radius);
+    }
+}
+
+} // namespace
+
 std::vector<Solid> bed_surface(const TreatedBed& given, const SurfaceOptions& options) {
     // A periodic cell: every body cut by a side and its copies across the sides.
     const std::optional<Periods> cell =
@@ -588,7 +680,13 @@ std::vector<Solid> bed_surface(const TreatedBed& given, const SurfaceOptions& op
     const TreatedBed& bed = cell ? imaged : given;
     const std::vector<TreatedBody>& bodies = bed.bodies;
     const SphereShape sphere;
-    const TriangleMesh unit = sphere.unit_surface(options.level);
+    TriangleMesh unit = sphere.unit_surface(options.level);
+    if (options.facets == Facets::volume) {
+        const double scale = volume_facets_scale(options.level);
+        require_room_to_grow(given, options.container, scale - 1.0);
+        for (Vec3& v : unit.vertices)
+            v = v * scale;
+    }
     double largest = 0.0;
     for (const TreatedBody& b : bodies)
         largest = std::max(largest, b.radius);

@@ -279,6 +279,7 @@ std::string surface_export(const ExportRequest& o, ExportFormat format, const Pa
             "--edge {:g} is not allowed for spheres up to radius {:g}: it needs more than "
             "icosphere level {}; allowed: at least {:.6g} (that level's edge)",
             o.edge, largest, options.level, largest * icosphere_edge(options.level)));
+    options.facets = facet_modes().at(o.facets);
     options.container = container;
     options.write_container = !o.no_container;
     const TreatedBed bed = treat_contacts(packing, contacts, container);
@@ -304,6 +305,7 @@ std::string surface_export(const ExportRequest& o, ExportFormat format, const Pa
     report["contacts"] = o.contacts;
     report["diameter"] = dp;
     report["icosphere_level"] = options.level;
+    report["facets"] = facet_modes().name(options.facets);
     std::optional<TreatmentVolumes> volumes;
     std::string change;
     if (container) {
@@ -314,7 +316,7 @@ std::string surface_export(const ExportRequest& o, ExportFormat format, const Pa
     if (format == ExportFormat::openfoam) {
         const OpenFoamFlowOptions flow = case_flow(o);
         const OpenFoamCase foam =
-            openfoam_case(bed, *container, *volumes, o.contacts, dp, options.level, o.mesh, flow);
+            openfoam_case(bed, *container, *volumes, o.contacts, dp, options, o.mesh, flow);
         report["openfoam"] =
             case_record(o, foam, flow, *container,
                         // what cfd-report compares with: the bed's void fraction between the first
@@ -682,6 +684,11 @@ std::string pellet_export(const ExportRequest& request, ExportFormat format, con
                                        "allowed: none, or shrink:F (each pellet scaled by 1 - F "
                                        "about its centroid, F in (0, 0.5))",
                                        printable(request.contacts)));
+    if (facet_modes().at(request.facets) != Facets::inscribed)
+        throw InvalidInput(fmt::format("--facets {} is not allowed for a bed of pellets; "
+                                       "allowed: inscribed (the pellets' vertices lie on their "
+                                       "surfaces)",
+                                       printable(request.facets)));
     const double scale =
         contacts.treatment == ContactTreatment::shrink ? 1.0 - contacts.parameter : 1.0;
     const ShapedBed<S> bed(packing, {shape});

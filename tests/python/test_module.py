@@ -666,6 +666,8 @@ def test_the_command_lines_voxelize_writes_the_modules_image(bed, cli_bed, tmp_p
         (lambda: packbed.correlations(profile_step=2), ["correlations", "--profile-step", "2"]),
         (lambda: packbed.export(packbed.lattice(), "x.data", refine=9),
          ["export", "x.csv", "--refine", "9"]),
+        (lambda: packbed.export(packbed.lattice(), "x.data", facets="round"),
+         ["export", "x.csv", "--facets", "round"]),
     ],
 )
 def test_a_bad_value_gets_the_command_lines_message(call, arguments):
@@ -743,6 +745,7 @@ def test_a_correlation_out_of_its_range_warns_as_the_command_line():
         ("lammps-data", "bed.data", []),
         ("liggghts-data", "bed.data", []),
         ("stl", "bed.stl", ["--contacts", "caps:0.02", "--refine", "2"]),
+        ("stl", "bed.stl", ["--contacts", "caps:0.02", "--refine", "2", "--facets", "volume"]),
     ],
 )
 def test_export_writes_the_command_lines_files(cli_bed, tmp_path, format, name, extra):
@@ -752,7 +755,8 @@ def test_export_writes_the_command_lines_files(cli_bed, tmp_path, format, name, 
     status, _, err = cli("export", particles, "-f", format, "-q", "-o", tmp_path / "cli" / name,
                          *extra)
     assert status == 0, err
-    keywords = dict(contacts="caps:0.02", refine=2) if extra else {}
+    keywords = {flag[2:]: int(value) if value.isdigit() else value
+                for flag, value in zip(extra[::2], extra[1::2])}
     report = packbed.export(packbed.read(particles), str(tmp_path / "py" / name), format=format,
                             **keywords)
     assert str(tmp_path / "py" / name) in report
