@@ -863,16 +863,15 @@ py::object correlations(double aspect_ratio, double profile_step, double profile
     return to_python(report.values);
 }
 
-std::string export_bed_to(const Bed& bed, const std::filesystem::path& out,
-                          const std::string& format, const std::optional<std::string>& container,
-                          std::optional<double> container_height, bool no_container, double density,
-                          const std::optional<std::string>& box,
-                          std::optional<double> fluid_velocity, const std::string& contacts,
-                          long long refine, std::optional<double> edge, const std::string& facets,
-                          long long cells_per_diameter, long long particle_level,
-                          long long wall_level, long long ranks, double reynolds,
-                          const std::string& turbulence, double fluid_density, double viscosity,
-                          std::optional<double> scale, const std::string& flow, bool force) {
+std::string
+export_bed_to(const Bed& bed, const std::filesystem::path& out, const std::string& format,
+              const std::optional<std::string>& container, std::optional<double> container_height,
+              bool no_container, double density, const std::optional<std::string>& box,
+              std::optional<double> fluid_velocity, const std::string& contacts, long long refine,
+              std::optional<double> edge, const std::optional<std::string>& facets,
+              long long cells_per_diameter, long long particle_level, long long wall_level,
+              long long ranks, double reynolds, const std::string& turbulence, double fluid_density,
+              double viscosity, std::optional<double> scale, const std::string& flow, bool force) {
     namespace range = option_range;
     check_path("out", out);
     ExportRequest request;
@@ -903,8 +902,10 @@ std::string export_bed_to(const Bed& bed, const std::filesystem::path& out,
     request.refine = static_cast<int>(check_option("refine", refine, range::refine));
     if (edge)
         request.edge = check_option("edge", *edge, range::edge);
-    facet_modes().at(facets);
-    request.facets = facets;
+    if (facets) {
+        facet_modes().at(*facets);
+        request.facets = *facets;
+    }
     request.mesh.cells_per_diameter = static_cast<int>(
         check_option("cells-per-diameter", cells_per_diameter, range::cells_per_diameter));
     request.mesh.particle_level =
@@ -1314,7 +1315,7 @@ it to a .npy, .tif or .raw (+ .raw.json) file. The array owns its memory (no cop
           py::arg("box") = py::none(), py::arg("fluid_velocity") = py::none(),
           py::arg("contacts") = ExportRequest{}.contacts,
           py::arg("refine") = ExportRequest{}.refine, py::arg("edge") = py::none(),
-          py::arg("facets") = ExportRequest{}.facets,
+          py::arg("facets") = py::none(),
           py::arg("cells_per_diameter") = ExportRequest{}.mesh.cells_per_diameter,
           py::arg("particle_level") = ExportRequest{}.mesh.particle_level,
           py::arg("wall_level") = ExportRequest{}.mesh.wall_level,
@@ -1332,8 +1333,9 @@ container: a spec string; None: the bed's own (none: no wall treatment and no ex
 input). container_height: None, the bed's top + 1 Dp. no_container: surfaces without the
 container's solids, data files in the spheres' bounding box. Data files: density, box
 ('xlo,xhi,ylo,yhi,zlo,zhi'), fluid_velocity. Surfaces: contacts ('none', 'shrink:F',
-'enlarge:F', 'caps:H', 'bridges:D'), refine (icosphere level) or edge, facets ('inscribed',
-or 'volume': each sphere's polyhedron scaled to hold its volume), and for 'openfoam'
+'enlarge:F', 'caps:H', 'bridges:D'), refine (icosphere level) or edge, facets ('inscribed';
+'volume': each sphere's polyhedron scaled to hold its volume; 'auto': volume where every gap
+allows it; None: auto for 'openfoam', inscribed otherwise), and for 'openfoam'
 cells_per_diameter, particle_level, wall_level; the flow of its Allrun: ranks, reynolds (or
 fluid_velocity, m/s), turbulence ('laminar', 'kEpsilon', 'kOmegaSST'), fluid_density
 (kg/m^3), viscosity (Pa s), scale (metres per unit of the bed's lengths; None: particles of

@@ -161,8 +161,8 @@ r = json.load(open(report)) if os.path.exists(report) else {}
 check(r.get("solver", {}).get("converged") is True, "simpleFoam converged on the small bed")
 check(r.get("fluxes_m3_s", {}).get("imbalance", 1) < 1e-3, "the inlet's and outlet's fluxes agree to 0.1 %")
 ratio = r.get("correlations", {}).get("cfd_over_eisfeld_schnitzlein", 0)
-check(0.45 < ratio < 0.65, f"its pressure gradient is {ratio:.3f} of Eisfeld & Schnitzlein's (0.45 to 0.65; "
-      "0.550 measured)")
+check(0.465 < ratio < 0.669, f"its pressure gradient is {ratio:.3f} of Eisfeld & Schnitzlein's (0.465 to "
+      "0.669; 0.567 measured)")
 printed = log_of("packbed cfd-report results/small/flow")
 check("Eisfeld & Schnitzlein (2001) (a = 3)" in printed and "the 6 correlations span" in printed,
       "cfd-report prints the table and the band of correlations")

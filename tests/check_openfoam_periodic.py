@@ -11,9 +11,12 @@ state. particles.stl must hold the 18 bodies and the 14 copies across the sides 
 the corner), their caps with them: it reaches from x = -0.175 to 3.775, y = -0.775 to 3.175.
 blockMesh + snappyHexMesh + checkMesh: asserts "Mesh OK.", the cyclic pairs x_low/x_high and
 y_low/y_high present after snapping with as many faces on each side of a pair, the patches
-inlet, outlet and particles with faces, no wall, and the mesh's total volume within 1 % of the
-exact fluid volume (-0.74 % measured: 17.5654 against 17.6963; the whole script about 30 s on
-the 2-core machine).
+inlet, outlet and particles with faces, no wall, and the mesh's total volume within 1.5 % of
+the exact fluid volume (-1.22 % measured: 17.4811 against 17.6963; the whole script about 30 s
+on the 2-core machine). The case's default facets here are volume (each polyhedron holds its
+sphere's volume); with inscribed ones the solid is 0.86 % short and the mesh comes out -0.74 %.
+The loss is snapping at the cut copies and the 0.05 Dp gaps: the same lattice in a box loses
+0.47 % (check_openfoam.py). A missing sphere would cost 3 %.
 
 Usage: check_openfoam_periodic.py PACKBED. Exit 77 (skipped) when OpenFOAM is missing."""
 import json
@@ -94,5 +97,5 @@ for side, other in (("x_low", "x_high"), ("x_high", "x_low"), ("y_low", "y_high"
     entry = re.search(side + r"\s*\{([^}]*)\}", boundary).group(1)
     assert re.search(r"type\s+cyclic;", entry) and re.search(r"neighbourPatch\s+" + other, entry), \
         (side, entry)
-check_volume("periodic", volume, exact, 0.01, patches, f"{parts} bodies and copies; ")
+check_volume("periodic", volume, exact, 0.015, patches, f"{parts} bodies and copies; ")
 shutil.rmtree(work)

@@ -1297,13 +1297,13 @@ INSTANTIATE_TEST_SUITE_P(
         exact(std::vector<std::string>{"export", "two.csv", "--format", "stl", "--refine", ""},
               "packbed: --refine: '' is not allowed; allowed: a whole number from 0 to 7"),
         exact("export two.csv --format stl --facets round",
-              "packbed: --facets: 'round' is not allowed; allowed: inscribed, volume"),
+              "packbed: --facets: 'round' is not allowed; allowed: inscribed, volume, auto"),
         // Facets grown by 0.289 % of the radius (level 3) would cross the gap of 0.002 that
         // shrink:0.012 leaves between the pair 0.99 apart (radii 0.494).
         exact("export two.csv --format stl --contacts shrink:0.012 --facets volume",
               "packbed export: --facets volume is not allowed here: it grows sphere 1's facets by "
               "0.00143, and its gap to sphere 2 is 0.002; allowed: a contact treatment that leaves "
-              "wider gaps (caps:H, shrink:F), a finer --refine, or --facets inscribed"),
+              "wider gaps (caps:H, shrink:F), a finer --refine, or --facets inscribed or auto"),
         exact("export two.csv --format stl --edge 0",
               "packbed: --edge: 0 is not allowed; allowed: a number > 0"),
         exact("export two.csv --format stl --edge nan",

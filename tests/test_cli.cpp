@@ -1772,6 +1772,15 @@ TEST(Cli, ExportOfABoxLatticeKeepsItsBox) {
     EXPECT_GT(at[1].get<double>(), 0.0);
     EXPECT_LT(at[1].get<double>(), 4.0);
     EXPECT_EQ(foam["volumes"]["fluid"], report["volumes"]["fluid"]);
+    // The case's facets hold the spheres' volume by default (auto, and the caps leave room),
+    // where the STL's default keeps them inscribed; touching spheres (none) leave no room.
+    EXPECT_EQ(foam["facets"], "volume");
+    EXPECT_EQ(report["facets"], "inscribed");
+    ASSERT_EQ(packbed("export " + csv + " --format openfoam --contacts none -q --out " +
+                      (d / "touching").string())
+                  .status,
+              0);
+    EXPECT_EQ(nlohmann::json::parse(slurp(d / "touching" / "packbed.json"))["facets"], "inscribed");
     // --velocity (the alias of --fluid-velocity) sets the inlet's, and Re_p = rho u d / mu
     // follows (d = 1 mm by default); --turbulence kEpsilon adds its fields.
     const Outcome v = packbed("export " + csv +

@@ -167,6 +167,41 @@ TEST(Surface, VolumeFacetsAreRefusedWhereTheyWouldMeet) {
     EXPECT_THROW(bed_surface(treat_contacts(across, {}, cell.container), cell), InvalidInput);
 }
 
+TEST(Surface, AutomaticFacetsHoldTheVolumeWhereTheGapsAllow) {
+    SurfaceOptions o;
+    o.facets = Facets::automatic;
+    o.container = cylinder(3.0, 2.0);
+    o.write_container = false;
+    const Packing touching = two_touching();
+    // Touching as they are: no room, so inscribed (the exact inscribed surface, 0.86 % short).
+    const TreatedBed bare = treat_contacts(touching, {}, o.container);
+    EXPECT_EQ(facets_for(bare, o), Facets::inscribed);
+    ASSERT_TRUE(volume_facets_conflict(bare, o.container, o.level));
+    EXPECT_NE(volume_facets_conflict(bare, o.container, o.level)->find("its gap to sphere 2"),
+              std::string::npos);
+    SurfaceOptions inscribed = o;
+    inscribed.facets = Facets::inscribed;
+    EXPECT_EQ(bed_surface(bare, o)[0].mesh.vertices, bed_surface(bare, inscribed)[0].mesh.vertices);
+    // Capped 0.02 Dp apart: room, so volume, the same surface as asked for by name.
+    const TreatedBed capped = treat_contacts(touching, parse_contacts("caps:0.02"), o.container);
+    EXPECT_EQ(facets_for(capped, o), Facets::volume);
+    EXPECT_FALSE(volume_facets_conflict(capped, o.container, o.level));
+    SurfaceOptions volume = o;
+    volume.facets = Facets::volume;
+    const TriangleMesh automatic = bed_surface(capped, o)[0].mesh;
+    EXPECT_EQ(automatic.vertices, bed_surface(capped, volume)[0].mesh.vertices);
+    const TreatmentVolumes v = treatment_volumes(touching, capped, *o.container);
+    EXPECT_NEAR(automatic.volume() / v.treated_solid, 1.0, 1e-4);
+    // At level 1 the growth is 4.6 % of the radius: shrink:0.02 leaves a gap of 0.02, below the
+    // two growths of 0.0226; shrink:0.05 leaves 0.05 against 0.0438.
+    o.level = 1;
+    EXPECT_NEAR(volume_facets_scale(1), 1.04613, 1e-5);
+    EXPECT_EQ(facets_for(treat_contacts(touching, parse_contacts("shrink:0.02"), o.container), o),
+              Facets::inscribed);
+    EXPECT_EQ(facets_for(treat_contacts(touching, parse_contacts("shrink:0.05"), o.container), o),
+              Facets::volume);
+}
+
 TEST(Surface, ClippingKeepsTheMeshClosedAndCutsWhereAsked) {
     const TriangleMesh ball = icosphere(5);
     const TriangleMesh cut = clip_convex(ball, {{0.0, 0.0, 1.0}, 0.6}); // keep z <= 0.6

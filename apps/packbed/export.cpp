@@ -120,8 +120,10 @@ Command register_export(CLI::App& parent) {
         ->check(whole_in(option_range::refine));
     app->add_option("--facets", o.request.facets,
                     "surfaces of spheres: inscribed (vertices on the sphere, the polyhedron "
-                    "inside it: 0.86 % short of its volume at --refine 3) or volume (scaled to "
-                    "hold the sphere's volume; needs gaps between the bodies)")
+                    "inside it: 0.86 % short of its volume at --refine 3), volume (scaled to "
+                    "hold the sphere's volume; needs gaps between the bodies) or auto (volume "
+                    "where every gap allows it, else inscribed; the report says which); default: "
+                    "auto for openfoam, inscribed otherwise")
         ->check(one_of(facet_modes().names()));
     app->add_option("--edge", o.request.edge,
                     "surfaces: largest mean triangle edge instead of --refine (file units)")

@@ -452,10 +452,12 @@ struct ExportRequest {
     std::string box;            ///< "xlo,xhi,ylo,yhi,zlo,zhi"; "": the container's or the bed's
     double fluid_velocity = -1; ///< >= 0: recorded in the header and FILE.fluid.in
     // surfaces
-    std::string contacts = "none";    ///< a contact treatment (surface.hpp, docs/surfaces.md)
-    int refine = 3;                   ///< icosphere level
-    std::string facets = "inscribed"; ///< a name of facet_modes(): where a sphere's facets lie
-    double edge = 0.0;                ///< > 0: the largest mean triangle edge, instead of refine
+    std::string contacts = "none"; ///< a contact treatment (surface.hpp, docs/surfaces.md)
+    int refine = 3;                ///< icosphere level
+    /// a name of facet_modes(): where a sphere's facets lie; "": the format's default (auto
+    /// for openfoam, inscribed for stl, stl-ascii and obj)
+    std::string facets;
+    double edge = 0.0; ///< > 0: the largest mean triangle edge, instead of refine
     OpenFoamMeshOptions mesh;
     OpenFoamFlowOptions flow;           ///< openfoam: the flow of the runnable case
     std::string turbulence = "laminar"; ///< openfoam: a name of turbulence_models() (flow's)

@@ -107,10 +107,12 @@ struct SurfaceContainer {
 
 /// Where a sphere's polyhedron lies: `inscribed`, its vertices on the sphere (inside it, short
 /// of its volume by 0.86 % at icosphere level 3, 0.054 % at 5); `volume`, scaled about the
-/// centre to hold the sphere's volume (volume_facets_scale), its vertices a little outside.
-enum class Facets { inscribed, volume };
+/// centre to hold the sphere's volume (volume_facets_scale), its vertices a little outside;
+/// `automatic`, volume where every gap leaves the facets room to grow, else inscribed
+/// (facets_for).
+enum class Facets { inscribed, volume, automatic };
 
-/// The names users pick facets by ("inscribed", "volume"): the one registry.
+/// The names users pick facets by ("inscribed", "volume", "auto"): the one registry.
 const Registry<Facets>& facet_modes();
 
 /// The factor that gives the icosphere of `level` the unit sphere's volume,
@@ -210,10 +212,22 @@ TreatedBed periodic_images(const TreatedBed& bed, const Periods& cell);
 /// cylinder, so that no sphere inside the cylinder meets it; a box's four faces are "x_low",
 /// "x_high", "y_low", "y_high" instead), "bottom" and "top" (Container::solids). In a periodic
 /// cell the particles include the copies of periodic_images.
-/// \throws InvalidInput when facets grown to hold the volume would meet: two bodies not cut
-/// against each other (nor united) closer than their growth, or a body not cut at the wall,
-/// floor or top closer to it than its own
+/// With Facets::automatic, the facets facets_for picks.
+/// \throws InvalidInput when Facets::volume is asked for where volume_facets_conflict finds a
+/// conflict
 std::vector<Solid> bed_surface(const TreatedBed& bed, const SurfaceOptions& options);
+
+/// Why facets grown to hold the volume (Facets::volume at icosphere `level`) would meet
+/// something: two bodies not cut against each other (nor united) closer than their growth, or
+/// a body not cut at the wall, floor or top closer to it than its own. The message names the
+/// first such sphere and its gap; none where every gap leaves room.
+std::optional<std::string> volume_facets_conflict(const TreatedBed& bed,
+                                                  const std::optional<SurfaceContainer>& container,
+                                                  int level);
+
+/// The facets bed_surface lays for `options`: options.facets, and for Facets::automatic volume
+/// where volume_facets_conflict finds no conflict, else inscribed.
+Facets facets_for(const TreatedBed& bed, const SurfaceOptions& options);
 
 /// Every particle of a bed of one shape class as one surface: its type's unit_surface(level)
 /// scaled about its position by `scale` (1 - F for shrink:F, 1 as it is), turned and moved

@@ -396,13 +396,14 @@ OpenFoamCase openfoam_case(const TreatedBed& bed, const SurfaceContainer& contai
     for (const TreatedBody& b : particles.bounds)
         largest = std::max(largest, b.radius);
     particles.wall_edge = largest * icosphere_edge(surface.level);
-    // Facets grown to hold the volume reach that much beyond the balls.
-    if (surface.facets == Facets::volume)
-        particles.reach =
-            std::max(particles.reach, (volume_facets_scale(surface.level) - 1.0) * largest);
     SurfaceOptions tessellation = surface;
     tessellation.container = container;
     tessellation.write_container = false;
+    tessellation.facets = facets_for(bed, tessellation);
+    // Facets grown to hold the volume reach that much beyond the balls.
+    if (tessellation.facets == Facets::volume)
+        particles.reach =
+            std::max(particles.reach, (volume_facets_scale(surface.level) - 1.0) * largest);
     particles.surface = bed_surface(bed, tessellation);
     return openfoam_case(particles, container, volumes, contacts, diameter, options, flow);
 }

@@ -159,8 +159,9 @@ TriangleMesh clip_convex(const TriangleMesh& mesh, const HalfSpace& half_space, 
 }
 
 const Registry<Facets>& facet_modes() {
-    static const Registry<Facets> names(
-        "facets", {{"inscribed", Facets::inscribed}, {"volume", Facets::volume}});
+    static const Registry<Facets> names("facets", {{"inscribed", Facets::inscribed},
+                                                   {"volume", Facets::volume},
+                                                   {"auto", Facets::automatic}});
     return names;
 }
 
@@ -612,22 +613,23 @@ bool cut_at(const TreatedBody& b, const Vec3& normal, double offset) {
     });
 }
 
-/// Refuse facets grown by `growth` (a fraction of each radius) where they would meet another
-/// body or leave the container (bed_surface's contract).
-void require_room_to_grow(const TreatedBed& bed, const std::optional<SurfaceContainer>& container,
-                          double growth) {
+/// The first place where facets grown by `growth` (a fraction of each radius) would meet
+/// another body or leave the container (volume_facets_conflict's contract).
+std::optional<std::string> room_to_grow(const TreatedBed& bed,
+                                        const std::optional<SurfaceContainer>& container,
+                                        double growth) {
     const std::vector<TreatedBody>& bodies = bed.bodies;
     if (bodies.empty())
-        return;
+        return std::nullopt;
     double largest = 0.0;
     for (const TreatedBody& b : bodies)
         largest = std::max(largest, b.radius);
-    const auto refuse = [&](std::size_t i, const std::string& what, double gap) {
-        return InvalidInput(fmt::format(
+    const auto conflict = [&](std::size_t i, const std::string& what, double gap) {
+        return fmt::format(
             "--facets volume is not allowed here: it grows sphere {}'s facets by {:.3g}, and its "
             "gap to {} is {:.3g}; allowed: a contact treatment that leaves wider gaps (caps:H, "
-            "shrink:F), a finer --refine, or --facets inscribed",
-            i + 1, growth * bodies[i].radius, what, gap));
+            "shrink:F), a finer --refine, or --facets inscribed or auto",
+            i + 1, growth * bodies[i].radius, what, gap);
     };
     if (!bed.unite) {
         const std::optional<Periods> cell = container ? container->periods() : std::nullopt;
@@ -648,29 +650,43 @@ void require_room_to_grow(const TreatedBed& bed, const std::optional<SurfaceCont
                 const double gap = norm(r) - radii[i] - radii[j];
                 if (gap < growth * (radii[i] + radii[j]) &&
                     !cut_apart(bodies[i], bodies[j], centers[i] + r - centers[j]))
-                    throw refuse(i, fmt::format("sphere {}", j + 1), gap);
+                    return conflict(i, fmt::format("sphere {}", j + 1), gap);
             }
     }
     if (!container)
-        return;
+        return std::nullopt;
     for (std::size_t i = 0; i < bodies.size(); ++i) {
         const TreatedBody& b = bodies[i];
         const double grown = growth * b.radius;
         if (!container->periodic_z) {
             const double floor_gap = b.center.z - b.radius;
             if (floor_gap < grown && !cut_at(b, {0.0, 0.0, -1.0}, 0.0))
-                throw refuse(i, "the floor", floor_gap);
+                return conflict(i, "the floor", floor_gap);
             const double top_gap = container->height - b.center.z - b.radius;
             if (top_gap < grown)
-                throw refuse(i, "the top", top_gap);
+                return conflict(i, "the top", top_gap);
         }
         for (const WallPlane& wall : container->container.walls_within(b.center, b.radius, grown))
             if (!cut_at(b, wall.normal, wall.offset))
-                throw refuse(i, "the wall", wall.offset - dot(wall.normal, b.center) - b.radius);
+                return conflict(i, "the wall", wall.offset - dot(wall.normal, b.center) - b.radius);
     }
+    return std::nullopt;
 }
 
 } // namespace
+
+std::optional<std::string> volume_facets_conflict(const TreatedBed& bed,
+                                                  const std::optional<SurfaceContainer>& container,
+                                                  int level) {
+    return room_to_grow(bed, container, volume_facets_scale(level) - 1.0);
+}
+
+Facets facets_for(const TreatedBed& bed, const SurfaceOptions& options) {
+    if (options.facets != Facets::automatic)
+        return options.facets;
+    return volume_facets_conflict(bed, options.container, options.level) ? Facets::inscribed
+                                                                         : Facets::volume;
+}
 
 std::vector<Solid> bed_surface(const TreatedBed& given, const SurfaceOptions& options) {
     // A periodic cell: every body cut by a side and its copies across the sides.
@@ -682,8 +698,12 @@ std::vector<Solid> bed_surface(const TreatedBed& given, const SurfaceOptions& op
     const SphereShape sphere;
     TriangleMesh unit = sphere.unit_surface(options.level);
     if (options.facets == Facets::volume) {
+        if (const std::optional<std::string> conflict =
+                volume_facets_conflict(given, options.container, options.level))
+            throw InvalidInput(*conflict);
+    }
+    if (facets_for(given, options) == Facets::volume) {
         const double scale = volume_facets_scale(options.level);
-        require_room_to_grow(given, options.container, scale - 1.0);
         for (Vec3& v : unit.vertices)
             v = v * scale;
     }

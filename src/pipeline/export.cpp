@@ -248,6 +248,14 @@ std::size_t write_surface_file(OutputDirectory& out, const fs::path& out_path, E
     return triangles;
 }
 
+/// The facets asked for: request.facets, or where it is "" the format's default (auto for an
+/// OpenFOAM case, whose drag follows the solid's volume; inscribed for STL and OBJ).
+Facets asked_facets(const ExportRequest& o, ExportFormat format) {
+    if (o.facets.empty())
+        return format == ExportFormat::openfoam ? Facets::automatic : Facets::inscribed;
+    return facet_modes().at(o.facets);
+}
+
 /// STL, OBJ or an OpenFOAM case: treat the contacts, tessellate, write the surfaces and the
 /// volumes.
 std::string surface_export(const ExportRequest& o, ExportFormat format, const Packing& packing,
@@ -279,10 +287,11 @@ std::string surface_export(const ExportRequest& o, ExportFormat format, const Pa
             "--edge {:g} is not allowed for spheres up to radius {:g}: it needs more than "
             "icosphere level {}; allowed: at least {:.6g} (that level's edge)",
             o.edge, largest, options.level, largest * icosphere_edge(options.level)));
-    options.facets = facet_modes().at(o.facets);
+    options.facets = asked_facets(o, format);
     options.container = container;
     options.write_container = !o.no_container;
     const TreatedBed bed = treat_contacts(packing, contacts, container);
+    options.facets = facets_for(bed, options);
     if (container && !container->periodic_z) // periodic along z: checked by bed_container
         for (std::size_t i = 0; i < bed.bodies.size(); ++i) {
             const TreatedBody& b = bed.bodies[i];
@@ -684,10 +693,10 @@ std::string pellet_export(const ExportRequest& request, ExportFormat format, con
                                        "allowed: none, or shrink:F (each pellet scaled by 1 - F "
                                        "about its centroid, F in (0, 0.5))",
                                        printable(request.contacts)));
-    if (facet_modes().at(request.facets) != Facets::inscribed)
+    if (asked_facets(request, format) == Facets::volume)
         throw InvalidInput(fmt::format("--facets {} is not allowed for a bed of pellets; "
-                                       "allowed: inscribed (the pellets' vertices lie on their "
-                                       "surfaces)",
+                                       "allowed: inscribed or auto (the pellets' vertices lie on "
+                                       "their surfaces)",
                                        printable(request.facets)));
     const double scale =
         contacts.treatment == ContactTreatment::shrink ? 1.0 - contacts.parameter : 1.0;

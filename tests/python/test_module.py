@@ -746,6 +746,7 @@ def test_a_correlation_out_of_its_range_warns_as_the_command_line():
         ("liggghts-data", "bed.data", []),
         ("stl", "bed.stl", ["--contacts", "caps:0.02", "--refine", "2"]),
         ("stl", "bed.stl", ["--contacts", "caps:0.02", "--refine", "2", "--facets", "volume"]),
+        ("stl", "bed.stl", ["--contacts", "none", "--refine", "2", "--facets", "auto"]),
     ],
 )
 def test_export_writes_the_command_lines_files(cli_bed, tmp_path, format, name, extra):
