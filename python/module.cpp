@@ -1371,8 +1371,9 @@ outside its range gives a UserWarning. Raises ValueError for a bad value.)");
           R"(The pressure drop of a case written by export(..., format='openfoam') and run by its
 Allrun, as `packbed cfd-report CASE --json`: the planes' area-averaged pressures (Pa), the
 gradient of the straight line fitted to them, Ergun's and Eisfeld & Schnitzlein's gradients at
-the bed's own void fraction between the planes, the fluxes, whether simpleFoam converged and
-the mesh's void fraction. Writes pressure.csv, cfd_report.json and the plot pressure.svg/.png
+the bed's own void fraction between the planes, the fluxes, whether simpleFoam converged (and
+which stop ended it: solver['stopped_by'], 'residuals', 'steady pressure drop' or 'endTime')
+and the mesh's void fraction. Writes pressure.csv, cfd_report.json and the plot pressure.svg/.png
 to out (None: CASE/cfd-report; force replaces a non-empty one). Returns a dict; a correlation
 outside its range, or no plot, gives a UserWarning. A case of export(..., flow='periodic'):
 the pressure gradient that held its mean velocity, the drag per sphere, K = F / (6 pi mu a

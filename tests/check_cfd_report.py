@@ -234,6 +234,26 @@ def main(exe):
                         rel_tol=1e-9)
     assert math.isclose(r["fluxes_m3_s"]["imbalance"], 3e-4, rel_tol=1e-9), r["fluxes_m3_s"]
     assert r["solver"]["converged"] and r["solver"]["iterations"] == 2, r["solver"]
+    assert r["solver"]["stopped_by"] == "residuals", r["solver"]
+    # The case's runTimeControl ending the run on a steady pressure drop (laminar above
+    # Re_p 10) is a converged end too; a log with neither stop is the end time's, warned of.
+    log = os.path.join(case, "log.simpleFoam")
+    text = open(log).read()
+    with open(log, "w") as f:
+        f.write(text.replace("SIMPLE solution converged in 2 iterations",
+                             "    average: pressureDropSteady condition satisfied\n"
+                             "    Stopping calculation"))
+    s = report(exe, case, "--force")["solver"]
+    assert s["converged"] and s["stopped_by"] == "steady pressure drop", s
+    with open(log, "w") as f:
+        f.write(text.replace("SIMPLE solution converged in 2 iterations", ""))
+    out = subprocess.run([exe, "cfd-report", case, "--json", "--force"], capture_output=True,
+                         text=True)
+    s = json.loads(out.stdout)["solver"]
+    assert not s["converged"] and s["stopped_by"] == "endTime", s
+    assert "nor a steady pressure drop" in out.stderr, out.stderr
+    with open(log, "w") as f:
+        f.write(text)
     # the last iteration's first p residual (1e-3), not its corrector's (5e-11)
     assert r["solver"]["last_initial_residuals"] == {"Ux": 5e-4, "p": 1e-3}, r["solver"]
     assert math.isclose(r["void_fraction"]["mesh"], 0.055, rel_tol=1e-9), r["void_fraction"]

@@ -13,6 +13,7 @@
 #include <fstream>
 #include <map>
 #include <numbers>
+#include <regex>
 #include <set>
 #include <sstream>
 #include <thread>
@@ -1810,6 +1811,25 @@ TEST(Cli, ExportOfABoxLatticeKeepsItsBox) {
     EXPECT_NE(
         slurp(d / "fast" / "system" / "fvSolution").find("residualControl { p 1e-6; U 1e-5; }"),
         std::string::npos);
+    // Above Re_p 10 a laminar run also ends on a steady pressure drop from the first plane to
+    // the last (runTimeControl), its tolerance 1e-5 of Ergun's drop named beside it; the
+    // creeping and RANS cases stop on their residuals alone.
+    const std::string control = slurp(d / "fast" / "system" / "controlDict");
+    EXPECT_NE(control.find("type runTimeControl;"), std::string::npos);
+    EXPECT_NE(control.find("fields (\"subtract(areaAverage(p0,p),areaAverage(p8,p))\");"),
+              std::string::npos);
+    std::smatch ergun;
+    ASSERT_TRUE(std::regex_search(
+        control, ergun,
+        std::regex(R"(Ergun's drop across the planes \(([0-9.e+-]+) m\^2/s\^2\)[\s\S]*tolerance )"
+                   R"(([0-9.e+-]+);)")))
+        << control;
+    EXPECT_GT(std::stod(ergun[1]), 0.0);
+    EXPECT_NEAR(std::stod(ergun[2]) / std::stod(ergun[1]), 1e-5, 1e-10);
+    for (const char* name : {"case", "rans"})
+        EXPECT_EQ(slurp(d / name / "system" / "controlDict").find("runTimeControl"),
+                  std::string::npos)
+            << name;
 
     // The data files: the box holds the container with a margin of max(Dp/2, 2/100) = 0.5, the
     // LAMMPS settle walls it in with a block region, the LIGGGHTS one with the box's faces.

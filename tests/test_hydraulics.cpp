@@ -77,6 +77,12 @@ TEST(Hydraulics, SuperficialVelocityOfTheCriticalReynolds) {
 TEST(Hydraulics, ErgunPressureGradient) {
     // 150 * 1e-3 * 0.01 * 0.36 / (0.064 * 1e-6) + 1.75 * 1000 * 1e-4 * 0.6 / (0.064 * 1e-3)
     EXPECT_NEAR(ergun_pressure_gradient(0.4, 0.01, water()), 8437.5 + 1640.625, 1e-9);
+    // The fluid's own form: the same number, and a fluid of the densest allowed (3e4 kg/m^3),
+    // which no particle density can settle in: 150 * 1e-3 * 0.01 * 0.36 / (0.064 * 1e-6) +
+    // 1.75 * 3e4 * 1e-4 * 0.6 / (0.064 * 1e-3).
+    EXPECT_EQ(ergun_pressure_gradient(0.4, 0.01, 1e-3, 1000.0, 1e-3),
+              ergun_pressure_gradient(0.4, 0.01, water()));
+    EXPECT_NEAR(ergun_pressure_gradient(0.4, 0.01, 1e-3, 3e4, 1e-3), 8437.5 + 49218.75, 1e-8);
 }
 
 TEST(Hydraulics, EisfeldSchnitzleinWithTheWallEffect) {
@@ -328,6 +334,19 @@ TEST(Hydraulics, EveryResultIsFiniteAtTheEndsOfTheRanges) {
                             ++corners;
                         }
     EXPECT_EQ(corners, 72); // 96 less the 24 of a particle lighter than the fluid
+}
+
+TEST(Hydraulics, TheFluidsErgunRefusesWhatTheFullOneRefuses) {
+    FluidAndParticles thin = water();
+    thin.viscosity = 0.0;
+    const std::string message = refusal([&] { ergun_pressure_gradient(0.4, 0.01, thin); });
+    EXPECT_NE(message, "accepted");
+    EXPECT_EQ(refusal([] { ergun_pressure_gradient(0.4, 0.01, 1e-3, 1000.0, 0.0); }), message);
+    EXPECT_EQ(refusal([] { ergun_pressure_gradient(0.4, 0.01, 1e-3, 0.0, 1e-3); }), refusal([] {
+                  FluidAndParticles f = water();
+                  f.fluid_density = 0.0;
+                  ergun_pressure_gradient(0.4, 0.01, f);
+              }));
 }
 
 TEST(Hydraulics, ResultsThatAreNotFiniteAreRefusedNamingTheInputs) {

@@ -17,6 +17,13 @@ namespace packbed::cli {
 
 namespace {
 
+/// "converged (residuals)", "converged (steady pressure drop)" or "NOT converged".
+std::string solver_end(const nlohmann::ordered_json& solver) {
+    if (!solver["converged"].get<bool>())
+        return "NOT converged";
+    return fmt::format("converged ({})", solver["stopped_by"].get<std::string>());
+}
+
 struct CfdReportOptions {
     std::vector<std::string> cases;
     std::string out; // default: CASE/cfd-report
@@ -46,8 +53,7 @@ void print_periodic(const nlohmann::json& v) {
     const auto& r = p["references"];
     fmt::print("simpleFoam: {} after {} iterations; a cell periodic along z, {} spheres of "
                "d = {:.6g} m\n",
-               s["converged"].get<bool>() ? "converged" : "NOT converged",
-               s["iterations"].get<long>(), p["spheres"].get<long long>(),
+               solver_end(s), s["iterations"].get<long>(), p["spheres"].get<long long>(),
                f["diameter_m"].get<double>());
     fmt::print("void fraction {:.5f} exact, {:.5f} meshed; superficial velocity {:.6g} m/s (the "
                "mesh's), Re_p = {:.4g}\n",
@@ -139,8 +145,7 @@ int run_cfd_report(const CfdReportOptions& o) {
     const double cfd = g["cfd"].get<double>();
     fmt::print("simpleFoam: {} after {} iterations; fluxes in {:.6g}, out {:.6g} m^3/s "
                "(imbalance {:.2g})\n",
-               s["converged"].get<bool>() ? "converged" : "NOT converged",
-               s["iterations"].get<long>(), v["fluxes_m3_s"]["inlet"].get<double>(),
+               solver_end(s), s["iterations"].get<long>(), v["fluxes_m3_s"]["inlet"].get<double>(),
                v["fluxes_m3_s"]["outlet"].get<double>(),
                v["fluxes_m3_s"]["imbalance"].get<double>());
     fmt::print("superficial velocity {:.6g} m/s, Re_p = {:.4g}, d = {:.6g} m; void fraction "

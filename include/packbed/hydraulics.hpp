@@ -54,6 +54,10 @@ double superficial_velocity(double reynolds, const FluidAndParticles& f);
 /// Ergun (1952): \f$\Delta P / L = 150 \mu u (1-e)^2 / (e^3 d^2) + 1.75 \rho u^2 (1-e) /
 /// (e^3 d)\f$, Pa/m, at superficial velocity u (m/s, >= 0).
 double ergun_pressure_gradient(double porosity, double velocity, const FluidAndParticles& f);
+/// The same for a fluid of density rho (kg/m^3) and viscosity mu (Pa s) through spheres of
+/// diameter d (m), with no particle density or gravity to check: a pressure drop has neither.
+double ergun_pressure_gradient(double porosity, double velocity, double diameter, double rho,
+                               double mu);
 
 /// Eisfeld & Schnitzlein (2001), spheres, the wall effect of a tube of aspect ratio a = D/d:
 /// \f$\psi = \Delta P\,d / (L \rho u^2) = K_1 A_w^2 (1-e)^2 / (Re\,e^3) + (A_w/B_w)(1-e)/e^3\f$,

@@ -58,21 +58,27 @@ std::string range(double low, double high, std::string_view unit) {
     return fmt::format("{:g} to {:g} {}", low, high, unit);
 }
 
+bool within(double v, double low, double high) {
+    return std::isfinite(v) && v >= low && v <= high;
+}
+
+/// The fluid's and the particles' size: what a pressure drop depends on.
+void require_fluid(double diameter, double fluid_density, double viscosity) {
+    require(within(diameter, limits::min_particle_diameter_m, limits::max_particle_diameter_m),
+            "diameter", diameter,
+            range(limits::min_particle_diameter_m, limits::max_particle_diameter_m, "m"));
+    require(within(fluid_density, limits::min_density_kg_m3, limits::max_density_kg_m3),
+            "fluid-density", fluid_density,
+            range(limits::min_density_kg_m3, limits::max_density_kg_m3, "kg/m^3"));
+    require(within(viscosity, limits::min_viscosity_pa_s, limits::max_viscosity_pa_s), "viscosity",
+            viscosity, range(limits::min_viscosity_pa_s, limits::max_viscosity_pa_s, "Pa s"));
+}
+
 } // namespace
 
 void FluidAndParticles::validate() const {
-    auto in = [](double v, double low, double high) {
-        return std::isfinite(v) && v >= low && v <= high;
-    };
-    require(in(diameter, limits::min_particle_diameter_m, limits::max_particle_diameter_m),
-            "diameter", diameter,
-            range(limits::min_particle_diameter_m, limits::max_particle_diameter_m, "m"));
-    require(in(fluid_density, limits::min_density_kg_m3, limits::max_density_kg_m3),
-            "fluid-density", fluid_density,
-            range(limits::min_density_kg_m3, limits::max_density_kg_m3, "kg/m^3"));
-    require(in(viscosity, limits::min_viscosity_pa_s, limits::max_viscosity_pa_s), "viscosity",
-            viscosity, range(limits::min_viscosity_pa_s, limits::max_viscosity_pa_s, "Pa s"));
-    require(in(gravity, limits::min_gravity_m_s2, limits::max_gravity_m_s2), "gravity", gravity,
+    require_fluid(diameter, fluid_density, viscosity);
+    require(within(gravity, limits::min_gravity_m_s2, limits::max_gravity_m_s2), "gravity", gravity,
             range(limits::min_gravity_m_s2, limits::max_gravity_m_s2, "m/s^2"));
     require(std::isfinite(particle_density) && particle_density > fluid_density, "particle-density",
             particle_density,
@@ -120,19 +126,24 @@ double superficial_velocity(double reynolds, const FluidAndParticles& f) {
                    {"diameter", f.diameter}});
 }
 
-double ergun_pressure_gradient(double e, double u, const FluidAndParticles& f) {
+double ergun_pressure_gradient(double e, double u, double d, double rho, double mu) {
     require_porosity(e);
     require(std::isfinite(u) && u >= 0.0, "velocity", u, ">= 0 (m/s)");
-    f.validate();
-    const double e3 = e * e * e, d = f.diameter;
-    return finite(150.0 * f.viscosity * u * (1.0 - e) * (1.0 - e) / (e3 * d * d) +
-                      1.75 * f.fluid_density * u * u * (1.0 - e) / (e3 * d),
+    require_fluid(d, rho, mu);
+    const double e3 = e * e * e;
+    return finite(150.0 * mu * u * (1.0 - e) * (1.0 - e) / (e3 * d * d) +
+                      1.75 * rho * u * u * (1.0 - e) / (e3 * d),
                   "the Ergun pressure gradient",
                   {{"porosity", e},
                    {"velocity", u},
                    {"diameter", d},
-                   {"fluid-density", f.fluid_density},
-                   {"viscosity", f.viscosity}});
+                   {"fluid-density", rho},
+                   {"viscosity", mu}});
+}
+
+double ergun_pressure_gradient(double e, double u, const FluidAndParticles& f) {
+    f.validate();
+    return ergun_pressure_gradient(e, u, f.diameter, f.fluid_density, f.viscosity);
 }
 
 CorrelationValue eisfeld_schnitzlein_pressure_gradient(double e, double u, double a,

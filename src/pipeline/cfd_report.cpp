@@ -108,10 +108,13 @@ double column(const std::map<std::string, double>& row, const std::string& name,
 }
 
 /// What a solver's log says about its end: simpleFoam's "SIMPLE solution converged in N
-/// iterations" and each field's initial residual in the last iteration.
+/// iterations" (residualControl), or the case's runTimeControl "pressureDropSteady condition
+/// satisfied" (a laminar run above Re_p 10), and each field's initial residual in the last
+/// iteration.
 struct SolverLog {
     bool converged = false;
-    long iterations = 0; ///< the last "Time = N"
+    std::string stopped_by = "endTime"; ///< "residuals", "steady pressure drop" or "endTime"
+    long iterations = 0;                ///< the last "Time = N"
     std::map<std::string, double> residuals;
     /// meanVelocityForce's last "pressure gradient = G" (kinematic, m/s^2; a periodic cell)
     std::optional<double> pressure_gradient;
@@ -137,6 +140,10 @@ SolverLog read_solver_log(const fs::path& case_dir) {
                 out.iterations = std::lround(*t);
         } else if (line.find("SIMPLE solution converged") != std::string::npos) {
             out.converged = true;
+            out.stopped_by = "residuals";
+        } else if (line.find("pressureDropSteady condition satisfied") != std::string::npos) {
+            out.converged = true;
+            out.stopped_by = "steady pressure drop";
         } else if (const auto g = line.find("pressure gradient = "); g != std::string::npos) {
             // "Pressure gradient source: uncorrected Ubar = 1e-05, pressure gradient = 0.0005"
             const auto fields = split_spaces(std::string_view(line).substr(g + 20));
@@ -311,6 +318,7 @@ Report periodic_report(const fs::path& case_dir, const nlohmann::json& json) {
                    {"diameter_m", 2.0 * radius}};
     out["solver"] = {{"log", "log.simpleFoam"},
                      {"converged", log.converged},
+                     {"stopped_by", log.stopped_by},
                      {"iterations", log.iterations},
                      {"last_initial_residuals", log.residuals}};
     out["periodic"] = {{"pressure_gradient_Pa_m", gradient},
@@ -324,9 +332,9 @@ Report periodic_report(const fs::path& case_dir, const nlohmann::json& json) {
     if (mesh.cells)
         out["mesh"] = {{"cells", std::llround(*mesh.cells)}, {"volume_m3", *meshed}};
     if (!log.converged)
-        report.warnings.push_back(fmt::format("{}: no \"SIMPLE solution converged\" in "
-                                              "log.simpleFoam: the gradient is the last "
-                                              "iteration's",
+        report.warnings.push_back(fmt::format("{}: no \"SIMPLE solution converged\" nor a steady "
+                                              "pressure drop in log.simpleFoam: the gradient is "
+                                              "the last iteration's",
                                               shown(case_dir)));
     if (const std::string at = non_finite_at(out); !at.empty())
         throw InvalidInput(fmt::format("CASE {}: the report's {} is not a finite number; "
@@ -517,6 +525,7 @@ Report cfd_report(const std::filesystem::path& case_dir) {
                    {"diameter_m", diameter}};
     out["solver"] = {{"log", "log.simpleFoam"},
                      {"converged", log.converged},
+                     {"stopped_by", log.stopped_by},
                      {"iterations", log.iterations},
                      {"last_initial_residuals", log.residuals}};
     out["fluxes_m3_s"] = {{"inlet", inlet},
@@ -550,9 +559,9 @@ Report cfd_report(const std::filesystem::path& case_dir) {
     if (mesh.failed_checks > 0)
         report.warnings.push_back(fmt::format("{}: {}", shown(case_dir), failed_checks(mesh)));
     if (!log.converged)
-        report.warnings.push_back(fmt::format("{}: no \"SIMPLE solution converged\" in "
-                                              "log.simpleFoam: the pressures are those of the "
-                                              "last iteration written",
+        report.warnings.push_back(fmt::format("{}: no \"SIMPLE solution converged\" nor a steady "
+                                              "pressure drop in log.simpleFoam: the pressures "
+                                              "are those of the last iteration written",
                                               shown(case_dir)));
     // Every value finite, or the case refused: finite numbers read from it can still overflow
     // in a product (a pressure of -1e308 times the density).
