@@ -112,7 +112,6 @@ double column(const std::map<std::string, double>& row, const std::string& name,
 /// satisfied" (a laminar run above Re_p 10), and each field's initial residual in the last
 /// iteration.
 struct SolverLog {
-    bool converged = false;
     std::string stopped_by = "endTime"; ///< "residuals", "steady pressure drop" or "endTime"
     long iterations = 0;                ///< the last "Time = N"
     std::map<std::string, double> residuals;
@@ -139,10 +138,8 @@ SolverLog read_solver_log(const fs::path& case_dir) {
             if (const auto t = parse_finite(line.substr(7)))
                 out.iterations = std::lround(*t);
         } else if (line.find("SIMPLE solution converged") != std::string::npos) {
-            out.converged = true;
             out.stopped_by = "residuals";
         } else if (line.find("pressureDropSteady condition satisfied") != std::string::npos) {
-            out.converged = true;
             out.stopped_by = "steady pressure drop";
         } else if (const auto g = line.find("pressure gradient = "); g != std::string::npos) {
             // "Pressure gradient source: uncorrected Ubar = 1e-05, pressure gradient = 0.0005"
@@ -165,6 +162,19 @@ SolverLog read_solver_log(const fs::path& case_dir) {
         }
     }
     return out;
+}
+
+bool converged(const SolverLog& log) {
+    return log.stopped_by != "endTime";
+}
+
+/// The report's "solver" block.
+nlohmann::ordered_json solver_json(const SolverLog& log) {
+    return {{"log", "log.simpleFoam"},
+            {"converged", converged(log)},
+            {"stopped_by", log.stopped_by},
+            {"iterations", log.iterations},
+            {"last_initial_residuals", log.residuals}};
 }
 
 /// What log.checkMesh says of the mesh: its "cells: N" and "Total volume = V." (m^3 after
@@ -316,11 +326,7 @@ Report periodic_report(const fs::path& case_dir, const nlohmann::json& json) {
                    {"fluid_density_kg_m3", rho},
                    {"viscosity_Pa_s", mu},
                    {"diameter_m", 2.0 * radius}};
-    out["solver"] = {{"log", "log.simpleFoam"},
-                     {"converged", log.converged},
-                     {"stopped_by", log.stopped_by},
-                     {"iterations", log.iterations},
-                     {"last_initial_residuals", log.residuals}};
+    out["solver"] = solver_json(log);
     out["periodic"] = {{"pressure_gradient_Pa_m", gradient},
                        {"cell_volume_m3", volume},
                        {"spheres", std::llround(spheres)},
@@ -331,7 +337,7 @@ Report periodic_report(const fs::path& case_dir, const nlohmann::json& json) {
     out["void_fraction"] = {{"exact", 1.0 - phi}, {"mesh", mesh_void}};
     if (mesh.cells)
         out["mesh"] = {{"cells", std::llround(*mesh.cells)}, {"volume_m3", *meshed}};
-    if (!log.converged)
+    if (!converged(log))
         report.warnings.push_back(fmt::format("{}: no \"SIMPLE solution converged\" nor a steady "
                                               "pressure drop in log.simpleFoam: the gradient is "
                                               "the last iteration's",
@@ -523,11 +529,7 @@ Report cfd_report(const std::filesystem::path& case_dir) {
                    {"fluid_density_kg_m3", rho},
                    {"viscosity_Pa_s", mu},
                    {"diameter_m", diameter}};
-    out["solver"] = {{"log", "log.simpleFoam"},
-                     {"converged", log.converged},
-                     {"stopped_by", log.stopped_by},
-                     {"iterations", log.iterations},
-                     {"last_initial_residuals", log.residuals}};
+    out["solver"] = solver_json(log);
     out["fluxes_m3_s"] = {{"inlet", inlet},
                           {"outlet", outlet},
                           {"imbalance", std::abs(inlet + outlet) / std::abs(inlet)}};
@@ -558,7 +560,7 @@ Report cfd_report(const std::filesystem::path& case_dir) {
         out["mesh"] = {{"cells", std::llround(*mesh.cells)}, {"volume_m3", *mesh.volume}};
     if (mesh.failed_checks > 0)
         report.warnings.push_back(fmt::format("{}: {}", shown(case_dir), failed_checks(mesh)));
-    if (!log.converged)
+    if (!converged(log))
         report.warnings.push_back(fmt::format("{}: no \"SIMPLE solution converged\" nor a steady "
                                               "pressure drop in log.simpleFoam: the pressures "
                                               "are those of the last iteration written",
