@@ -863,15 +863,17 @@ py::object correlations(double aspect_ratio, double profile_step, double profile
     return to_python(report.values);
 }
 
-std::string
-export_bed_to(const Bed& bed, const std::filesystem::path& out, const std::string& format,
-              const std::optional<std::string>& container, std::optional<double> container_height,
-              bool no_container, double density, const std::optional<std::string>& box,
-              std::optional<double> fluid_velocity, const std::string& contacts, long long refine,
-              std::optional<double> edge, const std::optional<std::string>& facets,
-              long long cells_per_diameter, long long particle_level, long long wall_level,
-              long long ranks, double reynolds, const std::string& turbulence, double fluid_density,
-              double viscosity, std::optional<double> scale, const std::string& flow, bool force) {
+std::string export_bed_to(const Bed& bed, const std::filesystem::path& out,
+                          const std::string& format, const std::optional<std::string>& container,
+                          std::optional<double> container_height, bool no_container, double density,
+                          const std::optional<std::string>& box,
+                          std::optional<double> fluid_velocity, const std::string& contacts,
+                          long long refine, std::optional<double> edge,
+                          const std::optional<std::string>& facets, long long cells_per_diameter,
+                          long long particle_level, long long wall_level, long long ranks,
+                          double reynolds, const std::string& turbulence, double fluid_density,
+                          double viscosity, std::optional<double> scale, const std::string& flow,
+                          bool force, long long layers) {
     namespace range = option_range;
     check_path("out", out);
     ExportRequest request;
@@ -912,6 +914,7 @@ export_bed_to(const Bed& bed, const std::filesystem::path& out, const std::strin
         static_cast<int>(check_option("particle-level", particle_level, range::refinement_level));
     request.mesh.wall_level =
         static_cast<int>(check_option("wall-level", wall_level, range::refinement_level));
+    request.mesh.layers = static_cast<int>(check_option("layers", layers, range::surface_layers));
     request.flow.ranks = static_cast<int>(check_option("ranks", ranks, range::ranks));
     request.flow.reynolds = check_option("reynolds", reynolds, range::reynolds);
     request.turbulence = turbulence;
@@ -1325,6 +1328,7 @@ it to a .npy, .tif or .raw (+ .raw.json) file. The array owns its memory (no cop
           py::arg("fluid_density") = OpenFoamFlowOptions{}.fluid_density,
           py::arg("viscosity") = OpenFoamFlowOptions{}.viscosity, py::arg("scale") = py::none(),
           py::arg("flow") = "inlet", py::arg("force") = false,
+          py::arg("layers") = ExportRequest{}.mesh.layers,
           R"(Write a bed as `packbed export` does, to the file (or, for 'openfoam', the case
 directory) `out`: format 'lammps-data' (atom_style sphere), 'liggghts-data' (atom_style
 granular), 'stl', 'stl-ascii', 'obj' or 'openfoam' (docs/dem.md, docs/surfaces.md).
@@ -1336,7 +1340,8 @@ container's solids, data files in the spheres' bounding box. Data files: density
 'enlarge:F', 'caps:H', 'bridges:D'), refine (icosphere level) or edge, facets ('inscribed';
 'volume': each sphere's polyhedron scaled to hold its volume; 'auto': volume where every gap
 allows it; None: auto for 'openfoam', inscribed otherwise), and for 'openfoam'
-cells_per_diameter, particle_level, wall_level; the flow of its Allrun: ranks, reynolds (or
+cells_per_diameter, particle_level, wall_level, layers (snappyHexMesh's prism layers on the
+particles and the wall, 0 to 10); the flow of its Allrun: ranks, reynolds (or
 fluid_velocity, m/s), turbulence ('laminar', 'kEpsilon', 'kOmegaSST'), fluid_density
 (kg/m^3), viscosity (Pa s), scale (metres per unit of the bed's lengths; None: particles of
 1 mm), flow ('inlet', or 'periodic': a periodic cell repeating along z with container_height

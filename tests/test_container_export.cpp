@@ -245,6 +245,47 @@ TEST(ContainerExport, OpenFoamCaseOfAnAnnulusCutsTheTubeAndTheRod) {
     EXPECT_NE(files["system/blockMeshDict"].find("(26 26 8) simpleGrading"), std::string::npos);
 }
 
+TEST(ContainerExport, LayersAreAskedOnTheParticlesAndOnWhatSnappyHexMeshCuts) {
+    const Packing packing = ring_of_balls();
+    const SurfaceContainer container{Annulus(3.0, 1.0), 2.0};
+    const Contacts caps{ContactTreatment::caps, 0.05};
+    const TreatedBed bed = treat_contacts(packing, caps, container);
+    const TreatmentVolumes v = treatment_volumes(packing, bed, container);
+    const auto files_with = [&](int layers) {
+        OpenFoamMeshOptions mesh;
+        mesh.layers = layers;
+        const OpenFoamCase c =
+            openfoam_case(bed, container, v, "caps:0.05", 1.0, level_two(), mesh);
+        return std::map<std::string, std::string>(c.files.begin(), c.files.end());
+    };
+    // None by default: the dictionary as without the option, and the creeping flow stops on
+    // its residuals alone.
+    auto files = files_with(0);
+    EXPECT_NE(files["system/snappyHexMeshDict"].find("addLayers false;"), std::string::npos);
+    EXPECT_NE(files["system/snappyHexMeshDict"].find("    layers {}\n    expansionRatio 1.0;\n"),
+              std::string::npos);
+    EXPECT_EQ(files["system/controlDict"].find("steadyPressureDrop"), std::string::npos);
+    EXPECT_EQ(files["README.md"].find("prism layers"), std::string::npos);
+    // Three on the particles, the tube and the rod; the run also stops on a steady pressure
+    // drop, since U's residual levels off near residualControl's 1e-6 on such meshes.
+    files = files_with(3);
+    const std::string& snappy = files["system/snappyHexMeshDict"];
+    EXPECT_NE(snappy.find("addLayers true;"), std::string::npos);
+    EXPECT_NE(snappy.find("    layers\n    {\n        particles { nSurfaceLayers 3; }\n"
+                          "        wall { nSurfaceLayers 3; }\n        rod { nSurfaceLayers 3; }\n"
+                          "    }\n    expansionRatio 1.2;\n    finalLayerThickness 0.5;\n"),
+              std::string::npos)
+        << snappy;
+    EXPECT_NE(snappy.find("nRelaxedIter 20;"), std::string::npos);
+    EXPECT_NE(files["system/controlDict"].find("steadyPressureDrop"), std::string::npos);
+    EXPECT_NE(
+        files["README.md"].find("- 3 prism layers asked on the particles, the wall and the rod"),
+        std::string::npos)
+        << files["README.md"];
+    EXPECT_THROW(files_with(11), InvalidInput);
+    EXPECT_THROW(files_with(-1), InvalidInput);
+}
+
 TEST(ContainerExport, OpenFoamCaseOfAPeriodicCellHasCyclicSidesAndCopies) {
     // Two balls of Dp = 1 in the cell 3 x 3, touching across the side x = 0 (centres 0.3 and
     // 2.3: 1 apart by the minimum image), both on the floor; a third in the corner x = 0,
@@ -298,6 +339,16 @@ TEST(ContainerExport, OpenFoamCaseOfAPeriodicCellHasCyclicSidesAndCopies) {
     EXPECT_NE(files["README.md"].find("3 particles of diameter 1 in the periodic cell x 0 to 3, "
                                       "y 0 to 3"),
               std::string::npos);
+    // Layers go on the particles alone: the cyclic sides are the background's own faces.
+    OpenFoamMeshOptions layered;
+    layered.layers = 2;
+    const OpenFoamCase l = openfoam_case(bed, cell, v, "caps:0.05", 1.0, level_two(), layered);
+    std::map<std::string, std::string> lf(l.files.begin(), l.files.end());
+    EXPECT_NE(lf["system/snappyHexMeshDict"].find(
+                  "    layers\n    {\n        particles { nSurfaceLayers 2; }\n    }\n"),
+              std::string::npos)
+        << lf["system/snappyHexMeshDict"];
+    EXPECT_EQ(lf["README.md"].find("and the wall"), std::string::npos);
     // The particles' surface holds the 7 bodies: 7 closed parts (Euler characteristic 2 each).
     const TriangleMesh& m = c.particles[0].mesh;
     EXPECT_EQ(static_cast<long>(m.vertices.size()) * 2 - static_cast<long>(m.triangles.size()),

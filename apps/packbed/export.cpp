@@ -155,6 +155,10 @@ Command register_export(CLI::App& parent) {
     app->add_option("--wall-level", o.request.mesh.wall_level,
                     "openfoam: snappyHexMesh refinement level at the wall")
         ->check(whole_in(option_range::refinement_level));
+    app->add_option("--layers", o.request.mesh.layers,
+                    "openfoam: snappyHexMesh's prism layers on the particles and the wall, 0 "
+                    "(none) to 10 (docs/surfaces.md)")
+        ->check(whole_in(option_range::surface_layers));
     app->add_option("--flow", o.flow,
                     "openfoam: inlet (a flow rate in at z = 0, p = 0 at the top), or periodic (a "
                     "periodic cell repeating along z too, --container-height its period: cyclic "

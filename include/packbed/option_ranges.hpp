@@ -105,6 +105,7 @@ inline constexpr NumberRange export_container_radius{0.0, inf, true, true};
 inline constexpr NumberRange container_height{0.0, inf, true, true};
 inline constexpr WholeRange cells_per_diameter{1, 100};
 inline constexpr WholeRange refinement_level{0, 8}; ///< --particle-level, --wall-level
+inline constexpr WholeRange surface_layers{0, 10};  ///< --layers
 inline constexpr NumberRange density{0.0, inf, true, true};
 inline constexpr NumberRange fluid_velocity{0.0, inf, false, true};
 inline constexpr NumberRange export_diameter{0.0, inf, true, true};

@@ -197,6 +197,9 @@ struct OpenFoamMeshOptions {
     int cells_per_diameter = 4; ///< background (blockMesh) cells per Dp, >= 1
     int particle_level = 2;     ///< snappyHexMesh refinement level at the particles, 0 to 8
     int wall_level = 1;         ///< ... at a cylinder's wall, 0 to 8 (a box's is not refined)
+    /// snappyHexMesh's prism layers (nSurfaceLayers) on the particles and on a cut wall or
+    /// rod, 0 (none) to 10: the cells against the walls, which carry the drag, made thin
+    int layers = 0;
     /// A periodic cell's bottom and top a cyclic pair too (export --flow periodic): the cell
     /// repeats along z with the container's height as its period. Other containers refuse it.
     bool periodic_z = false;

@@ -214,6 +214,7 @@ def export(
     scale: Optional[float] = None,
     flow: str = "inlet",
     force: bool = False,
+    layers: int = 0,
 ) -> str: ...
 def cfd_report(
     case: str,

@@ -141,6 +141,25 @@ std::string plane_average(const std::vector<double>& planes, std::size_t n, int 
         fmt::arg("z", planes[n]));
 }
 
+/// snappyHexMeshDict's `layers` entries: `count` prism layers on the particles and on the
+/// container's surfaces that snappyHexMesh cuts (a tube's wall, an annulus' rod); none for the
+/// background's own faces (a box's sides, a periodic cell's cyclic pairs). With
+/// finalLayerThickness 0.5 of the cell beside it and an expansion of 1.2, three layers span
+/// about 1.3 cells where snappyHexMesh can extrude them in full; at contacts and in narrow gaps
+/// it thins or drops them (its log's table of layers per patch).
+std::string surface_layers(int count, const OpenFoamBackground& back) {
+    check_option("layers", count, option_range::surface_layers);
+    if (count == 0)
+        return "    layers {}\n";
+    std::string entries =
+        fmt::format("    layers\n    {{\n        particles {{ nSurfaceLayers {}; }}\n", count);
+    if (back.wall_surface)
+        entries += fmt::format("        wall {{ nSurfaceLayers {}; }}\n", count);
+    if (back.rod_surface)
+        entries += fmt::format("        rod {{ nSurfaceLayers {}; }}\n", count);
+    return entries + "    }\n";
+}
+
 /// The stop on a steady pressure drop: `pressureDrop` (fieldValueDelta) takes the first plane's
 /// area-averaged p less the last one's every iteration, and `steadyPressureDrop`
 /// (runTimeControl, from iteration 50) ends the run, writing the fields, once that drop's
@@ -190,14 +209,17 @@ std::string steady_pressure_drop(const std::vector<double>& planes, double void_
 /// (bed units), the pressure planes between 1 Dp above the floor and 1 Dp below the top;
 /// `section` the container's cross-section (bed units): the inlet's flow rate is the
 /// superficial velocity times it, whatever part of the inlet the particles cover. A cell
-/// periodic along z (`void_fraction` its exact one) has no inlet, outlet or planes: OpenFOAM's
-/// meanVelocityForce holds the mean velocity in the fluid at the superficial velocity over the
-/// void fraction with a uniform pressure gradient, which is the result (log.simpleFoam).
+/// periodic along z (`mesh.periodic_z`; `void_fraction` its exact one) has no inlet, outlet or
+/// planes: OpenFOAM's meanVelocityForce holds the mean velocity in the fluid at the superficial
+/// velocity over the void fraction with a uniform pressure gradient, which is the result
+/// (log.simpleFoam).
 /// `bed_void_fraction` (below the bed's top) scales a laminar run's stop on a steady pressure
-/// drop above Re_p 10 (steady_pressure_drop).
+/// drop above Re_p 10 or with `mesh.layers` (steady_pressure_drop).
 void add_flow_files(OpenFoamCase& c, const std::vector<std::string>& walls, double bed_top,
-                    double section, double diameter, const OpenFoamFlowOptions& flow, bool periodic,
-                    double void_fraction, double bed_void_fraction) {
+                    double section, double diameter, const OpenFoamFlowOptions& flow,
+                    const OpenFoamMeshOptions& mesh, double void_fraction,
+                    double bed_void_fraction) {
+    const bool periodic = mesh.periodic_z;
     check_option("ranks", flow.ranks, option_range::ranks);
     check_option("fluid-density", flow.fluid_density, option_range::density_kg_m3);
     check_option("viscosity", flow.viscosity, option_range::viscosity_pa_s);
@@ -329,10 +351,12 @@ void add_flow_files(OpenFoamCase& c, const std::vector<std::string>& walls, doub
             "        writeFields false;\n        regionType patch;\n        name inlet;\n"
             "        operation sum;\n        fields (phi);\n    }\n"
             "    outletFlux\n    {\n        $inletFlux;\n        name outlet;\n    }\n";
-    // A laminar run above Re_p 10 also stops once the pressure drop across the planes is steady
-    // (docs/surfaces.md): its U residual can level off above residualControl's 1e-5 (5.2e-5 on
-    // 30 spheres at a = 3, Re_p 100) while the drop has long settled.
-    if (!periodic && !rans && c.reynolds > 10.0)
+    // A laminar run above Re_p 10, or on a mesh with layers, also stops once the pressure drop
+    // across the planes is steady (docs/surfaces.md): its U residual can level off above
+    // residualControl's (5.2e-5 on 30 spheres at a = 3, Re_p 100, where it asks 1e-5; 1.6e-6
+    // with three layers on 150 spheres at a = 5, Re_p 1, where it asks 1e-6) while the drop has
+    // long settled.
+    if (!periodic && !rans && (c.reynolds > 10.0 || mesh.layers > 0))
         functions += steady_pressure_drop(c.planes, bed_void_fraction, c.velocity, d, flow);
     c.files.emplace_back(
         "system/controlDict",
@@ -516,7 +540,7 @@ OpenFoamCase openfoam_case(const CaseParticles& particles, const SurfaceContaine
 
     std::string snappy = header("snappyHexMeshDict", "system");
     snappy += fmt::format(
-        "castellatedMesh true;\nsnap true;\naddLayers false;\n\n"
+        "castellatedMesh true;\nsnap true;\naddLayers {add_layers};\n\n"
         "geometry\n{{\n"
         "    particles.stl {{ type triSurfaceMesh; name particles; }}\n"
         "{wall_geometry}}}\n\n"
@@ -535,12 +559,14 @@ OpenFoamCase openfoam_case(const CaseParticles& particles, const SurfaceContaine
         "snapControls\n{{\n    nSmoothPatch 3;\n    tolerance 2.0;\n    nSolveIter 30;\n"
         "    nRelaxIter 5;\n    nFeatureSnapIter 10;\n    implicitFeatureSnap false;\n"
         "    explicitFeatureSnap false;\n    multiRegionFeatureSnap false;\n}}\n\n"
-        "addLayersControls\n{{\n    relativeSizes true;\n    layers {{}}\n"
-        "    expansionRatio 1.0;\n    finalLayerThickness 0.3;\n    minThickness 0.1;\n"
+        "addLayersControls\n{{\n    relativeSizes true;\n{layers}"
+        "    expansionRatio {expansion};\n    finalLayerThickness {final_layer};\n"
+        "    minThickness 0.1;\n"
         "    nGrow 0;\n    featureAngle 60;\n    slipFeatureAngle 30;\n    nRelaxIter 3;\n"
         "    nSmoothSurfaceNormals 1;\n    nSmoothNormals 3;\n    nSmoothThickness 10;\n"
         "    maxFaceThicknessRatio 0.5;\n    maxThicknessToMedialRatio 0.3;\n"
-        "    minMedialAxisAngle 90;\n    nBufferCellsNoExtrude 0;\n    nLayerIter 50;\n}}\n\n"
+        "    minMedialAxisAngle 90;\n    nBufferCellsNoExtrude 0;\n    nLayerIter 50;\n"
+        "{relaxed}}}\n\n"
         "meshQualityControls\n{{\n    maxNonOrtho 65;\n    maxBoundarySkewness {skew};\n"
         "    maxInternalSkewness 4;\n    maxConcave 80;\n    minVol 1e-30;\n"
         "    minTetQuality 1e-30;\n    minArea -1;\n    minTwist 0.02;\n"
@@ -562,6 +588,11 @@ OpenFoamCase openfoam_case(const CaseParticles& particles, const SurfaceContaine
                                                      "{{ type wall; }} }}\n",
                                                      options.wall_level)
                                        : std::string())),
+        fmt::arg("add_layers", options.layers > 0 ? "true" : "false"),
+        fmt::arg("layers", surface_layers(options.layers, back)),
+        fmt::arg("expansion", options.layers > 0 ? "1.2" : "1.0"),
+        fmt::arg("final_layer", options.layers > 0 ? "0.5" : "0.3"),
+        fmt::arg("relaxed", options.layers > 0 ? "    nRelaxedIter 20;\n" : ""),
         fmt::arg("skew", back.boundary_skewness), fmt::arg("cpd", options.cells_per_diameter),
         fmt::arg("lp", options.particle_level), fmt::arg("clear", c.clearance),
         fmt::arg("x", c.location_in_mesh.x), fmt::arg("y", c.location_in_mesh.y),
@@ -587,7 +618,7 @@ OpenFoamCase openfoam_case(const CaseParticles& particles, const SurfaceContaine
         std::clamp(1.0 - volumes.treated_solid /
                              (container.container.cross_section_area(0.0, bed_top) * bed_top),
                    0.2, 0.95);
-    add_flow_files(c, walls, bed_top, section, diameter, flow, options.periodic_z,
+    add_flow_files(c, walls, bed_top, section, diameter, flow, options,
                    volumes.treated_void_fraction, void_below_top);
     c.files.emplace_back("case.foam", ""); // what ParaView opens the case by
 
@@ -642,7 +673,7 @@ OpenFoamCase openfoam_case(const CaseParticles& particles, const SurfaceContaine
             "- `constant/triSurface/particles.stl`: every particle, closed and separate (patch "
             "`particles`){surfaces}.\n"
             "- Patches after meshing: {ends}`particles`{patches}.\n"
-            "- {cells}.\n"
+            "- {cells}.\n{layers}"
             "- `locationInMesh` ({x}, {y}, {z}): {clear} from the nearest surface.\n\n"
             "Exact volumes (geometry, not the mesh): container {vc}; solid {vs} after the "
             "treatment; fluid {vf}. Void fraction {e0:.6f} untouched, {e1:.6f} treated. "
@@ -665,6 +696,18 @@ OpenFoamCase openfoam_case(const CaseParticles& particles, const SurfaceContaine
             fmt::arg("mu", flow.viscosity), fmt::arg("nu", flow.viscosity / flow.fluid_density),
             fmt::arg("u", c.velocity), fmt::arg("re", c.reynolds), fmt::arg("drive", drive),
             fmt::arg("results", results), fmt::arg("ends", ends),
+            fmt::arg("layers",
+                     options.layers > 0
+                         ? fmt::format("- {} prism layers asked on the particles{} (the last "
+                                       "half the cell beside it, each 1.2 times the one before): "
+                                       "snappyHexMesh thins or drops them where surfaces are "
+                                       "close; the table at the end of `log.snappyHexMesh` "
+                                       "gives how many it added on each patch.\n",
+                                       options.layers,
+                                       back.rod_surface    ? ", the wall and the rod"
+                                       : back.wall_surface ? " and the wall"
+                                                           : "")
+                         : std::string()),
             fmt::arg("whose", options.periodic_z ? "the " : "the inlet's ")));
     return c;
 }

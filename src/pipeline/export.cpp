@@ -189,6 +189,7 @@ nlohmann::ordered_json case_record(const ExportRequest& o, const OpenFoamCase& f
         {"cell_size", foam.cell_size},
         {"particle_level", o.mesh.particle_level},
         {"wall_level", o.mesh.wall_level},
+        {"layers", o.mesh.layers},
         {"location_in_mesh",
          {foam.location_in_mesh.x, foam.location_in_mesh.y, foam.location_in_mesh.z}},
         {"clearance", foam.clearance},

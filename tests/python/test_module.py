@@ -789,11 +789,12 @@ def test_export_writes_the_command_lines_openfoam_case(cli_bed, tmp_path):
     particles = str(cli_bed / "particles.csv")
     status, _, err = cli("export", particles, "-f", "openfoam", "-q", "-o", tmp_path / "cli",
                          "--contacts", "caps:0.02", "--ranks", "3", "--reynolds", "2",
-                         "--fluid-density", "1.2", "--viscosity", "1.8e-5", "--scale", "0.002")
+                         "--fluid-density", "1.2", "--viscosity", "1.8e-5", "--scale", "0.002",
+                         "--layers", "2")
     assert status == 0, err
     packbed.export(packbed.read(particles), str(tmp_path / "py"), format="openfoam",
                    contacts="caps:0.02", ranks=3, reynolds=2, fluid_density=1.2,
-                   viscosity=1.8e-5, scale=0.002)
+                   viscosity=1.8e-5, scale=0.002, layers=2)
     written = sorted(str(f.relative_to(tmp_path / "cli")) for f in (tmp_path / "cli").rglob("*"))
     assert written == sorted(str(f.relative_to(tmp_path / "py"))
                              for f in (tmp_path / "py").rglob("*"))
@@ -803,6 +804,8 @@ def test_export_writes_the_command_lines_openfoam_case(cli_bed, tmp_path):
     assert os.access(tmp_path / "py" / "Allrun", os.X_OK)
     decompose = (tmp_path / "py" / "system" / "decomposeParDict").read_text()
     assert "numberOfSubdomains 3;" in decompose and "n (1 1 3);" in decompose
+    assert "particles { nSurfaceLayers 2; }" in (tmp_path / "py" / "system" /
+                                                 "snappyHexMeshDict").read_text()
     # nu = mu / rho, and the velocity of Re_p = 2 at d = 2 mm: u = Re nu / d
     nu = 1.8e-5 / 1.2
     assert f"nu {nu:g};" in (tmp_path / "py" / "constant" / "transportProperties").read_text()
@@ -810,6 +813,8 @@ def test_export_writes_the_command_lines_openfoam_case(cli_bed, tmp_path):
     assert flow["velocity"] == pytest.approx(2 * nu / 0.002, rel=1e-12)
     with pytest.raises(ValueError, match="--ranks: 0 is not allowed"):
         packbed.export(packbed.read(particles), str(tmp_path / "bad"), format="openfoam", ranks=0)
+    with pytest.raises(ValueError, match="--layers: 11 is not allowed"):
+        packbed.export(packbed.read(particles), str(tmp_path / "bad"), format="openfoam", layers=11)
 
 
 def test_export_of_a_cell_periodic_along_z_is_the_command_lines(tmp_path):
