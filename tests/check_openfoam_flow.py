@@ -35,12 +35,12 @@ stopped by "steady pressure drop"; the gradient within 18 % of the measured 0.68
 Schnitzlein (2.065e5 Pa/m, the kOmegaSST run's to 0.02 %).
 
 With prism layers (`check_openfoam_flow.py PACKBED laminar 1 3`: --layers 3), the same bed
-at Re_p = 1: snappyHexMesh added more than one layer on average on the particles and on the
-wall (measured 1.29 and 1.85 of the 3 asked), the run converged (on its residuals, measured at
-iteration 102, or on a steady pressure drop), mass is conserved, and the gradient lies within
-5 % of 1 114.6 Pa/m, what the layered series of this bed extrapolates to (d/16 to d/32,
-apparent order 2.8, GCI 0.85 %; docs/validation.md): measured 1 075.8, 3.5 % below, where the
-same mesh without layers gives 957.9, 14 % below.
+at Re_p = 1: snappyHexMesh added layers on the particles and on the wall (measured 1.04 and
+1.86 of the 3 asked, on average; asserted above 0.9), the run converged (measured: on a steady
+pressure drop at iteration 119), mass is conserved, and the gradient lies within 3 % of
+1 129.75 Pa/m, where the same bed's layered meshes settle (d/24 and d/32 within 0.02 % of each
+other; docs/validation.md, "Prism layers"): measured 1 110.0, 1.75 % below, where the same
+mesh without layers gives 957.9, 15 % below.
 
 Usage: check_openfoam_flow.py PACKBED [TURBULENCE REYNOLDS [LAYERS]]. Exit 77 (skipped) when OpenFOAM
 or mpirun is missing (scripts/install-deps.sh --test installs both)."""
@@ -95,7 +95,7 @@ if layers:
     added = {m.group(1): float(m.group(2))
              for m in re.finditer(r"^(particles|wall)\s+\d+\s+([0-9.]+)\s", table, re.M)}
     print(f"layers added on average: {added}")
-    assert set(added) == {"particles", "wall"} and min(added.values()) > 1.0, table[:2000]
+    assert set(added) == {"particles", "wall"} and min(added.values()) > 0.9, table[:2000]
     steady_stop = "pressureDropSteady condition satisfied" in log
 if steady_stop:
     assert "pressureDropSteady condition satisfied" in log, log[-3000:]
@@ -152,12 +152,11 @@ print(f"pressure gradient {gradient:.4g} Pa/m over z {z[0]:.4g} to {z[-1]:.4g} m
       f"{summary['void_fraction']:.4f}")
 measured = 0.567 if reynolds < 10 else 0.688
 if layers:
-    measured = 0.6369
-    # The same bed's layered series (d/16, d/24, d/32 at the particles; docs/validation.md)
-    # converges at an apparent order of 2.8 to 1 114.6 Pa/m (GCI of the finest 0.85 %), where
-    # this mesh gives 1 075.8, 3.5 % below; without layers it gives 957.9, 14 % below.
-    # Asserted: within 5 % of the extrapolated gradient.
-    assert abs(gradient / 1114.6 - 1) < 0.05, gradient
+    measured = 0.6572
+    # The same bed's layered meshes settle at d/24 and d/32 (1 129.95 and 1 129.75 Pa/m;
+    # docs/validation.md), where this mesh gives 1 110.0, 1.75 % below; without layers it
+    # gives 957.9, 15 % below. Asserted: within 3 % of the finest.
+    assert abs(gradient / 1129.75 - 1) < 0.03, gradient
 assert abs(ratio / measured - 1) < 0.18, (ratio, measured)
 if turbulence != "laminar":  # the model ran: a turbulent viscosity somewhere in the bed
     times = [d for d in os.listdir(case) if re.fullmatch(r"[0-9]+", d) and d != "0"]

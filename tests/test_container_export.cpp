@@ -266,6 +266,7 @@ TEST(ContainerExport, LayersAreAskedOnTheParticlesAndOnWhatSnappyHexMeshCuts) {
               std::string::npos);
     EXPECT_EQ(files["system/controlDict"].find("steadyPressureDrop"), std::string::npos);
     EXPECT_EQ(files["README.md"].find("prism layers"), std::string::npos);
+    EXPECT_NE(files["system/snappyHexMeshDict"].find("featureAngle 60;"), std::string::npos);
     // Three on the particles, the tube and the rod; the run also stops on a steady pressure
     // drop, since U's residual levels off near residualControl's 1e-6 on such meshes.
     files = files_with(3);
@@ -277,6 +278,9 @@ TEST(ContainerExport, LayersAreAskedOnTheParticlesAndOnWhatSnappyHexMeshCuts) {
               std::string::npos)
         << snappy;
     EXPECT_NE(snappy.find("nRelaxedIter 20;"), std::string::npos);
+    // carried over every edge, thinned only at the medial axis (60 and 0.3 without layers)
+    EXPECT_NE(snappy.find("featureAngle 180;"), std::string::npos);
+    EXPECT_NE(snappy.find("maxThicknessToMedialRatio 1.0;"), std::string::npos);
     EXPECT_NE(files["system/controlDict"].find("steadyPressureDrop"), std::string::npos);
     EXPECT_NE(
         files["README.md"].find("- 3 prism layers asked on the particles, the wall and the rod"),

@@ -562,9 +562,10 @@ OpenFoamCase openfoam_case(const CaseParticles& particles, const SurfaceContaine
         "addLayersControls\n{{\n    relativeSizes true;\n{layers}"
         "    expansionRatio {expansion};\n    finalLayerThickness {final_layer};\n"
         "    minThickness 0.1;\n"
-        "    nGrow 0;\n    featureAngle 60;\n    slipFeatureAngle 30;\n    nRelaxIter 3;\n"
+        "    nGrow 0;\n    featureAngle {feature_angle};\n    slipFeatureAngle 30;\n"
+        "    nRelaxIter 3;\n"
         "    nSmoothSurfaceNormals 1;\n    nSmoothNormals 3;\n    nSmoothThickness 10;\n"
-        "    maxFaceThicknessRatio 0.5;\n    maxThicknessToMedialRatio 0.3;\n"
+        "    maxFaceThicknessRatio 0.5;\n    maxThicknessToMedialRatio {medial};\n"
         "    minMedialAxisAngle 90;\n    nBufferCellsNoExtrude 0;\n    nLayerIter 50;\n"
         "{relaxed}}}\n\n"
         "meshQualityControls\n{{\n    maxNonOrtho 65;\n    maxBoundarySkewness {skew};\n"
@@ -593,6 +594,11 @@ OpenFoamCase openfoam_case(const CaseParticles& particles, const SurfaceContaine
         fmt::arg("expansion", options.layers > 0 ? "1.2" : "1.0"),
         fmt::arg("final_layer", options.layers > 0 ? "0.5" : "0.3"),
         fmt::arg("relaxed", options.layers > 0 ? "    nRelaxedIter 20;\n" : ""),
+        // Layers carried over every edge (the caps' rims included) and thinned only where
+        // they would pass the medial axis: the levels then keep their layers alike enough for
+        // the a = 5 series to converge at order 2.1 (docs/validation.md, "Prism layers").
+        fmt::arg("feature_angle", options.layers > 0 ? "180" : "60"),
+        fmt::arg("medial", options.layers > 0 ? "1.0" : "0.3"),
         fmt::arg("skew", back.boundary_skewness), fmt::arg("cpd", options.cells_per_diameter),
         fmt::arg("lp", options.particle_level), fmt::arg("clear", c.clearance),
         fmt::arg("x", c.location_in_mesh.x), fmt::arg("y", c.location_in_mesh.y),
