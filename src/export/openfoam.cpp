@@ -141,23 +141,42 @@ std::string plane_average(const std::vector<double>& planes, std::size_t n, int 
         fmt::arg("z", planes[n]));
 }
 
-/// snappyHexMeshDict's `layers` entries: `count` prism layers on the particles and on the
+/// snappyHexMeshDict's addLayersControls: `count` prism layers on the particles and on the
 /// container's surfaces that snappyHexMesh cuts (a tube's wall, an annulus' rod); none for the
 /// background's own faces (a box's sides, a periodic cell's cyclic pairs). With
 /// finalLayerThickness 0.5 of the cell beside it and an expansion of 1.2, three layers span
-/// about 1.3 cells where snappyHexMesh can extrude them in full; at contacts and in narrow gaps
-/// it thins or drops them (its log's table of layers per patch).
-std::string surface_layers(int count, const OpenFoamBackground& back) {
+/// about 1.3 cells where snappyHexMesh can extrude them in full; carried over every edge (the
+/// caps' rims included, featureAngle 180) and thinned only where they would pass the medial
+/// axis (maxThicknessToMedialRatio 1), the levels keep their layers alike enough for the a = 5
+/// series to converge at order 2.1 (docs/validation.md, "Prism layers"). Without layers the
+/// block is snappyHexMesh's usual one, unused.
+std::string add_layers_controls(int count, const OpenFoamBackground& back) {
     check_option("layers", count, option_range::surface_layers);
-    if (count == 0)
-        return "    layers {}\n";
-    std::string entries =
-        fmt::format("    layers\n    {{\n        particles {{ nSurfaceLayers {}; }}\n", count);
-    if (back.wall_surface)
-        entries += fmt::format("        wall {{ nSurfaceLayers {}; }}\n", count);
-    if (back.rod_surface)
-        entries += fmt::format("        rod {{ nSurfaceLayers {}; }}\n", count);
-    return entries + "    }\n";
+    const bool on = count > 0;
+    std::string layers = "    layers {}\n";
+    if (on) {
+        layers =
+            fmt::format("    layers\n    {{\n        particles {{ nSurfaceLayers {}; }}\n", count);
+        if (back.wall_surface)
+            layers += fmt::format("        wall {{ nSurfaceLayers {}; }}\n", count);
+        if (back.rod_surface)
+            layers += fmt::format("        rod {{ nSurfaceLayers {}; }}\n", count);
+        layers += "    }\n";
+    }
+    return fmt::format(
+        "addLayersControls\n{{\n    relativeSizes true;\n{layers}"
+        "    expansionRatio {expansion};\n    finalLayerThickness {final_layer};\n"
+        "    minThickness 0.1;\n"
+        "    nGrow 0;\n    featureAngle {feature_angle};\n    slipFeatureAngle 30;\n"
+        "    nRelaxIter 3;\n"
+        "    nSmoothSurfaceNormals 1;\n    nSmoothNormals 3;\n    nSmoothThickness 10;\n"
+        "    maxFaceThicknessRatio 0.5;\n    maxThicknessToMedialRatio {medial};\n"
+        "    minMedialAxisAngle 90;\n    nBufferCellsNoExtrude 0;\n    nLayerIter 50;\n"
+        "{relaxed}}}\n\n",
+        fmt::arg("layers", layers), fmt::arg("expansion", on ? "1.2" : "1.0"),
+        fmt::arg("final_layer", on ? "0.5" : "0.3"), fmt::arg("feature_angle", on ? "180" : "60"),
+        fmt::arg("medial", on ? "1.0" : "0.3"),
+        fmt::arg("relaxed", on ? "    nRelaxedIter 20;\n" : ""));
 }
 
 /// The stop on a steady pressure drop: `pressureDrop` (fieldValueDelta) takes the first plane's
@@ -559,15 +578,7 @@ OpenFoamCase openfoam_case(const CaseParticles& particles, const SurfaceContaine
         "snapControls\n{{\n    nSmoothPatch 3;\n    tolerance 2.0;\n    nSolveIter 30;\n"
         "    nRelaxIter 5;\n    nFeatureSnapIter 10;\n    implicitFeatureSnap false;\n"
         "    explicitFeatureSnap false;\n    multiRegionFeatureSnap false;\n}}\n\n"
-        "addLayersControls\n{{\n    relativeSizes true;\n{layers}"
-        "    expansionRatio {expansion};\n    finalLayerThickness {final_layer};\n"
-        "    minThickness 0.1;\n"
-        "    nGrow 0;\n    featureAngle {feature_angle};\n    slipFeatureAngle 30;\n"
-        "    nRelaxIter 3;\n"
-        "    nSmoothSurfaceNormals 1;\n    nSmoothNormals 3;\n    nSmoothThickness 10;\n"
-        "    maxFaceThicknessRatio 0.5;\n    maxThicknessToMedialRatio {medial};\n"
-        "    minMedialAxisAngle 90;\n    nBufferCellsNoExtrude 0;\n    nLayerIter 50;\n"
-        "{relaxed}}}\n\n"
+        "{layer_controls}"
         "meshQualityControls\n{{\n    maxNonOrtho 65;\n    maxBoundarySkewness {skew};\n"
         "    maxInternalSkewness 4;\n    maxConcave 80;\n    minVol 1e-30;\n"
         "    minTetQuality 1e-30;\n    minArea -1;\n    minTwist 0.02;\n"
@@ -590,15 +601,7 @@ OpenFoamCase openfoam_case(const CaseParticles& particles, const SurfaceContaine
                                                      options.wall_level)
                                        : std::string())),
         fmt::arg("add_layers", options.layers > 0 ? "true" : "false"),
-        fmt::arg("layers", surface_layers(options.layers, back)),
-        fmt::arg("expansion", options.layers > 0 ? "1.2" : "1.0"),
-        fmt::arg("final_layer", options.layers > 0 ? "0.5" : "0.3"),
-        fmt::arg("relaxed", options.layers > 0 ? "    nRelaxedIter 20;\n" : ""),
-        // Layers carried over every edge (the caps' rims included) and thinned only where
-        // they would pass the medial axis: the levels then keep their layers alike enough for
-        // the a = 5 series to converge at order 2.1 (docs/validation.md, "Prism layers").
-        fmt::arg("feature_angle", options.layers > 0 ? "180" : "60"),
-        fmt::arg("medial", options.layers > 0 ? "1.0" : "0.3"),
+        fmt::arg("layer_controls", add_layers_controls(options.layers, back)),
         fmt::arg("skew", back.boundary_skewness), fmt::arg("cpd", options.cells_per_diameter),
         fmt::arg("lp", options.particle_level), fmt::arg("clear", c.clearance),
         fmt::arg("x", c.location_in_mesh.x), fmt::arg("y", c.location_in_mesh.y),
