@@ -28,6 +28,7 @@
 #include "packbed/json_text.hpp"
 #include "packbed/lattice.hpp"
 #include "packbed/limits.hpp"
+#include "packbed/openfoam.hpp"
 #include "packbed/option_ranges.hpp"
 #include "packbed/output.hpp"
 #include "packbed/periodic.hpp"
@@ -1394,6 +1395,20 @@ cells; each level's cells, representative size h / d, the mesh's void fraction a
 Richardson extrapolation and grid convergence index of the three finest. Writes series.csv and
 series.json to out (None: the last case's cfd-series/). Returns a dict; an apparent order far
 from 2 gives a UserWarning. Raises ValueError for fewer than 3 cases or cases of two kinds.)");
+
+    m.def(
+        "mesh_preset",
+        [](const std::string& name) {
+            const OpenFoamMeshOptions mesh = mesh_presets().at(name);
+            return py::dict(py::arg("cells_per_diameter") = mesh.cells_per_diameter,
+                            py::arg("particle_level") = mesh.particle_level,
+                            py::arg("wall_level") = mesh.wall_level,
+                            py::arg("layers") = mesh.layers);
+        },
+        py::arg("name"),
+        R"(The mesh options of `packbed export --mesh NAME` ('quick' or 'accurate',
+docs/validation.md) as a dict of export's keywords: export(bed, out, format='openfoam',
+**mesh_preset('accurate')). Raises ValueError for another name.)");
 
     m.def("correlations", &correlations, py::kw_only(),
           py::arg("aspect_ratio") = CorrelationsRequest{}.aspect_ratio,

@@ -1180,6 +1180,8 @@ INSTANTIATE_TEST_SUITE_P(
               "packbed: --wall-level: 'x' is not allowed; allowed: a whole number from 0 to 8"),
         exact("export two.csv --format openfoam -R 2 --layers 11",
               "packbed: --layers: 11 is not allowed; allowed: a whole number from 0 to 10"),
+        exact("export two.csv --format openfoam -R 2 --mesh fine",
+              "packbed: --mesh: 'fine' is not allowed; allowed: quick, accurate"),
         // A cell periodic along z: a periodic container, its period given, every sphere in it.
         exact("export two.csv --format openfoam -R 2 --flow periodic --container-height 2 --out pf",
               "packbed export: --flow periodic is not allowed with --container cylinder:4; "

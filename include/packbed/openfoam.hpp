@@ -18,6 +18,12 @@ enum class Turbulence { laminar, k_epsilon, k_omega_sst };
 /// The names --turbulence takes, as OpenFOAM names the models: laminar, kEpsilon, kOmegaSST.
 const Registry<Turbulence>& turbulence_models();
 
+/// Named meshes of `export --mesh` (docs/validation.md, "Prism layers"): "quick", the
+/// defaults (d/16 at the particles, no layers: the creeping-flow gradient of the a = 5 tube bed
+/// 16 % low); "accurate", d/32 and three prism layers (the gradient within 2 % of the converged
+/// one). Options given beside a preset replace its values.
+const Registry<OpenFoamMeshOptions>& mesh_presets();
+
 /// The flow of the runnable case (simpleFoam, steady, incompressible), in SI units: the case
 /// is meshed in the bed's units and Allrun scales it to metres (transformPoints) before the
 /// flow is solved. Defaults: water at 20 C and particles of 1 mm, as packbed hydraulics.

@@ -479,6 +479,13 @@ const Registry<Turbulence>& turbulence_models() {
     return models;
 }
 
+const Registry<OpenFoamMeshOptions>& mesh_presets() {
+    static const Registry<OpenFoamMeshOptions> presets(
+        "mesh", {{"quick", OpenFoamMeshOptions{}},
+                 {"accurate", OpenFoamMeshOptions{.cells_per_diameter = 8, .layers = 3}}});
+    return presets;
+}
+
 OpenFoamCase openfoam_case(const TreatedBed& bed, const SurfaceContainer& container,
                            const TreatmentVolumes& volumes, const std::string& contacts,
                            double diameter, const SurfaceOptions& surface,

@@ -817,6 +817,38 @@ def test_export_writes_the_command_lines_openfoam_case(cli_bed, tmp_path):
         packbed.export(packbed.read(particles), str(tmp_path / "bad"), format="openfoam", layers=11)
 
 
+def test_the_accurate_mesh_is_the_command_lines_and_its_options_replace_its_values(cli_bed,
+                                                                                  tmp_path):
+    # --mesh accurate: d/32 at the particles (8 cells a diameter, level 2) and three layers, the
+    # mesh within 2 % of the converged gradient (docs/validation.md)
+    assert packbed.mesh_preset("accurate") == {"cells_per_diameter": 8, "particle_level": 2,
+                                               "wall_level": 1, "layers": 3}
+    assert packbed.mesh_preset("quick") == {"cells_per_diameter": 4, "particle_level": 2,
+                                            "wall_level": 1, "layers": 0}
+    particles = str(cli_bed / "particles.csv")
+    status, _, err = cli("export", particles, "-f", "openfoam", "-q", "-o", tmp_path / "cli",
+                         "--contacts", "caps:0.02", "--mesh", "accurate")
+    assert status == 0, err
+    packbed.export(packbed.read(particles), str(tmp_path / "py"), format="openfoam",
+                   contacts="caps:0.02", **packbed.mesh_preset("accurate"))
+    for f in (tmp_path / "cli").rglob("*"):
+        if f.is_file():
+            assert (tmp_path / "py" / f.relative_to(tmp_path / "cli")).read_bytes() == \
+                f.read_bytes(), f
+    mesh = json.loads((tmp_path / "py" / "packbed.json").read_text())["openfoam"]
+    assert mesh["cell_size"] == pytest.approx(1 / 8, rel=1e-12)
+    assert (mesh["particle_level"], mesh["layers"]) == (2, 3)
+    # an option beside the preset replaces its value, whatever the order
+    status, _, err = cli("export", particles, "-f", "openfoam", "-q", "-o", tmp_path / "two",
+                         "--layers", "2", "--contacts", "caps:0.02", "--mesh", "accurate")
+    assert status == 0, err
+    mesh = json.loads((tmp_path / "two" / "packbed.json").read_text())["openfoam"]
+    assert mesh["cell_size"] == pytest.approx(1 / 8, rel=1e-12) and mesh["layers"] == 2
+    with pytest.raises(ValueError, match="--mesh: 'fine' is not allowed; allowed: quick, "
+                                         "accurate"):
+        packbed.mesh_preset("fine")
+
+
 def test_export_of_a_cell_periodic_along_z_is_the_command_lines(tmp_path):
     # flow='periodic' is --flow periodic: the same case; the cell's numbers for cfd-report
     status, _, err = cli("lattice", "--type", "sc", "--region", "periodic:3,3,3", "--origin",
