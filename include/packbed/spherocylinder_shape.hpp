@@ -72,9 +72,11 @@ struct SpherocylinderShape {
     /// from a's position. Each cap's sphere (the segment's end, radius R) against the other's
     /// segment, the four of them; and the segments' nearest points (pair_overlap) for what
     /// their depth exceeds the deepest of those. One spring where they cross, one where an end
-    /// rests on a side, two where they lie side by side: the energy's gradient (force and
-    /// torque) then changes smoothly as two rods turn through parallel, where the nearest
-    /// points alone jump from one end of the overlap to the other. \return pair_overlap's depth.
+    /// rests on a side, two where they lie side by side: the force and torque then change
+    /// smoothly as two rods turn through parallel, where the nearest points alone jump from one
+    /// end of the overlap to the other. The excess pushes along the nearest points' normal, so
+    /// the forces are not exactly an energy's gradient (up to 1.5 % off where an end lies near
+    /// a crossing; docs/notes/pellets.md). \return pair_overlap's depth.
     template <class F>
     double pair_springs(const Placement& a, const SpherocylinderShape& other, const Placement& b,
                         const Vec3& ab, F&& f) const {
