@@ -75,8 +75,8 @@ struct SpherocylinderShape {
     /// rests on a side, two where they lie side by side: the force and torque then change
     /// smoothly as two rods turn through parallel, where the nearest points alone jump from one
     /// end of the overlap to the other. The excess pushes along the nearest points' normal, so
-    /// the forces are not exactly an energy's gradient (up to 1.5 % off where an end lies near
-    /// a crossing; docs/notes/pellets.md). \return pair_overlap's depth.
+    /// the forces are not exactly an energy's gradient (up to 1.5 % off in the pairs measured,
+    /// where an end lies near a crossing; docs/notes/pellets.md). \return pair_overlap's depth.
     template <class F>
     double pair_springs(const Placement& a, const SpherocylinderShape& other, const Placement& b,
                         const Vec3& ab, F&& f) const {
