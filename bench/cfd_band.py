@@ -60,8 +60,13 @@ def main():
     if shutil.which("gnuplot") is None:
         print(f"written {path} (no gnuplot: no plot)")
         return
-    curves = ", ".join(f"'{path}' using 1:{5 + i} with linespoints title '{k}' noenhanced"
-                       for i, k in enumerate(labels))
+    curves = [f"'{path}' using 1:{5 + i} with linespoints title '{k}' noenhanced"
+              for i, k in enumerate(labels)]
+    curves.append(f"'{path}' using 1:2:3 with yerrorbars pt 7 ps 1.2 lc rgb 'black' "
+                  "title 'CFD, converged (GCI)'")
+    if any(not math.isnan(r[3]) for r in rows):  # the key shows the open point only if drawn
+        curves.append(f"'{path}' using 1:4 with points pt 12 ps 2 lc rgb 'black' "
+                      "title 'CFD, finest mesh, not converged'")
     script = f"""set terminal svg size 720,480 background '#ffffff'
 set output '{out}/cfd-band.svg'
 set datafile separator ','
@@ -72,7 +77,7 @@ set xrange [4:25]
 set yrange [0.8:1.7]
 set xlabel 'aspect ratio a = D/d'
 set ylabel "pressure gradient / Ergun's"
-plot {curves}, '{path}' using 1:2:3 with yerrorbars pt 7 ps 1.2 lc rgb 'black' title 'CFD, converged (GCI)', '{path}' using 1:4 with points pt 12 ps 2 lc rgb 'black' title 'CFD, finest mesh, not converged'
+plot {", ".join(curves)}
 """
     subprocess.run(["gnuplot"], input=script, text=True, check=True)
     print(f"written {path} and {out}/cfd-band.svg")
