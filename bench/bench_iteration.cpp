@@ -76,7 +76,7 @@ void BM_ListBuild(benchmark::State& state) {
                            benchmark::Counter::kIsRate | benchmark::Counter::kInvert);
 }
 
-/// The size mixes of BM_IterationSizes (issue 16): the cost per sphere-step of a bed of many
+/// The size mixes of BM_IterationSizes: the cost per sphere-step of a bed of many
 /// sizes against a mono-sized one of the same Np.
 enum class Mix { mono = 0, binary4 = 1, lognormal = 2 };
 
@@ -124,7 +124,7 @@ void BM_IterationSizes(benchmark::State& state) {
                                          : "lognormal GSD 1.5");
 }
 
-/// The containers of BM_IterationContainers (issue 17): the cost per sphere-step of the same
+/// The containers of BM_IterationContainers: the cost per sphere-step of the same
 /// number of spheres in each, of about the same cross-section (a = 20: 314 Dp^2).
 enum class Shape { cylinder = 0, annulus = 1, box = 2, periodic = 3, cone = 4 };
 

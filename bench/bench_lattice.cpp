@@ -1,4 +1,4 @@
-// Cost of filling a box with a lattice of about a million balls (issue 4 target: the diamond
+// Cost of filling a box with a lattice of about a million balls (target: the diamond
 // packing in under 5 s), and of counting its contacts.
 #include <benchmark/benchmark.h>
 

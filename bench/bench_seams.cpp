@@ -1,4 +1,4 @@
-// The seams of a bed relaxed in layers (issue 18: "the axial profile of a tall bed without
+// The seams of a bed relaxed in layers (the target: "the axial profile of a tall bed without
 // interface seams above the scatter of one slab"; docs/validation.md, "A tall bed's axial
 // profile"). For each seed, runs the fire solver on a bed of `particles` spheres at aspect ratio
 // `a` in layers of `layer_height` Dp, records the highest settled centre after each layer (the

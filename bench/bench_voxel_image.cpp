@@ -1,4 +1,4 @@
-// Time the voxel images of one bed in one process (issue 19; docs/performance.md, "Voxel
+// Time the voxel images of one bed in one process (docs/performance.md, "Voxel
 // images"): the binary image, the exact image in float64 and in float32, each `repeats` times,
 // in that order. A driver of the library alone (no Python, no file written), so that two builds
 // can be compared in one command, old then new:

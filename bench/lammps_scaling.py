@@ -1,5 +1,5 @@
 #!/usr/bin/env python3
-"""Wall time against Np and against ranks: the LAMMPS engine next to packbed's fire (issue 21).
+"""Wall time against Np and against ranks: the LAMMPS engine next to packbed's fire.
 
 Beds of Np spheres in a tube as wide as keeps the initial height L0 (eq. 6) at about 30 Dp
 (a = sqrt(Np / 23.85): 6.5 at 1e3, 20.5 at 1e4, 64.8 at 1e5), so that both engines relax each

@@ -1,5 +1,5 @@
 #!/usr/bin/env python3
-"""Cells, time and memory of an exported OpenFOAM case against the number of spheres (issue 20).
+"""Cells, time and memory of an exported OpenFOAM case against the number of spheres.
 
 For each Np: packbed generate (a, seed 1), packbed export --format openfoam --contacts caps:0.02
 (the default mesh unless --cells-per-diameter / --particle-level), then either the case's own

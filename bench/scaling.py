@@ -1,5 +1,5 @@
 #!/usr/bin/env python3
-"""Wall time and peak memory of `packbed generate` against Np, for both solvers (issue 5).
+"""Wall time and peak memory of `packbed generate` against Np, for both solvers.
 
 For each solver and Np, runs `packbed generate --solver SOLVER --aspect-ratio A --particles Np
 --seed 1 --quiet` into OUT/<solver>/n<Np>/ (a = --aspect-ratio, except where --large gives
@@ -15,7 +15,7 @@ Usage: bench/scaling.py [--packbed build/packbed] [--particles 1000,3000,...]
                         [--aspect-ratio 20] [--large 1000000:50] [--solvers paper,fire]
                         [--limit 600 | --limit paper:200,fire:1500]
                         [--threads CORES] [--out results/scaling]
-                        [--before OLD/scaling.csv --before-label "(before issue 18)"]
+                        [--before OLD/scaling.csv --before-label "(old build)"]
 """
 import argparse
 import csv

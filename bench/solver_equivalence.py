@@ -1,5 +1,5 @@
 #!/usr/bin/env python3
-"""Are the fire solver's beds statistically the paper's? (issue 5, item 2)
+"""Are the fire solver's beds statistically the paper's?
 
 For each aspect ratio a and seed, runs `packbed generate --solver paper` and `--solver fire`
 on the same bed (Np = 1.5 (1 - 0.4) a^2 HEIGHT, as examples/validate.py, band 2 Dp clear of
@@ -8,10 +8,10 @@ runs already made by examples/validate.py are reused from --paper-runs. Prints, 
 mean overall void fraction of each solver, their difference, the RMS difference of the mean
 radial void-fraction profiles (x from the wall 0 to a/2, 0.02 Dp shells), the same RMS between
 two halves of the paper's seeds (the noise floor) and the mean wall time and iterations.
-Targets (issue 5): |mean difference| <= 0.003 and profile RMS <= 0.01.
+Targets: |mean difference| <= 0.003 and profile RMS <= 0.01.
 
 With --reference fire the reference runs are the fire solver's (into OUT/fire-reference/) and
-the compared ones take --fire-args, e.g. the LAMMPS engine (issue 21: within 0.005 and 0.015):
+the compared ones take --fire-args, e.g. the LAMMPS engine (its targets: within 0.005 and 0.015):
     bench/solver_equivalence.py --reference fire --fire-args "--engine lammps --ranks 2" \
         --label lammps
 

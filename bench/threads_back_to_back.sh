@@ -1,10 +1,10 @@
 #!/usr/bin/env bash
-# Does a run get the cores it is given when it starts right after another (issue 44)? Runs
-# the same bed ROUNDS times back to back (the one-minute load average raised by the runs
-# before), alternating the default command with OMP_DYNAMIC=false (OpenMP's count fixed, as
-# before issue 44 only that gave), then the Python module's generate in a loop of three, each
-# way. Prints wall and user seconds of every run and the ratio of the means. Noisy machines:
-# compare the ratios of one run of this script.
+# Does a run get the cores it is given when it starts right after another? Runs the same bed
+# ROUNDS times back to back (the one-minute load average raised by the runs before), alternating
+# the default command with OMP_DYNAMIC=false (OpenMP's count fixed, as only that gave while
+# packbed turned OpenMP's dynamic adjustment on), then the Python module's generate in a loop of
+# three, each way. Prints wall and user seconds of every run and the ratio of the means. Noisy
+# machines: compare the ratios of one run of this script.
 #
 # Usage: bench/threads_back_to_back.sh [PACKBED] [ROUNDS]   (default build/packbed, 3)
 #   PYTHONPATH must reach the module (default build/python) for the Python loop.

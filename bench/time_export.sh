@@ -1,5 +1,5 @@
 #!/usr/bin/env bash
-# Time `packbed export` of a generated bed to surfaces (issue 6 target: 10 000 spheres to STL
+# Time `packbed export` of a generated bed to surfaces (target: 10 000 spheres to STL
 # with caps under 30 s). The bed: `packbed generate --solver fire --aspect-ratio 20 --particles
 # 10000 --seed 1` (about a minute), made once into BED_DIR and reused.
 # Usage: bench/time_export.sh [PACKBED] [BED_DIR] [LEVELS]   (LEVELS default "2 3 4")

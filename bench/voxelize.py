@@ -1,4 +1,4 @@
-"""Time voxel images (issue 19): the binary and the exact image of one bed, in one run, through
+"""Time voxel images: the binary and the exact image of one bed, in one run, through
 the Python module (the computation alone) and the command line (with reading the bed and
 writing the .npy file). Usage (Debian's Python, the module on the path):
 

@@ -1,5 +1,5 @@
 #!/usr/bin/env python3
-"""The containers' validation of docs/validation.md ("Containers", issue 17).
+"""The containers' validation of docs/validation.md ("Containers").
 
 Runs `packbed generate` (FIRE, mono-sized, frictionless) in a periodic cell (three seeds), a wide
 cylinder, a box and an annulus, all about 30 Dp tall, and prints:

@@ -1,5 +1,5 @@
 #!/usr/bin/env python3
-"""Binary beds against the binary-mixture packing models (issue 16, docs/validation.md).
+"""Binary beds against the binary-mixture packing models (docs/validation.md).
 
 Packs spheres of diameters 1 and RATIO (by volume fractions X_L of the large ones) in a tube of
 diameter D (in units of the small diameter) with `packbed generate --sizes discrete:...`, each

@@ -1,5 +1,5 @@
 // lammps_result on a folder whose log.lammps is the input (import-lammps reads a job folder
-// that LAMMPS filled elsewhere, issue 21) and whose bed.dump is a valid bed of 3 spheres: the
+// that LAMMPS filled elsewhere) and whose bed.dump is a valid bed of 3 spheres: the
 // log's stage lines read, or ConvergenceError (a run that failed, a log that is not the job's);
 // what is read: three stages named initial, intermediate, final, with finite numbers, overlaps
 // >= 0, and the whole run's steps those of the last stage line.

@@ -1,5 +1,5 @@
 #!/usr/bin/env bash
-# Run the README's commands as written, in order, and check what they produce (issue 15).
+# Run the README's commands as written, in order, and check what they produce.
 # Usage: scripts/check-readme.sh [--fresh]
 #   (default)  in this checkout. The first command's build then finds build/ already built by
 #              the test command, so only its install and run take time. Where results/ exists

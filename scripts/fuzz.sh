@@ -1,5 +1,5 @@
 #!/usr/bin/env bash
-# Fuzz the readers (issue 14): build the libFuzzer targets of fuzz/ with clang, ASan and UBSan
+# Fuzz the readers: build the libFuzzer targets of fuzz/ with clang, ASan and UBSan
 # if needed, then run each for SECONDS on a fresh copy of its seed corpus, one after another,
 # one process each. Prints executions, exec/s, coverage and findings; exits 1 on any finding.
 #

@@ -1,6 +1,6 @@
 #!/usr/bin/env bash
 # The test suite under AddressSanitizer + UndefinedBehaviorSanitizer (+ float-cast-overflow),
-# no recovery (issue 14): a clang build of everything in its own folder, then ctest there:
+# no recovery: a clang build of everything in its own folder, then ctest there:
 # the unit and command-line tests, and a short run of every fuzz target from its seed corpus
 # with a fixed seed (label fuzz). Any sanitizer report fails the test it happens in.
 #

@@ -1,5 +1,5 @@
 #!/usr/bin/env python3
-"""packbed generate --engine lammps, run by the real LAMMPS (issue 21).
+"""packbed generate --engine lammps, run by the real LAMMPS.
 
 The paper's bed (a = 5, Np = 500, seed 1) relaxed by LAMMPS on 2 MPI ranks, then checked here
 with code of its own (no packbed): every sphere inside the tube and above the floor within the

@@ -8,7 +8,7 @@ checkMesh on two tiny beds.
    (packbed.json). At the default levels (cells of Dp/16 at the particles) the mesh loses
    3.3 % of the fluid (21.9613 against 22.7211): the 0.02 Dp gaps of the caps and the thin
    wedges near contacts are narrower than a cell.
-2. A simple cubic lattice in a box (issue 17): 3 x 3 x 2 balls of Dp = 1 in [0, 3] x [0, 3],
+2. A simple cubic lattice in a box: 3 x 3 x 2 balls of Dp = 1 in [0, 3] x [0, 3],
    touching their neighbours, 16 of them one or two faces, the lower 9 the floor, with
    caps:0.05; the container from z = 0 to the bed's top + 1 Dp = 3. The exact fluid volume is
    computed here by hand and must be the one packbed.json and the case's README state: 27 -

@@ -1,5 +1,5 @@
 #!/usr/bin/env python3
-"""`packbed export --format openfoam` of an annulus meshed by Debian's OpenFOAM (issue 17).
+"""`packbed export --format openfoam` of an annulus meshed by Debian's OpenFOAM.
 
 A simple cubic lattice of Dp = 1 in the annulus between a tube of diameter 6 and a rod of
 diameter 2, one layer tall (`lattice --region annulus:6,2,1`): the 12 lattice points at

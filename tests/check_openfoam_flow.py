@@ -1,5 +1,5 @@
 #!/usr/bin/env python3
-"""`packbed export --format openfoam` run as a user would (issue 20): ./Allrun on 2 MPI ranks
+"""`packbed export --format openfoam` run as a user would: ./Allrun on 2 MPI ranks
 (blockMesh, decomposePar, snappyHexMesh, transformPoints to metres, checkMesh, simpleFoam,
 reconstructPar) on a generated bed of 30 spheres (a = 3, caps:0.02, d = 1 mm, water at
 Re_p = 1). Asserts

@@ -1,5 +1,5 @@
 #!/usr/bin/env python3
-"""`packbed export --format openfoam` of a periodic cell meshed by Debian's OpenFOAM (issue 17).
+"""`packbed export --format openfoam` of a periodic cell meshed by Debian's OpenFOAM.
 
 A simple cubic lattice of Dp = 1 in the periodic cell 3 x 3 (`lattice --region
 periodic:3,3,2`: 3 x 3 x 2 balls), moved by (-0.2, +0.2) so that the column at x = 0.3 crosses

@@ -2,7 +2,7 @@
 """The STL files of `packbed export` checked by real checkers from Debian: admesh (closed, every
 edge shared by two facets, consistent orientation, no degenerate facet, one part per body) and
 OpenFOAM's surfaceCheck (closed, not self-intersecting), for a generated bed, a lattice in a
-cylinder, a simple cubic lattice in a box (issue 17: 3 x 3 x 2 balls, 16 of them touching
+cylinder, a simple cubic lattice in a box (3 x 3 x 2 balls, 16 of them touching
 one or two faces of the box, the lower 9 the floor) and a bed in a cone, with every treatment,
 and beds of 12 cylinder pellets, of 8 trilobes, of 3 rings and of 10 spherocylinders, each
 shrunk by 2 %. For caps and shrink admesh must also leave every stored normal as it is; the

@@ -1,4 +1,4 @@
-// Issue 5: no allocation per iteration. Every operator new of this test program is counted,
+// No allocation per iteration. Every operator new of this test program is counted,
 // so the counts cover the library's code paths exactly.
 #include <atomic>
 #include <cstdlib>

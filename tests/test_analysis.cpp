@@ -174,7 +174,7 @@ TEST(RadialProfile, SphereOnTheAxisGivesNapkinRingShells) {
 }
 
 TEST(RadialProfile, UnequalSpheresFillTheirShellsWithTheirOwnVolumes) {
-    // Issue 16: spheres of radius 0.25 and 0.75 in a tube of radius 2, cut by the shells of
+    // Spheres of radius 0.25 and 0.75 in a tube of radius 2, cut by the shells of
     // the profile and by the band's planes: the shells hold the parts of both inside the band,
     // which slab volumes give exactly (the band [1, 3] cuts the large one at z = 2.8 + 0.75).
     Packing p;
@@ -477,7 +477,7 @@ TEST(PairCorrelation, IdealGasInANarrowCylinderGivesOneAtEveryDistance) {
 TEST(PairCorrelation, GeneratedBedAtAspectRatio5TendsToOne) {
     // 300 spheres at a = 5 (seed 1, the default fire solver): beyond 2.5 Dp g(r) oscillates
     // about 1 (measured in bins of 0.1 Dp: 1.057 1.085 0.967 0.896 0.928, mean 0.987, under
-    // fire's schedule of issue 18 0.984 1.085 0.984 0.948 0.926, mean 0.985, with fire's
+    // fire's own schedule 0.984 1.085 0.984 0.948 0.926, mean 0.985, with fire's
     // dt_max 0.3 and skin 0.2 1.068 1.051 1.057 0.971 0.891, mean 1.008); the uncorrected
     // normalisation gave about 0.5 there. The first peak stays at contact.
     SoftSphereParameters parameters;
@@ -777,7 +777,7 @@ TEST(BoxAnalysis, SphereTouchingAFlatWallFillsTheFirstFrameWithACap) {
 }
 
 TEST(SizeClasses, BinaryBedIsMeasuredPerSize) {
-    // Issue 16. In the box [0, 6] x [0, 6]: a column of 8 spheres of diameter 1 at (4, 3),
+    // In the box [0, 6] x [0, 6]: a column of 8 spheres of diameter 1 at (4, 3),
     // touching each other, and a column of 4 of diameter 2 at (1, 3), touching each other and
     // the face x = 0. The reference diameter is the mean, (8 + 8) / 12 = 4/3.
     Packing p;

@@ -1,4 +1,4 @@
-// Bad input on every subcommand and every option class (issue 14): non-numbers, inf and nan,
+// Bad input on every subcommand and every option class: non-numbers, inf and nan,
 // huge and tiny values, empty strings, paths with control characters, symlinks, FIFOs, devices,
 // directories where a file is expected and files where a directory is expected, files that
 // cannot be read, non-empty outputs, an output that is the input, and the audit's reproducers.
@@ -104,7 +104,7 @@ std::string nested(std::size_t n) {
     return std::string(n, '[') + std::string(n, ']');
 }
 
-/// The inputs of the issue-39 cases (nothing lost): deep nesting in every reader of nested
+/// The inputs of the NothingLost cases: deep nesting in every reader of nested
 /// text, beds and folders whose files an output could replace, and LAMMPS jobs.
 void prepare_nothing_lost(const fs::path& d) {
     std::string dotted = "a";
@@ -209,10 +209,10 @@ void prepare(const fs::path& d) {
     write(d / "nan.csv", "x,y,z,r\n0,0,1,nan\n");
     write(d / "negative.csv", "x,y,z,r\n0,0,1,-1\n");
     write(d / "outside.csv", "x,y,z,r\n0,0,1,0.5\n1.1,0,0.5,0.5\n");
-    // Issue 14 item 3: 40 spheres and one far above them.
+    // 40 spheres and one far above them.
     write(d / "far.csv", column(40) + "0,0,1e7,0.5\n");
     write(d / "far15.csv", column(40) + "0,0,1e15,0.5\n");
-    // Issue 14 item 14: no newline in 2 MiB (sparse: zero bytes).
+    // No newline in 2 MiB (sparse: zero bytes).
     write(d / "zeros", "");
     ASSERT_EQ(::truncate((d / "zeros").c_str(), 2 << 20), 0);
     // Special files.
@@ -231,7 +231,7 @@ void prepare(const fs::path& d) {
     fs::create_directory_symlink("full", d / "dirlink");
     fs::create_symlink("two.csv", d / "twolink");
     fs::create_hard_link(d / "two.csv", d / "hard.csv");
-    // summary.json beside a bed that is a directory, or a FIFO (issue 14 item 12).
+    // summary.json beside a bed that is a directory, or a FIFO.
     fs::create_directory(d / "sumdir");
     write(d / "sumdir" / "bed.csv", column(40));
     fs::create_directory(d / "sumdir" / "summary.json");
@@ -247,7 +247,7 @@ void prepare(const fs::path& d) {
                                         "\xd4\xa9\xd2\x29\xe2\x32\xd0\x01\x42\x3d\x53\x10\x06"
                                         "\xb3\x0d\xa1",
                                         29));
-    // Issue 14 item 1: a bed in a directory with a newline in its name.
+    // A bed in a directory with a newline in its name.
     fs::create_directory(d / "nl\ndir");
     write(d / "nl\ndir" / "bed.csv", column(40));
     prepare_nothing_lost(d);
@@ -297,7 +297,7 @@ BadInput exact(const std::string& args, const std::string& message) {
 BadInput exact(std::vector<std::string> args, const std::string& message) {
     return {std::move(args), message, {}};
 }
-/// A message not pinned (being reworded, or to be reworded): the parts it must contain.
+/// A message not pinned word for word: the parts it must contain.
 BadInput naming(const std::string& args, std::vector<std::string> parts) {
     return {split(args), "", std::move(parts)};
 }
@@ -439,7 +439,7 @@ INSTANTIATE_TEST_SUITE_P(
 INSTANTIATE_TEST_SUITE_P(
     Generate, CliBadInput,
     ::testing::Values(
-        // Issue 16: sizes that do not add up, an unknown distribution, a ratio beyond the
+        // Sizes that do not add up, an unknown distribution, a ratio beyond the
         // solvers', a sphere wider than the tube.
         exact("generate --sizes discrete:1:0.5,2:0.4",
               "packbed generate: --sizes 'discrete:1:0.5,2:0.4' is not allowed: the fractions add "
@@ -456,7 +456,7 @@ INSTANTIATE_TEST_SUITE_P(
               "packbed generate: --sizes: a diameter of 1.49776 Dp is not allowed in a tube of a = "
               "1.12332; allowed: diameters > 0 and below the tube's (a Dp, Dp = 1.33533 the "
               "reference diameter)"),
-        // Containers that do not fit the spheres (issue 17); an unknown one; two of them.
+        // Containers that do not fit the spheres; an unknown one; two of them.
         exact("generate --container annulus:10,9.5",
               "packbed generate: --container annulus:10,9.5 is not allowed with Dp = 1; allowed: "
               "D up to 10000 Dp and DI <= D - 2 Dp: the gap between rod and tube, (D - DI) / 2, "
@@ -534,7 +534,7 @@ INSTANTIATE_TEST_SUITE_P(
               "packbed generate: --checkpoint c.json is not allowed with --container "
               "periodic:8,8; allowed: --checkpoint with a cylinder (a checkpoint does not record "
               "the container yet)"),
-        // The LAMMPS engine (issue 21): its options without it, what it cannot run, an
+        // The LAMMPS engine: its options without it, what it cannot run, an
         // engine or a launcher that is not one; import-lammps of a folder that is not a job.
         exact("generate --ranks 4",
               "packbed generate: --ranks, --mpi-command, --lmp and --write-only are not allowed "
@@ -717,11 +717,11 @@ INSTANTIATE_TEST_SUITE_P(
         exact("generate --overlap-low 0.02 --overlap-high 0.01",
               "packbed generate: overlap-high = 0.01 is not allowed; allowed: overlap-low "
               "(0.02) < overlap-high < 0.5 (Dp)"),
-        // Issue 18: an upper bound under the lower one of the fire solver's schedule (0.015).
+        // An upper bound under the lower one of the fire solver's schedule (0.015).
         exact("generate --overlap-high 0.008",
               "packbed generate: overlap-high = 0.008 is not allowed; allowed: overlap-low "
               "(0.015) < overlap-high < 0.5 (Dp)"),
-        // Issue 14 item 15: refused after the options are read, with a new --out: not created.
+        // Refused after the options are read, with a new --out: not created.
         exact("generate --overlap-low 0.02 --overlap-high 0.01 --out new",
               "packbed generate: overlap-high = 0.01 is not allowed; allowed: overlap-low "
               "(0.02) < overlap-high < 0.5 (Dp)"),
@@ -737,7 +737,7 @@ INSTANTIATE_TEST_SUITE_P(
               "packbed: --out: '' is not allowed (an empty path); " + a_path),
         exact(std::vector<std::string>{"generate", "--checkpoint", ""},
               "packbed: --checkpoint: '' is not allowed (an empty path); " + a_path),
-        // Control characters in paths; issue 14 item 1 (gnuplot injection).
+        // Control characters in paths (gnuplot injection).
         exact(std::vector<std::string>{"generate", "-q", "--solver", "fire", "-a", "4", "-n", "60",
                                        "--out", "x\nsystem(\"touch PWNED\") #"},
               "packbed: --out: 'x\\nsystem(\"touch PWNED\") #' is not allowed (a control "
@@ -802,7 +802,7 @@ INSTANTIATE_TEST_SUITE_P(
               "above twice --layer-height (now 30)")));
 
 // Lattice: --region, --origin and --rotate are parsed by packbed, the rest by CLI11.
-// The --region messages are being reworded: only the option and the value are pinned.
+// The --region messages: only the option and the value are pinned.
 INSTANTIATE_TEST_SUITE_P(
     Lattice, CliBadInput,
     ::testing::Values(
@@ -819,7 +819,7 @@ INSTANTIATE_TEST_SUITE_P(
         naming("lattice --region box:1e5,1e5,1e5", {"region"}),
         naming("lattice --region cylinder:1e5,1e5", {"region"}),
         naming("lattice --diameter 1e-12", {"1e-12"}),
-        // Issue 14 item 8: a thin region far longer than the rest; an origin far away.
+        // A thin region far longer than the rest; an origin far away.
         naming("lattice --region box:1e11,0.001,0.001 --keep centres --type sc", {"--region"}),
         // A random array: hard spheres below their freezing point, a cell 2 sigma wide.
         exact("random-array -n 100 --solid-fraction 0.45 --gap 0.05 --out ra",
@@ -952,7 +952,7 @@ INSTANTIATE_TEST_SUITE_P(
               "packbed: particles: 'a\\x1bb.csv' is not allowed (a control character in the "
               "path); " +
                   a_path),
-        // summary.json beside the file: a directory (issue 14 item 12), a FIFO; none.
+        // summary.json beside the file: a directory, a FIFO; none.
         exact("analyze sumdir/bed.csv",
               "packbed analyze: sumdir/summary.json: a directory; " + regular),
         exact("analyze sumfifo/bed.csv",
@@ -960,11 +960,11 @@ INSTANTIATE_TEST_SUITE_P(
         exact("analyze one.csv",
               "packbed analyze: --container (or --container-radius) is needed: no summary.json "
               "with a container next to one.csv"),
-        // Issue 14 item 3: one sphere far above the rest (the bin limits are being reworded).
+        // One sphere far above the rest (the bin limits named, not pinned word for word).
         naming("analyze far.csv -R 1.5", {"--slab-height"}),
         naming("analyze far.csv -R 1.5 --out new", {"--slab-height"}),
         naming("analyze far15.csv -R 1.5", {"--slab-height"}),
-        // Issue 14 item 4: numbers the validators accepted.
+        // Numbers the validators accepted.
         exact("analyze bed.csv -R 1e300",
               "packbed: --container-radius: 1e300 is not allowed; allowed: a number in (0, "
               "1e+15]"),
@@ -1124,7 +1124,7 @@ INSTANTIATE_TEST_SUITE_P(
                   a_path),
         exact("export sumdir/bed.csv --format stl",
               "packbed export: sumdir/summary.json: a directory; " + regular),
-        // Issue 14 item 13: --out is the input, by name, by link, by hard link.
+        // --out is the input, by name, by link, by hard link.
         exact("export two.csv --out two.csv",
               "packbed export: the particles file two.csv: the output two.csv would overwrite "
               "it; allowed: an output that is not an input"),
@@ -1141,7 +1141,7 @@ INSTANTIATE_TEST_SUITE_P(
         exact("export two.csv --format stl --out two.csv",
               "packbed export: the particles file two.csv: the output two.csv would overwrite "
               "it; allowed: an output that is not an input"),
-        // Issue 14 item 12: --out a directory; other files where a file is expected.
+        // --out a directory; other files where a file is expected.
         exact("export two.csv --out dir", "packbed export: --out dir: a directory has that "
                                           "name; allowed: a regular file name"),
         exact("export two.csv --out full", "packbed export: --out full: a directory has that "
@@ -1245,7 +1245,7 @@ INSTANTIATE_TEST_SUITE_P(
         exact("export two.csv --format liggghts-data -R 0.5 --out x.data",
               "packbed export: two.csv:3: the sphere centre (0.99, 0, 1) is outside the container "
               "(radius 0.5, floor z = 0); allowed: centres inside it"),
-        // A box (issue 17): (0, 0, 1) lies on its faces x = 0 and y = 0.
+        // A box: (0, 0, 1) lies on its faces x = 0 and y = 0.
         exact("export two.csv --format stl --container box:2,2 --out x.stl",
               "packbed export: two.csv:2: the sphere centre (0, 0, 1) is outside the container "
               "(box:2,2, floor z = 0); allowed: centres inside it"),
@@ -1356,7 +1356,7 @@ INSTANTIATE_TEST_SUITE_P(
               "(centres 0.99 apart, shrunk radii 0.4975 and 0.4975); allowed: F above the "
               "bed's largest overlap in Dp")));
 
-// Hydraulics' options and messages are being reworded: the option and the value are pinned.
+// Hydraulics' options: the option and the value are pinned.
 INSTANTIATE_TEST_SUITE_P(
     Hydraulics, CliBadInput,
     ::testing::Values(
@@ -1367,11 +1367,11 @@ INSTANTIATE_TEST_SUITE_P(
         naming("hydraulics --porosity x", {"--porosity", "x"}),
         naming(std::vector<std::string>{"hydraulics", "--porosity", ""}, {"--porosity", "''"}),
         naming("hydraulics --porosity 1e-300", {"porosity", "1e-300"}),
-        // Issue 14 item 11: NaN and inf printed.
+        // Values that would print NaN and inf.
         naming("hydraulics --porosity 0.4 --diameter 1e-300", {"--diameter", "1e-300"}),
         naming("hydraulics --porosity 0.4 --diameter 1e-300 -u 0.1", {"--diameter", "1e-300"}),
         naming("hydraulics --porosity 0.4 --diameter 1e-300 --json", {"--diameter", "1e-300"}),
-        // Issue 14 item 12: an overflow naming no option.
+        // An overflow, which must name its option.
         naming("hydraulics --porosity 0.4 --viscosity 1e-300", {"--viscosity", "1e-300"}),
         naming("hydraulics --porosity 0.4 --viscosity 0", {"--viscosity", "0"}),
         naming("hydraulics --porosity 0.4 --diameter inf", {"--diameter", "inf"}),
@@ -1430,10 +1430,11 @@ INSTANTIATE_TEST_SUITE_P(
               "packbed: The following argument was not expected: extra; run 'packbed "
               "correlations --help' for the options")));
 
-// Issue 14 item 1, with characters that are allowed in a path: quotes, $(...), backquotes and
-// semicolons reach no shell and no gnuplot command (the run succeeds, nothing else appears).
-// Issue 39: deep nesting in every reader; an output that is, holds or replaces an input, on
-// every subcommand that reads one (the bed, its summary.json, --config, --sizes, a
+// Injection through gnuplot, with characters that are allowed in a path: quotes, $(...),
+// backquotes and semicolons reach no shell and no gnuplot command (the run succeeds, nothing
+// else appears).
+// The NothingLost cases: deep nesting in every reader; an output that is, holds or replaces an
+// input, on every subcommand that reads one (the bed, its summary.json, --config, --sizes, a
 // checkpoint, an OpenFOAM case, a LAMMPS job), its sidecars included; names too long for the
 // file system; bad input that was answered as an internal error (exit 1).
 const std::string too_deep_toml =

@@ -1044,7 +1044,7 @@ TEST(Cli, VersionAndHelp) {
 
 // Bad input (exit 2, one line, nothing left behind): tests/test_bad_input.cpp.
 
-// Issue 16: a binary bed from the command line. discrete:1:0.5,2:0.5 by volume with 200
+// A binary bed from the command line. discrete:1:0.5,2:0.5 by volume with 200
 // spheres: number fractions 0.5/1 : 0.5/8, so 200 x 8/9 = 177.8 -> 178 of diameter 1 and 22 of
 // diameter 2 (largest remainder), d32 = (178 + 22 x 8) / (178 + 22 x 4) = 354 / 266, and
 // --container cylinder:6 gives a = 6 / d32.
@@ -1125,7 +1125,7 @@ TEST(Cli, LatticeWritesTheBallsAndTheirNumbers) {
     const std::string csv = slurp(d / "particles.csv");
     EXPECT_EQ(std::count(csv.begin(), csv.end(), '\n'), 513); // header + one row per ball
     EXPECT_TRUE(fs::exists(d / "particles.vtu"));
-    // A lattice in a box is a bed in a box (issues 15, 17): its container is recorded, it is
+    // A lattice in a box is a bed in a box: its container is recorded, it is
     // analysed against the distance from the nearest face, and `analyze` finds the box again.
     EXPECT_EQ(s["container"]["shape"], "box");
     EXPECT_EQ(s["container"]["size"], nlohmann::json::parse("[10.0, 10.0]"));
@@ -1161,7 +1161,7 @@ TEST(Cli, LatticeWritesTheBallsAndTheirNumbers) {
     EXPECT_TRUE(fs::exists(c / "radial_void_fraction.csv"));
 }
 
-// Issue 15: the diameter a bed records is used (read as metres) unless --diameter is given, and
+// The diameter a bed records is used (read as metres) unless --diameter is given, and
 // a cylinder's tube gives the aspect ratio of the wall-corrected pressure drop.
 TEST(Cli, HydraulicsTakesTheBedsDiameterAndTube) {
     const fs::path box = scratch("box2mm");
@@ -1695,7 +1695,7 @@ TEST(Cli, UnwritableOutputIsRefusedBeforeTheRun) {
     EXPECT_EQ(o.out, ""); // refused before the run: no report
 }
 
-// Issue 17: a bed in a box is exported with its box, never without it.
+// A bed in a box is exported with its box, never without it.
 TEST(Cli, ExportOfABoxLatticeKeepsItsBox) {
     const fs::path d = scratch("box-lattice");
     ASSERT_EQ(

@@ -1,4 +1,4 @@
-// The analysis in every container (issue 17): the wall law, inside test and distances of the
+// The analysis in every container: the wall law, inside test and distances of the
 // annulus, the box and the periodic cell against hand-computed cases; exact volumes of spheres
 // cut by the rod, a box face and a periodic side; the annulus' two wall profiles; a periodic
 // lattice (void fraction and contacts by the minimum image); summary.json round trips; and the

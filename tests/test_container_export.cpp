@@ -1,5 +1,6 @@
-// Issue 17, export step: the annulus and the periodic cell in the lattice regions, the surfaces,
-// the OpenFOAM case, the DEM data files and settles, and the hydraulics' wall correction.
+// The containers' export step: the annulus and the periodic cell in the lattice regions, the
+// surfaces, the OpenFOAM case, the DEM data files and settles, and the hydraulics' wall
+// correction.
 #include <sys/wait.h>
 
 #include <algorithm>
@@ -634,7 +635,7 @@ TEST(ContainerExportCli, LatticeInAPeriodicCell) {
     EXPECT_FALSE(fs::exists(d / "cell.stl"));
     const Outcome foam =
         run_packbed("export " + csv + " --format openfoam -q --out " + (d / "case").string());
-    ASSERT_EQ(foam.status, 0) << foam.err; // issue 17: cyclic sides
+    ASSERT_EQ(foam.status, 0) << foam.err; // cyclic sides
     EXPECT_NE(slurp(d / "case" / "system" / "blockMeshDict").find("type cyclic;"),
               std::string::npos);
     const Outcome enlarge = run_packbed("export " + csv +

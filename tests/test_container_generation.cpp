@@ -1,4 +1,4 @@
-// Generation in every container (issue 17): both solvers end with every overlap below the
+// Generation in every container: both solvers end with every overlap below the
 // tolerance in a box, an annulus and a periodic cell, by brute force over all pairs (the
 // minimum image in the cell) and every wall; the same bits whatever the number of threads;
 // eq. (6) with the container's cross-section; what does not fit is refused.

@@ -1,4 +1,4 @@
-// Interrupted runs (issue 14 item 9): SIGINT, SIGTERM and SIGHUP at several points of every long
+// Interrupted runs: SIGINT, SIGTERM and SIGHUP at several points of every long
 // subcommand (generate, lattice, analyze, export), and SIGKILL during output.
 //
 // The points are found from outside, as a user would see them: every run stages its outputs in a
@@ -177,7 +177,7 @@ Command generate() {
             "out",
             true};
 }
-// The LAMMPS engine (issue 21): packbed waits for lmp, a child program in its own process
+// The LAMMPS engine: packbed waits for lmp, a child program in its own process
 // group, which the signal must stop with packbed.
 Command generate_lammps() {
     Command c{"generate",
@@ -588,7 +588,7 @@ std::vector<Case> cases() {
     return out;
 }
 
-// Two real packbed processes started together, writing the same output (issue 39): one wins
+// Two real packbed processes started together, writing the same output: one wins
 // whole, the other exits 2 with one line and leaves nothing; the output holds the winner's
 // files only. An existing empty --out directory (claimed while the files move in), a new one
 // (put in place by one rename that replaces nothing), one replaced with --force (it must still

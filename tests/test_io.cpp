@@ -167,7 +167,7 @@ TEST(LammpsData, NotesAreCommentLinesAndHeaderLinesFitTheReaders) {
     EXPECT_THROW(lammps_data(p, 2500, box, "t", {"two\nlines"}), InvalidInput);
 }
 
-// Issue 17: a bed in a box. The data file's box holds the box with the same margin rule (its
+// A bed in a box. The data file's box holds the box with the same margin rule (its
 // depth, half the narrower width, for Rt), and the settle inputs name its four faces.
 TEST(ContainerBox, HoldsABoxWithTheStatedMargin) {
     // Box [0, 4] x [0, 3], Dp = 1: m = max(0.5, 1.5 / 100) = 0.5.
@@ -219,7 +219,7 @@ TEST(SettleInput, ABoxIsABlockRegionForLammpsAndItsFacesForLiggghts) {
               std::string::npos)
         << lig;
     EXPECT_EQ(lig.find("cylinder"), std::string::npos);
-    // The cylinder's head, word for word as before issue 17.
+    // The cylinder's head, word for word as earlier versions wrote it.
     EXPECT_NE(lammps_settle_input(settle()).find(
                   "# Lengths as in bed.data with units si (metres); the container is the "
                   "cylinder of radius\n# 0.006 about the z axis from the floor z = 0 to z = "

@@ -111,7 +111,7 @@ TEST(FireLayers, BedReachesTheToleranceInsideTheContainer) {
     EXPECT_LT(top, 30.0);
     // The paper's a = 5 bed (docs/validation.md: 0.4326 over 10 seeds, 0.4271-0.4358), here
     // in layers of 10 Dp: the mean of three seeds (0.4247, 0.4310, 0.4373 under fire's
-    // schedule of issue 18; one seed alone strays by up to 0.008).
+    // own schedule; one seed alone strays by up to 0.008).
     double mean = 0.0;
     for (const std::uint64_t seed : {1u, 2u, 3u}) {
         SoftSphereParameters q = p;

@@ -182,7 +182,7 @@ INSTANTIATE_TEST_SUITE_P(
         BadFile{ParticleFormat::csv, "x,y,z,diameter\n1,2,3,0\n",
                 "bed:2: column 'diameter' value 0 is not allowed; a diameter must be from 1e-12 to "
                 "1e+12"},
-        // A diameter whose half is 0 (issue 14's fuzzing: 5e-324 halved is 0).
+        // A diameter whose half is 0 (found by fuzzing: 5e-324 halved is 0).
         BadFile{ParticleFormat::csv, "x,y,z,diameter\n1,2,3,5e-324\n",
                 "bed:2: column 'diameter' value 5e-324 is not allowed; a diameter must be from "
                 "1e-12 to 1e+12"},
@@ -336,7 +336,7 @@ TEST(ReadBedSummary, ContainerAndPorosityOrARefusalNamingTheKey) {
 }
 
 // ---------------------------------------------------------------------------------------------
-// Issue "Files that do not fit the next tool": what DEM users have.
+// Files that do not fit the next tool: what DEM users have.
 
 namespace {
 

@@ -1,4 +1,4 @@
-// Particle-size distributions (issue 16): parsing, exact discrete counts, sampled moments against
+// Particle-size distributions: parsing, exact discrete counts, sampled moments against
 // the formulas, the sieve-file inverse, determinism, statistics and every refusal word for word.
 #include <algorithm>
 #include <array>

@@ -237,7 +237,7 @@ TEST(FireSolver, EachSolverSettlesUnderItsOwnScheduleUnlessOneIsGiven) {
 }
 
 TEST(FireSolver, OwnScheduleEndsAtThePapersDensityInFewerStepsThanThePapersSchedule) {
-    // Issue 18: under the paper's schedule, FIRE spends most of its steps on a slow creep
+    // Under the paper's schedule, FIRE spends most of its steps on a slow creep
     // that the paper's mass-centre rule waits for. The same bed (a = 5, Np = 562, seed 1) under
     // fire's schedule ends as dense as the paper's beds in under half the steps (9 037 against
     // 29 659 when this test was written).
@@ -317,7 +317,7 @@ TEST(SoftSphere, SimultaneousUpdateIsIndependentOfThreadCount) {
 TEST(SoftSphere, OptimisationsLeaveEveryBitOfTheResult) {
     // Fingerprints of runs made by the first implementation (spheres stored in generation
     // order, list checked for rebuild before each iteration). Storing the spheres in cell
-    // order and tracking moves inside the iteration must not change a bit (issue 5, item 1).
+    // order and tracking moves inside the iteration must not change a bit.
     SoftSphereParameters p;
     p.solver = Solver::paper; // this file tests the paper's schedule (the default is fire)
     p.container = Container::tube(3.0);
@@ -366,7 +366,7 @@ SizeChecks relative_overlaps(const SoftSphereResult& r) {
 }
 
 TEST(SoftSphere, BinaryBedEndsBelowTheToleranceOfEachPairsSmallerSphere) {
-    // Issue 16: 220 spheres of diameter 1 and 30 of 2 (equal volumes: 220 x 1 against 30 x 8 =
+    // 220 spheres of diameter 1 and 30 of 2 (equal volumes: 220 x 1 against 30 x 8 =
     // 240), in units of the Sauter mean d32 = (220 + 240) / (220 + 120) = 1.353; a = 7 d32.
     // Both solvers: every pair's overlap below 1e-4 of its smaller sphere's diameter, every
     // sphere inside and on or above the floor, the sizes as given.
@@ -454,7 +454,7 @@ std::size_t spheres_on_the_floor(const SoftSphereResult& r) {
 }
 
 TEST(FinalStage, AFloorLayerSqueezedFlatIsLiftedBothSolvers) {
-    // These beds used to end in a ConvergenceError (found by a review, 2026-11-24): gravity
+    // Without the lift these beds ended in a ConvergenceError: gravity
     // squeezed 12 spheres into the floor layer of an a = 4 tube, 3 inside and 9 against the
     // wall, all held at exactly z = r by the rigid floor, so their contacts push only sideways;
     // with gravity gone they stayed squeezed (overlaps 6.3e-3 Dp pair, 6.7e-3 wall). The
@@ -560,7 +560,7 @@ INSTANTIATE_TEST_SUITE_P(
         BadParameter{"skin = 2 is not allowed; allowed: 0 < skin <= 1",
                      [](SoftSphereParameters& p) { p.skin = 2; }}));
 
-// The run uses the threads it is given (issue 44): OpenMP's dynamic adjustment stays off, so
+// The run uses the threads it is given: OpenMP's dynamic adjustment stays off, so
 // a parallel region gets every thread asked for, even more than the cores (the adjustment,
 // which packbed turned on, gave at most the cores less the load average; a user's previous run
 // had raised it, so a run started right after another got one thread of two).

@@ -503,7 +503,7 @@ TEST(Surface, BridgesOnTwoTouchingSpheres) {
 }
 
 TEST(Surface, CapsAndBridgesBetweenUnequalSpheres) {
-    // Issue 16: radii 0.5 and 1 touching at x = 0 (centres at -0.5 and 1, z = 1.5); the mean
+    // Radii 0.5 and 1 touching at x = 0 (centres at -0.5 and 1, z = 1.5); the mean
     // diameter Dp = 1.5 sets the treatments' lengths.
     Packing p;
     p.add({-0.5, 0.0, 1.5}, 0.5);
@@ -670,7 +670,7 @@ TEST(Surface, TheSameBridgedUnionWhateverTheThreadsAndTheRun) {
     EXPECT_TRUE(closed_and_oriented({&one[0].mesh}));
 }
 
-// Issue 17: a bed in a box. The wall cuts are one per face closer than the gap (two in a
+// A bed in a box. The wall cuts are one per face closer than the gap (two in a
 // corner), the container's volume is LX LY H, and the solids are the box's faces.
 namespace {
 
@@ -810,7 +810,7 @@ TEST(SurfaceBox, ShrinkEnlargeAndBridgesAtTheFaces) {
 
 TEST(SurfaceBox, ContainerSolidsAreTheBoxClosedOutwardAndWatertight) {
     // The box [1, 2] x [-1, 0.5] from z = 0 to 3, triangles about 0.3 wide: 4, 5 and 10 cells
-    // along x, y, z (1.5 / 0.3 is 5 to the last bits). Issue 17: one named solid per face.
+    // along x, y, z (1.5 / 0.3 is 5 to the last bits). One named solid per face.
     const Box b(1.0, 2.0, -1.0, 0.5);
     const auto solids = b.solids(0.0, 3.0, 0.3);
     ASSERT_EQ(solids.size(), 6u);

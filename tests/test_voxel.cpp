@@ -1,4 +1,4 @@
-// Voxel images (issue 19): the closed form of a ball in an orthant, hand-computed voxel cases,
+// Voxel images: the closed form of a ball in an orthant, hand-computed voxel cases,
 // the partial-volume sum identity and the same bits for any number of threads.
 #include <cmath>
 #include <cstdint>

@@ -1,5 +1,5 @@
 // `packbed cfd-report`: a run OpenFOAM case's pressure gradient next to Ergun's and Eisfeld &
-// Schnitzlein's (issue 20).
+// Schnitzlein's.
 #include <filesystem>
 #include <memory>
 #include <string>

@@ -1,5 +1,5 @@
 #!/usr/bin/env python3
-"""packbed against LAMMPS and LIGGGHTS pour-and-settle of the same bed (issue 5).
+"""packbed against LAMMPS and LIGGGHTS pour-and-settle of the same bed.
 
 Places Np spheres at random, not touching, in a cylinder of aspect ratio a (random sequential
 addition, a solid fraction of 0.2, fixed seed), lets LAMMPS (Debian's `lmp`, GRANULAR

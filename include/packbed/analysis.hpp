@@ -108,7 +108,7 @@ PairRegion pair_region(const Packing& packing, const Container& container, const
 /// \return the volume (length^3), 0 <= V <= 4/3 pi radius^3.
 double ball_volume_in_pair_region(const Vec3& centre, double radius, const PairRegion& region);
 
-/// One size class of a bed of many sizes (issue 16): what segregation and the mixture's
+/// One size class of a bed of many sizes: what segregation and the mixture's
 /// structure are read from.
 struct SizeClassAnalysis {
     double low = 0.0;               ///< smallest diameter of the class (length)

@@ -1,5 +1,5 @@
-// What a measurement of a bed may hide, said to the person reading it (issue 15: `analyze` on
-// a half-poured bed reported e = 0.74 without a word).
+// What a measurement of a bed may hide, said to the person reading it (without these checks,
+// `analyze` on a half-poured bed reported e = 0.74 without a word).
 #pragma once
 
 #include <string>

@@ -1,4 +1,4 @@
-// The relaxation run by LAMMPS (issue 21): the generation stage of Salvat et al. (2005) made
+// The relaxation run by LAMMPS: the generation stage of Salvat et al. (2005) made
 // here, then the energy the fire solver minimises (fire.cpp) and its gravity schedule written
 // as a LAMMPS input, for Debian's LAMMPS (20220106) and newer, run with MPI on as many ranks as
 // a machine or a cluster has; the relaxed bed read back and checked here (docs/lammps.md).
@@ -77,8 +77,8 @@ constexpr double lammps_settle = 0.1;
 
 /// The band of eq. (7) LAMMPS settles to unless one is given: 1-2 % of Dp, the band with which
 /// lammps_settle was chosen and the engine checked against the fire solver (docs/lammps.md).
-/// The fire solver's own band has been 1.5-3 % since issue 18's second schedule, which goes with
-/// its mass-centre rule; LAMMPS's rule on the RMS force was not tuned for it.
+/// The fire solver's own band, 1.5-3 % (SoftSphereParameters::fire_schedule), goes with its
+/// mass-centre rule; LAMMPS's rule on the RMS force was not tuned for it.
 constexpr double lammps_overlap_low = 1e-2, lammps_overlap_high = 2e-2;
 
 /// LAMMPS's neighbour skin unless one is given, Dp: the 0.1 the engine was checked with. The fire

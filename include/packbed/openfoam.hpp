@@ -1,4 +1,4 @@
-// A ready OpenFOAM case for blockMesh + snappyHexMesh around a treated bed (issue 6): the
+// A ready OpenFOAM case for blockMesh + snappyHexMesh around a treated bed: the
 // background box sized to the container, refinement levels tied to the particle diameter, a
 // locationInMesh certainly in the fluid. Written for OpenFOAM v1912 (Debian 12's package) and
 // later; the dictionaries use no keyword that newer releases dropped.

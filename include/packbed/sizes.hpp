@@ -1,4 +1,4 @@
-// Particle-size distributions (issue 16): chosen by name (`--sizes SPEC`), drawn reproducibly
+// Particle-size distributions: chosen by name (`--sizes SPEC`), drawn reproducibly
 // so that the drawn sizes hold the asked fractions up to the rounding a finite number of
 // spheres forces, and the statistics of a set of diameters (fractions per class, d10, d50, d90,
 // Sauter mean). docs/sizes.md states every definition and its source.
@@ -23,7 +23,7 @@
 namespace packbed {
 
 /// The largest over the smallest diameter a distribution may have: what the solvers support
-/// (issue 16 asks for neighbour searches that stay O(Np) up to a size ratio of 10).
+/// (neighbour searches stay O(Np) up to a size ratio of 10).
 inline constexpr double max_size_ratio = 10.0;
 
 /// How far the fractions of `discrete:` may add up away from 1, and the first and last

@@ -68,8 +68,8 @@ struct SoftSphereParameters {
     /// Their allowed spread, percent of the mean; unset: the solver's (schedule()).
     std::optional<double> mc_tolerance;
     UpdateOrder update = UpdateOrder::simultaneous; ///< see UpdateOrder; docs/performance.md
-    /// see Solver. fire by default (issue 15): the same energy, stages and tolerances as the
-    /// paper's, under fire_schedule (issue 18), the paper's beds in 50-70x fewer iterations;
+    /// see Solver. fire by default: the same energy, stages and tolerances as the
+    /// paper's, under fire_schedule, the paper's beds in 50-70x fewer iterations;
     /// Solver::paper reproduces the article exactly.
     Solver solver = Solver::fire;
     /// Verlet-list skin, Dp; (0, 1]; unset: the solver's (list_skin()).
@@ -77,14 +77,14 @@ struct SoftSphereParameters {
     /// Fire solver: a bed whose L0 (eq. 6) exceeds twice this is relaxed in layers of about
     /// this height, bottom first (relax_with_fire); 0: in one piece. Dp; 0 or [10, 1e6].
     double layer_height = 30.0;
-    /// Coulomb's friction coefficient between spheres (issue 41; docs/generate.md, "Friction"):
+    /// Coulomb's friction coefficient between spheres (docs/generate.md, "Friction"):
     /// tangential springs capped by mu F_n at every contact, the spheres' rotations. 0: the
     /// paper's frictionless beds, bit for bit. The fire solver only; 0 to 100.
     double friction = 0.0;
     /// The same between a sphere and the container's walls and floor.
     double wall_friction = 0.0;
     std::uint64_t max_iterations = 200'000'000; ///< give up (ConvergenceError) beyond this
-    /// Spheres of many sizes (issue 16): each sphere's diameter in units of `diameter`, the
+    /// Spheres of many sizes: each sphere's diameter in units of `diameter`, the
     /// reference diameter Dp that a and every length marked Dp refer to (packbed generate
     /// --sizes makes it the Sauter mean d32), in generation order; `particles` of them, each
     /// in (0, 2a) and at most max_size_ratio times the smallest. Empty: every sphere Dp, the
@@ -106,7 +106,7 @@ struct SoftSphereParameters {
     };
     /// The paper's schedule (section 3.3): band 0.5-1 % of Dp, records within 1e-4 %.
     static constexpr Schedule paper_schedule{0.5e-2, 1e-2, 1e-4};
-    /// The fire solver's (issue 18): band 1.5-3 % of Dp, records within 5e-2 %. FIRE's inertia
+    /// The fire solver's schedule: band 1.5-3 % of Dp, records within 5e-2 %. FIRE's inertia
     /// keeps compacting the bed long after the paper's iteration would have stopped, so under
     /// the paper's schedule it spends 95-98 % of its steps on a creep that ends denser than
     /// the paper's beds (by 0.0017 at a = 10, 0.003 at a = 20). A heavier gravity (the wider

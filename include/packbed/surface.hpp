@@ -1,6 +1,6 @@
 // Surfaces of a bed for meshers (particle-resolved CFD): each sphere tessellated, the contacts
 // treated so that no two bodies touch, the container as its own solids, and the exact change of
-// void fraction each treatment makes. Issue 6; the treatments are those of the CFD literature
+// void fraction each treatment makes. The treatments are those of the CFD literature
 // (docs/surfaces.md).
 #pragma once
 

@@ -17,7 +17,7 @@
 // settles; then g halved, each value held until the mass centre settles, until both overlaps
 // are below the tolerance (the first cut goes straight to the g that should leave half the
 // tolerance, the overlaps of a settled bed being proportional to g). Its numbers are fire's
-// own unless given (SoftSphereParameters::fire_schedule, issue 18): a band of eq. (7) three times
+// own unless given (SoftSphereParameters::fire_schedule): a band of eq. (7) three times
 // the paper's and a mass-centre rule 500 times looser. FIRE's inertia keeps compacting a settled
 // bed in a slow creep that the paper's rule waits for (95-98 % of the steps, ending 0.002-0.003
 // denser than the paper's beds at a = 10-20); a heavier gravity compacts as far in fewer steps

@@ -176,7 +176,7 @@ struct SoftBed {
     /// radius of the whole bed the spheres belong to (the step lengths follow it).
     void assign(Packing spheres, double height, double smallest);
 
-    /// Spheres of many sizes (issue 16; docs/sizes.md, "Both solvers"): each sphere moves
+    /// Spheres of many sizes (docs/sizes.md, "Both solvers"): each sphere moves
     /// with its own step length U_i = U (r_min / r_i)^2, the step of the paper's eq. (4) for
     /// the smallest sphere and less for larger ones, whose contacts grow as their surface
     /// (r_i / r_min)^2: the sum of a sphere's contact steps stays within what keeps the
@@ -316,7 +316,7 @@ struct SoftBed {
         return move;
     }
 
-    /// Spheres pressed flat on the floor (issue found by a review, 2026-11-24): the rigid floor
+    /// Spheres pressed flat on the floor: the rigid floor
     /// holds the centres of the spheres resting on it at exactly z = r, so the contacts between
     /// them push only sideways. A floor layer that gravity squeezed tighter than the floor's
     /// area allows (12 spheres on the floor of an a = 4 tube: 12 circles need a container 4.03

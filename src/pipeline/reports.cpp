@@ -107,7 +107,7 @@ Report hydraulics_report(const HydraulicsRequest& o) {
     std::string diameter_from = o.diameter_given ? "given" : "the default";
     if (!o.bed.empty()) {
         // A bed's lengths are in the unit of its --diameter; hydraulics reads them as metres
-        // unless --diameter is given (issue 15: the default 1 mm was used silently).
+        // unless --diameter is given (rather than a silent default of 1 mm).
         const BedFacts bed = bed_facts(o.bed);
         e = bed.porosity;
         origin = bed.porosity_from;

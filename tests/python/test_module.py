@@ -1,4 +1,4 @@
-"""The Python module against the command line, geometry and its promises (issue 19).
+"""The Python module against the command line, geometry and its promises.
 
 Run by ctest (python_module): PYTHONPATH holds build/python, PACKBED the command line.
 """
@@ -964,9 +964,9 @@ def test_analyze_frames_gives_the_command_lines_series(tmp_path):
     ],
 )
 def test_bad_values_are_worded_as_the_command_line_words_them(keywords, options, tmp_path):
-    # issue 19: ValueError carries the command line's one-line message, word for word (the
-    # command line prefixes "packbed: "; a review found --solver, --update, --container and
-    # the other named choices worded differently, 2026-11-24)
+    # ValueError carries the command line's one-line message, word for word (the
+    # command line prefixes "packbed: "; --solver, --update, --container and the other
+    # named choices included)
     run = subprocess.run([PACKBED, "generate", *options, "--out", str(tmp_path / "out")],
                          capture_output=True, text=True)
     assert run.returncode == 2
@@ -975,7 +975,7 @@ def test_bad_values_are_worded_as_the_command_line_words_them(keywords, options,
     assert run.stderr == "packbed: " + str(raised.value) + "\n"
 
 
-# Issue 39: the module refuses what the command line refuses, with the same words (the
+# The module refuses what the command line refuses, with the same words (the
 # command line's line is "packbed: MESSAGE" for a value CLI11 checks, "packbed COMMAND: MESSAGE"
 # for one the library checks).
 @pytest.mark.parametrize(
