@@ -496,9 +496,11 @@ std::string data_export(const ExportRequest& o, ExportFormat format, const Packi
     const std::optional<double> wall_friction =
         o.wall_friction ? o.wall_friction
                         : (o.keep.empty() ? std::nullopt : wall_friction_beside(o.keep));
-    const bool of_bed = (friction && *friction > 0.0) || (wall_friction && *wall_friction > 0.0);
-    const bool own_walls =
-        of_bed && container && wall_friction && *wall_friction != friction.value_or(0.0);
+    // As plain numbers (0 where none is known): GCC 12 takes an optional read further down
+    // for one that may be uninitialised.
+    const double mu = friction.value_or(0.0), wall_mu = wall_friction.value_or(0.0);
+    const bool of_bed = mu > 0.0 || wall_mu > 0.0;
+    const bool own_walls = of_bed && container && wall_friction && wall_mu != mu;
     out->stage(name, lammps_data(wrapped, density, box, comment, notes, {},
                                  clumps ? clumps->spheres : 0, own_walls && !lammps ? 2 : 1));
     if (o.fluid_velocity >= 0.0)
@@ -523,10 +525,10 @@ std::string data_export(const ExportRequest& o, ExportFormat format, const Packi
         settle.clump_spheres = clumps ? clumps->spheres : 0;
         settle.clump_reach = clumps ? clumps->reach : 0.0;
         if (of_bed) {
-            settle.material.friction = friction.value_or(0.0);
+            settle.material.friction = mu;
             settle.material.friction_of_bed = true;
             if (own_walls)
-                settle.material.wall_friction = *wall_friction;
+                settle.material.wall_friction = wall_mu;
         }
         // The container's side (every solid but the floor and the top: an annulus' tube and
         // rod in one) and floor as LIGGGHTS walls, triangles about 1 Dp wide.
