@@ -2,10 +2,10 @@
 # Time whole `packbed generate` runs and print a Markdown table:
 # seed, update order, threads, iterations, void fraction, largest overlaps, seconds.
 # Usage: bench/time_runs.sh [PACKBED] [ASPECT_RATIO] [PARTICLES] [SEEDS] [CONFIGS]
-#   CONFIGS: space-separated "update:threads" pairs, e.g. "in-place:1 simultaneous:2",
-#            "fire:THREADS" for --solver fire, or "default" for the plain command, with no
-#            --update and no --threads
-# Example (the paper's case, seeds 1-5, both update orders):
+#   CONFIGS: space-separated "update:threads" pairs for the paper's solver (--solver paper),
+#            e.g. "in-place:1 simultaneous:2", "fire:THREADS" for --solver fire, or "default"
+#            for the plain command (the default solver, fire), with no --update and no --threads
+# Example (the paper's case with the paper's solver, seeds 1-5, both update orders):
 #   bench/time_runs.sh build/packbed 5 500 "1 2 3 4 5" "in-place:1 simultaneous:1 simultaneous:2"
 set -euo pipefail
 exe=${1:-build/packbed}
@@ -23,7 +23,7 @@ for seed in $seeds; do
     if [[ $config == fire:* ]]; then
       extra=(--solver fire --threads "${config##*:}")
     elif [[ $config != default ]]; then
-      extra=(--update "${config%%:*}" --threads "${config##*:}")
+      extra=(--solver paper --update "${config%%:*}" --threads "${config##*:}")
     fi
     "$exe" generate --aspect-ratio "$a" --particles "$n" --seed "$seed" "${extra[@]}" \
       --quiet --force --out "$out/run"
