@@ -11,7 +11,9 @@ line. Asserts
   and whether the CFD lies in it; a bed with no wall gets those without a wall term;
 - the flux imbalance, the convergence and iteration count, each field's first initial residual of
   the last iteration, the mesh's void fraction (checkMesh's volume over the container's);
-- a restarted run's latest table is read;
+- a restarted run's latest table is read, and the newest table with a row where a run was
+  restarted from the same write again (OpenFOAM's surfaceFieldValue_START.dat beside the first)
+  or stopped before its first write (an empty table);
 - pressure.csv holds the planes; the plot is drawn when gnuplot is there;
 - bad cases exit 2 with one line naming CASE, and write nothing.
 
@@ -46,7 +48,11 @@ def table(path, region, columns, rows):
 
 
 def make_case(work, name, scatter=None, restarted=False):
-    """The case NAME under WORK; pressures on the line GRADIENT, plus `scatter` (kinematic)."""
+    """The case NAME under WORK; pressures on the line GRADIENT, plus `scatter` (kinematic).
+    `restarted`: the run went on from 20 (True); and "again": from 20 once more, its table
+    surfaceFieldValue_20.dat (the first restart's stopped before its first write, empty);
+    "stopped": the second restart stopped before its first write too (both tables of 20
+    empty)."""
     case = os.path.join(work, name)
     os.makedirs(case)
     json.dump({"diameter": D,
@@ -62,10 +68,19 @@ def make_case(work, name, scatter=None, restarted=False):
         rows = [(10, 1e-6, 7.0), (20, 1e-6, p)]
         table(os.path.join(case, "postProcessing", f"p{k}", "0", "surfaceFieldValue.dat"),
               f"sampledSurface p{k}", ["Area", "areaAverage(p)"], rows)
-        if restarted:  # the run went on from 20: its own table, the one to read
-            table(os.path.join(case, "postProcessing", f"p{k}", "20", "surfaceFieldValue.dat"),
-                  f"sampledSurface p{k}", ["Area", "areaAverage(p)"],
-                  [(30, 1e-6, p + 1.0 - z)])
+        later = os.path.join(case, "postProcessing", f"p{k}", "20")
+        if restarted is True:  # the run went on from 20: its own table, the one to read
+            table(os.path.join(later, "surfaceFieldValue.dat"), f"sampledSurface p{k}",
+                  ["Area", "areaAverage(p)"], [(30, 1e-6, p + 1.0 - z)])
+        elif restarted:  # from 20 twice, the first stopped before it wrote (empty)
+            os.makedirs(later)
+            open(os.path.join(later, "surfaceFieldValue.dat"), "w").close()
+            again = os.path.join(later, "surfaceFieldValue_20.dat")
+            if restarted == "again":
+                table(again, f"sampledSurface p{k}", ["Area", "areaAverage(p)"],
+                      [(30, 1e-6, p + 2.0 - 2.0 * z)])
+            else:
+                open(again, "w").close()
     table(os.path.join(case, "postProcessing", "inletFlux", "0", "surfaceFieldValue.dat"),
           "patch inlet", ["sum(phi)"], [(20, -2.0e-9)])
     table(os.path.join(case, "postProcessing", "outletFlux", "0", "surfaceFieldValue.dat"),
@@ -324,6 +339,12 @@ def main(exe):
     # A restarted run: the table of the latest start time (20) is the one read.
     g = report(exe, make_case(work, "restarted", restarted=True))["pressure_gradient_Pa_m"]
     assert math.isclose(g["cfd"], GRADIENT + RHO, rel_tol=1e-9), g
+    # Restarted from 20 again (OpenFOAM's surfaceFieldValue_20.dat beside an empty table):
+    # that table's rows; both stopped before their first write: the rows of the run from 0.
+    g = report(exe, make_case(work, "again", restarted="again"))["pressure_gradient_Pa_m"]
+    assert math.isclose(g["cfd"], GRADIENT + 2.0 * RHO, rel_tol=1e-9), g
+    g = report(exe, make_case(work, "stopped", restarted="stopped"))["pressure_gradient_Pa_m"]
+    assert math.isclose(g["cfd"], GRADIENT, rel_tol=1e-9), g
 
     # Bad cases: exit 2, one line naming CASE, nothing written.
     bad = make_case(work, "bad")
@@ -331,6 +352,8 @@ def main(exe):
     nan = make_case(work, "nan")
     with open(os.path.join(nan, "postProcessing", "p0", "0", "surfaceFieldValue.dat"), "a") as f:
         f.write("30\t1e-06\tnan\n")
+    empty = make_case(work, "empty")
+    open(os.path.join(empty, "postProcessing", "p5", "0", "surfaceFieldValue.dat"), "w").close()
     old = make_case(work, "old")
     j = json.load(open(os.path.join(old, "packbed.json")))
     del j["openfoam"]["flow"]["band_void_fraction"]
@@ -357,6 +380,7 @@ def main(exe):
     with open(os.path.join(deep, "packbed.json"), "w") as f:
         f.write('{"diameter": ' + "[" * 100000 + "]" * 100000 + "}")
     for case, words in ((bad, "postProcessing/p3"), (nan, "not a finite number"),
+                        (empty, "p5/0/surfaceFieldValue.dat has no rows"),
                         (old, "band_void_fraction"), (planeless, "pressure_planes"),
                         (os.path.join(work, "none"), "not a directory"), (work, "packbed.json"),
                         (still, "the inlet's flux sum(phi) is 0"),

@@ -39,28 +39,36 @@ std::string shown(const fs::path& path) {
     return printable(path.native());
 }
 
-/// The last row of a function object's table, postProcessing/NAME/TIME/surfaceFieldValue.dat
-/// (the latest start time when the run was restarted), as column name -> value; the column
-/// names are those of its last header line ("# Time <tab> area <tab> areaAverage(p)").
-std::map<std::string, double> last_row(const fs::path& case_dir, const std::string& name) {
-    const fs::path folder = case_dir / "postProcessing" / name;
+/// A function object's tables, the newest first. OpenFOAM writes
+/// postProcessing/NAME/START/surfaceFieldValue.dat, START the time the run started from; a run
+/// restarted from a START whose folder has that table already writes surfaceFieldValue_START.dat
+/// beside it (a third run from the same START writes over that one). So: the latest START
+/// first, and in it the suffixed table before the plain one.
+std::vector<fs::path> tables_newest_first(const fs::path& folder) {
+    std::vector<std::pair<double, fs::path>> starts;
     std::error_code error;
-    std::optional<double> latest;
-    fs::path table;
     if (fs::is_directory(folder, error))
-        for (const auto& entry : fs::directory_iterator(folder, error)) {
-            const auto t = parse_finite(entry.path().filename().string());
-            if (t && (!latest || *t > *latest) &&
-                fs::is_regular_file(entry.path() / "surfaceFieldValue.dat", error)) {
-                latest = t;
-                table = entry.path() / "surfaceFieldValue.dat";
-            }
-        }
-    if (table.empty())
-        throw InvalidInput(fmt::format("CASE {}: no postProcessing/{}/TIME/surfaceFieldValue.dat; "
-                                       "allowed: a case exported by packbed export --format "
-                                       "openfoam and run by its Allrun",
-                                       shown(case_dir), name));
+        for (const auto& entry : fs::directory_iterator(folder, error))
+            if (const auto t = parse_finite(entry.path().filename().string()))
+                starts.emplace_back(*t, entry.path());
+    std::sort(starts.begin(), starts.end(),
+              [](const auto& a, const auto& b) { return a.first > b.first; });
+    std::vector<fs::path> tables;
+    for (const auto& [t, start] : starts) {
+        const std::string name = start.filename().string();
+        for (const auto& file :
+             {"surfaceFieldValue_" + name + ".dat", std::string("surfaceFieldValue.dat")})
+            if (fs::is_regular_file(start / file, error))
+                tables.push_back(start / file);
+    }
+    return tables;
+}
+
+/// The last row of `table` under its last header line ("# Time <tab> area <tab>
+/// areaAverage(p)"), as column name -> value; none where it has no row (a run stopped before
+/// its first write).
+std::optional<std::map<std::string, double>> table_last_row(const fs::path& case_dir,
+                                                            const fs::path& table) {
     std::ifstream in = open_regular_file("CASE", table);
     std::vector<std::string> header, row;
     std::string line;
@@ -81,9 +89,11 @@ std::map<std::string, double> last_row(const fs::path& case_dir, const std::stri
             row = std::move(w);
         }
     }
+    if (row.empty())
+        return std::nullopt;
     if (header.empty() || row.size() != header.size())
-        throw InvalidInput(fmt::format("CASE {}: {} has no rows under a '# Time ...' header; "
-                                       "allowed: a case whose solver ran at least one iteration",
+        throw InvalidInput(fmt::format("CASE {}: {}: its last row does not match a '# Time ...' "
+                                       "header; allowed: a table as OpenFOAM writes it",
                                        shown(case_dir), shown(table)));
     std::map<std::string, double> out;
     for (std::size_t k = 0; k < row.size(); ++k) {
@@ -95,6 +105,25 @@ std::map<std::string, double> last_row(const fs::path& case_dir, const std::stri
         out[header[k]] = *v;
     }
     return out;
+}
+
+/// The last row of a function object's newest table that has one
+/// (postProcessing/NAME/START/surfaceFieldValue*.dat, tables_newest_first): a run restarted
+/// and stopped again before its first write leaves an empty table, and the rows before it
+/// are the latest there are.
+std::map<std::string, double> last_row(const fs::path& case_dir, const std::string& name) {
+    const auto tables = tables_newest_first(case_dir / "postProcessing" / name);
+    if (tables.empty())
+        throw InvalidInput(fmt::format("CASE {}: no postProcessing/{}/TIME/surfaceFieldValue.dat; "
+                                       "allowed: a case exported by packbed export --format "
+                                       "openfoam and run by its Allrun",
+                                       shown(case_dir), name));
+    for (const auto& table : tables)
+        if (auto row = table_last_row(case_dir, table))
+            return *std::move(row);
+    throw InvalidInput(fmt::format("CASE {}: {} has no rows under a '# Time ...' header; "
+                                   "allowed: a case whose solver ran at least one iteration",
+                                   shown(case_dir), shown(tables.front())));
 }
 
 /// A column of `row` (last_row) that must be there.
