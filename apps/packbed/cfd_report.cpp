@@ -1,5 +1,5 @@
-// `packbed cfd-report`: a run OpenFOAM case's pressure gradient next to Ergun's and Eisfeld &
-// Schnitzlein's.
+// `packbed cfd-report`: a run OpenFOAM case's pressure gradient next to the band of published
+// correlations.
 #include <filesystem>
 #include <memory>
 #include <string>
@@ -197,8 +197,10 @@ Command register_cfd_report(CLI::App& parent) {
     auto& o = *options;
     CLI::App* app = parent.add_subcommand(
         "cfd-report", "The pressure gradient of a case from export --format openfoam, run by "
-                      "its Allrun, next to Ergun's and Eisfeld & Schnitzlein's at the bed's own "
-                      "void fraction; a table, pressure.csv and a plot (docs/surfaces.md); a "
+                      "its Allrun, next to the band of published correlations (Ergun, Carman, "
+                      "KTA, Erdim et al., and with a wall Harrison et al. and Eisfeld & "
+                      "Schnitzlein) at the bed's own void fraction; a table, pressure.csv and a "
+                      "plot (docs/surfaces.md); a "
                       "periodic cell's drag beside Zick & Homsy's and van der Hoef's; of several "
                       "cases, the mesh series: apparent order, extrapolated value and grid "
                       "convergence index");
