@@ -56,7 +56,9 @@ def main():
         f.write(",".join(["a", "cfd", "cfd_gci", "cfd_finest"] + [f'"{k}"' for k in labels]) +
                 "\n")
         for r in sorted(rows, key=lambda r: r[0]):
-            f.write(",".join(f"{v:.6g}" for v in r) + "\n")
+            # a value that does not apply (no bar, no open point) is an empty field: missing
+            # to gnuplot, never a NaN in a file
+            f.write(",".join("" if math.isnan(v) else f"{v:.6g}" for v in r) + "\n")
     if shutil.which("gnuplot") is None:
         print(f"written {path} (no gnuplot: no plot)")
         return
