@@ -15,7 +15,8 @@ line. Asserts
   restarted from the same write again (OpenFOAM's surfaceFieldValue_START.dat beside the first)
   or stopped before its first write (an empty table);
 - pressure.csv holds the planes; the plot is drawn when gnuplot is there;
-- bad cases exit 2 with one line naming CASE, and write nothing.
+- bad cases exit 2 with one line naming CASE, and write nothing (planes whose last rows are of
+  different iterations among them).
 
 Usage: check_cfd_report.py PACKBED"""
 import csv
@@ -352,6 +353,9 @@ def main(exe):
     nan = make_case(work, "nan")
     with open(os.path.join(nan, "postProcessing", "p0", "0", "surfaceFieldValue.dat"), "a") as f:
         f.write("30\t1e-06\tnan\n")
+    mixed = make_case(work, "mixed")  # p3's table goes on to iteration 30, the others end at 20
+    table(os.path.join(mixed, "postProcessing", "p3", "20", "surfaceFieldValue.dat"), "p3",
+          ["Area", "areaAverage(p)"], [(30, 1e-6, 1.0)])
     empty = make_case(work, "empty")
     open(os.path.join(empty, "postProcessing", "p5", "0", "surfaceFieldValue.dat"), "w").close()
     old = make_case(work, "old")
@@ -381,6 +385,7 @@ def main(exe):
         f.write('{"diameter": ' + "[" * 100000 + "]" * 100000 + "}")
     for case, words in ((bad, "postProcessing/p3"), (nan, "not a finite number"),
                         (empty, "p5/0/surfaceFieldValue.dat has no rows"),
+                        (mixed, "postProcessing/p3 is of iteration 30, p0's of 20"),
                         (old, "band_void_fraction"), (planeless, "pressure_planes"),
                         (os.path.join(work, "none"), "not a directory"), (work, "packbed.json"),
                         (still, "the inlet's flux sum(phi) is 0"),

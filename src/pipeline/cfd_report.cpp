@@ -51,8 +51,9 @@ std::vector<fs::path> tables_newest_first(const fs::path& folder) {
         for (const auto& entry : fs::directory_iterator(folder, error))
             if (const auto t = parse_finite(entry.path().filename().string()))
                 starts.emplace_back(*t, entry.path());
-    std::sort(starts.begin(), starts.end(),
-              [](const auto& a, const auto& b) { return a.first > b.first; });
+    std::sort(starts.begin(), starts.end(), [](const auto& a, const auto& b) {
+        return a.first != b.first ? a.first > b.first : a.second > b.second;
+    });
     std::vector<fs::path> tables;
     for (const auto& [t, start] : starts) {
         const std::string name = start.filename().string();
@@ -460,9 +461,17 @@ Report cfd_report(const std::filesystem::path& case_dir) {
     // The planes: the area-averaged kinematic pressure (m^2/s^2) times rho, in Pa.
     std::vector<double> z, p;
     nlohmann::ordered_json planes = nlohmann::ordered_json::array();
+    std::optional<double> plane_time; // every plane's row must be of one iteration
     for (std::size_t k = 0; k < planes_json.size(); ++k) {
         const std::string name = fmt::format("p{}", k);
         const auto row = last_row(case_dir, name);
+        const double time = column(row, "Time", case_dir, name);
+        if (plane_time && time != *plane_time)
+            throw InvalidInput(fmt::format("CASE {}: the last row of postProcessing/{} is of "
+                                           "iteration {}, p0's of {}; allowed: planes' tables "
+                                           "that end at one iteration, as a run writes them",
+                                           shown(case_dir), name, time, *plane_time));
+        plane_time = time;
         const double zk = recorded(json, flow / "pressure_planes" / k, case_dir);
         const double pk = rho * column(row, "areaAverage(p)", case_dir, name);
         z.push_back(zk);
