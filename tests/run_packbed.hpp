@@ -42,8 +42,8 @@ inline std::string slurp(const std::filesystem::path& path) {
 }
 
 /// A resource limit for a spawned run (setrlimit): RLIMIT_AS for a machine with little memory,
-/// RLIMIT_FSIZE for a full disk (SIGXFSZ is then ignored, so a write past it fails with EFBIG
-/// as on a full disk instead of killing the run).
+/// RLIMIT_FSIZE for a full disk (SIGXFSZ left at its default, as a shell's ulimit -f leaves it:
+/// packbed ignores it, so a write past the limit fails with EFBIG as on a full disk).
 struct Limit {
     int resource = -1; ///< -1: none
     rlim_t bytes = 0;
@@ -72,14 +72,12 @@ inline pid_t spawn(const std::vector<std::string>& args, const std::filesystem::
         sigset_t none;
         sigemptyset(&none);
         ::sigprocmask(SIG_SETMASK, &none, nullptr);
-        for (const int s : {SIGINT, SIGTERM, SIGHUP, SIGPIPE})
+        for (const int s : {SIGINT, SIGTERM, SIGHUP, SIGPIPE, SIGXFSZ})
             ::signal(s, SIG_DFL);
         if (limit.resource >= 0) {
             const rlimit value{limit.bytes, limit.bytes};
             if (::setrlimit(limit.resource, &value) != 0)
                 ::_exit(127);
-            if (limit.resource == RLIMIT_FSIZE)
-                ::signal(SIGXFSZ, SIG_IGN);
         }
         const int in = ::open("/dev/null", O_RDONLY);
         const int o = ::open(out.c_str(), O_WRONLY | O_CREAT | O_TRUNC, 0644);

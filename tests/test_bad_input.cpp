@@ -576,8 +576,19 @@ INSTANTIATE_TEST_SUITE_P(
         exact("generate --solver newton",
               "packbed: --solver: 'newton' is not allowed; allowed: paper, fire"),
         exact("generate --warp-speed 9",
-              "packbed: The following arguments were not expected: 9 --warp-speed; run "
-              "'packbed generate --help' for the options"),
+              "packbed generate: '--warp-speed 9' is not expected; allowed: the options of "
+              "'packbed generate --help'"),
+        // CLI11's own messages for a repeated option, one without its value and a required
+        // one left out, in the one-line form.
+        exact("generate -a 3 -a 4",
+              "packbed generate: --aspect-ratio is given 2 times; allowed: once"),
+        exact("generate -n", "packbed generate: --particles has no value; allowed: a whole "
+                             "number from 1 to 100000000"),
+        exact("voxelize bed.csv --container cylinder:2",
+              "packbed voxelize: --voxel-size is required and not given; allowed: --voxel-size "
+              "with its value ('packbed voxelize --help')"),
+        exact("cfd-report", "packbed cfd-report: CASE is required and not given; allowed: "
+                            "packbed cfd-report CASE ... ('packbed cfd-report --help')"),
         // inf, nan.
         exact("generate --aspect-ratio nan",
               "packbed: --aspect-ratio: 'nan' is not allowed; allowed: a number in [1, 10000]"),
@@ -1010,6 +1021,15 @@ INSTANTIATE_TEST_SUITE_P(
               "40 Dp); allowed: less than half its height"),
         exact("analyze bed.csv -R 1 --threads 0",
               "packbed: --threads: 0 is not allowed; allowed: a whole number from 1 to 1024"),
+        exact("generate -n 010",
+              "packbed: --particles: '010' is not allowed; allowed: a whole number from 1 to "
+              "100000000, written without leading zeros"),
+        exact("generate -s 010",
+              "packbed: --seed: '010' is not allowed; allowed: a whole number from 0 to "
+              "18446744073709551615, written without leading zeros"),
+        exact("export bed.csv --format openfoam --ranks 02",
+              "packbed: --ranks: '02' is not allowed; allowed: a whole number from 1 to 1024, "
+              "written without leading zeros"),
         exact("analyze bed.csv -R 1 --format png",
               "packbed: --format: 'png' is not allowed; allowed: auto, csv, xyz, lammps-dump, "
               "lammps-data"),
@@ -1018,6 +1038,11 @@ INSTANTIATE_TEST_SUITE_P(
               "packbed: --frame: '0' is not allowed; " + frame_allowed),
         exact("analyze bed.csv -R 1 --frame x",
               "packbed: --frame: 'x' is not allowed; " + frame_allowed),
+        // A leading 0 would be read as octal by the parser (010 as 8): refused.
+        exact("analyze bed.csv -R 1 --frame 010",
+              "packbed: --frame: '010' is not allowed; " + frame_allowed),
+        exact("analyze bed.csv -R 1 --frame=-01",
+              "packbed: --frame: '-01' is not allowed; " + frame_allowed),
         exact("analyze bed.csv -R 1 --frame 1.5",
               "packbed: --frame: '1.5' is not allowed; " + frame_allowed),
         exact("analyze bed.csv -R 1 --frame 99999999999999999999",
@@ -1427,8 +1452,8 @@ INSTANTIATE_TEST_SUITE_P(
               "packbed: --profile-to: 'nan' is not allowed; allowed: a number in [0, 1000]"),
         exact("correlations --json=x", "packbed: Could not convert: --json = x"),
         exact("correlations extra",
-              "packbed: The following argument was not expected: extra; run 'packbed "
-              "correlations --help' for the options")));
+              "packbed correlations: 'extra' is not expected; allowed: the options of 'packbed "
+              "correlations --help'")));
 
 // Injection through gnuplot, with characters that are allowed in a path: quotes, $(...),
 // backquotes and semicolons reach no shell and no gnuplot command (the run succeeds, nothing
@@ -1491,6 +1516,18 @@ INSTANTIATE_TEST_SUITE_P(
               "packbed export: pelraw/particles.csv: its particles have orientations (qw, qx, "
               "qy, qz: a bed of pellets) but no shape is given; allowed: --shape SPEC naming its "
               "pellets (a bed from generate --shape has it in the summary.json beside it)"),
+        // analyze and voxelize take a pellet's shape only from the summary.json beside it:
+        // without one its pellets would be measured as balls of d_v.
+        exact("analyze pelraw/particles.csv -R 3 --outside-tolerance 0.5",
+              "packbed analyze: pelraw/particles.csv: its particles have orientations (qw, qx, "
+              "qy, qz: a bed of pellets) but no summary.json beside it names their shape; "
+              "allowed: a bed of spheres, or a pellet bed with the summary.json generate "
+              "--shape wrote beside it"),
+        exact("voxelize pelraw/particles.csv --container cylinder:3 --voxel-size 0.1 -o v.npy",
+              "packbed voxelize: pelraw/particles.csv: its particles have orientations (qw, qx, "
+              "qy, qz: a bed of pellets) but no summary.json beside it names their shape; "
+              "allowed: a bed of spheres, or a pellet bed with the summary.json generate "
+              "--shape wrote beside it"),
         exact("export pelraw/particles.csv -f stl --shape cylinder:2,2 -o p.stl",
               "packbed export: pelraw/particles.csv:2: r = 0.5724 is not allowed for "
               "cylinder:2,2 pellets; allowed: r = d_v / 2 = 1.1447142425533317 within 0.1 % (a "
@@ -1645,9 +1682,10 @@ INSTANTIATE_TEST_SUITE_P(
               "mean diameters from the origin; allowed: at most 1e+06 (the surfaces and walls "
               "are written in single precision)")));
 
-// A disk that fills up during the output (a file size limit, RLIMIT_FSIZE, with SIGXFSZ
-// ignored: every write beyond it fails with EFBIG as on a full disk): exit 1, one line naming
-// the output as the user gave it (not the hidden staging folder) with the reason, nothing left.
+// A disk that fills up during the output (a file size limit, RLIMIT_FSIZE, as ulimit -f sets
+// it, SIGXFSZ at its default: packbed ignores it, so every write beyond the limit fails with
+// EFBIG as on a full disk): exit 1, one line naming the output as the user gave it (not the
+// hidden staging folder) with the reason, nothing left.
 TEST(CliDiskFull, OneLineNamingTheOutputAsGivenNothingLeft) {
     const fs::path root = scratch();
     const fs::path d = root / "work";

@@ -522,9 +522,8 @@ TEST(Cli, ProgressLineFitsAnEightyColumnTerminal) {
 TEST(Cli, AMistypedNameGetsTheClosestOne) {
     const Outcome option = packbed("generate --aspect-rato 5");
     EXPECT_EQ(option.status, 2);
-    EXPECT_EQ(option.err, "packbed: The following arguments were not expected: 5 --aspect-rato "
-                          "(did you mean --aspect-ratio?); run 'packbed generate --help' for the "
-                          "options\n");
+    EXPECT_EQ(option.err, "packbed generate: '--aspect-rato 5' is not expected (did you mean "
+                          "--aspect-ratio?); allowed: the options of 'packbed generate --help'\n");
     const Outcome inherited_form = packbed("analyze bed.csv --contianer-radius=3");
     EXPECT_NE(inherited_form.err.find("(did you mean --container-radius?)"), std::string::npos)
         << inherited_form.err;

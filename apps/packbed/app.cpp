@@ -3,6 +3,7 @@
 #include "app.hpp"
 
 #include <algorithm>
+#include <cctype>
 #include <cstdio>
 #include <string_view>
 #include <vector>
@@ -217,8 +218,48 @@ int run(int argc, char** argv) {
                         suggestion = " (" + suggestion + ")";
                     break;
                 }
-            fmt::print(stderr, "packbed: {}{}; run 'packbed {} --help' for the options\n",
-                       printable(e.what()), printable(suggestion), selected.front()->get_name());
+            // CLI11's own text lists the words backwards ("1 --threads"): in the given order.
+            std::string words;
+            for (const auto& extra : app.remaining(true))
+                words += (words.empty() ? "" : " ") + extra;
+            fmt::print(stderr,
+                       "packbed {0}: '{1}' is not expected{2}; allowed: the options of "
+                       "'packbed {0} --help'\n",
+                       selected.front()->get_name(), printable(words.substr(0, 200)),
+                       printable(suggestion));
+        } else if (const std::string sub = selected.front()->get_name();
+                   dynamic_cast<const CLI::ArgumentMismatch*>(&e) &&
+                   text.find(": At Most 1 required but received ") != text.npos) {
+            // An option given twice (-a 3 -a 4): CLI11 says "At Most 1 required".
+            const std::size_t at = text.find(": At Most ");
+            fmt::print(stderr, "packbed {}: {} is given {} times; allowed: once\n", sub,
+                       printable(text.substr(0, at)), printable(text.substr(text.rfind(' ') + 1)));
+        } else if (dynamic_cast<const CLI::ArgumentMismatch*>(&e) && text.ends_with(" missing") &&
+                   text.find(": 1 required ") != text.npos) {
+            // An option at the end with no value (generate -n).
+            const std::size_t at = text.find(": 1 required ");
+            const std::string type = text.substr(at + 13, text.size() - at - 13 - 8);
+            const std::size_t colon = type.find(':');
+            fmt::print(stderr, "packbed {}: {} has no value; allowed: {}\n", sub,
+                       printable(text.substr(0, at)),
+                       printable(colon == type.npos ? type : type.substr(colon + 1)));
+        } else if (dynamic_cast<const CLI::RequiredError*>(&e) && text.ends_with(" is required")) {
+            // A required option or argument left out (voxelize without --voxel-size).
+            const std::string name = printable(text.substr(0, text.size() - 12));
+            if (name.starts_with("-"))
+                fmt::print(stderr,
+                           "packbed {0}: {1} is required and not given; allowed: {1} with its "
+                           "value ('packbed {0} --help')\n",
+                           sub, name);
+            else {
+                std::string upper = name;
+                for (char& c : upper)
+                    c = static_cast<char>(std::toupper(static_cast<unsigned char>(c)));
+                fmt::print(stderr,
+                           "packbed {0}: {1} is required and not given; allowed: packbed {0} "
+                           "{1} ... ('packbed {0} --help')\n",
+                           sub, upper);
+            }
         } else
             fmt::print(stderr, "packbed: {}\n", printable(e.what()));
         return 2;

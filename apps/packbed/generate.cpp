@@ -423,7 +423,9 @@ Command register_generate(CLI::App& parent) {
                     "fire solver in layers: save the state to this file after each layer, and "
                     "resume from it when it exists (the same options give the same bytes)")
         ->check(path_text());
-    app->add_option("--max-iterations", p.max_iterations, "give up after this many iterations")
+    app->add_option("--max-iterations", p.max_iterations,
+                    "give up after this many iterations (with --shape: steps, 2000000 unless "
+                    "given)")
         ->check(whole_in(option_range::max_iterations));
     app->add_option("--band-clearance", o.band_clearance,
                     "the void fraction is measured between this distance above the floor and "

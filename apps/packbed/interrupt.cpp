@@ -73,6 +73,9 @@ void block_interrupts() {
 }
 
 void handle_interrupts() {
+    // A file size limit (ulimit -f) would kill the run by SIGXFSZ mid-write, leaving its
+    // staging folder: ignored, a write past it fails with EFBIG, reported as a full disk is.
+    ::signal(SIGXFSZ, SIG_IGN);
     block_interrupts();
     const sigset_t set = handled_signals();
     // The pipeline's child programs (gnuplot), to stop first.

@@ -44,7 +44,8 @@ std::uint64_t check_option(std::string_view option, long long value, const Whole
 
 /// Why `text`, a whole-number option as typed (digits only: no sign, point or exponent), is not
 /// allowed in `range`: "'TEXT' is not allowed; allowed: ..." (quoted: not a whole number from
-/// 0 to 2^64 - 1) or "TEXT is not allowed; allowed: ..." (outside the range); "" when it is.
+/// 0 to 2^64 - 1, or written with a leading zero, which the command line's parser would read
+/// as octal) or "TEXT is not allowed; allowed: ..." (outside the range); "" when it is.
 std::string whole_problem(std::string_view text, const WholeRange& range);
 /// \return the value of `text` (whole_problem). \throws InvalidInput "--OPTION: " and the
 /// problem: the command line's message, for a value the Python module takes as text (a seed up

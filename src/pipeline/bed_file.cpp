@@ -101,6 +101,13 @@ BedInContainer read_bed_in_container(const std::filesystem::path& particles,
     BedInContainer bed{read_particles(particles, options),
                        find_container(particles, container, cylinder_radius), std::nullopt};
     refuse_pellets(particles);
+    // A table with orientations and no shape beside it: its pellets would be read as balls.
+    if (!bed.file.packing.orientations.empty())
+        throw InvalidInput(fmt::format(
+            "{}: its particles have orientations (qw, qx, qy, qz: a bed of pellets) but no "
+            "summary.json beside it names their shape; allowed: a bed of spheres, or a pellet "
+            "bed with the summary.json generate --shape wrote beside it",
+            printable(particles.native())));
     if (bed.container)
         check_file_inside(bed.file, options, particles.string(), *bed.container, outside_tolerance);
     return bed;
