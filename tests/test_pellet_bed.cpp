@@ -500,6 +500,8 @@ TEST(SpherocylinderBed, EndsBelowTheToleranceInATube) {
     const PelletBed bed = expect_below_tolerance(params);
     EXPECT_EQ(bed.nodes, 0u);
     EXPECT_LE(bed.residual_force, params.force_tolerance);
+    // At rest under gravity every pellet overlaps something it rests on.
+    EXPECT_EQ(bed.touching_nothing, 0u);
 }
 
 TEST(SpherocylinderBed, EndsBelowTheToleranceAcrossTheCellsSides) {

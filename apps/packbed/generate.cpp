@@ -145,8 +145,12 @@ int run_pellets(const GenerateOptions& o) {
         else
             fmt::print("void fraction: not computed: {}\n",
                        s["void_fraction_note"].get<std::string>());
-        fmt::print("results in {}/ (particles.csv with orientations, summary.json)\n",
+        fmt::print("results in {}/ (particles.csv with orientations, particles.vtu, "
+                   "summary.json)\n",
                    out.path().string());
+        if (s.contains("warnings"))
+            for (const auto& warning : s["warnings"])
+                fmt::print(stderr, "packbed generate: warning: {}\n", warning.get<std::string>());
     }
     return 0;
 }

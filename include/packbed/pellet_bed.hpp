@@ -104,6 +104,10 @@ struct PelletBed {
     double max_depth_pair = 0.0, max_depth_wall = 0.0;
     /// The largest force and torque over the bounding radius left on a pellet, in weights.
     double residual_force = 0.0, residual_torque = 0.0;
+    /// The free pellets that overlap nothing at the end (no pellet, wall or floor by the exact
+    /// depths): a bed at rest under gravity has none; many are a column still falling, which
+    /// the settling took for still (a tall bed in one piece: docs/generate.md).
+    std::size_t touching_nothing = 0;
     /// With friction: the pairs and the pellets at a wall whose friction the final stage let go
     /// (their overlap above tolerance held by it), and whether the rest kept it to the end.
     std::size_t sliding_pairs = 0, sliding_walls = 0;

@@ -1344,7 +1344,10 @@ private:
             const Placement pb{m_centre[a] + u, m_turn[b], size(b)};
             depth[k] = shape.pair_overlap(pa, shape, pb, u).depth;
         }
+        std::vector<char> touches(m_centre.size(), 0);
         for (std::size_t k = 0; k < pairs; ++k) {
+            if (depth[k] > 0.0)
+                touches[first[k]] = touches[second[k]] = 1;
             out.max_depth_pair = std::max(out.max_depth_pair, depth[k]);
             if (over && depth[k] > over_depth)
                 over->emplace_back(static_cast<std::uint32_t>(first[k]),
@@ -1357,7 +1360,11 @@ private:
             out.max_depth_wall = std::max(out.max_depth_wall, wall);
             if (over_wall && wall > over_depth)
                 over_wall->push_back(static_cast<std::uint32_t>(i));
+            if (wall > 0.0)
+                touches[i] = 1;
         }
+        out.touching_nothing = static_cast<std::size_t>(
+            std::count(touches.begin() + static_cast<std::ptrdiff_t>(m_fixed), touches.end(), 0));
     }
 
     static constexpr double skin = 0.3; // d_v

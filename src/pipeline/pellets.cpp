@@ -1,4 +1,5 @@
 // generate --shape: a bed of pellets, from the request to its files (pipeline.hpp).
+#include <algorithm>
 #include <chrono>
 #include <cmath>
 #include <filesystem>
@@ -349,6 +350,15 @@ GeneratedPellets run_pellets(const PreparedPellets& prepared, const RunControl& 
     s["force_residual"] = bed.residual_force;
     s["torque_residual"] = bed.residual_torque;
     s["residual_unit"] = "a pellet's weight (torque: times its bounding radius)";
+    s["pellets_touching_nothing"] = bed.touching_nothing;
+    // At rest under gravity every pellet rests on something: more than one in a hundred touching
+    // nothing is a column that was still falling when the settling took it for still.
+    if (bed.touching_nothing > std::max<std::size_t>(1, bed.packing.size() / 100))
+        s["warnings"] = {fmt::format(
+            "{} of {} pellets touch nothing at the end: the column had not settled (a tall bed "
+            "in one piece; relax it in layers with --layer-height, docs/generate.md \"Tall "
+            "pellet beds in layers\")",
+            bed.touching_nothing, bed.packing.size())};
     s["steps"] = bed.steps;
     if (bed.kicks > 0)
         s["kicks"] = {{"taps", bed.kicks},
