@@ -237,15 +237,18 @@ int run(int argc, char** argv) {
         } else if (dynamic_cast<const CLI::ArgumentMismatch*>(&e) && text.ends_with(" missing") &&
                    text.find(": 1 required ") != text.npos) {
             // An option at the end with no value (generate -n).
-            const std::size_t at = text.find(": 1 required ");
-            const std::string type = text.substr(at + 13, text.size() - at - 13 - 8);
+            constexpr std::string_view required = ": 1 required ", missing = " missing";
+            const std::size_t at = text.find(required);
+            const std::string type = text.substr(
+                at + required.size(), text.size() - at - required.size() - missing.size());
             const std::size_t colon = type.find(':');
             fmt::print(stderr, "packbed {}: {} has no value; allowed: {}\n", sub,
                        printable(text.substr(0, at)),
                        printable(colon == type.npos ? type : type.substr(colon + 1)));
         } else if (dynamic_cast<const CLI::RequiredError*>(&e) && text.ends_with(" is required")) {
             // A required option or argument left out (voxelize without --voxel-size).
-            const std::string name = printable(text.substr(0, text.size() - 12));
+            const std::string name =
+                printable(text.substr(0, text.size() - std::string_view(" is required").size()));
             if (name.starts_with("-"))
                 fmt::print(stderr,
                            "packbed {0}: {1} is required and not given; allowed: {1} with its "
