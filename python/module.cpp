@@ -755,10 +755,7 @@ Bed lattice(const std::string& type, const std::string& region, double diameter,
     Bed bed{fill_lattice(p), p.region.container, nlohmann::json()};
     bed.summary = lattice_summary(p, bed.packing);
     if (directory) {
-        stage_bed(*directory, bed.packing, *bed.container, band_clearance,
-                  analysis && !bed.packing.centers.empty() &&
-                      p.region.height > 2.0 * band_clearance * p.diameter,
-                  bed.summary);
+        stage_lattice(*directory, p, bed.packing, band_clearance, analysis, bed.summary);
         directory->commit();
     }
     return bed;

@@ -451,6 +451,14 @@ INSTANTIATE_TEST_SUITE_P(
               "allowed: mono, discrete:D1:F1,D2:F2,..., uniform:MIN,MAX, normal:MEAN,SD[,MIN,MAX], "
               "lognormal:MEDIAN,GSD[,MIN,MAX] or file:PATH"),
         naming("generate --sizes discrete:1:0.5,20:0.5", {"--sizes", "20", "10"}),
+        // Options that would change nothing: --diameter beside the sizes, --update beside FIRE.
+        exact("generate --sizes uniform:0.8,1.2 -d 2",
+              "packbed generate: --diameter 2 is not allowed with --sizes 'uniform:0.8,1.2'; "
+              "allowed: one of the two (the sizes give the diameters in length units, Dp is "
+              "their Sauter mean d32)"),
+        exact("generate --update in-place",
+              "packbed generate: --update in-place is not allowed with --solver fire; allowed: "
+              "--update with --solver paper (FIRE moves every sphere at once)"),
         naming("generate --sizes lognormal:1,0.9", {"--sizes", "GSD = 0.9"}),
         exact("generate --sizes discrete:1:0.5,2:0.5 --container cylinder:1.5",
               "packbed generate: --sizes: a diameter of 1.49776 Dp is not allowed in a tube of a = "

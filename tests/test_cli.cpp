@@ -1694,6 +1694,31 @@ TEST(Cli, UnwritableOutputIsRefusedBeforeTheRun) {
     EXPECT_EQ(o.out, ""); // refused before the run: no report
 }
 
+TEST(Cli, LatticeTooShortForItsBandSaysWhyItIsNotAnalysed) {
+    // 3 d tall against a band that starts and ends 2 d from floor and top: no band, no
+    // analysis tables, and summary.json says so instead of leaving them out silently.
+    const fs::path d = scratch("short-lattice");
+    ASSERT_EQ(
+        packbed("lattice --type sc --region box:4,4,3 --band-clearance 2 -q --out " + d.string())
+            .status,
+        0);
+    const auto s = nlohmann::json::parse(slurp(d / "summary.json"));
+    EXPECT_EQ(s["analysis_note"], "not analysed: the region is 3 d tall, not taller than twice "
+                                  "--band-clearance (2 d); lower --band-clearance");
+    EXPECT_FALSE(s.contains("analysis"));
+    EXPECT_FALSE(fs::exists(d / "radial_void_fraction.csv"));
+    EXPECT_EQ(s["balls"], 48);
+    const fs::path e = scratch("short-lattice-band");
+    ASSERT_EQ(
+        packbed("lattice --type sc --region box:4,4,3 --band-clearance 1 -q --out " + e.string())
+            .status,
+        0);
+    const auto t = nlohmann::json::parse(slurp(e / "summary.json"));
+    EXPECT_FALSE(t.contains("analysis_note"));
+    EXPECT_TRUE(t.contains("analysis"));
+    EXPECT_TRUE(fs::exists(e / "radial_void_fraction.csv"));
+}
+
 // A bed in a box is exported with its box, never without it.
 TEST(Cli, ExportOfABoxLatticeKeepsItsBox) {
     const fs::path d = scratch("box-lattice");

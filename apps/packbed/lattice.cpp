@@ -49,12 +49,7 @@ int run_lattice(LatticeOptions& o) {
     const Packing packing = fill_lattice(o.params);
     auto summary = lattice_summary(o.params, packing);
     // A lattice is a bed: the same analysis as `generate` in its container, when tall enough.
-    const Container& container = o.params.region.container;
-    const double height = o.params.region.height;
-    stage_bed(out, packing, container, o.band_clearance,
-              !o.no_analysis && !packing.centers.empty() &&
-                  height > 2.0 * o.band_clearance * o.params.diameter,
-              summary);
+    stage_lattice(out, o.params, packing, o.band_clearance, !o.no_analysis, summary);
     out.commit();
     if (!o.quiet) {
         fmt::print("packbed lattice: {} balls of a {} packing (coordination {}, porosity {:.5f})\n",
@@ -64,6 +59,8 @@ int run_lattice(LatticeOptions& o) {
             fmt::print("porosity in the region: {:.5f}; mean contacts found: {:.3f}\n",
                        summary["porosity_region"].get<double>(),
                        summary["contacts"]["mean"].get<double>());
+        if (summary.contains("analysis_note"))
+            fmt::print("analysis: {}\n", summary["analysis_note"].get<std::string>());
         fmt::print("results in {}/ (particles.csv, particles.vtu, summary.json)\n",
                    out.path().string());
     }

@@ -93,9 +93,7 @@ CLI::Validator frame_number() {
     return CLI::Validator(
         [allowed](std::string& text) -> std::string {
             const auto value = parse_whole<long long>(text);
-            // A leading 0 is refused: the parser would read 010 as octal 8.
-            const std::string_view digits = std::string_view(text).substr(text.starts_with('-'));
-            if (!value || *value == 0 || (digits.size() > 1 && digits.front() == '0'))
+            if (!value || *value == 0 || has_leading_zero(text))
                 return fmt::format("'{}' is not allowed; allowed: {}",
                                    printable(text.substr(0, 80)), allowed);
             return {};

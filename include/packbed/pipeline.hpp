@@ -18,6 +18,7 @@
 #include "packbed/container.hpp"
 #include "packbed/hydraulics.hpp"
 #include "packbed/lammps_engine.hpp"
+#include "packbed/lattice.hpp"
 #include "packbed/openfoam.hpp"
 #include "packbed/output.hpp"
 #include "packbed/packing.hpp"
@@ -267,6 +268,12 @@ ImportedLammps import_lammps(const std::filesystem::path& folder);
 /// band), and summary.json.
 void stage_bed(OutputDirectory& out, const Packing& packing, const Container& container,
                double band_clearance, bool analyse, nlohmann::json& summary);
+
+/// Stage what `lattice` writes for the balls `packing` of `lattice`: stage_bed, analysed when
+/// `analysis` and the region is taller than twice `band_clearance` (d); a region too short for
+/// the band gets summary["analysis_note"] saying so instead.
+void stage_lattice(OutputDirectory& out, const LatticeParameters& lattice, const Packing& packing,
+                   double band_clearance, bool analysis, nlohmann::json& summary);
 
 /// The analysis `generate` and `lattice` run on what they made: analyze_bed over the band
 /// `band_clearance` (Dp) clear of the ends (in a periodic cell g(r) within the smaller period),

@@ -104,6 +104,9 @@ struct SizeDistribution {
 /// \throws InvalidInput with one line naming `--sizes`, the spec and what is allowed
 SizeDistribution parse_sizes(std::string_view spec, double mono_diameter);
 
+/// A `--sizes` spec as messages show it: control characters escaped, cut after 100 bytes.
+std::string shown_sizes(std::string_view spec);
+
 /// Q0, the cumulative distribution by number that draw_diameters draws from, of a distribution
 /// whose fractions (or density) count `basis`, and its inverse. Exact for every kind: closed
 /// forms (`uniform` and `file` by volume: Q3 linear between the rows makes Q0 linear in d^-2;

@@ -37,6 +37,13 @@ template <std::integral T> std::optional<T> parse_whole(std::string_view text) {
     return value;
 }
 
+/// Whether a whole number's text has a leading zero ("010", "-07"), which the command line's
+/// parser reads as octal (010 as 8): such options are refused rather than misread.
+constexpr bool has_leading_zero(std::string_view text) {
+    const std::string_view digits = text.substr(text.starts_with('-') ? 1 : 0);
+    return digits.size() > 1 && digits.front() == '0';
+}
+
 /// The finite numbers of `text` between `separator`s ("1,2.5,-3"), or nothing when it is not
 /// exactly that (an empty item, a non-number, NaN or infinity).
 std::optional<std::vector<double>> parse_finite_list(std::string_view text, char separator = ',');

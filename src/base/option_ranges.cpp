@@ -51,8 +51,7 @@ std::string whole_problem(std::string_view text, const WholeRange& range) {
                            range.allowed());
     if (*value < range.low || *value > range.high)
         return fmt::format("{} is not allowed; allowed: {}", text, range.allowed());
-    // The command line's parser reads a leading 0 as octal (010 as 8): refused, not misread.
-    if (text.size() > 1 && text.front() == '0')
+    if (has_leading_zero(text))
         return fmt::format("'{}' is not allowed; allowed: {}, written without leading zeros",
                            printable(text.substr(0, 80)), range.allowed());
     return {};

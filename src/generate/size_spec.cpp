@@ -19,19 +19,18 @@ namespace packbed {
 
 using namespace detail; // the portable elementary functions (generate/portable_math.hpp)
 
+std::string shown_sizes(std::string_view spec) {
+    return spec.size() > 100 ? printable(spec.substr(0, 100)) + "..." : printable(spec);
+}
+
 namespace {
 
 // ---------------------------------------------------------------------------------------------
 // Messages.
 
-/// The spec as messages show it: control characters escaped, cut after 100 bytes.
-std::string shown(std::string_view spec) {
-    return spec.size() > 100 ? printable(spec.substr(0, 100)) + "..." : printable(spec);
-}
-
 [[noreturn]] void refuse(std::string_view spec, std::string_view reason, std::string_view allowed) {
-    throw InvalidInput(
-        fmt::format("--sizes '{}' is not allowed: {}; allowed: {}", shown(spec), reason, allowed));
+    throw InvalidInput(fmt::format("--sizes '{}' is not allowed: {}; allowed: {}",
+                                   shown_sizes(spec), reason, allowed));
 }
 
 std::string allowed_for(SizeKind kind) {
@@ -448,7 +447,7 @@ SizeDistribution parse_sizes(std::string_view spec, double mono_diameter) {
     const std::string_view rest = parameters.value_or(std::string_view{});
     const std::optional<SizeKind> found = size_kinds().find(name);
     if (!found)
-        refuse(spec, fmt::format("unknown distribution '{}'", shown(name)), allowed_names());
+        refuse(spec, fmt::format("unknown distribution '{}'", shown_sizes(name)), allowed_names());
     const SizeKind kind = *found;
     if (kind != SizeKind::mono && !parameters)
         refuse(spec, fmt::format("{} needs its parameters", name), allowed_for(kind));

@@ -53,6 +53,18 @@ PreparedGeneration prepare_generation(GenerateRequest request) {
         generation_memory(request.params.particles,
                           request.params.frictional() || request.target_void_fraction.has_value())};
     SoftSphereParameters& p = prepared.params;
+    // Options that would be recorded in summary.json and change nothing.
+    const SoftSphereParameters defaults;
+    if (p.solver == Solver::fire && p.update != defaults.update)
+        throw InvalidInput(fmt::format("--update {} is not allowed with --solver fire; allowed: "
+                                       "--update with --solver paper (FIRE moves every sphere "
+                                       "at once)",
+                                       to_string(p.update)));
+    if (request.sizes != "mono" && p.diameter != defaults.diameter)
+        throw InvalidInput(fmt::format("--diameter {} is not allowed with --sizes '{}'; allowed: "
+                                       "one of the two (the sizes give the diameters in length "
+                                       "units, Dp is their Sauter mean d32)",
+                                       p.diameter, shown_sizes(request.sizes)));
     // Before anything is allocated for it (the sizes drawn below are 8 bytes a sphere).
     check_memory(fmt::format("--particles {}", p.particles), prepared.memory,
                  "fewer spheres, or a machine with more memory");
@@ -72,7 +84,8 @@ PreparedGeneration prepare_generation(GenerateRequest request) {
             throw InvalidInput(fmt::format("--checkpoint {} is not allowed with --sizes {}; "
                                            "allowed: --checkpoint with mono-sized beds (a "
                                            "checkpoint does not record the sizes yet)",
-                                           printable(request.checkpoint), request.sizes));
+                                           printable(request.checkpoint),
+                                           shown_sizes(request.sizes)));
     }
     const std::optional<Container> spec =
         request.container.empty() ? std::nullopt : parse_container(request.container);
@@ -503,6 +516,20 @@ void stage_bed(OutputDirectory& out, const Packing& packing, const Container& co
     if (analyse)
         stage_analysis(out, packing, container, band_clearance, summary);
     out.stage("summary.json", json_file_text(summary, "summary.json"));
+}
+
+void stage_lattice(OutputDirectory& out, const LatticeParameters& lattice, const Packing& packing,
+                   double band_clearance, bool analysis, nlohmann::json& summary) {
+    const double height = lattice.region.height / lattice.diameter; // d
+    const bool tall_enough = height > 2.0 * band_clearance;
+    analysis = analysis && !packing.centers.empty();
+    if (analysis && !tall_enough)
+        summary["analysis_note"] =
+            fmt::format("not analysed: the region is {:g} d tall, not taller than twice "
+                        "--band-clearance ({:g} d); lower --band-clearance",
+                        height, band_clearance);
+    stage_bed(out, packing, lattice.region.container, band_clearance, analysis && tall_enough,
+              summary);
 }
 
 } // namespace packbed

@@ -158,6 +158,15 @@ def test_a_lattice_in_a_box_has_its_exact_porosity():
     assert a.coordination_histogram.sum() == 32
 
 
+def test_a_lattice_too_short_for_its_band_says_so(tmp_path):
+    # 3 d tall against a band 2 d clear of floor and top: no analysis, and the summary says why
+    packbed.lattice(type="sc", region="box:4,4,3", band_clearance=2.0, out=tmp_path / "l")
+    summary = json.loads((tmp_path / "l" / "summary.json").read_text())
+    assert "analysis" not in summary
+    assert summary["analysis_note"].startswith("not analysed: the region is 3 d tall")
+    assert not (tmp_path / "l" / "radial_void_fraction.csv").exists()
+
+
 @pytest.mark.parametrize(
     "call, words",
     [
@@ -168,6 +177,11 @@ def test_a_lattice_in_a_box_has_its_exact_porosity():
         (lambda: packbed.generate(sizes="foo"), ["sizes", "foo", "allowed"]),
         (lambda: packbed.generate(aspect_ratio=0.5), ["aspect-ratio", "0.5", "allowed"]),
         (lambda: packbed.generate(threads=0), ["threads", "0", "allowed"]),
+        (lambda: packbed.generate(update="in-place"), ["update", "in-place", "fire", "allowed"]),
+        (
+            lambda: packbed.generate(sizes="uniform:0.8,1.2", diameter=2.0),
+            ["diameter", "uniform:0.8,1.2", "allowed"],
+        ),
         (lambda: packbed.read("/nonexistent/bed.csv"), ["/nonexistent/bed.csv"]),
         (lambda: packbed.read("x.csv", frame=0), ["frame", "0", "allowed"]),
         (lambda: packbed.read("x.csv", format="pdf"), ["format", "pdf", "allowed"]),
