@@ -61,8 +61,9 @@ int run_lattice(LatticeOptions& o) {
                        summary["contacts"]["mean"].get<double>());
         if (summary.contains("analysis_note"))
             fmt::print("analysis: {}\n", summary["analysis_note"].get<std::string>());
-        fmt::print("results in {}/ (particles.csv, particles.vtu, summary.json)\n",
-                   out.path().string());
+        fmt::print("results in {}/ (particles.csv, particles.vtu, summary.json{})\n",
+                   out.path().string(),
+                   summary.contains("analysis") ? " and the analysis tables" : "");
     }
     return 0;
 }
