@@ -1458,6 +1458,10 @@ INSTANTIATE_TEST_SUITE_P(
               "packbed: --profile-to: 1e300 is not allowed; allowed: a number in [0, 1000]"),
         exact("correlations --profile-to nan",
               "packbed: --profile-to: 'nan' is not allowed; allowed: a number in [0, 1000]"),
+        // A profile of more than 1e5 steps (up to the axis, which ends it at a / 2).
+        exact("correlations -a 1000 --profile-to 1000 --profile-step 0.0001",
+              "packbed correlations: --profile-step 0.0001 to x = 500 d (the axis at a / 2) is "
+              "not allowed: 5e+06 steps; allowed: at most 100000 steps"),
         exact("correlations --json=x", "packbed: Could not convert: --json = x"),
         exact("correlations extra",
               "packbed correlations: 'extra' is not expected; allowed: the options of 'packbed "

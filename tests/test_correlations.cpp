@@ -1,10 +1,12 @@
 // Published correlations: hand-computed values and validity-range warnings.
 #include <cmath>
 #include <limits>
+#include <tuple>
 
 #include <gtest/gtest.h>
 
 #include "packbed/correlations.hpp"
+#include "packbed/pipeline.hpp"
 
 using namespace packbed;
 
@@ -94,4 +96,19 @@ TEST(RadialVoidFraction, WallValueMinimumAndBulk) {
                         radial("de-klerk-2003")(0.637, 7.99).value;
     EXPECT_NEAR(jump, 0.365 + 0.22 / 7.99 - 0.3609, 2e-4);
     EXPECT_NE(radial("mueller-1992")(1.0, 1.5).warning, "");
+}
+
+TEST(CorrelationsReport, ProfilesEndAtTheAxisOnExactSteps) {
+    // a = 5: the axis is 2.5 d from the wall, so the default --profile-to 5 stops there, at
+    // x = k 0.01 (251 points, the last exactly 2.5); a = 20 keeps --profile-to 5.
+    for (const auto& [a, points, last] : {std::tuple{5.0, 251u, 2.5}, {20.0, 501u, 5.0}}) {
+        const Report r = correlations_report({a, 0.01, 5.0});
+        for (const auto& [name, profile] : r.values["radial_void_fraction"].items()) {
+            const auto& x = profile["x_from_wall_d"];
+            ASSERT_EQ(x.size(), points) << name;
+            EXPECT_EQ(x[points - 1].get<double>(), last) << name;
+            EXPECT_EQ(x[37].get<double>(), 37 * 0.01) << name;
+            EXPECT_EQ(profile["void_fraction"].size(), points) << name;
+        }
+    }
 }

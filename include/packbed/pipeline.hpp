@@ -526,8 +526,13 @@ struct CorrelationsRequest {
     double profile_to = 5.0;    ///< the radial profiles from the wall to this, d
 };
 
+/// At most this many steps in a radial profile (--profile-to over --profile-step).
+inline constexpr double max_profile_steps = 1e5;
+
 /// The published void-fraction correlations at an aspect ratio: the mean void fractions and
-/// the radial profiles, each with its formula, source and validity range.
+/// the radial profiles, each with its formula, source and validity range. The profiles at
+/// x = k profile_step from the wall, up to profile_to or the axis (a / 2), whichever is nearer.
+/// \throws InvalidInput when that is more than max_profile_steps steps
 Report correlations_report(const CorrelationsRequest& request);
 
 // ---------------------------------------------------------------------------------------------

@@ -268,6 +268,15 @@ Report hydraulics_report(const HydraulicsRequest& o) {
 Report correlations_report(const CorrelationsRequest& request) {
     const double a = request.aspect_ratio, profile_step = request.profile_step,
                  profile_to = request.profile_to;
+    // A tube's radial profile ends at its axis, a / 2 from the wall.
+    const double to = std::min(profile_to, 0.5 * a);
+    if (to / profile_step > max_profile_steps)
+        throw InvalidInput(fmt::format(
+            "--profile-step {} to x = {:g} d ({}) is not allowed: {:.6g} steps; allowed: at "
+            "most {:g} steps",
+            profile_step, to, to < profile_to ? "the axis at a / 2" : "--profile-to",
+            to / profile_step, max_profile_steps));
+    const auto steps = static_cast<std::size_t>(std::floor(to / profile_step + 1e-9));
     nlohmann::json out;
     out["aspect_ratio"] = a;
     std::vector<std::string> warnings;
@@ -290,7 +299,8 @@ Report correlations_report(const CorrelationsRequest& request) {
         profile["label"] = c.label;
         profile["validity"] = validity_range(c.a_low, c.a_high);
         std::string warning;
-        for (double z = 0.0; z <= profile_to + 1e-12; z += profile_step) {
+        for (std::size_t k = 0; k <= steps; ++k) {
+            const double z = static_cast<double>(k) * profile_step;
             const auto v = c(z, a);
             profile["x_from_wall_d"].push_back(z);
             profile["void_fraction"].push_back(v.value);
