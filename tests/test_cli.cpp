@@ -746,6 +746,24 @@ TEST(Cli, ConfigFileSetsOptionsAndTheCommandLineWins) {
     EXPECT_EQ(s["parameters"]["ck"], 0.25);
 }
 
+TEST(Cli, TheCommandLineWinsOverAConfigKeyItsOptionExcludes) {
+    // --container on the command line over aspect_ratio in the file (the two exclude each
+    // other): the tube of the command line, not a refusal; both in the file are still refused.
+    const fs::path d = scratch("config-excludes");
+    std::ofstream(d / "bed.toml") << "aspect_ratio = 3\nparticles = 40\n";
+    const Outcome o = packbed("generate --quiet --config " + (d / "bed.toml").string() +
+                              " --container cylinder:4 --out " + (d / "out").string());
+    ASSERT_EQ(o.status, 0) << o.err;
+    const auto s = nlohmann::json::parse(slurp(d / "out" / "summary.json"));
+    EXPECT_EQ(s["aspect_ratio"], 4.0);
+    EXPECT_EQ(s["particles"], 40);
+    std::ofstream(d / "both.toml") << "aspect_ratio = 3\ncontainer = \"cylinder:4\"\n";
+    EXPECT_EQ(packbed("generate --quiet --config " + (d / "both.toml").string() + " --out " +
+                      (d / "out2").string())
+                  .status,
+              2);
+}
+
 TEST(Cli, TheShippedExampleConfigIsReadAsItSays) {
     // examples/bed.toml as shipped, with fewer spheres so the test stays short (the README's
     // check runs it whole): every key it sets reaches the run.

@@ -172,6 +172,12 @@ std::vector<CLI::ConfigItem> TomlConfig::from_config(std::istream& input) const 
                                                line_of(node),
                                                printable(raw_key.str().substr(0, 80)), names));
         }
+        // The command line wins, also over a key whose option excludes one it gives
+        // (`aspect_ratio` in the file, --container on the command line).
+        if (const CLI::Option* option = command.get_option_no_throw("--" + key))
+            for (const CLI::Option* other : option->get_excludes())
+                if (other->count() > 0)
+                    return;
         CLI::ConfigItem item;
         item.parents = {section};
         item.name = key;
