@@ -11,6 +11,7 @@
 #include <string>
 
 #include <fmt/format.h>
+#include <fmt/ranges.h>
 #include <omp.h>
 #include <pybind11/functional.h>
 #include <pybind11/numpy.h>
@@ -199,11 +200,28 @@ void set_threads(const std::optional<long long>& threads) {
         use_threads(check_option("threads", *threads, option_range::threads));
 }
 
-/// The container `container` names, else the bed's own. \throws InvalidInput when neither is
-/// there
-Container container_for(const Bed& bed, const std::optional<std::string>& container) {
-    if (container)
-        return container_from_spec("--container", *container);
+/// `array` made read-only: a bed's arrays view its memory, which was checked when the bed was
+/// made (finite, in range, inside its container) and which every call trusts.
+py::array read_only(py::array array) {
+    array.attr("setflags")(py::arg("write") = false);
+    return array;
+}
+
+/// The container `container` names, else the bed's own. A container given is checked to hold
+/// the bed, as `packbed analyze --container` checks it (spheres 0.01 of their mean diameter,
+/// pellets 0.01 d_v by their exact shapes). \throws InvalidInput when neither is there, or
+/// when the bed does not fit the container given
+Container container_for(const Bed& bed, const std::optional<std::string>& container,
+                        const PelletSpec* pellet) {
+    if (container) {
+        const Container given = container_from_spec("--container", *container);
+        if (pellet)
+            check_pellets_inside(bed.packing, {}, "centers", given, *pellet, 0.01);
+        else if (bed.packing.size() > 0)
+            check_inside(bed.packing, {}, "centers", given, 0.01 * bed.packing.mean_diameter(),
+                         false);
+        return given;
+    }
     if (!bed.container)
         throw InvalidInput(fmt::format("--container is needed: this bed has no container (give "
                                        "container='SPEC', SPEC one of {})",
@@ -212,22 +230,27 @@ Container container_for(const Bed& bed, const std::optional<std::string>& contai
 }
 
 /// A whole number given to the module as a Python object, checked with the command line's
-/// words (check_whole): an int of any size (a seed up to 2^64 - 1), never a bool, a float or a
-/// string (which numpy or pybind11 would convert).
+/// words (check_whole): an int of any size (a seed up to 2^64 - 1) or a numpy integer (what
+/// np.arange gives), never a bool (Python's or numpy's), a float or a string (which numpy or
+/// pybind11 would convert).
 std::uint64_t whole(const py::handle& value, std::string_view option, const WholeRange& range) {
-    const std::string text = py::str(value);
-    if (!PyLong_Check(value.ptr()) || PyBool_Check(value.ptr()))
+    const bool boolean = PyBool_Check(value.ptr()) ||
+                         py::isinstance(value, py::module_::import("numpy").attr("bool_"));
+    if (boolean || !PyIndex_Check(value.ptr()))
         throw InvalidInput(fmt::format("--{}: '{}' is not allowed; allowed: {}", option,
-                                       printable(std::string_view(text).substr(0, 80)),
+                                       printable(std::string(py::str(value)).substr(0, 80)),
                                        range.allowed()));
-    return check_whole(option, text, range);
+    const py::object index = py::reinterpret_steal<py::object>(PyNumber_Index(value.ptr()));
+    if (!index)
+        throw py::error_already_set();
+    return check_whole(option, std::string(py::str(index)), range);
 }
 
 /// generate(shape=...): a bed of pellets (docs/generate.md, "Pellets"), as `packbed generate
 /// --shape` makes it; `sphere_only` names each sphere option and whether it was given another
 /// value than its default (refused, as the command line refuses it).
 Bed generate_pellets(std::optional<double> aspect_ratio,
-                     const std::optional<std::string>& container, long long particles,
+                     const std::optional<std::string>& container, const py::object& particles,
                      const py::object& seed, double band_clearance,
                      std::optional<long long> threads, const py::object& progress,
                      const std::optional<std::filesystem::path>& out, bool force,
@@ -252,7 +275,7 @@ Bed generate_pellets(std::optional<double> aspect_ratio,
                                        *aspect_ratio, printable(container->substr(0, 80))));
     PelletRequest request;
     request.shape = shape;
-    request.particles = check_option("particles", particles, range::particles);
+    request.particles = whole(particles, "particles", range::particles);
     request.seed = whole(seed, "seed", range::seed);
     if (aspect_ratio)
         request.aspect_ratio = check_option("aspect-ratio", *aspect_ratio, range::aspect_ratio);
@@ -319,9 +342,9 @@ std::optional<PelletSpec> bed_pellet(const Bed& bed, std::string_view what) {
 }
 
 Bed generate(std::optional<double> aspect_ratio, const std::optional<std::string>& container,
-             long long particles, const py::object& seed, double diameter, const std::string& sizes,
-             const std::string& fractions, double e0, double ck, double cg_step,
-             std::optional<double> overlap_low, std::optional<double> overlap_high,
+             const py::object& particles, const py::object& seed, double diameter,
+             const std::string& sizes, const std::string& fractions, double e0, double ck,
+             double cg_step, std::optional<double> overlap_low, std::optional<double> overlap_high,
              double tolerance, long long mc_period, long long mc_window,
              std::optional<double> mc_tolerance, const std::string& update,
              const std::string& solver, std::optional<double> skin,
@@ -366,7 +389,7 @@ Bed generate(std::optional<double> aspect_ratio, const std::optional<std::string
                                        *aspect_ratio, printable(container->substr(0, 80))));
     if (aspect_ratio)
         request.aspect_ratio = check_option("aspect-ratio", *aspect_ratio, range::aspect_ratio);
-    p.particles = check_option("particles", particles, range::particles);
+    p.particles = whole(particles, "particles", range::particles);
     p.seed = whole(seed, "seed", range::seed);
     p.diameter = check_option("diameter", diameter, range::diameter);
     p.e0 = check_option("e0", e0, range::e0);
@@ -572,11 +595,16 @@ Bed from_arrays(const py::object& centers_given, const std::optional<py::object>
     std::optional<Doubles> radii;
     if (radii_given && !radii_given->is_none())
         radii = real_numbers(*radii_given, "radii");
+    // An array's shape as numpy prints it: (5,), (5, 2), ().
+    const auto shape_of = [](const py::array& a) {
+        std::vector<py::ssize_t> sizes(a.shape(), a.shape() + a.ndim());
+        return a.ndim() == 1 ? fmt::format("({},)", sizes[0])
+                             : fmt::format("({})", fmt::join(sizes, ", "));
+    };
     if (centers.ndim() != 2 || centers.shape(1) != 3)
-        throw InvalidInput(fmt::format("centers: an array of shape ({}) is not allowed; "
+        throw InvalidInput(fmt::format("centers: an array of shape {} is not allowed; "
                                        "allowed: shape (N, 3)",
-                                       centers.ndim() == 1 ? fmt::format("{},", centers.shape(0))
-                                                           : std::string("...")));
+                                       shape_of(centers)));
     const auto n = static_cast<std::size_t>(centers.shape(0));
     if (n > limits::max_spheres)
         throw InvalidInput(fmt::format("centers: {} spheres are not allowed; allowed: at most {}",
@@ -585,9 +613,9 @@ Bed from_arrays(const py::object& centers_given, const std::optional<py::object>
         throw InvalidInput("radii and diameter: exactly one is allowed (radii, an array of N "
                            "radii, or diameter, one for every sphere)");
     if (radii && (radii->ndim() != 1 || static_cast<std::size_t>(radii->shape(0)) != n))
-        throw InvalidInput(fmt::format("radii: an array of {} values for {} centres is not "
-                                       "allowed; allowed: one radius per centre",
-                                       radii->size(), n));
+        throw InvalidInput(fmt::format("radii: an array of shape {} for {} centres is not "
+                                       "allowed; allowed: shape ({},), one radius per centre",
+                                       shape_of(*radii), n, n));
     Bed bed;
     bed.packing.centers.resize(n);
     bed.packing.radii.resize(n);
@@ -665,7 +693,7 @@ py::object analyze(const Bed& bed, const std::optional<std::string>& container,
                     "band, band_clearance, shell_width, slab_height, contact_tolerance, threads, "
                     "out and force (lengths in d_v)",
                     name, pellet->text));
-    const Container given = container_for(bed, container);
+    const Container given = container_for(bed, container, pellet ? &*pellet : nullptr);
     namespace range = option_range;
     AnalysisOptions options;
     if (diameter)
@@ -956,7 +984,7 @@ py::array voxelize_bed(const Bed& bed, double voxel_size,
     // records).
     const std::optional<PelletSpec> pellet = bed_pellet(bed, "voxelize");
     const PelletShape* shape = pellet ? &pellet->shape : nullptr;
-    const Container given = container_for(bed, container);
+    const Container given = container_for(bed, container, pellet ? &*pellet : nullptr);
     const VoxelType type = voxel_type(kind, dtype);
     std::optional<ImageFormat> format;
     if (out) {
@@ -1031,21 +1059,22 @@ z = 0.)")
             [](py::object self) {
                 Bed& bed = self.cast<Bed&>();
                 static_assert(sizeof(Vec3) == 3 * sizeof(double));
-                return py::array_t<double>(
+                return read_only(py::array_t<double>(
                     {static_cast<py::ssize_t>(bed.packing.size()), py::ssize_t{3}},
                     {static_cast<py::ssize_t>(sizeof(Vec3)),
                      static_cast<py::ssize_t>(sizeof(double))},
-                    reinterpret_cast<double*>(bed.packing.centers.data()), self);
+                    reinterpret_cast<double*>(bed.packing.centers.data()), self));
             },
-            "The centres, a numpy array (N, 3) viewing the bed's own memory (no copy).")
+            "The centres, a read-only numpy array (N, 3) viewing the bed's own memory (no "
+            "copy); a changed bed is a new one: Bed(bed.centers + shift, bed.radii, ...).")
         .def_property_readonly(
             "radii",
             [](py::object self) {
                 Bed& bed = self.cast<Bed&>();
-                return py::array_t<double>(static_cast<py::ssize_t>(bed.packing.size()),
-                                           bed.packing.radii.data(), self);
+                return read_only(py::array_t<double>(static_cast<py::ssize_t>(bed.packing.size()),
+                                                     bed.packing.radii.data(), self));
             },
-            "The radii, a numpy array (N) viewing the bed's own memory (no copy).")
+            "The radii, a read-only numpy array (N) viewing the bed's own memory (no copy).")
         .def_property_readonly(
             "orientations",
             [](py::object self) -> py::object {
@@ -1053,15 +1082,15 @@ z = 0.)")
                 if (bed.packing.orientations.empty())
                     return py::none();
                 static_assert(sizeof(Quaternion) == 4 * sizeof(double));
-                return py::array_t<double>(
+                return read_only(py::array_t<double>(
                     {static_cast<py::ssize_t>(bed.packing.size()), py::ssize_t{4}},
                     {static_cast<py::ssize_t>(sizeof(Quaternion)),
                      static_cast<py::ssize_t>(sizeof(double))},
-                    reinterpret_cast<double*>(bed.packing.orientations.data()), self);
+                    reinterpret_cast<double*>(bed.packing.orientations.data()), self));
             },
-            "A pellet bed's orientations, a numpy array (N, 4) of unit quaternions qw, qx, qy, qz "
-            "(the pellet's axis is its body z axis turned) viewing the bed's own memory; None "
-            "for spheres.")
+            "A pellet bed's orientations, a read-only numpy array (N, 4) of unit quaternions qw, "
+            "qx, qy, qz (the pellet's axis is its body z axis turned) viewing the bed's own "
+            "memory; None for spheres.")
         .def_property_readonly(
             "container",
             [](const Bed& bed) -> std::optional<std::string> {

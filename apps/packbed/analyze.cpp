@@ -89,7 +89,8 @@ int run_pellet_analyze(const AnalyzeOptions& o, const fs::path& path, const Read
         throw InvalidInput(fmt::format("--container (or --container-radius) is needed: no "
                                        "summary.json with a container next to {}",
                                        printable(path.native())));
-    check_pellets_inside(file, path.string(), *found, pellet, o.outside_tolerance);
+    check_pellets_inside(file.packing, file.lines, path.string(), *found, pellet,
+                         o.outside_tolerance);
     const fs::path out_dir = o.out.empty() ? path.parent_path() / "analysis" : fs::path(o.out);
     OutputDirectory out(out_dir, "--out", OutputKind::directory, o.force);
     use_threads(o.threads);

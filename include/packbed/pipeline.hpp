@@ -383,9 +383,9 @@ BedInContainer read_bed_or_pellets(const std::filesystem::path& particles,
 /// `outside_tolerance` d_v (the shape's exact wall_overlap, its lowest point), or whose
 /// centroid lies outside a periodic cell by more than that.
 /// \throws InvalidInput naming the file, the line, the pellet and the allowed tolerance
-void check_pellets_inside(const ParticleFile& file, std::string_view name,
-                          const Container& container, const PelletSpec& pellet,
-                          double outside_tolerance);
+void check_pellets_inside(const Packing& packing, const std::vector<std::size_t>& lines,
+                          std::string_view name, const Container& container,
+                          const PelletSpec& pellet, double outside_tolerance);
 
 /// check_inside for a file read with `options`, at `outside_tolerance` Dp (Dp: the file's
 /// given diameter, else the spheres' mean), saying whether --axis and --floor moved it.

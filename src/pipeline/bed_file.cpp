@@ -123,15 +123,14 @@ BedInContainer read_bed_or_pellets(const std::filesystem::path& particles,
     BedInContainer bed{read_particles(particles, options),
                        find_container(particles, container, cylinder_radius), std::move(pellet)};
     if (bed.container)
-        check_pellets_inside(bed.file, particles.string(), *bed.container, *bed.pellet,
-                             outside_tolerance);
+        check_pellets_inside(bed.file.packing, bed.file.lines, particles.string(), *bed.container,
+                             *bed.pellet, outside_tolerance);
     return bed;
 }
 
-void check_pellets_inside(const ParticleFile& file, std::string_view name,
-                          const Container& container, const PelletSpec& pellet,
-                          double outside_tolerance) {
-    const Packing& packing = file.packing;
+void check_pellets_inside(const Packing& packing, const std::vector<std::size_t>& lines,
+                          std::string_view name, const Container& container,
+                          const PelletSpec& pellet, double outside_tolerance) {
     if (packing.orientations.size() != packing.size())
         return; // read_particles gives every pellet its orientation
     const double tolerance = outside_tolerance * pellet.volume_diameter;
@@ -147,9 +146,8 @@ void check_pellets_inside(const ParticleFile& file, std::string_view name,
                         "{}:{}: the pellet at ({}, {}, {}) reaches out of the container ({}, "
                         "floor z = 0) by {:.4g}; allowed: up to {:.4g} (--outside-tolerance "
                         "times d_v, in the file's units)",
-                        printable(name), i < file.lines.size() ? file.lines[i] : i + 1,
-                        p.position.x, p.position.y, p.position.z, describe(container), out,
-                        tolerance));
+                        printable(name), i < lines.size() ? lines[i] : i + 1, p.position.x,
+                        p.position.y, p.position.z, describe(container), out, tolerance));
             }
         },
         pellet.shape);

@@ -108,6 +108,34 @@ def test_arrays_are_views_of_the_bed_without_a_copy(bed):
     assert np.shares_memory(centers, bed.centers)
     assert np.shares_memory(radii, bed.radii)
     assert np.all(radii == 0.5)
+    # read-only: the bed was checked when it was made, and every call trusts it
+    assert not centers.flags["WRITEABLE"] and not radii.flags["WRITEABLE"]
+    with pytest.raises(ValueError, match="read-only"):
+        bed.radii[:] = 5.0
+    with pytest.raises(ValueError, match="read-only"):
+        bed.centers[0, 0] = np.nan
+    # a changed bed is a new one, from copies
+    moved = packbed.Bed(bed.centers + [0.0, 0.0, 1.0], bed.radii, container=bed.container)
+    assert moved.centers[0, 2] == bed.centers[0, 2] + 1.0
+
+
+def test_analyze_refuses_a_container_the_bed_does_not_fit(bed):
+    # the command line's check (packbed analyze --container): a sphere beyond the wall given
+    for spec in ["cylinder:3", "box:1,1", "cylinder:0.5"]:
+        with pytest.raises(ValueError, match="sticks out of the container"):
+            packbed.analyze(bed, container=spec)
+        with pytest.raises(ValueError, match="sticks out of the container"):
+            packbed.voxelize(bed, voxel_size=0.5, container=spec)
+    # a container that holds it is taken: the same tube, wider
+    assert 0.0 < packbed.analyze(bed, container="cylinder:5").void_fraction < 1.0
+
+
+def test_numpy_integers_are_whole_numbers(bed):
+    # a parameter study over np.arange: numpy's integers are taken where Python's are
+    again = packbed.generate(**{**BED, "seed": np.int64(BED["seed"]), "particles": np.int32(150)})
+    assert np.array_equal(again.centers, bed.centers)
+    array = packbed.random_array(count=np.int64(20), sweeps=np.uint16(10), seed=np.int8(3))
+    assert len(array) == 20
 
 
 def test_analyze_gives_the_command_lines_numbers(bed, cli_bed, tmp_path):
@@ -185,8 +213,11 @@ def test_a_lattice_too_short_for_its_band_says_so(tmp_path):
         (lambda: packbed.read("/nonexistent/bed.csv"), ["/nonexistent/bed.csv"]),
         (lambda: packbed.read("x.csv", frame=0), ["frame", "0", "allowed"]),
         (lambda: packbed.read("x.csv", format="pdf"), ["format", "pdf", "allowed"]),
-        (lambda: packbed.Bed(np.zeros((3, 2)), diameter=1.0), ["centers", "allowed"]),
-        (lambda: packbed.Bed(np.zeros((3, 3)), np.ones(2)), ["radii", "allowed"]),
+        (lambda: packbed.Bed(np.zeros((3, 2)), diameter=1.0), ["centers", "(3, 2)", "allowed"]),
+        (lambda: packbed.Bed(np.zeros((3, 3)), np.ones(2)), ["radii", "(2,)", "allowed"]),
+        (lambda: packbed.Bed(np.zeros((3, 3)), np.ones((3, 1))), ["radii", "(3, 1)", "(3,)"]),
+        (lambda: packbed.generate(particles=True), ["particles", "True", "allowed"]),
+        (lambda: packbed.generate(seed=np.True_), ["seed", "True", "allowed"]),
         (lambda: packbed.Bed([[0, 0, math.nan]], diameter=1.0), ["nan", "allowed"]),
         (lambda: packbed.Bed([[0, 0, 0.5]], diameter=1.0, container="cylinder:0.5"),
          ["sticks out", "allowed"]),
