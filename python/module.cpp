@@ -501,6 +501,9 @@ Bed file_bed(const std::filesystem::path& path, ParticleFile&& file,
     bed.summary["frame"] = file.frame;
     if (bed.container)
         bed.summary["container"] = bed.container->summary_json();
+    // A random array's cube, periodic along z too: voxelize and export take its period.
+    if (const std::optional<double> period_z = period_z_beside(path))
+        bed.summary["period_z"] = *period_z;
     return bed;
 }
 
@@ -995,9 +998,14 @@ py::array voxelize_bed(const Bed& bed, double voxel_size,
                                            "header)",
                                            printable(out->native())));
     }
+    // A random array's cube is periodic along z too (its summary's period_z).
+    const std::optional<double> period_z =
+        !shape && bed.summary.is_object() && bed.summary.contains("period_z") &&
+                bed.summary["period_z"].is_number()
+            ? std::optional(bed.summary["period_z"].get<double>())
+            : std::nullopt;
     // every check before the work
-    voxel_grid(bed.packing, given, voxel_size, region, voxel_bytes(type),
-               shape ? std::optional(pellet_bed_top(bed.packing, *shape)) : std::nullopt);
+    voxelize_grid(bed.packing, given, voxel_size, region, type, shape, period_z);
     std::optional<OutputDirectory> directory;
     if (out)
         directory.emplace(out->parent_path().empty() ? "." : out->parent_path(), "--out",
@@ -1006,7 +1014,7 @@ py::array voxelize_bed(const Bed& bed, double voxel_size,
     VoxelImage image;
     {
         py::gil_scoped_release released;
-        image = voxelize(bed.packing, given, voxel_size, region, type, shape);
+        image = voxelize(bed.packing, given, voxel_size, region, type, shape, period_z);
     }
     if (directory) {
         stage_image(*directory, out->filename().string(), *format, image);

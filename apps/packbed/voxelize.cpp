@@ -71,14 +71,16 @@ int run_voxelize(VoxelizeOptions& o) {
     }
     const VoxelType type = voxel_type(o.kind, o.dtype);
     const bool binary = type == VoxelType::boolean;
+    // A random array's cube is periodic along z too (its summary.json's period_z).
+    const std::optional<double> period_z = shape ? std::nullopt : period_z_beside(path);
     // Every check before the work: the grid's size, the output.
-    voxel_grid(file.packing, container, o.voxel_size, region, voxel_bytes(type),
-               shape ? std::optional(pellet_bed_top(file.packing, *shape)) : std::nullopt);
+    voxelize_grid(file.packing, container, o.voxel_size, region, type, shape, period_z);
     const std::filesystem::path target(o.out);
     OutputDirectory out(target.parent_path().empty() ? "." : target.parent_path(), "--out",
                         OutputKind::files);
     use_threads(o.threads);
-    const VoxelImage image = voxelize(file.packing, container, o.voxel_size, region, type, shape);
+    const VoxelImage image =
+        voxelize(file.packing, container, o.voxel_size, region, type, shape, period_z);
     stage_image(out, target.filename().string(), *format, image);
     out.commit();
     if (!o.quiet)

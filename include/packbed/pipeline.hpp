@@ -388,7 +388,8 @@ void check_pellets_inside(const Packing& packing, const std::vector<std::size_t>
                           const PelletSpec& pellet, double outside_tolerance);
 
 /// check_inside for a file read with `options`, at `outside_tolerance` Dp (Dp: the file's
-/// given diameter, else the spheres' mean), saying whether --axis and --floor moved it.
+/// given diameter, else the spheres' mean), saying whether --axis and --floor moved it; a
+/// random array's cube (period_z in the summary.json beside the file) periodic along z too.
 void check_file_inside(const ParticleFile& file, const ReadOptions& options, std::string_view name,
                        const Container& container, double outside_tolerance);
 
@@ -419,13 +420,15 @@ FrameSeries void_fraction_series(const std::filesystem::path& particles, const R
 std::string frame_series_table(const FrameSeries& series);
 
 /// Refuse spheres that stick out of the container by more than `tolerance` (length units;
-/// Container::sticks_out: beyond a wall, or a centre outside a periodic cell) or below the floor.
+/// Container::sticks_out: beyond a wall, or a centre outside a periodic cell) or below the floor;
+/// in a cell periodic along z too (`period_z`: random_array's cube), whose spheres cross its
+/// floor and top, a centre below the floor or above the top.
 /// \param name the file in messages, with each sphere's line \param lines each sphere's line
 /// \param shifted the centres were moved by --axis and --floor (the message says so)
 /// \throws InvalidInput naming the file, the line, the sphere and the allowed tolerance
 void check_inside(const Packing& packing, const std::vector<std::size_t>& lines,
-                  std::string_view name, const Container& container, double tolerance,
-                  bool shifted);
+                  std::string_view name, const Container& container, double tolerance, bool shifted,
+                  std::optional<double> period_z = std::nullopt);
 
 // ---------------------------------------------------------------------------------------------
 // export
@@ -626,13 +629,24 @@ struct VoxelImage {
 /// float64 with --kind binary (a bool image)
 VoxelType voxel_type(std::string_view kind, std::string_view dtype);
 
-/// Make the image `voxelize` makes: voxel_grid, then pore_image (type boolean) or
+/// The grid `voxelize` draws on (voxel_grid): the default region's top the spheres' top, the
+/// pellets' highest point (pellet_bed_top) given `pellet`, or the cell's top `period_z` of a
+/// bed periodic along z too (random_array's cube, its summary.json's period_z). Called
+/// before the work to check the image's size. \throws InvalidInput as voxel_grid
+VoxelGrid voxelize_grid(const Packing& packing, const Container& container, double voxel_size,
+                        const std::optional<std::array<double, 6>>& region, VoxelType type,
+                        const PelletShape* pellet = nullptr,
+                        std::optional<double> period_z = std::nullopt);
+
+/// Make the image `voxelize` makes: voxelize_grid, then pore_image (type boolean) or
 /// solid_fraction_image (float64 or float32), of spheres or, given `pellet`, of pellets of that
-/// shape (the default region's top then the pellets' highest point, pellet_bed_top).
+/// shape. With `period_z` (spheres), each sphere that crosses the cell's floor or top is drawn
+/// again a period above or below, so the image of the cube wraps along z as across x and y.
 /// \throws InvalidInput as voxel_grid
 VoxelImage voxelize(const Packing& packing, const Container& container, double voxel_size,
                     const std::optional<std::array<double, 6>>& region, VoxelType type,
-                    const PelletShape* pellet = nullptr);
+                    const PelletShape* pellet = nullptr,
+                    std::optional<double> period_z = std::nullopt);
 
 /// Stage an image as the file `name` of `out` in `format`, and a raw image's header as
 /// name + ".json" (image_header).

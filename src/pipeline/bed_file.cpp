@@ -159,7 +159,8 @@ void check_file_inside(const ParticleFile& file, const ReadOptions& options, std
         return;
     const double dp = options.radius ? 2.0 * *options.radius : file.packing.mean_diameter();
     const bool shifted = options.axis[0] != 0.0 || options.axis[1] != 0.0 || options.floor != 0.0;
-    check_inside(file.packing, file.lines, name, container, outside_tolerance * dp, shifted);
+    check_inside(file.packing, file.lines, name, container, outside_tolerance * dp, shifted,
+                 period_z_beside(std::filesystem::path(name)));
 }
 
 FrameSeries void_fraction_series(const std::filesystem::path& particles, const ReadOptions& options,
@@ -213,13 +214,13 @@ std::string frame_series_table(const FrameSeries& series) {
 }
 
 void check_inside(const Packing& packing, const std::vector<std::size_t>& lines,
-                  std::string_view name, const Container& container, double tolerance,
-                  bool shifted) {
+                  std::string_view name, const Container& container, double tolerance, bool shifted,
+                  std::optional<double> period_z) {
     for (std::size_t i = 0; i < packing.size(); ++i) {
         const Vec3& c = packing.centers[i];
         const double r = packing.radii[i];
         const double out_wall = container.sticks_out(c, r);
-        const double below = -(c.z - r);
+        const double below = period_z ? std::max(-c.z, c.z - *period_z) : -(c.z - r);
         if (out_wall > tolerance || below > tolerance)
             throw InvalidInput(
                 fmt::format("{}:{}: the sphere at ({}, {}, {}){} sticks out of the container ({}, "

@@ -57,14 +57,42 @@ double VoxelImage::porosity() const {
     return 0.0;
 }
 
-VoxelImage voxelize(const Packing& packing, const Container& container, double voxel_size,
+VoxelGrid voxelize_grid(const Packing& packing, const Container& container, double voxel_size,
+                        const std::optional<std::array<double, 6>>& region, VoxelType type,
+                        const PelletShape* pellet, std::optional<double> period_z) {
+    const std::optional<double> top =
+        pellet ? std::optional(pellet_bed_top(packing, *pellet)) : period_z;
+    return voxel_grid(packing, container, voxel_size, region, voxel_bytes(type), top);
+}
+
+namespace {
+
+/// `packing` with a copy, a period `period` above or below, of each sphere that crosses z = 0
+/// or z = period: a cell periodic along z drawn whole (the lateral copies are the images').
+Packing with_z_copies(const Packing& packing, double period) {
+    Packing out = packing;
+    for (std::size_t i = 0; i < packing.size(); ++i) {
+        const Vec3& c = packing.centers[i];
+        const double r = packing.radii[i];
+        if (c.z - r < 0.0)
+            out.add({c.x, c.y, c.z + period}, r);
+        if (c.z + r > period)
+            out.add({c.x, c.y, c.z - period}, r);
+    }
+    return out;
+}
+
+} // namespace
+
+VoxelImage voxelize(const Packing& packing_given, const Container& container, double voxel_size,
                     const std::optional<std::array<double, 6>>& region, VoxelType type,
-                    const PelletShape* pellet) {
+                    const PelletShape* pellet, std::optional<double> period_z) {
     VoxelImage image;
     image.type = type;
     image.grid =
-        voxel_grid(packing, container, voxel_size, region, voxel_bytes(type),
-                   pellet ? std::optional(pellet_bed_top(packing, *pellet)) : std::nullopt);
+        voxelize_grid(packing_given, container, voxel_size, region, type, pellet, period_z);
+    const Packing packing =
+        period_z && !pellet ? with_z_copies(packing_given, *period_z) : packing_given;
     if (pellet) {
         if (type == VoxelType::boolean)
             image.pore = pore_image(packing, *pellet, container, image.grid);

@@ -957,6 +957,30 @@ def test_random_array_is_the_command_lines_and_its_case_repeats_along_z(tmp_path
     assert cell["periodic"]["solid_fraction"] == pytest.approx(0.3, abs=2e-9)
 
 
+def test_the_voxel_image_of_a_random_array_wraps_on_all_six_faces(tmp_path):
+    # the cube's image, by default the cube itself: its exact solid fractions add up to the
+    # array's solid fraction (the spheres crossing the floor and the top drawn a period away,
+    # as those crossing the sides), and the command line's file is the same image
+    array = packbed.random_array(count=100, solid_fraction=0.3, seed=2, out=str(tmp_path / "a"))
+    edge = array.summary["period_z"]
+    image = packbed.voxelize(array, voxel_size=edge / 40, kind="fraction")
+    assert image.shape == (40, 40, 40)
+    assert image.mean() == pytest.approx(array.summary["solid_fraction"], abs=1e-12)
+    # the faces meet as the inside does: opposite faces' layers are neighbours
+    assert np.corrcoef(image[:, :, 0].ravel(), image[:, :, -1].ravel())[0, 1] > 0.5
+    status, _, err = cli("voxelize", tmp_path / "a" / "particles.csv", "--voxel-size",
+                         repr(edge / 40), "--kind", "fraction", "-q", "-o", tmp_path / "a.npy")
+    assert status == 0, err
+    assert np.array_equal(np.load(tmp_path / "a.npy"), image)
+    # read back from its files (the period from summary.json beside them): the same image
+    back = packbed.read(str(tmp_path / "a" / "particles.csv"))
+    assert back.summary["period_z"] == edge
+    assert np.array_equal(packbed.voxelize(back, voxel_size=edge / 40, kind="fraction"), image)
+    # and the command line's analyze takes the cube whose spheres cross its floor and top
+    status, _, err = cli("analyze", tmp_path / "a" / "particles.csv", "-q", "-o", tmp_path / "an")
+    assert status == 0, err
+
+
 def test_export_of_a_bed_made_in_python_holds_every_sphere(bed, tmp_path):
     packbed.export(bed, str(tmp_path / "bed.data"))
     lines = (tmp_path / "bed.data").read_text().splitlines()
