@@ -892,22 +892,21 @@ py::object correlations(double aspect_ratio, double profile_step, double profile
     return to_python(report.values);
 }
 
-std::string export_bed_to(const Bed& bed, const std::filesystem::path& out,
-                          const std::string& format, const std::optional<std::string>& container,
-                          std::optional<double> container_height, bool no_container, double density,
-                          const std::optional<std::string>& box,
-                          std::optional<double> fluid_velocity, const std::string& contacts,
-                          long long refine, std::optional<double> edge,
-                          const std::optional<std::string>& facets, long long cells_per_diameter,
-                          long long particle_level, long long wall_level, long long ranks,
-                          double reynolds, const std::string& turbulence, double fluid_density,
-                          double viscosity, std::optional<double> scale, const std::string& flow,
-                          bool force, long long layers) {
+std::string
+export_bed_to(const Bed& bed, const std::filesystem::path& out,
+              const std::optional<std::string>& format, const std::optional<std::string>& container,
+              std::optional<double> container_height, bool no_container, double density,
+              const std::optional<std::string>& box, std::optional<double> fluid_velocity,
+              const std::string& contacts, long long refine, std::optional<double> edge,
+              const std::optional<std::string>& facets, long long cells_per_diameter,
+              long long particle_level, long long wall_level, long long ranks, double reynolds,
+              const std::string& turbulence, double fluid_density, double viscosity,
+              std::optional<double> scale, const std::string& flow, bool force, long long layers) {
     namespace range = option_range;
     check_path("out", out);
     ExportRequest request;
     request.pellet = bed_pellet(bed, "export");
-    request.format = format;
+    request.format = format ? *format : export_format_for(out);
     request.out = out;
     request.force = force;
     // the bed's file where it was read from one (the outputs must not replace it)
@@ -1347,11 +1346,10 @@ xhigh, yhigh, zhigh); None: the container across and the floor to the bed's top.
 it to a .npy, .tif or .raw (+ .raw.json) file. The array owns its memory (no copy is made).)");
 
     m.def("export", &export_bed_to, py::call_guard<JobScope>(), py::arg("bed"), py::arg("out"),
-          py::kw_only(), py::arg("format") = ExportRequest{}.format,
-          py::arg("container") = py::none(), py::arg("container_height") = py::none(),
-          py::arg("no_container") = false, py::arg("density") = ExportRequest{}.density,
-          py::arg("box") = py::none(), py::arg("fluid_velocity") = py::none(),
-          py::arg("contacts") = ExportRequest{}.contacts,
+          py::kw_only(), py::arg("format") = py::none(), py::arg("container") = py::none(),
+          py::arg("container_height") = py::none(), py::arg("no_container") = false,
+          py::arg("density") = ExportRequest{}.density, py::arg("box") = py::none(),
+          py::arg("fluid_velocity") = py::none(), py::arg("contacts") = ExportRequest{}.contacts,
           py::arg("refine") = ExportRequest{}.refine, py::arg("edge") = py::none(),
           py::arg("facets") = py::none(),
           py::arg("cells_per_diameter") = ExportRequest{}.mesh.cells_per_diameter,

@@ -37,6 +37,7 @@ struct ExportOptions {
     /// the mesh options and their fields: those given replace the preset's values
     std::vector<std::pair<const CLI::Option*, int OpenFoamMeshOptions::*>> mesh_options;
     bool quiet = false;
+    const CLI::Option* format_option = nullptr; // --format, to know whether it was given
 };
 
 /// --mesh's values, then the mesh options given beside it again on top.
@@ -52,6 +53,9 @@ void apply_mesh_preset(const ExportOptions& o, OpenFoamMeshOptions& mesh) {
 
 int run_export(ExportOptions& o) {
     ExportRequest& request = o.request;
+    // No --format: the one the output's name says (x.stl an STL, not a data file named so).
+    if (o.format_option->count() == 0 && !o.out.empty())
+        request.format = export_format_for(o.out);
     request.out =
         o.out.empty() ? default_export_path(o.particles, request.format) : fs::path(o.out);
     request.source = o.particles;
@@ -108,11 +112,13 @@ Command register_export(CLI::App& parent) {
         ->required()
         ->check(path_text());
     const std::vector<std::string> names = export_format_names();
-    app->add_option("-f,--format", o.request.format,
-                    "lammps-data (atom_style sphere), liggghts-data (atom_style granular), stl "
-                    "(binary), stl-ascii (one named solid per part), obj, or openfoam (a case "
-                    "directory for blockMesh + snappyHexMesh)")
-        ->check(one_of(names));
+    o.format_option =
+        app->add_option("-f,--format", o.request.format,
+                        "lammps-data (atom_style sphere), liggghts-data (atom_style granular), stl "
+                        "(binary), stl-ascii (one named solid per part), obj, or openfoam (a case "
+                        "directory for blockMesh + snappyHexMesh); default: stl for an --out "
+                        "ending in .stl, obj for .obj, else lammps-data")
+            ->check(one_of(names));
     app->add_option("-o,--out", o.out,
                     "the output file (default: the particle file with .data, .stl or .obj), or "
                     "the case directory for openfoam (default: openfoam/ beside the file; a new "

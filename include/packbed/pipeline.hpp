@@ -476,6 +476,10 @@ struct ExportRequest {
 /// The formats of export: lammps-data, liggghts-data, stl, stl-ascii, obj, openfoam.
 std::vector<std::string> export_format_names();
 
+/// export's format where none is given, from the output's name: stl for a .stl file, obj for
+/// a .obj one (either case), else lammps-data.
+std::string export_format_for(const std::filesystem::path& out);
+
 /// Where `export` writes by default for the bed file `particles`: the file with .data, .stl or
 /// .obj, or the directory openfoam/ beside it.
 std::filesystem::path default_export_path(const std::filesystem::path& particles,

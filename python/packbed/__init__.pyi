@@ -192,7 +192,7 @@ def export(
     bed: Bed,
     out: str,
     *,
-    format: str = "lammps-data",
+    format: Optional[str] = None,
     container: Optional[str] = None,
     container_height: Optional[float] = None,
     no_container: bool = False,

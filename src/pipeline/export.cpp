@@ -863,6 +863,17 @@ std::string pellet_export(const ExportRequest& request, ExportFormat format, con
 
 } // namespace
 
+std::string export_format_for(const std::filesystem::path& out) {
+    std::string extension = out.extension().string();
+    std::transform(extension.begin(), extension.end(), extension.begin(),
+                   [](unsigned char c) { return static_cast<char>(std::tolower(c)); });
+    if (extension == ".stl")
+        return "stl";
+    if (extension == ".obj")
+        return "obj";
+    return ExportRequest{}.format;
+}
+
 std::filesystem::path default_export_path(const std::filesystem::path& particles,
                                           const std::string& format) {
     switch (export_format(format)) {

@@ -981,6 +981,25 @@ def test_the_voxel_image_of_a_random_array_wraps_on_all_six_faces(tmp_path):
     assert status == 0, err
 
 
+def test_export_takes_its_format_from_the_name_when_none_is_given(bed, cli_bed, tmp_path):
+    # x.stl is an STL and y.OBJ an OBJ, not LAMMPS data files named so; the command line's the
+    # same bytes
+    packbed.export(bed, str(tmp_path / "x.stl"))
+    packbed.export(bed, str(tmp_path / "y.OBJ"))
+    assert not (tmp_path / "x.stl.lammps.in").exists()
+    stl = (tmp_path / "x.stl").read_bytes()
+    assert len(stl) == 84 + 50 * int.from_bytes(stl[80:84], "little")  # binary STL's layout
+    assert (tmp_path / "y.OBJ").read_text().startswith(("#", "v ", "o ", "g "))
+    status, _, err = cli("export", cli_bed / "particles.csv", "-q", "-o", tmp_path / "c.stl")
+    assert status == 0, err
+    read = packbed.read(str(cli_bed / "particles.csv"))
+    packbed.export(read, str(tmp_path / "p.stl"))
+    assert (tmp_path / "p.stl").read_bytes() == (tmp_path / "c.stl").read_bytes()
+    # a format given wins over the name
+    packbed.export(bed, str(tmp_path / "z.stl"), format="lammps-data")
+    assert (tmp_path / "z.stl").read_text().split("\n")[0].endswith("atom_style sphere)")
+
+
 def test_export_of_a_bed_made_in_python_holds_every_sphere(bed, tmp_path):
     packbed.export(bed, str(tmp_path / "bed.data"))
     lines = (tmp_path / "bed.data").read_text().splitlines()
