@@ -74,10 +74,12 @@ Packing with_z_copies(const Packing& packing, double period) {
     for (std::size_t i = 0; i < packing.size(); ++i) {
         const Vec3& c = packing.centers[i];
         const double r = packing.radii[i];
-        if (c.z - r < 0.0)
-            out.add({c.x, c.y, c.z + period}, r);
-        if (c.z + r > period)
-            out.add({c.x, c.y, c.z - period}, r);
+        for (const double shift : {period, -period})
+            if (shift > 0.0 ? c.z - r < 0.0 : c.z + r > period) {
+                out.add({c.x, c.y, c.z + shift}, r);
+                if (!packing.types.empty())
+                    out.types.push_back(packing.types[i]);
+            }
     }
     return out;
 }
@@ -91,8 +93,10 @@ VoxelImage voxelize(const Packing& packing_given, const Container& container, do
     image.type = type;
     image.grid =
         voxelize_grid(packing_given, container, voxel_size, region, type, pellet, period_z);
-    const Packing packing =
-        period_z && !pellet ? with_z_copies(packing_given, *period_z) : packing_given;
+    std::optional<Packing> copies;
+    if (period_z && !pellet)
+        copies = with_z_copies(packing_given, *period_z);
+    const Packing& packing = copies ? *copies : packing_given;
     if (pellet) {
         if (type == VoxelType::boolean)
             image.pore = pore_image(packing, *pellet, container, image.grid);
