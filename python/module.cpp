@@ -6,6 +6,7 @@
 
 #include <csignal>
 #include <cstdint>
+#include <cstring>
 #include <limits>
 #include <optional>
 #include <string>
@@ -198,6 +199,54 @@ auto run_interruptible(RunControl& control, const py::object& progress, Work&& w
 void set_threads(const std::optional<long long>& threads) {
     if (threads)
         use_threads(check_option("threads", *threads, option_range::threads));
+}
+
+/// A vector's bytes, and a vector of T from bytes (pickling a Bed: its numbers exactly).
+template <class T> py::bytes bytes_of(const std::vector<T>& v) {
+    return py::bytes(reinterpret_cast<const char*>(v.data()), v.size() * sizeof(T));
+}
+template <class T> std::vector<T> vector_of(const py::bytes& b, std::size_t count) {
+    const std::string text = b;
+    if (text.size() != count * sizeof(T))
+        throw InvalidInput("Bed: a pickled state of the wrong size is not allowed; allowed: the "
+                           "state a Bed's pickling gives");
+    std::vector<T> v(count);
+    std::memcpy(v.data(), text.data(), text.size());
+    return v;
+}
+
+/// A Bed's pickled state: its count, centres, radii, orientations and types as bytes (exact),
+/// the container's record and the summary as JSON text (doubles printed to round-trip).
+py::tuple bed_state(const Bed& bed) {
+    const Packing& p = bed.packing;
+    return py::make_tuple(p.size(), bytes_of(p.centers), bytes_of(p.radii),
+                          bytes_of(p.orientations), bytes_of(p.types),
+                          bed.container ? py::object(py::str(bed.container->summary_json().dump()))
+                                        : py::none(),
+                          bed.summary.dump());
+}
+
+Bed bed_from_state(const py::tuple& state) {
+    if (state.size() != 7)
+        throw InvalidInput("Bed: a pickled state of the wrong size is not allowed; allowed: the "
+                           "state a Bed's pickling gives");
+    const auto n = state[0].cast<std::size_t>();
+    Bed bed;
+    bed.packing.centers = vector_of<Vec3>(state[1], n);
+    bed.packing.radii = vector_of<double>(state[2], n);
+    const std::size_t turned = py::len(state[3]) == 0 ? 0 : n;
+    bed.packing.orientations = vector_of<Quaternion>(state[3], turned);
+    const std::size_t typed = py::len(state[4]) == 0 ? 0 : n;
+    bed.packing.types = vector_of<std::uint32_t>(state[4], typed);
+    if (!state[5].is_none()) {
+        const ContainerRecord record =
+            container_from_record(nlohmann::json::parse(state[5].cast<std::string>()));
+        if (!record.container)
+            throw InvalidInput("Bed: a pickled container is not allowed: " + record.allowed);
+        bed.container = record.container;
+    }
+    bed.summary = nlohmann::json::parse(state[6].cast<std::string>());
+    return bed;
 }
 
 /// `array` made read-only: a bed's arrays view its memory, which was checked when the bed was
@@ -1111,6 +1160,8 @@ z = 0.)")
             "The bed's record as a dict: what summary.json holds (for a generated bed the "
             "parameters, the stages, the void fraction, the largest overlaps).")
         .def("__len__", [](const Bed& bed) { return bed.packing.size(); })
+        // pickle, copy.copy and copy.deepcopy (multiprocessing returns beds by pickling them)
+        .def(py::pickle(&bed_state, &bed_from_state))
         .def("write", &write_bed, py::call_guard<JobScope>(), py::arg("out"), py::kw_only(),
              py::arg("force") = false, py::arg("analysis") = true, py::arg("band_clearance") = 1.0,
              R"(Write the bed as `packbed generate` does: particles.csv, particles.vtu, the

@@ -119,6 +119,26 @@ def test_arrays_are_views_of_the_bed_without_a_copy(bed):
     assert moved.centers[0, 2] == bed.centers[0, 2] + 1.0
 
 
+def test_a_bed_pickles_and_copies_exactly(bed, tmp_path):
+    # multiprocessing returns beds by pickling them: every number, the container and the
+    # record come back, and the copy measures as the bed does
+    import copy
+    import pickle
+
+    for back in [pickle.loads(pickle.dumps(bed)), copy.copy(bed), copy.deepcopy(bed)]:
+        assert np.array_equal(back.centers, bed.centers) and np.array_equal(back.radii, bed.radii)
+        assert back.container == bed.container and back.summary == bed.summary
+        assert back.orientations is None
+        assert packbed.analyze(back).void_fraction == packbed.analyze(bed).void_fraction
+    array = packbed.random_array(count=20, seed=2)
+    assert pickle.loads(pickle.dumps(array)).summary["period_z"] == array.summary["period_z"]
+    pellets = packbed.generate(shape="spherocylinder:1,1", aspect_ratio=3, particles=6, seed=1)
+    back = pickle.loads(pickle.dumps(pellets))
+    assert np.array_equal(back.orientations, pellets.orientations)
+    assert packbed.analyze(back, band_clearance=0.2).void_fraction == \
+        packbed.analyze(pellets, band_clearance=0.2).void_fraction
+
+
 def test_analyze_refuses_a_container_the_bed_does_not_fit(bed):
     # the command line's check (packbed analyze --container): a sphere beyond the wall given
     for spec in ["cylinder:3", "box:1,1", "cylinder:0.5"]:
