@@ -231,6 +231,10 @@ Bed bed_from_state(const py::tuple& state) {
         throw InvalidInput("Bed: a pickled state of the wrong size is not allowed; allowed: the "
                            "state a Bed's pickling gives");
     const auto n = state[0].cast<std::size_t>();
+    if (n > limits::max_spheres)
+        throw InvalidInput(fmt::format("Bed: a pickled state of {} spheres is not allowed; "
+                                       "allowed: at most {}",
+                                       n, limits::max_spheres));
     Bed bed;
     bed.packing.centers = vector_of<Vec3>(state[1], n);
     bed.packing.radii = vector_of<double>(state[2], n);
