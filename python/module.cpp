@@ -160,6 +160,10 @@ py::dict flat_dict(const nlohmann::ordered_json& record) {
 /// A signal turns into KeyboardInterrupt; a progress callback's exception goes through.
 template <class Work>
 auto run_interruptible(RunControl& control, const py::object& progress, Work&& work) {
+    if (!progress.is_none() && !PyCallable_Check(progress.ptr()))
+        throw InvalidInput(fmt::format("progress: {} is not allowed; allowed: None or a function "
+                                       "called with one dict",
+                                       printable(std::string(py::repr(progress)).substr(0, 80))));
     std::optional<py::error_already_set> callback_error;
     bool interrupted = false;
     control.should_stop = [&] {

@@ -237,6 +237,7 @@ def test_a_lattice_too_short_for_its_band_says_so(tmp_path):
         (lambda: packbed.Bed(np.zeros((3, 3)), np.ones(2)), ["radii", "(2,)", "allowed"]),
         (lambda: packbed.Bed(np.zeros((3, 3)), np.ones((3, 1))), ["radii", "(3, 1)", "(3,)"]),
         (lambda: packbed.generate(particles=True), ["particles", "True", "allowed"]),
+        (lambda: packbed.generate(progress=5), ["progress", "5", "allowed", "function"]),
         (lambda: packbed.generate(seed=np.True_), ["seed", "True", "allowed"]),
         (lambda: packbed.Bed([[0, 0, math.nan]], diameter=1.0), ["nan", "allowed"]),
         (lambda: packbed.Bed([[0, 0, 0.5]], diameter=1.0, container="cylinder:0.5"),
