@@ -388,10 +388,11 @@ void check_pellets_inside(const Packing& packing, const std::vector<std::size_t>
                           const PelletSpec& pellet, double outside_tolerance);
 
 /// check_inside for a file read with `options`, at `outside_tolerance` Dp (Dp: the file's
-/// given diameter, else the spheres' mean), saying whether --axis and --floor moved it; a
-/// random array's cube (period_z in the summary.json beside the file) periodic along z too.
+/// given diameter, else the spheres' mean), saying whether --axis and --floor moved it; with
+/// `period_z` (period_z_beside: a random array's cube) periodic along z too.
 void check_file_inside(const ParticleFile& file, const ReadOptions& options, std::string_view name,
-                       const Container& container, double outside_tolerance);
+                       const Container& container, double outside_tolerance,
+                       std::optional<double> period_z);
 
 /// One frame of a trajectory in a void-fraction series (`analyze --frames all`).
 struct FrameVoidFraction {

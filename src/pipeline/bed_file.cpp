@@ -109,7 +109,8 @@ BedInContainer read_bed_in_container(const std::filesystem::path& particles,
             "bed with the summary.json generate --shape wrote beside it",
             printable(particles.native())));
     if (bed.container)
-        check_file_inside(bed.file, options, particles.string(), *bed.container, outside_tolerance);
+        check_file_inside(bed.file, options, particles.string(), *bed.container, outside_tolerance,
+                          period_z_beside(particles));
     return bed;
 }
 
@@ -154,13 +155,14 @@ void check_pellets_inside(const Packing& packing, const std::vector<std::size_t>
 }
 
 void check_file_inside(const ParticleFile& file, const ReadOptions& options, std::string_view name,
-                       const Container& container, double outside_tolerance) {
+                       const Container& container, double outside_tolerance,
+                       std::optional<double> period_z) {
     if (file.packing.size() == 0)
         return;
     const double dp = options.radius ? 2.0 * *options.radius : file.packing.mean_diameter();
     const bool shifted = options.axis[0] != 0.0 || options.axis[1] != 0.0 || options.floor != 0.0;
     check_inside(file.packing, file.lines, name, container, outside_tolerance * dp, shifted,
-                 period_z_beside(std::filesystem::path(name)));
+                 period_z);
 }
 
 FrameSeries void_fraction_series(const std::filesystem::path& particles, const ReadOptions& options,
@@ -168,13 +170,14 @@ FrameSeries void_fraction_series(const std::filesystem::path& particles, const R
                                  double outside_tolerance) {
     refuse_pellets(particles);
     const std::string name = particles.string();
+    const std::optional<double> period_z = period_z_beside(particles); // once, not per frame
     FrameSeries series;
     bool any = false;
     for_each_particle_frame(particles, options, [&](ParticleFile&& frame) {
         FrameVoidFraction row{frame.frame, frame.timestep, std::nullopt, frame.packing.size()};
         if (frame.packing.size() > 0) {
             try {
-                check_file_inside(frame, options, name, container, outside_tolerance);
+                check_file_inside(frame, options, name, container, outside_tolerance, period_z);
             } catch (const InvalidInput& error) {
                 throw InvalidInput(fmt::format(
                     "frame {}{}: {}", frame.frame,
