@@ -4,6 +4,8 @@
 // else is copied into new arrays.
 #include <stdlib.h>
 
+#include <algorithm>
+#include <cmath>
 #include <csignal>
 #include <cstdint>
 #include <cstring>
@@ -35,6 +37,7 @@
 #include "packbed/output.hpp"
 #include "packbed/periodic.hpp"
 #include "packbed/pipeline.hpp"
+#include "packbed/quaternion.hpp"
 #include "packbed/random_array.hpp"
 #include "packbed/read.hpp"
 #include "packbed/version.hpp"
@@ -648,9 +651,73 @@ Doubles real_numbers(const py::object& value, std::string_view name) {
     return Doubles::ensure(array);
 }
 
-/// A bed from numpy arrays: centres (N x 3) and radii (N), or one diameter for all.
+/// A bed of pellets from numpy arrays (from_arrays given `shape`): the radii each pellet's d_v / 2
+/// (the shape's, or those given: the shape scaled by each one's over the shape's), the
+/// orientations unit quaternions within 1e-3 (normalised as read() takes a file's, those of
+/// norm 1 within 1e-15 kept as they are), the summary's shape and sizes as read() records
+/// them, the pellets checked inside the container by their exact shapes.
+void add_pellets(Bed& bed, const std::string& shape, const std::optional<py::object>& given,
+                 bool radii_given, const std::optional<std::string>& container) {
+    std::optional<PelletSpec> pellet = parse_pellet_shape(shape);
+    if (!pellet)
+        throw InvalidInput(fmt::format("--shape: '{}' is not allowed; allowed: {}",
+                                       printable(shape.substr(0, 80)), allowed_shapes()));
+    const std::size_t n = bed.packing.size();
+    if (!given || given->is_none())
+        throw InvalidInput(fmt::format("orientations: none for a bed of {} pellets is not allowed; "
+                                       "allowed: an array (N, 4) of unit quaternions qw, qx, qy, "
+                                       "qz (the pellet's axis its body z axis turned)",
+                                       pellet->kind));
+    const Doubles q = real_numbers(*given, "orientations");
+    if (q.ndim() != 2 || q.shape(1) != 4 || static_cast<std::size_t>(q.shape(0)) != n)
+        throw InvalidInput(fmt::format("orientations: an array of {} dimensions for {} centres is "
+                                       "not allowed; allowed: shape ({}, 4)",
+                                       q.ndim(), n, n));
+    const auto at = q.unchecked<2>();
+    bed.packing.orientations.resize(n);
+    for (std::size_t i = 0; i < n; ++i) {
+        const auto k = static_cast<py::ssize_t>(i);
+        const Quaternion o{at(k, 0), at(k, 1), at(k, 2), at(k, 3)};
+        const double length = std::sqrt(o.w * o.w + o.x * o.x + o.y * o.y + o.z * o.z);
+        if (!(std::abs(length - 1.0) <= 1e-3))
+            throw InvalidInput(fmt::format("orientations[{}]: ({}, {}, {}, {}) has norm {}; "
+                                           "allowed: a unit quaternion (norm 1 within 1e-3)",
+                                           i, o.w, o.x, o.y, o.z, length));
+        // exactly as given where it is a unit quaternion to rounding (a bed's own, read())
+        bed.packing.orientations[i] = std::abs(length - 1.0) <= 1e-15 ? o : normalized(o);
+    }
+    const double radius = 0.5 * pellet->volume_diameter;
+    if (!radii_given)
+        std::fill(bed.packing.radii.begin(), bed.packing.radii.end(), radius);
+    if (n > 0) {
+        const auto [low, high] =
+            std::minmax_element(bed.packing.radii.begin(), bed.packing.radii.end());
+        pellet->scales = {*low / radius, *high / radius};
+    }
+    if (pellet->scales != std::pair{1.0, 1.0}) // the sizes as read() records them
+        bed.summary["sizes"] = {{"statistics",
+                                 {{"smallest", pellet->scales.first * pellet->diameter},
+                                  {"largest", pellet->scales.second * pellet->diameter}}}};
+    bed.summary["shape"] = pellet_shape_summary(*pellet);
+    if (container) {
+        bed.container = container_from_spec("--container", *container);
+        check_pellets_inside(bed.packing, {}, "centers", *bed.container, *pellet, 0.01);
+        bed.summary["container"] = bed.container->summary_json();
+    }
+}
+
+/// A bed from numpy arrays: centres (N x 3) and radii (N), or one diameter for all; given a
+/// pellet `shape`, its pellets with their orientations (add_pellets).
 Bed from_arrays(const py::object& centers_given, const std::optional<py::object>& radii_given,
-                std::optional<double> diameter, const std::optional<std::string>& container) {
+                std::optional<double> diameter, const std::optional<std::string>& container,
+                const std::optional<py::object>& orientations, const std::string& shape) {
+    const bool pellets = shape != "sphere";
+    if (!pellets && orientations && !orientations->is_none())
+        throw InvalidInput("orientations: not allowed for a bed of spheres; allowed: with "
+                           "shape='cylinder:D,L' (or another pellet) naming the pellets turned");
+    if (pellets && diameter)
+        throw InvalidInput("diameter: not allowed with a pellet shape; allowed: radii (each "
+                           "pellet's d_v / 2) or none (every pellet the shape's size)");
     const Doubles centers = real_numbers(centers_given, "centers");
     std::optional<Doubles> radii;
     if (radii_given && !radii_given->is_none())
@@ -669,7 +736,7 @@ Bed from_arrays(const py::object& centers_given, const std::optional<py::object>
     if (n > limits::max_spheres)
         throw InvalidInput(fmt::format("centers: {} spheres are not allowed; allowed: at most {}",
                                        n, limits::max_spheres));
-    if (radii.has_value() == diameter.has_value())
+    if (!pellets && radii.has_value() == diameter.has_value())
         throw InvalidInput("radii and diameter: exactly one is allowed (radii, an array of N "
                            "radii, or diameter, one for every sphere)");
     if (radii && (radii->ndim() != 1 || static_cast<std::size_t>(radii->shape(0)) != n))
@@ -683,7 +750,7 @@ Bed from_arrays(const py::object& centers_given, const std::optional<py::object>
     for (std::size_t i = 0; i < n; ++i) {
         const auto k = static_cast<py::ssize_t>(i);
         const Vec3 v{c(k, 0), c(k, 1), c(k, 2)};
-        const double r = radii ? radii->at(k) : 0.5 * *diameter;
+        const double r = radii ? radii->at(k) : diameter ? 0.5 * *diameter : 1.0;
         if (!(std::isfinite(v.x) && std::isfinite(v.y) && std::isfinite(v.z) &&
               std::abs(v.x) <= limits::max_length && std::abs(v.y) <= limits::max_length &&
               std::abs(v.z) <= limits::max_length))
@@ -697,7 +764,9 @@ Bed from_arrays(const py::object& centers_given, const std::optional<py::object>
         bed.packing.centers[i] = v;
         bed.packing.radii[i] = r;
     }
-    if (container) {
+    if (pellets) {
+        add_pellets(bed, shape, orientations, radii.has_value(), container);
+    } else if (container) {
         bed.container = container_from_spec("--container", *container);
         check_inside(bed.packing, {}, "centers", *bed.container,
                      0.01 * (n > 0 ? bed.packing.mean_diameter() : 0.0), false);
@@ -1034,9 +1103,22 @@ template <class T> py::array owned_array(Voxels<T>&& data, const VoxelGrid& grid
         owner->data(), free);
 }
 
+/// numpy's name of a dtype given as numpy takes one ('float32', np.float32, np.dtype('<f4')).
+std::string dtype_name(const py::object& dtype) {
+    if (py::isinstance<py::str>(dtype))
+        return dtype.cast<std::string>();
+    try {
+        return py::dtype::from_args(dtype).attr("name").cast<std::string>();
+    } catch (const py::error_already_set&) {
+        throw InvalidInput(fmt::format("--dtype {} is not allowed; allowed: float64, float32 "
+                                       "(a name, numpy's type or a numpy dtype)",
+                                       printable(std::string(py::repr(dtype)).substr(0, 80))));
+    }
+}
+
 py::array voxelize_bed(const Bed& bed, double voxel_size,
                        std::optional<std::array<double, 6>> region, const std::string& kind,
-                       const std::string& dtype, const std::optional<std::string>& container,
+                       const py::object& dtype_given, const std::optional<std::string>& container,
                        std::optional<long long> threads,
                        const std::optional<std::filesystem::path>& out) {
     // A bed of pellets from generate(shape=...) is drawn as its pellets (the shape its summary
@@ -1044,7 +1126,7 @@ py::array voxelize_bed(const Bed& bed, double voxel_size,
     const std::optional<PelletSpec> pellet = bed_pellet(bed, "voxelize");
     const PelletShape* shape = pellet ? &pellet->shape : nullptr;
     const Container given = container_for(bed, container, pellet ? &*pellet : nullptr);
-    const VoxelType type = voxel_type(kind, dtype);
+    const VoxelType type = voxel_type(kind, dtype_name(dtype_given));
     std::optional<ImageFormat> format;
     if (out) {
         format = image_format(*out);
@@ -1095,6 +1177,14 @@ PYBIND11_MODULE(_core, m) {
         try {
             if (p)
                 std::rethrow_exception(p);
+        } catch (const UnopenableFile& e) {
+            // OSError(errno, strerror, filename) is FileNotFoundError for ENOENT,
+            // PermissionError for EACCES, as Python's own open() raises them.
+            const py::object error = py::reinterpret_borrow<py::object>(PyExc_OSError)(
+                e.error(), std::strerror(e.error()),
+                py::reinterpret_steal<py::object>(PyUnicode_DecodeFSDefaultAndSize(
+                    e.path().data(), static_cast<Py_ssize_t>(e.path().size()))));
+            PyErr_SetObject(reinterpret_cast<PyObject*>(Py_TYPE(error.ptr())), error.ptr());
         } catch (const InvalidInput& e) {
             PyErr_SetString(PyExc_ValueError, as_given(e.what()).c_str());
         } catch (const ConvergenceError& e) {
@@ -1115,9 +1205,16 @@ PYBIND11_MODULE(_core, m) {
 Build one from arrays: Bed(centers, radii=None, diameter=None, container=None), with centers
 of shape (N, 3), and either radii (N) or one diameter for every sphere; container a spec
 string ('cylinder:D', 'box:LX,LY', 'cone:DB,DT,H', ...: docs/containers.md), the floor at
-z = 0.)")
+z = 0.
+
+A bed of pellets: shape a pellet spec as generate's ('cylinder:D,L', 'ring:D,DI,L', ...) and
+orientations (N, 4) unit quaternions qw, qx, qy, qz (the pellet's axis its body z axis
+turned; norm 1 within 1e-3, normalised); radii each pellet's volume-equivalent d_v / 2 (None:
+every pellet the shape's size), no diameter. A container given is checked to hold the pellets
+by their exact shapes.)")
         .def(py::init(&from_arrays), py::arg("centers"), py::arg("radii") = py::none(),
-             py::kw_only(), py::arg("diameter") = py::none(), py::arg("container") = py::none())
+             py::kw_only(), py::arg("diameter") = py::none(), py::arg("container") = py::none(),
+             py::arg("orientations") = py::none(), py::arg("shape") = "sphere")
         .def_property_readonly(
             "centers",
             [](py::object self) {
@@ -1398,8 +1495,9 @@ im[i, j, k] the voxel [x0 + i h, x0 + (i + 1) h] x ... (h = voxel_size).
 kind 'binary': bool, True where the voxel's centre is pore space (inside the container and in
 no sphere), False where it is solid (a sphere, or outside the container), as PoreSpy expects.
 kind 'fraction': float64, each voxel's solid fraction computed exactly from the spheres (closed
-form); its sum times h^3 is the spheres' volume in the grid's box. dtype 'float32' (kind
-'fraction' only): the same fractions each rounded once to single precision, half the memory.
+form); its sum times h^3 is the spheres' volume in the grid's box. dtype 'float32' (or
+np.float32; kind 'fraction' only): the same fractions each rounded once to single precision,
+half the memory.
 region: (xlow, ylow, zlow,
 xhigh, yhigh, zhigh); None: the container across and the floor to the bed's top. out: also write
 it to a .npy, .tif or .raw (+ .raw.json) file. The array owns its memory (no copy is made).)");

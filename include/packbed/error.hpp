@@ -3,6 +3,7 @@
 
 #include <stdexcept>
 #include <string>
+#include <utility>
 
 namespace packbed {
 
@@ -10,6 +11,23 @@ namespace packbed {
 class InvalidInput : public std::invalid_argument {
 public:
     using std::invalid_argument::invalid_argument;
+};
+
+/// An input file that could not be opened: the message as InvalidInput's, with the system's
+/// error number and the path (Python raises the OSError of that number: FileNotFoundError,
+/// PermissionError).
+class UnopenableFile : public InvalidInput {
+public:
+    UnopenableFile(const std::string& message, int error, std::string path)
+        : InvalidInput(message)
+        , m_error(error)
+        , m_path(std::move(path)) {}
+    int error() const { return m_error; }
+    const std::string& path() const { return m_path; }
+
+private:
+    int m_error;
+    std::string m_path;
 };
 
 /// The iteration left the region where it converges (NaN, a sphere out of the container,

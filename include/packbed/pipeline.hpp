@@ -208,6 +208,10 @@ run_pellets(const PreparedPellets& prepared, const RunControl& control, int thre
             const std::function<void(std::uint32_t, std::uint32_t)>& on_resume = {});
 /// particles.csv (with the orientations) and summary.json staged in `out`.
 void stage_pellet_bed(OutputDirectory& out, const GeneratedPellets& pellets);
+/// summary.json's warning where `touching_nothing` of a bed's `pellets` overlap no neighbour and
+/// no wall at the end: more than one in a hundred (more than one below 200 pellets).
+std::optional<std::string> unsettled_pellets_warning(std::size_t touching_nothing,
+                                                     std::size_t pellets);
 /// summary.json's `shape` of a bed of `pellet`s: its kind, spec and lengths, d_v, and what
 /// particles.csv's r and quaternion mean.
 nlohmann::json pellet_shape_summary(const PelletSpec& pellet);

@@ -16,6 +16,8 @@ class Bed:
         *,
         diameter: Optional[float] = None,
         container: Optional[str] = None,
+        orientations: Optional[npt.ArrayLike] = None,
+        shape: str = "sphere",
     ) -> None: ...
     @property
     def centers(self) -> npt.NDArray[np.float64]: ...
@@ -183,7 +185,7 @@ def voxelize(
     voxel_size: float,
     region: Optional[Tuple[float, float, float, float, float, float]] = None,
     kind: str = "binary",
-    dtype: str = "float64",
+    dtype: npt.DTypeLike = "float64",
     container: Optional[str] = None,
     threads: Optional[int] = None,
     out: Optional[str] = None,

@@ -91,10 +91,13 @@ std::ifstream open_regular_file(std::string_view input, const std::filesystem::p
     const std::string shown = named(input, path);
     // O_NONBLOCK: opening a FIFO without a writer returns at once instead of waiting.
     const int fd = ::open(path.c_str(), O_RDONLY | O_NONBLOCK | O_CLOEXEC | O_NOCTTY);
-    if (fd < 0)
-        throw InvalidInput(fmt::format("{}: cannot open the file ({}); allowed: a readable "
-                                       "regular file",
-                                       shown, std::strerror(errno)));
+    if (fd < 0) {
+        const int error = errno;
+        throw UnopenableFile(fmt::format("{}: cannot open the file ({}); allowed: a readable "
+                                         "regular file",
+                                         shown, std::strerror(error)),
+                             error, path.string());
+    }
     struct stat info {};
     const bool stat_ok = ::fstat(fd, &info) == 0;
     if (!stat_ok || !S_ISREG(info.st_mode)) {

@@ -225,6 +225,19 @@ PreparedPellets prepare_pellets(const PelletRequest& request) {
     return out;
 }
 
+std::optional<std::string> unsettled_pellets_warning(std::size_t touching_nothing,
+                                                     std::size_t pellets) {
+    // At rest under gravity every pellet rests on something: more than one in a hundred touching
+    // nothing (and more than one in a small bed) is a column that was still falling when the
+    // settling took it for still.
+    if (touching_nothing <= std::max<std::size_t>(1, pellets / 100))
+        return std::nullopt;
+    return fmt::format("{} of {} pellets touch nothing at the end: the column had not settled (a "
+                       "tall bed in one piece; relax it in layers with --layer-height, "
+                       "docs/generate.md \"Tall pellet beds in layers\")",
+                       touching_nothing, pellets);
+}
+
 nlohmann::json pellet_shape_summary(const PelletSpec& pellet) {
     nlohmann::json s;
     const auto* lobed = std::get_if<MultilobeShape>(&pellet.shape);
@@ -351,14 +364,8 @@ GeneratedPellets run_pellets(const PreparedPellets& prepared, const RunControl& 
     s["torque_residual"] = bed.residual_torque;
     s["residual_unit"] = "a pellet's weight (torque: times its bounding radius)";
     s["pellets_touching_nothing"] = bed.touching_nothing;
-    // At rest under gravity every pellet rests on something: more than one in a hundred touching
-    // nothing is a column that was still falling when the settling took it for still.
-    if (bed.touching_nothing > std::max<std::size_t>(1, bed.packing.size() / 100))
-        s["warnings"] = {fmt::format(
-            "{} of {} pellets touch nothing at the end: the column had not settled (a tall bed "
-            "in one piece; relax it in layers with --layer-height, docs/generate.md \"Tall "
-            "pellet beds in layers\")",
-            bed.touching_nothing, bed.packing.size())};
+    if (auto warning = unsettled_pellets_warning(bed.touching_nothing, bed.packing.size()))
+        s["warnings"] = {*warning};
     s["steps"] = bed.steps;
     if (bed.kicks > 0)
         s["kicks"] = {{"taps", bed.kicks},

@@ -4,6 +4,7 @@ Run by ctest (python_module): PYTHONPATH holds build/python, PACKBED the command
 """
 
 import ast
+import errno
 import json
 import math
 import os
@@ -460,6 +461,50 @@ def test_a_pellet_bed_is_read_measured_written_and_exported_as_the_command_line_
     assert (tmp_path / "py.stl").read_bytes() == (tmp_path / "cli.stl").read_bytes()
 
 
+def test_a_pellet_bed_from_arrays_is_measured_and_exported_as_the_file_it_came_from(tmp_path):
+    # 12 cylinders L = D at a = 3 (seed 3) from the command line, rebuilt from their arrays as a
+    # bed from another tool would be: the same void fraction in the same band, the same STL.
+    status, _, err = cli("generate", "--shape", "cylinder:1,1", "-a", 3, "-n", 12, "-s", 3, "-q",
+                         "--out", tmp_path / "cli")
+    assert status == 0, err
+    read = packbed.read(str(tmp_path / "cli" / "particles.csv"))
+    # the tube's diameter to the last digit (bed.container prints 9 significant digits)
+    tube = f"cylinder:{2 * read.summary['container']['radius']!r}"
+    made = packbed.Bed(read.centers, orientations=read.orientations, shape="cylinder:1,1",
+                       container=tube)
+    assert np.array_equal(made.radii, read.radii)  # d_v / 2 = (3/2)^(1/3) / 2 each
+    assert made.radii[0] == pytest.approx(0.5 * 1.5 ** (1 / 3), abs=1e-15)
+    assert made.summary["shape"] == read.summary["shape"]
+    band = (0.5, 2.5)
+    assert packbed.analyze(made, band=band).void_fraction == \
+        packbed.analyze(read, band=band).void_fraction
+    packbed.export(made, str(tmp_path / "made.stl"), format="stl")
+    packbed.export(read, str(tmp_path / "read.stl"), format="stl")
+    assert (tmp_path / "made.stl").read_bytes() == (tmp_path / "read.stl").read_bytes()
+    # One cylinder 0.58 off the axis of a tube of radius 1.1: upright its rim reaches 1.08 and it
+    # fits (a ball of d_v / 2 = 0.572 would not); turned a quarter about x, its corners reach
+    # hypot(1.08, 0.5) = 1.19: refused by the exact shape, as read() refuses such a file.
+    centre = [[0.58, 0.0, 0.6]]
+    upright = packbed.Bed(centre, orientations=[[1.0, 0.0, 0.0, 0.0]], shape="cylinder:1,1",
+                          container="cylinder:2.2")
+    assert upright.container == "cylinder:2.2"
+    with pytest.raises(ValueError, match="reaches out of the container"):
+        packbed.Bed(centre, orientations=[[np.cos(np.pi / 4), np.sin(np.pi / 4), 0.0, 0.0]],
+                    shape="cylinder:1,1", container="cylinder:2.2")
+    for keywords, words in [
+            (dict(orientations=read.orientations), "not allowed for a bed of spheres"),
+            (dict(shape="cylinder:1,1"), "orientations: none for a bed of cylinder pellets"),
+            (dict(shape="cylinder:1,1", orientations=read.orientations, diameter=1.0),
+             "diameter: not allowed with a pellet shape"),
+            (dict(shape="cylinder:1,1", orientations=2 * read.orientations),
+             r"orientations\[0\]: .* has norm 2"),
+            (dict(shape="cylinder:1,1", orientations=read.orientations[:, :3]),
+             r"allowed: shape \(12, 4\)"),
+            (dict(shape="cube:1", orientations=read.orientations), "--shape: 'cube:1'")]:
+        with pytest.raises(ValueError, match=words):
+            packbed.Bed(read.centers, **keywords)
+
+
 def test_a_trilobe_bed_has_the_command_lines_bytes(tmp_path):
     # 8 trilobes (lobes 1 on a circle of 0.8, 1.5 long) in a tube of a = 4: the same bytes from
     # Python as from the command line, the shape's lobes in the summary.
@@ -500,6 +545,19 @@ def test_bad_output_directory_raises_and_writes_nothing(tmp_path):
     with pytest.raises(ValueError, match="--out"):
         packbed.generate(particles=10, out=str(full))
     assert sorted(os.listdir(full)) == ["mine.txt"]
+
+
+def test_a_file_that_cannot_be_opened_raises_the_oserror_open_raises(tmp_path):
+    # As open() and numpy.loadtxt: FileNotFoundError (an OSError) naming the file, errno ENOENT.
+    missing = tmp_path / "no such" / "particles.csv"
+    for call in (packbed.read, packbed.analyze_frames):
+        with pytest.raises(FileNotFoundError) as raised:
+            call(missing, container="cylinder:5")
+        assert raised.value.errno == errno.ENOENT
+        assert raised.value.filename == str(missing)
+    # A directory opens but is not a file: a bad value, ValueError.
+    with pytest.raises(ValueError, match="a directory"):
+        packbed.read(tmp_path)
 
 
 @pytest.mark.skipif(shutil.which("lmp") is None, reason="lmp (Debian package lammps) missing")
@@ -657,6 +715,16 @@ def test_single_precision_fractions_keep_the_sum(bed, cli_bed, tmp_path):
     double = packbed.voxelize(bed, voxel_size=h, kind="fraction")
     single = packbed.voxelize(bed, voxel_size=h, kind="fraction", dtype="float32")
     assert single.dtype == np.float32 and single.shape == double.shape
+    # numpy's type and dtype name it as well as the string
+    for given in (np.float32, np.dtype("<f4")):
+        assert np.array_equal(packbed.voxelize(bed, voxel_size=h, kind="fraction", dtype=given),
+                              single)
+    with pytest.raises(ValueError, match="--dtype 'int32' is not allowed"):
+        packbed.voxelize(bed, voxel_size=h, kind="fraction", dtype=np.int32)
+    with pytest.raises(ValueError, match="--dtype 'no type' is not allowed"):
+        packbed.voxelize(bed, voxel_size=h, kind="fraction", dtype="no type")
+    with pytest.raises(ValueError, match="--dtype <object object at"):
+        packbed.voxelize(bed, voxel_size=h, kind="fraction", dtype=object())
     # each voxel the double one rounded (a few roundings where spheres share it)
     assert np.abs(single - double).max() < 3e-7
     assert single.sum(dtype=np.float64) * h**3 == pytest.approx(150 * math.pi / 6, rel=1e-9)
