@@ -231,7 +231,6 @@ def test_a_lattice_too_short_for_its_band_says_so(tmp_path):
             lambda: packbed.generate(sizes="uniform:0.8,1.2", diameter=2.0),
             ["diameter", "uniform:0.8,1.2", "allowed"],
         ),
-        (lambda: packbed.read("/nonexistent/bed.csv"), ["/nonexistent/bed.csv"]),
         (lambda: packbed.read("x.csv", frame=0), ["frame", "0", "allowed"]),
         (lambda: packbed.read("x.csv", format="pdf"), ["format", "pdf", "allowed"]),
         (lambda: packbed.Bed(np.zeros((3, 2)), diameter=1.0), ["centers", "(3, 2)", "allowed"]),
