@@ -651,6 +651,13 @@ Doubles real_numbers(const py::object& value, std::string_view name) {
     return Doubles::ensure(array);
 }
 
+/// An array's shape as numpy prints it: (5,), (5, 2), ().
+std::string shape_of(const py::array& a) {
+    std::vector<py::ssize_t> sizes(a.shape(), a.shape() + a.ndim());
+    return a.ndim() == 1 ? fmt::format("({},)", sizes[0])
+                         : fmt::format("({})", fmt::join(sizes, ", "));
+}
+
 /// A bed of pellets from numpy arrays (from_arrays given `shape`): the radii each pellet's d_v / 2
 /// (the shape's, or those given: the shape scaled by each one's over the shape's), the
 /// orientations unit quaternions within 1e-3 (normalised as read() takes a file's, those of
@@ -670,9 +677,9 @@ void add_pellets(Bed& bed, const std::string& shape, const std::optional<py::obj
                                        pellet->kind));
     const Doubles q = real_numbers(*given, "orientations");
     if (q.ndim() != 2 || q.shape(1) != 4 || static_cast<std::size_t>(q.shape(0)) != n)
-        throw InvalidInput(fmt::format("orientations: an array of {} dimensions for {} centres is "
-                                       "not allowed; allowed: shape ({}, 4)",
-                                       q.ndim(), n, n));
+        throw InvalidInput(fmt::format("orientations: an array of shape {} for {} centres is not "
+                                       "allowed; allowed: shape ({}, 4)",
+                                       shape_of(q), n, n));
     const auto at = q.unchecked<2>();
     bed.packing.orientations.resize(n);
     for (std::size_t i = 0; i < n; ++i) {
@@ -722,12 +729,6 @@ Bed from_arrays(const py::object& centers_given, const std::optional<py::object>
     std::optional<Doubles> radii;
     if (radii_given && !radii_given->is_none())
         radii = real_numbers(*radii_given, "radii");
-    // An array's shape as numpy prints it: (5,), (5, 2), ().
-    const auto shape_of = [](const py::array& a) {
-        std::vector<py::ssize_t> sizes(a.shape(), a.shape() + a.ndim());
-        return a.ndim() == 1 ? fmt::format("({},)", sizes[0])
-                             : fmt::format("({})", fmt::join(sizes, ", "));
-    };
     if (centers.ndim() != 2 || centers.shape(1) != 3)
         throw InvalidInput(fmt::format("centers: an array of shape {} is not allowed; "
                                        "allowed: shape (N, 3)",

@@ -498,7 +498,7 @@ def test_a_pellet_bed_from_arrays_is_measured_and_exported_as_the_file_it_came_f
             (dict(shape="cylinder:1,1", orientations=2 * read.orientations),
              r"orientations\[0\]: .* has norm 2"),
             (dict(shape="cylinder:1,1", orientations=read.orientations[:, :3]),
-             r"allowed: shape \(12, 4\)"),
+             r"shape \(12, 3\) for 12 centres is not allowed; allowed: shape \(12, 4\)"),
             (dict(shape="cube:1", orientations=read.orientations), "--shape: 'cube:1'")]:
         with pytest.raises(ValueError, match=words):
             packbed.Bed(read.centers, **keywords)
