@@ -663,18 +663,14 @@ std::string shape_of(const py::array& a) {
 /// orientations unit quaternions within 1e-3 (normalised as read() takes a file's, those of
 /// norm 1 within 1e-15 kept as they are), the summary's shape and sizes as read() records
 /// them, the pellets checked inside the container by their exact shapes.
-void add_pellets(Bed& bed, const std::string& shape, const std::optional<py::object>& given,
-                 bool radii_given, const std::optional<std::string>& container) {
-    std::optional<PelletSpec> pellet = parse_pellet_shape(shape);
-    if (!pellet)
-        throw InvalidInput(fmt::format("--shape: '{}' is not allowed; allowed: {}",
-                                       printable(shape.substr(0, 80)), allowed_shapes()));
+void add_pellets(Bed& bed, PelletSpec pellet, const std::optional<py::object>& given,
+                 const std::optional<std::string>& container) {
     const std::size_t n = bed.packing.size();
     if (!given || given->is_none())
         throw InvalidInput(fmt::format("orientations: none for a bed of {} pellets is not allowed; "
                                        "allowed: an array (N, 4) of unit quaternions qw, qx, qy, "
                                        "qz (the pellet's axis its body z axis turned)",
-                                       pellet->kind));
+                                       pellet.kind));
     const Doubles q = real_numbers(*given, "orientations");
     if (q.ndim() != 2 || q.shape(1) != 4 || static_cast<std::size_t>(q.shape(0)) != n)
         throw InvalidInput(fmt::format("orientations: an array of shape {} for {} centres is not "
@@ -693,22 +689,20 @@ void add_pellets(Bed& bed, const std::string& shape, const std::optional<py::obj
         // exactly as given where it is a unit quaternion to rounding (a bed's own, read())
         bed.packing.orientations[i] = std::abs(length - 1.0) <= 1e-15 ? o : normalized(o);
     }
-    const double radius = 0.5 * pellet->volume_diameter;
-    if (!radii_given)
-        std::fill(bed.packing.radii.begin(), bed.packing.radii.end(), radius);
+    const double radius = 0.5 * pellet.volume_diameter;
     if (n > 0) {
         const auto [low, high] =
             std::minmax_element(bed.packing.radii.begin(), bed.packing.radii.end());
-        pellet->scales = {*low / radius, *high / radius};
+        pellet.scales = {*low / radius, *high / radius};
     }
-    if (pellet->scales != std::pair{1.0, 1.0}) // the sizes as read() records them
+    if (pellet.scales != std::pair{1.0, 1.0}) // the sizes as read() records them
         bed.summary["sizes"] = {{"statistics",
-                                 {{"smallest", pellet->scales.first * pellet->diameter},
-                                  {"largest", pellet->scales.second * pellet->diameter}}}};
-    bed.summary["shape"] = pellet_shape_summary(*pellet);
+                                 {{"smallest", pellet.scales.first * pellet.diameter},
+                                  {"largest", pellet.scales.second * pellet.diameter}}}};
+    bed.summary["shape"] = pellet_shape_summary(pellet);
     if (container) {
         bed.container = container_from_spec("--container", *container);
-        check_pellets_inside(bed.packing, {}, "centers", *bed.container, *pellet, 0.01);
+        check_pellets_inside(bed.packing, {}, "centers", *bed.container, pellet, 0.01);
         bed.summary["container"] = bed.container->summary_json();
     }
 }
@@ -725,6 +719,14 @@ Bed from_arrays(const py::object& centers_given, const std::optional<py::object>
     if (pellets && diameter)
         throw InvalidInput("diameter: not allowed with a pellet shape; allowed: radii (each "
                            "pellet's d_v / 2) or none (every pellet the shape's size)");
+    std::optional<PelletSpec> pellet;
+    if (pellets) {
+        pellet = parse_pellet_shape(shape);
+        if (!pellet)
+            throw InvalidInput(fmt::format("--shape: '{}' is not allowed; allowed: {}",
+                                           printable(shape.substr(0, 80)), allowed_shapes()));
+        diameter = pellet->volume_diameter; // where no radii are given, each pellet's d_v
+    }
     const Doubles centers = real_numbers(centers_given, "centers");
     std::optional<Doubles> radii;
     if (radii_given && !radii_given->is_none())
@@ -751,7 +753,7 @@ Bed from_arrays(const py::object& centers_given, const std::optional<py::object>
     for (std::size_t i = 0; i < n; ++i) {
         const auto k = static_cast<py::ssize_t>(i);
         const Vec3 v{c(k, 0), c(k, 1), c(k, 2)};
-        const double r = radii ? radii->at(k) : diameter ? 0.5 * *diameter : 1.0;
+        const double r = radii ? radii->at(k) : 0.5 * *diameter;
         if (!(std::isfinite(v.x) && std::isfinite(v.y) && std::isfinite(v.z) &&
               std::abs(v.x) <= limits::max_length && std::abs(v.y) <= limits::max_length &&
               std::abs(v.z) <= limits::max_length))
@@ -766,7 +768,7 @@ Bed from_arrays(const py::object& centers_given, const std::optional<py::object>
         bed.packing.radii[i] = r;
     }
     if (pellets) {
-        add_pellets(bed, shape, orientations, radii.has_value(), container);
+        add_pellets(bed, *pellet, orientations, container);
     } else if (container) {
         bed.container = container_from_spec("--container", *container);
         check_inside(bed.packing, {}, "centers", *bed.container,
