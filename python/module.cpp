@@ -1260,9 +1260,11 @@ by their exact shapes.)")
             [](const Bed& bed) -> std::optional<std::string> {
                 if (!bed.container)
                     return std::nullopt;
-                return bed.container->spec();
+                return bed.container->exact_spec();
             },
-            "The container as a spec string ('cylinder:D', ...), or None when unknown.")
+            "The container as a spec string ('cylinder:D', ...; each length the shortest text "
+            "that reads back as the same float: Bed(..., container=bed.container) is in the "
+            "same container), or None when unknown.")
         .def_property_readonly(
             "summary", [](const Bed& bed) { return to_python(bed.summary); },
             "The bed's record as a dict: what summary.json holds (for a generated bed the "

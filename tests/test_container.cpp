@@ -1,11 +1,14 @@
 // Contact and wall geometry of the containers (cylinder: Salvat et al. 2005, nomenclature
 // delta_iw; box), and what Container answers for each.
 #include <cmath>
+#include <optional>
 
 #include <gtest/gtest.h>
 
 #include "packbed/container.hpp"
 #include "packbed/volume.hpp"
+
+#include <nlohmann/json.hpp>
 
 using packbed::Cylinder;
 using packbed::Vec3;
@@ -116,4 +119,24 @@ TEST(Container, EachShapeNamesItselfInMessages) {
     EXPECT_EQ(Container(Periodic(8.0, 8.0)).describe(), "periodic:8,8");
     for (const std::string_view spec : {"cylinder:20", "box:6,6", "annulus:10,2", "periodic:8,8"})
         EXPECT_FALSE(parse_container(spec)->describe().empty()) << spec;
+}
+
+TEST(Container, ItsExactSpecReadsBackAsTheSameContainer) {
+    // Lengths that 9 significant digits round (2 sqrt 2, pi, 1/3): the exact spec writes the
+    // shortest text of each double, so a bed rebuilt with Python's bed.container sits in its own
+    // container, not one 1e-9 off; the spec of messages and titles keeps 9 digits.
+    const double root8 = std::sqrt(8.0), pi = 3.14159265358979323846, third = 1.0 / 3.0;
+    const Container kinds[] = {packbed::Cylinder(root8), Box(pi, root8),
+                               packbed::Annulus(root8, third), packbed::Periodic(root8, pi),
+                               packbed::Cone(root8, third, pi)};
+    for (const Container& c : kinds) {
+        const std::optional<Container> back = packbed::parse_container(c.exact_spec());
+        ASSERT_TRUE(back) << c.exact_spec();
+        EXPECT_EQ(back->exact_spec(), c.exact_spec());
+        EXPECT_EQ(back->summary_json(), c.summary_json()) << c.exact_spec();
+    }
+    EXPECT_EQ(Container(packbed::Cylinder(root8)).exact_spec(), "cylinder:5.656854249492381");
+    EXPECT_EQ(Container(packbed::Cylinder(root8)).spec(), "cylinder:5.65685425");
+    EXPECT_NE(packbed::parse_container("cylinder:5.65685425")->summary_json(),
+              Container(packbed::Cylinder(root8)).summary_json());
 }

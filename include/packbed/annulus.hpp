@@ -85,8 +85,8 @@ public:
     /// The same, by ball_volume_in_cylinder where the planes do not cut the ball.
     double ball_volume(const Vec3& c, double r, double z_low, double z_high) const;
 
-    /// "annulus:D,DI" (9 significant digits).
-    std::string spec() const;
+    /// "annulus:D,DI" (9 significant digits; `exact`: the shortest text of each double).
+    std::string spec(bool exact = false) const;
     /// How a message names it ("a cylinder of radius 10", "a box (box:6,6)", the spec).
     std::string describe() const;
     /// --container's word for the shape, "annulus:D,DI" its SPEC.

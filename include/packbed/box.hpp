@@ -98,8 +98,9 @@ public:
         return sphere_volume(c, r, z_low, z_high);
     }
 
-    /// "box:LX,LY" (9 significant digits); a box not at the origin adds "@X,Y", its corner.
-    std::string spec() const;
+    /// "box:LX,LY" (9 significant digits; `exact`: the shortest text of each double); a box not
+    /// at the origin adds "@X,Y", its corner.
+    std::string spec(bool exact = false) const;
     /// How a message names it ("a cylinder of radius 10", "a box (box:6,6)", the spec).
     std::string describe() const;
     /// --container's word for the shape, "box:LX,LY" its SPEC.

@@ -103,8 +103,9 @@ public:
         return sphere_volume(c, r, z_low, z_high);
     }
 
-    /// "cone:DB,DT,H", the numbers as the shortest text that reads back to the same bits.
-    std::string spec() const;
+    /// "cone:DB,DT,H", the numbers as the shortest text that reads back to the same bits
+    /// (`exact` or not).
+    std::string spec(bool exact = false) const;
     /// How a message names it: "a cone (cone:4,8,20)".
     std::string describe() const;
     /// --container's word for the shape, "cone:DB,DT,H" its SPEC.

@@ -52,6 +52,10 @@ public:
     /// The --container form: "cylinder:D", "box:LX,LY", "annulus:D,DI", "periodic:LX,LY",
     /// "cone:DB,DT,H".
     std::string spec() const;
+    /// The same with each length the shortest text that reads back as the same double:
+    /// parse_container(exact_spec()) is this container (spec() rounds to 9 significant digits,
+    /// for messages and titles).
+    std::string exact_spec() const;
     /// How a message names it ("a cylinder of radius 10", "a box (box:6,6)", the spec).
     std::string describe() const;
 

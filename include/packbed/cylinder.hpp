@@ -92,8 +92,9 @@ public:
     /// relative, not to the bit.
     double ball_volume(const Vec3& c, double r, double z_low, double z_high) const;
 
-    /// "cylinder:D", the form --container takes (D = 2 Rt, 9 significant digits).
-    std::string spec() const;
+    /// "cylinder:D", the form --container takes (D = 2 Rt, 9 significant digits; `exact`: the
+    /// shortest text that reads back as the same double).
+    std::string spec(bool exact = false) const;
     /// How a message names it ("a cylinder of radius 10", "a box (box:6,6)", the spec).
     std::string describe() const;
     /// --container's word for the shape, "cylinder:D" its SPEC.

@@ -51,8 +51,8 @@ public:
         return sphere_volume(c, r, z_low, z_high);
     }
 
-    /// "periodic:LX,LY" (9 significant digits).
-    std::string spec() const;
+    /// "periodic:LX,LY" (9 significant digits; `exact`: the shortest text of each double).
+    std::string spec(bool exact = false) const;
     /// How a message names it ("a cylinder of radius 10", "a box (box:6,6)", the spec).
     std::string describe() const;
     /// --container's word for the shape, "periodic:LX,LY" its SPEC.

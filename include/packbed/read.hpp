@@ -158,6 +158,9 @@ struct BedSummary {
     /// the smallest and the largest drawn size (`sizes.statistics`: a sphere's diameter, a
     /// pellet's D), when the bed has sizes
     std::optional<std::pair<double, double>> size_range;
+    /// a lattice kept by its centres (`keep: centres`, lattice --keep centres): its balls reach
+    /// out of the region, its container, by up to their radius
+    bool centres_kept = false;
 };
 
 /// Read a summary.json. Absent keys are left empty; present ones must be right.

@@ -71,8 +71,9 @@ double Annulus::shell_area_from(std::size_t wall, double d_low, double d_high, d
            shrunk_from(wall, d_high).cross_section_area();
 }
 
-std::string Annulus::spec() const {
-    return fmt::format("annulus:{:.9g},{:.9g}", 2.0 * m_outer, 2.0 * m_inner);
+std::string Annulus::spec(bool exact) const {
+    return fmt::format("annulus:{},{}", detail::spec_length(2.0 * m_outer, exact),
+                       detail::spec_length(2.0 * m_inner, exact));
 }
 
 std::string Annulus::describe() const {

@@ -48,10 +48,12 @@ std::vector<WallPlane> Box::walls_within(const Vec3& c, double r, double gap) co
     return planes;
 }
 
-std::string Box::spec() const {
-    std::string out = fmt::format("box:{:.9g},{:.9g}", m_x_high - m_x_low, m_y_high - m_y_low);
+std::string Box::spec(bool exact) const {
+    std::string out = fmt::format("box:{},{}", detail::spec_length(m_x_high - m_x_low, exact),
+                                  detail::spec_length(m_y_high - m_y_low, exact));
     if (m_x_low != 0.0 || m_y_low != 0.0)
-        out += fmt::format("@{:.9g},{:.9g}", m_x_low, m_y_low);
+        out += fmt::format("@{},{}", detail::spec_length(m_x_low, exact),
+                           detail::spec_length(m_y_low, exact));
     return out;
 }
 

@@ -65,7 +65,7 @@ double Cone::sphere_volume(const Vec3& c, double r, double z_low, double z_high)
     return r > 0.0 ? sphere_volume_in_cone_slab(c, r, m_rb, m_slope, z_low, z_high) : 0.0;
 }
 
-std::string Cone::spec() const {
+std::string Cone::spec(bool /*exact*/) const {
     return fmt::format("cone:{},{},{}", 2.0 * m_rb, 2.0 * m_rt, m_h);
 }
 

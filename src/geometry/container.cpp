@@ -123,6 +123,10 @@ std::string Container::spec() const {
     return ask(m_shape, [](const auto& s) { return s.spec(); });
 }
 
+std::string Container::exact_spec() const {
+    return ask(m_shape, [](const auto& s) { return s.spec(true); });
+}
+
 std::string Container::describe() const {
     return ask(m_shape, [](const auto& s) { return s.describe(); });
 }

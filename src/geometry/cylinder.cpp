@@ -42,8 +42,8 @@ std::vector<WallPlane> Cylinder::walls_within(const Vec3& c, double r, double ga
     return {};
 }
 
-std::string Cylinder::spec() const {
-    return fmt::format("cylinder:{:.9g}", 2.0 * m_radius);
+std::string Cylinder::spec(bool exact) const {
+    return "cylinder:" + detail::spec_length(2.0 * m_radius, exact);
 }
 
 std::string Cylinder::describe() const {

@@ -17,8 +17,9 @@ double Periodic::sphere_volume(const Vec3& c, double r, double z_low, double z_h
     return sphere_slab_volume(c.z, r, z_low, z_high);
 }
 
-std::string Periodic::spec() const {
-    return fmt::format("periodic:{:.9g},{:.9g}", lx(), ly());
+std::string Periodic::spec(bool exact) const {
+    return fmt::format("periodic:{},{}", detail::spec_length(lx(), exact),
+                       detail::spec_length(ly(), exact));
 }
 
 std::string Periodic::describe() const {

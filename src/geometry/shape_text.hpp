@@ -114,6 +114,12 @@ inline Vec3 disk_point(double reach, double u, double v, double z) {
     return {r * std::cos(theta), r * std::sin(theta), z};
 }
 
+/// A length in a SPEC: 9 significant digits for a message or a title, or `exact`, the shortest
+/// text that reads back as the same double (a container rebuilt from its spec is the same).
+inline std::string spec_length(double length, bool exact) {
+    return exact ? fmt::format("{}", length) : fmt::format("{:.9g}", length);
+}
+
 /// A prism's summary: {shape, size [LX, LY], spec}.
 inline nlohmann::json prism_json(std::string_view shape, const Rectangle& b,
                                  const std::string& spec) {

@@ -1125,6 +1125,8 @@ BedSummary read_bed_summary(const nlohmann::json& json, std::string_view name) {
                                               type != json.end() && type->is_string()
                                                   ? printable(type->get<std::string>())
                                                   : "?");
+        const auto keep = json.find("keep");
+        out.centres_kept = keep != json.end() && *keep == "centres";
     }
     // A sphere bed's friction and wall friction under its parameters, a pellet bed's beside
     // its shape.

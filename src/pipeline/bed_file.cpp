@@ -108,9 +108,15 @@ BedInContainer read_bed_in_container(const std::filesystem::path& particles,
             "summary.json beside it names their shape; allowed: a bed of spheres, or a pellet "
             "bed with the summary.json generate --shape wrote beside it",
             printable(particles.native())));
-    if (bed.container)
-        check_file_inside(bed.file, options, particles.string(), *bed.container, outside_tolerance,
-                          period_z_beside(particles));
+    if (!bed.container)
+        return bed;
+    // A lattice kept by its centres (lattice --keep centres) in its own region: its balls, all
+    // of one diameter, reach out by up to their radius, half of it; their centres are checked.
+    const std::optional<BedSummary> summary = summary_beside(particles);
+    const bool own_region = container.empty() && cylinder_radius <= 0.0;
+    const double reach = own_region && summary && summary->centres_kept ? 0.5 : 0.0;
+    check_file_inside(bed.file, options, particles.string(), *bed.container,
+                      outside_tolerance + reach, summary ? summary->period_z : std::nullopt);
     return bed;
 }
 

@@ -467,10 +467,11 @@ def test_a_pellet_bed_from_arrays_is_measured_and_exported_as_the_file_it_came_f
                          "--out", tmp_path / "cli")
     assert status == 0, err
     read = packbed.read(str(tmp_path / "cli" / "particles.csv"))
-    # the tube's diameter to the last digit (bed.container prints 9 significant digits)
-    tube = f"cylinder:{2 * read.summary['container']['radius']!r}"
+    # bed.container: the tube's diameter to the last digit (a = 3 times d_v)
+    assert read.container == f"cylinder:{2 * read.summary['container']['radius']!r}"
+    assert read.container != f"cylinder:{2 * read.summary['container']['radius']:.9g}"
     made = packbed.Bed(read.centers, orientations=read.orientations, shape="cylinder:1,1",
-                       container=tube)
+                       container=read.container)
     assert np.array_equal(made.radii, read.radii)  # d_v / 2 = (3/2)^(1/3) / 2 each
     assert made.radii[0] == pytest.approx(0.5 * 1.5 ** (1 / 3), abs=1e-15)
     assert made.summary["shape"] == read.summary["shape"]
