@@ -843,6 +843,7 @@ py::object analyze(const Bed& bed, const std::optional<std::string>& container,
         options.centre_bin = check_option("centre-bin", *centre_bin, range::centre_bin);
     if (rdf_range)
         options.rdf_range = check_option("rdf-range", *rdf_range, range::rdf_range);
+    options.rdf_range_given = rdf_range.has_value();
     if (rdf_bin)
         options.rdf_bin = check_option("rdf-bin", *rdf_bin, range::rdf_bin);
     options.frictional = (friction ? check_option("friction", *friction, range::friction)

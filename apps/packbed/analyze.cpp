@@ -151,6 +151,7 @@ int run_analyze(AnalyzeOptions& o) {
     const Container container = *given;
     if (o.diameter > 0.0)
         o.analysis.diameter = o.diameter;
+    o.analysis.rdf_range_given = o.app && o.app->get_option("--rdf-range")->count() > 0;
     // summary.json is read only when --friction is not given
     o.analysis.frictional = (o.friction ? *o.friction : friction_beside(path).value_or(0.0)) > 0.0;
 

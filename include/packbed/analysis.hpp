@@ -38,7 +38,10 @@ struct AnalysisOptions {
     /// (Coordination::rattler_contacts).
     bool frictional = false;
     double rdf_range = 3.0; ///< g(r) is computed for centre distances up to this, Dp
-    double rdf_bin = 0.02;  ///< bin width of g(r), Dp
+    /// rdf_range was asked for: beyond a periodic cell's smaller period it is refused, where the
+    /// default is shortened to it (with_fitted_rdf_range)
+    bool rdf_range_given = false;
+    double rdf_bin = 0.02; ///< bin width of g(r), Dp
 };
 
 /// One bin of a profile: the interval [low, high] (length: the distance from the wall for the

@@ -294,7 +294,8 @@ struct AnalyzeJob {
     nlohmann::json summary;
 };
 
-/// The analyze job of both front ends (`packbed analyze`, `packbed.analyze`): analyze_bed, the
+/// The analyze job of both front ends (`packbed analyze`, `packbed.analyze`): analyze_bed (the
+/// default g(r) range no farther than a periodic cell's smaller period), the
 /// warnings, the summary, and with an output its tables and plots staged (stage_analysis_files).
 /// The caller adds its own keys to the summary, stages summary.json and commits.
 AnalyzeJob analyze_job(const Packing& packing, const Container& container,

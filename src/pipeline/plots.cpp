@@ -260,6 +260,22 @@ nlohmann::json analysis_record(const BedAnalysis& analysis, const AnalysisOption
 
 } // namespace
 
+namespace {
+
+/// `options` with a default g(r) range no farther than a periodic cell's smaller period
+/// (analyze_bed refuses a longer range, which `analyze --rdf-range` may ask for; a default
+/// nobody asked for is shortened, as a cell may be as narrow as 2 Dp).
+AnalysisOptions with_fitted_rdf_range(AnalysisOptions options, const Packing& packing,
+                                      const Container& container) {
+    if (const std::optional<Periods> cell = container.periods();
+        cell && !options.rdf_range_given && !packing.radii.empty())
+        options.rdf_range =
+            std::min(options.rdf_range, std::min(cell->lx(), cell->ly()) / packing.mean_diameter());
+    return options;
+}
+
+} // namespace
+
 void stage_analysis(OutputDirectory& out, const Packing& packing, const Container& container,
                     double band_clearance, nlohmann::json& summary) {
     AnalysisOptions options;
@@ -268,11 +284,7 @@ void stage_analysis(OutputDirectory& out, const Packing& packing, const Containe
     const auto parameters = summary.find("parameters");
     options.frictional = parameters != summary.end() && parameters->is_object() &&
                          parameters->value("friction", 0.0) > 0.0;
-    // A periodic cell: g(r) no farther than the smaller period (analyze_bed refuses a longer
-    // range, which `analyze --rdf-range` may ask for; here nobody asked).
-    if (const std::optional<Periods> cell = container.periods(); cell && !packing.radii.empty())
-        options.rdf_range =
-            std::min(options.rdf_range, std::min(cell->lx(), cell->ly()) / packing.mean_diameter());
+    options = with_fitted_rdf_range(options, packing, container);
     summary["analysis"] =
         analysis_record(analyze_bed(packing, container, options), options, container, &out);
 }
@@ -285,7 +297,8 @@ std::string stage_analysis_files(OutputDirectory& out, const BedAnalysis& analys
 }
 
 AnalyzeJob analyze_job(const Packing& packing, const Container& container,
-                       const AnalysisOptions& options, OutputDirectory* out) {
+                       const AnalysisOptions& given, OutputDirectory* out) {
+    const AnalysisOptions options = with_fitted_rdf_range(given, packing, container);
     AnalyzeJob job{analyze_bed(packing, container, options), {}, {}};
     job.warnings = analysis_warnings(packing, container, job.analysis);
     job.summary = analysis_record(job.analysis, options, container, out);

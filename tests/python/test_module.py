@@ -1227,3 +1227,15 @@ def test_deep_nesting_raises_value_error_not_a_crash(cli_bed, tmp_path):
         packbed.read(tmp_path / "deep" / "particles.csv")
     with pytest.raises(ValueError, match="nested deeper than 64 levels"):
         packbed.hydraulics(bed=str(tmp_path / "deep"))
+
+
+def test_a_periodic_cell_narrower_than_three_diameters_is_analysed():
+    # 30 spheres in periodic:2.5,2.5: g(r) to the smaller period by default, as the command
+    # line's generate analyses the bed; asked for, 3 d is refused (one line).
+    bed = packbed.generate(container="periodic:2.5,2.5", particles=30, seed=1)
+    analysis = packbed.analyze(bed)
+    assert analysis.summary["options"]["rdf_range"] == 2.5
+    assert analysis.pair_correlation.high[-1] == pytest.approx(2.5, abs=1e-12)
+    assert 0.3 < analysis.void_fraction < 0.7
+    with pytest.raises(ValueError, match=r"--rdf-range 3 Dp \(3\) is not allowed"):
+        packbed.analyze(bed, rdf_range=3)
