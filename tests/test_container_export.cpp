@@ -759,6 +759,31 @@ TEST(ContainerExportCli, HydraulicsOfAnAnnulusABoxAndAPeriodicCell) {
                   0u)
             << j;
     }
+    // A bed of pellets: Ergun's diameter is a pellet's 6 V / S (a spherocylinder of D = L = 3 mm:
+    // V = pi r^2 L + 4/3 pi r^3 = 11.25e-9 pi, S = 2 pi r L + 4 pi r^2 = 18e-6 pi, 3.75 mm) and
+    // a is on d_v, as generate -a (4); in pellet diameters (D = 1) or of several sizes it is not
+    // known, and --diameter is asked for.
+    const fs::path rods = scratch("rods");
+    ASSERT_EQ(run_packbed("generate --shape spherocylinder:0.003,0.003 -a 4 -n 40 -s 1 -q --out " +
+                          (rods / "m").string())
+                  .status,
+              0);
+    const Outcome p = run_packbed("hydraulics --json -u 0.1 --bed " + (rods / "m").string());
+    ASSERT_EQ(p.status, 0) << p.err;
+    const auto pj = nlohmann::json::parse(p.out);
+    EXPECT_NEAR(pj["fluid_and_particles"]["diameter_m"].get<double>(), 3.75e-3, 1e-17);
+    EXPECT_NEAR(pj["pressure_gradient"]["aspect_ratio"].get<double>(), 4.0, 1e-12);
+    ASSERT_EQ(run_packbed("generate --shape spherocylinder:1,1 -a 4 -n 40 -s 1 -q --out " +
+                          (rods / "one").string())
+                  .status,
+              0);
+    const Outcome unitless = run_packbed("hydraulics --bed " + (rods / "one").string());
+    EXPECT_EQ(unitless.status, 2);
+    EXPECT_EQ(unitless.err, "packbed hydraulics: --bed " +
+                                (rods / "one" / "summary.json").string() +
+                                ": shape spherocylinder:1,1, a pellet's D = 1 (lengths in pellet "
+                                "diameters, no unit); allowed: give --diameter in metres (a "
+                                "pellet's 6 V / S, Ergun's diameter)\n");
     // A gap narrower than a particle.
     const Outcome narrow =
         run_packbed("hydraulics -e 0.4 -d 0.002 --container annulus:0.024,0.023");

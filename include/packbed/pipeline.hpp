@@ -147,6 +147,10 @@ struct PelletSpec {
 std::optional<PelletSpec> parse_pellet_shape(std::string_view text);
 /// What --shape allows, in the command line's words.
 std::string allowed_shapes();
+/// \return the surface-volume equivalent diameter 6 V / S of one pellet of `pellet`'s own size
+/// (its lengths' unit): the diameter of Ergun's equation for non-spheres, the one cfd-report's
+/// correlations take (D for a cylinder of L = D).
+double surface_volume_diameter(const PelletSpec& pellet);
 
 /// What `packbed generate --shape` is asked for.
 struct PelletRequest {

@@ -863,6 +863,14 @@ std::string pellet_export(const ExportRequest& request, ExportFormat format, con
 
 } // namespace
 
+double surface_volume_diameter(const PelletSpec& pellet) {
+    return std::visit(
+        [&](const auto& shape) {
+            return surface_volume_diameter(shape, 0.5 * pellet.volume_diameter);
+        },
+        pellet.shape);
+}
+
 std::string export_format_for(const std::filesystem::path& out) {
     std::string extension = out.extension().string();
     std::transform(extension.begin(), extension.end(), extension.begin(),

@@ -27,8 +27,15 @@ namespace fs = std::filesystem;
 struct BedFacts {
     double porosity = 0.0;
     std::string porosity_from;
-    std::optional<double> diameter;         ///< the spheres' diameter, in the bed's length unit
-    bool sauter_mean = false;               ///< the diameter is the sizes' Sauter mean d32
+    /// the particles' diameter for Ergun's equation, in the bed's length unit: the spheres', a
+    /// pellet's 6 V / S (surface_volume_diameter)
+    std::optional<double> diameter;
+    /// what the aspect ratio is on, in the bed's length unit: the spheres' diameter, a pellet's
+    /// d_v (as generate --shape's -a and cfd-report's)
+    std::optional<double> size;
+    bool sauter_mean = false;     ///< the diameter is the sizes' Sauter mean d32
+    std::string pellets;          ///< a bed of pellets: their shape's spec, else empty
+    double pellet_diameter = 0.0; ///< a pellet's D (its spec's), for the check of the unit
     std::optional<double> container_radius; ///< likewise
     std::optional<Container> container;     ///< a box, an annulus or a periodic cell
     std::string shown;                      ///< the summary's path, printable
@@ -56,13 +63,32 @@ BedFacts bed_facts(const std::string& bed) {
         throw InvalidInput(fmt::format("--bed {}: no lattice.porosity or void_fraction; give "
                                        "--porosity",
                                        shown));
-    return {*summary.porosity,
-            fmt::format("{} of {}", summary.porosity_source, shown),
-            summary.diameter,
-            summary.sauter_mean,
-            summary.container_radius,
-            container,
-            shown};
+    BedFacts facts{*summary.porosity,
+                   fmt::format("{} of {}", summary.porosity_source, shown),
+                   summary.diameter,
+                   summary.diameter,
+                   summary.sauter_mean,
+                   "",
+                   0.0,
+                   summary.container_radius,
+                   container,
+                   shown};
+    if (summary.shape) {
+        const std::optional<PelletSpec> pellet = parse_pellet_shape(*summary.shape);
+        if (!pellet)
+            throw InvalidInput(fmt::format("--bed {}: shape '{}' is not allowed; allowed: {}",
+                                           shown, printable(*summary.shape), allowed_shapes()));
+        facts.pellets = pellet->text;
+        facts.pellet_diameter = pellet->diameter;
+        // Pellets of several sizes (--sizes): their mean 6 V / S needs every size, which the
+        // summary does not hold.
+        facts.diameter = facts.size = std::nullopt;
+        if (!summary.size_range) {
+            facts.diameter = surface_volume_diameter(*pellet);
+            facts.size = pellet->volume_diameter;
+        }
+    }
+    return facts;
 }
 
 /// \return the path of the first number of `value` that is not finite (nlohmann::json prints
@@ -98,8 +124,9 @@ Report hydraulics_report(const HydraulicsRequest& o) {
     const auto spec = parse_container(o.container);
     std::optional<Container> container;
     std::string container_from = fmt::format("--container {}", o.container);
-    // A container from --bed is in the bed's length unit: a = D_h / the bed's diameter.
-    std::optional<double> bed_diameter;
+    // A container from --bed is in the bed's length unit: a = D_h / the bed's size (a sphere's
+    // diameter, a pellet's d_v), D_h in metres as the particle diameter's scale.
+    std::optional<double> bed_diameter, bed_size;
     if (spec)
         container = spec;
     double e = o.porosity;
@@ -111,6 +138,16 @@ Report hydraulics_report(const HydraulicsRequest& o) {
         const BedFacts bed = bed_facts(o.bed);
         e = bed.porosity;
         origin = bed.porosity_from;
+        if (!o.diameter_given && !bed.pellets.empty() && !bed.diameter)
+            throw InvalidInput(fmt::format(
+                "--bed {}: a bed of {} pellets of several sizes (--sizes), whose mean 6 V / S "
+                "its summary does not hold; allowed: give --diameter in metres",
+                bed.shown, bed.pellets));
+        if (!o.diameter_given && !bed.pellets.empty() && bed.pellet_diameter == 1.0)
+            throw InvalidInput(fmt::format(
+                "--bed {}: shape {}, a pellet's D = 1 (lengths in pellet diameters, no unit); "
+                "allowed: give --diameter in metres (a pellet's 6 V / S, Ergun's diameter)",
+                bed.shown, bed.pellets));
         if (!o.diameter_given && bed.diameter) {
             if (*bed.diameter == 1.0) // generate's and lattice's default: no unit at all
                 throw InvalidInput(fmt::format(
@@ -132,19 +169,26 @@ Report hydraulics_report(const HydraulicsRequest& o) {
                     ? fmt::format("the Sauter mean diameter d32 of the sizes of {}, read as "
                                   "metres (the diameter of Ergun's equation for mixtures)",
                                   bed.shown)
+                : !bed.pellets.empty()
+                    ? fmt::format("6 V / S of the {} pellets of {}, read as metres (the "
+                                  "diameter of Ergun's equation for non-spheres)",
+                                  bed.pellets, bed.shown)
                     : fmt::format("the diameter of {}, read as metres", bed.shown);
         }
         // The tube of a cylindrical bed gives the wall-corrected pressure drop.
         // An annulus or a periodic cell: its hydraulic diameter, or no wall.
-        if (!o.aspect_ratio_given && !spec && bed.container && bed.diameter) {
+        if (!o.aspect_ratio_given && !spec && bed.container && bed.diameter && bed.size) {
             container = bed.container;
             bed_diameter = bed.diameter;
+            bed_size = bed.size;
             container_from = fmt::format("the {} of {}", bed.container->spec(), bed.shown);
-        } else if (!o.aspect_ratio_given && !spec && bed.diameter && bed.container_radius) {
-            const double a = 2.0 * *bed.container_radius / *bed.diameter;
+        } else if (!o.aspect_ratio_given && !spec && bed.size && bed.container_radius) {
+            const double a = 2.0 * *bed.container_radius / *bed.size;
             if (a > 1.0 && a <= limits::max_tube_aspect_ratio) {
                 aspect_ratio = a;
-                aspect_ratio_from = fmt::format("2 container.radius / diameter of {}", bed.shown);
+                aspect_ratio_from =
+                    fmt::format("2 container.radius / {} of {}",
+                                bed.pellets.empty() ? "diameter" : "a pellet's d_v", bed.shown);
             }
         }
     }
@@ -167,9 +211,9 @@ Report hydraulics_report(const HydraulicsRequest& o) {
     } else if (container) {
         // Another container: a = D_h / d with the hydraulic diameter 4 A / P.
         hydraulic = dh.value;
-        aspect_ratio = *hydraulic / bed_diameter.value_or(f.diameter);
+        aspect_ratio = *hydraulic / bed_size.value_or(f.diameter);
         if (bed_diameter) // in metres, at the particle diameter used
-            hydraulic = aspect_ratio * f.diameter;
+            hydraulic = *hydraulic / *bed_diameter * f.diameter;
         const std::string_view formula = dh.formula;
         if (!(aspect_ratio >= 1.0 && aspect_ratio <= limits::max_tube_aspect_ratio))
             throw InvalidInput(fmt::format(
