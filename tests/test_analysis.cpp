@@ -13,6 +13,7 @@
 #include <omp.h>
 
 #include "packbed/analysis.hpp"
+#include "packbed/bed_checks.hpp"
 #include "packbed/bed_volume.hpp"
 #include "packbed/error.hpp"
 #include "packbed/soft_sphere.hpp"
@@ -827,4 +828,22 @@ TEST(SizeClasses, BinaryBedIsMeasuredPerSize) {
     EXPECT_TRUE(mono.by_size.empty());
     EXPECT_EQ(mono.sizes.count, 0u);
     EXPECT_EQ(mono.diameter, 1.0);
+}
+
+TEST(AnalysisWarnings, AVoidFractionBelowZeroIsNamed) {
+    // Balls of radius 1/2 every 0.1 along the axis of a tube of radius 1/2: ten balls' volume,
+    // 10 pi / 6, in each unit of height, whose volume is pi / 4: e = 1 - (10 / 6) / (1 / 4) =
+    // -17/3 away from the ends (the overlaps counted again for each ball, as a clump's spheres
+    // read as a bed would be).
+    Packing packing;
+    for (int k = 0; k <= 200; ++k)
+        packing.add({0.0, 0.0, 0.5 + 0.1 * k}, 0.5);
+    const Container tube = Container::tube(1.0);
+    AnalysisOptions options;
+    options.band = Band{5.0, 15.0};
+    const BedAnalysis a = analyze_bed(packing, tube, options);
+    EXPECT_NEAR(a.void_fraction, 1.0 - (10.0 / 6.0) / 0.25, 1e-9);
+    const std::vector<std::string> warnings = analysis_warnings(packing, tube, a);
+    ASSERT_FALSE(warnings.empty());
+    EXPECT_EQ(warnings[0].rfind("the void fraction -5.6667 is below 0: ", 0), 0u) << warnings[0];
 }

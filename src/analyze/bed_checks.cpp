@@ -14,6 +14,14 @@ std::vector<std::string> analysis_warnings(const Packing& packing, const Contain
                                            const BedAnalysis& a, const BedCheckLimits& limits) {
     std::vector<std::string> out;
     const Band band = a.band;
+    // Overlaps are counted twice by the sum of the spheres' volumes: below 0 they fill more than
+    // the band.
+    if (a.void_fraction < 0.0)
+        out.push_back(fmt::format(
+            "the void fraction {:.4f} is below 0: the spheres overlap each other by more than the "
+            "band's volume (a pellet's clump read as separate spheres, or a radius column that "
+            "holds diameters?); no bed has it",
+            a.void_fraction));
     std::size_t centres = 0;
     for (const Vec3& c : packing.centers)
         centres += c.z >= band.z_low && c.z <= band.z_high ? 1 : 0;
