@@ -646,11 +646,10 @@ INSTANTIATE_TEST_SUITE_P(
         exact("generate --wall-friction 1e3",
               "packbed: --wall-friction: 1e3 is not allowed; allowed: a number in [0, 100]"),
         exact("generate --friction 0.3 --solver paper",
-              "packbed generate: --solver paper with --friction 0.3 and --wall-friction 0 is not "
-              "allowed; allowed: friction with --solver fire (the paper's iteration has no "
-              "rotations)"),
+              "packbed generate: --solver paper with --friction 0.3 is not allowed; allowed: "
+              "friction with --solver fire (the paper's iteration has no rotations)"),
         exact("generate --wall-friction 0.2 --engine lammps --write-only @D/job",
-              "packbed generate: --friction 0 and --wall-friction 0.2 are not allowed with "
+              "packbed generate: --wall-friction 0.2 is not allowed with "
               "--engine lammps; allowed: 0 (LAMMPS minimises the frictionless energy; friction "
               "needs damped dynamics with contact history, docs/lammps.md) or friction with "
               "--engine packbed"),

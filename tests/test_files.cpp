@@ -2,6 +2,7 @@
 // read within bounds.
 #include <sys/stat.h>
 
+#include <cstdio>
 #include <filesystem>
 #include <fstream>
 #include <sstream>
@@ -42,6 +43,24 @@ TEST(Printable, EscapesControlCharactersOnly) {
     EXPECT_EQ(printable("plain/path with spaces 'quoted' \xc3\xa9"),
               "plain/path with spaces 'quoted' \xc3\xa9"); // UTF-8 stays
     EXPECT_EQ(printable(printable("a\nb")), "a\\nb");
+}
+
+TEST(ShellWord, ASmallShellReadsBackTheWordItWasGiven) {
+    EXPECT_EQ(shell_word("results/a5-n500_1.csv"), "results/a5-n500_1.csv");
+    EXPECT_EQ(shell_word("job dir's"), "'job dir'\\''s'");
+    EXPECT_EQ(shell_word(""), "''");
+    // /bin/sh prints each back as it was: spaces, quotes, $, backquotes, ; and globs stay data.
+    for (const std::string word :
+         {"job dir's", "$(touch PWNED)", "a`b`c", "x;y|z&", "*.csv ?", "it's \"quoted\"", "-n"}) {
+        const std::string command = "printf '%s' " + shell_word(word);
+        FILE* shell = popen(command.c_str(), "r");
+        ASSERT_NE(shell, nullptr);
+        std::string back;
+        for (int c; (c = std::fgetc(shell)) != EOF;)
+            back += static_cast<char>(c);
+        EXPECT_EQ(pclose(shell), 0) << command;
+        EXPECT_EQ(back, word) << command;
+    }
 }
 
 TEST(CheckPath, RefusesControlCharactersEmptyAndOverlong) {

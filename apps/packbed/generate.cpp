@@ -195,12 +195,16 @@ int write_lammps_job(const GenerateOptions& o, const PreparedGeneration& prepare
     const std::vector<std::string> command =
         stage_lammps_job(out, "", prepared, o.lammps, LammpsPairStyle::gran_hooke);
     out.commit();
+    // the launcher's words, each as a shell's word: to be pasted
+    std::string launcher;
+    for (auto w = command.begin(); w != command.end() - 4; ++w)
+        launcher += (launcher.empty() ? "" : " ") + shell_word(*w);
     if (!o.quiet)
         fmt::print("packbed generate: the LAMMPS job for {} spheres is in {}/; run it there "
                    "with `{} -in in.packbed` (README.md has a cluster's script), then "
                    "`packbed import-lammps {}`\n",
-                   prepared.params.particles, out.path().string(),
-                   fmt::join(command.begin(), command.end() - 4, " "), out.path().string());
+                   prepared.params.particles, printable(out.path().native()), launcher,
+                   shell_word(out.path().native()));
     return 0;
 }
 

@@ -20,6 +20,11 @@ namespace packbed {
 /// a message stays one line and shows what was given. Applied twice, it changes nothing more.
 std::string printable(std::string_view text);
 
+/// \return `text` as one word of a POSIX shell, for a command a message shows to be pasted: as
+/// it is when it holds only letters, digits and `_./-+=:,@%`, else in single quotes (each quote
+/// inside as '\''), control characters as printable writes them.
+std::string shell_word(std::string_view text);
+
 /// \return why `path` is not allowed as a path (empty, a control character such as a newline
 /// or a tab, longer than 4095 bytes), or "" when it is allowed.
 std::string path_problem(const std::filesystem::path& path);

@@ -133,6 +133,9 @@ struct SoftSphereParameters {
     double largest_size() const;
     /// \return true when a contact has friction (friction or wall_friction above 0).
     bool frictional() const { return friction > 0.0 || wall_friction > 0.0; }
+    /// \return the friction options above 0 as a message names them ("--friction 0.3",
+    /// "--wall-friction 0.2", or both joined by "and").
+    std::string friction_options() const;
     /// \return a = 2 Rt / Dp where the container is a tube, else nothing.
     std::optional<double> aspect_ratio() const { return container.tube_diameter(); }
 

@@ -4,6 +4,7 @@
 #include <sys/stat.h>
 #include <unistd.h>
 
+#include <algorithm>
 #include <cctype>
 #include <cerrno>
 #include <cstring>
@@ -52,6 +53,19 @@ std::string printable(std::string_view text) {
             out += c;
     }
     return out;
+}
+
+std::string shell_word(std::string_view text) {
+    const bool plain = !text.empty() && std::all_of(text.begin(), text.end(), [](char c) {
+        return std::isalnum(static_cast<unsigned char>(c)) ||
+               std::string_view("_./-+=:,@%").find(c) != std::string_view::npos;
+    });
+    if (plain)
+        return std::string(text);
+    std::string out = "'";
+    for (const char c : printable(text))
+        out += c == '\'' ? std::string("'\\''") : std::string(1, c);
+    return out + "'";
 }
 
 namespace {

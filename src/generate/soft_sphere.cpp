@@ -77,10 +77,10 @@ void SoftSphereParameters::validate() const {
     require(wall_friction >= 0.0 && wall_friction <= 100.0, "wall-friction", wall_friction,
             "0 to 100");
     if (frictional() && solver != Solver::fire)
-        throw InvalidInput(fmt::format("--solver {} with --friction {} and --wall-friction {} is "
-                                       "not allowed; allowed: friction with --solver fire (the "
-                                       "paper's iteration has no rotations)",
-                                       to_string(solver), friction, wall_friction));
+        throw InvalidInput(fmt::format("--solver {} with {} is not allowed; allowed: friction "
+                                       "with --solver fire (the paper's iteration has no "
+                                       "rotations)",
+                                       to_string(solver), friction_options()));
     require(max_iterations >= 1, "max-iterations", static_cast<double>(max_iterations), ">= 1");
     if (sizes.empty())
         return check_top();
@@ -160,6 +160,15 @@ double SoftSphereParameters::list_skin() const {
 
 double SoftSphereParameters::smallest_size() const {
     return sizes.empty() ? 1.0 : *std::min_element(sizes.begin(), sizes.end());
+}
+
+std::string SoftSphereParameters::friction_options() const {
+    std::string named;
+    if (friction > 0.0)
+        named = fmt::format("--friction {}", friction);
+    if (wall_friction > 0.0)
+        named += fmt::format("{}--wall-friction {}", named.empty() ? "" : " and ", wall_friction);
+    return named;
 }
 
 double SoftSphereParameters::largest_size() const {

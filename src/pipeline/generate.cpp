@@ -138,10 +138,10 @@ PreparedGeneration prepare_generation(GenerateRequest request) {
                                "schedule)");
         if (p.frictional())
             throw InvalidInput(fmt::format(
-                "--friction {} and --wall-friction {} are not allowed with --engine lammps; "
-                "allowed: 0 (LAMMPS minimises the frictionless energy; friction needs damped "
-                "dynamics with contact history, docs/lammps.md) or friction with --engine packbed",
-                p.friction, p.wall_friction));
+                "{} {} not allowed with --engine lammps; allowed: 0 (LAMMPS minimises the "
+                "frictionless energy; friction needs damped dynamics with contact history, "
+                "docs/lammps.md) or friction with --engine packbed",
+                p.friction_options(), p.friction > 0.0 && p.wall_friction > 0.0 ? "are" : "is"));
         if (!request.checkpoint.empty())
             throw InvalidInput(fmt::format("--checkpoint {} is not allowed with --engine lammps; "
                                            "allowed: --checkpoint with --engine packbed",
@@ -155,9 +155,7 @@ PreparedGeneration prepare_generation(GenerateRequest request) {
             throw InvalidInput(fmt::format(
                 "{} with {} is not allowed; allowed: one of the two (the target sets the "
                 "friction of spheres and walls alike)",
-                given,
-                p.friction > 0.0 ? fmt::format("--friction {}", p.friction)
-                                 : fmt::format("--wall-friction {}", p.wall_friction)));
+                given, p.friction_options()));
         if (p.solver != Solver::fire || request.engine != Engine::packbed)
             throw InvalidInput(given + " is not allowed with --solver paper or --engine lammps; "
                                        "allowed: with --solver fire and --engine packbed (the "

@@ -108,10 +108,13 @@ nlohmann::json job_json(const GenerateRequest& r, const std::vector<std::string>
             {"request", std::move(request)}};
 }
 
-/// The words of a command as one line for a README (each word as it is; the README is text
-/// for a person, never run by packbed).
+/// The words of a command as one line for a README or a message (each a shell's word, quoted
+/// where it must be, to be pasted; never run by packbed).
 std::string command_line(const std::vector<std::string>& words) {
-    return fmt::format("{}", fmt::join(words, " "));
+    std::string line;
+    for (const std::string& w : words)
+        line += (line.empty() ? "" : " ") + shell_word(w);
+    return line;
 }
 
 /// The words that run the job in its folder.
@@ -197,11 +200,12 @@ LammpsPairStyle probe_lammps(const LammpsLauncher& launcher, OutputDirectory& ou
         text.assign(std::istreambuf_iterator<char>(in), {});
     }
     out.discard("lmp-help.txt");
-    if (status == 127)
-        throw InvalidInput(fmt::format(
-            "--lmp {}: no such program on the PATH; allowed: an installed LAMMPS (Debian: "
-            "scripts/install-deps.sh --lammps installs lammps and openmpi-bin)",
-            printable(launcher.lmp)));
+    if (status == 127) // a name is looked for on the PATH, a path is not
+        throw InvalidInput(
+            fmt::format("--lmp {}: no such program{}; allowed: an installed LAMMPS (Debian: "
+                        "scripts/install-deps.sh --lammps installs lammps and openmpi-bin)",
+                        printable(launcher.lmp),
+                        launcher.lmp.find('/') == std::string::npos ? " on the PATH" : ""));
     if (status != 0 ||
         text.find("Large-scale Atomic/Molecular Massively Parallel") == std::string::npos)
         throw InvalidInput(fmt::format("--lmp {}: `{} -h` did not answer as LAMMPS does (exit "
@@ -269,9 +273,11 @@ GeneratedBed run_lammps_generation(const PreparedGeneration& prepared,
     if (control.should_stop && control.should_stop())
         throw Cancelled();
     if (status == 127)
-        throw InvalidInput(fmt::format("{}: no such program on the PATH; allowed: an installed "
-                                       "launcher (Debian: openmpi-bin gives mpirun)",
-                                       printable(command.front())));
+        throw InvalidInput(
+            fmt::format("{}: no such program{}; allowed: an installed "
+                        "launcher (Debian: openmpi-bin gives mpirun)",
+                        printable(command.front()),
+                        command.front().find('/') == std::string::npos ? " on the PATH" : ""));
     SoftSphereResult result;
     try {
         result = lammps_result(prepared.params, folder);
