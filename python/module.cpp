@@ -587,11 +587,23 @@ Bed read_bed(const std::filesystem::path& path, const std::string& format, long 
     return bed;
 }
 
+/// The band's clearance from the ends (None: AnalysisOptions's 1 Dp), refused beside a fixed
+/// band as the command line refuses --band-clearance with --band.
+double band_clearance_of(std::optional<double> band_clearance,
+                         const std::optional<std::pair<double, double>>& band) {
+    if (band && band_clearance)
+        throw InvalidInput(fmt::format("band_clearance {} and band ({}, {}) are both given; "
+                                       "allowed: one of the two",
+                                       *band_clearance, band->first, band->second));
+    return check_option("band-clearance", band_clearance.value_or(AnalysisOptions{}.band_clearance),
+                        option_range::band_clearance);
+}
+
 py::dict analyze_frames(const std::filesystem::path& path, const std::string& format,
                         std::optional<std::pair<double, double>> axis, double floor,
                         std::optional<double> diameter, const std::optional<std::string>& container,
                         double outside_tolerance, std::optional<std::pair<double, double>> band,
-                        double band_clearance, std::optional<long long> threads) {
+                        std::optional<double> band_clearance, std::optional<long long> threads) {
     const ReadOptions options =
         read_options_of(path, format, -1, axis, floor, diameter, container, outside_tolerance);
     AnalysisOptions analysis;
@@ -599,8 +611,7 @@ py::dict analyze_frames(const std::filesystem::path& path, const std::string& fo
         analysis.diameter = *diameter;
     if (band)
         analysis.band = Band{band->first, band->second};
-    analysis.band_clearance =
-        check_option("band-clearance", band_clearance, option_range::band_clearance);
+    analysis.band_clearance = band_clearance_of(band_clearance, band);
     const std::optional<Container> found = find_container(path, container.value_or(""));
     if (!found)
         throw InvalidInput(fmt::format("--container is needed: no summary.json with a container "
@@ -806,11 +817,12 @@ PelletAnalysisResult analyze_pellets(const Bed& bed, const PelletSpec& pellet,
 }
 
 py::object analyze(const Bed& bed, const std::optional<std::string>& container,
-                   std::optional<std::pair<double, double>> band, double band_clearance,
-                   std::optional<double> diameter, double shell_width, double slab_height,
-                   std::optional<double> centre_bin, double contact_tolerance,
-                   std::optional<double> rdf_range, std::optional<double> rdf_bin,
-                   std::optional<double> friction, std::optional<long long> threads,
+                   std::optional<std::pair<double, double>> band,
+                   std::optional<double> band_clearance, std::optional<double> diameter,
+                   double shell_width, double slab_height, std::optional<double> centre_bin,
+                   double contact_tolerance, std::optional<double> rdf_range,
+                   std::optional<double> rdf_bin, std::optional<double> friction,
+                   std::optional<long long> threads,
                    const std::optional<std::filesystem::path>& out, bool force) {
     const std::optional<PelletSpec> pellet = bed_pellet(bed, "analyze");
     if (pellet) // the spheres' measures that a bed of pellets has no use for
@@ -830,7 +842,7 @@ py::object analyze(const Bed& bed, const std::optional<std::string>& container,
     AnalysisOptions options;
     if (diameter)
         options.diameter = check_option("diameter", *diameter, range::diameter);
-    options.band_clearance = check_option("band-clearance", band_clearance, range::band_clearance);
+    options.band_clearance = band_clearance_of(band_clearance, band);
     if (band)
         options.band = Band{band->first, band->second};
     options.shell_width = check_option("shell-width", shell_width, range::shell_width);
@@ -1456,19 +1468,19 @@ writes it) keeps its orientations and has the shape in its summary['shape'].)");
           py::kw_only(), py::arg("format") = "auto", py::arg("axis") = py::none(),
           py::arg("floor") = 0.0, py::arg("diameter") = py::none(),
           py::arg("container") = py::none(), py::arg("outside_tolerance") = 0.01,
-          py::arg("band") = py::none(), py::arg("band_clearance") = 1.0,
+          py::arg("band") = py::none(), py::arg("band_clearance") = py::none(),
           py::arg("threads") = py::none(),
           R"(The void fraction of every frame of a trajectory (a LAMMPS or LIGGGHTS dump), as
 `packbed analyze --frames all` writes it in void_fraction_series.csv: a dict of numpy arrays
 frame, timestep (NaN where the file has none), void_fraction (NaN where the frame has no
 spheres or is not taller than the band) and particles, and 'last', the last frame with spheres
 as a Bed (analyze it for the rest). The band: band = (z_low, z_high), fixed, or band_clearance
-Dp clear of each frame's ends. Reading options and container as read(); every frame is checked
+Dp clear of each frame's ends (None: 1; not both). Reading options and container as read(); every frame is checked
 inside the container.)");
 
     m.def("analyze", &analyze, py::call_guard<JobScope>(), py::arg("bed"), py::kw_only(),
           py::arg("container") = py::none(), py::arg("band") = py::none(),
-          py::arg("band_clearance") = 1.0, py::arg("diameter") = py::none(),
+          py::arg("band_clearance") = py::none(), py::arg("diameter") = py::none(),
           py::arg("shell_width") = AnalysisOptions{}.shell_width,
           py::arg("slab_height") = AnalysisOptions{}.slab_height,
           py::arg("centre_bin") = py::none(),
@@ -1478,8 +1490,8 @@ inside the container.)");
           py::arg("out") = py::none(), py::arg("force") = false,
           R"(Measure a bed as `packbed analyze` does: the overall void fraction (exact), the
 radial (wall) and axial void fraction profiles, the centre distribution, contacts and
-coordination, and g(r), in the band band_clearance Dp clear of the floor and the top (or band =
-(z_low, z_high)). container: a spec string; None: the bed's own. Lengths in Dp are in units of
+coordination, and g(r), in the band band_clearance Dp clear of the floor and the top (None: 1)
+or band = (z_low, z_high), not both. container: a spec string; None: the bed's own. Lengths in Dp are in units of
 diameter (None: the mean sphere diameter). centre_bin, rdf_range, rdf_bin: None, 0.02, 3 and
 0.02 Dp. friction: between the spheres, above 0 a rattler has fewer than 2 contacts, not 4
 (None: the one the bed's summary records, else 0). out: a directory to write the tables, plots

@@ -266,6 +266,8 @@ def test_a_lattice_too_short_for_its_band_says_so(tmp_path):
          ["friction", "-0.1", "allowed"]),
         (lambda: packbed.generate(shape="cylinder:1"), ["shape", "cylinder:1", "allowed"]),
         (lambda: packbed.generate(shape="cube:1"), ["shape", "cube:1", "allowed"]),
+        (lambda: packbed.analyze(packbed.lattice(), band=(1, 2), band_clearance=0.5),
+         ["band_clearance", "0.5", "band (1, 2)", "both given", "allowed"]),
     ],
 )
 def test_bad_values_raise_value_error_with_one_line(call, words):
