@@ -719,11 +719,20 @@ void add_pellets(Bed& bed, PelletSpec pellet, const std::optional<py::object>& g
 }
 
 /// A bed from numpy arrays: centres (N x 3) and radii (N), or one diameter for all; given a
-/// pellet `shape`, its pellets with their orientations (add_pellets).
+/// pellet `shape`, its pellets with their orientations (add_pellets); given `period_z`, spheres
+/// in a cell periodic along z too (a random array's, summary.json's period_z).
 Bed from_arrays(const py::object& centers_given, const std::optional<py::object>& radii_given,
                 std::optional<double> diameter, const std::optional<std::string>& container,
-                const std::optional<py::object>& orientations, const std::string& shape) {
+                const std::optional<py::object>& orientations, const std::string& shape,
+                std::optional<double> period_z) {
     const bool pellets = shape != "sphere";
+    if (period_z && (pellets || !container || container->rfind("periodic:", 0) != 0))
+        throw InvalidInput(fmt::format(
+            "period_z {}: not allowed {}; allowed: with spheres in a periodic container "
+            "(container='periodic:LX,LY'), a cell periodic on all six faces",
+            *period_z, pellets ? "with a pellet shape" : "without a periodic container"));
+    if (period_z)
+        check_option("container-height", *period_z, option_range::container_height);
     if (!pellets && orientations && !orientations->is_none())
         throw InvalidInput("orientations: not allowed for a bed of spheres; allowed: with "
                            "shape='cylinder:D,L' (or another pellet) naming the pellets turned");
@@ -783,8 +792,10 @@ Bed from_arrays(const py::object& centers_given, const std::optional<py::object>
     } else if (container) {
         bed.container = container_from_spec("--container", *container);
         check_inside(bed.packing, {}, "centers", *bed.container,
-                     0.01 * (n > 0 ? bed.packing.mean_diameter() : 0.0), false);
+                     0.01 * (n > 0 ? bed.packing.mean_diameter() : 0.0), false, period_z);
         bed.summary["container"] = bed.container->summary_json();
+        if (period_z) // as read() records a random array's
+            bed.summary["period_z"] = *period_z;
     }
     bed.summary["particles"] = n;
     return bed;
@@ -1221,7 +1232,8 @@ PYBIND11_MODULE(_core, m) {
 Build one from arrays: Bed(centers, radii=None, diameter=None, container=None), with centers
 of shape (N, 3), and either radii (N) or one diameter for every sphere; container a spec
 string ('cylinder:D', 'box:LX,LY', 'cone:DB,DT,H', ...: docs/containers.md), the floor at
-z = 0.
+z = 0. period_z: a 'periodic:LX,LY' cell periodic along z too, of this period (a random
+array's; centres in [0, period_z], spheres across the floor and the top as its images).
 
 A bed of pellets: shape a pellet spec as generate's ('cylinder:D,L', 'ring:D,DI,L', ...) and
 orientations (N, 4) unit quaternions qw, qx, qy, qz (the pellet's axis its body z axis
@@ -1230,7 +1242,8 @@ every pellet the shape's size), no diameter. A container given is checked to hol
 by their exact shapes.)")
         .def(py::init(&from_arrays), py::arg("centers"), py::arg("radii") = py::none(),
              py::kw_only(), py::arg("diameter") = py::none(), py::arg("container") = py::none(),
-             py::arg("orientations") = py::none(), py::arg("shape") = "sphere")
+             py::arg("orientations") = py::none(), py::arg("shape") = "sphere",
+             py::arg("period_z") = py::none())
         .def_property_readonly(
             "centers",
             [](py::object self) {
@@ -1268,6 +1281,16 @@ by their exact shapes.)")
             "A pellet bed's orientations, a read-only numpy array (N, 4) of unit quaternions qw, "
             "qx, qy, qz (the pellet's axis is its body z axis turned) viewing the bed's own "
             "memory; None for spheres.")
+        .def_property_readonly(
+            "period_z",
+            [](const Bed& bed) -> std::optional<double> {
+                if (bed.summary.is_object() && bed.summary.contains("period_z") &&
+                    bed.summary["period_z"].is_number())
+                    return bed.summary["period_z"].get<double>();
+                return std::nullopt;
+            },
+            "The period along z of a cell periodic on all six faces (a random array's), or None: "
+            "Bed(..., container=bed.container, period_z=bed.period_z) is the same cell.")
         .def_property_readonly(
             "container",
             [](const Bed& bed) -> std::optional<std::string> {
