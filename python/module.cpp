@@ -952,14 +952,20 @@ void write_bed(Bed& bed, const std::filesystem::path& out, bool force, bool anal
         throw InvalidInput("write: this bed has no container; allowed: a bed made by generate "
                            "or lattice, or read or built with container=...");
     OutputDirectory directory(out, "--out", OutputKind::directory, force);
+    nlohmann::json summary = bed.summary;
+    // The written summary is the written particles.csv's: the file a bed was read from is its
+    // source, not its particles file.
+    if (summary.is_object() && summary.contains("particles_file")) {
+        summary["source"] = summary["particles_file"];
+        summary.erase("particles_file");
+    }
     if (pellet) { // as generate --shape writes it (stage_pellet_bed)
         directory.stage("particles.csv", particles_csv(bed.packing));
         directory.stage("particles.vtu", particles_vtu(bed.packing));
-        directory.stage("summary.json", json_file_text(bed.summary, "summary.json"));
+        directory.stage("summary.json", json_file_text(summary, "summary.json"));
         directory.commit();
         return;
     }
-    nlohmann::json summary = bed.summary;
     const bool tall = bed.packing.size() > 0 &&
                       bed_top(bed.packing) > 2.0 * band_clearance * bed.packing.mean_diameter();
     stage_bed(directory, bed.packing, *bed.container, band_clearance, analysis && tall, summary);

@@ -141,7 +141,8 @@ struct BedSummary {
     /// `diameter` is their Sauter mean d32
     bool sauter_mean = false;
     std::optional<double> porosity; ///< a lattice's exact porosity or the void fraction
-    /// "the porosity of the TYPE lattice" or "the overall void fraction", when porosity is set
+    /// "the porosity of the TYPE lattice", "the overall void fraction" or "the overall void
+    /// fraction of its analysis" (analysis.void_fraction), when porosity is set
     std::string porosity_source;
     /// the friction the bed was generated with (parameters.friction; a pellet bed's friction
     /// beside its shape), when present

@@ -1161,6 +1161,14 @@ BedSummary read_bed_summary(const nlohmann::json& json, std::string_view name) {
         if (out.porosity)
             out.porosity_source = "the overall void fraction";
     }
+    // A bed written without a generation of its own (Python's Bed.write of a bed read or made
+    // from arrays): the void fraction of the analysis beside it.
+    if (const auto analysis = json.find("analysis");
+        !out.porosity && analysis != json.end() && analysis->is_object()) {
+        out.porosity = number(*analysis, "void_fraction", "analysis.void_fraction", 1.0);
+        if (out.porosity)
+            out.porosity_source = "the overall void fraction of its analysis";
+    }
     return out;
 }
 

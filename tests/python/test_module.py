@@ -1258,3 +1258,19 @@ def test_a_random_array_rebuilt_from_its_arrays_is_the_same_cell():
     with pytest.raises(ValueError, match="period_z 3: not allowed without a periodic container"):
         packbed.Bed(b.centers, b.radii, container="cylinder:5", period_z=3)
     assert packbed.lattice().period_z is None
+
+
+def test_a_read_bed_written_again_is_a_bed_hydraulics_takes(tmp_path):
+    # A bed read from a file and written: its summary names the file it came from as its source
+    # (the written particles.csv is its own), and hydraulics takes the void fraction of its
+    # analysis, as it takes a generated bed's.
+    status, _, err = cli("generate", "-a", 4, "-n", 100, "-s", 1, "-q", "--out", tmp_path / "g")
+    assert status == 0, err
+    read = packbed.read(str(tmp_path / "g" / "particles.csv"))
+    read.write(str(tmp_path / "w"))
+    summary = json.loads((tmp_path / "w" / "summary.json").read_text())
+    assert summary["source"] == str(tmp_path / "g" / "particles.csv")
+    assert "particles_file" not in summary
+    porosity = packbed.hydraulics(bed=str(tmp_path / "w"), diameter=0.003)["porosity"]
+    assert porosity["value"] == summary["analysis"]["void_fraction"]
+    assert porosity["from"].startswith("the overall void fraction of its analysis")
