@@ -746,6 +746,29 @@ TEST(Cli, ConfigFileSetsOptionsAndTheCommandLineWins) {
     EXPECT_EQ(s["parameters"]["ck"], 0.25);
 }
 
+TEST(Cli, OneConfigFileServesTwoSubcommandsBySection) {
+    // [generate] for generate and [analyze] for analyze, each leaving the other's section alone;
+    // a table no subcommand has is still refused.
+    const fs::path d = scratch("config-sections");
+    std::ofstream(d / "bed.toml") << "[generate]\naspect_ratio = 4\nparticles = 60\nseed = 2\n"
+                                     "[analyze]\nshell_width = 0.05\n";
+    const std::string config = " --quiet --config " + (d / "bed.toml").string();
+    ASSERT_EQ(packbed("generate" + config + " --out " + (d / "bed").string()).status, 0);
+    EXPECT_EQ(nlohmann::json::parse(slurp(d / "bed" / "summary.json"))["particles"], 60);
+    const Outcome a = packbed("analyze " + (d / "bed" / "particles.csv").string() + config +
+                              " --out " + (d / "an").string());
+    ASSERT_EQ(a.status, 0) << a.err;
+    EXPECT_EQ(nlohmann::json::parse(slurp(d / "an" / "summary.json"))["options"]["shell_width"],
+              0.05);
+    std::ofstream(d / "other.toml") << "particles = 60\n[nonsense]\nx = 1\n";
+    const Outcome other = packbed("generate --quiet --config " + (d / "other.toml").string() +
+                                  " --out " + (d / "no").string());
+    EXPECT_EQ(other.status, 2);
+    EXPECT_EQ(other.err, "packbed: --config " + (d / "other.toml").string() +
+                             ": line 2: unknown table 'nonsense'; allowed: top-level keys or "
+                             "[generate]\n");
+}
+
 TEST(Cli, TheCommandLineWinsOverAConfigKeyItsOptionExcludes) {
     // --container on the command line over aspect_ratio in the file (the two exclude each
     // other): the tube of the command line, not a refusal; both in the file are still refused.
