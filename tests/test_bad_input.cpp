@@ -1523,10 +1523,20 @@ INSTANTIATE_TEST_SUITE_P(
               "packbed export: --shape 'ring:1,0.5,1' is not allowed for pel/particles.csv: the "
               "summary.json beside it records its pellets as 'cylinder:1,1'; allowed: that "
               "shape, or no --shape"),
+        exact("export pel/particles.csv -f stl --shape sphere -o p.stl",
+              "packbed export: --shape sphere is not allowed for pel/particles.csv: the "
+              "summary.json beside it records its pellets as 'cylinder:1,1'; allowed: that "
+              "shape, or no --shape"),
         exact("export pelraw/particles.csv -f stl -o p.stl",
               "packbed export: pelraw/particles.csv: its particles have orientations (qw, qx, "
-              "qy, qz: a bed of pellets) but no shape is given; allowed: --shape SPEC naming its "
-              "pellets (a bed from generate --shape has it in the summary.json beside it)"),
+              "qy, qz: a bed of pellets) but no pellet shape is given; allowed: --shape SPEC "
+              "naming its pellets (a bed from generate --shape has it in the summary.json beside "
+              "it)"),
+        exact("export pelraw/particles.csv -f stl --shape sphere -o p.stl",
+              "packbed export: pelraw/particles.csv: its particles have orientations (qw, qx, "
+              "qy, qz: a bed of pellets) but no pellet shape is given; allowed: --shape SPEC "
+              "naming its pellets (a bed from generate --shape has it in the summary.json beside "
+              "it)"),
         // analyze and voxelize take a pellet's shape only from the summary.json beside it:
         // without one its pellets would be measured as balls of d_v.
         exact("analyze pelraw/particles.csv -R 3 --outside-tolerance 0.5",

@@ -83,6 +83,11 @@ int run_export(ExportOptions& o) {
             request.pellet->scales = recorded->scales; // its sizes
     } else if (o.shape.empty()) {
         request.pellet = shape_beside(o.particles);
+    } else if (const std::optional<PelletSpec> recorded = shape_beside(o.particles)) {
+        throw InvalidInput(fmt::format("--shape sphere is not allowed for {}: the summary.json "
+                                       "beside it records its pellets as '{}'; allowed: that "
+                                       "shape, or no --shape",
+                                       printable(o.particles), printable(recorded->text)));
     }
     // The container: --container, --container-radius or summary.json beside the file.
     if (export_uses_container(request))

@@ -937,7 +937,7 @@ std::string export_bed(const Packing& packing, const std::vector<std::size_t>& l
     if (!request.pellet && !packing.orientations.empty())
         throw InvalidInput(fmt::format(
             "{}: its particles have orientations (qw, qx, qy, qz: a bed of pellets) but no "
-            "shape is given; allowed: --shape SPEC naming its pellets (a bed from generate "
+            "pellet shape is given; allowed: --shape SPEC naming its pellets (a bed from generate "
             "--shape has it in the summary.json beside it)",
             printable(request.source)));
     // A pellet's size is its table's r, d_v / 2: a shape of another size (beyond the digits a
