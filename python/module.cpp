@@ -1191,6 +1191,9 @@ py::array voxelize_bed(const Bed& bed, double voxel_size,
         stage_image(*directory, out->filename().string(), *format, image);
         directory->commit();
     }
+    if (const std::string w = untiled_cell_warning(image.grid, given, region.has_value(), period_z);
+        !w.empty())
+        warn({w});
     const py::dtype numpy_type(voxel_type_name(type));
     if (type == VoxelType::boolean)
         return owned_array(std::move(image.pore), image.grid, numpy_type);

@@ -83,6 +83,10 @@ int run_voxelize(VoxelizeOptions& o) {
         voxelize(file.packing, container, o.voxel_size, region, type, shape, period_z);
     stage_image(out, target.filename().string(), *format, image);
     out.commit();
+    if (const std::string warning =
+            untiled_cell_warning(image.grid, container, region.has_value(), period_z);
+        !warning.empty() && !o.quiet)
+        fmt::print(stderr, "packbed voxelize: warning: {}\n", warning);
     if (!o.quiet)
         fmt::print("packbed voxelize: {}{} x {} x {} voxels of {:g} ({}), porosity of the image "
                    "{:.5f}: {}\n",

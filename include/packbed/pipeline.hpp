@@ -662,6 +662,13 @@ VoxelImage voxelize(const Packing& packing, const Container& container, double v
                     const PelletShape* pellet = nullptr,
                     std::optional<double> period_z = std::nullopt);
 
+/// \return a warning where the image of a periodic cell drawn over its default region (the
+/// cell, `region` not given) does not tile: a period (x, y, or z with `period_z`) that is not a
+/// whole number of voxels (within 1e-9, as voxel_grid counts them), so that the whole voxels
+/// covering it reach past the cell; else "". It names a voxel size that divides the period.
+std::string untiled_cell_warning(const VoxelGrid& grid, const Container& container,
+                                 bool region_given, std::optional<double> period_z);
+
 /// Stage an image as the file `name` of `out` in `format`, and a raw image's header as
 /// name + ".json" (image_header).
 void stage_image(OutputDirectory& out, const std::string& name, ImageFormat format,

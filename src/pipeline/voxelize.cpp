@@ -1,5 +1,9 @@
 // A bed's voxel image and its file (pipeline.hpp).
+#include <algorithm>
+#include <array>
+#include <cmath>
 #include <numeric>
+#include <utility>
 
 #include <fmt/format.h>
 
@@ -112,6 +116,28 @@ VoxelImage voxelize(const Packing& packing_given, const Container& container, do
         image.fraction32 = solid_fraction_image<float>(packing, container, image.grid);
     }
     return image;
+}
+
+std::string untiled_cell_warning(const VoxelGrid& grid, const Container& container,
+                                 bool region_given, std::optional<double> period_z) {
+    const std::optional<Periods> cell = container.periods();
+    if (!cell || region_given)
+        return "";
+    const std::array<std::pair<char, double>, 3> periods{
+        {{'x', cell->lx()}, {'y', cell->ly()}, {'z', period_z.value_or(0.0)}}};
+    for (const auto& [axis, period] : periods) {
+        const double voxels = period / grid.size;
+        if (period <= 0.0 || std::abs(voxels - std::round(voxels)) <= 1e-9)
+            continue;
+        // the next whole number of voxels: a size just below the one asked for
+        const double whole = std::ceil(voxels);
+        return fmt::format("the image of the periodic cell does not tile: its period along {}, "
+                           "{}, is {:.6g} voxels of {}, and the whole voxels covering it reach "
+                           "past it; a voxel size that divides each period tiles it (along {}: "
+                           "{} = {} / {:g})",
+                           axis, period, voxels, grid.size, axis, period / whole, period, whole);
+    }
+    return "";
 }
 
 void stage_image(OutputDirectory& out, const std::string& name, ImageFormat format,

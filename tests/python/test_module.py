@@ -15,6 +15,7 @@ import subprocess
 import sys
 import tempfile
 import time
+import warnings
 from pathlib import Path
 
 import numpy as np
@@ -1274,3 +1275,19 @@ def test_a_read_bed_written_again_is_a_bed_hydraulics_takes(tmp_path):
     porosity = packbed.hydraulics(bed=str(tmp_path / "w"), diameter=0.003)["porosity"]
     assert porosity["value"] == summary["analysis"]["void_fraction"]
     assert porosity["from"].startswith("the overall void fraction of its analysis")
+
+
+def test_an_image_of_a_cell_that_does_not_tile_is_warned_of():
+    # 0.1 does not divide the cube's edge (3.822... = 38.2 voxels): 39 voxels reach past the
+    # cell, and the image's solid fraction is not the array's. Edge / 39 tiles it: no warning,
+    # and the exact fractions average to the array's solid fraction.
+    b = packbed.random_array(count=32, solid_fraction=0.3, seed=1)
+    with pytest.warns(UserWarning, match=r"does not tile: its period along x, 3\.82245559, is "
+                                         r"38\.2246 voxels of 0\.1"):
+        untiled = packbed.voxelize(b, voxel_size=0.1, kind="fraction")
+    assert abs(untiled.mean() - b.summary["solid_fraction"]) > 1e-3
+    with warnings.catch_warnings():
+        warnings.simplefilter("error")
+        tiled = packbed.voxelize(b, voxel_size=b.period_z / 39, kind="fraction")
+    assert tiled.shape == (39, 39, 39)
+    assert tiled.mean() == pytest.approx(b.summary["solid_fraction"], abs=1e-9)
