@@ -128,6 +128,12 @@ TEST(ReadParticles, EmptyFirstFrameAndByteOrderMark) {
     EXPECT_EQ(error_of("ITEM: TIMESTEP\n0\nITEM: NUMBER OF ATOMS\n0\nITEM: ATOMS id x y z radius\n",
                        ParticleFormat::lammps_dump),
               "bed: no spheres in the last snapshot (or no ITEM: ATOMS section)");
+    // An XYZ trajectory may start empty too, as a dump's; its last frame must have spheres.
+    std::istringstream xyz("0\nempty\n1\nsecond\nC 0.5 0 0.5 0.5\n");
+    const auto g = read_particles(xyz, "x", ParticleFormat::xyz);
+    ASSERT_EQ(g.packing.size(), 1u);
+    EXPECT_EQ(g.frame, 2u);
+    EXPECT_EQ(error_of("0\nempty\n", ParticleFormat::xyz), "bed: no spheres in the last frame");
     // A CSV saved by a spreadsheet may start with a UTF-8 byte-order mark.
     std::istringstream bom("\xEF\xBB\xBFx,y,z,r\n1,2,3,0.5\n");
     EXPECT_EQ(read_particles(bom, "b", ParticleFormat::csv).packing.size(), 1u);
@@ -210,7 +216,7 @@ INSTANTIATE_TEST_SUITE_P(
         // The audit's cases: undefined behaviour before (a float-to-integer overflow, then
         // "0 spheres"; a message read from a line already overwritten).
         BadFile{ParticleFormat::xyz, "1e308\n\n",
-                "bed:1: the count 1e+308 is not allowed; allowed: a whole number from 1 to "
+                "bed:1: the count 1e+308 is not allowed; allowed: a whole number from 0 to "
                 "100000000"},
         BadFile{ParticleFormat::lammps_dump, "ITEM: TIMESTEP\n0\nITEM: NUMBER OF ATOMS\n1e20\n",
                 "bed:4: the number of atoms 1e+20 is not allowed; allowed: a whole number from 0 "
@@ -616,7 +622,7 @@ TEST(ReadFrames, XyzFramesTheLastByDefaultOrTheOneAsked) {
     EXPECT_EQ(error_of("1\n\nC 0 0 1 0.5\n1\n\nC 0 0 2 0.5\nC 0 0 3 0.5\n", ParticleFormat::xyz),
               "bed:7: more lines than the 1 spheres the count on line 4 declares");
     EXPECT_EQ(error_of("1\n\nC 0 0 1 0.5\n1.5\n\nC 0 0 2 0.5\n", ParticleFormat::xyz),
-              "bed:4: the count 1.5 is not allowed; allowed: a whole number from 1 to 100000000");
+              "bed:4: the count 1.5 is not allowed; allowed: a whole number from 0 to 100000000");
     // The frame asked for is read; the rest of the file is not (a broken later frame).
     EXPECT_EQ(read_text("1\n\nC 0 0 1 0.5\n2\n\nC 0 0 2 x\n", ParticleFormat::xyz, frame_of(1))
                   .packing.size(),

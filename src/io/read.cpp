@@ -519,7 +519,7 @@ void read_xyz(LineReader& in, const ReadOptions& options, const FrameSink& sink)
         in.fail_file("empty file; expected the number of spheres on the first line");
     for (std::size_t frame = 1;; ++frame) {
         const std::size_t count_line = in.line_number();
-        const std::size_t count = in.count(in.number(trim(line), "count"), "the count", 1);
+        const std::size_t count = in.count(in.number(trim(line), "count"), "the count", 0);
         if (!in.raw(line)) // the comment line, which may be blank
             in.fail_file("ends after the count line; expected a comment line and the spheres");
         ParticleFile out;
@@ -965,8 +965,10 @@ ParticleFile read_particles(std::istream& input, std::string_view name, Particle
     }
     if (found->packing.size() == 0) {
         if (wanted == -1)
-            throw InvalidInput(fmt::format(
-                "{}: no spheres in the last snapshot (or no ITEM: ATOMS section)", shown));
+            throw InvalidInput(fmt::format("{}: no spheres in the last {}", shown,
+                                           found->format == ParticleFormat::xyz
+                                               ? "frame"
+                                               : "snapshot (or no ITEM: ATOMS section)"));
         throw InvalidInput(fmt::format(
             "{}: frame {}{} has no spheres; allowed: a frame with spheres", shown, found->frame,
             found->timestep ? fmt::format(" (timestep {})", *found->timestep) : std::string()));
