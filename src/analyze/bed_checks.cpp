@@ -14,8 +14,8 @@ std::vector<std::string> analysis_warnings(const Packing& packing, const Contain
                                            const BedAnalysis& a, const BedCheckLimits& limits) {
     std::vector<std::string> out;
     const Band band = a.band;
-    // Overlaps are counted twice by the sum of the spheres' volumes: below 0 they fill more than
-    // the band.
+    // The void fraction sums the spheres' volumes, overlaps counted once for each sphere: where
+    // they overlap heavily the sum exceeds the band's volume.
     if (a.void_fraction < 0.0)
         out.push_back(fmt::format(
             "the void fraction {:.4f} is below 0: the spheres overlap each other by more than the "
