@@ -89,13 +89,17 @@ int run_voxelize(VoxelizeOptions& o) {
         fmt::print(stderr, "packbed voxelize: warning: {}\n", warning);
     if (!o.quiet)
         fmt::print("packbed voxelize: {}{} x {} x {} voxels of {:g} ({}), porosity of the image "
-                   "{:.5f}: {}\n",
+                   "{:.5f}{}: {}\n",
                    pellet ? fmt::format("{} pellets {} in ", file.packing.size(), pellet->text)
                           : std::string(),
                    image.grid.count[0], image.grid.count[1], image.grid.count[2], image.grid.size,
                    binary ? "1 = pore, 0 = solid"
                           : fmt::format("solid fractions, exact, {}", o.dtype),
-                   image.porosity(), target.string());
+                   image.porosity(),
+                   container.periods() ? ""
+                   : binary            ? " (the container's outside counted as solid)"
+                                       : " (the container's outside counted as pore)",
+                   target.string());
     return 0;
 }
 
