@@ -648,6 +648,14 @@ INSTANTIATE_TEST_SUITE_P(
         exact("generate --friction 0.3 --solver paper",
               "packbed generate: --solver paper with --friction 0.3 is not allowed; allowed: "
               "friction with --solver fire (the paper's iteration has no rotations)"),
+        exact("generate --engine lammps --write-only @D/job -n 50 --out bed",
+              "packbed generate: --out bed is not allowed with --write-only; allowed: "
+              "--write-only DIR alone (the job's folder; `packbed import-lammps DIR --out OUT` "
+              "writes the bed)"),
+        exact("generate --layer-height 10 --solver paper -n 300",
+              "packbed generate: --layer-height 10 is not allowed with --solver paper; allowed: "
+              "--layer-height with --solver fire (the paper's iteration relaxes the bed in one "
+              "piece)"),
         exact("generate --wall-friction 0.2 --engine lammps --write-only @D/job",
               "packbed generate: --wall-friction 0.2 is not allowed with "
               "--engine lammps; allowed: 0 (LAMMPS minimises the frictionless energy; friction "

@@ -808,6 +808,26 @@ TEST(Cli, TheShippedExampleConfigIsReadAsItSays) {
     EXPECT_LE(s["max_overlap_pair"].get<double>(), 1e-4);
 }
 
+TEST(Cli, AnInterruptedRunNamesTheCheckpointItKeeps) {
+    // A bed in layers, interrupted once its checkpoint holds a layer: the bed is not written,
+    // the checkpoint stays, and the message says so rather than "nothing was written".
+    const fs::path d = scratch("interrupt-checkpoint");
+    const fs::path ck = d / "bed.ck";
+    const std::string cmd = "env -u CI " + std::string(PACKBED_EXE) +
+                            " generate -a 10 -n 6000 --layer-height 10 --threads 1 --quiet --out " +
+                            (d / "out").string() + " --checkpoint " + ck.string() +
+                            " & pid=$!; for i in $(seq 600); do [ -e " + ck.string() +
+                            " ] && break; sleep 0.05; done; kill -INT $pid; wait $pid; echo $? > " +
+                            (d / "status").string();
+    ASSERT_EQ(std::system(("bash -c '" + cmd + "' 2>" + (d / "err").string()).c_str()), 0);
+    EXPECT_EQ(slurp(d / "status"), "130\n");
+    EXPECT_EQ(slurp(d / "err"), "packbed generate: interrupted; nothing was written but the "
+                                "checkpoint " +
+                                    ck.string() + " (the same command resumes from it)\n");
+    EXPECT_TRUE(fs::exists(ck));
+    EXPECT_FALSE(fs::exists(d / "out"));
+}
+
 TEST(Cli, InterruptedRunLeavesNoFile) {
     const fs::path d = scratch("interrupt");
     const fs::path status = d / "status";

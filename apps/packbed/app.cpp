@@ -281,7 +281,7 @@ int run(int argc, char** argv) {
             return 2;
         } catch (const Cancelled&) {
             await_interrupt();
-            fmt::print(stderr, "packbed {}: interrupted; nothing was written\n", name);
+            fmt::print(stderr, "{}\n", interrupted_message());
             return 130;
         } catch (const std::bad_alloc&) {
             await_interrupt();

@@ -111,6 +111,7 @@ int run_pellets(const GenerateOptions& o) {
              fmt::format("depth {:.2e} d_v", std::max(p.max_overlap_pair, p.max_overlap_wall)),
              fmt::format("gravity {:.2e}", p.cg)});
     };
+    set_interrupt_checkpoint(o.checkpoint); // kept by an interrupted run
     const GeneratedPellets pellets =
         run_pellets(prepared, control, threads, [&](std::uint32_t done, std::uint32_t layers) {
             if (!o.quiet)
@@ -225,6 +226,17 @@ int run_generate(GenerateOptions& o) {
     request.engine = engines().at(o.engine);
     request.launcher = o.lammps;
     request.write_only = !o.write_only.empty();
+    // Options this run would not use, given by hand, are refused rather than dropped.
+    if (request.write_only && o.app && o.app->count("--out") > 0)
+        throw InvalidInput(fmt::format(
+            "--out {} is not allowed with --write-only; allowed: --write-only DIR alone (the "
+            "job's folder; `packbed import-lammps DIR --out OUT` writes the bed)",
+            printable(o.out)));
+    if (request.params.solver != Solver::fire && o.app && o.app->count("--layer-height") > 0)
+        throw InvalidInput(fmt::format("--layer-height {} is not allowed with --solver paper; "
+                                       "allowed: --layer-height with --solver fire (the paper's "
+                                       "iteration relaxes the bed in one piece)",
+                                       request.params.layer_height));
     const PreparedGeneration prepared = prepare_generation(request);
     if (request.write_only)
         return write_lammps_job(o, prepared);
@@ -238,6 +250,7 @@ int run_generate(GenerateOptions& o) {
                               lammps ? "LAMMPS" : "");
     RunControl control;
     control.on_progress = [&](const Progress& p) { progress(p); };
+    set_interrupt_checkpoint(o.checkpoint); // kept by an interrupted run
     GeneratedBed bed =
         generate_bed(prepared, control, threads, &out, [&](std::uint32_t layers_done) {
             if (!o.quiet)

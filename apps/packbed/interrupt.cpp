@@ -12,6 +12,7 @@
 
 #include <fmt/format.h>
 
+#include "packbed/files.hpp"
 #include "packbed/output.hpp"
 #include "packbed/pipeline.hpp"
 
@@ -22,7 +23,8 @@ namespace {
 std::atomic<pid_t> g_child{0};
 std::atomic<bool> g_progress_drawn{false};
 std::mutex g_name_mutex;
-std::string g_name; // the subcommand, once chosen
+std::string g_name;       // the subcommand, once chosen
+std::string g_checkpoint; // generate --checkpoint, kept by an interrupted run
 // Held by the handler thread from the signal to _exit: whoever else takes it waits for ever.
 std::mutex g_exit_mutex;
 
@@ -53,13 +55,8 @@ void wait_for_signals(sigset_t set) {
             siginfo_t info{};
             ::waitid(P_PID, static_cast<id_t>(child), &info, WEXITED | WNOWAIT);
         }
-        std::string message;
-        {
-            std::lock_guard lock(g_name_mutex);
-            message =
-                fmt::format("{}packbed{}{}: interrupted; nothing was written\n",
-                            g_progress_drawn ? "\r\033[K" : "", g_name.empty() ? "" : " ", g_name);
-        }
+        const std::string message =
+            (g_progress_drawn ? "\r\033[K" : "") + interrupted_message() + "\n";
         (void)!::write(STDERR_FILENO, message.data(), message.size());
         ::_exit(130);
     }
@@ -86,6 +83,21 @@ void handle_interrupts() {
 void set_command_name(const std::string& name) {
     std::lock_guard lock(g_name_mutex);
     g_name = name;
+}
+
+void set_interrupt_checkpoint(const std::string& path) {
+    std::lock_guard lock(g_name_mutex);
+    g_checkpoint = path;
+}
+
+std::string interrupted_message() {
+    std::lock_guard lock(g_name_mutex);
+    const std::string command = g_name.empty() ? "packbed" : "packbed " + g_name;
+    if (!g_checkpoint.empty() && ::access(g_checkpoint.c_str(), F_OK) == 0)
+        return fmt::format("{}: interrupted; nothing was written but the checkpoint {} (the "
+                           "same command resumes from it)",
+                           command, printable(g_checkpoint));
+    return command + ": interrupted; nothing was written";
 }
 
 void progress_line_drawn(bool drawn) {

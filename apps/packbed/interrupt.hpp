@@ -26,6 +26,14 @@ void handle_interrupts();
 /// Name the subcommand for the message.
 void set_command_name(const std::string& name);
 
+/// Name the run's checkpoint (generate --checkpoint), kept by an interrupted run: where it is
+/// on the disk, the message says so instead of "nothing was written".
+void set_interrupt_checkpoint(const std::string& path);
+
+/// "packbed COMMAND: interrupted; nothing was written", or "... nothing was written but the
+/// checkpoint FILE (...)" where a checkpoint named by set_interrupt_checkpoint is on the disk.
+std::string interrupted_message();
+
 /// Tell the interrupt handler whether a progress line is on the terminal.
 void progress_line_drawn(bool drawn);
 
