@@ -1022,12 +1022,26 @@ TEST(ContainerExportCli, LatticeRegionsRefusedWithOneLine) {
     const std::string allowed =
         "allowed: a container's spec and the region's height after its numbers, "
         "cylinder:D,HEIGHT, box:LX,LY,HEIGHT, annulus:D,DI,HEIGHT, periodic:LX,LY,HEIGHT, "
-        "cone:DB,DT,H,HEIGHT, with lengths > 0 and at most 1e+15\n";
-    for (const std::string region : {"annulus:2,6,1", "annulus:6,2", "periodic:4,4"}) {
+        "cone:DB,DT,H,HEIGHT, with lengths > 0 and at most 1e+15; its container: ";
+    // each with what its kind's own numbers allow
+    const std::string annulus = "annulus:D,DI, between a tube of diameter D and a coaxial rod of "
+                                "diameter DI, 0 < DI < D <= 2e+15\n";
+    const std::string periodic = "periodic:LX,LY, a cell periodic in x and y, each in (0, 1e+15]\n";
+    for (const auto& [region, kind] :
+         {std::pair<std::string, std::string>{"annulus:2,6,1", annulus},
+          {"annulus:6,2", annulus},
+          {"periodic:4,4", periodic}}) {
         const Outcome o = run_packbed("lattice --region " + region + " --out " + d.string());
         EXPECT_EQ(o.status, 2);
-        EXPECT_EQ(o.err, "packbed lattice: --region '" + region + "' is not allowed; " + allowed);
+        EXPECT_EQ(o.err,
+                  "packbed lattice: --region '" + region + "' is not allowed; " + allowed + kind);
     }
+    // A cone's apex at z = 5 x 5 / 4 = 6.25: a region 12 tall would end in a point.
+    const Outcome apex = run_packbed("lattice --region cone:10,2,5,12 --out " + d.string());
+    EXPECT_EQ(apex.status, 2);
+    EXPECT_EQ(apex.err, "packbed lattice: --region 'cone:10,2,5,12' is not allowed: cone:10,2,5 "
+                        "has no cross-section at the region's height 12 (its apex is below it); "
+                        "allowed: a height where it has one\n");
     const Outcome turned = run_packbed("lattice --type sc --region periodic:4,4,2 --rotate z:30 "
                                        "--out " +
                                        d.string());

@@ -410,11 +410,24 @@ LatticeRegion parse_lattice_region(std::string_view text) {
             return v > 0.0 && v <= limits::max_length;
         })) {
         const std::string_view spec = text.substr(0, text.rfind(','));
-        if (const std::optional<Container> container = parse_container(spec))
-            return {*container, values->back()};
+        if (const std::optional<Container> container = parse_container(spec)) {
+            // A cone narrowing to its apex below the height would end in a point.
+            const double height = values->back();
+            if (!(container->cross_section_area(height, height) > 0.0))
+                throw InvalidInput(fmt::format(
+                    "--region '{}' is not allowed: {} has no cross-section at the region's "
+                    "height {} (its apex is below it); allowed: a height where it has one",
+                    printable(text.substr(0, 80)), container->spec(), height));
+            return {*container, height};
+        }
     }
+    // A known kind: what its own numbers allow (an annulus's DI below D).
+    const auto known = std::find(all_shapes.begin(), all_shapes.end(), parts.kind);
     throw InvalidInput(
-        fmt::format("--region '{}' is not allowed; {}", printable(text.substr(0, 80)), allowed));
+        fmt::format("--region '{}' is not allowed; {}{}", printable(text.substr(0, 80)), allowed,
+                    known == all_shapes.end()
+                        ? std::string()
+                        : "; its container: " + allowed_containers(std::span(&*known, 1))));
 }
 
 Vec3 parse_lattice_origin(std::string_view text) {
