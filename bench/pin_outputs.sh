@@ -40,10 +40,10 @@ $exe export a5/particles.csv --format liggghts-data -q -o a5.data
 $exe export box/particles.csv -q -o box.data
 $exe export ann/particles.csv -q -o ann.data
 $exe export per/particles.csv -q -o per.data
-$exe generate -a 5 -n 200 -s 1 --engine lammps --write-only lmp_cyl -q -o lc
-$exe generate --container box:5,5 -n 200 -s 1 --engine lammps --write-only lmp_box -q -o lb
-$exe generate --container annulus:8,2 -n 200 -s 1 --engine lammps --write-only lmp_ann -q -o la
-$exe generate --container periodic:5,5 -n 200 -s 1 --engine lammps --write-only lmp_per -q -o lp
+$exe generate -a 5 -n 200 -s 1 --engine lammps --write-only lmp_cyl -q
+$exe generate --container box:5,5 -n 200 -s 1 --engine lammps --write-only lmp_box -q
+$exe generate --container annulus:8,2 -n 200 -s 1 --engine lammps --write-only lmp_ann -q
+$exe generate --container periodic:5,5 -n 200 -s 1 --engine lammps --write-only lmp_per -q
 $exe lattice --type fcc --region box:6,6,6 -q -o latbox
 $exe lattice --type sc --region annulus:8,2,4 --keep centres -q -o latann
 $exe lattice --type sc --region periodic:4,4,3 -q -o latper
@@ -63,7 +63,7 @@ $exe lattice --type diamond --region cone:8,12,20,6 -q -o latcone
 $exe export cone/particles.csv --format stl --contacts caps:0.01 -q -o cone.stl
 $exe export cone/particles.csv --format openfoam -q -o conefoam
 $exe export cone/particles.csv -q -o cone.data
-$exe generate --container cone:6,10,30 -n 200 -s 1 --engine lammps --write-only lmp_cone -q -o lco
+$exe generate --container cone:6,10,30 -n 200 -s 1 --engine lammps --write-only lmp_cone -q
 { $exe generate --container cone:4,8,10 -n 400 || echo "exit $?"; } > cone_top.refused 2>&1
 for c in cylinder:0.05 box:0.05,0.04 annulus:0.05,0.01 periodic:0.05,0.05; do
   { $exe hydraulics --container $c -d 0.003 --porosity 0.4 || echo "exit $?"; } > "hyd_${c%%:*}.txt" 2>&1
