@@ -1507,8 +1507,8 @@ writes it) keeps its orientations and has the shape in its summary['shape'].)");
 frame, timestep (NaN where the file has none), void_fraction (NaN where the frame has no
 spheres or is not taller than the band) and particles, and 'last', the last frame with spheres
 as a Bed (analyze it for the rest). The band: band = (z_low, z_high), fixed, or band_clearance
-Dp clear of each frame's ends (None: 1; not both). Reading options and container as read(); every frame is checked
-inside the container.)");
+Dp clear of each frame's ends (None: 1; not both). Reading options and container as read();
+every frame is checked inside the container.)");
 
     m.def("analyze", &analyze, py::call_guard<JobScope>(), py::arg("bed"), py::kw_only(),
           py::arg("container") = py::none(), py::arg("band") = py::none(),
@@ -1523,9 +1523,9 @@ inside the container.)");
           R"(Measure a bed as `packbed analyze` does: the overall void fraction (exact), the
 radial (wall) and axial void fraction profiles, the centre distribution, contacts and
 coordination, and g(r), in the band band_clearance Dp clear of the floor and the top (None: 1)
-or band = (z_low, z_high), not both. container: a spec string; None: the bed's own. Lengths in Dp are in units of
-diameter (None: the mean sphere diameter). centre_bin, rdf_range, rdf_bin: None, 0.02, 3 and
-0.02 Dp. friction: between the spheres, above 0 a rattler has fewer than 2 contacts, not 4
+or band = (z_low, z_high), not both. container: a spec string; None: the bed's own. Lengths in
+Dp are in units of diameter (None: the mean sphere diameter). centre_bin, rdf_range, rdf_bin:
+None, 0.02, 3 and 0.02 Dp. friction: between the spheres, above 0 a rattler has fewer than 2 contacts, not 4
 (None: the one the bed's summary records, else 0). out: a directory to write the tables, plots
 and summary.json to (None: nothing is written). Returns an Analysis with numpy arrays.
 
