@@ -192,9 +192,10 @@ std::vector<CLI::ConfigItem> TomlConfig::from_config(std::istream& input) const 
         if (const auto* table = node.as_table(); table && key.str() == section) {
             for (const auto& [inner_key, inner_node] : *table)
                 add(inner_key, inner_node);
-        } else if (table && !m_root
+        } else if (const std::string_view name = key.str();
+                   table && !m_root
                                  ->get_subcommands(
-                                     [&](const CLI::App* c) { return c->get_name() == key.str(); })
+                                     [name](const CLI::App* c) { return c->get_name() == name; })
                                  .empty()) {
             continue; // another subcommand's section: one file serves several
         } else {
