@@ -57,6 +57,15 @@ struct Bed {
     nlohmann::json summary = nlohmann::json::object();
 };
 
+/// The period along z of a bed's cell periodic on all six faces (a random array's: its
+/// summary's period_z), or nothing.
+std::optional<double> period_z_of(const Bed& bed) {
+    if (bed.summary.is_object() && bed.summary.contains("period_z") &&
+        bed.summary["period_z"].is_number())
+        return bed.summary["period_z"].get<double>();
+    return std::nullopt;
+}
+
 /// One profile of an analysis as numpy arrays: each bin's interval [low, high] and its value.
 struct Profile {
     py::array_t<double> low, high, value;
@@ -1110,10 +1119,10 @@ export_bed_to(const Bed& bed, const std::filesystem::path& out,
                                        printable(flow.substr(0, 80))));
     request.mesh.periodic_z = flow == "periodic";
     // A random array's cell repeats along z with its own period (summary.json's period_z).
-    if (request.mesh.periodic_z && !container_height && !container &&
-        bed.summary.contains("period_z") && bed.summary["period_z"].is_number())
-        request.container_height = check_option(
-            "container-height", bed.summary["period_z"].get<double>(), range::container_height);
+    if (const std::optional<double> period_z = period_z_of(bed);
+        request.mesh.periodic_z && !container_height && !container && period_z)
+        request.container_height =
+            check_option("container-height", *period_z, range::container_height);
     request.flow.fluid_density = check_option("fluid-density", fluid_density, range::density_kg_m3);
     request.flow.viscosity = check_option("viscosity", viscosity, range::viscosity_pa_s);
     if (scale)
@@ -1170,11 +1179,7 @@ py::array voxelize_bed(const Bed& bed, double voxel_size,
                                            printable(out->native())));
     }
     // A random array's cube is periodic along z too (its summary's period_z).
-    const std::optional<double> period_z =
-        !shape && bed.summary.is_object() && bed.summary.contains("period_z") &&
-                bed.summary["period_z"].is_number()
-            ? std::optional(bed.summary["period_z"].get<double>())
-            : std::nullopt;
+    const std::optional<double> period_z = shape ? std::nullopt : period_z_of(bed);
     // every check before the work
     voxelize_grid(bed.packing, given, voxel_size, region, type, shape, period_z);
     std::optional<OutputDirectory> directory;
@@ -1291,13 +1296,7 @@ by their exact shapes.)")
             "qx, qy, qz (the pellet's axis is its body z axis turned) viewing the bed's own "
             "memory; None for spheres.")
         .def_property_readonly(
-            "period_z",
-            [](const Bed& bed) -> std::optional<double> {
-                if (bed.summary.is_object() && bed.summary.contains("period_z") &&
-                    bed.summary["period_z"].is_number())
-                    return bed.summary["period_z"].get<double>();
-                return std::nullopt;
-            },
+            "period_z", &period_z_of,
             "The period along z of a cell periodic on all six faces (a random array's), or None: "
             "Bed(..., container=bed.container, period_z=bed.period_z) is the same cell.")
         .def_property_readonly(

@@ -7,6 +7,7 @@
 #include <limits>
 #include <memory>
 #include <optional>
+#include <span>
 
 #include <fmt/format.h>
 #include <fmt/ranges.h>
@@ -196,10 +197,8 @@ int write_lammps_job(const GenerateOptions& o, const PreparedGeneration& prepare
     const std::vector<std::string> command =
         stage_lammps_job(out, "", prepared, o.lammps, LammpsPairStyle::gran_hooke);
     out.commit();
-    // the launcher's words, each as a shell's word: to be pasted
-    std::string launcher;
-    for (auto w = command.begin(); w != command.end() - 4; ++w)
-        launcher += (launcher.empty() ? "" : " ") + shell_word(*w);
+    // the launcher's words (without -in in.packbed -log log.lammps), to be pasted
+    const std::string launcher = shell_line(std::span(command).first(command.size() - 4));
     if (!o.quiet)
         fmt::print("packbed generate: the LAMMPS job for {} spheres is in {}/; run it there "
                    "with `{} -in in.packbed` (README.md has a cluster's script), then "

@@ -7,6 +7,7 @@
 #include <filesystem>
 #include <fstream>
 #include <istream>
+#include <span>
 #include <string>
 #include <string_view>
 #include <vector>
@@ -24,6 +25,8 @@ std::string printable(std::string_view text);
 /// it is when it holds only letters, digits and `_./-+=:,@%`, else in single quotes (each quote
 /// inside as '\''), control characters as printable writes them.
 std::string shell_word(std::string_view text);
+/// \return `words` as one line of a POSIX shell, each a shell_word, joined by spaces.
+std::string shell_line(std::span<const std::string> words);
 
 /// \return why `path` is not allowed as a path (empty, a control character such as a newline
 /// or a tab, longer than 4095 bytes), or "" when it is allowed.

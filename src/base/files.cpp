@@ -68,6 +68,13 @@ std::string shell_word(std::string_view text) {
     return out + "'";
 }
 
+std::string shell_line(std::span<const std::string> words) {
+    std::string line;
+    for (const std::string& w : words)
+        line += (line.empty() ? "" : " ") + shell_word(w);
+    return line;
+}
+
 namespace {
 
 /// "INPUT PATH" for messages, or "PATH" when there is no input name.

@@ -108,15 +108,6 @@ nlohmann::json job_json(const GenerateRequest& r, const std::vector<std::string>
             {"request", std::move(request)}};
 }
 
-/// The words of a command as one line for a README or a message (each a shell's word, quoted
-/// where it must be, to be pasted; never run by packbed).
-std::string command_line(const std::vector<std::string>& words) {
-    std::string line;
-    for (const std::string& w : words)
-        line += (line.empty() ? "" : " ") + shell_word(w);
-    return line;
-}
-
 /// The words that run the job in its folder.
 std::vector<std::string> lammps_command(const LammpsLauncher& launcher) {
     std::vector<std::string> words = lammps_launch(launcher);
@@ -237,7 +228,7 @@ std::vector<std::string> stage_lammps_job(OutputDirectory& out, const std::strin
                                           const PreparedGeneration& prepared,
                                           const LammpsLauncher& launcher, LammpsPairStyle style) {
     const std::vector<std::string> command = lammps_command(launcher);
-    const std::string launch = command_line(lammps_launch(launcher));
+    const std::string launch = shell_line(lammps_launch(launcher));
     const LammpsJob job = lammps_job(prepared.params, style, launch);
     const std::string at = folder.empty() ? "" : folder + "/";
     out.stage(at + std::string(lammps_files::data), job.data);
@@ -283,12 +274,12 @@ GeneratedBed run_lammps_generation(const PreparedGeneration& prepared,
         result = lammps_result(prepared.params, folder);
     } catch (const ConvergenceError& e) {
         throw ConvergenceError(fmt::format("{} (LAMMPS's exit status {}; command: {})", e.what(),
-                                           status, printable(command_line(command))));
+                                           status, printable(shell_line(command))));
     }
     if (status != 0)
         throw ConvergenceError(fmt::format("LAMMPS wrote the bed but ended with exit status {} "
                                            "(command: {})",
-                                           status, printable(command_line(command))));
+                                           status, printable(shell_line(command))));
     result.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
     return lammps_bed(prepared, std::move(result),
                       {{"name", "lammps"},
